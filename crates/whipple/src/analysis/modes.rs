@@ -1,0 +1,144 @@
+//! The eigenmodes of the bicycle (weave, capsize, castering), tracked continuously across a
+//! speed sweep.
+//!
+//! Tracking: from one speed to the next, the four new eigenvalues are matched to the four
+//! tracks by the permutation that minimises the squared distance to each track's linear
+//! extrapolation. Classification: at every speed where the spectrum has the benchmark's pattern
+//! (one complex pair and two real eigenvalues), the pair votes for *weave*, the larger real
+//! eigenvalue for *capsize* and the smaller for *castering*; each track takes the label most of
+//! its speeds voted for. Tracks that never see that pattern stay *unclassified*, so a bicycle
+//! whose modes do not follow the benchmark's pattern is reported as it is.
+
+use serde::Serialize;
+
+use super::eigen::Complex64;
+
+/// The name of an eigenmode.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Mode {
+    /// The oscillatory lean-and-steer mode (a complex pair above the double-root speed).
+    Weave,
+    /// The slow, mostly-lean real mode that becomes mildly unstable at high speed.
+    Capsize,
+    /// The fast, heavily damped, mostly-steer real mode.
+    Castering,
+    /// A mode that never showed the benchmark's pattern in this sweep.
+    Unclassified,
+}
+
+impl Mode {
+    /// Lowercase name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Weave => "weave",
+            Mode::Capsize => "capsize",
+            Mode::Castering => "castering",
+            Mode::Unclassified => "unclassified",
+        }
+    }
+}
+
+const PERMUTATIONS: [[usize; 4]; 24] = [
+    [0, 1, 2, 3],
+    [0, 1, 3, 2],
+    [0, 2, 1, 3],
+    [0, 2, 3, 1],
+    [0, 3, 1, 2],
+    [0, 3, 2, 1],
+    [1, 0, 2, 3],
+    [1, 0, 3, 2],
+    [1, 2, 0, 3],
+    [1, 2, 3, 0],
+    [1, 3, 0, 2],
+    [1, 3, 2, 0],
+    [2, 0, 1, 3],
+    [2, 0, 3, 1],
+    [2, 1, 0, 3],
+    [2, 1, 3, 0],
+    [2, 3, 0, 1],
+    [2, 3, 1, 0],
+    [3, 0, 1, 2],
+    [3, 0, 2, 1],
+    [3, 1, 0, 2],
+    [3, 1, 2, 0],
+    [3, 2, 0, 1],
+    [3, 2, 1, 0],
+];
+
+/// Reorders each speed's eigenvalues so that column k follows one continuous track.
+pub fn track(eigenvalues: &mut [[Complex64; 4]]) {
+    for i in 1..eigenvalues.len() {
+        let previous = eigenvalues[i - 1];
+        let predicted: [Complex64; 4] = if i >= 2 {
+            let before = eigenvalues[i - 2];
+            std::array::from_fn(|k| previous[k] * 2.0 - before[k])
+        } else {
+            previous
+        };
+        let current = eigenvalues[i];
+        let mut best = PERMUTATIONS[0];
+        let mut best_cost = f64::INFINITY;
+        for perm in PERMUTATIONS.iter() {
+            let cost: f64 = (0..4)
+                .map(|k| (current[perm[k]] - predicted[k]).norm_sqr())
+                .sum();
+            if cost < best_cost {
+                best_cost = cost;
+                best = *perm;
+            }
+        }
+        eigenvalues[i] = std::array::from_fn(|k| current[best[k]]);
+    }
+}
+
+/// The structural labels at one speed, when it shows the benchmark's pattern.
+fn vote(values: &[Complex64; 4]) -> Option<[Mode; 4]> {
+    let complex: Vec<usize> = (0..4).filter(|&k| values[k].im != 0.0).collect();
+    if complex.len() != 2 {
+        return None;
+    }
+    let real: Vec<usize> = (0..4).filter(|&k| values[k].im == 0.0).collect();
+    let mut labels = [Mode::Unclassified; 4];
+    labels[complex[0]] = Mode::Weave;
+    labels[complex[1]] = Mode::Weave;
+    let (hi, lo) = if values[real[0]].re >= values[real[1]].re {
+        (real[0], real[1])
+    } else {
+        (real[1], real[0])
+    };
+    labels[hi] = Mode::Capsize;
+    labels[lo] = Mode::Castering;
+    Some(labels)
+}
+
+/// Labels for the four tracked columns (see the module documentation).
+pub fn classify(tracked: &[[Complex64; 4]]) -> [Mode; 4] {
+    let modes = [Mode::Weave, Mode::Capsize, Mode::Castering];
+    let mut votes = [[0usize; 3]; 4];
+    for values in tracked {
+        if let Some(labels) = vote(values) {
+            for k in 0..4 {
+                if let Some(m) = modes.iter().position(|&m| m == labels[k]) {
+                    votes[k][m] += 1;
+                }
+            }
+        }
+    }
+    let mut labels = [Mode::Unclassified; 4];
+    // Assign the weave to the two columns with most weave votes, then capsize and castering.
+    let mut taken = [false; 4];
+    for (m, mode) in modes.iter().enumerate() {
+        let slots = if *mode == Mode::Weave { 2 } else { 1 };
+        for _ in 0..slots {
+            let best = (0..4)
+                .filter(|&k| !taken[k] && votes[k][m] > 0)
+                .max_by_key(|&k| votes[k][m]);
+            if let Some(k) = best {
+                taken[k] = true;
+                labels[k] = *mode;
+            }
+        }
+    }
+    labels
+}
