@@ -1,1 +1,168 @@
-fn main() {}
+//! `whipple`: bicycle dynamics from the command line. A thin layer: arguments → library →
+//! report; every error gets its context here.
+
+mod bike;
+mod commands;
+mod figures;
+mod output;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand, ValueEnum};
+
+/// Dynamics of the Whipple bicycle: benchmark parameters, linearized stability, eigenvalues,
+/// critical speeds and drawings (the successor of JBike6).
+#[derive(Parser)]
+#[command(name = "whipple", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// Output formats for tables.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TableFormat {
+    /// Aligned text for reading.
+    Table,
+    /// Comma-separated values.
+    Csv,
+    /// JSON.
+    Json,
+}
+
+/// Output formats without CSV.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TextFormat {
+    /// Aligned text for reading.
+    Table,
+    /// JSON.
+    Json,
+}
+
+/// File formats a bicycle can be written in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FileFormat {
+    /// TOML (the hand-edited format).
+    Toml,
+    /// JSON.
+    Json,
+    /// JBike6's MATLAB assignments (JBike6-form bicycles only).
+    M,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List the named bicycles with their sources.
+    Presets,
+    /// Show a bicycle's parameters (JBike6 form where known, and the benchmark form).
+    Show {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+    },
+    /// Write a bicycle as a parameter file in the benchmark form (JBike6 bodies combined).
+    Convert {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// Output format.
+        #[arg(long, value_enum)]
+        to: FileFormat,
+        /// Keep JBike6's form instead of converting to the benchmark form.
+        #[arg(long)]
+        keep_form: bool,
+        /// Write to this file instead of standard output.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+    },
+    /// The linearized model's matrices M, C1, K0, K2.
+    Matrices {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// JBike6's convention: steer left positive, g inside K0.
+        #[arg(long)]
+        jbike6: bool,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TextFormat,
+    },
+    /// Eigenvalues against forward speed, modes tracked and labelled.
+    Eig {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// Speeds START:STOP:STEP in m/s, both ends included.
+        #[arg(long, default_value = "0:10:0.1", allow_hyphen_values = true)]
+        speeds: String,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TableFormat,
+        /// Write the table to this file instead of standard output.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Also draw the eigenvalues against speed to this .svg or .png file.
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+    },
+    /// Critical speeds (double root, weave, capsize) and the self-stable speed ranges.
+    Speeds {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// Speed range LO:HI searched, in m/s.
+        #[arg(long, default_value = "0:20", allow_hyphen_values = true)]
+        range: String,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TextFormat,
+    },
+    /// JBike6's stylized side view of the bicycle.
+    Draw {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// The drawing, .svg or .png.
+        #[arg(long)]
+        out: std::path::PathBuf,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Presets => commands::presets(),
+        Command::Show { bike } => commands::show(&bike),
+        Command::Convert {
+            bike,
+            to,
+            keep_form,
+            out,
+        } => commands::convert(&bike, to, keep_form, out.as_deref()),
+        Command::Matrices {
+            bike,
+            jbike6,
+            format,
+        } => commands::matrices(&bike, jbike6, format),
+        Command::Eig {
+            bike,
+            speeds,
+            format,
+            out,
+            plot,
+        } => commands::eig(&bike, &speeds, format, out.as_deref(), plot.as_deref()),
+        Command::Speeds {
+            bike,
+            range,
+            format,
+        } => commands::speeds(&bike, &range, format),
+        Command::Draw { bike, out } => commands::draw(&bike, &out),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: {error:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -189,3 +189,46 @@ fn schwinn_crown_capsize_speed_matches_dressel() -> Result<()> {
     assert_abs_diff_eq!(vc, 7.9807, epsilon = 5e-5);
     Ok(())
 }
+
+/// The Browser with rider Jason (Moore 2012) against an independent implementation: the state
+/// matrix at 5 m/s printed in BicycleParameters' `Bicycle.ab_matrix` documentation for the same
+/// parameter set (8 significant digits).
+#[test]
+fn browser_jason_state_matrix_matches_bicycleparameters() -> Result<()> {
+    let bike = presets::find("browser-jason")?.bicycle().benchmark()?;
+    let ss = whipple::linear::StateSpace::new(&Canonical::new(&bike)?, 5.0)?;
+    let published = [
+        [8.26150335, -17.52187211, -0.1488979, -1.07153674],
+        [17.66475151, -22.88692074, 9.96449204, -14.22097935],
+    ];
+    for (i, row) in published.iter().enumerate() {
+        for (j, &value) in row.iter().enumerate() {
+            assert_abs_diff_eq!(ss.a[(i + 2, j)], value, epsilon = 6e-8);
+        }
+    }
+    let b = [[0.01071772, -0.06613267], [-0.06613267, 4.42570676]];
+    for (i, row) in b.iter().enumerate() {
+        for (j, &value) in row.iter().enumerate() {
+            assert_abs_diff_eq!(ss.b[(i + 2, j)], value, epsilon = 6e-9);
+        }
+    }
+    Ok(())
+}
+
+/// The two-mass-skate bicycle (Kooijman et al. 2011): zero-radius massless skates must give
+/// finite matrices (no 0/0 gyroscopic terms), and with zero trail its K₀ and K₂ make
+/// det(g K₀ + v² K₂) independent of speed, so it has no capsize speed; it is self-stable
+/// above its weave speed (regression value computed by this crate and by an independent
+/// numpy transcription of Appendix A: 2.841008323370 m/s).
+#[test]
+fn two_mass_skate_is_self_stable_without_gyroscopic_or_trail_effects() -> Result<()> {
+    let bike = presets::find("two-mass-skate")?.bicycle().benchmark()?;
+    let c = Canonical::new(&bike)?;
+    assert!(c.m.iter().chain(c.c1.iter()).all(|x| x.is_finite()));
+    let s = stability::critical_speeds(&c, 0.0, 20.0)?;
+    assert!(s.capsize_speed.is_none());
+    let vw = s.weave_speed.expect("the TMS has a weave speed");
+    assert_abs_diff_eq!(vw, 2.841008323370, epsilon = 1e-9);
+    assert_eq!(s.stable_speed_ranges, vec![(vw, 20.0)]);
+    Ok(())
+}

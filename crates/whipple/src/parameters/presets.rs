@@ -65,6 +65,80 @@ impl BenchmarkParameters {
     }
 }
 
+/// The two-mass-skate (TMS) bicycle of Kooijman, Meijaard, Papadopoulos, Ruina & Schwab 2011,
+/// "A bicycle can be self-stable without gyroscopic or caster effects", Science 332:339–342
+/// (doi:10.1126/science.1201959): two point masses, massless skates of zero radius instead of
+/// wheels, zero trail, 5° steer axis tilt. Digits as transcribed in BicycleParameters
+/// (data/bicycles/Tms/Parameters/TmsBenchmark.txt); the Science supplement's own table was not
+/// at hand to check them against.
+pub fn two_mass_skate() -> BenchmarkParameters {
+    BenchmarkParameters {
+        w: 1.0,
+        c: 0.0,
+        lambda: 5f64.to_radians(),
+        g: 9.81,
+        r_r: 0.0,
+        m_r: 0.0,
+        i_rxx: 0.0,
+        i_ryy: 0.0,
+        x_b: 1.2,
+        z_b: -0.4,
+        m_b: 10.0,
+        i_bxx: 0.0,
+        i_byy: 0.0,
+        i_bzz: 0.0,
+        i_bxz: 0.0,
+        x_h: 1.02,
+        z_h: -0.2,
+        m_h: 1.0,
+        i_hxx: 0.0,
+        i_hyy: 0.0,
+        i_hzz: 0.0,
+        i_hxz: 0.0,
+        r_f: 0.0,
+        m_f: 0.0,
+        i_fxx: 0.0,
+        i_fyy: 0.0,
+    }
+}
+
+/// A measured city bicycle, the Batavus Browser, with its rider Jason seated rigidly, from
+/// Moore 2012, "Human Control of a Bicycle", PhD dissertation, University of California, Davis
+/// (measurements of Moore, Hubbard, Kooijman & Schwab). Digits as published with the
+/// dissertation's software: HumanControl `parameters/BrowserPar.txt`, identical to
+/// BicycleParameters' `meijaard2007_browser_jason` set (whose I_Rxx and I_Fxx appear swapped
+/// relative to the dissertation's bicycle table; kept as published).
+pub fn browser_jason() -> BenchmarkParameters {
+    BenchmarkParameters {
+        w: 1.121,
+        c: 0.0685808540382,
+        lambda: 0.399680398707,
+        g: 9.81,
+        r_r: 0.340958858855,
+        m_r: 3.11,
+        i_rxx: 0.0883819364527,
+        i_ryy: 0.152467620286,
+        x_b: 0.289099434117,
+        z_b: -1.04029228321,
+        m_b: 81.86,
+        i_bxx: 11.3557360401,
+        i_byy: 12.2177848012,
+        i_bzz: 3.12354397008,
+        i_bxz: -1.96756380745,
+        x_h: 0.866949640247,
+        z_h: -0.748236400835,
+        m_h: 3.22,
+        i_hxx: 0.253379594731,
+        i_hyy: 0.246138810935,
+        i_hzz: 0.0955770796289,
+        i_hxz: -0.0720452391817,
+        r_f: 0.34352982332,
+        m_f: 2.02,
+        i_fxx: 0.0904106601579,
+        i_fyy: 0.149389340425,
+    }
+}
+
 /// JBike6's default bicycle, the Schwinn Crown, in JBike6's form as listed in Dressel's
 /// "Benchmarking a Fully Non-Linear Bicycle Model with JBike6" (Cornell, 2003–2015), with
 /// JBike6's default gravity 9.80665 m/s².
@@ -133,6 +207,18 @@ pub const PRESETS: &[Preset] = &[
         summary: "JBike6's default bike (JBike6 form: rider, frame, rack, fork, basket)",
         source: "Dressel, Benchmarking a Fully Non-Linear Bicycle Model with JBike6, Cornell University (2003-2015); JBike6, Schwab & Papadopoulos 2003",
         description: || Description::Jbike6(schwinn_crown_jbike6()),
+    },
+    Preset {
+        name: "two-mass-skate",
+        summary: "two point masses on skates: self-stable without gyroscopic or trail effects",
+        source: "Kooijman, Meijaard, Papadopoulos, Ruina & Schwab 2011, Science 332:339-342 (doi:10.1126/science.1201959); digits as transcribed in BicycleParameters data/bicycles/Tms",
+        description: || Description::Benchmark(two_mass_skate()),
+    },
+    Preset {
+        name: "browser-jason",
+        summary: "a measured Batavus Browser city bicycle with its rider Jason (72 kg) seated rigidly",
+        source: "Moore 2012, Human Control of a Bicycle, PhD dissertation, UC Davis; digits of HumanControl parameters/BrowserPar.txt = BicycleParameters meijaard2007_browser_jason",
+        description: || Description::Benchmark(browser_jason()),
     },
 ];
 

@@ -1,0 +1,316 @@
+//! One function per subcommand.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use anyhow::{bail, Context, Result};
+use nalgebra::Matrix2;
+use serde_json::json;
+use whipple::analysis::{stability, sweep};
+use whipple::linear::Canonical;
+use whipple::parameters::io::{benchmark_key_doc, write, Format};
+use whipple::parameters::presets::PRESETS;
+use whipple::{Bicycle, Description};
+
+use crate::bike::{load, LoadedBike};
+use crate::output::{number, parse_pair, parse_triple, write_atomically};
+use crate::{FileFormat, TableFormat, TextFormat};
+
+/// Prints `text` to standard output or writes it to `out`.
+fn emit(text: &str, out: Option<&Path>) -> Result<()> {
+    match out {
+        Some(path) => write_atomically(path, text.as_bytes()),
+        None => {
+            print!("{text}");
+            Ok(())
+        }
+    }
+}
+
+pub fn presets() -> Result<()> {
+    let mut text = String::new();
+    for p in PRESETS {
+        let form = match (p.description)() {
+            Description::Benchmark(_) => "benchmark form",
+            Description::Jbike6(_) => "JBike6 form",
+        };
+        writeln!(text, "{:<16} {} ({form})", p.name, p.summary)?;
+        writeln!(text, "{:<16} source: {}", "", p.source)?;
+    }
+    emit(&text, None)
+}
+
+pub fn show(arg: &str) -> Result<()> {
+    let bike = load(arg)?;
+    let mut text = String::new();
+    writeln!(text, "{}", bike.label)?;
+    if let Some(source) = &bike.bicycle.source {
+        writeln!(text, "source: {source}")?;
+    }
+    if let Some(j) = bike.bicycle.jbike6() {
+        writeln!(text, "\nJBike6 form (x forward, y up; SI units, radians):")?;
+        for (name, value) in j.fields() {
+            writeln!(text, "  {name:<18} {:>22}", number(value)?)?;
+        }
+    }
+    writeln!(
+        text,
+        "\nBenchmark form (Meijaard et al. 2007; x forward, y right, z down):"
+    )?;
+    for (key, value) in bike.benchmark.fields() {
+        writeln!(
+            text,
+            "  {key:<5} {:>22}  {}",
+            number(value)?,
+            benchmark_key_doc(key)
+        )?;
+    }
+    writeln!(
+        text,
+        "  (steer axis tilt {:.4} deg, head angle {:.4} deg)",
+        bike.benchmark.lambda.to_degrees(),
+        90.0 - bike.benchmark.lambda.to_degrees()
+    )?;
+    emit(&text, None)
+}
+
+pub fn convert(arg: &str, to: FileFormat, keep_form: bool, out: Option<&Path>) -> Result<()> {
+    let bike = load(arg)?;
+    let bicycle = if keep_form {
+        bike.bicycle.clone()
+    } else {
+        Bicycle {
+            name: bike.bicycle.name.clone(),
+            source: bike.bicycle.source.clone(),
+            description: Description::Benchmark(bike.benchmark),
+        }
+    };
+    let format = match to {
+        FileFormat::Toml => Format::Toml,
+        FileFormat::Json => Format::Json,
+        FileFormat::M => Format::Jbike6M,
+    };
+    let text = write(&bicycle, format).with_context(|| {
+        if format == Format::Jbike6M && !keep_form {
+            "--to m needs --keep-form (the benchmark form has no .m layout)".to_string()
+        } else {
+            format!("writing {}", bike.label)
+        }
+    })?;
+    emit(&text, out)
+}
+
+fn canonical(bike: &LoadedBike) -> Result<Canonical> {
+    Canonical::new(&bike.benchmark).with_context(|| format!("building the model of {}", bike.label))
+}
+
+fn matrix_json(m: &Matrix2<f64>) -> Result<serde_json::Value> {
+    for x in m.iter() {
+        number(*x)?;
+    }
+    Ok(json!([[m[(0, 0)], m[(0, 1)]], [m[(1, 0)], m[(1, 1)]]]))
+}
+
+pub fn matrices(arg: &str, jbike6: bool, format: TextFormat) -> Result<()> {
+    let bike = load(arg)?;
+    let c = canonical(&bike)?;
+    let (names, mats, note) = if jbike6 {
+        let [m, c1, k0, k2] = c.jbike6_convention();
+        (
+            ["M0", "C1", "K0", "K2"],
+            [m, c1, k0, k2],
+            "JBike6 convention: q = [lean right +, steer left +], M0 q'' + v C1 q' + (K0 + v^2 K2) q = 0, g inside K0",
+        )
+    } else {
+        (
+            ["M", "C1", "K0", "K2"],
+            [c.m, c.c1, c.k0, c.k2],
+            "benchmark convention: q = [lean right +, steer right +], M q'' + v C1 q' + (g K0 + v^2 K2) q = f",
+        )
+    };
+    let text = match format {
+        TextFormat::Json => {
+            let mut obj = serde_json::Map::new();
+            obj.insert("bike".into(), json!(bike.label));
+            obj.insert(
+                "convention".into(),
+                json!(if jbike6 { "jbike6" } else { "benchmark" }),
+            );
+            obj.insert("g".into(), json!(c.g));
+            for (name, m) in names.iter().zip(mats.iter()) {
+                obj.insert(name.to_string(), matrix_json(m)?);
+            }
+            format!("{}\n", serde_json::to_string_pretty(&obj)?)
+        }
+        TextFormat::Table => {
+            let mut t = format!("{} ({note}; g = {})\n", bike.label, number(c.g)?);
+            for (name, m) in names.iter().zip(mats.iter()) {
+                writeln!(t, "{name} =")?;
+                for i in 0..2 {
+                    writeln!(
+                        t,
+                        "  [{:>22} {:>22}]",
+                        number(m[(i, 0)])?,
+                        number(m[(i, 1)])?
+                    )?;
+                }
+            }
+            t
+        }
+    };
+    emit(&text, None)
+}
+
+pub fn eig(
+    arg: &str,
+    speeds: &str,
+    format: TableFormat,
+    out: Option<&Path>,
+    plot: Option<&Path>,
+) -> Result<()> {
+    let bike = load(arg)?;
+    let (start, stop, step) = parse_triple(speeds, "--speeds")?;
+    let grid = sweep::speed_grid(start, stop, step).context("--speeds")?;
+    let c = canonical(&bike)?;
+    let s = sweep::eigen_sweep(&c, &grid)?;
+    if let Some(path) = plot {
+        let critical = stability::critical_speeds(&c, start.min(stop), stop.max(start + step))?;
+        crate::figures::eigen_plot(&bike, &s, &critical, path)?;
+    }
+    let text = match format {
+        TableFormat::Csv => {
+            let mut t = String::from("v,re1,im1,re2,im2,re3,im3,re4,im4\n");
+            for (v, values) in s.speeds.iter().zip(&s.eigenvalues) {
+                t.push_str(&number(*v)?);
+                for l in values {
+                    write!(t, ",{},{}", number(l.re)?, number(l.im)?)?;
+                }
+                t.push('\n');
+            }
+            t
+        }
+        TableFormat::Json => {
+            let mut rows = Vec::with_capacity(s.speeds.len());
+            for (v, values) in s.speeds.iter().zip(&s.eigenvalues) {
+                number(*v)?;
+                let mut eigs = Vec::new();
+                for (l, mode) in values.iter().zip(s.modes) {
+                    number(l.re)?;
+                    number(l.im)?;
+                    eigs.push(json!({"re": l.re, "im": l.im, "mode": mode.name()}));
+                }
+                rows.push(json!({"v": v, "eigenvalues": eigs}));
+            }
+            let doc = json!({
+                "bike": bike.label,
+                "modes": s.modes.map(|m| m.name()),
+                "rows": rows,
+            });
+            format!("{}\n", serde_json::to_string_pretty(&doc)?)
+        }
+        TableFormat::Table => {
+            let mut t = format!(
+                "{}: eigenvalues [1/s] against forward speed v [m/s]\n{:>8}",
+                bike.label, "v"
+            );
+            for (k, mode) in s.modes.iter().enumerate() {
+                write!(t, " {:>30}", format!("{} ({})", mode.name(), k + 1))?;
+            }
+            t.push('\n');
+            for (v, values) in s.speeds.iter().zip(&s.eigenvalues) {
+                write!(t, "{:>8.4}", v)?;
+                for l in values {
+                    number(l.re)?;
+                    number(l.im)?;
+                    let cell = if l.im == 0.0 {
+                        format!("{:.10}", l.re)
+                    } else {
+                        format!(
+                            "{:.10} {} {:.10}i",
+                            l.re,
+                            if l.im < 0.0 { '-' } else { '+' },
+                            l.im.abs()
+                        )
+                    };
+                    write!(t, " {cell:>30}")?;
+                }
+                t.push('\n');
+            }
+            t
+        }
+    };
+    emit(&text, out)
+}
+
+fn optional(x: Option<f64>) -> Result<serde_json::Value> {
+    match x {
+        Some(v) => {
+            number(v)?;
+            Ok(json!(v))
+        }
+        None => Ok(serde_json::Value::Null),
+    }
+}
+
+pub fn speeds(arg: &str, range: &str, format: TextFormat) -> Result<()> {
+    let bike = load(arg)?;
+    let (lo, hi) = parse_pair(range, "--range")?;
+    if lo >= hi {
+        bail!("--range: LO ({lo}) must be less than HI ({hi})");
+    }
+    let c = canonical(&bike)?;
+    let s = stability::critical_speeds(&c, lo, hi)?;
+    let text = match format {
+        TextFormat::Json => {
+            let mut ranges = Vec::new();
+            for (a, b) in &s.stable_speed_ranges {
+                ranges.push(json!([a, b]));
+            }
+            let doc = json!({
+                "double_root_speed": optional(s.double_root_speed)?,
+                "weave_speed": optional(s.weave_speed)?,
+                "capsize_speed": optional(s.capsize_speed)?,
+                "stable_speed_ranges": ranges,
+            });
+            format!("{}\n", serde_json::to_string_pretty(&doc)?)
+        }
+        TextFormat::Table => {
+            let none = format!("none in {lo}..{hi} m/s");
+            let show = |x: Option<f64>| -> Result<String> {
+                Ok(match x {
+                    Some(v) => format!("{} m/s", number(v)?),
+                    None => none.clone(),
+                })
+            };
+            let mut t = format!("{}: critical speeds in {lo}..{hi} m/s\n", bike.label);
+            write!(t, "  double root speed v_d  {}", show(s.double_root_speed)?)?;
+            if let Some(l) = s.double_root_eigenvalue {
+                write!(t, "  (double eigenvalue {} 1/s)", number(l)?)?;
+            }
+            write!(t, "\n  weave speed v_w        {}", show(s.weave_speed)?)?;
+            if let Some(w) = s.weave_frequency {
+                write!(t, "  (weave frequency {} rad/s)", number(w)?)?;
+            }
+            writeln!(t, "\n  capsize speed v_c      {}", show(s.capsize_speed)?)?;
+            if s.stable_speed_ranges.is_empty() {
+                writeln!(t, "  self-stable            nowhere in {lo}..{hi} m/s")?;
+            }
+            for (a, b) in &s.stable_speed_ranges {
+                let open_end = if *b == hi { " (up to the end of the range)" } else { "" };
+                writeln!(
+                    t,
+                    "  self-stable            {} .. {} m/s{open_end}",
+                    number(*a)?,
+                    number(*b)?
+                )?;
+            }
+            t
+        }
+    };
+    emit(&text, None)
+}
+
+pub fn draw(arg: &str, out: &Path) -> Result<()> {
+    let bike = load(arg)?;
+    crate::figures::side_view(&bike, out)
+}

@@ -1,0 +1,83 @@
+//! Writing results: whole files or nothing, and number formatting.
+
+use std::io::Write;
+use std::path::Path;
+
+use anyhow::{bail, Context, Result};
+
+/// Writes `bytes` to `path` whole or not at all: a temporary file beside it, then a rename.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    if !dir.is_dir() {
+        bail!(
+            "cannot write {}: the directory {} does not exist",
+            path.display(),
+            dir.display()
+        );
+    }
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "output".into());
+    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let result = (|| -> Result<()> {
+        let mut file = std::fs::File::create(&tmp)
+            .with_context(|| format!("creating {}", tmp.display()))?;
+        file.write_all(bytes)
+            .with_context(|| format!("writing {}", tmp.display()))?;
+        file.sync_all().ok();
+        std::fs::rename(&tmp, path).with_context(|| format!("writing {}", path.display()))?;
+        Ok(())
+    })();
+    if result.is_err() {
+        std::fs::remove_file(&tmp).ok();
+    }
+    result
+}
+
+/// Shortest text that reads back as the same f64; refuses NaN and infinities.
+pub fn number(x: f64) -> Result<String> {
+    if !x.is_finite() {
+        bail!("a computed result is not a finite number ({x})");
+    }
+    // Print negative zero as 0: it carries no meaning in a table of results.
+    Ok(format!("{}", if x == 0.0 { 0.0 } else { x }))
+}
+
+/// Parses `A:B` into two finite numbers.
+pub fn parse_pair(text: &str, option: &str) -> Result<(f64, f64)> {
+    let parts: Vec<&str> = text.split(':').collect();
+    if parts.len() != 2 {
+        bail!("{option} expects LO:HI, got `{text}`");
+    }
+    let lo = parse_finite(parts[0], option)?;
+    let hi = parse_finite(parts[1], option)?;
+    Ok((lo, hi))
+}
+
+/// Parses `START:STOP:STEP` into three finite numbers.
+pub fn parse_triple(text: &str, option: &str) -> Result<(f64, f64, f64)> {
+    let parts: Vec<&str> = text.split(':').collect();
+    if parts.len() != 3 {
+        bail!("{option} expects START:STOP:STEP, got `{text}`");
+    }
+    Ok((
+        parse_finite(parts[0], option)?,
+        parse_finite(parts[1], option)?,
+        parse_finite(parts[2], option)?,
+    ))
+}
+
+fn parse_finite(text: &str, option: &str) -> Result<f64> {
+    let x: f64 = text
+        .trim()
+        .parse()
+        .with_context(|| format!("{option}: `{text}` is not a number"))?;
+    if !x.is_finite() {
+        bail!("{option}: `{text}` is not a finite number");
+    }
+    Ok(x)
+}
