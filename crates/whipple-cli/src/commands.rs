@@ -296,7 +296,11 @@ pub fn speeds(arg: &str, range: &str, format: TextFormat) -> Result<()> {
                 writeln!(t, "  self-stable            nowhere in {lo}..{hi} m/s")?;
             }
             for (a, b) in &s.stable_speed_ranges {
-                let open_end = if *b == hi { " (up to the end of the range)" } else { "" };
+                let open_end = if *b == hi {
+                    " (up to the end of the range)"
+                } else {
+                    ""
+                };
                 writeln!(
                     t,
                     "  self-stable            {} .. {} m/s{open_end}",

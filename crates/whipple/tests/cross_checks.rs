@@ -43,7 +43,11 @@ fn quartic_roots_agree_with_faer_on_every_preset() -> Result<()> {
                     .filter(|o| *o != l)
                     .map(|o| (o - l).norm())
                     .fold(f64::INFINITY, f64::min);
-                let tol = if gap > 0.05 { 1e-11 * scale } else { 1e-6 * scale };
+                let tol = if gap > 0.05 {
+                    1e-11 * scale
+                } else {
+                    1e-6 * scale
+                };
                 assert!(
                     (l.re - re).abs() <= tol && (l.im - im).abs() <= tol,
                     "{name} at v = {v}: ours {l}, faer {re} + {im}i"
@@ -59,7 +63,9 @@ fn eigenpairs_satisfy_a_x_equals_lambda_x() -> Result<()> {
     for (name, bike) in all_bikes()? {
         let c = Canonical::new(&bike)?;
         for v in [0.0, 0.5, 1.0, 3.0, 4.6, 6.0, 8.0, 12.0] {
-            let a = StateSpace::new(&c, v)?.a.map(|x| nalgebra::Complex::new(x, 0.0));
+            let a = StateSpace::new(&c, v)?
+                .a
+                .map(|x| nalgebra::Complex::new(x, 0.0));
             for pair in eigen::eigenpairs(&c, v)? {
                 let residual = (a * pair.vector - pair.vector * pair.value).norm();
                 let norm = pair.vector.norm();
@@ -124,7 +130,10 @@ fn jbike6_inertia_rotation_matches_a_hand_calculation() -> Result<()> {
     assert!((b.i_bzz - (i11 * s * s + i22 * c * c)).abs() < 1e-13);
     assert!((b.i_bxz + (i11 - i22) * s * c).abs() < 1e-13);
     assert_eq!(b.i_byy, izz);
-    assert!(b.i_bxz > 0.0, "a rider leaning forward has I_Bxz > 0 with z down");
+    assert!(
+        b.i_bxz > 0.0,
+        "a rider leaning forward has I_Bxz > 0 with z down"
+    );
     Ok(())
 }
 
@@ -156,7 +165,10 @@ fn critical_speeds_separate_the_eigenvalues() -> Result<()> {
                     .map(|l| l.re)
                     .fold(f64::NEG_INFINITY, f64::max))
             };
-            assert!(weave_re(vw - 1e-6)? > 0.0 && weave_re(vw + 1e-6)? < 0.0, "{name}");
+            assert!(
+                weave_re(vw - 1e-6)? > 0.0 && weave_re(vw + 1e-6)? < 0.0,
+                "{name}"
+            );
         }
     }
     Ok(())
@@ -175,7 +187,11 @@ fn tracked_modes_are_continuous() -> Result<()> {
         }
         for k in 0..4 {
             let jump = (s.eigenvalues[i][k] - s.eigenvalues[i - 1][k]).norm();
-            assert!(jump < 0.5, "column {k} jumps by {jump} at v = {}", s.speeds[i]);
+            assert!(
+                jump < 0.5,
+                "column {k} jumps by {jump} at v = {}",
+                s.speeds[i]
+            );
         }
     }
     Ok(())

@@ -71,7 +71,10 @@ fn inertia_tensors_must_be_positive_semi_definite() {
     let mut b = benchmark();
     b.i_bxz = 6.0; // 36 > 9.2 * 2.8
     let m = message(b.validate());
-    assert!(m.contains("IBxz") && m.contains("positive semi-definite"), "{m}");
+    assert!(
+        m.contains("IBxz") && m.contains("positive semi-definite"),
+        "{m}"
+    );
 }
 
 #[test]
@@ -108,14 +111,25 @@ fn a_singular_mass_matrix_is_refused() {
 fn jbike6_rules_are_checked_before_conversion() {
     let mut j = presets::schwinn_crown_jbike6();
     j.head_angle = 0.0;
-    assert!(j.to_benchmark().unwrap_err().to_string().contains("head_angle"));
+    assert!(j
+        .to_benchmark()
+        .unwrap_err()
+        .to_string()
+        .contains("head_angle"));
     j = presets::schwinn_crown_jbike6();
     j.front_wheel.inertia = [0.08, 0.09, 0.17];
     let m = j.to_benchmark().unwrap_err().to_string();
-    assert!(m.contains("Ifrontwheel") && m.contains("axisymmetric"), "{m}");
+    assert!(
+        m.contains("Ifrontwheel") && m.contains("axisymmetric"),
+        "{m}"
+    );
     j = presets::schwinn_crown_jbike6();
     j.basket.m = -1.5;
-    assert!(j.to_benchmark().unwrap_err().to_string().contains("mbasket"));
+    assert!(j
+        .to_benchmark()
+        .unwrap_err()
+        .to_string()
+        .contains("mbasket"));
     j = presets::schwinn_crown_jbike6();
     j.rider.inertia = [10.0, 1.0, 12.0];
     let m = j.to_benchmark().unwrap_err().to_string();
@@ -168,7 +182,10 @@ fn toml_unknown_and_missing_keys_are_refused() {
     let (_, _, message) = parse_error("name = \"x\"\n", Format::Toml);
     assert!(message.contains("benchmark") && message.contains("jbike6"));
     let (_, _, message) = parse_error("w = \"wide\"\n", Format::Toml);
-    assert!(message.contains("`w`") || message.contains("w"), "{message}");
+    assert!(
+        message.contains("`w`") || message.contains("w"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -215,7 +232,10 @@ fn jbike6_m_errors_name_line_and_column() {
     assert_eq!(line, 3);
     assert!(message.contains("not a number"), "{message}");
     let (_, _, message) = parse_error(
-        &CROWN_M.replace("Ibasket = [0.01000000 0.01000000 0.01000000]", "Ibasket = [0.01 0.01]"),
+        &CROWN_M.replace(
+            "Ibasket = [0.01000000 0.01000000 0.01000000]",
+            "Ibasket = [0.01 0.01]",
+        ),
         Format::Jbike6M,
     );
     assert!(message.contains("three numbers"), "{message}");
@@ -274,7 +294,9 @@ fn no_panic_on_arbitrary_parameters() {
         .expect("writes");
         let key = format!("\"{}\": ", fields[pick]);
         if let Some(start) = text.find(&key) {
-            let end = text[start..].find([',', '\n']).map_or(text.len(), |e| start + e);
+            let end = text[start..]
+                .find([',', '\n'])
+                .map_or(text.len(), |e| start + e);
             let literal = if value.is_nan() {
                 "1e999".to_string()
             } else {
