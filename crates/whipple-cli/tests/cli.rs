@@ -1,0 +1,223 @@
+//! The real binary, run as a user runs it.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn whipple(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_whipple"))
+        .args(args)
+        .output()
+        .expect("the whipple binary runs")
+}
+
+fn stdout(output: &Output) -> String {
+    assert!(
+        output.status.success(),
+        "failed: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8_lossy(&output.stdout).into_owned()
+}
+
+fn stderr_of_failure(output: &Output) -> String {
+    assert!(!output.status.success(), "expected a failure");
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// A fresh scratch directory under the target directory.
+fn scratch(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch directory");
+    dir
+}
+
+#[test]
+fn presets_lists_every_preset_with_its_source() {
+    let out = stdout(&whipple(&["presets"]));
+    for name in ["benchmark", "schwinn-crown", "two-mass-skate", "browser-jason"] {
+        assert!(out.contains(name), "{out}");
+    }
+    assert!(out.contains("doi:10.1098/rspa.2007.1857"));
+}
+
+/// Meijaard et al. 2007, Table 2, at 5 m/s, through the CSV output.
+#[test]
+fn eig_csv_has_the_documented_header_and_published_values() {
+    let out = stdout(&whipple(&[
+        "eig", "--bike", "benchmark", "--speeds", "0:10:0.5", "--format", "csv",
+    ]));
+    let mut lines = out.lines();
+    assert_eq!(lines.next(), Some("v,re1,im1,re2,im2,re3,im3,re4,im4"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().expect("a number")).collect())
+        .collect();
+    assert_eq!(rows.len(), 21);
+    let at5 = &rows[10];
+    assert_eq!(at5[0], 5.0);
+    assert!((at5[1] + 0.77534188219585).abs() < 1e-12);
+    assert!((at5[2] - 4.46486771378823).abs() < 1e-12);
+    assert!((at5[5] + 0.32286642900409).abs() < 1e-12);
+    assert!((at5[7] + 14.0783896927982).abs() < 1e-12);
+}
+
+#[test]
+fn eig_json_labels_the_modes() {
+    let out = stdout(&whipple(&[
+        "eig", "--bike", "benchmark", "--speeds", "1:2:1", "--format", "json",
+    ]));
+    let doc: serde_json::Value = serde_json::from_str(&out).expect("valid JSON");
+    assert_eq!(
+        doc["modes"],
+        serde_json::json!(["weave", "weave", "capsize", "castering"])
+    );
+    assert_eq!(doc["rows"].as_array().map(Vec::len), Some(2));
+}
+
+/// Meijaard et al. 2007, Table 2: v_d, v_w, v_c through the JSON output, with exactly the
+/// documented keys.
+#[test]
+fn speeds_json_has_the_documented_keys() {
+    let out = stdout(&whipple(&[
+        "speeds", "--bike", "benchmark", "--range", "0:10", "--format", "json",
+    ]));
+    let doc: serde_json::Value = serde_json::from_str(&out).expect("valid JSON");
+    let keys: Vec<&str> = doc
+        .as_object()
+        .expect("an object")
+        .keys()
+        .map(String::as_str)
+        .collect();
+    assert_eq!(
+        keys,
+        [
+            "capsize_speed",
+            "double_root_speed",
+            "stable_speed_ranges",
+            "weave_speed"
+        ]
+    );
+    let get = |k: &str| doc[k].as_f64().expect("a number");
+    assert!((get("double_root_speed") - 0.68428307889246).abs() < 1e-12);
+    assert!((get("weave_speed") - 4.29238253634111).abs() < 1e-12);
+    assert!((get("capsize_speed") - 6.02426201538837).abs() < 1e-12);
+    assert_eq!(doc["stable_speed_ranges"].as_array().map(Vec::len), Some(1));
+}
+
+#[test]
+fn speeds_says_none_where_a_speed_is_outside_the_range() {
+    let out = stdout(&whipple(&["speeds", "--bike", "benchmark", "--range", "0:5"]));
+    assert!(out.contains("capsize speed v_c      none in 0..5 m/s"), "{out}");
+    let json = stdout(&whipple(&[
+        "speeds", "--bike", "benchmark", "--range", "0:4", "--format", "json",
+    ]));
+    let doc: serde_json::Value = serde_json::from_str(&json).expect("valid JSON");
+    assert!(doc["weave_speed"].is_null() && doc["capsize_speed"].is_null());
+    assert_eq!(doc["stable_speed_ranges"], serde_json::json!([]));
+}
+
+#[test]
+fn matrices_in_jbike6_convention_flip_the_steer_sign_and_carry_g() {
+    let bench = stdout(&whipple(&[
+        "matrices", "--bike", "benchmark", "--format", "json",
+    ]));
+    let jb = stdout(&whipple(&[
+        "matrices", "--bike", "benchmark", "--jbike6", "--format", "json",
+    ]));
+    let b: serde_json::Value = serde_json::from_str(&bench).expect("JSON");
+    let j: serde_json::Value = serde_json::from_str(&jb).expect("JSON");
+    assert_eq!(b["M"][0][1], serde_json::json!(2.31941332208709));
+    assert_eq!(
+        j["M0"][0][1].as_f64(),
+        b["M"][0][1].as_f64().map(|x| -x)
+    );
+    let k0 = j["K0"][0][0].as_f64().expect("a number");
+    assert!((k0 + 80.95 * 9.81).abs() < 1e-12, "{k0}");
+}
+
+#[test]
+fn show_gives_both_forms_of_a_jbike6_bike() {
+    let out = stdout(&whipple(&["show", "--bike", "schwinn-crown"]));
+    assert!(out.contains("JBike6 form") && out.contains("Benchmark form"));
+    assert!(out.contains("mrider") && out.contains("mB"));
+}
+
+/// A bike converted to TOML and JSON, and kept in JBike6 form as a .m file, reads back with
+/// the same critical speeds.
+#[test]
+fn converted_files_read_back_with_the_same_results() {
+    let dir = scratch("convert");
+    let reference = stdout(&whipple(&[
+        "speeds", "--bike", "schwinn-crown", "--format", "json",
+    ]));
+    for (to, name, keep) in [
+        ("toml", "crown.toml", false),
+        ("json", "crown.json", false),
+        ("m", "crown.m", true),
+        ("toml", "crown-jbike6.toml", true),
+    ] {
+        let path = dir.join(name);
+        let path_text = path.to_string_lossy().into_owned();
+        let mut args = vec!["convert", "--bike", "schwinn-crown", "--to", to, "--out", &path_text];
+        if keep {
+            args.push("--keep-form");
+        }
+        stdout(&whipple(&args));
+        let again = stdout(&whipple(&["speeds", "--bike", &path_text, "--format", "json"]));
+        if to == "m" {
+            // The .m layout prints 8 decimals, as JBike6 does: equal to that precision.
+            let a: serde_json::Value = serde_json::from_str(&again).expect("JSON");
+            let r: serde_json::Value = serde_json::from_str(&reference).expect("JSON");
+            let (x, y) = (a["capsize_speed"].as_f64(), r["capsize_speed"].as_f64());
+            assert!((x.unwrap_or(0.0) - y.unwrap_or(1.0)).abs() < 1e-7);
+        } else {
+            assert_eq!(again, reference, "{name}");
+        }
+    }
+}
+
+#[test]
+fn a_syntax_error_names_the_file_line_and_column() {
+    let dir = scratch("syntax");
+    let path = dir.join("bad.toml");
+    std::fs::write(&path, "[benchmark]\nw = 1.02\nc = = 0.08\n").expect("write");
+    let err = stderr_of_failure(&whipple(&["speeds", "--bike", &path.to_string_lossy()]));
+    assert!(err.contains("bad.toml:3:5"), "{err}");
+    assert!(err.contains("c = = 0.08"), "{err}");
+}
+
+#[test]
+fn an_invalid_parameter_is_named_with_its_value_and_rule() {
+    let dir = scratch("invalid");
+    let path = dir.join("heavy.toml");
+    let text = stdout(&whipple(&["convert", "--bike", "benchmark", "--to", "toml"]))
+        .replace("mB = 85.0", "mB = -85.0");
+    std::fs::write(&path, text).expect("write");
+    let err = stderr_of_failure(&whipple(&["eig", "--bike", &path.to_string_lossy()]));
+    assert!(err.contains("`mB` = -85") && err.contains("negative"), "{err}");
+}
+
+#[test]
+fn unknown_presets_and_bad_options_fail_with_a_message() {
+    let err = stderr_of_failure(&whipple(&["eig", "--bike", "penny-farthing"]));
+    assert!(err.contains("unknown preset") && err.contains("benchmark"), "{err}");
+    let err = stderr_of_failure(&whipple(&["eig", "--bike", "benchmark", "--speeds", "0:10:0"]));
+    assert!(err.contains("--speeds") && err.contains("STEP"), "{err}");
+    let err = stderr_of_failure(&whipple(&["eig", "--bike", "benchmark", "--speeds", "0:x:1"]));
+    assert!(err.contains("--speeds") && err.contains("not a number"), "{err}");
+    let err = stderr_of_failure(&whipple(&["speeds", "--bike", "benchmark", "--range", "5:1"]));
+    assert!(err.contains("--range"), "{err}");
+    let err = stderr_of_failure(&whipple(&["speeds", "--bike", "missing-file.toml"]));
+    assert!(err.contains("missing-file.toml"), "{err}");
+}
+
+#[test]
+fn no_file_is_left_behind_when_writing_fails() {
+    let dir = scratch("atomic");
+    let target = dir.join("no-such-dir").join("eig.csv");
+    let err = stderr_of_failure(&whipple(&[
+        "eig", "--bike", "benchmark", "--format", "csv", "--out", &target.to_string_lossy(),
+    ]));
+    assert!(err.contains("does not exist"), "{err}");
+    assert_eq!(std::fs::read_dir(&dir).map(|d| d.count()).unwrap_or(0), 0);
+}
