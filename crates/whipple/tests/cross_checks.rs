@@ -196,3 +196,33 @@ fn tracked_modes_are_continuous() -> Result<()> {
     }
     Ok(())
 }
+
+/// Modes are labelled only where the spectrum shows the benchmark's pattern (one complex pair,
+/// two real eigenvalues): a sweep that stays below the double-root speed, where all four
+/// eigenvalues are real, is reported unclassified rather than guessed; the same speeds inside a
+/// wider sweep inherit the labels of their tracks.
+#[test]
+fn modes_are_labelled_only_from_evidence() -> Result<()> {
+    use whipple::analysis::modes::Mode;
+    let c = Canonical::new(&BenchmarkParameters::meijaard2007())?;
+    let low = sweep::eigen_sweep(&c, &sweep::speed_grid(0.0, 0.5, 0.05)?)?;
+    assert_eq!(low.modes, [Mode::Unclassified; 4]);
+    let wide = sweep::eigen_sweep(&c, &sweep::speed_grid(0.0, 10.0, 0.05)?)?;
+    assert_eq!(
+        wide.modes,
+        [Mode::Weave, Mode::Weave, Mode::Capsize, Mode::Castering]
+    );
+    // At rest the weave columns hold the two positive roots that meet at v_d.
+    assert!(wide.eigenvalues[0][0].re > 0.0 && wide.eigenvalues[0][1].re > 0.0);
+    assert!((wide.eigenvalues[0][2].re + 3.13164324790656).abs() < 1e-12);
+    for preset in ["two-mass-skate", "browser-jason", "schwinn-crown"] {
+        let bike = presets::find(preset)?.bicycle().benchmark()?;
+        let s = sweep::eigen_sweep(
+            &Canonical::new(&bike)?,
+            &sweep::speed_grid(0.0, 10.0, 0.05)?,
+        )?;
+        assert_eq!(s.modes[0], Mode::Weave, "{preset}");
+        assert_eq!(s.modes[1], Mode::Weave, "{preset}");
+    }
+    Ok(())
+}
