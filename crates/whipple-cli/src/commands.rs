@@ -6,7 +6,7 @@ use std::path::Path;
 use anyhow::{bail, Context, Result};
 use nalgebra::Matrix2;
 use serde_json::json;
-use whipple::analysis::{stability, sweep};
+use whipple::analysis::{eigen, stability, sweep};
 use whipple::linear::Canonical;
 use whipple::parameters::io::{benchmark_key_doc, write, Format};
 use whipple::parameters::presets::PRESETS;
@@ -240,6 +240,146 @@ pub fn eig(
         }
     };
     emit(&text, out)
+}
+
+/// Labels for the four eigenvalues at one speed: the modes of a sweep from rest to well past
+/// that speed, tracked through it.
+fn labelled_eigenpairs(
+    c: &Canonical,
+    speed: f64,
+) -> Result<Vec<(whipple::analysis::eigen::EigenPair, &'static str)>> {
+    let pairs = eigen::eigenpairs(c, speed)?;
+    let top = speed.abs().max(10.0) * 1.5;
+    let mut grid = sweep::speed_grid(0.0, top, top / 3000.0)?;
+    grid.push(speed.abs());
+    grid.sort_by(f64::total_cmp);
+    let s = sweep::eigen_sweep(c, &grid)?;
+    let at = grid
+        .iter()
+        .position(|v| *v == speed.abs())
+        .unwrap_or_default();
+    let values = s.eigenvalues[at];
+    let mut out = Vec::new();
+    for pair in pairs {
+        // Eigenvalues at -v are those at v (the sweep runs at |v|) only when v >= 0.
+        let label = if speed >= 0.0 {
+            values
+                .iter()
+                .position(|l| (l - pair.value).norm() <= 1e-9 * (1.0 + l.norm()))
+                .map_or("unclassified", |k| s.modes[k].name())
+        } else {
+            "unclassified"
+        };
+        out.push((pair, label));
+    }
+    Ok(out)
+}
+
+pub fn modes(arg: &str, speed: f64, format: TextFormat) -> Result<()> {
+    let bike = load(arg)?;
+    if !speed.is_finite() {
+        bail!("--speed must be a finite number, got {speed}");
+    }
+    let c = canonical(&bike)?;
+    let pairs = labelled_eigenpairs(&c, speed)?;
+    let text = match format {
+        TextFormat::Json => {
+            let mut rows = Vec::new();
+            for (pair, label) in &pairs {
+                let mut vector = Vec::new();
+                for z in pair.vector.iter() {
+                    number(z.re)?;
+                    number(z.im)?;
+                    vector.push(json!([z.re, z.im]));
+                }
+                rows.push(json!({
+                    "mode": label,
+                    "eigenvalue": [pair.value.re, pair.value.im],
+                    "eigenvector": vector,
+                }));
+            }
+            let doc = json!({
+                "bike": bike.label,
+                "speed": speed,
+                "state": ["lean", "steer", "lean_rate", "steer_rate"],
+                "modes": rows,
+            });
+            format!("{}\n", serde_json::to_string_pretty(&doc)?)
+        }
+        TextFormat::Table => {
+            let mut t = format!(
+                "{} at v = {} m/s: eigenvalues and mode shapes\n\
+                 (eigenvector x = [lean, steer, lean rate, steer rate], unit length; steer/lean is the\n\
+                 steer amplitude per unit lean amplitude and its phase)\n",
+                bike.label,
+                number(speed)?
+            );
+            for (pair, label) in &pairs {
+                let l = pair.value;
+                let x = pair.vector;
+                let ratio = if x[0].norm() > 0.0 {
+                    x[1] / x[0]
+                } else {
+                    x[1] * f64::INFINITY
+                };
+                write!(
+                    t,
+                    "\n{label:<13} λ = {} {} {}i 1/s",
+                    number(l.re)?,
+                    if l.im < 0.0 { '-' } else { '+' },
+                    number(l.im.abs())?
+                )?;
+                if l.im != 0.0 {
+                    write!(
+                        t,
+                        "  (period {:.4} s)",
+                        2.0 * std::f64::consts::PI / l.im.abs()
+                    )?;
+                }
+                if l.re != 0.0 {
+                    write!(
+                        t,
+                        "  ({} {:.4} s)",
+                        if l.re < 0.0 {
+                            "time to half"
+                        } else {
+                            "time to double"
+                        },
+                        std::f64::consts::LN_2 / l.re.abs()
+                    )?;
+                }
+                writeln!(t)?;
+                for (name, z) in ["lean", "steer", "lean rate", "steer rate"]
+                    .iter()
+                    .zip(x.iter())
+                {
+                    // Adding 0.0 turns a negative zero into zero (no "-0.000" or "-180 deg").
+                    let z = nalgebra::Complex::new(z.re + 0.0, z.im + 0.0);
+                    writeln!(
+                        t,
+                        "    {name:<11} {:>12.6} {} {:.6}i   (magnitude {:.6}, phase {:>8.3} deg)",
+                        z.re,
+                        if z.im < 0.0 { '-' } else { '+' },
+                        z.im.abs(),
+                        z.norm(),
+                        z.arg().to_degrees()
+                    )?;
+                }
+                if ratio.re.is_finite() && ratio.im.is_finite() {
+                    writeln!(
+                        t,
+                        "    steer/lean  {:.6} at {:.3} deg",
+                        ratio.norm(),
+                        nalgebra::Complex::new(ratio.re + 0.0, ratio.im + 0.0)
+                            .arg()
+                            .to_degrees()
+                    )?;
+                }
+            }
+            t
+        }
+    };
+    emit(&text, None)
 }
 
 fn optional(x: Option<f64>) -> Result<serde_json::Value> {

@@ -105,6 +105,18 @@ enum Command {
         #[arg(long)]
         plot: Option<std::path::PathBuf>,
     },
+    /// Eigenvalues and mode shapes (eigenvectors) at one speed.
+    Modes {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// Forward speed in m/s.
+        #[arg(long, allow_hyphen_values = true)]
+        speed: f64,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TextFormat,
+    },
     /// Critical speeds (double root, weave, capsize) and the self-stable speed ranges.
     Speeds {
         /// A preset name or a parameter file (.toml, .json, .m).
@@ -151,6 +163,11 @@ fn main() -> ExitCode {
             out,
             plot,
         } => commands::eig(&bike, &speeds, format, out.as_deref(), plot.as_deref()),
+        Command::Modes {
+            bike,
+            speed,
+            format,
+        } => commands::modes(&bike, speed, format),
         Command::Speeds {
             bike,
             range,

@@ -319,3 +319,36 @@ fn no_file_is_left_behind_when_writing_fails() {
     assert!(err.contains("does not exist"), "{err}");
     assert_eq!(std::fs::read_dir(&dir).map(|d| d.count()).unwrap_or(0), 0);
 }
+
+#[test]
+fn modes_gives_labelled_eigenvalues_and_shapes() {
+    let out = stdout(&whipple(&[
+        "modes",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "5",
+        "--format",
+        "json",
+    ]));
+    let doc: serde_json::Value = serde_json::from_str(&out).expect("valid JSON");
+    let modes: Vec<&str> = doc["modes"]
+        .as_array()
+        .expect("a list")
+        .iter()
+        .map(|m| m["mode"].as_str().expect("a label"))
+        .collect();
+    assert_eq!(modes, ["capsize", "weave", "weave", "castering"]);
+    let capsize = doc["modes"][0]["eigenvalue"][0].as_f64().expect("a number");
+    assert!((capsize + 0.32286642900409).abs() < 1e-12);
+    let table = stdout(&whipple(&["modes", "--bike", "benchmark", "--speed", "5"]));
+    assert!(table.contains("period 1.4073 s"), "{table}");
+    let err = stderr_of_failure(&whipple(&[
+        "modes",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "nan",
+    ]));
+    assert!(err.contains("--speed"), "{err}");
+}
