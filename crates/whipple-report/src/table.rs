@@ -31,7 +31,7 @@ pub fn eigen_table(sweep: &EigenSweep) -> String {
     let mut out = format!("{:>8}", "v [m/s]");
     for (k, m) in sweep.modes.iter().enumerate() {
         out.push_str(&format!(
-            "  {:>11} {:>10}",
+            "  {:>13} {:>10}",
             format!("Re {}{}", m.name(), k + 1),
             format!("Im {}", k + 1)
         ));
@@ -40,7 +40,7 @@ pub fn eigen_table(sweep: &EigenSweep) -> String {
     for (v, values) in sweep.speeds.iter().zip(&sweep.eigenvalues) {
         out.push_str(&format!("{v:>8.3}"));
         for l in values {
-            out.push_str(&format!("  {:>11.4} {:>10.4}", l.re, l.im));
+            out.push_str(&format!("  {:>13.4} {:>10.4}", l.re, l.im));
         }
         out.push('\n');
     }
