@@ -414,7 +414,10 @@ impl EigenFigure {
             entries.push((Swatch::Note, note.to_string()));
         }
         let (y0, y1) = self.options.y_range;
-        entries.push((Swatch::Note, format!("curves clipped to [{y0}, {y1}] 1/s")));
+        entries.push((
+            Swatch::Note,
+            format!("curves cut at the axis, {y0} … {y1} 1/s"),
+        ));
         entries
     }
 }
