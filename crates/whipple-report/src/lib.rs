@@ -1,1 +1,42 @@
-//! placeholder
+//! # whipple-report
+//!
+//! Figures and tables from `whipple`'s analysis results: eigenvalues against speed (Meijaard
+//! 2007 Fig. 3 style), JBike6's side view of a bicycle, simulation time series, and line and
+//! log plots for validation reports; CSV and fixed-width tables.
+//!
+//! Figures are plain data ([`Figure`]) rendered on demand to SVG text or PNG bytes; this crate
+//! writes no files. Text is set in DejaVu Sans, embedded from the `dejavu` crate.
+//!
+//! ```
+//! use whipple::{analysis::{stability, sweep}, linear::Canonical, BenchmarkParameters};
+//! use whipple_report::{eigen_csv, eigen_plot, EigenPlotOptions, Format};
+//!
+//! let canonical = Canonical::new(&BenchmarkParameters::meijaard2007()).unwrap();
+//! let speeds = sweep::speed_grid(0.0, 10.0, 0.1).unwrap();
+//! let eig = sweep::eigen_sweep(&canonical, &speeds).unwrap();
+//! let critical = stability::critical_speeds(&canonical, 0.0, 10.0).unwrap();
+//! let png = eigen_plot(&eig, &critical, &EigenPlotOptions::default())?.render(Format::Png)?;
+//! assert_eq!(&png[1..4], b"PNG");
+//! assert!(eigen_csv(&eig).starts_with("v,re1,im1,re2,im2,re3,im3,re4,im4\n"));
+//! # Ok::<(), whipple_report::Error>(())
+//! ```
+#![warn(missing_docs)]
+
+mod clip;
+mod draw;
+mod eigen;
+mod error;
+mod figure;
+mod side_view;
+mod table;
+mod time_series;
+mod xy;
+
+pub use draw::Dash;
+pub use eigen::{eigen_comparison_plot, eigen_plot, mode_colour, BikeEigen, EigenPlotOptions};
+pub use error::{Error, Result};
+pub use figure::{Figure, Format};
+pub use side_view::side_view;
+pub use table::{eigen_csv, eigen_table};
+pub use time_series::{time_series_plot, SimulationSeries};
+pub use xy::{line_plot, xy_log_plot, Marker, Series, XyPlotOptions};

@@ -1,0 +1,224 @@
+//! A figure: what to draw, held as plain data, rendered on demand to SVG text or PNG bytes.
+
+use std::path::Path;
+use std::sync::OnceLock;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+
+use crate::error::{Error, Result};
+
+/// The font family every figure uses; registered from the `dejavu` crate's embedded DejaVu Sans
+/// so that PNG text works on machines without system fonts.
+pub(crate) const FONT: &str = "sans-serif";
+
+/// Registers DejaVu Sans (regular, bold, oblique) once per process.
+pub(crate) fn ensure_fonts() -> Result<()> {
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    let ok = *REGISTERED.get_or_init(|| {
+        [
+            (FontStyle::Normal, dejavu::sans::regular()),
+            (FontStyle::Bold, dejavu::sans::bold()),
+            (FontStyle::Oblique, dejavu::sans::oblique()),
+            (FontStyle::Italic, dejavu::sans::oblique()),
+        ]
+        .into_iter()
+        .all(|(style, bytes)| plotters::style::register_font(FONT, style, bytes).is_ok())
+    });
+    if ok {
+        Ok(())
+    } else {
+        Err(Error::Font {
+            name: "DejaVu Sans",
+        })
+    }
+}
+
+/// An output format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Format {
+    /// Scalable vector graphics (UTF-8 text).
+    Svg,
+    /// Portable network graphics (8-bit RGB).
+    Png,
+}
+
+impl Format {
+    /// The format named by a file extension, `svg` or `png` in any case.
+    ///
+    /// ```
+    /// use whipple_report::Format;
+    /// assert_eq!(Format::from_extension("PNG")?, Format::Png);
+    /// # Ok::<(), whipple_report::Error>(())
+    /// ```
+    pub fn from_extension(extension: &str) -> Result<Format> {
+        match extension.to_ascii_lowercase().as_str() {
+            "svg" => Ok(Format::Svg),
+            "png" => Ok(Format::Png),
+            _ => Err(Error::UnknownFormat {
+                name: extension.to_string(),
+            }),
+        }
+    }
+
+    /// The format named by a path's extension (`eigen.svg` → SVG).
+    pub fn from_path(path: &Path) -> Result<Format> {
+        path.extension()
+            .and_then(|e| e.to_str())
+            .ok_or_else(|| Error::UnknownFormat {
+                name: path.display().to_string(),
+            })
+            .and_then(Format::from_extension)
+    }
+
+    /// The usual file extension, without the dot.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Format::Svg => "svg",
+            Format::Png => "png",
+        }
+    }
+}
+
+/// What a figure shows; each variant owns the data it needs.
+#[derive(Debug, Clone)]
+pub(crate) enum Content {
+    Eigen(Box<crate::eigen::EigenFigure>),
+    SideView(Box<crate::side_view::SideViewFigure>),
+    TimeSeries(Box<crate::time_series::TimeSeriesFigure>),
+    Xy(Box<crate::xy::XyFigure>),
+}
+
+/// A figure ready to render: its size in pixels and what it shows. Built by
+/// [`eigen_plot`](crate::eigen_plot), [`side_view`](crate::side_view()),
+/// [`time_series_plot`](crate::time_series_plot), [`xy_log_plot`](crate::xy_log_plot) and
+/// [`line_plot`](crate::line_plot); it does no file I/O.
+#[derive(Debug, Clone)]
+pub struct Figure {
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    pub(crate) content: Content,
+}
+
+/// Maps any plotters error to [`Error::Draw`] for the named figure.
+pub(crate) trait OrDraw<T> {
+    fn or_draw(self, figure: &'static str) -> Result<T>;
+}
+
+impl<T, E: std::fmt::Display> OrDraw<T> for std::result::Result<T, E> {
+    fn or_draw(self, figure: &'static str) -> Result<T> {
+        self.map_err(|e| Error::Draw {
+            figure,
+            message: e.to_string(),
+        })
+    }
+}
+
+/// Smallest and largest figure side accepted [px].
+const MIN_SIDE: u32 = 100;
+const MAX_SIDE: u32 = 10_000;
+
+impl Figure {
+    /// Width and height [px].
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// The same figure at another size [px], each side within 100..=10000. Figures drawn to
+    /// scale (the side view, the ground track) keep their aspect ratio inside the new size.
+    pub fn with_size(mut self, width: u32, height: u32) -> Result<Figure> {
+        for (what, side) in [("width", width), ("height", height)] {
+            if !(MIN_SIDE..=MAX_SIDE).contains(&side) {
+                return Err(Error::InvalidArgument {
+                    what: "figure size",
+                    rule: format!("{what} must lie in {MIN_SIDE}..={MAX_SIDE} px, got {side}"),
+                });
+            }
+        }
+        self.width = width;
+        self.height = height;
+        Ok(self)
+    }
+
+    /// Renders to bytes in `format`: UTF-8 SVG text or a PNG image.
+    ///
+    /// ```
+    /// use whipple::{analysis::{stability, sweep}, linear::Canonical, BenchmarkParameters};
+    /// use whipple_report::{eigen_plot, EigenPlotOptions, Format};
+    /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007()).unwrap();
+    /// let s = sweep::eigen_sweep(&canonical, &sweep::speed_grid(0.0, 10.0, 0.1).unwrap()).unwrap();
+    /// let c = stability::critical_speeds(&canonical, 0.0, 10.0).unwrap();
+    /// let svg = eigen_plot(&s, &c, &EigenPlotOptions::default())?.render(Format::Svg)?;
+    /// assert!(String::from_utf8_lossy(&svg).contains("<svg"));
+    /// # Ok::<(), whipple_report::Error>(())
+    /// ```
+    pub fn render(&self, format: Format) -> Result<Vec<u8>> {
+        match format {
+            Format::Svg => self.to_svg().map(String::into_bytes),
+            Format::Png => self.to_png(),
+        }
+    }
+
+    /// Renders in the format named by the path's extension (the path is not touched).
+    pub fn render_for_path(&self, path: &Path) -> Result<Vec<u8>> {
+        self.render(Format::from_path(path)?)
+    }
+
+    /// Renders to SVG text.
+    pub fn to_svg(&self) -> Result<String> {
+        ensure_fonts()?;
+        let mut text = String::new();
+        {
+            let root =
+                SVGBackend::with_string(&mut text, (self.width, self.height)).into_drawing_area();
+            self.draw(&root)?;
+            root.present().or_draw(self.name())?;
+        }
+        Ok(text)
+    }
+
+    /// Renders to a PNG image (8-bit RGB).
+    pub fn to_png(&self) -> Result<Vec<u8>> {
+        ensure_fonts()?;
+        let (w, h) = (self.width, self.height);
+        let mut pixels = vec![0u8; w as usize * h as usize * 3];
+        {
+            let root = BitMapBackend::with_buffer(&mut pixels, (w, h)).into_drawing_area();
+            self.draw(&root)?;
+            root.present().or_draw(self.name())?;
+        }
+        let mut out = Vec::new();
+        {
+            let mut encoder = png::Encoder::new(&mut out, w, h);
+            encoder.set_color(png::ColorType::Rgb);
+            encoder.set_depth(png::BitDepth::Eight);
+            let encode = |e: png::EncodingError| Error::Encode {
+                message: e.to_string(),
+            };
+            let mut writer = encoder.write_header().map_err(encode)?;
+            writer.write_image_data(&pixels).map_err(encode)?;
+            writer.finish().map_err(encode)?;
+        }
+        Ok(out)
+    }
+
+    fn name(&self) -> &'static str {
+        match self.content {
+            Content::Eigen(_) => "eigenvalue plot",
+            Content::SideView(_) => "side view",
+            Content::TimeSeries(_) => "time series plot",
+            Content::Xy(_) => "line plot",
+        }
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        root.fill(&WHITE).or_draw(self.name())?;
+        match &self.content {
+            Content::Eigen(f) => f.draw(root),
+            Content::SideView(f) => f.draw(root),
+            Content::TimeSeries(f) => f.draw(root),
+            Content::Xy(f) => f.draw(root),
+        }
+    }
+}
