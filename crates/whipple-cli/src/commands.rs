@@ -178,17 +178,7 @@ pub fn eig(
         crate::figures::eigen_plot(&bike, &s, &critical, path)?;
     }
     let text = match format {
-        TableFormat::Csv => {
-            let mut t = String::from("v,re1,im1,re2,im2,re3,im3,re4,im4\n");
-            for (v, values) in s.speeds.iter().zip(&s.eigenvalues) {
-                t.push_str(&number(*v)?);
-                for l in values {
-                    write!(t, ",{},{}", number(l.re)?, number(l.im)?)?;
-                }
-                t.push('\n');
-            }
-            t
-        }
+        TableFormat::Csv => whipple_report::eigen_csv(&s),
         TableFormat::Json => {
             let mut rows = Vec::with_capacity(s.speeds.len());
             for (v, values) in s.speeds.iter().zip(&s.eigenvalues) {
@@ -208,36 +198,11 @@ pub fn eig(
             });
             format!("{}\n", serde_json::to_string_pretty(&doc)?)
         }
-        TableFormat::Table => {
-            let mut t = format!(
-                "{}: eigenvalues [1/s] against forward speed v [m/s]\n{:>8}",
-                bike.label, "v"
-            );
-            for (k, mode) in s.modes.iter().enumerate() {
-                write!(t, " {:>30}", format!("{} ({})", mode.name(), k + 1))?;
-            }
-            t.push('\n');
-            for (v, values) in s.speeds.iter().zip(&s.eigenvalues) {
-                write!(t, "{:>8.4}", v)?;
-                for l in values {
-                    number(l.re)?;
-                    number(l.im)?;
-                    let cell = if l.im == 0.0 {
-                        format!("{:.10}", l.re)
-                    } else {
-                        format!(
-                            "{:.10} {} {:.10}i",
-                            l.re,
-                            if l.im < 0.0 { '-' } else { '+' },
-                            l.im.abs()
-                        )
-                    };
-                    write!(t, " {cell:>30}")?;
-                }
-                t.push('\n');
-            }
-            t
-        }
+        TableFormat::Table => format!(
+            "{}: eigenvalues [1/s] against forward speed v [m/s]\n{}",
+            bike.label,
+            whipple_report::eigen_table(&s)
+        ),
     };
     emit(&text, out)
 }

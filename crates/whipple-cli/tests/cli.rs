@@ -352,3 +352,43 @@ fn modes_gives_labelled_eigenvalues_and_shapes() {
     ]));
     assert!(err.contains("--speed"), "{err}");
 }
+
+#[test]
+fn plots_and_drawings_are_written_as_svg_or_png() {
+    let dir = scratch("figures");
+    let svg = dir.join("eig.svg");
+    let png = dir.join("crown.png");
+    stdout(&whipple(&[
+        "eig",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "0:10:0.05",
+        "--plot",
+        &svg.to_string_lossy(),
+    ]));
+    let text = std::fs::read_to_string(&svg).expect("the plot was written");
+    assert!(text.starts_with("<svg") || text.contains("<svg"));
+    for label in ["weave", "capsize", "castering", "4.292"] {
+        assert!(text.contains(label), "the plot shows {label}");
+    }
+    stdout(&whipple(&[
+        "draw",
+        "--bike",
+        "schwinn-crown",
+        "--out",
+        &png.to_string_lossy(),
+    ]));
+    let bytes = std::fs::read(&png).expect("the drawing was written");
+    assert_eq!(&bytes[1..4], b"PNG");
+    let bad = dir.join("eig.gif");
+    let err = stderr_of_failure(&whipple(&[
+        "eig",
+        "--bike",
+        "benchmark",
+        "--plot",
+        &bad.to_string_lossy(),
+    ]));
+    assert!(err.contains("eig.gif"), "{err}");
+    assert!(!bad.exists());
+}

@@ -25,22 +25,28 @@ pub fn eigen_csv(sweep: &EigenSweep) -> String {
     out
 }
 
-/// The eigenvalue sweep as a fixed-width text table for the terminal: speed, then real and
-/// imaginary part of each column headed by its mode name, four decimals.
+/// The eigenvalue sweep as a fixed-width text table for the terminal: speed, then each column
+/// headed by its mode name, a complex eigenvalue written `re ± im i`, ten decimals.
 pub fn eigen_table(sweep: &EigenSweep) -> String {
-    let mut out = format!("{:>8}", "v [m/s]");
-    for (k, m) in sweep.modes.iter().enumerate() {
-        out.push_str(&format!(
-            "  {:>13} {:>10}",
-            format!("Re {}{}", m.name(), k + 1),
-            format!("Im {}", k + 1)
-        ));
+    let mut out = format!("{:>8}", "v");
+    for (k, mode) in sweep.modes.iter().enumerate() {
+        out.push_str(&format!(" {:>30}", format!("{} ({})", mode.name(), k + 1)));
     }
     out.push('\n');
     for (v, values) in sweep.speeds.iter().zip(&sweep.eigenvalues) {
-        out.push_str(&format!("{v:>8.3}"));
+        out.push_str(&format!("{v:>8.4}"));
         for l in values {
-            out.push_str(&format!("  {:>13.4} {:>10.4}", l.re, l.im));
+            let cell = if l.im == 0.0 {
+                format!("{:.10}", l.re)
+            } else {
+                format!(
+                    "{:.10} {} {:.10}i",
+                    l.re,
+                    if l.im < 0.0 { '-' } else { '+' },
+                    l.im.abs()
+                )
+            };
+            out.push_str(&format!(" {cell:>30}"));
         }
         out.push('\n');
     }
@@ -93,7 +99,7 @@ mod tests {
         let t = eigen_table(&s);
         let widths: Vec<usize> = t.lines().map(|l| l.chars().count()).collect();
         assert!(widths.iter().all(|&w| w == widths[0]), "{t}");
-        assert!(t.contains("Re weave1") && t.contains("Re castering4"));
+        assert!(t.contains("weave (1)") && t.contains("castering (4)"));
         Ok(())
     }
 }

@@ -226,3 +226,17 @@ fn modes_are_labelled_only_from_evidence() -> Result<()> {
     }
     Ok(())
 }
+
+/// A coarse sweep is tracked through intermediate speeds: its columns at 0, 5 and 10 m/s are
+/// those of a fine sweep at the same speeds.
+#[test]
+fn coarse_sweeps_are_tracked_like_fine_ones() -> Result<()> {
+    let c = Canonical::new(&BenchmarkParameters::meijaard2007())?;
+    let coarse = sweep::eigen_sweep(&c, &[0.0, 5.0, 10.0])?;
+    let fine = sweep::eigen_sweep(&c, &sweep::speed_grid(0.0, 10.0, 0.01)?)?;
+    assert_eq!(coarse.modes, fine.modes);
+    for (k, index) in [0usize, 500, 1000].into_iter().enumerate() {
+        assert_eq!(coarse.eigenvalues[k], fine.eigenvalues[index]);
+    }
+    Ok(())
+}

@@ -79,8 +79,20 @@ fn mode_rank(mode: Mode) -> usize {
     }
 }
 
+/// The largest speed step [m/s] over which modes are tracked directly; coarser sweeps are
+/// tracked through intermediate speeds that are computed but not reported.
+const TRACKING_STEP: f64 = 0.02;
+
+/// At most this many intermediate speeds between two requested ones.
+const MAX_SUBSTEPS: usize = 1000;
+
+/// At most this many intermediate speeds in one sweep (fewer per interval when exceeded).
+const MAX_EXTRA_SPEEDS: f64 = 2_000_000.0;
+
 /// Sweeps the eigenvalues over `speeds` (any order is tracked as given; sorted input gives
-/// continuous tracks).
+/// continuous tracks). Where neighbouring speeds lie more than 0.02 m/s apart, the modes are
+/// tracked through intermediate speeds (not reported), so a coarse sweep is labelled as a fine
+/// one would be.
 ///
 /// ```
 /// use whipple::{BenchmarkParameters, linear::Canonical, analysis::sweep};
@@ -97,12 +109,38 @@ pub fn eigen_sweep(canonical: &Canonical, speeds: &[f64]) -> Result<EigenSweep> 
         });
     }
     let poly = CharacteristicPolynomial::new(canonical);
-    let mut eigenvalues = speeds
+    // Every speed the tracking visits, and where the requested ones sit among them.
+    let wanted = |a: f64, b: f64| {
+        ((b - a).abs() / TRACKING_STEP)
+            .ceil()
+            .min(MAX_SUBSTEPS as f64)
+    };
+    let total: f64 = speeds.windows(2).map(|w| wanted(w[0], w[1])).sum();
+    let share = if total > MAX_EXTRA_SPEEDS {
+        MAX_EXTRA_SPEEDS / total
+    } else {
+        1.0
+    };
+    let mut visited = Vec::with_capacity(speeds.len());
+    let mut reported = Vec::with_capacity(speeds.len());
+    for (i, &v) in speeds.iter().enumerate() {
+        if i > 0 {
+            let previous = speeds[i - 1];
+            let substeps = (wanted(previous, v) * share).floor() as usize;
+            for k in 1..substeps {
+                visited.push(previous + (v - previous) * k as f64 / substeps as f64);
+            }
+        }
+        reported.push(visited.len());
+        visited.push(v);
+    }
+    let mut all = visited
         .iter()
         .map(|&v| quartic_roots(&poly.at_speed(v)))
         .collect::<Result<Vec<_>>>()?;
-    track(&mut eigenvalues);
-    let labels = classify(&eigenvalues);
+    track(&mut all);
+    let labels = classify(&all);
+    let mut eigenvalues: Vec<[Complex64; 4]> = reported.iter().map(|&k| all[k]).collect();
     let mut order = [0usize, 1, 2, 3];
     let first = eigenvalues.first().copied();
     order.sort_by(|&i, &j| {
