@@ -13,6 +13,25 @@ use crate::error::{Error, Result};
 /// so that PNG text works on machines without system fonts.
 pub(crate) const FONT: &str = "sans-serif";
 
+/// resvg's options with DejaVu Sans as the sans-serif family (no system fonts needed).
+fn png_options() -> &'static resvg::usvg::Options<'static> {
+    static OPTIONS: OnceLock<resvg::usvg::Options<'static>> = OnceLock::new();
+    OPTIONS.get_or_init(|| {
+        let mut options = resvg::usvg::Options::default();
+        let fonts = options.fontdb_mut();
+        for bytes in [
+            dejavu::sans::regular(),
+            dejavu::sans::bold(),
+            dejavu::sans::oblique(),
+        ] {
+            fonts.load_font_data(bytes.to_vec());
+        }
+        fonts.set_sans_serif_family("DejaVu Sans");
+        options.font_family = "DejaVu Sans".to_string();
+        options
+    })
+}
+
 /// Registers DejaVu Sans (regular, bold, oblique) once per process.
 pub(crate) fn ensure_fonts() -> Result<()> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
@@ -180,27 +199,28 @@ impl Figure {
 
     /// Renders to a PNG image (8-bit RGB).
     pub fn to_png(&self) -> Result<Vec<u8>> {
-        ensure_fonts()?;
-        let (w, h) = (self.width, self.height);
-        let mut pixels = vec![0u8; w as usize * h as usize * 3];
-        {
-            let root = BitMapBackend::with_buffer(&mut pixels, (w, h)).into_drawing_area();
-            self.draw(&root)?;
-            root.present().or_draw(self.name())?;
-        }
-        let mut out = Vec::new();
-        {
-            let mut encoder = png::Encoder::new(&mut out, w, h);
-            encoder.set_color(png::ColorType::Rgb);
-            encoder.set_depth(png::BitDepth::Eight);
-            let encode = |e: png::EncodingError| Error::Encode {
-                message: e.to_string(),
-            };
-            let mut writer = encoder.write_header().map_err(encode)?;
-            writer.write_image_data(&pixels).map_err(encode)?;
-            writer.finish().map_err(encode)?;
-        }
-        Ok(out)
+        // Rendered from the SVG by resvg: the same picture as the SVG, with properly spaced,
+        // anti-aliased text (plotters' own bitmap text drops the glyphs' side bearings).
+        let svg = self.to_svg()?;
+        let tree = resvg::usvg::Tree::from_str(&svg, png_options()).map_err(|e| Error::Encode {
+            message: format!("reading the {} back as SVG: {e}", self.name()),
+        })?;
+        let mut pixmap =
+            resvg::tiny_skia::Pixmap::new(self.width, self.height).ok_or(Error::Encode {
+                message: format!(
+                    "a {} x {} image cannot be allocated",
+                    self.width, self.height
+                ),
+            })?;
+        pixmap.fill(resvg::tiny_skia::Color::WHITE);
+        resvg::render(
+            &tree,
+            resvg::tiny_skia::Transform::identity(),
+            &mut pixmap.as_mut(),
+        );
+        pixmap.encode_png().map_err(|e| Error::Encode {
+            message: e.to_string(),
+        })
     }
 
     fn name(&self) -> &'static str {
