@@ -401,9 +401,9 @@ impl SideViewFigure {
 
 /// Points on a circle (closed).
 fn circle(centre: P, r: f64) -> Vec<P> {
-    (0..=72)
+    (0..=240)
         .map(|i| {
-            let a = i as f64 * std::f64::consts::TAU / 72.0;
+            let a = i as f64 * std::f64::consts::TAU / 240.0;
             (centre.0 + r * a.cos(), centre.1 + r * a.sin())
         })
         .collect()
