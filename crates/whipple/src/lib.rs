@@ -23,7 +23,9 @@
 
 pub mod analysis;
 pub mod error;
+pub mod integrate;
 pub mod linear;
+pub mod nonlinear;
 pub mod parameters;
 
 pub use error::{Error, Result};
