@@ -21,9 +21,9 @@
 use nalgebra::{DMatrix, DVector, Matrix3, RealField, SMatrix, SVector, Vector3};
 
 use super::bodies::{BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
-use super::rotation;
 use super::state::{State, COORDINATES, SPEEDS, STATE_LEN};
 use super::Model;
+use super::{rotation, saddle};
 use crate::error::{Error, Result};
 
 /// Number of tree speeds w.
@@ -119,6 +119,15 @@ pub(crate) struct Tree<T: RealField + Copy> {
     /// Angular velocities (body axes).
     pub omega: [Vector3<T>; BODIES],
 }
+
+/// Tree speeds that can move each body (the other columns of its J are zero): rear wheel
+/// ν, ω_B, σ_R; rear frame ν, ω_B; front frame ν, ω_B, δ̇; front wheel ν, ω_B, δ̇, σ_F.
+const TREE_COLUMNS: [&[usize]; BODIES] = [
+    &[0, 1, 2, 3, 4, 5, 7],
+    &[0, 1, 2, 3, 4, 5],
+    &[0, 1, 2, 3, 4, 5, 6],
+    &[0, 1, 2, 3, 4, 5, 6, 8],
+];
 
 #[inline]
 fn c<T: RealField + Copy>(x: f64) -> T {
@@ -276,29 +285,50 @@ impl Model {
         let (tree, _) = self.tree(&poses, &state.u);
         let applied = self.applied(&state.q, &poses, &tree.omega, inputs);
 
-        // Reduced mass matrix and forces.
-        let mut kkt = SMatrix::<T, 15, 15>::zeros();
-        let mut rhs = SVector::<T, 15>::zeros();
+        // Reduced mass matrix TᵀMT and forces Tᵀ(f − M c), column pairs that can be non-zero.
+        let mut mass = SMatrix::<T, TREE, TREE>::zeros();
+        let mut force = SVector::<T, TREE>::zeros();
         for k in 0..BODIES {
             let body = &self.bodies.body[k];
             let m: T = c(body.mass);
             let inertia: Matrix3<T> = body.inertia.cast();
-            let jv = tree.jac[k].fixed_rows::<3>(0);
-            let jw = tree.jac[k].fixed_rows::<3>(3);
-            let ijw = inertia * jw;
-            let mass = jv.transpose() * jv * m + jw.transpose() * ijw;
-            let mut view = kkt.fixed_view_mut::<TREE, TREE>(0, 0);
-            view += mass;
-            let (force, torque) = applied[k];
+            let jac = &tree.jac[k];
+            let cols = TREE_COLUMNS[k];
+            let mut mj = SMatrix::<T, 6, TREE>::zeros();
+            for &j in cols {
+                let col = jac.column(j);
+                let w = Vector3::new(col[3], col[4], col[5]);
+                let iw = inertia * w;
+                mj.set_column(
+                    j,
+                    &SVector::<T, 6>::new(col[0] * m, col[1] * m, col[2] * m, iw.x, iw.y, iw.z),
+                );
+            }
+            for (a, &i) in cols.iter().enumerate() {
+                let ci = jac.column(i);
+                for &j in &cols[a..] {
+                    mass[(i, j)] += ci.dot(&mj.column(j));
+                }
+            }
+            let (f, torque) = applied[k];
             let cv = tree.bias[k].fixed_rows::<3>(0).into_owned();
             let cw = tree.bias[k].fixed_rows::<3>(3).into_owned();
-            let generalized =
-                jv.transpose() * (force - cv * m) + jw.transpose() * (torque - inertia * cw);
-            let mut top = rhs.fixed_rows_mut::<TREE>(0);
-            top += generalized;
+            let fv = f - cv * m;
+            let fw = torque - inertia * cw;
+            let generalized = SVector::<T, 6>::new(fv.x, fv.y, fv.z, fw.x, fw.y, fw.z);
+            for &i in cols {
+                force[i] += jac.column(i).dot(&generalized);
+            }
+        }
+        for i in 0..TREE {
+            for j in 0..i {
+                mass[(i, j)] = mass[(j, i)];
+            }
         }
 
-        // Contact rows in tree speeds.
+        // Stage 4: contact rows in tree speeds.
+        let mut g = SMatrix::<T, 6, TREE>::zeros();
+        let mut gamma = SVector::<T, 6>::zeros();
         for (i, contact) in self.contacts.iter().enumerate() {
             let (wheel, frame) = (contact.wheel, contact.frame);
             let rows = contact.rows(
@@ -307,23 +337,25 @@ impl Model {
                 &tree.omega[wheel],
                 &tree.omega[frame],
             );
-            let g = rows.wheel * tree.jac[wheel] + rows.frame * tree.jac[frame];
-            let gamma = rows.gamma - rows.wheel * tree.bias[wheel] - rows.frame * tree.bias[frame];
-            kkt.fixed_view_mut::<3, TREE>(TREE + 3 * i, 0).copy_from(&g);
-            kkt.fixed_view_mut::<TREE, 3>(0, TREE + 3 * i)
-                .copy_from(&g.transpose());
-            rhs.fixed_rows_mut::<3>(TREE + 3 * i).copy_from(&gamma);
+            let mut gi = rows.wheel * tree.jac[wheel];
+            let mut ci = rows.gamma - rows.wheel * tree.bias[wheel];
+            if contact.is_skate() {
+                gi += rows.frame * tree.jac[frame];
+                ci -= rows.frame * tree.bias[frame];
+            }
+            g.fixed_rows_mut::<3>(3 * i).copy_from(&gi);
+            gamma.fixed_rows_mut::<3>(3 * i).copy_from(&ci);
         }
 
-        // Stage 5: solve.
-        let solution = kkt
-            .lu()
-            .solve(&rhs)
-            .filter(|x| x.iter().all(|v| v.is_finite()))
-            .ok_or_else(|| Error::SingularDynamics {
+        // Stage 5: solve [TᵀMT Gᵀ; G 0][ẇ; ν] = [Tᵀ(f − Mc); γ − D c], μ = −ν.
+        let solved = saddle::solve(&mass, &g, &force, &gamma, self.augmentation)
+            .or_else(|| saddle::solve(&mass, &g, &force, &gamma, self.fallback_augmentation()))
+            .filter(|(x, y)| x.iter().chain(y.iter()).all(|v| v.is_finite()));
+        let Some((w_dot, nu)) = solved else {
+            return Err(Error::SingularDynamics {
                 context: "the saddle-point matrix [TᵀMT Gᵀ; G 0] is singular".into(),
-            })?;
-        let w_dot = solution.fixed_rows::<TREE>(0).into_owned();
+            });
+        };
 
         let mut u_dot = SVector::<T, SPEEDS>::zeros();
         for k in 0..BODIES {
@@ -339,7 +371,7 @@ impl Model {
         }; 2];
         for (i, edge) in self.contacts.iter().enumerate() {
             // μ = −ν: the multipliers act along [f, n, e_z] (e_z down).
-            let nu = solution.fixed_rows::<3>(TREE + 3 * i);
+            let nu = nu.fixed_rows::<3>(3 * i);
             contact[i] = ContactForce {
                 normal: nu[2],
                 longitudinal: if edge.is_skate() { T::zero() } else { -nu[0] },

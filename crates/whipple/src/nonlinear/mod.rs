@@ -23,6 +23,7 @@ pub mod forward;
 pub mod joints;
 pub mod projection;
 pub mod rotation;
+mod saddle;
 pub mod simulate;
 pub mod state;
 
@@ -54,6 +55,8 @@ pub struct Model {
     pub(crate) joints: [Revolute; 3],
     /// Rear and front wheel contacts.
     pub(crate) contacts: [KnifeEdge; 2],
+    /// ρ of the augmented-Lagrangian solve (0: the reduced mass matrix is positive definite).
+    pub(crate) augmentation: f64,
 }
 
 /// A few numbers from which [`Model::initial_state`] builds a consistent state. Angles in
@@ -161,12 +164,26 @@ impl Model {
                 radius: p.r_f,
             },
         ];
+        // Without spin inertia in a wheel, the reduced mass matrix is singular along that
+        // wheel's spin: the solve then augments it by ρ GᵀG, ρ of the order of the masses.
+        let augmentation = if p.i_ryy > 0.0 && p.i_fyy > 0.0 {
+            0.0
+        } else {
+            p.m_r + p.m_b + p.m_h + p.m_f
+        };
         Ok(Model {
             parameters: *p,
             bodies,
             joints,
             contacts,
+            augmentation,
         })
+    }
+
+    /// ρ used when the plain Cholesky factorization of the reduced mass matrix fails.
+    pub(crate) fn fallback_augmentation(&self) -> f64 {
+        let p = &self.parameters;
+        p.m_r + p.m_b + p.m_h + p.m_f
     }
 
     /// The 17 holonomic residuals: rear hub, steer and front hub joints (5 each: gap x, y, z,

@@ -16,7 +16,7 @@ use nalgebra::{SMatrix, SVector};
 use super::forward::{Poses, HOLONOMIC_ROWS, TREE};
 use super::rotation;
 use super::state::{State, COORDINATES, SPEEDS};
-use super::{Model, BODIES};
+use super::{saddle, Model, BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
 use crate::error::{Error, Result};
 
 /// Settings of the position projection.
@@ -48,6 +48,44 @@ pub struct ProjectionReport {
     pub iterations: usize,
     /// Largest absolute holonomic residual after projection.
     pub residual: f64,
+}
+
+/// Bodies each holonomic row touches: rear hub joint (R, B), steer joint (B, H), front hub
+/// joint (H, F), rear contact height (R), front contact height (F).
+fn row_bodies(row: usize) -> [usize; 2] {
+    match row {
+        0..=4 => [REAR_WHEEL, REAR_FRAME],
+        5..=9 => [REAR_FRAME, FRONT_FRAME],
+        10..=14 => [FRONT_FRAME, FRONT_WHEEL],
+        15 => [REAR_WHEEL, REAR_WHEEL],
+        _ => [FRONT_WHEEL, FRONT_WHEEL],
+    }
+}
+
+/// J Jᵀ using the block sparsity of J: rows share columns only through a common body.
+fn gram(
+    j: &SMatrix<f64, HOLONOMIC_ROWS, COORDINATES>,
+) -> SMatrix<f64, HOLONOMIC_ROWS, HOLONOMIC_ROWS> {
+    let mut out = SMatrix::<f64, HOLONOMIC_ROWS, HOLONOMIC_ROWS>::zeros();
+    let bodies: [[usize; 2]; HOLONOMIC_ROWS] = std::array::from_fn(row_bodies);
+    for a in 0..HOLONOMIC_ROWS {
+        for b in a..HOLONOMIC_ROWS {
+            let mut sum = 0.0;
+            for (n, &k) in bodies[a].iter().enumerate() {
+                if n == 1 && k == bodies[a][0] {
+                    continue;
+                }
+                if bodies[b].contains(&k) {
+                    for col in 6 * k..6 * k + 6 {
+                        sum += j[(a, col)] * j[(b, col)];
+                    }
+                }
+            }
+            out[(a, b)] = sum;
+            out[(b, a)] = sum;
+        }
+    }
+    out
 }
 
 impl Model {
@@ -99,12 +137,13 @@ impl Model {
                 });
             }
             let j = self.holonomic_jacobian(q);
-            let y = (j * j.transpose()).cholesky().map(|c| c.solve(&r)).ok_or(
-                Error::ProjectionDiverged {
+            let y = gram(&j)
+                .cholesky()
+                .map(|c| c.solve(&r))
+                .ok_or(Error::ProjectionDiverged {
                     iterations,
                     residual,
-                },
-            )?;
+                })?;
             *q -= j.transpose() * y;
             iterations += 1;
             r = self.holonomic_residual(q);
@@ -115,26 +154,18 @@ impl Model {
     pub fn project_velocities(&self, state: &mut State<f64>) -> Result<()> {
         let poses = Poses::new(&state.q);
         let (tree, g) = self.contact_tree_rows(&poses);
-        let mut kkt = SMatrix::<f64, 15, 15>::zeros();
-        let mut rhs = SVector::<f64, 15>::zeros();
+        let mut gram = SMatrix::<f64, TREE, TREE>::zeros();
+        let mut rhs = SVector::<f64, TREE>::zeros();
         for k in 0..BODIES {
             let j = &tree.jac[k];
-            let mut block = kkt.fixed_view_mut::<TREE, TREE>(0, 0);
-            block += j.transpose() * j;
-            let mut top = rhs.fixed_rows_mut::<TREE>(0);
-            top += j.transpose() * state.u.fixed_rows::<6>(6 * k);
+            gram += j.transpose() * j;
+            rhs += j.transpose() * state.u.fixed_rows::<6>(6 * k);
         }
-        kkt.fixed_view_mut::<6, TREE>(TREE, 0).copy_from(&g);
-        kkt.fixed_view_mut::<TREE, 6>(0, TREE)
-            .copy_from(&g.transpose());
-        let x = kkt
-            .lu()
-            .solve(&rhs)
-            .filter(|x| x.iter().all(|v| v.is_finite()))
-            .ok_or_else(|| Error::SingularDynamics {
+        let (w, _) = saddle::solve(&gram, &g, &rhs, &SVector::zeros(), 0.0).ok_or_else(|| {
+            Error::SingularDynamics {
                 context: "velocity projection: singular constraint rows".into(),
-            })?;
-        let w = x.fixed_rows::<TREE>(0).into_owned();
+            }
+        })?;
         let mut u = SVector::<f64, SPEEDS>::zeros();
         for k in 0..BODIES {
             u.fixed_rows_mut::<6>(6 * k).copy_from(&(tree.jac[k] * w));
