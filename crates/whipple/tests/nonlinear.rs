@@ -9,8 +9,8 @@ use whipple::analysis::eigen;
 use whipple::integrate::Dopri5Params;
 use whipple::linear::Canonical;
 use whipple::nonlinear::{
-    rotation, simulate, InitialConditions, Inputs, Integrator, Model, Outcome, SimulationSettings,
-    State, REAR_FRAME, REAR_WHEEL, STATE_LEN,
+    rotation, simulate, InitialConditions, Inputs, Integrator, Model, Outcome, ProjectionMethod,
+    ProjectionParams, SimulationSettings, State, REAR_FRAME, REAR_WHEEL, STATE_LEN,
 };
 use whipple::parameters::presets;
 use whipple::{BenchmarkParameters, Result};
@@ -384,15 +384,25 @@ fn energy_is_conserved_and_constraints_hold() -> Result<()> {
         lean_rate: 0.5,
         ..InitialConditions::upright(4.6)
     })?;
-    for integrator in [
-        Integrator::Rk4 { dt: 1e-3 },
-        Integrator::Dopri5(Dopri5Params {
-            rtol: 1e-10,
-            atol: 1e-12,
-            ..Default::default()
-        }),
+    let dopri = Integrator::Dopri5(Dopri5Params {
+        rtol: 1e-10,
+        atol: 1e-12,
+        ..Default::default()
+    });
+    for (integrator, method) in [
+        (Integrator::Rk4 { dt: 1e-3 }, ProjectionMethod::Coordinates),
+        (Integrator::Rk4 { dt: 1e-3 }, ProjectionMethod::LeastNorm),
+        (dopri, ProjectionMethod::Coordinates),
+        (dopri, ProjectionMethod::LeastNorm),
     ] {
-        let run = simulate(&model, start, &weave_settings(integrator, 5.0))?;
+        let settings = SimulationSettings {
+            projection: ProjectionParams {
+                method,
+                ..Default::default()
+            },
+            ..weave_settings(integrator, 5.0)
+        };
+        let run = simulate(&model, start, &settings)?;
         assert_eq!(run.outcome, Outcome::Completed, "{integrator:?}");
         let e0 = run.samples[0].energy;
         let drift = run
@@ -401,7 +411,7 @@ fn energy_is_conserved_and_constraints_hold() -> Result<()> {
             .map(|s| (s.energy - e0).abs())
             .fold(0.0, f64::max);
         println!(
-            "{integrator:?}: {} steps, energy drift {drift:e} J of {e0} J",
+            "{integrator:?} {method:?}: {} steps, energy drift {drift:e} J of {e0} J",
             run.steps
         );
         assert!(drift < 1e-7 * e0.abs(), "{integrator:?}: drift {drift}");

@@ -32,7 +32,7 @@ use num_dual::Dual64;
 
 pub use bodies::{Bodies, BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
 pub use forward::{ContactForce, Derivatives, Inputs, Poses, HOLONOMIC_ROWS, VELOCITY_ROWS};
-pub use projection::ProjectionParams;
+pub use projection::{ProjectionMethod, ProjectionParams, ProjectionReport};
 pub use simulate::{
     simulate, Integrator, Outcome, Progress, Sample, Simulation, SimulationSettings, Wheel,
 };
@@ -119,6 +119,15 @@ impl Residuals {
     pub fn max_velocity(&self) -> f64 {
         self.velocity.amax()
     }
+}
+
+/// Poses of the two frames and the two hubs (world axes).
+struct FramePoses<T: RealField + Copy> {
+    x_b: Vector3<T>,
+    rh: nalgebra::Matrix3<T>,
+    x_h: Vector3<T>,
+    hub_r: Vector3<T>,
+    hub_f: Vector3<T>,
 }
 
 /// Newton iterations allowed when solving the pitch of a new state.
@@ -294,17 +303,15 @@ impl Model {
         }
     }
 
-    /// The 24 coordinates of a configuration that satisfies the 15 joint constraints and the
-    /// rear contact exactly, from the rear frame's yaw, lean and pitch, the steer angle, the
-    /// wheels' rotations relative to their frames and the rear contact point. (The front
-    /// contact height is satisfied only at the right pitch: see [`Model::initial_state`].)
-    pub fn configuration<T: RealField + Copy>(
+    /// Rotation matrices and origins of the rear and front frames, and the rear and front hub
+    /// positions, for a configuration given by the rear frame's yaw, lean and pitch, the steer
+    /// angle and the rear contact point; joints and rear contact hold exactly.
+    fn frames<T: RealField + Copy>(
         &self,
         angles: [T; 3],
         steer: T,
-        wheel_angles: [T; 2],
         rear_contact: [T; 2],
-    ) -> SVector<T, COORDINATES> {
+    ) -> FramePoses<T> {
         let g = &self.bodies.geometry;
         let [yaw, lean, pitch] = angles;
         let rb = rotation::matrix(yaw, lean, pitch);
@@ -319,6 +326,49 @@ impl Model {
         let rh = rb * rotation::axis_angle(&s, steer);
         let x_h = x_b + rb * g.steer_point_in_b.cast::<T>() - rh * g.steer_point_in_h.cast::<T>();
         let x_f = x_h + rh * g.front_hub_in_h.cast::<T>();
+        FramePoses {
+            x_b,
+            rh,
+            x_h,
+            hub_r,
+            hub_f: x_f,
+        }
+    }
+
+    /// Height (z, down) of the front wheel's lowest rim point in the configuration of
+    /// [`Model::configuration`]; zero when the front wheel touches the ground.
+    pub fn front_height<T: RealField + Copy>(
+        &self,
+        angles: [T; 3],
+        steer: T,
+        rear_contact: [T; 2],
+    ) -> T {
+        let p = self.frames(angles, steer, rear_contact);
+        let a = p.rh.column(1);
+        let r_f: T = nalgebra::convert(self.bodies.geometry.r_f);
+        p.hub_f.z + (a.x * a.x + a.y * a.y).sqrt() * r_f
+    }
+
+    /// The 24 coordinates of a configuration that satisfies the 15 joint constraints and the
+    /// rear contact exactly, from the rear frame's yaw, lean and pitch, the steer angle, the
+    /// wheels' rotations relative to their frames and the rear contact point. (The front
+    /// contact height is satisfied only at the right pitch: see [`Model::initial_state`].)
+    pub fn configuration<T: RealField + Copy>(
+        &self,
+        angles: [T; 3],
+        steer: T,
+        wheel_angles: [T; 2],
+        rear_contact: [T; 2],
+    ) -> SVector<T, COORDINATES> {
+        let [yaw, lean, pitch] = angles;
+        let FramePoses {
+            rh,
+            x_b,
+            x_h,
+            hub_r,
+            hub_f: x_f,
+            ..
+        } = self.frames(angles, steer, rear_contact);
         // H's angles relative to the rear frame's heading, so that its yaw stays continuous.
         let relative = rotation::matrix(-yaw, T::zero(), T::zero()) * rh;
         let ah = rotation::angles(&relative);
@@ -351,13 +401,7 @@ impl Model {
         for _ in 0..PITCH_ITERATIONS {
             let p = Dual64::new(pitch, 1.0);
             let c = Dual64::from_re;
-            let q = self.configuration(
-                [c(0.0), c(lean), p],
-                c(steer),
-                [c(0.0), c(0.0)],
-                [c(0.0), c(0.0)],
-            );
-            let h = self.contacts[1].height(&Poses::new(&q));
+            let h = self.front_height([c(0.0), c(lean), p], c(steer), [c(0.0), c(0.0)]);
             residual = h.re;
             if residual.abs() < 1e-15 {
                 return Ok(pitch);
