@@ -94,7 +94,7 @@ impl Dopri5Params {
                 format!("must be positive and finite, got {}", self.atol),
             );
         }
-        if !(self.max_step > 0.0) {
+        if self.max_step.is_nan() || self.max_step <= 0.0 {
             return bad(
                 "max_step",
                 format!("must be positive, got {}", self.max_step),

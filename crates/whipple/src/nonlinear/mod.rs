@@ -556,12 +556,8 @@ impl Model {
         h: impl Fn(&State<Dual64>) -> Dual64,
     ) -> f64 {
         let dual = State {
-            q: state
-                .q
-                .zip_map(&derivatives.q_dot, |x, dx| Dual64::new(x, dx)),
-            u: state
-                .u
-                .zip_map(&derivatives.u_dot, |x, dx| Dual64::new(x, dx)),
+            q: state.q.zip_map(&derivatives.q_dot, Dual64::new),
+            u: state.u.zip_map(&derivatives.u_dot, Dual64::new),
         };
         h(&dual).eps
     }

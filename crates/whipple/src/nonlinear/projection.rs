@@ -185,7 +185,7 @@ impl Model {
             [contact.x, contact.y],
         );
         let residual = self.holonomic_residual(q).amax();
-        if !(residual <= params.tolerance) {
+        if residual.is_nan() || residual > params.tolerance {
             return Err(Error::ProjectionDiverged {
                 iterations,
                 residual,

@@ -19,7 +19,7 @@ fn cholesky<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) -> bo
         for k in 0..j {
             d -= a[(j, k)] * a[(j, k)];
         }
-        if !(d > T::zero()) || !d.is_finite() {
+        if d <= T::zero() || !d.is_finite() {
             return false;
         }
         let d = d.sqrt();
