@@ -122,7 +122,7 @@ pub(crate) struct Tree<T: RealField + Copy> {
 
 /// Tree speeds that can move each body (the other columns of its J are zero): rear wheel
 /// ν, ω_B, σ_R; rear frame ν, ω_B; front frame ν, ω_B, δ̇; front wheel ν, ω_B, δ̇, σ_F.
-const TREE_COLUMNS: [&[usize]; BODIES] = [
+pub(crate) const TREE_COLUMNS: [&[usize]; BODIES] = [
     &[0, 1, 2, 3, 4, 5, 7],
     &[0, 1, 2, 3, 4, 5],
     &[0, 1, 2, 3, 4, 5, 6],

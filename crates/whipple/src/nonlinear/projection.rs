@@ -14,7 +14,7 @@
 use nalgebra::{SMatrix, SVector};
 use num_dual::Dual64;
 
-use super::forward::{Poses, HOLONOMIC_ROWS, TREE};
+use super::forward::{Poses, HOLONOMIC_ROWS, TREE, TREE_COLUMNS};
 use super::rotation;
 use super::state::{State, COORDINATES, LEAN, PITCH, SPEEDS, YAW};
 use super::{saddle, Model, BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
@@ -247,8 +247,20 @@ impl Model {
         let mut rhs = SVector::<f64, TREE>::zeros();
         for k in 0..BODIES {
             let j = &tree.jac[k];
-            gram += j.transpose() * j;
-            rhs += j.transpose() * state.u.fixed_rows::<6>(6 * k);
+            let cols = TREE_COLUMNS[k];
+            let uk = state.u.fixed_rows::<6>(6 * k);
+            for (n, &a) in cols.iter().enumerate() {
+                let ca = j.column(a);
+                for &b in &cols[n..] {
+                    gram[(a, b)] += ca.dot(&j.column(b));
+                }
+                rhs[a] += ca.dot(&uk);
+            }
+        }
+        for a in 0..TREE {
+            for b in 0..a {
+                gram[(a, b)] = gram[(b, a)];
+            }
         }
         let (w, _) = saddle::solve(&gram, &g, &rhs, &SVector::zeros(), 0.0).ok_or_else(|| {
             Error::SingularDynamics {

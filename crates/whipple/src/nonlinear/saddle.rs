@@ -11,55 +11,52 @@
 
 use nalgebra::{RealField, SMatrix, SVector};
 
-/// In-place Cholesky factorization `A = L Lᵀ` (L in the lower triangle). False when A is not
+#[inline]
+fn dot<T: RealField + Copy>(a: &[T], b: &[T]) -> T {
+    a.iter().zip(b).fold(T::zero(), |s, (&x, &y)| s + x * y)
+}
+
+/// In-place Cholesky factorization `A = UᵀU`, U upper triangular in the upper triangle (so
+/// that, column-major, every inner product runs over contiguous memory). False when A is not
 /// (numerically) positive definite.
 fn cholesky<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) -> bool {
+    let data = a.as_mut_slice();
     for j in 0..N {
-        let mut d = a[(j, j)];
-        for k in 0..j {
-            d -= a[(j, k)] * a[(j, k)];
+        let (left, right) = data.split_at_mut(j * N);
+        let cj = &mut right[..N];
+        for i in 0..j {
+            let ci = &left[i * N..i * N + N];
+            let s = cj[i] - dot(&ci[..i], &cj[..i]);
+            cj[i] = s / ci[i];
         }
+        let d = cj[j] - dot(&cj[..j], &cj[..j]);
         if d <= T::zero() || !d.is_finite() {
             return false;
         }
-        let d = d.sqrt();
-        a[(j, j)] = d;
-        for i in j + 1..N {
-            let mut s = a[(i, j)];
-            for k in 0..j {
-                s -= a[(i, k)] * a[(j, k)];
-            }
-            a[(i, j)] = s / d;
-        }
+        cj[j] = d.sqrt();
     }
     true
 }
 
-/// Solves L y = b (L lower triangular from [`cholesky`]).
-fn forward_substitute<T: RealField + Copy, const N: usize>(
-    l: &SMatrix<T, N, N>,
-    b: &mut SVector<T, N>,
-) {
+/// Solves Uᵀ y = b in place (U from [`cholesky`]).
+fn forward_substitute<T: RealField + Copy, const N: usize>(u: &SMatrix<T, N, N>, b: &mut [T]) {
+    let data = u.as_slice();
     for i in 0..N {
-        let mut s = b[i];
-        for k in 0..i {
-            s -= l[(i, k)] * b[k];
-        }
-        b[i] = s / l[(i, i)];
+        let ci = &data[i * N..i * N + N];
+        b[i] = (b[i] - dot(&ci[..i], &b[..i])) / ci[i];
     }
 }
 
-/// Solves Lᵀ x = b.
-fn back_substitute<T: RealField + Copy, const N: usize>(
-    l: &SMatrix<T, N, N>,
-    b: &mut SVector<T, N>,
-) {
+/// Solves U x = b in place.
+fn back_substitute<T: RealField + Copy, const N: usize>(u: &SMatrix<T, N, N>, b: &mut [T]) {
+    let data = u.as_slice();
     for i in (0..N).rev() {
-        let mut s = b[i];
-        for k in i + 1..N {
-            s -= l[(k, i)] * b[k];
+        let ci = &data[i * N..i * N + N];
+        let xi = b[i] / ci[i];
+        b[i] = xi;
+        for (bk, &uki) in b[..i].iter_mut().zip(&ci[..i]) {
+            *bk -= uki * xi;
         }
-        b[i] = s / l[(i, i)];
     }
 }
 
@@ -82,26 +79,24 @@ pub(crate) fn solve<T: RealField + Copy, const N: usize, const M: usize>(
     if !cholesky(&mut l) {
         return None;
     }
-    // Y = L⁻¹ Gᵀ, column by column; z = L⁻¹ f.
+    // Y = U⁻ᵀ Gᵀ, column by column; z = U⁻ᵀ f.
     let mut y = g.transpose();
     for j in 0..M {
-        let mut col = y.column(j).into_owned();
-        forward_substitute(&l, &mut col);
-        y.set_column(j, &col);
+        forward_substitute(&l, y.column_mut(j).as_mut_slice());
     }
     let mut z = f;
-    forward_substitute(&l, &mut z);
+    forward_substitute(&l, z.as_mut_slice());
     // Schur complement S = G A⁻¹ Gᵀ = Yᵀ Y; S λ = G A⁻¹ f − γ = Yᵀ z − γ.
     let mut s = y.transpose() * y;
     let mut lambda = y.transpose() * z - gamma;
     if !cholesky(&mut s) {
         return None;
     }
-    forward_substitute(&s, &mut lambda);
-    back_substitute(&s, &mut lambda);
-    // x = A⁻¹ (f − Gᵀ λ) = L⁻ᵀ (z − Y λ).
+    forward_substitute(&s, lambda.as_mut_slice());
+    back_substitute(&s, lambda.as_mut_slice());
+    // x = A⁻¹ (f − Gᵀ λ) = U⁻¹ (z − Y λ).
     let mut x = z - y * lambda;
-    back_substitute(&l, &mut x);
+    back_substitute(&l, x.as_mut_slice());
     Some((x, lambda))
 }
 
