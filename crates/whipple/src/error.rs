@@ -84,7 +84,7 @@ pub enum Error {
     /// The non-linear model's state holds a NaN or an infinity at time `t`.
     #[error("non-finite state at t = {t} s")]
     NonFiniteState {
-        /// Simulation time [s].
+        /// Simulation time \[s\].
         t: f64,
     },
     /// The constrained equations of motion could not be solved: the saddle-point matrix

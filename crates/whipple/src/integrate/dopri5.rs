@@ -55,11 +55,11 @@ pub struct Dopri5Params {
     pub rtol: f64,
     /// Absolute tolerance per component. Default 1e-10.
     pub atol: f64,
-    /// First step [s]; `None` chooses one from the initial slope. Default `None`.
+    /// First step \[s\]; `None` chooses one from the initial slope. Default `None`.
     pub initial_step: Option<f64>,
-    /// Largest step [s]. Default infinity.
+    /// Largest step \[s\]. Default infinity.
     pub max_step: f64,
-    /// Smallest step [s] before giving up. Default 1e-12.
+    /// Smallest step \[s\] before giving up. Default 1e-12.
     pub min_step: f64,
     /// Upper bound on step attempts. Default 10 000 000.
     pub max_steps: usize,
@@ -124,9 +124,9 @@ impl Dopri5Params {
 /// The continuous extension over one accepted step, fourth order.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DenseOutput<const N: usize> {
-    /// Start of the step [s].
+    /// Start of the step \[s\].
     pub t0: f64,
-    /// Step size [s].
+    /// Step size \[s\].
     pub h: f64,
     r: [SVector<f64, N>; 5],
 }
@@ -266,7 +266,7 @@ impl Controller {
         }
     }
 
-    /// The step to attempt next [s].
+    /// The step to attempt next \[s\].
     pub fn step(&self) -> f64 {
         self.h
     }

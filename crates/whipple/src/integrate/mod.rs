@@ -40,7 +40,7 @@ where
 /// Times and states of an integration, in step order.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Trajectory<const N: usize> {
-    /// Times [s].
+    /// Times \[s\].
     pub t: Vec<f64>,
     /// States at those times.
     pub y: Vec<SVector<f64, N>>,
@@ -49,9 +49,9 @@ pub struct Trajectory<const N: usize> {
 /// Integration method and its step settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Method {
-    /// Classical fourth-order Runge–Kutta with fixed step `dt` [s].
+    /// Classical fourth-order Runge–Kutta with fixed step `dt` \[s\].
     Rk4 {
-        /// Step [s].
+        /// Step \[s\].
         dt: f64,
     },
     /// Dormand–Prince 5(4), adaptive.

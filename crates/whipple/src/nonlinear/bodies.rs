@@ -26,31 +26,31 @@ pub const BODY_NAMES: [&str; BODIES] = ["rear wheel", "rear frame", "front frame
 /// One rigid body: mass and inertia tensor about its origin (its centre of mass), in body axes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RigidBody {
-    /// Mass [kg] (may be zero).
+    /// Mass \[kg\] (may be zero).
     pub mass: f64,
     /// Inertia tensor about the origin in body axes [kg m²] (may be zero).
     pub inertia: Matrix3<f64>,
-    /// Position of the origin in the upright reference configuration, benchmark axes [m].
+    /// Position of the origin in the upright reference configuration, benchmark axes \[m\].
     pub reference_position: Vector3<f64>,
 }
 
 /// Where the joints and contacts attach, in body axes relative to the body origins.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Geometry {
-    /// Rear hub seen from the rear frame B's origin [m].
+    /// Rear hub seen from the rear frame B's origin \[m\].
     pub rear_hub_in_b: Vector3<f64>,
-    /// A point of the steer axis seen from B's origin [m] (the point nearest the front hub).
+    /// A point of the steer axis seen from B's origin \[m\] (the point nearest the front hub).
     pub steer_point_in_b: Vector3<f64>,
-    /// The same point of the steer axis seen from the front frame H's origin [m].
+    /// The same point of the steer axis seen from the front frame H's origin \[m\].
     pub steer_point_in_h: Vector3<f64>,
-    /// Front hub seen from H's origin [m].
+    /// Front hub seen from H's origin \[m\].
     pub front_hub_in_h: Vector3<f64>,
     /// Unit steer axis, pointing down (positive steer rotation turns the front right); the same
     /// vector in B and H axes, since both are parallel in the reference configuration.
     pub steer_axis: Vector3<f64>,
-    /// Rear wheel radius r_R [m].
+    /// Rear wheel radius r_R \[m\].
     pub r_r: f64,
-    /// Front wheel radius r_F [m].
+    /// Front wheel radius r_F \[m\].
     pub r_f: f64,
     /// Gravity g [m/s²], along +z (down).
     pub g: f64,

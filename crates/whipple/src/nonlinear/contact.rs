@@ -25,7 +25,7 @@ pub struct KnifeEdge {
     pub wheel: usize,
     /// The index of the frame that carries the wheel's axle.
     pub frame: usize,
-    /// Wheel radius [m]; 0 for a skate.
+    /// Wheel radius \[m\]; 0 for a skate.
     pub radius: f64,
 }
 
@@ -36,7 +36,7 @@ pub struct ContactFrame<T: RealField + Copy> {
     pub longitudinal: Vector3<T>,
     /// n: lateral direction, horizontal, to the right of f.
     pub lateral: Vector3<T>,
-    /// Hub → contact point, r d [m].
+    /// Hub → contact point, r d \[m\].
     pub offset: Vector3<T>,
 }
 
@@ -72,12 +72,12 @@ impl KnifeEdge {
         }
     }
 
-    /// The contact point (lowest point of the rim), world axes [m].
+    /// The contact point (lowest point of the rim), world axes \[m\].
     pub fn point<T: RealField + Copy>(&self, poses: &Poses<T>) -> Vector3<T> {
         poses.pos[self.wheel] + self.contact_frame(poses).offset
     }
 
-    /// Holonomic residual: height of the lowest rim point above the ground, as z (down) [m].
+    /// Holonomic residual: height of the lowest rim point above the ground, as z (down) \[m\].
     pub fn height<T: RealField + Copy>(&self, poses: &Poses<T>) -> T {
         let a = poses.rot[self.wheel].column(1).into_owned();
         poses.pos[self.wheel].z + (a.x * a.x + a.y * a.y).sqrt() * nalgebra::convert(self.radius)

@@ -38,7 +38,7 @@ pub const VELOCITY_ROWS: usize = 21;
 pub struct Poses<T: RealField + Copy> {
     /// Rotation matrices, body → world.
     pub rot: [Matrix3<T>; BODIES],
-    /// Positions of the body origins, world axes [m].
+    /// Positions of the body origins, world axes \[m\].
     pub pos: [Vector3<T>; BODIES],
 }
 
@@ -75,7 +75,7 @@ impl<T: RealField + Copy> Default for Inputs<T> {
     }
 }
 
-/// The force of the ground on one wheel at its contact point, in the contact's directions [N].
+/// The force of the ground on one wheel at its contact point, in the contact's directions \[N\].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ContactForce<T> {
     /// Normal force, upward positive. Negative means the ground would have to pull: the wheel

@@ -23,9 +23,9 @@ pub struct Revolute {
     pub parent: usize,
     /// Child body index.
     pub child: usize,
-    /// Joint point in parent axes, from the parent's origin [m].
+    /// Joint point in parent axes, from the parent's origin \[m\].
     pub point_in_parent: Vector3<f64>,
-    /// Joint point in child axes, from the child's origin [m].
+    /// Joint point in child axes, from the child's origin \[m\].
     pub point_in_child: Vector3<f64>,
     /// Unit joint axis in child axes (positive rotation of the child about it is positive).
     pub axis_in_child: Vector3<f64>,
@@ -45,7 +45,7 @@ pub struct JointRows<T: RealField + Copy> {
 }
 
 impl Revolute {
-    /// The five holonomic residuals: point coincidence (3) [m], axis alignment (2) [-].
+    /// The five holonomic residuals: point coincidence (3) \[m\], axis alignment (2) [-].
     pub fn residual<T: RealField + Copy>(&self, poses: &Poses<T>) -> SVector<T, 5> {
         let (ra, rc) = (&poses.rot[self.parent], &poses.rot[self.child]);
         let pa: Vector3<T> = self.point_in_parent.cast();

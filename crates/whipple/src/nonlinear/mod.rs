@@ -65,19 +65,19 @@ pub struct Model {
 pub struct InitialConditions {
     /// v: forward speed of the rear hub along the rear frame's heading [m/s].
     pub speed: f64,
-    /// φ: lean [rad], |φ| < π/2.
+    /// φ: lean \[rad\], |φ| < π/2.
     pub lean: f64,
-    /// δ: steer [rad].
+    /// δ: steer \[rad\].
     pub steer: f64,
     /// φ̇: lean rate [rad/s].
     pub lean_rate: f64,
     /// δ̇: steer rate [rad/s].
     pub steer_rate: f64,
-    /// ψ: yaw (heading) [rad].
+    /// ψ: yaw (heading) \[rad\].
     pub yaw: f64,
-    /// Rear contact x [m].
+    /// Rear contact x \[m\].
     pub rear_contact_x: f64,
-    /// Rear contact y [m].
+    /// Rear contact y \[m\].
     pub rear_contact_y: f64,
 }
 
@@ -100,7 +100,7 @@ impl InitialConditions {
 /// Constraint residuals of a state.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Residuals {
-    /// The 17 holonomic residuals (joint gaps [m], axis misalignments [-], contact heights [m]).
+    /// The 17 holonomic residuals (joint gaps \[m\], axis misalignments [-], contact heights \[m\]).
     pub holonomic: SVector<f64, HOLONOMIC_ROWS>,
     /// The 21 velocity rows D u: 17 differentiated holonomic rows then 4 rolling rows [m/s].
     pub velocity: SVector<f64, VELOCITY_ROWS>,
@@ -222,7 +222,7 @@ impl Model {
         }
     }
 
-    /// Total mechanical energy, kinetic plus gravitational potential (zero at ground level) [J].
+    /// Total mechanical energy, kinetic plus gravitational potential (zero at ground level) \[J\].
     pub fn energy<T: RealField + Copy>(&self, state: &State<T>) -> T {
         let g: T = nalgebra::convert(self.bodies.geometry.g);
         let half: T = nalgebra::convert(0.5);
@@ -239,7 +239,7 @@ impl Model {
     }
 
     /// δ: steer angle, the front frame's rotation relative to the rear frame about the steer
-    /// axis, right positive [rad].
+    /// axis, right positive \[rad\].
     pub fn steer<T: RealField + Copy>(&self, q: &SVector<T, COORDINATES>) -> T {
         let poses = Poses::new(q);
         let relative = poses.rot[REAR_FRAME].transpose() * poses.rot[FRONT_FRAME];
@@ -274,7 +274,7 @@ impl Model {
         v.x * c + v.y * s
     }
 
-    /// Rear and front contact points (lowest rim points), world axes [m].
+    /// Rear and front contact points (lowest rim points), world axes \[m\].
     pub fn contact_points<T: RealField + Copy>(
         &self,
         q: &SVector<T, COORDINATES>,

@@ -38,7 +38,7 @@ pub enum ProjectionMethod {
 pub struct ProjectionParams {
     /// The method. Default [`ProjectionMethod::Coordinates`].
     pub method: ProjectionMethod,
-    /// Largest absolute holonomic residual accepted [m]. Default 1e-13.
+    /// Largest absolute holonomic residual accepted \[m\]. Default 1e-13.
     pub tolerance: f64,
     /// Newton iterations always made, even when the residual is already below tolerance
     /// (the study found one necessary to keep the drift from building up). Default 1.

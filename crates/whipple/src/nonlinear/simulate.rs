@@ -24,7 +24,7 @@ use crate::error::{Error, Result};
 use crate::integrate::dopri5::{self, Controller, Dopri5Params};
 use crate::integrate::{rk4, OdeSystem};
 
-/// A rider input: torque [N m] as a function of time [s] and the state's named quantities.
+/// A rider input: torque [N m] as a function of time \[s\] and the state's named quantities.
 pub type TorqueFn = Box<dyn Fn(f64, &StateView) -> f64 + Send + Sync>;
 
 /// A progress hook, called after each accepted step.
@@ -33,9 +33,9 @@ pub type ProgressFn = Box<dyn Fn(Progress) + Send + Sync>;
 /// How far a simulation is.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Progress {
-    /// Simulated time reached [s].
+    /// Simulated time reached \[s\].
     pub t: f64,
-    /// Time at which the run ends if nothing happens [s].
+    /// Time at which the run ends if nothing happens \[s\].
     pub t_end: f64,
     /// Steps accepted so far.
     pub steps: usize,
@@ -44,9 +44,9 @@ pub struct Progress {
 /// The integrator.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Integrator {
-    /// Classical Runge–Kutta, fixed step `dt` [s] (the study's choice).
+    /// Classical Runge–Kutta, fixed step `dt` \[s\] (the study's choice).
     Rk4 {
-        /// Step [s].
+        /// Step \[s\].
         dt: f64,
     },
     /// Dormand–Prince 5(4) with error control.
@@ -58,9 +58,9 @@ pub enum Integrator {
 pub struct SimulationSettings {
     /// Integrator and its step settings.
     pub integrator: Integrator,
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub duration: f64,
-    /// The bicycle has fallen when |lean| exceeds this [rad], in (0, π/2). Default π/3.
+    /// The bicycle has fallen when |lean| exceeds this \[rad\], in (0, π/2). Default π/3.
     pub fall_angle: f64,
     /// Steer torque T_δ(t, state) [N m]; `None` for hands-free.
     pub steer_torque: Option<TorqueFn>,
@@ -121,21 +121,21 @@ pub enum Outcome {
     Completed,
     /// |lean| passed the fall angle at time t (interpolated within the step).
     Fell {
-        /// Time of the crossing [s].
+        /// Time of the crossing \[s\].
         t: f64,
-        /// Lean at that time [rad].
+        /// Lean at that time \[rad\].
         lean: f64,
     },
     /// A wheel's normal force became negative at time t (interpolated within the step).
     WheelLifted {
-        /// Time [s].
+        /// Time \[s\].
         t: f64,
         /// The wheel.
         wheel: Wheel,
     },
     /// Newton projection onto the holonomic constraints failed after the step ending at t.
     ProjectionFailed {
-        /// Time [s].
+        /// Time \[s\].
         t: f64,
         /// Iterations made.
         iterations: usize,
@@ -144,17 +144,17 @@ pub enum Outcome {
     },
     /// The state became non-finite in the step ending at t.
     NonFiniteState {
-        /// Time [s].
+        /// Time \[s\].
         t: f64,
     },
     /// The adaptive step size fell below its minimum, or its step limit was reached, at t.
     StepSizeTooSmall {
-        /// Time [s].
+        /// Time \[s\].
         t: f64,
     },
     /// The equations of motion could not be evaluated (for example singular) at time t.
     Failed {
-        /// Time [s].
+        /// Time \[s\].
         t: f64,
         /// Why.
         error: Error,
@@ -164,38 +164,38 @@ pub enum Outcome {
 /// One recorded instant (after projection). Radians, metres, seconds, newtons, joules.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Sample {
-    /// t [s].
+    /// t \[s\].
     pub t: f64,
-    /// φ [rad].
+    /// φ \[rad\].
     pub lean: f64,
-    /// δ [rad].
+    /// δ \[rad\].
     pub steer: f64,
     /// φ̇ [rad/s].
     pub lean_rate: f64,
     /// δ̇ [rad/s].
     pub steer_rate: f64,
-    /// ψ [rad].
+    /// ψ \[rad\].
     pub yaw: f64,
-    /// Rear contact x [m].
+    /// Rear contact x \[m\].
     pub x: f64,
-    /// Rear contact y [m].
+    /// Rear contact y \[m\].
     pub y: f64,
-    /// Front contact x [m].
+    /// Front contact x \[m\].
     pub front_x: f64,
-    /// Front contact y [m].
+    /// Front contact y \[m\].
     pub front_y: f64,
     /// v: forward speed of the rear hub [m/s].
     pub speed: f64,
-    /// Total energy, kinetic + potential [J].
+    /// Total energy, kinetic + potential \[J\].
     pub energy: f64,
-    /// Largest absolute holonomic residual [m].
+    /// Largest absolute holonomic residual \[m\].
     pub position_residual: f64,
     /// Largest absolute velocity-row residual (holonomic rows differentiated and rolling)
     /// [m/s].
     pub velocity_residual: f64,
-    /// Ground force on the rear wheel [N].
+    /// Ground force on the rear wheel \[N\].
     pub rear: ContactForce<f64>,
-    /// Ground force on the front wheel [N].
+    /// Ground force on the front wheel \[N\].
     pub front: ContactForce<f64>,
 }
 

@@ -2,9 +2,9 @@
 //! body, as in Dressel's JBike6 study.
 //!
 //! For body k (see [`super::bodies`] for the order R, B, H, F):
-//! - `q[6k..6k+3]`: position of the body's origin in world axes [m];
+//! - `q[6k..6k+3]`: position of the body's origin in world axes \[m\];
 //! - `q[6k+3]`, `q[6k+4]`, `q[6k+5]`: yaw, lean, pitch (z–x–y Euler angles, see
-//!   [`super::rotation`]) [rad]; for a wheel the third angle is its rotation;
+//!   [`super::rotation`]) \[rad\]; for a wheel the third angle is its rotation;
 //! - `u[6k..6k+3]`: velocity of the origin in world axes [m/s];
 //! - `u[6k+3..6k+6]`: angular velocity in body axes [rad/s].
 //!
@@ -52,13 +52,13 @@ impl<T: RealField + Copy> State<T> {
         y
     }
 
-    /// Position of body `k`'s origin, world axes [m].
+    /// Position of body `k`'s origin, world axes \[m\].
     #[inline]
     pub fn position(&self, k: usize) -> Vector3<T> {
         self.q.fixed_rows::<3>(6 * k).into_owned()
     }
 
-    /// (yaw, lean, pitch) of body `k` [rad].
+    /// (yaw, lean, pitch) of body `k` \[rad\].
     #[inline]
     pub fn angles(&self, k: usize) -> Vector3<T> {
         self.q.fixed_rows::<3>(6 * k + 3).into_owned()
@@ -76,17 +76,17 @@ impl<T: RealField + Copy> State<T> {
         self.u.fixed_rows::<3>(6 * k + 3).into_owned()
     }
 
-    /// φ: lean of the rear frame, right positive [rad].
+    /// φ: lean of the rear frame, right positive \[rad\].
     pub fn lean(&self) -> T {
         self.q[6 * super::REAR_FRAME + LEAN]
     }
 
-    /// ψ: yaw (heading) of the rear frame, right turn positive [rad].
+    /// ψ: yaw (heading) of the rear frame, right turn positive \[rad\].
     pub fn yaw(&self) -> T {
         self.q[6 * super::REAR_FRAME + YAW]
     }
 
-    /// θ_B: pitch of the rear frame, nose up positive (a dependent coordinate) [rad].
+    /// θ_B: pitch of the rear frame, nose up positive (a dependent coordinate) \[rad\].
     pub fn pitch(&self) -> T {
         self.q[6 * super::REAR_FRAME + PITCH]
     }
@@ -123,13 +123,13 @@ impl<T: RealField + Copy> State<T> {
 /// convention: lean right and steer right positive). Radians, metres, seconds.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StateView {
-    /// φ: lean of the rear frame [rad].
+    /// φ: lean of the rear frame \[rad\].
     pub lean: f64,
-    /// δ: steer angle of the front frame relative to the rear frame about the steer axis [rad].
+    /// δ: steer angle of the front frame relative to the rear frame about the steer axis \[rad\].
     pub steer: f64,
-    /// ψ: yaw (heading) of the rear frame [rad].
+    /// ψ: yaw (heading) of the rear frame \[rad\].
     pub yaw: f64,
-    /// θ_B: pitch of the rear frame [rad].
+    /// θ_B: pitch of the rear frame \[rad\].
     pub pitch: f64,
     /// φ̇: lean rate [rad/s].
     pub lean_rate: f64,
@@ -139,12 +139,12 @@ pub struct StateView {
     pub yaw_rate: f64,
     /// v: forward speed, the rear hub's velocity along the rear frame's heading [m/s].
     pub speed: f64,
-    /// x_P: rear contact point, x (forward at yaw 0) [m].
+    /// x_P: rear contact point, x (forward at yaw 0) \[m\].
     pub rear_contact_x: f64,
-    /// y_P: rear contact point, y [m].
+    /// y_P: rear contact point, y \[m\].
     pub rear_contact_y: f64,
-    /// Front contact point, x [m].
+    /// Front contact point, x \[m\].
     pub front_contact_x: f64,
-    /// Front contact point, y [m].
+    /// Front contact point, y \[m\].
     pub front_contact_y: f64,
 }
