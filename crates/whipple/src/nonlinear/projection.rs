@@ -245,9 +245,8 @@ impl Model {
         let (tree, g) = self.contact_tree_rows(&poses);
         let mut gram = SMatrix::<f64, TREE, TREE>::zeros();
         let mut rhs = SVector::<f64, TREE>::zeros();
-        for k in 0..BODIES {
+        for (k, &cols) in TREE_COLUMNS.iter().enumerate() {
             let j = &tree.jac[k];
-            let cols = TREE_COLUMNS[k];
             let uk = state.u.fixed_rows::<6>(6 * k);
             for (n, &a) in cols.iter().enumerate() {
                 let ca = j.column(a);
