@@ -70,6 +70,31 @@ pub enum Error {
         /// Where it appeared.
         context: String,
     },
+    /// Newton iteration of the non-linear model's positions onto its holonomic constraints did
+    /// not reach its tolerance within its iteration bound (or its linear system was singular).
+    #[error(
+        "constraint projection diverged after {iterations} iterations (residual {residual:e})"
+    )]
+    ProjectionDiverged {
+        /// Newton iterations made.
+        iterations: usize,
+        /// Largest absolute holonomic residual reached [m or dimensionless].
+        residual: f64,
+    },
+    /// The non-linear model's state holds a NaN or an infinity at time `t`.
+    #[error("non-finite state at t = {t} s")]
+    NonFiniteState {
+        /// Simulation time \[s\].
+        t: f64,
+    },
+    /// The constrained equations of motion could not be solved: the saddle-point matrix
+    /// [M Dᵀ; D 0] is singular at this state (for example a lean of ±90°, where the
+    /// orientation angles are singular, or a bicycle without inertia in some direction).
+    #[error("singular equations of motion: {context}")]
+    SingularDynamics {
+        /// Where and why.
+        context: String,
+    },
 }
 
 /// Shorthand used throughout the crate.

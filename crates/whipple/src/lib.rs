@@ -2,7 +2,8 @@
 //!
 //! Dynamics of the Whipple bicycle: the benchmark parameters of Meijaard et al. 2007 and
 //! JBike6's seven-body description, the linearized model (M, C₁, K₀, K₂), eigenvalues, modes,
-//! critical speeds and the self-stable speed range.
+//! critical speeds and the self-stable speed range; the fully non-linear multibody bicycle
+//! ([`nonlinear`]) and its simulation ([`nonlinear::simulate`], [`integrate`]).
 //!
 //! Data flows one way: parameters → model → analysis.
 //!
@@ -23,7 +24,9 @@
 
 pub mod analysis;
 pub mod error;
+pub mod integrate;
 pub mod linear;
+pub mod nonlinear;
 pub mod parameters;
 
 pub use error::{Error, Result};

@@ -1,0 +1,503 @@
+//! Forward dynamics: ẋ = f(x, τ), in named stages.
+//!
+//! 1. **poses**: rotation matrices and positions of the four bodies from q;
+//! 2. **tree**: the joint rows are eliminated exactly by writing every body's speeds as
+//!    `u_i = J_i(q) w` in nine tree speeds `w = [ν (rear hub velocity, rear frame axes),
+//!    ω_B (rear frame), δ̇ (steer rate), σ_R, σ_F (wheel spin rates relative to their frames)]`,
+//!    and `u̇_i = J_i ẇ + c_i` (c_i: centripetal and gyroscopic-coupling terms). Every `J_i w`
+//!    satisfies the 15 joint velocity rows identically, so `T = [J_i]` spans their null space;
+//! 3. **forces**: gravity, gyroscopic torques `−ω × Iω`, rider torques (steer, lean);
+//! 4. **constraint rows**: the six contact rows `D_c` (two normal, four rolling) and their γ;
+//! 5. **solve**: the saddle-point system `[M Dᵀ; D 0][u̇; μ] = [f; γ]` projected onto the joint
+//!    null space, `[TᵀMT  Gᵀ; G  0][ẇ; −μ_c] = [Tᵀ(f − M c); γ_c − D_c c]` with `G = D_c T`:
+//!    15 × 15 instead of 45 × 45, solved at once for the accelerations and the contact
+//!    multipliers by LU with partial pivoting. `TᵀMT` may be singular (massless wheels): the
+//!    saddle-point matrix stays regular whenever the bicycle has inertia in every direction the
+//!    constraints leave free, and M⁻¹ is never formed.
+//!
+//! [`Model::forward_reference`] solves the full 45 × 45 system with every row (no tree), as a
+//! check of the structured path.
+
+use nalgebra::{DMatrix, DVector, Matrix3, RealField, SMatrix, SVector, Vector3};
+
+use super::bodies::{BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
+use super::state::{State, COORDINATES, SPEEDS, STATE_LEN};
+use super::Model;
+use super::{rotation, saddle};
+use crate::error::{Error, Result};
+
+/// Number of tree speeds w.
+pub(crate) const TREE: usize = 9;
+/// Holonomic rows: 3 joints × 5 + 2 contact heights.
+pub const HOLONOMIC_ROWS: usize = 17;
+/// All velocity rows: the 17 holonomic ones differentiated, then 4 rolling (non-holonomic).
+pub const VELOCITY_ROWS: usize = 21;
+
+/// Poses of the four bodies.
+#[derive(Debug, Clone, Copy)]
+pub struct Poses<T: RealField + Copy> {
+    /// Rotation matrices, body → world.
+    pub rot: [Matrix3<T>; BODIES],
+    /// Positions of the body origins, world axes \[m\].
+    pub pos: [Vector3<T>; BODIES],
+}
+
+impl<T: RealField + Copy> Poses<T> {
+    /// Stage 1: poses from the coordinates.
+    pub fn new(q: &SVector<T, COORDINATES>) -> Self {
+        let mut rot = [Matrix3::identity(); BODIES];
+        let mut pos = [Vector3::zeros(); BODIES];
+        for k in 0..BODIES {
+            rot[k] = rotation::matrix(q[6 * k + 3], q[6 * k + 4], q[6 * k + 5]);
+            pos[k] = Vector3::new(q[6 * k], q[6 * k + 1], q[6 * k + 2]);
+        }
+        Poses { rot, pos }
+    }
+}
+
+/// Rider inputs: torques [N m], benchmark signs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Inputs<T: RealField + Copy> {
+    /// T_φ: lean torque, acting on the rear frame about the horizontal line of its heading
+    /// (its generalized force is exactly the lean torque of the benchmark).
+    pub lean_torque: T,
+    /// T_δ: steer torque, acting on the front frame about the steer axis, and its reaction on
+    /// the rear frame.
+    pub steer_torque: T,
+}
+
+impl<T: RealField + Copy> Default for Inputs<T> {
+    fn default() -> Self {
+        Inputs {
+            lean_torque: T::zero(),
+            steer_torque: T::zero(),
+        }
+    }
+}
+
+/// The force of the ground on one wheel at its contact point, in the contact's directions \[N\].
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactForce<T> {
+    /// Normal force, upward positive. Negative means the ground would have to pull: the wheel
+    /// would lift off.
+    pub normal: T,
+    /// Friction along the wheel's rolling direction (forward positive); zero for a skate.
+    pub longitudinal: T,
+    /// Friction across the wheel (to the right of the rolling direction positive).
+    pub lateral: T,
+}
+
+/// The result of [`Model::forward`].
+#[derive(Debug, Clone, Copy)]
+pub struct Derivatives<T: RealField + Copy> {
+    /// q̇: coordinate rates.
+    pub q_dot: SVector<T, COORDINATES>,
+    /// u̇: accelerations (world translational, body angular).
+    pub u_dot: SVector<T, SPEEDS>,
+    /// Ground forces on the rear and front wheels.
+    pub contact: [ContactForce<T>; 2],
+}
+
+impl<T: RealField + Copy> Derivatives<T> {
+    /// The first-order derivative `[q̇; u̇]`.
+    pub fn to_vector(&self) -> SVector<T, STATE_LEN> {
+        let mut y = SVector::<T, STATE_LEN>::zeros();
+        y.fixed_rows_mut::<COORDINATES>(0).copy_from(&self.q_dot);
+        y.fixed_rows_mut::<SPEEDS>(COORDINATES)
+            .copy_from(&self.u_dot);
+        y
+    }
+}
+
+/// Stage 2: the tree map u_i = J_i w, u̇_i = J_i ẇ + c_i, and the tree-consistent speeds.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Tree<T: RealField + Copy> {
+    pub jac: [SMatrix<T, 6, TREE>; BODIES],
+    pub bias: [SVector<T, 6>; BODIES],
+    /// Velocities of the origins (world).
+    pub velocity: [Vector3<T>; BODIES],
+    /// Angular velocities (body axes).
+    pub omega: [Vector3<T>; BODIES],
+}
+
+/// Tree speeds that can move each body (the other columns of its J are zero): rear wheel
+/// ν, ω_B, σ_R; rear frame ν, ω_B; front frame ν, ω_B, δ̇; front wheel ν, ω_B, δ̇, σ_F.
+pub(crate) const TREE_COLUMNS: [&[usize]; BODIES] = [
+    &[0, 1, 2, 3, 4, 5, 7],
+    &[0, 1, 2, 3, 4, 5],
+    &[0, 1, 2, 3, 4, 5, 6],
+    &[0, 1, 2, 3, 4, 5, 6, 8],
+];
+
+#[inline]
+fn c<T: RealField + Copy>(x: f64) -> T {
+    nalgebra::convert(x)
+}
+
+impl Model {
+    /// Stages 1–2: the tree map at q, with tree speeds read from u.
+    pub(crate) fn tree<T: RealField + Copy>(
+        &self,
+        poses: &Poses<T>,
+        u: &SVector<T, SPEEDS>,
+    ) -> (Tree<T>, SVector<T, TREE>) {
+        let g = &self.bodies.geometry;
+        let rb = poses.rot[REAR_FRAME];
+        let rh = poses.rot[FRONT_FRAME];
+        let a_rb = poses.rot[REAR_WHEEL].transpose() * rb;
+        let a_hb = rh.transpose() * rb;
+        let a_fh = poses.rot[FRONT_WHEEL].transpose() * rh;
+        let s: Vector3<T> = g.steer_axis.cast();
+        let ey = Vector3::<T>::y();
+        let p_br: Vector3<T> = g.rear_hub_in_b.cast();
+        let p_bs: Vector3<T> = g.steer_point_in_b.cast();
+        let p_hs: Vector3<T> = g.steer_point_in_h.cast();
+        let p_hf: Vector3<T> = g.front_hub_in_h.cast();
+        let omega_of = |k: usize| u.fixed_rows::<3>(6 * k + 3).into_owned();
+
+        // Tree speeds from u.
+        let nu = rb.transpose() * u.fixed_rows::<3>(6 * REAR_WHEEL).into_owned();
+        let w_b = omega_of(REAR_FRAME);
+        let x_h = a_hb * w_b;
+        let steer_rate = s.dot(&(omega_of(FRONT_FRAME) - x_h));
+        let x_r = a_rb * w_b;
+        let sigma_r = omega_of(REAR_WHEEL).y - x_r.y;
+        let w_h = x_h + s * steer_rate;
+        let x_f = a_fh * w_h;
+        let sigma_f = omega_of(FRONT_WHEEL).y - x_f.y;
+        let mut w = SVector::<T, TREE>::zeros();
+        w.fixed_rows_mut::<3>(0).copy_from(&nu);
+        w.fixed_rows_mut::<3>(3).copy_from(&w_b);
+        w[6] = steer_rate;
+        w[7] = sigma_r;
+        w[8] = sigma_f;
+
+        let mut jac = [SMatrix::<T, 6, TREE>::zeros(); BODIES];
+        // Rear wheel.
+        let j = &mut jac[REAR_WHEEL];
+        j.fixed_view_mut::<3, 3>(0, 0).copy_from(&rb);
+        j.fixed_view_mut::<3, 3>(3, 3).copy_from(&a_rb);
+        j.fixed_view_mut::<3, 1>(3, 7).copy_from(&ey);
+        // Rear frame.
+        let rb_pbr = rb * rotation::skew(&p_br);
+        let j = &mut jac[REAR_FRAME];
+        j.fixed_view_mut::<3, 3>(0, 0).copy_from(&rb);
+        j.fixed_view_mut::<3, 3>(0, 3).copy_from(&rb_pbr);
+        j.fixed_view_mut::<3, 3>(3, 3)
+            .copy_from(&Matrix3::identity());
+        // Front frame.
+        let rh_phs = rh * rotation::skew(&p_hs);
+        let j = &mut jac[FRONT_FRAME];
+        j.fixed_view_mut::<3, 3>(0, 0).copy_from(&rb);
+        j.fixed_view_mut::<3, 3>(0, 3)
+            .copy_from(&(rb_pbr - rb * rotation::skew(&p_bs) + rh_phs * a_hb));
+        j.fixed_view_mut::<3, 1>(0, 6).copy_from(&(rh_phs * s));
+        j.fixed_view_mut::<3, 3>(3, 3).copy_from(&a_hb);
+        j.fixed_view_mut::<3, 1>(3, 6).copy_from(&s);
+        // Front wheel.
+        let jh = jac[FRONT_FRAME];
+        let jh_w = jh.fixed_rows::<3>(3).into_owned();
+        let jf_v = jh.fixed_rows::<3>(0) - rh * rotation::skew(&p_hf) * jh_w;
+        let mut jf_w = a_fh * jh_w;
+        jf_w[(1, 8)] += T::one();
+        let j = &mut jac[FRONT_WHEEL];
+        j.fixed_rows_mut::<3>(0).copy_from(&jf_v);
+        j.fixed_rows_mut::<3>(3).copy_from(&jf_w);
+
+        // Biases and tree-consistent speeds.
+        let w_r = x_r + ey * sigma_r;
+        let w_f = x_f + ey * sigma_f;
+        let y_b = nu - w_b.cross(&p_br);
+        let cr_v = rb * w_b.cross(&nu);
+        let cr_w = x_r.cross(&ey) * sigma_r;
+        let cb_v = rb * w_b.cross(&y_b);
+        let ch_w = x_h.cross(&s) * steer_rate;
+        let ch_v = cb_v + rb * w_b.cross(&w_b.cross(&p_bs))
+            - rh * (w_h.cross(&w_h.cross(&p_hs)) + ch_w.cross(&p_hs));
+        let cf_w = a_fh * ch_w + x_f.cross(&ey) * sigma_f;
+        let cf_v = ch_v + rh * (ch_w.cross(&p_hf) + w_h.cross(&w_h.cross(&p_hf)));
+        let six = |v: Vector3<T>, o: Vector3<T>| SVector::<T, 6>::new(v.x, v.y, v.z, o.x, o.y, o.z);
+        let bias = [
+            six(cr_v, cr_w),
+            six(cb_v, Vector3::zeros()),
+            six(ch_v, ch_w),
+            six(cf_v, cf_w),
+        ];
+        let v_r = rb * nu;
+        let v_b = rb * y_b;
+        let v_h = v_b + rb * w_b.cross(&p_bs) - rh * w_h.cross(&p_hs);
+        let v_f = v_h + rh * w_h.cross(&p_hf);
+        (
+            Tree {
+                jac,
+                bias,
+                velocity: [v_r, v_b, v_h, v_f],
+                omega: [w_r, w_b, w_h, w_f],
+            },
+            w,
+        )
+    }
+
+    /// Stage 3: applied forces per body (world force, body-axes torque).
+    fn applied<T: RealField + Copy>(
+        &self,
+        q: &SVector<T, COORDINATES>,
+        poses: &Poses<T>,
+        omega: &[Vector3<T>; BODIES],
+        inputs: &Inputs<T>,
+    ) -> [(Vector3<T>, Vector3<T>); BODIES] {
+        let g: T = c(self.bodies.geometry.g);
+        let mut out = [(Vector3::zeros(), Vector3::zeros()); BODIES];
+        for k in 0..BODIES {
+            let body = &self.bodies.body[k];
+            let inertia: Matrix3<T> = body.inertia.cast();
+            let force = Vector3::new(T::zero(), T::zero(), g * c(body.mass));
+            out[k] = (force, -omega[k].cross(&(inertia * omega[k])));
+        }
+        let s: Vector3<T> = self.bodies.geometry.steer_axis.cast();
+        let s_in_b = poses.rot[REAR_FRAME].transpose() * (poses.rot[FRONT_FRAME] * s);
+        out[FRONT_FRAME].1 += s * inputs.steer_torque;
+        out[REAR_FRAME].1 -= s_in_b * inputs.steer_torque;
+        let (sp, cp) = q[6 * REAR_FRAME + 5].sin_cos();
+        out[REAR_FRAME].1 += Vector3::new(cp, T::zero(), sp) * inputs.lean_torque;
+        out
+    }
+
+    /// ẋ = f(x, τ): accelerations, coordinate rates and contact forces of the constrained
+    /// multibody bicycle, generic over the scalar (f64 or dual numbers for exact Jacobians).
+    /// Allocation-free.
+    ///
+    /// ```
+    /// use whipple::{BenchmarkParameters, nonlinear::{Inputs, InitialConditions, Model}};
+    /// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+    /// let state = model.initial_state(&InitialConditions::upright(5.0))?;
+    /// let d = model.forward(&state, &Inputs::default())?;
+    /// assert!(d.u_dot.amax() < 1e-12);                    // upright running is an equilibrium
+    /// assert!((d.contact[0].normal + d.contact[1].normal - 94.0 * 9.81).abs() < 1e-9);
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn forward<T: RealField + Copy>(
+        &self,
+        state: &State<T>,
+        inputs: &Inputs<T>,
+    ) -> Result<Derivatives<T>> {
+        let poses = Poses::new(&state.q);
+        let (tree, _) = self.tree(&poses, &state.u);
+        let applied = self.applied(&state.q, &poses, &tree.omega, inputs);
+
+        // Reduced mass matrix TᵀMT and forces Tᵀ(f − M c), column pairs that can be non-zero.
+        let mut mass = SMatrix::<T, TREE, TREE>::zeros();
+        let mut force = SVector::<T, TREE>::zeros();
+        for k in 0..BODIES {
+            let body = &self.bodies.body[k];
+            let m: T = c(body.mass);
+            let inertia: Matrix3<T> = body.inertia.cast();
+            let jac = &tree.jac[k];
+            let cols = TREE_COLUMNS[k];
+            let mut mj = SMatrix::<T, 6, TREE>::zeros();
+            for &j in cols {
+                let col = jac.column(j);
+                let w = Vector3::new(col[3], col[4], col[5]);
+                let iw = inertia * w;
+                mj.set_column(
+                    j,
+                    &SVector::<T, 6>::new(col[0] * m, col[1] * m, col[2] * m, iw.x, iw.y, iw.z),
+                );
+            }
+            for (a, &i) in cols.iter().enumerate() {
+                let ci = jac.column(i);
+                for &j in &cols[a..] {
+                    mass[(i, j)] += ci.dot(&mj.column(j));
+                }
+            }
+            let (f, torque) = applied[k];
+            let cv = tree.bias[k].fixed_rows::<3>(0).into_owned();
+            let cw = tree.bias[k].fixed_rows::<3>(3).into_owned();
+            let fv = f - cv * m;
+            let fw = torque - inertia * cw;
+            let generalized = SVector::<T, 6>::new(fv.x, fv.y, fv.z, fw.x, fw.y, fw.z);
+            for &i in cols {
+                force[i] += jac.column(i).dot(&generalized);
+            }
+        }
+        for i in 0..TREE {
+            for j in 0..i {
+                mass[(i, j)] = mass[(j, i)];
+            }
+        }
+
+        // Stage 4: contact rows in tree speeds.
+        let mut g = SMatrix::<T, 6, TREE>::zeros();
+        let mut gamma = SVector::<T, 6>::zeros();
+        for (i, contact) in self.contacts.iter().enumerate() {
+            let (wheel, frame) = (contact.wheel, contact.frame);
+            let rows = contact.rows(
+                &poses,
+                &tree.velocity[wheel],
+                &tree.omega[wheel],
+                &tree.omega[frame],
+            );
+            let mut gi = rows.wheel * tree.jac[wheel];
+            let mut ci = rows.gamma - rows.wheel * tree.bias[wheel];
+            if contact.is_skate() {
+                gi += rows.frame * tree.jac[frame];
+                ci -= rows.frame * tree.bias[frame];
+            }
+            g.fixed_rows_mut::<3>(3 * i).copy_from(&gi);
+            gamma.fixed_rows_mut::<3>(3 * i).copy_from(&ci);
+        }
+
+        // Stage 5: solve [TᵀMT Gᵀ; G 0][ẇ; ν] = [Tᵀ(f − Mc); γ − D c], μ = −ν.
+        let solved = saddle::solve(&mass, &g, &force, &gamma, self.augmentation)
+            .or_else(|| saddle::solve(&mass, &g, &force, &gamma, self.fallback_augmentation()))
+            .filter(|(x, y)| x.iter().chain(y.iter()).all(|v| v.is_finite()));
+        let Some((w_dot, nu)) = solved else {
+            return Err(Error::SingularDynamics {
+                context: "the saddle-point matrix [TᵀMT Gᵀ; G 0] is singular".into(),
+            });
+        };
+
+        let mut u_dot = SVector::<T, SPEEDS>::zeros();
+        for k in 0..BODIES {
+            u_dot
+                .fixed_rows_mut::<6>(6 * k)
+                .copy_from(&(tree.jac[k] * w_dot + tree.bias[k]));
+        }
+        let q_dot = coordinate_rates(&state.q, &state.u);
+        let mut contact = [ContactForce {
+            normal: T::zero(),
+            longitudinal: T::zero(),
+            lateral: T::zero(),
+        }; 2];
+        for (i, edge) in self.contacts.iter().enumerate() {
+            // μ = −ν: the multipliers act along [f, n, e_z] (e_z down).
+            let nu = nu.fixed_rows::<3>(3 * i);
+            contact[i] = ContactForce {
+                normal: nu[2],
+                longitudinal: if edge.is_skate() { T::zero() } else { -nu[0] },
+                lateral: -nu[1],
+            };
+        }
+        Ok(Derivatives {
+            q_dot,
+            u_dot,
+            contact,
+        })
+    }
+
+    /// All 21 velocity rows `D` (17 differentiated holonomic rows, then 4 rolling rows) and
+    /// `γ = −Ḋu`, at the state's own speeds.
+    ///
+    /// Row order: rear hub joint (5), steer joint (5), front hub joint (5), rear normal, front
+    /// normal, rear longitudinal (spin lock for a skate), rear lateral, front longitudinal,
+    /// front lateral.
+    pub fn velocity_rows<T: RealField + Copy>(
+        &self,
+        state: &State<T>,
+    ) -> (SMatrix<T, VELOCITY_ROWS, SPEEDS>, SVector<T, VELOCITY_ROWS>) {
+        let poses = Poses::new(&state.q);
+        let mut d = SMatrix::<T, VELOCITY_ROWS, SPEEDS>::zeros();
+        let mut gamma = SVector::<T, VELOCITY_ROWS>::zeros();
+        for (i, joint) in self.joints.iter().enumerate() {
+            let rows = joint.rows(
+                &poses,
+                &state.angular_velocity(joint.parent),
+                &state.angular_velocity(joint.child),
+            );
+            d.fixed_view_mut::<5, 6>(5 * i, 6 * joint.parent)
+                .copy_from(&rows.parent);
+            d.fixed_view_mut::<5, 6>(5 * i, 6 * joint.child)
+                .copy_from(&rows.child);
+            gamma.fixed_rows_mut::<5>(5 * i).copy_from(&rows.gamma);
+        }
+        for (i, contact) in self.contacts.iter().enumerate() {
+            let rows = contact.rows(
+                &poses,
+                &state.velocity(contact.wheel),
+                &state.angular_velocity(contact.wheel),
+                &state.angular_velocity(contact.frame),
+            );
+            // (source row in the contact, destination row in D)
+            for (src, dst) in [(2, 15 + i), (0, 17 + 2 * i), (1, 18 + 2 * i)] {
+                let mut wheel_cols = d.fixed_view_mut::<1, 6>(dst, 6 * contact.wheel);
+                wheel_cols += rows.wheel.fixed_rows::<1>(src);
+                let mut frame_cols = d.fixed_view_mut::<1, 6>(dst, 6 * contact.frame);
+                frame_cols += rows.frame.fixed_rows::<1>(src);
+                gamma[dst] = rows.gamma[src];
+            }
+        }
+        (d, gamma)
+    }
+
+    /// The unstructured reference: every constraint row, the full block-diagonal M, and the
+    /// 45 × 45 saddle-point system `[M Dᵀ; D 0][u̇; −μ] = [f; γ]` solved by dense LU. Slow
+    /// (allocates); used to check [`Model::forward`].
+    pub fn forward_reference(
+        &self,
+        state: &State<f64>,
+        inputs: &Inputs<f64>,
+    ) -> Result<Derivatives<f64>> {
+        let poses = Poses::new(&state.q);
+        let omega: [Vector3<f64>; BODIES] = std::array::from_fn(|k| state.angular_velocity(k));
+        let applied = self.applied(&state.q, &poses, &omega, inputs);
+        let (d, gamma) = self.velocity_rows(state);
+        let n = SPEEDS + VELOCITY_ROWS;
+        let mut kkt = DMatrix::<f64>::zeros(n, n);
+        let mut rhs = DVector::<f64>::zeros(n);
+        for k in 0..BODIES {
+            let body = &self.bodies.body[k];
+            for i in 0..3 {
+                kkt[(6 * k + i, 6 * k + i)] = body.mass;
+            }
+            kkt.view_mut((6 * k + 3, 6 * k + 3), (3, 3))
+                .copy_from(&body.inertia);
+            rhs.rows_mut(6 * k, 3).copy_from(&applied[k].0);
+            rhs.rows_mut(6 * k + 3, 3).copy_from(&applied[k].1);
+        }
+        kkt.view_mut((SPEEDS, 0), (VELOCITY_ROWS, SPEEDS))
+            .copy_from(&d);
+        kkt.view_mut((0, SPEEDS), (SPEEDS, VELOCITY_ROWS))
+            .copy_from(&d.transpose());
+        rhs.rows_mut(SPEEDS, VELOCITY_ROWS).copy_from(&gamma);
+        let x = kkt
+            .lu()
+            .solve(&rhs)
+            .filter(|x| x.iter().all(|v| v.is_finite()))
+            .ok_or_else(|| Error::SingularDynamics {
+                context: "the saddle-point matrix [M Dᵀ; D 0] is singular".into(),
+            })?;
+        let u_dot = SVector::<f64, SPEEDS>::from_iterator(x.rows(0, SPEEDS).iter().copied());
+        let nu = |row: usize| x[SPEEDS + row];
+        let contact = std::array::from_fn(|i| ContactForce {
+            normal: nu(15 + i),
+            longitudinal: if self.contacts[i].is_skate() {
+                0.0
+            } else {
+                -nu(17 + 2 * i)
+            },
+            lateral: -nu(18 + 2 * i),
+        });
+        Ok(Derivatives {
+            q_dot: coordinate_rates(&state.q, &state.u),
+            u_dot,
+            contact,
+        })
+    }
+}
+
+/// q̇ from q and u: velocities as they are, angle rates from body angular velocities.
+pub(crate) fn coordinate_rates<T: RealField + Copy>(
+    q: &SVector<T, COORDINATES>,
+    u: &SVector<T, SPEEDS>,
+) -> SVector<T, COORDINATES> {
+    let mut q_dot = SVector::<T, COORDINATES>::zeros();
+    for k in 0..BODIES {
+        q_dot
+            .fixed_rows_mut::<3>(6 * k)
+            .copy_from(&u.fixed_rows::<3>(6 * k));
+        let omega = u.fixed_rows::<3>(6 * k + 3).into_owned();
+        let rates = rotation::body_to_rates(q[6 * k + 4], q[6 * k + 5], &omega);
+        q_dot.fixed_rows_mut::<3>(6 * k + 3).copy_from(&rates);
+    }
+    q_dot
+}

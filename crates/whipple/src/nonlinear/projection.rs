@@ -1,0 +1,287 @@
+//! Projection of a state back onto the constraints after an integration step, as in Dressel's
+//! study: positions by Newton iteration on the 17 holonomic rows (always at least one
+//! iteration), velocities by a least-norm correction onto the 21 velocity rows.
+//!
+//! Positions: `Δq = −Jᵀ (J Jᵀ)⁻¹ r(q)` with `J = ∂r/∂q` (17 × 24, the velocity rows times the
+//! map from angle rates to body angular velocities), the least-norm Newton step; `J Jᵀ` is
+//! factored by Cholesky.
+//!
+//! Velocities: `u ← u − Dᵀ (D Dᵀ)⁻¹ D u`, the orthogonal projection of u onto the null space of
+//! all 21 velocity rows. It is computed in the nine tree speeds of [`super::forward`]: with
+//! `u = T w` the joint rows hold identically, so the projection is
+//! `min |T w − u|²` subject to `G w = 0`, a 15 × 15 saddle-point system.
+
+use nalgebra::{SMatrix, SVector};
+use num_dual::Dual64;
+
+use super::forward::{Poses, HOLONOMIC_ROWS, TREE, TREE_COLUMNS};
+use super::rotation;
+use super::state::{State, COORDINATES, LEAN, PITCH, SPEEDS, YAW};
+use super::{saddle, Model, BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
+use crate::error::{Error, Result};
+
+/// How positions are brought back onto the holonomic constraints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ProjectionMethod {
+    /// The study's coordinate projection: least-norm Newton steps on all 24 coordinates,
+    /// `Δq = −Jᵀ(JJᵀ)⁻¹ r` (17 × 17 Cholesky per iteration).
+    LeastNorm,
+    /// Coordinate partitioning: keep the independent coordinates as integrated (rear frame yaw
+    /// and lean, steer, wheel rotations, rear contact x and y), solve the rear frame's pitch by
+    /// scalar Newton iteration on the front contact height, and rebuild every other coordinate
+    /// from the joints. About three times cheaper; the default.
+    Coordinates,
+}
+
+/// Settings of the position projection.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProjectionParams {
+    /// The method. Default [`ProjectionMethod::Coordinates`].
+    pub method: ProjectionMethod,
+    /// Largest absolute holonomic residual accepted \[m\]. Default 1e-13.
+    pub tolerance: f64,
+    /// Newton iterations always made, even when the residual is already below tolerance
+    /// (the study found one necessary to keep the drift from building up). Default 1.
+    pub min_iterations: usize,
+    /// Upper bound on Newton iterations; more means divergence. Default 10.
+    pub max_iterations: usize,
+}
+
+impl Default for ProjectionParams {
+    fn default() -> Self {
+        ProjectionParams {
+            method: ProjectionMethod::Coordinates,
+            tolerance: 1e-13,
+            min_iterations: 1,
+            max_iterations: 10,
+        }
+    }
+}
+
+/// What a position projection did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProjectionReport {
+    /// Newton iterations made.
+    pub iterations: usize,
+    /// Largest absolute holonomic residual after projection.
+    pub residual: f64,
+}
+
+/// Bodies each holonomic row touches: rear hub joint (R, B), steer joint (B, H), front hub
+/// joint (H, F), rear contact height (R), front contact height (F).
+fn row_bodies(row: usize) -> [usize; 2] {
+    match row {
+        0..=4 => [REAR_WHEEL, REAR_FRAME],
+        5..=9 => [REAR_FRAME, FRONT_FRAME],
+        10..=14 => [FRONT_FRAME, FRONT_WHEEL],
+        15 => [REAR_WHEEL, REAR_WHEEL],
+        _ => [FRONT_WHEEL, FRONT_WHEEL],
+    }
+}
+
+/// J Jᵀ using the block sparsity of J: rows share columns only through a common body.
+fn gram(
+    j: &SMatrix<f64, HOLONOMIC_ROWS, COORDINATES>,
+) -> SMatrix<f64, HOLONOMIC_ROWS, HOLONOMIC_ROWS> {
+    let mut out = SMatrix::<f64, HOLONOMIC_ROWS, HOLONOMIC_ROWS>::zeros();
+    let bodies: [[usize; 2]; HOLONOMIC_ROWS] = std::array::from_fn(row_bodies);
+    for a in 0..HOLONOMIC_ROWS {
+        for b in a..HOLONOMIC_ROWS {
+            let mut sum = 0.0;
+            for (n, &k) in bodies[a].iter().enumerate() {
+                if n == 1 && k == bodies[a][0] {
+                    continue;
+                }
+                if bodies[b].contains(&k) {
+                    for col in 6 * k..6 * k + 6 {
+                        sum += j[(a, col)] * j[(b, col)];
+                    }
+                }
+            }
+            out[(a, b)] = sum;
+            out[(b, a)] = sum;
+        }
+    }
+    out
+}
+
+impl Model {
+    /// ∂r/∂q of the 17 holonomic residuals.
+    pub fn holonomic_jacobian(
+        &self,
+        q: &SVector<f64, COORDINATES>,
+    ) -> SMatrix<f64, HOLONOMIC_ROWS, COORDINATES> {
+        let state = State {
+            q: *q,
+            u: SVector::zeros(),
+        };
+        let (d, _) = self.velocity_rows(&state);
+        let mut j = d.fixed_rows::<HOLONOMIC_ROWS>(0).into_owned();
+        for k in 0..BODIES {
+            let w = rotation::rates_to_body(q[6 * k + 4], q[6 * k + 5]);
+            let cols = j.fixed_columns::<3>(6 * k + 3) * w;
+            j.fixed_columns_mut::<3>(6 * k + 3).copy_from(&cols);
+        }
+        j
+    }
+
+    /// Moves q onto the holonomic constraints by Newton iteration (see [`ProjectionMethod`]).
+    pub fn project_positions(
+        &self,
+        q: &mut SVector<f64, COORDINATES>,
+        params: &ProjectionParams,
+    ) -> Result<ProjectionReport> {
+        match params.method {
+            ProjectionMethod::LeastNorm => self.project_least_norm(q, params),
+            ProjectionMethod::Coordinates => self.project_coordinates(q, params),
+        }
+    }
+
+    /// Coordinate partitioning: see [`ProjectionMethod::Coordinates`].
+    fn project_coordinates(
+        &self,
+        q: &mut SVector<f64, COORDINATES>,
+        params: &ProjectionParams,
+    ) -> Result<ProjectionReport> {
+        let b = 6 * REAR_FRAME;
+        let (yaw, lean, mut pitch) = (q[b + YAW], q[b + LEAN], q[b + PITCH]);
+        let steer = self.steer(q);
+        let wheel_angles = [
+            q[6 * REAR_WHEEL + PITCH] - pitch,
+            q[6 * FRONT_WHEEL + PITCH] - q[6 * FRONT_FRAME + PITCH],
+        ];
+        let contact = self.contacts[0].point(&Poses::new(q));
+        let c = Dual64::from_re;
+        let mut iterations = 0;
+        loop {
+            let h = self.front_height(
+                [c(yaw), c(lean), Dual64::new(pitch, 1.0)],
+                c(steer),
+                [c(contact.x), c(contact.y)],
+            );
+            let residual = h.re.abs();
+            if !(residual.is_finite() && h.eps.is_finite() && h.eps != 0.0) {
+                return Err(Error::ProjectionDiverged {
+                    iterations,
+                    residual,
+                });
+            }
+            if iterations >= params.min_iterations && residual <= params.tolerance {
+                break;
+            }
+            if iterations >= params.max_iterations {
+                return Err(Error::ProjectionDiverged {
+                    iterations,
+                    residual,
+                });
+            }
+            pitch -= h.re / h.eps;
+            iterations += 1;
+        }
+        *q = self.configuration(
+            [yaw, lean, pitch],
+            steer,
+            wheel_angles,
+            [contact.x, contact.y],
+        );
+        let residual = self.holonomic_residual(q).amax();
+        if residual.is_nan() || residual > params.tolerance {
+            return Err(Error::ProjectionDiverged {
+                iterations,
+                residual,
+            });
+        }
+        Ok(ProjectionReport {
+            iterations,
+            residual,
+        })
+    }
+
+    /// The study's least-norm Newton projection: see [`ProjectionMethod::LeastNorm`].
+    fn project_least_norm(
+        &self,
+        q: &mut SVector<f64, COORDINATES>,
+        params: &ProjectionParams,
+    ) -> Result<ProjectionReport> {
+        let mut r = self.holonomic_residual(q);
+        let mut iterations = 0;
+        loop {
+            let residual = r.amax();
+            if !residual.is_finite() {
+                return Err(Error::ProjectionDiverged {
+                    iterations,
+                    residual,
+                });
+            }
+            if iterations >= params.min_iterations && residual <= params.tolerance {
+                return Ok(ProjectionReport {
+                    iterations,
+                    residual,
+                });
+            }
+            if iterations >= params.max_iterations {
+                return Err(Error::ProjectionDiverged {
+                    iterations,
+                    residual,
+                });
+            }
+            let j = self.holonomic_jacobian(q);
+            let y = gram(&j)
+                .cholesky()
+                .map(|c| c.solve(&r))
+                .ok_or(Error::ProjectionDiverged {
+                    iterations,
+                    residual,
+                })?;
+            *q -= j.transpose() * y;
+            iterations += 1;
+            r = self.holonomic_residual(q);
+        }
+    }
+
+    /// Replaces u by its least-norm correction onto the velocity constraints at q.
+    pub fn project_velocities(&self, state: &mut State<f64>) -> Result<()> {
+        let poses = Poses::new(&state.q);
+        let (tree, g) = self.contact_tree_rows(&poses);
+        let mut gram = SMatrix::<f64, TREE, TREE>::zeros();
+        let mut rhs = SVector::<f64, TREE>::zeros();
+        for (k, &cols) in TREE_COLUMNS.iter().enumerate() {
+            let j = &tree.jac[k];
+            let uk = state.u.fixed_rows::<6>(6 * k);
+            for (n, &a) in cols.iter().enumerate() {
+                let ca = j.column(a);
+                for &b in &cols[n..] {
+                    gram[(a, b)] += ca.dot(&j.column(b));
+                }
+                rhs[a] += ca.dot(&uk);
+            }
+        }
+        for a in 0..TREE {
+            for b in 0..a {
+                gram[(a, b)] = gram[(b, a)];
+            }
+        }
+        let (w, _) = saddle::solve(&gram, &g, &rhs, &SVector::zeros(), 0.0).ok_or_else(|| {
+            Error::SingularDynamics {
+                context: "velocity projection: singular constraint rows".into(),
+            }
+        })?;
+        let mut u = SVector::<f64, SPEEDS>::zeros();
+        for k in 0..BODIES {
+            u.fixed_rows_mut::<6>(6 * k).copy_from(&(tree.jac[k] * w));
+        }
+        state.u = u;
+        Ok(())
+    }
+
+    /// Positions, then velocities at the new positions.
+    pub fn project(
+        &self,
+        state: &mut State<f64>,
+        params: &ProjectionParams,
+    ) -> Result<ProjectionReport> {
+        let report = self.project_positions(&mut state.q, params)?;
+        self.project_velocities(state)?;
+        Ok(report)
+    }
+}

@@ -1,0 +1,120 @@
+//! Stage 5 of the forward dynamics: the saddle-point system
+//! `[A Gᵀ; G 0][x; y] = [f; γ]` with A (9 × 9) symmetric and positive definite on the null space
+//! of G (6 × 9, full row rank), by Cholesky factors and the Schur complement `G A⁻¹ Gᵀ`:
+//! no pivoting, no branch on values other than the positivity checks of the factorizations,
+//! so dual numbers pass through it exactly.
+//!
+//! When A itself may be singular (a wheel without spin inertia), it is first replaced by
+//! `A + ρ GᵀG` and f by `f + ρ Gᵀγ` (augmented Lagrangian): on `G x = γ` both systems have the
+//! same solution, and the augmented matrix is positive definite whenever the saddle-point
+//! matrix is regular.
+
+use nalgebra::{RealField, SMatrix, SVector};
+
+#[inline]
+fn dot<T: RealField + Copy>(a: &[T], b: &[T]) -> T {
+    a.iter().zip(b).fold(T::zero(), |s, (&x, &y)| s + x * y)
+}
+
+/// In-place Cholesky factorization `A = UᵀU`, U upper triangular in the upper triangle (so
+/// that, column-major, every inner product runs over contiguous memory). False when A is not
+/// (numerically) positive definite.
+fn cholesky<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) -> bool {
+    let data = a.as_mut_slice();
+    for j in 0..N {
+        let (left, right) = data.split_at_mut(j * N);
+        let cj = &mut right[..N];
+        for i in 0..j {
+            let ci = &left[i * N..i * N + N];
+            let s = cj[i] - dot(&ci[..i], &cj[..i]);
+            cj[i] = s / ci[i];
+        }
+        let d = cj[j] - dot(&cj[..j], &cj[..j]);
+        if d <= T::zero() || !d.is_finite() {
+            return false;
+        }
+        cj[j] = d.sqrt();
+    }
+    true
+}
+
+/// Solves Uᵀ y = b in place (U from [`cholesky`]).
+fn forward_substitute<T: RealField + Copy, const N: usize>(u: &SMatrix<T, N, N>, b: &mut [T]) {
+    let data = u.as_slice();
+    for i in 0..N {
+        let ci = &data[i * N..i * N + N];
+        b[i] = (b[i] - dot(&ci[..i], &b[..i])) / ci[i];
+    }
+}
+
+/// Solves U x = b in place.
+fn back_substitute<T: RealField + Copy, const N: usize>(u: &SMatrix<T, N, N>, b: &mut [T]) {
+    let data = u.as_slice();
+    for i in (0..N).rev() {
+        let ci = &data[i * N..i * N + N];
+        let xi = b[i] / ci[i];
+        b[i] = xi;
+        for (bk, &uki) in b[..i].iter_mut().zip(&ci[..i]) {
+            *bk -= uki * xi;
+        }
+    }
+}
+
+/// Solves `[A Gᵀ; G 0][x; y] = [f; γ]`; `rho` > 0 augments A by ρ GᵀG first (see the module
+/// documentation). None when a factorization fails (the system is singular).
+pub(crate) fn solve<T: RealField + Copy, const N: usize, const M: usize>(
+    a: &SMatrix<T, N, N>,
+    g: &SMatrix<T, M, N>,
+    f: &SVector<T, N>,
+    gamma: &SVector<T, M>,
+    rho: f64,
+) -> Option<(SVector<T, N>, SVector<T, M>)> {
+    let mut l = *a;
+    let mut f = *f;
+    if rho > 0.0 {
+        let rho: T = nalgebra::convert(rho);
+        l += g.transpose() * g * rho;
+        f += g.transpose() * gamma * rho;
+    }
+    if !cholesky(&mut l) {
+        return None;
+    }
+    // Y = U⁻ᵀ Gᵀ, column by column; z = U⁻ᵀ f.
+    let mut y = g.transpose();
+    for j in 0..M {
+        forward_substitute(&l, y.column_mut(j).as_mut_slice());
+    }
+    let mut z = f;
+    forward_substitute(&l, z.as_mut_slice());
+    // Schur complement S = G A⁻¹ Gᵀ = Yᵀ Y; S λ = G A⁻¹ f − γ = Yᵀ z − γ.
+    let mut s = y.transpose() * y;
+    let mut lambda = y.transpose() * z - gamma;
+    if !cholesky(&mut s) {
+        return None;
+    }
+    forward_substitute(&s, lambda.as_mut_slice());
+    back_substitute(&s, lambda.as_mut_slice());
+    // x = A⁻¹ (f − Gᵀ λ) = U⁻¹ (z − Y λ).
+    let mut x = z - y * lambda;
+    back_substitute(&l, x.as_mut_slice());
+    Some((x, lambda))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Matrix3, Vector2, Vector3};
+
+    #[test]
+    fn solves_a_saddle_point_system_with_singular_a() {
+        // A singular in the constrained direction; [A Gᵀ; G 0] regular.
+        let a = Matrix3::new(2.0, 0.5, 0.0, 0.5, 1.0, 0.0, 0.0, 0.0, 0.0);
+        let g = SMatrix::<f64, 2, 3>::new(0.0, 0.0, 1.0, 1.0, 1.0, 0.0);
+        let f = Vector3::new(1.0, -2.0, 0.5);
+        let gamma = Vector2::new(0.3, -0.1);
+        assert!(solve(&a, &g, &f, &gamma, 0.0).is_none());
+        let (x, y) = solve(&a, &g, &f, &gamma, 1.0).expect("regular system");
+        assert!((a * x + g.transpose() * y - f).amax() < 1e-14);
+        assert!((g * x - gamma).amax() < 1e-14);
+    }
+}

@@ -1,0 +1,555 @@
+//! The non-linear multibody bicycle checked against published values, physical invariants and
+//! the linear model.
+
+use std::f64::consts::PI;
+
+use nalgebra::{Matrix4, SVector, Vector3};
+use num_dual::Dual64;
+use whipple::analysis::eigen;
+use whipple::integrate::Dopri5Params;
+use whipple::linear::Canonical;
+use whipple::nonlinear::{
+    rotation, simulate, InitialConditions, Inputs, Integrator, Model, Outcome, ProjectionMethod,
+    ProjectionParams, SimulationSettings, State, REAR_FRAME, REAR_WHEEL, STATE_LEN,
+};
+use whipple::parameters::presets;
+use whipple::{BenchmarkParameters, Result};
+
+/// Basu-Mandal, Chatterjee & Papadopoulos 2007, Proc. R. Soc. A 463:1983–2003, Table 1: a
+/// general state of the benchmark bicycle and its accelerations from the fully non-linear
+/// equations (digits as transcribed in moorepants/DynamicistToolKit, dtk/bicycle.py).
+/// Their coordinates: x, y, z rear wheel centre (z up, x backward when θ = 0); θ yaw, ψ lean
+/// (π/2 upright), φ rear frame pitch (π upright), ψ_f steer, β_r, β_f wheel rotations; all
+/// with the opposite sense of this model's (yaw right, lean right, nose up, steer right,
+/// wheel rotation about the axle pointing right).
+mod basu_mandal_2007 {
+    pub const X: f64 = 0.0;
+    pub const Y: f64 = 0.0;
+    pub const Z: f64 = 0.2440472102925;
+    pub const THETA: f64 = 0.0;
+    pub const PSI: f64 = 0.9501292851472;
+    pub const PHI: f64 = 3.1257073014894;
+    pub const PSIF: f64 = 0.2311385135743;
+    pub const BETAR: f64 = 0.0;
+    pub const BETAF: f64 = 0.0;
+    pub const XD: f64 = -2.8069345714545;
+    pub const YD: f64 = -0.1480982396001;
+    pub const ZD: f64 = 0.1058778746261;
+    pub const THETAD: f64 = 0.7830033527065;
+    pub const PSID: f64 = 0.6068425835418;
+    pub const PHID: f64 = -0.0119185528069;
+    pub const PSIFD: f64 = 0.4859824687093;
+    pub const BETARD: f64 = 8.912989661489;
+    pub const BETAFD: f64 = 8.0133620584155;
+    /// xdd, ydd, zdd, thetadd, psidd, phidd, psifdd, betardd, betafdd.
+    pub const OUTPUT: [f64; 9] = [
+        -0.5041626315047,
+        -0.3449706619454,
+        -1.460452833298,
+        0.8353281706379,
+        -7.8555281128244,
+        0.1205543897884,
+        -4.6198904039403,
+        1.8472554144217,
+        2.454807290455,
+    ];
+}
+
+fn basu_state(model: &Model) -> State<f64> {
+    use basu_mandal_2007::*;
+    let r_r = model.parameters.r_r;
+    let (yaw, lean, pitch, steer) = (-THETA, PI / 2.0 - PSI, PI - PHI, -PSIF);
+    // Rear contact from the rear wheel centre (the contact is r_R cos ψ to the left of the
+    // centre's ground projection, across the heading).
+    let contact = [
+        -X - r_r * THETA.sin() * PSI.cos(),
+        Y - r_r * THETA.cos() * PSI.cos(),
+    ];
+    let q = model.configuration([yaw, lean, pitch], steer, [-BETAR, -BETAF], contact);
+    let hub = Vector3::new(q[0], q[1], q[2]);
+    assert!(
+        (hub - Vector3::new(-X, Y, -Z)).amax() < 1e-12,
+        "rear wheel centre {hub}"
+    );
+    let rates = Vector3::new(-THETAD, -PSID, -PHID);
+    let omega_b = rotation::rates_to_body(lean, pitch) * rates;
+    let u = model.tree_speeds(
+        &q,
+        &Vector3::new(-XD, YD, -ZD),
+        &omega_b,
+        -PSIFD,
+        [-BETARD, -BETAFD],
+    );
+    State { q, u }
+}
+
+fn basu_accelerations(model: &Model, state: &State<f64>, forward: bool) -> Result<[f64; 9]> {
+    let d = if forward {
+        model.forward(state, &Inputs::default())?
+    } else {
+        model.forward_reference(state, &Inputs::default())?
+    };
+    let a = d.u_dot.fixed_rows::<3>(6 * REAR_WHEEL).into_owned();
+    let rates = |k: usize| Model::time_derivative(state, &d, |s| s.angle_rates(REAR_FRAME)[k]);
+    let steer = Model::time_derivative(state, &d, |s| model.steer_rate(s));
+    let rear = Model::time_derivative(state, &d, |s| model.wheel_rates(s)[0]);
+    let front = Model::time_derivative(state, &d, |s| model.wheel_rates(s)[1]);
+    Ok([
+        -a.x,
+        a.y,
+        -a.z,
+        -rates(0),
+        -rates(1),
+        -rates(2),
+        -steer,
+        -rear,
+        -front,
+    ])
+}
+
+#[test]
+fn basu_mandal_2007_table_1_accelerations() -> Result<()> {
+    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+    let state = basu_state(&model);
+    let residuals = model.residuals(&state);
+    assert!(
+        residuals.max_holonomic() < 1e-12,
+        "{}",
+        residuals.max_holonomic()
+    );
+    assert!(
+        residuals.max_velocity() < 1e-12,
+        "{}",
+        residuals.max_velocity()
+    );
+    let out = basu_accelerations(&model, &state, true)?;
+    let reference = basu_accelerations(&model, &state, false)?;
+    for (i, published) in basu_mandal_2007::OUTPUT.iter().enumerate() {
+        println!(
+            "{i}: {:.13} published {:.13} diff {:e} dense {:e}",
+            out[i],
+            published,
+            out[i] - published,
+            out[i] - reference[i]
+        );
+    }
+    for (i, published) in basu_mandal_2007::OUTPUT.iter().enumerate() {
+        assert!(
+            (out[i] - published).abs() < 1e-10,
+            "output {i}: {} vs {published}",
+            out[i]
+        );
+        assert!((out[i] - reference[i]).abs() < 1e-10);
+    }
+    Ok(())
+}
+
+/// A two-mass-skate-like bicycle (after Kooijman et al. 2011, Science 332:339–342): skates
+/// instead of wheels (zero radius, mass and inertia), negative trail, point masses.
+fn skate_bicycle() -> BenchmarkParameters {
+    BenchmarkParameters {
+        w: 0.7,
+        c: -0.02,
+        lambda: 5f64.to_radians(),
+        r_r: 0.0,
+        m_r: 0.0,
+        i_rxx: 0.0,
+        i_ryy: 0.0,
+        x_b: 0.3,
+        z_b: -0.9,
+        m_b: 10.0,
+        i_bxx: 0.0,
+        i_byy: 0.0,
+        i_bzz: 0.0,
+        i_bxz: 0.0,
+        x_h: 0.85,
+        z_h: -0.5,
+        m_h: 1.0,
+        i_hxx: 0.0,
+        i_hyy: 0.0,
+        i_hzz: 0.0,
+        i_hxz: 0.0,
+        r_f: 0.0,
+        m_f: 0.0,
+        i_fxx: 0.0,
+        i_fyy: 0.0,
+        ..BenchmarkParameters::meijaard2007()
+    }
+}
+
+/// Every preset plus the local skate bicycle.
+fn all_bicycles() -> Result<Vec<(String, BenchmarkParameters)>> {
+    let mut out = Vec::new();
+    for preset in presets::PRESETS {
+        out.push((preset.name.to_string(), preset.bicycle().benchmark()?));
+    }
+    out.push(("skate (local)".into(), skate_bicycle()));
+    let massless_wheels = BenchmarkParameters {
+        m_r: 0.0,
+        i_rxx: 0.0,
+        i_ryy: 0.0,
+        m_f: 0.0,
+        i_fxx: 0.0,
+        i_fyy: 0.0,
+        ..BenchmarkParameters::meijaard2007()
+    };
+    out.push(("massless wheels (local)".into(), massless_wheels));
+    Ok(out)
+}
+
+/// Upright straight running at constant speed is an exact equilibrium for every bicycle.
+#[test]
+fn upright_running_is_an_equilibrium_for_every_bicycle() -> Result<()> {
+    for (name, bike) in all_bicycles()? {
+        let model = Model::new(&bike)?;
+        for speed in [0.0, 1.0, 4.6, 10.0] {
+            let state = model.initial_state(&InitialConditions::upright(speed))?;
+            let r = model.residuals(&state);
+            assert!(
+                r.max_holonomic() < 1e-15 && r.max_velocity() < 1e-14,
+                "{name}: {r:?}"
+            );
+            let d = model.forward(&state, &Inputs::default())?;
+            assert!(
+                d.u_dot.amax() < 1e-12,
+                "{name} at {speed} m/s: {}",
+                d.u_dot.amax()
+            );
+            // Normal forces carry the weight; no friction is needed.
+            let weight = (bike.m_r + bike.m_b + bike.m_h + bike.m_f) * bike.g;
+            let [rear, front] = d.contact;
+            assert!(
+                (rear.normal + front.normal - weight).abs() < 1e-10 * weight,
+                "{name}"
+            );
+            assert!(rear.normal > 0.0 && front.normal > 0.0, "{name}");
+            for f in [
+                rear.longitudinal,
+                rear.lateral,
+                front.longitudinal,
+                front.lateral,
+            ] {
+                assert!(f.abs() < 1e-10, "{name}: {f}");
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The structured solve equals the unstructured 45 x 45 reference away from equilibrium, for
+/// every bicycle, with rider torques.
+#[test]
+fn structured_solve_matches_dense_reference() -> Result<()> {
+    for (name, bike) in all_bicycles()? {
+        let model = Model::new(&bike)?;
+        let state = model.initial_state(&InitialConditions {
+            lean: 0.3,
+            steer: -0.4,
+            lean_rate: 0.7,
+            steer_rate: 1.3,
+            yaw: 2.0,
+            ..InitialConditions::upright(3.0)
+        })?;
+        let inputs = Inputs {
+            lean_torque: 2.0,
+            steer_torque: -1.5,
+        };
+        let fast = model.forward(&state, &inputs)?;
+        let slow = model.forward_reference(&state, &inputs)?;
+        let scale = slow.u_dot.amax().max(1.0);
+        assert!((fast.u_dot - slow.u_dot).amax() < 1e-11 * scale, "{name}");
+        for i in 0..2 {
+            let (a, b) = (fast.contact[i], slow.contact[i]);
+            for (x, y) in [
+                (a.normal, b.normal),
+                (a.longitudinal, b.longitudinal),
+                (a.lateral, b.lateral),
+            ] {
+                assert!((x - y).abs() < 1e-9, "{name}: {x} vs {y}");
+            }
+        }
+    }
+    Ok(())
+}
+
+/// φ̈ and δ̈ of the non-linear model at a consistent state built from (φ, δ, φ̇, δ̇) at speed v.
+fn lean_steer_accelerations(model: &Model, v: f64, x: [f64; 4]) -> Result<[f64; 2]> {
+    let state = model.initial_state(&InitialConditions {
+        lean: x[0],
+        steer: x[1],
+        lean_rate: x[2],
+        steer_rate: x[3],
+        ..InitialConditions::upright(v)
+    })?;
+    let d = model.forward(&state, &Inputs::default())?;
+    Ok([
+        Model::time_derivative(&state, &d, |s| s.lean_rate()),
+        Model::time_derivative(&state, &d, |s| model.steer_rate(s)),
+    ])
+}
+
+/// The non-linear model linearized by central differences about upright running has the
+/// eigenvalues of the linear benchmark model (Dressel's check, with Meijaard 2007's values).
+#[test]
+fn linearization_matches_linear_model_eigenvalues() -> Result<()> {
+    for (name, bike) in all_bicycles()? {
+        let model = Model::new(&bike)?;
+        let canonical = Canonical::new(&bike)?;
+        for v in [1.0, 3.0, 4.6, 8.0] {
+            let h = 1e-6;
+            let mut a = Matrix4::<f64>::zeros();
+            a[(0, 2)] = 1.0;
+            a[(1, 3)] = 1.0;
+            for j in 0..4 {
+                let mut plus = [0.0; 4];
+                let mut minus = [0.0; 4];
+                plus[j] = h;
+                minus[j] = -h;
+                let fp = lean_steer_accelerations(&model, v, plus)?;
+                let fm = lean_steer_accelerations(&model, v, minus)?;
+                a[(2, j)] = (fp[0] - fm[0]) / (2.0 * h);
+                a[(3, j)] = (fp[1] - fm[1]) / (2.0 * h);
+            }
+            let linear = whipple::linear::StateSpace::new(&canonical, v)?;
+            assert!(
+                (a - linear.a).amax() < 1e-6 * linear.a.amax(),
+                "{name} at {v}: {a} vs {}",
+                linear.a
+            );
+            let mut nonlinear: Vec<_> = faer::Mat::<f64>::from_fn(4, 4, |i, j| a[(i, j)])
+                .eigenvalues()
+                .map_err(|e| whipple::Error::NonFinite {
+                    context: format!("{e:?}"),
+                })?
+                .into_iter()
+                .map(|z| (z.re, z.im))
+                .collect();
+            let mut reference: Vec<_> = eigen::eigenvalues(&canonical, v)?
+                .iter()
+                .map(|z| (z.re, z.im))
+                .collect();
+            nonlinear.sort_by(|x, y| x.partial_cmp(y).unwrap_or(std::cmp::Ordering::Equal));
+            reference.sort_by(|x, y| x.partial_cmp(y).unwrap_or(std::cmp::Ordering::Equal));
+            for (x, y) in nonlinear.iter().zip(&reference) {
+                assert!(
+                    (x.0 - y.0).abs() < 1e-5 && (x.1 - y.1).abs() < 1e-5,
+                    "{name} at {v}: {x:?} vs {y:?}"
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Forward-mode AD through forward(): a directional derivative with Dual64 equals central
+/// differences, at a general state.
+#[test]
+fn dual_numbers_pass_through_forward() -> Result<()> {
+    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+    let state = basu_state(&model);
+    let y = state.to_vector();
+    let direction =
+        SVector::<f64, STATE_LEN>::from_fn(|i, _| ((i * 7 + 3) % 11) as f64 / 11.0 - 0.4);
+    let dual = State::<Dual64>::from_vector(&y.zip_map(&direction, Dual64::new));
+    let d = model.forward(&dual, &Inputs::default())?;
+    let ad = d.to_vector().map(|x| x.eps);
+    let h = 1e-6;
+    let f = |s: f64| -> Result<SVector<f64, STATE_LEN>> {
+        let st = State::from_vector(&(y + direction * s));
+        Ok(model.forward(&st, &Inputs::default())?.to_vector())
+    };
+    let fd = (f(h)? - f(-h)?) / (2.0 * h);
+    assert!(
+        (ad - fd).amax() < 1e-6 * fd.amax().max(1.0),
+        "{}",
+        (ad - fd).amax()
+    );
+    assert!(d.to_vector().iter().all(|x| x.re.is_finite()));
+    Ok(())
+}
+
+fn weave_settings(integrator: Integrator, duration: f64) -> SimulationSettings {
+    SimulationSettings {
+        integrator,
+        duration,
+        ..SimulationSettings::default()
+    }
+}
+
+/// Without inputs the total energy is conserved and the constraints hold after projection.
+#[test]
+fn energy_is_conserved_and_constraints_hold() -> Result<()> {
+    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+    let start = model.initial_state(&InitialConditions {
+        lean_rate: 0.5,
+        ..InitialConditions::upright(4.6)
+    })?;
+    let dopri = Integrator::Dopri5(Dopri5Params {
+        rtol: 1e-10,
+        atol: 1e-12,
+        ..Default::default()
+    });
+    for (integrator, method) in [
+        (Integrator::Rk4 { dt: 1e-3 }, ProjectionMethod::Coordinates),
+        (Integrator::Rk4 { dt: 1e-3 }, ProjectionMethod::LeastNorm),
+        (dopri, ProjectionMethod::Coordinates),
+        (dopri, ProjectionMethod::LeastNorm),
+    ] {
+        let settings = SimulationSettings {
+            projection: ProjectionParams {
+                method,
+                ..Default::default()
+            },
+            ..weave_settings(integrator, 5.0)
+        };
+        let run = simulate(&model, start, &settings)?;
+        assert_eq!(run.outcome, Outcome::Completed, "{integrator:?}");
+        let e0 = run.samples[0].energy;
+        let drift = run
+            .samples
+            .iter()
+            .map(|s| (s.energy - e0).abs())
+            .fold(0.0, f64::max);
+        println!(
+            "{integrator:?} {method:?}: {} steps, energy drift {drift:e} J of {e0} J",
+            run.steps
+        );
+        assert!(drift < 1e-7 * e0.abs(), "{integrator:?}: drift {drift}");
+        for s in &run.samples {
+            assert!(
+                s.position_residual < 1e-12 && s.velocity_residual < 1e-12,
+                "{s:?}"
+            );
+        }
+    }
+    Ok(())
+}
+
+/// The benchmark bicycle's weave decays at 4.6 m/s (self-stable range 4.29–6.02 m/s).
+#[test]
+fn weave_decays_at_4_6_m_per_s() -> Result<()> {
+    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+    let start = model.initial_state(&InitialConditions {
+        lean_rate: 0.5,
+        ..InitialConditions::upright(4.6)
+    })?;
+    let run = simulate(
+        &model,
+        start,
+        &weave_settings(Integrator::Rk4 { dt: 1e-3 }, 10.0),
+    )?;
+    assert_eq!(run.outcome, Outcome::Completed);
+    let peak = |from: f64, to: f64| {
+        run.samples
+            .iter()
+            .filter(|s| s.t >= from && s.t < to)
+            .map(|s| s.lean.abs())
+            .fold(0.0, f64::max)
+    };
+    let (early, late) = (peak(0.0, 2.0), peak(8.0, 10.0));
+    assert!(late < 0.5 * early, "lean amplitude {early} then {late}");
+    Ok(())
+}
+
+/// At 3 m/s (below the weave speed) the benchmark bicycle falls. Late in the fall the steer
+/// whips round and the rear wheel's normal force goes negative (at about 40° of lean) before
+/// the lean reaches 60°: with lift-off detection on, that is where the run stops.
+#[test]
+fn falls_at_3_m_per_s() -> Result<()> {
+    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+    let start = model.initial_state(&InitialConditions {
+        lean_rate: 0.5,
+        ..InitialConditions::upright(3.0)
+    })?;
+    let settings = SimulationSettings {
+        stop_on_lift_off: false,
+        ..weave_settings(Integrator::Rk4 { dt: 1e-3 }, 20.0)
+    };
+    let run = simulate(&model, start, &settings)?;
+    let Outcome::Fell { t, lean } = run.outcome else {
+        panic!("expected a fall, got {:?}", run.outcome);
+    };
+    assert!(t > 1.0 && t < 3.0, "{t}");
+    assert!(
+        (lean.abs() - std::f64::consts::FRAC_PI_3).abs() < 1e-3,
+        "{lean}"
+    );
+    let last = run.samples.last().copied().unwrap_or_default();
+    assert!(last.t >= t && last.t - t < 1e-3);
+
+    let run = simulate(
+        &model,
+        start,
+        &weave_settings(Integrator::Rk4 { dt: 1e-3 }, 20.0),
+    )?;
+    let Outcome::WheelLifted { t: t_lift, .. } = run.outcome else {
+        panic!("expected a wheel to lift, got {:?}", run.outcome);
+    };
+    assert!(t_lift < t);
+    let last = run.samples.last().copied().unwrap_or_default();
+    assert!(last.lean.abs() > 0.5, "{}", last.lean);
+    Ok(())
+}
+
+/// At 8 m/s (above the capsize speed) the weave dies out and a slow capsize lean builds up.
+#[test]
+fn slow_capsize_at_8_m_per_s() -> Result<()> {
+    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+    let start = model.initial_state(&InitialConditions {
+        lean_rate: 0.5,
+        ..InitialConditions::upright(8.0)
+    })?;
+    let run = simulate(
+        &model,
+        start,
+        &weave_settings(Integrator::Rk4 { dt: 1e-3 }, 10.0),
+    )?;
+    let last = run.samples.last().copied().unwrap_or_default();
+    // After the weave has decayed the lean keeps one sign and grows.
+    let at = |t: f64| {
+        run.samples
+            .iter()
+            .find(|s| s.t >= t)
+            .map(|s| s.lean)
+            .unwrap_or(f64::NAN)
+    };
+    assert!(
+        at(4.0) != 0.0 && at(4.0).signum() == last.lean.signum(),
+        "{} {}",
+        at(4.0),
+        last.lean
+    );
+    assert!(last.lean.abs() > at(4.0).abs(), "{} {}", at(4.0), last.lean);
+    Ok(())
+}
+
+/// The skate bicycle and the massless-wheel bicycle simulate too.
+#[test]
+fn skate_and_massless_wheels_simulate() -> Result<()> {
+    for (name, bike) in all_bicycles()? {
+        let model = Model::new(&bike)?;
+        let start = model.initial_state(&InitialConditions {
+            lean_rate: 0.2,
+            ..InitialConditions::upright(3.0)
+        })?;
+        let run = simulate(
+            &model,
+            start,
+            &weave_settings(Integrator::Rk4 { dt: 1e-3 }, 2.0),
+        )?;
+        let e0 = run.samples[0].energy;
+        for s in &run.samples {
+            assert!(
+                s.position_residual < 1e-12 && s.velocity_residual < 1e-12,
+                "{name}: {s:?}"
+            );
+            assert!(
+                (s.energy - e0).abs() < 1e-6 * e0.abs().max(1.0),
+                "{name}: {} vs {e0}",
+                s.energy
+            );
+        }
+        println!("{name}: {:?} after {} steps", run.outcome, run.steps);
+    }
+    Ok(())
+}
