@@ -212,6 +212,11 @@ pub struct Simulation {
     pub steps: usize,
     /// Rejected step attempts (adaptive integrator only).
     pub rejected_steps: usize,
+    /// Wheels whose contact already pulled the wheel down at the start (a negative normal
+    /// force, as for the two-mass-skate, whose masses sit ahead of its front contact). The
+    /// contacts are bilateral constraints, as in the linearized model, so such a run goes on;
+    /// lift-off is watched only for the wheels that started pressed onto the ground.
+    pub pulled_down_from_start: Vec<Wheel>,
 }
 
 /// The model with its rider inputs as an ODE ẏ = f(t, y) on y = [q; u].
@@ -319,12 +324,22 @@ pub fn simulate(
     let mut samples = vec![sample(model, t, &state, &d, report.residual)];
     let mut steps = 0;
     let mut rejected_steps = 0;
+    // Lift-off is a normal force turning negative; a wheel pulled down from the start is not
+    // watched.
+    let watched = [d.contact[0].normal >= 0.0, d.contact[1].normal >= 0.0];
+    let pulled_down_from_start: Vec<Wheel> = [Wheel::Rear, Wheel::Front]
+        .into_iter()
+        .zip(watched)
+        .filter(|(_, w)| !w)
+        .map(|(wheel, _)| wheel)
+        .collect();
     let finish = |samples, outcome, state, steps, rejected_steps| Simulation {
         samples,
         outcome,
         final_state: state,
         steps,
         rejected_steps,
+        pulled_down_from_start: pulled_down_from_start.clone(),
     };
     // Events already true at the start.
     if state.lean().abs() > settings.fall_angle {
@@ -333,15 +348,6 @@ pub fn simulate(
             lean: state.lean(),
         };
         return Ok(finish(samples, outcome, state, steps, rejected_steps));
-    }
-    if let Some(wheel) = lifted(&d, settings) {
-        return Ok(finish(
-            samples,
-            Outcome::WheelLifted { t, wheel },
-            state,
-            steps,
-            rejected_steps,
-        ));
     }
 
     let mut stepper = match &settings.integrator {
@@ -511,7 +517,7 @@ pub fn simulate(
         if settings.stop_on_lift_off {
             for (i, wheel) in [Wheel::Rear, Wheel::Front].into_iter().enumerate() {
                 let (n0, n1) = (d.contact[i].normal, d_new.contact[i].normal);
-                if n1 < 0.0 {
+                if watched[i] && n1 < 0.0 {
                     let t_lift = crossing(t, n0, t_new, n1);
                     events.push((t_lift, Outcome::WheelLifted { t: t_lift, wheel }));
                 }
@@ -542,19 +548,6 @@ fn failure(t: f64, error: Error) -> Outcome {
     match error {
         Error::NonFiniteState { t } => Outcome::NonFiniteState { t },
         error => Outcome::Failed { t, error },
-    }
-}
-
-fn lifted(d: &Derivatives<f64>, settings: &SimulationSettings) -> Option<Wheel> {
-    if !settings.stop_on_lift_off {
-        return None;
-    }
-    if d.contact[0].normal < 0.0 {
-        Some(Wheel::Rear)
-    } else if d.contact[1].normal < 0.0 {
-        Some(Wheel::Front)
-    } else {
-        None
     }
 }
 
