@@ -5,6 +5,7 @@ mod bike;
 mod commands;
 mod figures;
 mod output;
+mod simulate;
 
 use std::process::ExitCode;
 
@@ -129,6 +130,8 @@ enum Command {
         #[arg(long, value_enum, default_value = "table")]
         format: TextFormat,
     },
+    /// Simulate the fully non-linear bicycle from a few initial numbers.
+    Simulate(simulate::SimulateArgs),
     /// JBike6's stylized side view of the bicycle.
     Draw {
         /// A preset name or a parameter file (.toml, .json, .m).
@@ -174,6 +177,7 @@ fn main() -> ExitCode {
             format,
         } => commands::speeds(&bike, &range, format),
         Command::Draw { bike, out } => commands::draw(&bike, &out),
+        Command::Simulate(args) => simulate::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -392,3 +392,161 @@ fn plots_and_drawings_are_written_as_svg_or_png() {
     assert!(err.contains("eig.gif"), "{err}");
     assert!(!bad.exists());
 }
+
+/// The benchmark bicycle in the non-linear simulation: at 4.6 m/s (inside the self-stable range
+/// 4.29–6.02 m/s) a lean-rate kick dies out as a decaying weave.
+#[test]
+fn simulate_shows_the_weave_decaying_inside_the_stable_range() {
+    let dir = scratch("simulate");
+    let csv_path = dir.join("run.csv");
+    let plot = dir.join("run.svg");
+    let out = whipple(&[
+        "simulate",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "4.6",
+        "--lean-rate",
+        "0.5",
+        "--duration",
+        "10",
+        "--format",
+        "csv",
+        "--out",
+        &csv_path.to_string_lossy(),
+        "--plot",
+        &plot.to_string_lossy(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&csv_path).expect("the samples were written");
+    let mut lines = text.lines();
+    let header = lines.next().expect("a header");
+    assert!(header.starts_with("t,lean,steer,lean_rate,steer_rate,yaw,x,y,speed,energy,"));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().expect("a number")).collect())
+        .collect();
+    assert_eq!(rows.len(), 10_001);
+    let first_second = rows[..1000].iter().map(|r| r[1].abs()).fold(0.0, f64::max);
+    let last_second = rows[9000..].iter().map(|r| r[1].abs()).fold(0.0, f64::max);
+    assert!(
+        last_second < 0.1 * first_second,
+        "{first_second} -> {last_second}"
+    );
+    let e0 = rows[0][9];
+    assert!(
+        rows.iter().all(|r| (r[9] - e0).abs() < 1e-6),
+        "energy is conserved"
+    );
+    assert!(std::fs::read_to_string(&plot)
+        .expect("plot")
+        .contains("<svg"));
+}
+
+/// At 3 m/s, below the weave speed, the same kick grows until the bicycle falls.
+#[test]
+fn simulate_reports_a_fall_as_an_outcome() {
+    let out = stdout(&whipple(&[
+        "simulate",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "3",
+        "--lean-rate",
+        "0.5",
+        "--duration",
+        "10",
+        "--ignore-lift-off",
+    ]));
+    assert!(out.contains("fell: |lean| passed the fall angle"), "{out}");
+    let out = stdout(&whipple(&[
+        "simulate",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "3",
+        "--lean-rate",
+        "0.5",
+        "--duration",
+        "10",
+        "--format",
+        "json",
+    ]));
+    let doc: serde_json::Value = serde_json::from_str(&out).expect("valid JSON");
+    assert!(
+        doc["outcome"].as_str().unwrap_or("").contains("falling"),
+        "{}",
+        doc["outcome"]
+    );
+}
+
+#[test]
+fn simulate_takes_rider_torques_as_expressions() {
+    let out = stdout(&whipple(&[
+        "simulate",
+        "--bike",
+        "schwinn-crown",
+        "--speed",
+        "6",
+        "--steer-torque",
+        "0.5*sin(2*t)",
+        "--duration",
+        "2",
+        "--integrator",
+        "adaptive",
+        "--rtol",
+        "1e-9",
+    ]));
+    assert!(
+        out.contains("completed") && out.contains("torques do work"),
+        "{out}"
+    );
+}
+
+#[test]
+fn simulate_refuses_bad_options_by_name() {
+    let cases: [(&[&str], &str); 9] = [
+        (
+            &["--speed", "5", "--duration", "1", "--lean", "90"],
+            "--lean",
+        ),
+        (&["--speed", "5", "--duration", "1", "--dt", "0"], "--dt"),
+        (&["--speed", "5", "--duration", "1", "--dt", "5"], "--dt"),
+        (&["--speed", "5", "--duration", "-1"], "--duration"),
+        (&["--speed", "nan", "--duration", "1"], "--speed"),
+        (
+            &["--speed", "5", "--duration", "1", "--steer-torque", "sin(t"],
+            "--steer-torque",
+        ),
+        (
+            &["--speed", "5", "--duration", "1", "--steer-torque", "2*foo"],
+            "unknown name `foo`",
+        ),
+        (
+            &[
+                "--speed",
+                "5",
+                "--duration",
+                "1",
+                "--integrator",
+                "adaptive",
+                "--dt",
+                "0.01",
+            ],
+            "--dt",
+        ),
+        (
+            &["--speed", "5", "--duration", "1", "--rtol", "1e-6"],
+            "--rtol",
+        ),
+    ];
+    for (extra, expected) in cases {
+        let mut args = vec!["simulate", "--bike", "benchmark"];
+        args.extend_from_slice(extra);
+        let err = stderr_of_failure(&whipple(&args));
+        assert!(err.contains(expected), "{extra:?}: {err}");
+    }
+}

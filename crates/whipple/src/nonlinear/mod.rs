@@ -34,7 +34,8 @@ pub use bodies::{Bodies, BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEE
 pub use forward::{ContactForce, Derivatives, Inputs, Poses, HOLONOMIC_ROWS, VELOCITY_ROWS};
 pub use projection::{ProjectionMethod, ProjectionParams, ProjectionReport};
 pub use simulate::{
-    simulate, Integrator, Outcome, Progress, Sample, Simulation, SimulationSettings, Wheel,
+    simulate, Integrator, Outcome, Progress, ProgressFn, Sample, Simulation, SimulationSettings,
+    TorqueFn, Wheel,
 };
 pub use state::{State, StateView, COORDINATES, SPEEDS, STATE_LEN};
 

@@ -1,0 +1,551 @@
+//! `whipple simulate`: the non-linear model from a few initial numbers, with rider torques
+//! given as expressions.
+
+use std::fmt::Write as _;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use anyhow::{bail, Context, Result};
+use clap::{Args, ValueEnum};
+use exmex::prelude::*;
+use serde_json::json;
+use whipple::integrate::dopri5::Dopri5Params;
+use whipple::nonlinear::{
+    simulate, InitialConditions, Integrator, Model, Outcome, Sample, Simulation,
+    SimulationSettings, StateView, TorqueFn, Wheel,
+};
+
+use crate::bike::{load, LoadedBike};
+use crate::output::{number, write_atomically};
+use crate::TableFormat;
+
+/// The integrators on offer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum IntegratorChoice {
+    /// Classical Runge–Kutta with a fixed step (the study's integrator).
+    Rk4,
+    /// Dormand–Prince 5(4) with error control.
+    Adaptive,
+}
+
+/// Arguments of `whipple simulate`.
+#[derive(Args, Debug)]
+pub struct SimulateArgs {
+    /// A preset name or a parameter file (.toml, .json, .m).
+    #[arg(long)]
+    pub bike: String,
+    /// Forward speed v in m/s.
+    #[arg(long, allow_hyphen_values = true)]
+    pub speed: f64,
+    /// Initial lean in degrees (right positive), below 90 in size.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub lean: f64,
+    /// Initial steer in degrees (right positive).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub steer: f64,
+    /// Initial lean rate in rad/s.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub lean_rate: f64,
+    /// Initial steer rate in rad/s.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub steer_rate: f64,
+    /// Steer torque in N m as an expression of t, lean, steer, lean_rate, steer_rate, yaw and
+    /// speed (radians, seconds), e.g. "0.5*sin(2*t)" or "-10*lean - 2*lean_rate".
+    #[arg(long, allow_hyphen_values = true)]
+    pub steer_torque: Option<String>,
+    /// Lean torque in N m, an expression like --steer-torque.
+    #[arg(long, allow_hyphen_values = true)]
+    pub lean_torque: Option<String>,
+    /// Simulated time in seconds.
+    #[arg(long)]
+    pub duration: f64,
+    /// The integrator.
+    #[arg(long, value_enum, default_value = "rk4")]
+    pub integrator: IntegratorChoice,
+    /// Step of the RK4 integrator in seconds (default 0.001).
+    #[arg(long)]
+    pub dt: Option<f64>,
+    /// Relative tolerance of the adaptive integrator (default 1e-8).
+    #[arg(long)]
+    pub rtol: Option<f64>,
+    /// The bicycle has fallen when |lean| passes this angle, in degrees.
+    #[arg(long, default_value_t = 60.0)]
+    pub fall_angle: f64,
+    /// Go on when a wheel's normal force turns negative (by default the run stops there: the
+    /// wheel would lift off, which the model's bilateral contacts cannot show).
+    #[arg(long)]
+    pub ignore_lift_off: bool,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "table")]
+    pub format: TableFormat,
+    /// Write the samples to this file instead of standard output.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Also plot lean, steer and speed against time and the ground track (.svg or .png).
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+}
+
+/// The names an expression may use, in the order the evaluator receives them.
+const VARIABLES: [&str; 7] = [
+    "lean",
+    "lean_rate",
+    "speed",
+    "steer",
+    "steer_rate",
+    "t",
+    "yaw",
+];
+
+fn value_of(name: &str, t: f64, s: &StateView) -> f64 {
+    match name {
+        "lean" => s.lean,
+        "lean_rate" => s.lean_rate,
+        "speed" => s.speed,
+        "steer" => s.steer,
+        "steer_rate" => s.steer_rate,
+        "yaw" => s.yaw,
+        _ => t,
+    }
+}
+
+/// Compiles a torque expression; its variables must be among [`VARIABLES`].
+fn torque(option: &str, text: &str) -> Result<TorqueFn> {
+    let expr = exmex::parse::<f64>(text)
+        .map_err(|e| anyhow::anyhow!("{option}: cannot read `{text}`: {e}"))?;
+    let names: Vec<String> = expr.var_names().to_vec();
+    if let Some(unknown) = names.iter().find(|n| !VARIABLES.contains(&n.as_str())) {
+        bail!(
+            "{option}: unknown name `{unknown}` in `{text}` (use {})",
+            VARIABLES.join(", ")
+        );
+    }
+    // Check it evaluates to a number at rest before the run starts.
+    let probe: Vec<f64> = names.iter().map(|_| 0.0).collect();
+    expr.eval(&probe)
+        .map_err(|e| anyhow::anyhow!("{option}: cannot evaluate `{text}`: {e}"))?;
+    Ok(Box::new(move |t: f64, s: &StateView| {
+        let values: Vec<f64> = names.iter().map(|n| value_of(n, t, s)).collect();
+        // A failed evaluation gives NaN, which the run reports as a non-finite state.
+        expr.eval(&values).unwrap_or(f64::NAN)
+    }))
+}
+
+fn check_finite(option: &str, x: f64) -> Result<()> {
+    if !x.is_finite() {
+        bail!("{option} must be a finite number, got {x}");
+    }
+    Ok(())
+}
+
+fn settings(args: &SimulateArgs) -> Result<SimulationSettings> {
+    for (option, x) in [
+        ("--speed", args.speed),
+        ("--lean", args.lean),
+        ("--steer", args.steer),
+        ("--lean-rate", args.lean_rate),
+        ("--steer-rate", args.steer_rate),
+        ("--duration", args.duration),
+        ("--fall-angle", args.fall_angle),
+    ] {
+        check_finite(option, x)?;
+    }
+    if args.lean.abs() >= 90.0 {
+        bail!(
+            "--lean must be below 90 degrees in size (the bicycle would lie on the ground), got {}",
+            args.lean
+        );
+    }
+    if !(args.fall_angle > 0.0 && args.fall_angle < 90.0) {
+        bail!(
+            "--fall-angle must lie between 0 and 90 degrees, got {}",
+            args.fall_angle
+        );
+    }
+    if args.duration <= 0.0 {
+        bail!("--duration must be positive, got {}", args.duration);
+    }
+    let integrator = match args.integrator {
+        IntegratorChoice::Rk4 => {
+            if args.rtol.is_some() {
+                bail!("--rtol applies to --integrator adaptive; RK4 takes --dt");
+            }
+            let dt = args.dt.unwrap_or(1e-3);
+            check_finite("--dt", dt)?;
+            if dt <= 0.0 || dt > args.duration {
+                bail!(
+                    "--dt must be positive and at most the duration ({} s), got {dt}",
+                    args.duration
+                );
+            }
+            let steps = args.duration / dt;
+            if steps > 1e8 {
+                bail!("--duration / --dt asks for {steps:.0} steps, more than the limit of 1e8");
+            }
+            Integrator::Rk4 { dt }
+        }
+        IntegratorChoice::Adaptive => {
+            if args.dt.is_some() {
+                bail!("--dt applies to --integrator rk4; the adaptive integrator takes --rtol");
+            }
+            let rtol = args.rtol.unwrap_or(1e-8);
+            check_finite("--rtol", rtol)?;
+            if !(rtol > 0.0 && rtol < 1.0) {
+                bail!("--rtol must lie between 0 and 1, got {rtol}");
+            }
+            Integrator::Dopri5(Dopri5Params {
+                rtol,
+                atol: rtol * 1e-2,
+                ..Dopri5Params::default()
+            })
+        }
+    };
+    Ok(SimulationSettings {
+        integrator,
+        duration: args.duration,
+        fall_angle: args.fall_angle.to_radians(),
+        stop_on_lift_off: !args.ignore_lift_off,
+        steer_torque: args
+            .steer_torque
+            .as_deref()
+            .map(|e| torque("--steer-torque", e))
+            .transpose()?,
+        lean_torque: args
+            .lean_torque
+            .as_deref()
+            .map(|e| torque("--lean-torque", e))
+            .transpose()?,
+        ..SimulationSettings::default()
+    })
+}
+
+fn wheel_name(wheel: Wheel) -> &'static str {
+    match wheel {
+        Wheel::Rear => "rear",
+        Wheel::Front => "front",
+    }
+}
+
+/// How the run ended, in words, and whether that is a failure of the computation (rather than
+/// something the bicycle did).
+fn describe(run: &Simulation) -> (String, bool) {
+    let final_lean = run.samples.last().map_or(0.0, |s| s.lean);
+    match &run.outcome {
+        Outcome::Completed => ("completed".into(), false),
+        Outcome::Fell { t, lean } => (
+            format!("fell: |lean| passed the fall angle at t = {t:.4} s (lean {:.2} deg)", lean.to_degrees()),
+            false,
+        ),
+        Outcome::WheelLifted { t, wheel } => (
+            format!(
+                "the {} wheel's normal force turned negative at t = {t:.4} s: it would lift off (lean {:.1} deg{})",
+                wheel_name(*wheel),
+                final_lean.to_degrees(),
+                if final_lean.abs() > 20f64.to_radians() { ", falling" } else { "" }
+            ),
+            false,
+        ),
+        Outcome::ProjectionFailed {
+            t,
+            iterations,
+            residual,
+        } => (
+            format!("stopped: the projection onto the constraints diverged at t = {t:.4} s ({iterations} iterations, residual {residual:e})"),
+            true,
+        ),
+        Outcome::NonFiniteState { t } => (
+            format!("stopped: the state became non-finite at t = {t:.4} s (check the torque expressions)"),
+            true,
+        ),
+        Outcome::StepSizeTooSmall { t } => (
+            format!("stopped: the adaptive step size became too small at t = {t:.4} s"),
+            true,
+        ),
+        Outcome::Failed { t, error } => (format!("stopped at t = {t:.4} s: {error}"), true),
+    }
+}
+
+const CSV_HEADER: &str = "t,lean,steer,lean_rate,steer_rate,yaw,x,y,speed,energy,position_residual,velocity_residual,rear_normal,rear_longitudinal,rear_lateral,front_normal,front_longitudinal,front_lateral,front_x,front_y";
+
+fn sample_values(s: &Sample) -> [f64; 20] {
+    [
+        s.t,
+        s.lean,
+        s.steer,
+        s.lean_rate,
+        s.steer_rate,
+        s.yaw,
+        s.x,
+        s.y,
+        s.speed,
+        s.energy,
+        s.position_residual,
+        s.velocity_residual,
+        s.rear.normal,
+        s.rear.longitudinal,
+        s.rear.lateral,
+        s.front.normal,
+        s.front.longitudinal,
+        s.front.lateral,
+        s.front_x,
+        s.front_y,
+    ]
+}
+
+/// The samples that are finite (a run that went non-finite keeps what came before).
+fn finite_samples(run: &Simulation) -> impl Iterator<Item = &Sample> {
+    run.samples
+        .iter()
+        .filter(|s| sample_values(s).iter().all(|x| x.is_finite()))
+}
+
+fn csv(run: &Simulation) -> Result<String> {
+    let mut t = format!("{CSV_HEADER}\n");
+    for s in finite_samples(run) {
+        let row = sample_values(s)
+            .iter()
+            .map(|x| number(*x))
+            .collect::<Result<Vec<_>>>()?;
+        t.push_str(&row.join(","));
+        t.push('\n');
+    }
+    Ok(t)
+}
+
+fn json_doc(
+    bike: &LoadedBike,
+    args: &SimulateArgs,
+    run: &Simulation,
+    outcome: &str,
+) -> Result<String> {
+    let columns: Vec<&str> = CSV_HEADER.split(',').collect();
+    let mut samples = Vec::new();
+    for s in finite_samples(run) {
+        let mut obj = serde_json::Map::new();
+        for (name, x) in columns.iter().zip(sample_values(s)) {
+            obj.insert(name.to_string(), json!(x));
+        }
+        samples.push(serde_json::Value::Object(obj));
+    }
+    let doc = json!({
+        "bike": bike.label,
+        "initial": {
+            "speed": args.speed,
+            "lean": args.lean.to_radians(),
+            "steer": args.steer.to_radians(),
+            "lean_rate": args.lean_rate,
+            "steer_rate": args.steer_rate,
+        },
+        "outcome": outcome,
+        "steps": run.steps,
+        "rejected_steps": run.rejected_steps,
+        "pulled_down_from_start": run.pulled_down_from_start.iter().map(|w| wheel_name(*w)).collect::<Vec<_>>(),
+        "samples": samples,
+    });
+    Ok(format!("{}\n", serde_json::to_string_pretty(&doc)?))
+}
+
+fn table(
+    bike: &LoadedBike,
+    args: &SimulateArgs,
+    run: &Simulation,
+    outcome: &str,
+) -> Result<String> {
+    let samples: Vec<&Sample> = finite_samples(run).collect();
+    let mut t = format!("{}: non-linear simulation, {outcome}\n", bike.label);
+    if let (Some(first), Some(last)) = (samples.first(), samples.last()) {
+        let drift = samples
+            .iter()
+            .map(|s| (s.energy - first.energy).abs())
+            .fold(0.0, f64::max);
+        let pos = samples
+            .iter()
+            .map(|s| s.position_residual)
+            .fold(0.0, f64::max);
+        let vel = samples
+            .iter()
+            .map(|s| s.velocity_residual)
+            .fold(0.0, f64::max);
+        writeln!(
+            t,
+            "  {} steps to t = {} s; energy {} J, largest change {drift:.3e} J; largest constraint residuals {pos:.1e} m, {vel:.1e} m/s",
+            run.steps,
+            number(last.t)?,
+            number(first.energy)?
+        )?;
+        let min_normal =
+            |f: fn(&Sample) -> f64| samples.iter().map(|s| f(s)).fold(f64::INFINITY, f64::min);
+        writeln!(
+            t,
+            "  smallest normal forces: rear {:.2} N, front {:.2} N",
+            min_normal(|s| s.rear.normal),
+            min_normal(|s| s.front.normal)
+        )?;
+    }
+    if args.steer_torque.is_some() || args.lean_torque.is_some() {
+        writeln!(
+            t,
+            "  note: the rider's torques do work, so the energy changes"
+        )?;
+    }
+    for w in &run.pulled_down_from_start {
+        writeln!(
+            t,
+            "  note: the {} contact pulls its wheel down from the start (the masses sit beyond the other contact); contacts are bilateral, as in the linearized model",
+            wheel_name(*w)
+        )?;
+    }
+    writeln!(
+        t,
+        "\n{:>8} {:>10} {:>10} {:>12} {:>12} {:>10} {:>10} {:>9} {:>8} {:>10} {:>10}",
+        "t [s]",
+        "lean [deg]",
+        "steer[deg]",
+        "lean rate",
+        "steer rate",
+        "yaw [deg]",
+        "x [m]",
+        "y [m]",
+        "v [m/s]",
+        "rear N [N]",
+        "front N [N]"
+    )?;
+    // About a hundred rows: every sample whose time crosses a multiple of the print interval.
+    let span = samples.last().map_or(0.0, |s| s.t) - samples.first().map_or(0.0, |s| s.t);
+    let interval = [
+        0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0,
+    ]
+    .into_iter()
+    .find(|i| span / i <= 100.0)
+    .unwrap_or(span / 100.0);
+    let t0 = samples.first().map_or(0.0, |s| s.t);
+    let mut next = 0usize;
+    for (k, s) in samples.iter().enumerate() {
+        let slot = ((s.t - t0) / interval + 1e-6).floor();
+        if slot >= next as f64 || k + 1 == samples.len() {
+            writeln!(
+                t,
+                "{:>8.3} {:>10.4} {:>10.4} {:>12.5} {:>12.5} {:>10.3} {:>10.4} {:>9.4} {:>8.4} {:>10.2} {:>10.2}",
+                // Adding 0.0 prints a negative zero as 0.
+                s.t + 0.0,
+                s.lean.to_degrees() + 0.0,
+                s.steer.to_degrees() + 0.0,
+                s.lean_rate + 0.0,
+                s.steer_rate + 0.0,
+                s.yaw.to_degrees() + 0.0,
+                s.x + 0.0,
+                s.y + 0.0,
+                s.speed + 0.0,
+                s.rear.normal + 0.0,
+                s.front.normal + 0.0
+            )?;
+            next = slot as usize + 1;
+        }
+    }
+    Ok(t)
+}
+
+fn plot(
+    bike: &LoadedBike,
+    args: &SimulateArgs,
+    run: &Simulation,
+    outcome: &str,
+    path: &Path,
+) -> Result<()> {
+    let samples: Vec<&Sample> = finite_samples(run).collect();
+    let mut events = Vec::new();
+    match run.outcome {
+        Outcome::Fell { t, .. } => events.push((t, "fell".to_string())),
+        Outcome::WheelLifted { t, wheel } => {
+            events.push((t, format!("{} wheel lifts", wheel_name(wheel))))
+        }
+        _ => {}
+    }
+    let series = whipple_report::SimulationSeries {
+        title: format!(
+            "{}: v = {} m/s, lean {} deg, steer {} deg, lean rate {} rad/s, steer rate {} rad/s",
+            bike.label, args.speed, args.lean, args.steer, args.lean_rate, args.steer_rate
+        ),
+        t: samples.iter().map(|s| s.t).collect(),
+        lean: samples.iter().map(|s| s.lean).collect(),
+        steer: samples.iter().map(|s| s.steer).collect(),
+        speed: samples.iter().map(|s| s.speed).collect(),
+        rear_contact: samples.iter().map(|s| (s.x, s.y)).collect(),
+        front_contact: samples.iter().map(|s| (s.front_x, s.front_y)).collect(),
+        events,
+        outcome: Some(outcome.to_string()),
+    };
+    let figure = whipple_report::time_series_plot(&series)?;
+    let bytes = figure
+        .render_for_path(path)
+        .with_context(|| format!("drawing {}", path.display()))?;
+    write_atomically(path, &bytes)
+}
+
+pub fn run(args: &SimulateArgs) -> Result<()> {
+    let settings_without_progress = settings(args)?;
+    if let Some(path) = &args.plot {
+        whipple_report::Format::from_path(path)
+            .with_context(|| format!("--plot {}", path.display()))?;
+    }
+    let bike = load(&args.bike)?;
+    let model = Model::new(&bike.benchmark)
+        .with_context(|| format!("building the non-linear model of {}", bike.label))?;
+    let start = model
+        .initial_state(&InitialConditions {
+            speed: args.speed,
+            lean: args.lean.to_radians(),
+            steer: args.steer.to_radians(),
+            lean_rate: args.lean_rate,
+            steer_rate: args.steer_rate,
+            ..InitialConditions::upright(args.speed)
+        })
+        .context("placing the bicycle in its initial state")?;
+
+    // A progress bar on a terminal, shown once the run has taken a second.
+    let bar = indicatif::ProgressBar::hidden();
+    bar.set_length(1000);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("simulating {bar:40} {percent:>3}% {msg}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let on_terminal = std::io::stderr().is_terminal();
+    let started = Instant::now();
+    let hook_bar = bar.clone();
+    let settings = SimulationSettings {
+        progress: Some(Box::new(move |p| {
+            if on_terminal && hook_bar.is_hidden() && started.elapsed() > Duration::from_secs(1) {
+                hook_bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+            }
+            if p.t_end > 0.0 {
+                hook_bar.set_position((1000.0 * p.t / p.t_end) as u64);
+                hook_bar.set_message(format!("t = {:.2} s", p.t));
+            }
+        })),
+        ..settings_without_progress
+    };
+    let run = simulate(&model, start, &settings).context("simulating")?;
+    bar.finish_and_clear();
+
+    let (outcome, failed) = describe(&run);
+    if let Some(path) = &args.plot {
+        plot(&bike, args, &run, &outcome, path)?;
+    }
+    let text = match args.format {
+        TableFormat::Csv => csv(&run)?,
+        TableFormat::Json => json_doc(&bike, args, &run, &outcome)?,
+        TableFormat::Table => table(&bike, args, &run, &outcome)?,
+    };
+    match &args.out {
+        Some(path) => write_atomically(path, text.as_bytes())?,
+        None => print!("{text}"),
+    }
+    if args.format != TableFormat::Table || args.out.is_some() {
+        eprintln!("{}: {outcome}", bike.label);
+    }
+    if failed {
+        bail!("the simulation {outcome}; the samples computed before that were written");
+    }
+    Ok(())
+}
