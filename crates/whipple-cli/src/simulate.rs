@@ -446,13 +446,24 @@ fn table(
     Ok(t)
 }
 
-fn plot(
-    bike: &LoadedBike,
-    args: &SimulateArgs,
-    run: &Simulation,
-    outcome: &str,
-    path: &Path,
-) -> Result<()> {
+/// A short line for the plot's caption.
+fn short_outcome(run: &Simulation) -> String {
+    let lean = run.samples.last().map_or(0.0, |s| s.lean).to_degrees();
+    match &run.outcome {
+        Outcome::Completed => "completed".into(),
+        Outcome::Fell { t, .. } => format!("fell at t = {t:.3} s"),
+        Outcome::WheelLifted { t, wheel } => format!(
+            "{} wheel lifts off at t = {t:.3} s (lean {lean:.1}°)",
+            wheel_name(*wheel)
+        ),
+        _ => format!(
+            "stopped at t = {:.3} s",
+            run.samples.last().map_or(0.0, |s| s.t)
+        ),
+    }
+}
+
+fn plot(bike: &LoadedBike, args: &SimulateArgs, run: &Simulation, path: &Path) -> Result<()> {
     let samples: Vec<&Sample> = finite_samples(run).collect();
     let mut events = Vec::new();
     match run.outcome {
@@ -474,7 +485,7 @@ fn plot(
         rear_contact: samples.iter().map(|s| (s.x, s.y)).collect(),
         front_contact: samples.iter().map(|s| (s.front_x, s.front_y)).collect(),
         events,
-        outcome: Some(outcome.to_string()),
+        outcome: Some(short_outcome(run)),
     };
     let figure = whipple_report::time_series_plot(&series)?;
     let bytes = figure
@@ -530,7 +541,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
 
     let (outcome, failed) = describe(&run);
     if let Some(path) = &args.plot {
-        plot(&bike, args, &run, &outcome, path)?;
+        plot(&bike, args, &run, path)?;
     }
     let text = match args.format {
         TableFormat::Csv => csv(&run)?,

@@ -218,6 +218,13 @@ pub(crate) fn boxed_text<DB: DrawingBackend>(
 }
 
 /// A "nice" number format: up to `digits` decimals, trailing zeros kept for alignment.
+/// An axis tick label: the shortest text of the value rounded to nine decimals, so that a tick
+/// at round-off from zero reads "0" (never "-0.0") and 0.30000000000000004 reads "0.3".
+pub(crate) fn tick(value: &f64) -> String {
+    let rounded = (value * 1e9).round() / 1e9 + 0.0;
+    format!("{rounded}")
+}
+
 pub(crate) fn fixed(value: f64, digits: usize) -> String {
     format!("{value:.digits$}")
 }

@@ -11,8 +11,8 @@ use whipple::analysis::sweep::EigenSweep;
 
 use crate::clip::Rect;
 use crate::draw::{
-    draw_clipped, draw_legend, fixed, label_markers, text, Dash, Swatch, BLUE, DARK, GREEN, GREY,
-    LIGHT, VERMILLION,
+    draw_clipped, draw_legend, fixed, label_markers, text, tick, Dash, Swatch, BLUE, DARK, GREEN,
+    GREY, LIGHT, VERMILLION,
 };
 use crate::error::{Error, Result};
 use crate::figure::{Content, Figure, OrDraw};
@@ -237,6 +237,8 @@ impl EigenFigure {
             .bold_line_style(LIGHT)
             .x_desc("forward speed v [m/s]")
             .y_desc("eigenvalue λ [1/s]")
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .label_style(text(14.0, &DARK))
             .axis_desc_style(text(16.0, &DARK))
             .draw()

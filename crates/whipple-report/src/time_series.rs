@@ -7,7 +7,7 @@ use plotters::prelude::*;
 
 use crate::clip::Rect;
 use crate::draw::{
-    draw_clipped, label_markers, text, Dash, BLUE, DARK, GREEN, GREY, LIGHT, VERMILLION,
+    draw_clipped, label_markers, text, tick, Dash, BLUE, DARK, GREEN, GREY, LIGHT, VERMILLION,
 };
 use crate::error::{Error, Result};
 use crate::figure::{Content, Figure, OrDraw};
@@ -118,6 +118,8 @@ impl TimeSeriesFigure {
             mesh.light_line_style(RGBColor(244, 244, 244))
                 .bold_line_style(LIGHT)
                 .y_desc(*label)
+                .x_label_formatter(&tick)
+                .y_label_formatter(&tick)
                 .label_style(text(13.0, &DARK))
                 .axis_desc_style(text(14.0, &DARK));
             if last {
@@ -128,6 +130,7 @@ impl TimeSeriesFigure {
                 chart
                     .configure_secondary_axes()
                     .y_desc("[deg]")
+                    .y_label_formatter(&tick)
                     .label_style(text(13.0, &GREY))
                     .axis_desc_style(text(14.0, &GREY))
                     .draw()
@@ -211,6 +214,8 @@ impl TimeSeriesFigure {
             .bold_line_style(LIGHT)
             .x_desc("x [m]")
             .y_desc("y [m]")
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .label_style(text(13.0, &DARK))
             .axis_desc_style(text(14.0, &DARK))
             .draw()
