@@ -27,8 +27,9 @@ sympy.physics.mechanics; z down, benchmark signs):
             eo = ce + l3 E.x + l4 E.z
     speeds  u_i = q_i' for i = 3..8; the rear contact moves at -rR (u5 + u6) A.x;
             independent u4 (lean rate), u6 (rear wheel rate), u7 (steer rate); dependent
-            u3, u5, u8 from the front contact's velocity (no slip along A.x, A.y, and the time
-            derivative of the holonomic constraint along A.z); dependent coordinate q5 (pitch)
+            u3, u5, u8 from the front contact's velocity (no slip along A.y and A.x, and the
+            time derivative of the holonomic constraint along A.z); dependent coordinate q5
+            (pitch)
     nominal upright pitch q5 = lambda (C.z along the steer axis).
 
 Benchmark parameters (Meijaard et al. 2007, Table 1) mapped to it:
@@ -121,7 +122,9 @@ def derive():
     fn.v2pt_theory(fo, N, F)
 
     holonomic = fn.pos_from(dn).dot(A.z)
-    nonholonomic = [fn.vel(N).dot(A.x), fn.vel(N).dot(A.y), fn.vel(N).dot(A.z)]
+    # Ordered so that each row's pivot (u3, u5, u8) is non-zero upright: sympy eliminates the
+    # dependent speeds symbolically by LU without pivoting.
+    nonholonomic = [fn.vel(N).dot(A.y), fn.vel(N).dot(A.z), fn.vel(N).dot(A.x)]
 
     t = me.dynamicsymbols._t
     kd = [q3.diff(t) - u3, q4.diff(t) - u4, q5.diff(t) - u5, q6.diff(t) - u6,
@@ -267,14 +270,18 @@ def eigenvalues(rhs, helpers, lay, par, v, h=1e-6):
 
 
 def rk4(rhs, x0, par, dt, n):
-    """Classical RK4, fixed step, a plain Python loop; returns all states."""
+    """Classical RK4, fixed step, a plain Python loop; returns all states.
+
+    PyDy's generated function returns the same output array on every call, so the slopes are
+    copied (without the copies all four slopes are the last one and the method is first order).
+    """
     out = np.empty((n + 1, len(x0)))
     out[0] = x = x0.copy()
     t, h2, h6 = 0.0, 0.5 * dt, dt / 6.0
     for k in range(n):
-        k1 = rhs(x, t, par)
-        k2 = rhs(x + h2 * k1, t + h2, par)
-        k3 = rhs(x + h2 * k2, t + h2, par)
+        k1 = rhs(x, t, par).copy()
+        k2 = rhs(x + h2 * k1, t + h2, par).copy()
+        k3 = rhs(x + h2 * k2, t + h2, par).copy()
         k4 = rhs(x + dt * k3, t + dt, par)
         x = x + h6 * (k1 + 2.0 * (k2 + k3) + k4)
         t = (k + 1) * dt
