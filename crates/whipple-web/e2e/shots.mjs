@@ -1,0 +1,47 @@
+// Screenshots of the page's states: node shots.mjs URL OUT_DIR
+import { launch } from "./browser.mjs";
+import { mkdirSync } from "node:fs";
+import { join } from "node:path";
+
+const [url, out = "/tmp/whipple-shots"] = process.argv.slice(2);
+mkdirSync(out, { recursive: true });
+const { context, close } = await launch();
+try {
+  const page = context.pages()[0] ?? (await context.newPage());
+  page.on("console", (m) => console.log(`[page ${m.type()}] ${m.text()}`));
+  page.on("pageerror", (e) => console.log(`[page error] ${e.message}`));
+  await page.goto(url);
+  await page.waitForSelector("body[data-ready=true]", { timeout: 20_000 });
+  await page.waitForTimeout(300);
+  await page.screenshot({ path: join(out, "1-crown.png") });
+  // Hover on the plot.
+  const box = await page.getByTestId("plot-overlay").boundingBox();
+  await page.mouse.move(box.x + box.width * 0.62, box.y + box.height * 0.5);
+  await page.waitForTimeout(150);
+  await page.screenshot({ path: join(out, "2-hover.png") });
+  // Compare with the benchmark bicycle.
+  await page.getByTestId("compare-select").selectOption("preset:benchmark");
+  await page.waitForTimeout(800);
+  await page.mouse.move(10, 10);
+  await page.screenshot({ path: join(out, "3-compare.png") });
+  // Invalid mass.
+  await page.getByTestId("param-mrider").fill("-5");
+  await page.waitForTimeout(800);
+  await page.screenshot({ path: join(out, "4-invalid.png") });
+  await page.getByTestId("param-mrider").fill("80");
+  // Benchmark tab.
+  await page.getByTestId("compare-select").selectOption("");
+  await page.click("#tab-benchmark");
+  await page.waitForTimeout(600);
+  await page.screenshot({ path: join(out, "5-benchmark-tab.png") });
+  // The two-mass skate.
+  await page.getByTestId("bike-select").selectOption("preset:two-mass-skate");
+  await page.waitForTimeout(800);
+  await page.screenshot({ path: join(out, "6-skate.png") });
+  await page.setViewportSize({ width: 1024, height: 800 });
+  await page.getByTestId("bike-select").selectOption("preset:benchmark");
+  await page.waitForTimeout(800);
+  await page.screenshot({ path: join(out, "7-narrow.png"), fullPage: true });
+} finally {
+  await close();
+}
