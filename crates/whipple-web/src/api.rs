@@ -513,4 +513,38 @@ mod tests {
         assert_eq!(documented, routed);
         Ok(())
     }
+
+    /// The page calls only endpoints the OpenAPI document describes.
+    #[test]
+    fn page_uses_only_documented_endpoints() -> Result<(), serde_json::Error> {
+        let doc: Value = serde_json::from_str(OPENAPI)?;
+        let paths: Vec<String> = doc["paths"]
+            .as_object()
+            .map(|p| p.keys().cloned().collect())
+            .unwrap_or_default();
+        let script = assets::APP_JS;
+        let mut used = Vec::new();
+        let mut rest = script;
+        while let Some(at) = rest.find("/api/") {
+            let tail = &rest[at..];
+            let end = tail
+                .find(|c: char| !(c.is_ascii_alphanumeric() || "/._-".contains(c)))
+                .unwrap_or(tail.len());
+            used.push(tail[..end].to_string());
+            rest = &tail[end..];
+        }
+        assert!(used.len() >= 6, "found {used:?}");
+        for path in used {
+            let documented = paths.iter().any(|p| match p.find('{') {
+                // A templated path: the script builds it from its fixed prefix.
+                Some(brace) => path == p[..brace],
+                None => path == *p,
+            });
+            assert!(
+                documented,
+                "the page calls {path}, which openapi.json does not describe"
+            );
+        }
+        Ok(())
+    }
 }
