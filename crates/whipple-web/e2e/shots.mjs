@@ -42,6 +42,20 @@ try {
   await page.getByTestId("bike-select").selectOption("preset:benchmark");
   await page.waitForTimeout(800);
   await page.screenshot({ path: join(out, "7-narrow.png"), fullPage: true });
+  // Two small ones for the README.
+  await page.setViewportSize({ width: 1280, height: 760 });
+  await page.getByTestId("bike-select").selectOption("preset:schwinn-crown");
+  await page.getByTestId("compare-select").selectOption("preset:benchmark");
+  await page.waitForTimeout(1000);
+  const plot = await page.getByTestId("plot-overlay").boundingBox();
+  await page.mouse.move(plot.x + plot.width * 0.45, plot.y + plot.height * 0.5);
+  await page.waitForTimeout(200);
+  await page.screenshot({ path: join(out, "docs-whipple-serve.png") });
+  await page.mouse.move(1, 1);
+  await page.getByTestId("compare-select").selectOption("");
+  await page.getByTestId("param-mrider").fill("-5");
+  await page.waitForTimeout(800);
+  await page.screenshot({ path: join(out, "docs-invalid-entry.png") });
 } finally {
   await close();
 }

@@ -204,7 +204,11 @@ fn open_browser(url: &str) {
         .stdin(std::process::Stdio::null())
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null());
-    if let Err(e) = command.spawn() {
-        eprintln!("whipple serve: could not open a browser ({e}); open {url} yourself");
+    match command.spawn() {
+        // Reap the opener when it exits, so that it leaves no zombie behind.
+        Ok(mut child) => {
+            std::thread::spawn(move || child.wait());
+        }
+        Err(e) => eprintln!("whipple serve: could not open a browser ({e}); open {url} yourself"),
     }
 }

@@ -18,14 +18,14 @@ function ranges(c) {
 /** Fills `container` with the table for `primary` and optional `secondary` ({label, critical}). */
 export function drawCritical(container, primary, secondary, { stale = false } = {}) {
   const rows = [
-    ["weave speed", "v_w", (c) => speed(c?.weave_speed), "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
-    ["capsize speed", "v_c", (c) => speed(c?.capsize_speed), "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
+    ["weave", "v_w", (c) => speed(c?.weave_speed), "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
+    ["capsize", "v_c", (c) => speed(c?.capsize_speed), "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
     ["double root", "v_d", (c) => speed(c?.double_root_speed), "double-root-speed", "two real eigenvalues meet and become the weave pair", "#9ca3af"],
-    ["weave at v_w", "ω [rad/s]", (c) => (c?.weave_frequency == null ? "–" : fixed(c.weave_frequency, 3)), "weave-frequency", "the weave's angular frequency |Im λ| at v_w", null],
+    ["ω at v_w", "rad/s", (c) => (c?.weave_frequency == null ? "–" : fixed(c.weave_frequency, 3)), "weave-frequency", "the weave's angular frequency |Im λ| at v_w", null],
     ["self-stable", "", (c) => ranges(c), "stable-ranges", "all eigenvalues have negative real parts", "#86efac"],
   ];
   const table = html("table", { class: `critical-table${stale ? " stale" : ""}` });
-  const head = html("tr", {}, html("th", { class: "unit", text: "speeds in m/s" }), html("th", { class: "primary", text: primary.label }));
+  const head = html("tr", {}, html("th", { class: "unit", text: "m/s" }), html("th", { class: "primary", text: primary.label }));
   if (secondary) head.append(html("th", { class: "secondary", text: secondary.label }));
   table.append(html("thead", {}, head));
   const body = html("tbody");
@@ -39,6 +39,9 @@ export function drawCritical(container, primary, secondary, { stale = false } = 
   }
   table.append(body);
   const range = primary.critical?.range;
-  const note = html("p", { class: "note", text: range ? `Linearized Whipple model, searched over the plotted speeds ${fixed(range[0], 2)} to ${fixed(range[1], 2)} m/s${primary.critical.stable_speed_ranges.some(([, b]) => b >= range[1]) ? "; “+”: stable up to the end of that range" : ""}.` : "Give a speed range to find the critical speeds." });
+  const meta = document.getElementById("critical-meta");
+  if (meta) meta.textContent = range ? `linear model, ${fixed(range[0], 1)} – ${fixed(range[1], 1)} m/s` : "";
+  const open = primary.critical?.stable_speed_ranges.some(([, b]) => b >= range[1]);
+  const note = html("p", { class: "note", text: range ? (open ? "“+”: still stable at the end of the plotted speeds." : "") : "Give a speed range to find the critical speeds." });
   container.replaceChildren(table, note);
 }

@@ -170,7 +170,7 @@ export class EigenPlot {
     const hover = svg("g", { "data-export": "skip", "pointer-events": "none", visibility: "hidden" });
     const cross = svg("line", { y1: m.top, y2: m.top + ph, stroke: INK, "stroke-width": 0.8, "stroke-dasharray": "3 3" });
     hover.append(cross);
-    const dots = svg("g");
+    const dots = svg("g", { "clip-path": `url(#${clipId})` });
     hover.append(dots);
     root.append(hover);
     const overlay = svg("rect", { x: m.left, y: m.top, width: pw, height: ph, fill: "transparent", "data-export": "skip", "data-testid": "plot-overlay" });

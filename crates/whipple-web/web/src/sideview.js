@@ -152,7 +152,7 @@ export function drawSideView(container, view, ghost = null, { stale = false } = 
   if (Math.abs(view.trail) > 1e-9) {
     const a = view.wheelbase, c = view.wheelbase + view.trail;
     dims.append(svg("line", { x1: X(a), y1: oy - 3, x2: X(c), y2: oy - 3, stroke: AXIS, "stroke-width": 3 }));
-    dims.append(svg("text", { x: X(Math.max(a, c)) + 6, y: trailY + 15, "text-anchor": "start", fill: AXIS, stroke: "none" }, `trail ${fixed(view.trail * 1000, 1)} mm`));
+    dims.append(svg("text", { x: X(Math.max(a, c)) + 4, y: trailY + 30, "text-anchor": "end", fill: AXIS, stroke: "none" }, `trail ${fixed(view.trail * 1000, 1)} mm`));
   }
   // Head angle at the axis' ground point.
   const [ga, gt] = view.steer_axis;
