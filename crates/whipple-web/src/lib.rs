@@ -89,7 +89,7 @@ impl Default for ServeOptions {
 #[non_exhaustive]
 pub enum ServeError {
     /// The address could not be bound (in use, not local, not permitted).
-    #[error("cannot listen on {address}: {source}")]
+    #[error("cannot listen on {address}")]
     Bind {
         /// The address asked for.
         address: SocketAddr,
@@ -97,11 +97,11 @@ pub enum ServeError {
         source: std::io::Error,
     },
     /// The async runtime could not be started.
-    #[error("cannot start the async runtime: {0}")]
-    Runtime(std::io::Error),
+    #[error("cannot start the async runtime")]
+    Runtime(#[source] std::io::Error),
     /// Serving failed after start.
-    #[error("server failed: {0}")]
-    Serve(std::io::Error),
+    #[error("the server failed")]
+    Serve(#[source] std::io::Error),
 }
 
 /// A bound, not yet serving, server: bind first to learn the port (for `port: 0`).
