@@ -135,6 +135,17 @@ try {
   await waitForText("capsize-speed", (t) => t === edited);
   check((await page.getByTestId("bike-select").inputValue()).startsWith("design:"), "the loaded file becomes one of my designs");
   check(await page.evaluate(() => JSON.parse(localStorage.getItem("whipple.designs.v1")).some((d) => d.name === "short trail")), "kept in localStorage");
+
+  // Rename and save to my designs, then delete it.
+  await page.fill("#design-name", "short trail, renamed");
+  await page.click("#save-design");
+  await page.waitForFunction(() => [...document.querySelectorAll("#bike-select option")].some((o) => o.textContent === "short trail, renamed"));
+  check(true, "Save to my designs lists the renamed design in the picker");
+  await page.click("#delete-design");
+  await waitForText("capsize-speed", (t) => t.startsWith("7.9807"));
+  check(!(await page.evaluate(() => [...document.querySelectorAll("#bike-select option")].some((o) => o.textContent === "short trail, renamed"))), "Delete removes it and goes back to the Schwinn Crown");
+  const [side] = await Promise.all([page.waitForEvent("download"), page.click("#side-svg")]);
+  check(readFileSync(await side.path(), "utf8").includes("total 91.1 kg"), "the side view exports as SVG");
   check(errors.length === 0, `no page errors (${errors.join("; ") || "none"})`);
   console.log(`e2e: ok (${checks} checks)`);
 } catch (e) {

@@ -26,7 +26,11 @@ async fn page_in_headless_chromium() -> TestResult {
              *** Install it with `apt-get install -y chromium` (or set CHROMIUM). ***\n"
         );
         if required {
-            return Err(message.into());
+            return Err(format!(
+                "WHIPPLE_E2E_REQUIRED=1 but there is no Chromium at {chromium}: \
+                 `apt-get install -y chromium` (or set CHROMIUM)"
+            )
+            .into());
         }
         eprintln!("{message}");
         return Ok(());
