@@ -397,7 +397,8 @@ struct EigenResponse {
 fn check_grid(grid: SpeedGrid, max_speeds: usize) -> Result<(), ApiError> {
     let SpeedGrid { start, stop, step } = grid;
     if start.is_finite() && stop.is_finite() && step.is_finite() && step > 0.0 && stop >= start {
-        let count = ((stop - start) / step).floor() + 1.0;
+        // Counted as `speed_grid` counts (it includes STOP when on the grid to round-off).
+        let count = ((stop - start) / step * (1.0 + 1e-12) + 1e-9).floor() + 1.0;
         if count > max_speeds as f64 {
             return Err(ApiError::new(
                 StatusCode::UNPROCESSABLE_ENTITY,

@@ -328,15 +328,36 @@ async fn out_of_range_speeds() -> TestResult {
     assert!(body["error"]["message"]
         .as_str()
         .is_some_and(|m| m.contains("100000")));
-    // Exactly at the limit is served.
+    // One over the default limit (0:10:1e-4 holds 100,001 speeds) is refused before any work.
     let (status, body) = post(
         &app,
         "/api/eigen",
-        &json!({"bike": bike, "speeds": {"start": 0, "stop": 9.9999, "step": 1e-4}}),
+        &json!({"bike": bike, "speeds": {"start": 0, "stop": 10, "step": 1e-4}}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["kind"], "limit_exceeded");
+    // Exactly at a limit is served (a small limit, to keep the debug-build test quick).
+    let small = whipple_web::app(Limits {
+        max_speeds: 1000,
+        ..Limits::default()
+    });
+    let (status, body) = post(
+        &small,
+        "/api/eigen",
+        &json!({"bike": bike, "speeds": {"start": 0, "stop": 9.99, "step": 0.01}}),
     )
     .await?;
     assert_eq!(status, StatusCode::OK);
-    assert_eq!(body["speeds"].as_array().map(Vec::len), Some(100_000));
+    assert_eq!(body["speeds"].as_array().map(Vec::len), Some(1000));
+    let (status, body) = post(
+        &small,
+        "/api/eigen",
+        &json!({"bike": bike, "speeds": {"start": 0, "stop": 10, "step": 0.01}}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["kind"], "limit_exceeded");
     let (status, body) = post(
         &app,
         "/api/eigen",
@@ -422,7 +443,7 @@ async fn oversized_requests_are_refused() -> TestResult {
 
 fn heavy() -> Result<Value, Box<dyn std::error::Error>> {
     Ok(
-        json!({"bike": preset_json("benchmark")?, "speeds": {"start": 0, "stop": 99.999, "step": 0.001}}),
+        json!({"bike": preset_json("benchmark")?, "speeds": {"start": 0, "stop": 19.999, "step": 0.001}}),
     )
 }
 
