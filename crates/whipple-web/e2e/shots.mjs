@@ -42,6 +42,18 @@ try {
   await page.getByTestId("bike-select").selectOption("preset:benchmark");
   await page.waitForTimeout(800);
   await page.screenshot({ path: join(out, "7-narrow.png"), fullPage: true });
+  // A speed grid that is too fine, and a file that does not parse.
+  await page.fill("#v-step", "0.00000001");
+  await page.press("#v-step", "Enter");
+  await page.waitForTimeout(800);
+  await page.screenshot({ path: join(out, "8-too-many-speeds.png") });
+  await page.fill("#v-step", "0.01");
+  await page.press("#v-step", "Enter");
+  const bad = join(out, "broken.toml");
+  (await import("node:fs")).writeFileSync(bad, "name = \"broken\"\n[benchmark]\nw = = 1\n");
+  await page.setInputFiles("#file-input", bad);
+  await page.waitForTimeout(800);
+  await page.screenshot({ path: join(out, "9-bad-file.png") });
   // Two small ones for the README.
   await page.setViewportSize({ width: 1280, height: 760 });
   await page.getByTestId("bike-select").selectOption("preset:schwinn-crown");

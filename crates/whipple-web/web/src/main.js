@@ -40,15 +40,19 @@ let sideSvg = null;
 
 // ---- messages ---------------------------------------------------------------------------
 
-function say(text, kind = "info") {
+/** Shows a message; `source` says who may clear it ("bike" for validation, else any caller). */
+function say(text, kind = "info", source = "general") {
   const box = $("message");
   box.className = `message ${kind}`;
+  box.dataset.source = source;
   box.replaceChildren(html("span", { text }));
   box.hidden = !text;
 }
 
-function quiet() {
-  $("message").hidden = true;
+/** Hides the message if it came from `source` (every message when no source is given). */
+function quiet(source) {
+  const box = $("message");
+  if (!source || box.dataset.source === source) box.hidden = true;
 }
 
 // ---- picker -------------------------------------------------------------------------------
@@ -186,14 +190,16 @@ let sequence = 0;
 async function recompute() {
   const mine = ++sequence;
   if (editor.hasLocalErrors()) {
-    showStale("Some entries are not numbers.");
+    say("Some entries are not numbers.", "error", "bike");
+    showStale();
     return;
   }
   const grid = speedGrid();
   for (const id of ["v-start", "v-stop", "v-step"]) $(id).classList.remove("invalid");
   if (Object.values(grid).some((x) => x === null)) {
     for (const id of ["v-start", "v-stop", "v-step"]) if (parseNumber($(id).value) === null) $(id).classList.add("invalid");
-    say("The speeds must be numbers.", "error");
+    $("eigen-message").textContent = "The speeds must be numbers.";
+    $("eigen-message").hidden = false;
     return;
   }
   const bike = clone(state.bike);
@@ -204,7 +210,7 @@ async function recompute() {
     state.valid = false;
     state.lastError = error;
     const flagged = editor.flag(error);
-    say(error.message, "error");
+    say(error.message, "error", "bike");
     $("message").dataset.field = error.field ?? "";
     if (!flagged && state.bike.jbike6 && state.form === "jbike6") {
       $("message").append(html("span", { class: "hint", text: " (a rule of the benchmark form, checked after combining the bodies)" }));
@@ -220,11 +226,14 @@ async function recompute() {
   if (eigen.status === "rejected") {
     const error = eigen.reason;
     if (error.field === "speeds" || error.field === "range") for (const id of ["v-start", "v-stop", "v-step"]) $(id).classList.add("invalid");
-    say(error.message, "error");
+    $("eigen-message").textContent = error.message;
+    $("eigen-message").hidden = false;
+    quiet("bike");
     drawSide();
     return;
   }
-  quiet();
+  $("eigen-message").hidden = true;
+  quiet("bike");
   state.eigen = eigen.value;
   drawAll();
 }
