@@ -1,7 +1,7 @@
 // End-to-end test of the page in headless Chromium: node test.mjs URL
 // Run by crates/whipple-web/tests/e2e.rs against a server on an ephemeral loopback port.
 import { launch } from "./browser.mjs";
-import { readFileSync, writeFileSync, mkdtempSync } from "node:fs";
+import { readFileSync, writeFileSync, mkdtempSync, rmSync } from "node:fs";
 import { join } from "node:path";
 import { tmpdir } from "node:os";
 
@@ -133,6 +133,7 @@ try {
   await waitForText("capsize-speed", (t) => t.startsWith("6.0243"));
   await page.setInputFiles("#file-input", file);
   await waitForText("capsize-speed", (t) => t === edited);
+  rmSync(dir, { recursive: true, force: true });
   check((await page.getByTestId("bike-select").inputValue()).startsWith("design:"), "the loaded file becomes one of my designs");
   check(await page.evaluate(() => JSON.parse(localStorage.getItem("whipple.designs.v1")).some((d) => d.name === "short trail")), "kept in localStorage");
 
