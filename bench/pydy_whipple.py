@@ -41,15 +41,21 @@ Benchmark parameters (Meijaard et al. 2007, Table 1) mapped to it:
     rotated into C/E axes: I_C[i, j] = c_i . I . c_j with c_x = (cos lam, 0, -sin lam),
     c_z = (sin lam, 0, cos lam).
 
+The right-hand side is PyDy's Cython code (generate_ode_function(..., generator="cython")) of
+Kane's mass matrix and forcing for the six speeds (three dynamic rows, three constraint rows)
+with q' given explicitly; the 6 x 6 system is solved either by an LU decomposition generated
+into the C code (linear_sys_solver="sympy", the faster, used for the runs) or by
+numpy.linalg.solve after it (PyDy's default, timed for comparison).
+
 It prints: the time to derive and compile the model; the eigenvalues at v = 5 m/s from central
 differences of the generated right-hand side against Table 2; right-hand sides per second
 (100,000 calls at the state of whipple's `nonlinear forward` bench, best of 5); the wall time of
 a 10 s fixed-step RK4 run at dt = 1 ms (a plain Python loop, 40,000 right-hand sides, no
 projection) from upright at 4.6 m/s with lean rate 0.5 rad/s; the same run with
 scipy.integrate.solve_ivp (RK45) and odeint (LSODA), rtol = atol = 1e-10; and it writes the RK4
-trajectory (t, lean, steer, lean_rate, steer_rate, speed, yaw, x, y, pitch, residuals) to the CSV
-path given (default /tmp/pydy_traj.csv). `--lambdify` uses PyDy's lambdify generator instead of
-Cython.
+trajectory (t, lean, steer, lean_rate, steer_rate, speed, yaw, rear contact x, y, pitch) to the CSV
+path given (default /tmp/pydy_traj.csv). `--lambdify` uses PyDy's lambdify generator (numpy
+solve) instead of Cython.
 """
 
 import math
@@ -301,15 +307,22 @@ def main():
     t0 = time.perf_counter()
     kane, coordinates, speeds, qdot, constants, helpers = derive()
     t_derive = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    rhs = generate_ode_function(
-        kane.forcing, coordinates, speeds, constants,
-        mass_matrix=kane.mass_matrix, coordinate_derivatives=qdot,
-        generator=generator, constants_arg_type="array")
-    t_generate = time.perf_counter() - t0
-    print(f"sympy {sm.__version__}; Kane's equations derived in {t_derive:.1f} s; "
-          f"{generator} right-hand side generated in {t_generate:.1f} s")
+    print(f"sympy {sm.__version__}; Kane's equations derived in {t_derive:.1f} s")
     print(f"state vector: {[str(s.func) for s in coordinates + speeds]}")
+    # Cython: with the mass matrix solved by an LU decomposition generated into the C code
+    # (linear_sys_solver="sympy", PyDy's fastest option; used for everything below) and with
+    # PyDy's default, numpy.linalg.solve after the C code (only timed).
+    solvers = ["sympy", "numpy"] if generator == "cython" else ["numpy"]
+    rhs_by_solver = {}
+    for solver in solvers:
+        t0 = time.perf_counter()
+        rhs_by_solver[solver] = generate_ode_function(
+            kane.forcing, coordinates, speeds, constants,
+            mass_matrix=kane.mass_matrix, coordinate_derivatives=qdot,
+            generator=generator, linear_sys_solver=solver, constants_arg_type="array")
+        print(f"{generator} right-hand side, linear_sys_solver={solver!r}, generated in "
+              f"{time.perf_counter() - t0:.1f} s")
+    rhs = rhs_by_solver[solvers[0]]
 
     lay = Layout(coordinates, speeds)
     par = parameter_values(BENCH)
@@ -328,14 +341,20 @@ def main():
     # Right-hand sides per second at the state of whipple's `nonlinear forward` bench.
     x_bench = consistent_state(helpers, lay, par, lean=0.1, steer=0.05, lean_rate=0.5,
                                steer_rate=-0.2, speed=4.6)
-    calls, best = 100_000, math.inf
-    for _ in range(5):
-        t0 = time.perf_counter()
-        for _ in range(calls):
-            rhs(x_bench, 0.0, par)
-        best = min(best, time.perf_counter() - t0)
-    print(f"RHS: {best / calls * 1e6:.2f} us per call, {calls / best:,.0f} right-hand sides/s "
-          f"(best of 5 x {calls:,} calls)")
+    calls = 100_000
+    for solver, f in rhs_by_solver.items():
+        best = math.inf
+        for _ in range(5):
+            t0 = time.perf_counter()
+            for _ in range(calls):
+                f(x_bench, 0.0, par)
+            best = min(best, time.perf_counter() - t0)
+        print(f"RHS ({generator}, linear_sys_solver={solver!r}): {best / calls * 1e6:.2f} us "
+              f"per call, {calls / best:,.0f} right-hand sides/s (best of 5 x {calls:,} calls)")
+    if len(rhs_by_solver) > 1:
+        d = np.max(np.abs(rhs_by_solver["sympy"](x_bench, 0.0, par)
+                          - rhs_by_solver["numpy"](x_bench, 0.0, par)))
+        print(f"  the two agree to {d:.1e}")
 
     # The 10 s run: upright, 4.6 m/s, lean rate 0.5 rad/s.
     x0 = consistent_state(helpers, lay, par, lean=0.0, steer=0.0, lean_rate=0.5,

@@ -423,3 +423,13 @@ pub fn draw(arg: &str, out: &Path) -> Result<()> {
     let bike = load(arg)?;
     crate::figures::side_view(&bike, out)
 }
+
+pub fn serve(address: std::net::IpAddr, port: u16, open: bool) -> Result<()> {
+    whipple_web::run(whipple_web::ServeOptions {
+        address,
+        port,
+        open,
+        ..whipple_web::ServeOptions::default()
+    })
+    .context("whipple serve")
+}

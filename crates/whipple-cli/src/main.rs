@@ -132,6 +132,18 @@ enum Command {
     },
     /// Simulate the fully non-linear bicycle from a few initial numbers.
     Simulate(simulate::SimulateArgs),
+    /// Serve JBike6's window in the browser: a local page and JSON API (Ctrl-C to stop).
+    Serve {
+        /// Port to listen on (0 picks a free one).
+        #[arg(long, default_value_t = 8080)]
+        port: u16,
+        /// Address to listen on; the default serves this machine only.
+        #[arg(long, default_value = "127.0.0.1")]
+        address: std::net::IpAddr,
+        /// Open the page in the system's browser.
+        #[arg(long)]
+        open: bool,
+    },
     /// JBike6's stylized side view of the bicycle.
     Draw {
         /// A preset name or a parameter file (.toml, .json, .m).
@@ -178,6 +190,11 @@ fn main() -> ExitCode {
         } => commands::speeds(&bike, &range, format),
         Command::Draw { bike, out } => commands::draw(&bike, &out),
         Command::Simulate(args) => simulate::run(&args),
+        Command::Serve {
+            port,
+            address,
+            open,
+        } => commands::serve(address, port, open),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

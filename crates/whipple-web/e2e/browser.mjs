@@ -1,0 +1,51 @@
+// Headless Chromium through playwright-core, never downloading a browser of its own.
+// playwright-core is found in WHIPPLE_WEB_NODE_MODULES (set by the Rust test from build.rs's
+// npm install) or, failing that, in ../web/node_modules.
+import { createRequire } from "node:module";
+import { existsSync, mkdtempSync, rmSync } from "node:fs";
+import { join, resolve } from "node:path";
+import { tmpdir } from "node:os";
+import { fileURLToPath } from "node:url";
+
+const here = fileURLToPath(new URL(".", import.meta.url));
+
+function loadPlaywright() {
+  const places = [process.env.WHIPPLE_WEB_NODE_MODULES, join(here, "..", "web", "node_modules")].filter(Boolean);
+  for (const dir of places) {
+    if (existsSync(join(dir, "playwright-core"))) return createRequire(join(resolve(dir), "noop.js"))("playwright-core");
+  }
+  throw new Error(`playwright-core not found in ${places.join(" or ")}; run npm ci in crates/whipple-web/web`);
+}
+
+export const CHROMIUM = process.env.CHROMIUM ?? "/usr/bin/chromium";
+
+/** Starts headless Chromium with a fresh profile; returns {browser, close}. */
+export async function launch() {
+  const { chromium } = loadPlaywright();
+  const profile = mkdtempSync(join(tmpdir(), "whipple-e2e-"));
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath: CHROMIUM,
+    headless: true,
+    viewport: { width: 1440, height: 900 },
+    deviceScaleFactor: 1,
+    acceptDownloads: true,
+    timeout: 30_000,
+    args: [
+      "--no-sandbox",
+      "--disable-gpu",
+      "--disable-quic",
+      "--no-first-run",
+      "--disable-background-networking",
+      "--disable-component-update",
+      "--disable-sync",
+      "--disable-dev-shm-usage",
+    ],
+  });
+  return {
+    context,
+    close: async () => {
+      await context.close().catch(() => {});
+      rmSync(profile, { recursive: true, force: true });
+    },
+  };
+}

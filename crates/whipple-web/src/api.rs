@@ -1,0 +1,551 @@
+//! The router: the page, its assets and the JSON API described in `openapi.json`.
+//!
+//! Bicycles travel as the JSON layout of the parameter files (`{"name", "source",
+//! "benchmark": {...}}` or `{..., "jbike6": {...}}`) and are read and written by
+//! `whipple::parameters::io`, so the API, the CLI and the files agree on every key and rule.
+
+use std::sync::Arc;
+
+use axum::body::Bytes;
+use axum::extract::rejection::BytesRejection;
+use axum::extract::{DefaultBodyLimit, Path, Request, State};
+use axum::http::{header, HeaderValue, StatusCode};
+use axum::middleware::{self, Next};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use axum::{Json, Router};
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use tokio::sync::Semaphore;
+use whipple::analysis::stability::{critical_speeds, CriticalSpeeds};
+use whipple::analysis::sweep::{eigen_sweep, speed_grid};
+use whipple::linear::Canonical;
+use whipple::parameters::io::{self, Format};
+use whipple::parameters::presets::{self, PRESETS};
+use whipple::{Bicycle, Description};
+
+use crate::error::{quoted_field, ApiError};
+use crate::geometry::{side_view, SideView};
+use crate::{assets, Limits};
+
+/// The OpenAPI 3 description of every `/api` route (served at `/api/openapi.json`).
+pub const OPENAPI: &str = include_str!("openapi.json");
+
+#[derive(Clone)]
+struct AppState {
+    limits: Limits,
+    computing: Arc<Semaphore>,
+}
+
+/// The whole application: page, assets and API, with the body-size limit, the request timeout
+/// and JSON errors for unknown paths and methods.
+pub fn app(limits: Limits) -> Router {
+    let state = AppState {
+        limits,
+        computing: Arc::new(Semaphore::new(limits.max_concurrent_computations.max(1))),
+    };
+    Router::new()
+        .route("/", get(assets::index))
+        .route("/assets/app.js", get(assets::app_js))
+        .route("/assets/app.css", get(assets::app_css))
+        .route("/api/health", get(health))
+        .route("/api/openapi.json", get(openapi))
+        .route("/api/presets", get(list_presets))
+        .route("/api/presets/{name}", get(get_preset))
+        .route("/api/bike/validate", post(validate))
+        .route("/api/bike/toml", post(to_toml))
+        .route("/api/bike/parse", post(parse_file))
+        .route("/api/eigen", post(eigen))
+        .route("/api/speeds", post(speeds))
+        .fallback(not_found)
+        .method_not_allowed_fallback(method_not_allowed)
+        .layer(DefaultBodyLimit::max(limits.max_body_bytes))
+        .layer(middleware::from_fn_with_state(state.clone(), guard))
+        .with_state(state)
+}
+
+/// Bounds each request's total time (408) and marks every answer `nosniff`.
+async fn guard(State(state): State<AppState>, request: Request, next: Next) -> Response {
+    let limit = state.limits.request_timeout;
+    let mut response = match tokio::time::timeout(limit, next.run(request)).await {
+        Ok(response) => response,
+        Err(_) => ApiError::new(
+            StatusCode::REQUEST_TIMEOUT,
+            "timeout",
+            format!(
+                "the request took longer than the server's limit of {} s",
+                limit.as_secs_f64()
+            ),
+        )
+        .into_response(),
+    };
+    response.headers_mut().insert(
+        header::X_CONTENT_TYPE_OPTIONS,
+        HeaderValue::from_static("nosniff"),
+    );
+    response
+}
+
+async fn not_found(request: Request) -> ApiError {
+    ApiError::new(
+        StatusCode::NOT_FOUND,
+        "not_found",
+        format!(
+            "no such page or endpoint: {} (the API is described at /api/openapi.json)",
+            request.uri().path()
+        ),
+    )
+}
+
+async fn method_not_allowed(request: Request) -> ApiError {
+    ApiError::new(
+        StatusCode::METHOD_NOT_ALLOWED,
+        "method_not_allowed",
+        format!(
+            "{} is not allowed on {} (see /api/openapi.json)",
+            request.method(),
+            request.uri().path()
+        ),
+    )
+}
+
+/// Reads a JSON body: 413 past the size limit, 400 when it is not JSON, 422 when it is JSON of
+/// the wrong shape.
+fn json_body<T: DeserializeOwned>(body: Result<Bytes, BytesRejection>) -> Result<T, ApiError> {
+    let bytes = body.map_err(|rejection| {
+        if rejection.status() == StatusCode::PAYLOAD_TOO_LARGE {
+            ApiError::new(
+                StatusCode::PAYLOAD_TOO_LARGE,
+                "too_large",
+                "the request body is larger than the server's limit",
+            )
+        } else {
+            ApiError::new(
+                StatusCode::BAD_REQUEST,
+                "bad_request",
+                rejection.body_text(),
+            )
+        }
+    })?;
+    serde_json::from_slice(&bytes).map_err(|e| {
+        use serde_json::error::Category;
+        match e.classify() {
+            Category::Data => {
+                let what = strip_position(&e.to_string());
+                let mut error = ApiError::new(
+                    StatusCode::UNPROCESSABLE_ENTITY,
+                    "invalid_request",
+                    format!("the request does not have the documented shape: {what}"),
+                );
+                error.body.field = quoted_field(&what);
+                error.body.rule = Some(what);
+                error
+            }
+            Category::Syntax | Category::Eof | Category::Io => ApiError::new(
+                StatusCode::BAD_REQUEST,
+                "bad_json",
+                format!("the request body is not valid JSON: {e}"),
+            ),
+        }
+    })
+}
+
+fn strip_position(message: &str) -> String {
+    match message.rfind(" at line ") {
+        Some(p) => message[..p].to_string(),
+        None => message.to_string(),
+    }
+}
+
+/// Reads a bicycle in the files' JSON layout through the library's reader.
+fn bicycle(value: &Value) -> Result<Bicycle, ApiError> {
+    let text = serde_json::to_string(value).map_err(|e| ApiError::internal(e.to_string()))?;
+    io::parse(&text, Format::Json).map_err(|e| {
+        let mut error = ApiError::from(e);
+        // Positions refer to the re-serialized text, not to anything the client sent.
+        error.body.line = None;
+        error.body.column = None;
+        error
+    })
+}
+
+/// A bicycle in the files' JSON layout.
+fn bicycle_json(bike: &Bicycle) -> Result<Value, ApiError> {
+    let text = io::write(bike, Format::Json)?;
+    serde_json::from_str(&text).map_err(|e| ApiError::internal(e.to_string()))
+}
+
+/// Runs CPU-heavy work on the blocking pool, a bounded number at a time, within the limits.
+async fn compute<T: Send + 'static>(
+    state: &AppState,
+    work: impl FnOnce() -> Result<T, ApiError> + Send + 'static,
+) -> Result<T, ApiError> {
+    let limits = state.limits;
+    let permit = tokio::time::timeout(
+        limits.queue_timeout,
+        state.computing.clone().acquire_owned(),
+    )
+    .await
+    .map_err(|_| {
+        ApiError::new(
+            StatusCode::SERVICE_UNAVAILABLE,
+            "busy",
+            format!(
+                "the server is busy: no computing slot came free within {} s; try again",
+                limits.queue_timeout.as_secs_f64()
+            ),
+        )
+    })?
+    .map_err(|_| ApiError::internal("the computing pool is closed"))?;
+    let task = tokio::task::spawn_blocking(move || {
+        // The slot stays taken until the work ends, even if the client has gone.
+        let _permit = permit;
+        work()
+    });
+    match tokio::time::timeout(limits.compute_timeout, task).await {
+        Ok(Ok(result)) => result,
+        Ok(Err(join)) => Err(ApiError::internal(format!(
+            "the computation failed: {join}"
+        ))),
+        Err(_) => Err(ApiError::new(
+            StatusCode::SERVICE_UNAVAILABLE,
+            "timeout",
+            format!(
+                "the computation took longer than the server's limit of {} s; ask for fewer speeds",
+                limits.compute_timeout.as_secs_f64()
+            ),
+        )),
+    }
+}
+
+#[derive(Serialize)]
+struct Health {
+    status: &'static str,
+    version: &'static str,
+}
+
+async fn health() -> Json<Health> {
+    Json(Health {
+        status: "ok",
+        version: env!("CARGO_PKG_VERSION"),
+    })
+}
+
+async fn openapi() -> Response {
+    (
+        [(header::CONTENT_TYPE, "application/json")],
+        OPENAPI.to_string(),
+    )
+        .into_response()
+}
+
+#[derive(Serialize)]
+struct PresetSummary {
+    name: &'static str,
+    summary: &'static str,
+    source: &'static str,
+    form: &'static str,
+}
+
+fn form_name(description: &Description) -> &'static str {
+    match description {
+        Description::Benchmark(_) => "benchmark",
+        Description::Jbike6(_) => "jbike6",
+    }
+}
+
+async fn list_presets() -> Json<Vec<PresetSummary>> {
+    Json(
+        PRESETS
+            .iter()
+            .map(|p| PresetSummary {
+                name: p.name,
+                summary: p.summary,
+                source: p.source,
+                form: form_name(&(p.description)()),
+            })
+            .collect(),
+    )
+}
+
+async fn get_preset(Path(name): Path<String>) -> Result<Json<Value>, ApiError> {
+    let preset = presets::find(&name)?;
+    Ok(Json(bicycle_json(&preset.bicycle())?))
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BikeRequest {
+    bike: Value,
+}
+
+#[derive(Serialize)]
+struct Derived {
+    /// Steer axis tilt λ [deg].
+    steer_axis_tilt_deg: f64,
+    /// Head angle from the horizontal, 90° − λ [deg].
+    head_angle_deg: f64,
+    /// Total mass [kg].
+    total_mass: f64,
+}
+
+#[derive(Serialize)]
+struct Validated {
+    name: Option<String>,
+    form: &'static str,
+    benchmark: whipple::BenchmarkParameters,
+    derived: Derived,
+    side_view: SideView,
+}
+
+async fn validate(body: Result<Bytes, BytesRejection>) -> Result<Json<Validated>, ApiError> {
+    let request: BikeRequest = json_body(body)?;
+    let bike = bicycle(&request.bike)?;
+    let benchmark = bike.benchmark()?;
+    let view = side_view(&bike, &benchmark);
+    Ok(Json(Validated {
+        name: bike.name.clone(),
+        form: form_name(&bike.description),
+        derived: Derived {
+            steer_axis_tilt_deg: benchmark.lambda.to_degrees(),
+            head_angle_deg: 90.0 - benchmark.lambda.to_degrees(),
+            total_mass: view.total_mass,
+        },
+        benchmark,
+        side_view: view,
+    }))
+}
+
+#[derive(Serialize)]
+struct TomlText {
+    toml: String,
+}
+
+async fn to_toml(body: Result<Bytes, BytesRejection>) -> Result<Json<TomlText>, ApiError> {
+    let request: BikeRequest = json_body(body)?;
+    let bike = bicycle(&request.bike)?;
+    Ok(Json(TomlText {
+        toml: io::write(&bike, Format::Toml)?,
+    }))
+}
+
+#[derive(Deserialize, Clone, Copy)]
+#[serde(rename_all = "lowercase")]
+enum FileFormat {
+    Toml,
+    Json,
+    M,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ParseRequest {
+    text: String,
+    format: FileFormat,
+}
+
+#[derive(Serialize)]
+struct Parsed {
+    bike: Value,
+}
+
+async fn parse_file(body: Result<Bytes, BytesRejection>) -> Result<Json<Parsed>, ApiError> {
+    let request: ParseRequest = json_body(body)?;
+    let format = match request.format {
+        FileFormat::Toml => Format::Toml,
+        FileFormat::Json => Format::Json,
+        FileFormat::M => Format::Jbike6M,
+    };
+    let bike = io::parse(&request.text, format)?;
+    Ok(Json(Parsed {
+        bike: bicycle_json(&bike)?,
+    }))
+}
+
+#[derive(Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+struct SpeedGrid {
+    start: f64,
+    stop: f64,
+    step: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct EigenRequest {
+    bike: Value,
+    speeds: SpeedGrid,
+}
+
+#[derive(Serialize)]
+struct EigenColumn {
+    mode: &'static str,
+    re: Vec<f64>,
+    im: Vec<f64>,
+}
+
+#[derive(Serialize)]
+struct EigenResponse {
+    name: Option<String>,
+    speeds: Vec<f64>,
+    eigenvalues: Vec<EigenColumn>,
+    critical: Option<CriticalSpeeds>,
+}
+
+/// Checks the grid's size before building it, so that no huge vector is ever allocated.
+fn check_grid(grid: SpeedGrid, max_speeds: usize) -> Result<(), ApiError> {
+    let SpeedGrid { start, stop, step } = grid;
+    if start.is_finite() && stop.is_finite() && step.is_finite() && step > 0.0 && stop >= start {
+        // Counted as `speed_grid` counts (it includes STOP when on the grid to round-off).
+        let count = ((stop - start) / step * (1.0 + 1e-12) + 1e-9).floor() + 1.0;
+        if count > max_speeds as f64 {
+            return Err(ApiError::new(
+                StatusCode::UNPROCESSABLE_ENTITY,
+                "limit_exceeded",
+                format!(
+                    "{start}:{stop}:{step} holds {count} speeds, more than this server's limit of {max_speeds} per request; use a larger step"
+                ),
+            )
+            .at(
+                "speeds",
+                format!("at most {max_speeds} speeds per request"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+async fn eigen(
+    State(state): State<AppState>,
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Json<EigenResponse>, ApiError> {
+    let request: EigenRequest = json_body(body)?;
+    let bike = bicycle(&request.bike)?;
+    let grid = request.speeds;
+    check_grid(grid, state.limits.max_speeds)?;
+    let response = compute(&state, move || {
+        let benchmark = bike.benchmark()?;
+        let canonical = Canonical::new(&benchmark)?;
+        let speeds = speed_grid(grid.start, grid.stop, grid.step)?;
+        let sweep = eigen_sweep(&canonical, &speeds)?;
+        let (lo, hi) = (
+            speeds.first().copied().unwrap_or(grid.start),
+            speeds.last().copied().unwrap_or(grid.stop),
+        );
+        let critical = if hi > lo {
+            Some(critical_speeds(&canonical, lo, hi)?)
+        } else {
+            None
+        };
+        let eigenvalues = (0..4)
+            .map(|k| EigenColumn {
+                mode: sweep.modes[k].name(),
+                re: sweep.eigenvalues.iter().map(|row| row[k].re).collect(),
+                im: sweep.eigenvalues.iter().map(|row| row[k].im).collect(),
+            })
+            .collect();
+        Ok(EigenResponse {
+            name: bike.name.clone(),
+            speeds: sweep.speeds,
+            eigenvalues,
+            critical,
+        })
+    })
+    .await?;
+    Ok(Json(response))
+}
+
+#[derive(Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+struct SpeedRange {
+    lo: f64,
+    hi: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SpeedsRequest {
+    bike: Value,
+    range: SpeedRange,
+}
+
+async fn speeds(
+    State(state): State<AppState>,
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Json<CriticalSpeeds>, ApiError> {
+    let request: SpeedsRequest = json_body(body)?;
+    let bike = bicycle(&request.bike)?;
+    let range = request.range;
+    let result = compute(&state, move || {
+        let canonical = Canonical::new(&bike.benchmark()?)?;
+        Ok(critical_speeds(&canonical, range.lo, range.hi)?)
+    })
+    .await?;
+    Ok(Json(result))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every route under /api is in the OpenAPI document and every documented path is routed.
+    #[test]
+    fn openapi_lists_exactly_the_routes() -> Result<(), serde_json::Error> {
+        let doc: Value = serde_json::from_str(OPENAPI)?;
+        assert_eq!(doc["openapi"].as_str().map(|v| &v[..2]), Some("3."));
+        let mut documented: Vec<String> = doc["paths"]
+            .as_object()
+            .map(|paths| paths.keys().cloned().collect())
+            .unwrap_or_default();
+        documented.sort();
+        let mut routed = vec![
+            "/api/health",
+            "/api/openapi.json",
+            "/api/presets",
+            "/api/presets/{name}",
+            "/api/bike/validate",
+            "/api/bike/toml",
+            "/api/bike/parse",
+            "/api/eigen",
+            "/api/speeds",
+        ];
+        routed.sort();
+        assert_eq!(documented, routed);
+        Ok(())
+    }
+
+    /// The page calls only endpoints the OpenAPI document describes.
+    #[test]
+    fn page_uses_only_documented_endpoints() -> Result<(), serde_json::Error> {
+        let doc: Value = serde_json::from_str(OPENAPI)?;
+        let paths: Vec<String> = doc["paths"]
+            .as_object()
+            .map(|p| p.keys().cloned().collect())
+            .unwrap_or_default();
+        let script = assets::APP_JS;
+        let mut used = Vec::new();
+        let mut rest = script;
+        while let Some(at) = rest.find("/api/") {
+            let tail = &rest[at..];
+            let end = tail
+                .find(|c: char| !(c.is_ascii_alphanumeric() || "/._-".contains(c)))
+                .unwrap_or(tail.len());
+            used.push(tail[..end].to_string());
+            rest = &tail[end..];
+        }
+        assert!(used.len() >= 6, "found {used:?}");
+        for path in used {
+            let documented = paths.iter().any(|p| match p.find('{') {
+                // A templated path: the script builds it from its fixed prefix.
+                Some(brace) => path == p[..brace],
+                None => path == *p,
+            });
+            assert!(
+                documented,
+                "the page calls {path}, which openapi.json does not describe"
+            );
+        }
+        Ok(())
+    }
+}

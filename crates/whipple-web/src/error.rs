@@ -1,0 +1,135 @@
+//! The API's one error shape: `{"error": {"kind", "message", "field", "rule", ...}}` with the
+//! HTTP status that fits, built from the library's typed errors where they are the cause.
+
+use axum::http::StatusCode;
+use axum::response::{IntoResponse, Response};
+use serde::Serialize;
+use whipple::Error;
+
+/// An error answered to a client: status code plus the JSON body's fields (boxed, so that
+/// `Result<_, ApiError>` stays small).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ApiError {
+    /// HTTP status.
+    pub status: StatusCode,
+    /// What the body says.
+    pub body: Box<ErrorBody>,
+}
+
+/// The `error` object of an error response.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ErrorBody {
+    /// Machine-readable kind (`invalid_parameter`, `invalid_bicycle`, `parse`, `bad_json`,
+    /// `invalid_request`, `limit_exceeded`, `too_large`, `unknown_preset`, `not_found`,
+    /// `method_not_allowed`, `timeout`, `busy`, `numerical`, `internal`).
+    pub kind: &'static str,
+    /// The whole message, for people.
+    pub message: String,
+    /// The parameter or argument at fault, as written in files (`mB`, `mrider`,
+    /// `Irider(1)`, `speeds`); several comma separated for a rule on a combination; null when
+    /// none.
+    pub field: Option<String>,
+    /// The rule broken, in words; null when none.
+    pub rule: Option<String>,
+    /// The offending value, when one number is at fault.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub value: Option<f64>,
+    /// Line of a parse error in a parameter file (1-based).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub line: Option<usize>,
+    /// Column of a parse error in a parameter file (1-based).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub column: Option<usize>,
+}
+
+impl ApiError {
+    /// An error with a kind and message only.
+    pub fn new(status: StatusCode, kind: &'static str, message: impl Into<String>) -> Self {
+        ApiError {
+            status,
+            body: Box::new(ErrorBody {
+                kind,
+                message: message.into(),
+                field: None,
+                rule: None,
+                value: None,
+                line: None,
+                column: None,
+            }),
+        }
+    }
+
+    /// The same error naming the field at fault and the rule broken.
+    pub fn at(mut self, field: impl Into<String>, rule: impl Into<String>) -> Self {
+        self.body.field = Some(field.into());
+        self.body.rule = Some(rule.into());
+        self
+    }
+
+    pub(crate) fn internal(message: impl Into<String>) -> Self {
+        ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "internal", message)
+    }
+}
+
+impl From<Error> for ApiError {
+    fn from(error: Error) -> Self {
+        let message = error.to_string();
+        let unprocessable = StatusCode::UNPROCESSABLE_ENTITY;
+        match error {
+            Error::InvalidParameter { field, value, rule } => {
+                let mut e =
+                    ApiError::new(unprocessable, "invalid_parameter", message).at(field, rule);
+                e.body.value = value.is_finite().then_some(value);
+                e
+            }
+            Error::InvalidBicycle { fields, rule } => {
+                ApiError::new(unprocessable, "invalid_bicycle", message).at(fields, rule)
+            }
+            Error::Parse {
+                line,
+                column,
+                message: what,
+                ..
+            } => {
+                let mut e = ApiError::new(unprocessable, "parse", message);
+                e.body.field = quoted_field(&what);
+                e.body.rule = Some(what);
+                e.body.line = (line > 0).then_some(line);
+                e.body.column = (column > 0).then_some(column);
+                e
+            }
+            Error::UnknownPreset { name, .. } => {
+                ApiError::new(StatusCode::NOT_FOUND, "unknown_preset", message)
+                    .at("name", format!("no preset is called `{name}`"))
+            }
+            Error::InvalidArgument { what, rule } => {
+                ApiError::new(unprocessable, "invalid_argument", message).at(what, rule)
+            }
+            Error::NoConvergence { .. } | Error::NonFinite { .. } => {
+                ApiError::new(unprocessable, "numerical", message)
+            }
+            _ => ApiError::internal(message),
+        }
+    }
+}
+
+/// The field named in serde's "missing field `x`" / "unknown field `x`" messages.
+pub(crate) fn quoted_field(message: &str) -> Option<String> {
+    for prefix in ["missing field `", "unknown field `", "duplicate field `"] {
+        if let Some(rest) = message.strip_prefix(prefix) {
+            return rest.split('`').next().map(str::to_string);
+        }
+    }
+    None
+}
+
+#[derive(Serialize)]
+struct Envelope<'a> {
+    error: &'a ErrorBody,
+}
+
+impl IntoResponse for ApiError {
+    fn into_response(self) -> Response {
+        (self.status, axum::Json(Envelope { error: &self.body })).into_response()
+    }
+}

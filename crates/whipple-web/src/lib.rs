@@ -1,0 +1,214 @@
+//! # whipple-web
+//!
+//! `whipple serve`: JBike6's window in the browser. A local web server that serves one page
+//! (a bike picker, a parameter editor, the side view, eigenvalues against speed) and the JSON
+//! API the page uses, described by the OpenAPI 3 document at `/api/openapi.json`.
+//!
+//! The page is bundled at build time (see `build.rs`) and embedded in the binary, so serving it
+//! needs nothing at run time. Every answer is computed by the `whipple` library; CPU-heavy
+//! requests run on the blocking pool, a bounded number at a time, under [`Limits`].
+//!
+//! ```no_run
+//! use whipple_web::{run, ServeOptions};
+//! // Serves http://127.0.0.1:8080 until Ctrl-C.
+//! run(ServeOptions { port: 8080, ..ServeOptions::default() })?;
+//! # Ok::<(), whipple_web::ServeError>(())
+//! ```
+#![warn(missing_docs)]
+
+mod api;
+mod assets;
+mod error;
+pub mod geometry;
+
+use std::future::Future;
+use std::net::{IpAddr, Ipv4Addr, SocketAddr};
+use std::time::Duration;
+
+pub use api::app;
+pub use error::{ApiError, ErrorBody};
+
+/// Bounds that keep the server responsive whatever it is asked.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    /// Largest request body accepted, in bytes (default 1 MiB); larger bodies get 413.
+    pub max_body_bytes: usize,
+    /// Most speeds in one eigenvalue sweep (default 100,000); more get 422.
+    pub max_speeds: usize,
+    /// Longest time a whole request may take, reading the body included (default 30 s); then 408.
+    pub request_timeout: Duration,
+    /// Longest time one computation may run (default 10 s); then 503.
+    pub compute_timeout: Duration,
+    /// Longest wait for a free computing slot (default 10 s); then 503.
+    pub queue_timeout: Duration,
+    /// Computations run at once on the blocking pool (default: the number of CPUs, at least 2).
+    pub max_concurrent_computations: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits {
+            max_body_bytes: 1 << 20,
+            max_speeds: 100_000,
+            request_timeout: Duration::from_secs(30),
+            compute_timeout: Duration::from_secs(10),
+            queue_timeout: Duration::from_secs(10),
+            max_concurrent_computations: std::thread::available_parallelism()
+                .map_or(2, |n| n.get())
+                .max(2),
+        }
+    }
+}
+
+/// Where and how to serve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ServeOptions {
+    /// Address to listen on (default 127.0.0.1, reachable from this machine only).
+    pub address: IpAddr,
+    /// Port to listen on (default 8080; 0 picks a free one).
+    pub port: u16,
+    /// Open the page in the system's browser once listening (default false).
+    pub open: bool,
+    /// Bounds on requests (see [`Limits`]).
+    pub limits: Limits,
+}
+
+impl Default for ServeOptions {
+    fn default() -> Self {
+        ServeOptions {
+            address: IpAddr::V4(Ipv4Addr::LOCALHOST),
+            port: 8080,
+            open: false,
+            limits: Limits::default(),
+        }
+    }
+}
+
+/// What can stop the server.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ServeError {
+    /// The address could not be bound (in use, not local, not permitted).
+    #[error("cannot listen on {address}")]
+    Bind {
+        /// The address asked for.
+        address: SocketAddr,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The async runtime could not be started.
+    #[error("cannot start the async runtime")]
+    Runtime(#[source] std::io::Error),
+    /// Serving failed after start.
+    #[error("the server failed")]
+    Serve(#[source] std::io::Error),
+}
+
+/// A bound, not yet serving, server: bind first to learn the port (for `port: 0`).
+#[derive(Debug)]
+pub struct Server {
+    listener: tokio::net::TcpListener,
+    limits: Limits,
+    address: SocketAddr,
+}
+
+impl Server {
+    /// Binds the listening socket.
+    pub async fn bind(options: &ServeOptions) -> Result<Server, ServeError> {
+        let wanted = SocketAddr::new(options.address, options.port);
+        let listener = tokio::net::TcpListener::bind(wanted)
+            .await
+            .map_err(|source| ServeError::Bind {
+                address: wanted,
+                source,
+            })?;
+        let address = listener.local_addr().map_err(|source| ServeError::Bind {
+            address: wanted,
+            source,
+        })?;
+        Ok(Server {
+            listener,
+            limits: options.limits,
+            address,
+        })
+    }
+
+    /// The address actually bound.
+    pub fn local_addr(&self) -> SocketAddr {
+        self.address
+    }
+
+    /// The page's address, `http://IP:PORT/`.
+    pub fn url(&self) -> String {
+        format!("http://{}/", self.address)
+    }
+
+    /// Serves until `shutdown` completes, then finishes the requests under way.
+    pub async fn serve_until(
+        self,
+        shutdown: impl Future<Output = ()> + Send + 'static,
+    ) -> Result<(), ServeError> {
+        axum::serve(self.listener, app(self.limits))
+            .with_graceful_shutdown(shutdown)
+            .await
+            .map_err(ServeError::Serve)
+    }
+}
+
+/// Binds, says where on standard error, opens the browser when asked, and serves until Ctrl-C.
+pub async fn serve(options: ServeOptions) -> Result<(), ServeError> {
+    let server = Server::bind(&options).await?;
+    let url = server.url();
+    eprintln!("whipple serve: the page is at {url} (Ctrl-C to stop)");
+    if !options.address.is_loopback() {
+        eprintln!(
+            "whipple serve: warning: listening on {}, which other machines may reach",
+            options.address
+        );
+    }
+    if options.open {
+        open_browser(&url);
+    }
+    server
+        .serve_until(async {
+            // If Ctrl-C cannot be listened for, serve until killed.
+            if tokio::signal::ctrl_c().await.is_err() {
+                std::future::pending::<()>().await;
+            }
+        })
+        .await
+}
+
+/// [`serve`] on a new multi-threaded runtime, blocking until Ctrl-C.
+pub fn run(options: ServeOptions) -> Result<(), ServeError> {
+    tokio::runtime::Builder::new_multi_thread()
+        .enable_all()
+        .build()
+        .map_err(ServeError::Runtime)?
+        .block_on(serve(options))
+}
+
+/// Asks the desktop to open `url`; reports on standard error when it cannot.
+fn open_browser(url: &str) {
+    let mut command = if cfg!(target_os = "macos") {
+        std::process::Command::new("open")
+    } else if cfg!(windows) {
+        let mut c = std::process::Command::new("cmd");
+        c.args(["/C", "start", ""]);
+        c
+    } else {
+        std::process::Command::new("xdg-open")
+    };
+    command
+        .arg(url)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null());
+    match command.spawn() {
+        // Reap the opener when it exits, so that it leaves no zombie behind.
+        Ok(mut child) => {
+            std::thread::spawn(move || child.wait());
+        }
+        Err(e) => eprintln!("whipple serve: could not open a browser ({e}); open {url} yourself"),
+    }
+}

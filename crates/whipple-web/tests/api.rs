@@ -1,0 +1,493 @@
+//! Every endpoint of the API through the router (no socket): answers, errors and limits.
+
+use std::time::Duration;
+
+use axum::body::Body;
+use axum::http::{header, Method, Request, StatusCode};
+use axum::Router;
+use http_body_util::BodyExt;
+use serde_json::{json, Value};
+use tower::ServiceExt;
+use whipple::parameters::io::{write, Format};
+use whipple::parameters::presets;
+use whipple_web::{app, Limits};
+
+type TestResult = Result<(), Box<dyn std::error::Error>>;
+
+/// Sends one request; returns the status, the content type and the body as text.
+async fn send(
+    app: &Router,
+    method: Method,
+    path: &str,
+    body: Option<String>,
+) -> Result<(StatusCode, String, String), Box<dyn std::error::Error>> {
+    let request = Request::builder()
+        .method(method)
+        .uri(path)
+        .header(header::CONTENT_TYPE, "application/json")
+        .body(body.map_or_else(Body::empty, Body::from))?;
+    let response = app.clone().oneshot(request).await?;
+    let status = response.status();
+    let content_type = response
+        .headers()
+        .get(header::CONTENT_TYPE)
+        .and_then(|v| v.to_str().ok())
+        .unwrap_or("")
+        .to_string();
+    let bytes = response.into_body().collect().await?.to_bytes();
+    Ok((status, content_type, String::from_utf8(bytes.to_vec())?))
+}
+
+async fn get(app: &Router, path: &str) -> Result<(StatusCode, Value), Box<dyn std::error::Error>> {
+    let (status, _, text) = send(app, Method::GET, path, None).await?;
+    Ok((status, serde_json::from_str(&text)?))
+}
+
+async fn post(
+    app: &Router,
+    path: &str,
+    body: &Value,
+) -> Result<(StatusCode, Value), Box<dyn std::error::Error>> {
+    let (status, _, text) = send(app, Method::POST, path, Some(body.to_string())).await?;
+    Ok((status, serde_json::from_str(&text)?))
+}
+
+fn preset_json(name: &str) -> Result<Value, Box<dyn std::error::Error>> {
+    let text = write(&presets::find(name)?.bicycle(), Format::Json)?;
+    Ok(serde_json::from_str(&text)?)
+}
+
+fn approx(value: &Value, expected: f64, tolerance: f64) -> bool {
+    value
+        .as_f64()
+        .is_some_and(|v| (v - expected).abs() <= tolerance)
+}
+
+#[tokio::test]
+async fn health_and_openapi() -> TestResult {
+    let app = app(Limits::default());
+    let (status, body) = get(&app, "/api/health").await?;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(body["status"], "ok");
+    let (status, doc) = get(&app, "/api/openapi.json").await?;
+    assert_eq!(status, StatusCode::OK);
+    assert!(doc["openapi"].as_str().is_some_and(|v| v.starts_with("3.")));
+    assert!(doc["paths"]["/api/eigen"]["post"].is_object());
+    Ok(())
+}
+
+#[tokio::test]
+async fn page_and_assets_are_served() -> TestResult {
+    let app = app(Limits::default());
+    let (status, content_type, html) = send(&app, Method::GET, "/", None).await?;
+    assert_eq!(status, StatusCode::OK);
+    assert!(content_type.starts_with("text/html"));
+    assert!(html.contains("/assets/app.js") && html.contains("/assets/app.css"));
+    let (status, content_type, js) = send(&app, Method::GET, "/assets/app.js", None).await?;
+    assert_eq!(status, StatusCode::OK);
+    assert!(content_type.starts_with("text/javascript"));
+    assert!(js.contains("/api/eigen"));
+    let (status, content_type, _) = send(&app, Method::GET, "/assets/app.css", None).await?;
+    assert_eq!(status, StatusCode::OK);
+    assert!(content_type.starts_with("text/css"));
+    Ok(())
+}
+
+#[tokio::test]
+async fn presets_listed_and_fetched() -> TestResult {
+    let app = app(Limits::default());
+    let (status, list) = get(&app, "/api/presets").await?;
+    assert_eq!(status, StatusCode::OK);
+    let names: Vec<&str> = list
+        .as_array()
+        .map(|a| a.iter().filter_map(|p| p["name"].as_str()).collect())
+        .unwrap_or_default();
+    assert_eq!(names.len(), presets::PRESETS.len());
+    assert!(list.as_array().is_some_and(|a| a
+        .iter()
+        .any(|p| p["name"] == "schwinn-crown" && p["form"] == "jbike6")));
+    let (status, crown) = get(&app, "/api/presets/schwinn-crown").await?;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(crown, preset_json("schwinn-crown")?);
+    let (status, error) = get(&app, "/api/presets/penny-farthing").await?;
+    assert_eq!(status, StatusCode::NOT_FOUND);
+    assert_eq!(error["error"]["kind"], "unknown_preset");
+    assert!(error["error"]["message"]
+        .as_str()
+        .is_some_and(|m| m.contains("schwinn-crown")));
+    Ok(())
+}
+
+#[tokio::test]
+async fn validate_converts_and_draws() -> TestResult {
+    let app = app(Limits::default());
+    let (status, body) = post(
+        &app,
+        "/api/bike/validate",
+        &json!({"bike": preset_json("schwinn-crown")?}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(body["form"], "jbike6");
+    assert!(approx(&body["benchmark"]["w"], 1.016, 0.0));
+    assert!(approx(&body["benchmark"]["mB"], 84.5, 1e-12));
+    let view = &body["side_view"];
+    assert_eq!(view["wheels"].as_array().map(Vec::len), Some(2));
+    // Rider, frame, rack, fork, basket and the two wheels.
+    assert_eq!(view["bodies"].as_array().map(Vec::len), Some(7));
+    assert!(approx(
+        &view["total_mass"],
+        80.0 + 2.5 + 2.0 + 1.5 + 1.5 + 2.0 * 1.818182,
+        1e-9
+    ));
+    Ok(())
+}
+
+#[tokio::test]
+async fn invalid_values_name_the_field_and_rule() -> TestResult {
+    let app = app(Limits::default());
+    let mut crown = preset_json("schwinn-crown")?;
+    crown["jbike6"]["rider"]["m"] = json!(-5.0);
+    let (status, body) = post(&app, "/api/bike/validate", &json!({ "bike": crown })).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    let error = &body["error"];
+    assert_eq!(error["kind"], "invalid_parameter");
+    assert_eq!(error["field"], "mrider");
+    assert_eq!(error["rule"], "must not be negative");
+    assert_eq!(error["value"], -5.0);
+    assert_eq!(
+        error["message"],
+        "invalid parameter `mrider` = -5: must not be negative"
+    );
+
+    let mut bench = preset_json("benchmark")?;
+    bench["benchmark"]["IBxz"] = json!(100.0);
+    let (status, body) = post(
+        &app,
+        "/api/eigen",
+        &json!({"bike": bench, "speeds": {"start": 0, "stop": 1, "step": 0.5}}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["kind"], "invalid_bicycle");
+    assert_eq!(body["error"]["field"], "IBxx, IBzz, IBxz");
+
+    // Missing, unknown and doubled tables: the files' reader's messages.
+    let mut missing = preset_json("benchmark")?;
+    if let Some(table) = missing["benchmark"].as_object_mut() {
+        table.remove("mB");
+    }
+    let (status, body) = post(&app, "/api/bike/validate", &json!({ "bike": missing })).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["kind"], "parse");
+    assert_eq!(body["error"]["field"], "mB");
+    let mut unknown = preset_json("benchmark")?;
+    unknown["benchmark"]["mass"] = json!(1.0);
+    let (status, body) = post(&app, "/api/bike/validate", &json!({ "bike": unknown })).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["field"], "mass");
+    let mut both = preset_json("benchmark")?;
+    both["jbike6"] = preset_json("schwinn-crown")?["jbike6"].clone();
+    let (status, body) = post(&app, "/api/bike/validate", &json!({ "bike": both })).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert!(body["error"]["message"]
+        .as_str()
+        .is_some_and(|m| m.contains("not both")));
+    Ok(())
+}
+
+#[tokio::test]
+async fn toml_round_trip() -> TestResult {
+    let app = app(Limits::default());
+    for name in ["schwinn-crown", "benchmark"] {
+        let bike = preset_json(name)?;
+        let (status, body) = post(&app, "/api/bike/toml", &json!({ "bike": bike })).await?;
+        assert_eq!(status, StatusCode::OK);
+        let text = body["toml"].as_str().unwrap_or_default().to_string();
+        assert!(text.contains(if name == "benchmark" {
+            "[benchmark]"
+        } else {
+            "[jbike6]"
+        }));
+        let (status, parsed) = post(
+            &app,
+            "/api/bike/parse",
+            &json!({"text": text, "format": "toml"}),
+        )
+        .await?;
+        assert_eq!(status, StatusCode::OK);
+        assert_eq!(parsed["bike"], bike, "{name} survives TOML and back");
+    }
+    // JBike6's own .m files are read too.
+    let m = write(&presets::find("schwinn-crown")?.bicycle(), Format::Jbike6M)?;
+    let (status, parsed) =
+        post(&app, "/api/bike/parse", &json!({"text": m, "format": "m"})).await?;
+    assert_eq!(status, StatusCode::OK);
+    assert!(approx(&parsed["bike"]["jbike6"]["wheelbase"], 1.016, 1e-8));
+    // A syntax error comes back with its place.
+    let (status, body) = post(
+        &app,
+        "/api/bike/parse",
+        &json!({"text": "name = \"x\"\n[benchmark]\nw = = 1\n", "format": "toml"}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["kind"], "parse");
+    assert_eq!(body["error"]["line"], 3);
+    Ok(())
+}
+
+/// Meijaard et al. 2007, Table 2 (doi:10.1098/rspa.2007.1857); JBike6's Schwinn Crown 7.9807.
+#[tokio::test]
+async fn eigen_sweep_and_critical_speeds() -> TestResult {
+    let app = app(Limits::default());
+    let request =
+        json!({"bike": preset_json("benchmark")?, "speeds": {"start": 0, "stop": 10, "step": 0.1}});
+    let (status, body) = post(&app, "/api/eigen", &request).await?;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(body["speeds"].as_array().map(Vec::len), Some(101));
+    let modes: Vec<&str> = body["eigenvalues"]
+        .as_array()
+        .map(|c| c.iter().filter_map(|c| c["mode"].as_str()).collect())
+        .unwrap_or_default();
+    assert_eq!(modes, ["weave", "weave", "capsize", "castering"]);
+    for column in body["eigenvalues"].as_array().into_iter().flatten() {
+        assert_eq!(column["re"].as_array().map(Vec::len), Some(101));
+        assert_eq!(column["im"].as_array().map(Vec::len), Some(101));
+    }
+    let critical = &body["critical"];
+    assert!(approx(&critical["weave_speed"], 4.29238253634111, 1e-10));
+    assert!(approx(&critical["capsize_speed"], 6.02426201538837, 1e-10));
+    assert!(approx(
+        &critical["stable_speed_ranges"][0][0],
+        4.29238253634111,
+        1e-10
+    ));
+
+    let request = json!({"bike": preset_json("schwinn-crown")?, "speeds": {"start": 0, "stop": 10, "step": 0.01}});
+    let (status, body) = post(&app, "/api/eigen", &request).await?;
+    assert_eq!(status, StatusCode::OK);
+    assert!(approx(&body["critical"]["capsize_speed"], 7.9807, 5e-5));
+
+    // One speed: eigenvalues, no range to search.
+    let request =
+        json!({"bike": preset_json("benchmark")?, "speeds": {"start": 5, "stop": 5, "step": 1}});
+    let (status, body) = post(&app, "/api/eigen", &request).await?;
+    assert_eq!(status, StatusCode::OK);
+    assert!(body["critical"].is_null());
+    Ok(())
+}
+
+#[tokio::test]
+async fn speeds_endpoint() -> TestResult {
+    let app = app(Limits::default());
+    let bike = preset_json("benchmark")?;
+    let (status, body) = post(
+        &app,
+        "/api/speeds",
+        &json!({"bike": bike, "range": {"lo": 0, "hi": 10}}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::OK);
+    assert!(approx(&body["capsize_speed"], 6.02426201538837, 1e-10));
+    assert!(approx(&body["double_root_speed"], 0.684, 1e-3));
+    let (status, body) = post(
+        &app,
+        "/api/speeds",
+        &json!({"bike": bike, "range": {"lo": 10, "hi": 0}}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["kind"], "invalid_argument");
+    assert_eq!(body["error"]["field"], "range");
+    Ok(())
+}
+
+#[tokio::test]
+async fn out_of_range_speeds() -> TestResult {
+    let app = app(Limits::default());
+    let bike = preset_json("benchmark")?;
+    let (status, body) = post(
+        &app,
+        "/api/eigen",
+        &json!({"bike": bike, "speeds": {"start": 0, "stop": 10, "step": 0}}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["kind"], "invalid_argument");
+    assert_eq!(body["error"]["field"], "speeds");
+    let (status, body) = post(
+        &app,
+        "/api/eigen",
+        &json!({"bike": bike, "speeds": {"start": 0, "stop": 100, "step": 1e-6}}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["kind"], "limit_exceeded");
+    assert_eq!(body["error"]["field"], "speeds");
+    assert!(body["error"]["message"]
+        .as_str()
+        .is_some_and(|m| m.contains("100000")));
+    // One over the default limit (0:10:1e-4 holds 100,001 speeds) is refused before any work.
+    let (status, body) = post(
+        &app,
+        "/api/eigen",
+        &json!({"bike": bike, "speeds": {"start": 0, "stop": 10, "step": 1e-4}}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["kind"], "limit_exceeded");
+    // Exactly at a limit is served (a small limit, to keep the debug-build test quick).
+    let small = whipple_web::app(Limits {
+        max_speeds: 1000,
+        ..Limits::default()
+    });
+    let (status, body) = post(
+        &small,
+        "/api/eigen",
+        &json!({"bike": bike, "speeds": {"start": 0, "stop": 9.99, "step": 0.01}}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(body["speeds"].as_array().map(Vec::len), Some(1000));
+    let (status, body) = post(
+        &small,
+        "/api/eigen",
+        &json!({"bike": bike, "speeds": {"start": 0, "stop": 10, "step": 0.01}}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["kind"], "limit_exceeded");
+    let (status, body) = post(
+        &app,
+        "/api/eigen",
+        &json!({"bike": bike, "speeds": {"start": 0, "stop": 1e300, "step": 1e299}}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    Ok(())
+}
+
+#[tokio::test]
+async fn malformed_requests() -> TestResult {
+    let app = app(Limits::default());
+    let (status, _, text) =
+        send(&app, Method::POST, "/api/eigen", Some("{\"bike\": ".into())).await?;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    let body: Value = serde_json::from_str(&text)?;
+    assert_eq!(body["error"]["kind"], "bad_json");
+    let (status, _, text) = send(
+        &app,
+        Method::POST,
+        "/api/bike/validate",
+        Some("not json".into()),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::BAD_REQUEST);
+    assert!(text.contains("bad_json"));
+    let (status, body) = post(
+        &app,
+        "/api/eigen",
+        &json!({"bike": preset_json("benchmark")?}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["kind"], "invalid_request");
+    assert_eq!(body["error"]["field"], "speeds");
+    let (status, body) = post(
+        &app,
+        "/api/eigen",
+        &json!({"bike": preset_json("benchmark")?, "speeds": {"start": "0", "stop": 1, "step": 1}}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["kind"], "invalid_request");
+    let (status, body) = post(
+        &app,
+        "/api/bike/parse",
+        &json!({"text": "", "format": "yaml"}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["kind"], "invalid_request");
+    // Unknown paths and methods answer JSON too.
+    let (status, body) = get(&app, "/api/nothing").await?;
+    assert_eq!(status, StatusCode::NOT_FOUND);
+    assert_eq!(body["error"]["kind"], "not_found");
+    let (status, body) = get(&app, "/api/eigen").await?;
+    assert_eq!(status, StatusCode::METHOD_NOT_ALLOWED);
+    assert_eq!(body["error"]["kind"], "method_not_allowed");
+    let (status, _, _) = send(&app, Method::DELETE, "/api/presets", None).await?;
+    assert_eq!(status, StatusCode::METHOD_NOT_ALLOWED);
+    Ok(())
+}
+
+#[tokio::test]
+async fn oversized_requests_are_refused() -> TestResult {
+    let app = app(Limits {
+        max_body_bytes: 64 * 1024,
+        ..Limits::default()
+    });
+    let huge = json!({"text": "#".repeat(100 * 1024), "format": "toml"}).to_string();
+    let (status, _, text) = send(&app, Method::POST, "/api/bike/parse", Some(huge)).await?;
+    assert_eq!(status, StatusCode::PAYLOAD_TOO_LARGE);
+    let body: Value = serde_json::from_str(&text)?;
+    assert_eq!(body["error"]["kind"], "too_large");
+    // The default limit, 1 MiB.
+    let app = whipple_web::app(Limits::default());
+    let huge = json!({"text": "#".repeat(2 << 20), "format": "toml"}).to_string();
+    let (status, _, _) = send(&app, Method::POST, "/api/bike/parse", Some(huge)).await?;
+    assert_eq!(status, StatusCode::PAYLOAD_TOO_LARGE);
+    Ok(())
+}
+
+fn heavy() -> Result<Value, Box<dyn std::error::Error>> {
+    Ok(
+        json!({"bike": preset_json("benchmark")?, "speeds": {"start": 0, "stop": 19.999, "step": 0.001}}),
+    )
+}
+
+#[tokio::test]
+async fn slow_computations_time_out() -> TestResult {
+    let app = app(Limits {
+        compute_timeout: Duration::from_micros(1),
+        ..Limits::default()
+    });
+    let (status, body) = post(&app, "/api/eigen", &heavy()?).await?;
+    assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE);
+    assert_eq!(body["error"]["kind"], "timeout");
+    assert!(body["error"]["message"]
+        .as_str()
+        .is_some_and(|m| m.contains("fewer speeds")));
+    Ok(())
+}
+
+#[tokio::test]
+async fn slow_requests_time_out() -> TestResult {
+    let app = app(Limits {
+        request_timeout: Duration::from_micros(1),
+        ..Limits::default()
+    });
+    let (status, body) = post(&app, "/api/eigen", &heavy()?).await?;
+    assert_eq!(status, StatusCode::REQUEST_TIMEOUT);
+    assert_eq!(body["error"]["kind"], "timeout");
+    Ok(())
+}
+
+#[tokio::test]
+async fn a_full_server_says_busy() -> TestResult {
+    let app = app(Limits {
+        max_concurrent_computations: 1,
+        queue_timeout: Duration::from_millis(1),
+        ..Limits::default()
+    });
+    let request = heavy()?;
+    let (first, second) = tokio::join!(
+        post(&app, "/api/eigen", &request),
+        post(&app, "/api/eigen", &request)
+    );
+    let mut statuses = [first?.0, second?.0];
+    statuses.sort();
+    assert_eq!(statuses, [StatusCode::OK, StatusCode::SERVICE_UNAVAILABLE]);
+    Ok(())
+}

@@ -1,0 +1,84 @@
+//! The page in real headless Chromium (Debian's `chromium`), driven by Playwright
+//! (`e2e/test.mjs`, playwright-core from the crate's pinned npm packages), against a server on
+//! an ephemeral loopback port.
+//!
+//! Skipped, loudly, when Chromium is absent, unless `WHIPPLE_E2E_REQUIRED=1` (CI sets it), in
+//! which case its absence fails the test. `CHROMIUM` overrides the browser's path.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use whipple_web::{ServeOptions, Server};
+
+/// The whole browser run must end within this.
+const LIMIT: Duration = Duration::from_secs(150);
+
+type TestResult = Result<(), Box<dyn std::error::Error + Send + Sync>>;
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn page_in_headless_chromium() -> TestResult {
+    let chromium = std::env::var("CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
+    if !Path::new(&chromium).exists() {
+        let required = std::env::var("WHIPPLE_E2E_REQUIRED").is_ok_and(|v| v == "1");
+        let message = format!(
+            "\n\n*** whipple-web e2e test SKIPPED: no Chromium at {chromium}. ***\n\
+             *** Install it with `apt-get install -y chromium` (or set CHROMIUM). ***\n"
+        );
+        if required {
+            return Err(format!(
+                "WHIPPLE_E2E_REQUIRED=1 but there is no Chromium at {chromium}: \
+                 `apt-get install -y chromium` (or set CHROMIUM)"
+            )
+            .into());
+        }
+        eprintln!("{message}");
+        return Ok(());
+    }
+    let server = Server::bind(&ServeOptions {
+        port: 0,
+        ..ServeOptions::default()
+    })
+    .await?;
+    let url = server.url();
+    let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
+    let serving = tokio::spawn(server.serve_until(async {
+        let _ = stopped.await;
+    }));
+
+    let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("e2e/test.mjs");
+    let outcome = tokio::task::spawn_blocking(move || run_node(&script, &url, &chromium)).await?;
+    let _ = stop.send(());
+    serving.await??;
+    outcome
+}
+
+/// Runs `node test.mjs URL`, killing it past [`LIMIT`].
+fn run_node(script: &Path, url: &str, chromium: &str) -> TestResult {
+    let mut child = Command::new("node")
+        .arg(script)
+        .arg(url)
+        .env("WHIPPLE_WEB_NODE_MODULES", env!("WHIPPLE_WEB_NODE_MODULES"))
+        .env("CHROMIUM", chromium)
+        .env("E2E_TIMEOUT_MS", (LIMIT.as_millis() - 10_000).to_string())
+        .stdin(Stdio::null())
+        .spawn()
+        .map_err(|e| format!("cannot start node: {e}"))?;
+    let started = Instant::now();
+    loop {
+        if let Some(status) = child.try_wait()? {
+            println!("e2e: {:.1} s", started.elapsed().as_secs_f64());
+            return if status.success() {
+                Ok(())
+            } else {
+                Err(format!("e2e/test.mjs failed ({status}); see its output above").into())
+            };
+        }
+        if started.elapsed() > LIMIT {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err(format!("e2e/test.mjs took longer than {} s", LIMIT.as_secs()).into());
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}

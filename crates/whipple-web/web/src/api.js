@@ -1,0 +1,39 @@
+// The page's only contact with the server: the endpoints of /api/openapi.json.
+
+/** An error answered by the API: {kind, message, field, rule} plus the HTTP status. */
+export class ApiError extends Error {
+  constructor(status, body) {
+    super(body.message);
+    this.status = status;
+    this.kind = body.kind;
+    this.field = body.field ?? null;
+    this.rule = body.rule ?? null;
+  }
+}
+
+async function call(method, path, body) {
+  let response;
+  try {
+    response = await fetch(path, {
+      method,
+      headers: body === undefined ? {} : { "content-type": "application/json" },
+      body: body === undefined ? undefined : JSON.stringify(body),
+    });
+  } catch (e) {
+    throw new ApiError(0, { kind: "network", message: `the server cannot be reached (${e.message}); is \`whipple serve\` still running?` });
+  }
+  const data = await response.json().catch(() => null);
+  if (!response.ok) {
+    throw new ApiError(response.status, data?.error ?? { kind: "http", message: `HTTP ${response.status}` });
+  }
+  return data;
+}
+
+export const api = {
+  presets: () => call("GET", "/api/presets"),
+  preset: (name) => call("GET", `/api/presets/${encodeURIComponent(name)}`),
+  validate: (bike) => call("POST", "/api/bike/validate", { bike }),
+  eigen: (bike, speeds) => call("POST", "/api/eigen", { bike, speeds }),
+  toml: (bike) => call("POST", "/api/bike/toml", { bike }),
+  parse: (text, format) => call("POST", "/api/bike/parse", { text, format }),
+};

@@ -1,0 +1,110 @@
+// Number formatting and small DOM helpers shared by the views.
+
+export const SVG_NS = "http://www.w3.org/2000/svg";
+
+/** An SVG element with attributes; children appended in order. */
+export function svg(tag, attrs = {}, ...children) {
+  const el = document.createElementNS(SVG_NS, tag);
+  for (const [k, v] of Object.entries(attrs)) {
+    if (v !== undefined && v !== null) el.setAttribute(k, String(v));
+  }
+  for (const c of children) el.append(c);
+  return el;
+}
+
+/** An HTML element with attributes (`text` sets textContent, `class` the class). */
+export function html(tag, attrs = {}, ...children) {
+  const el = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) {
+    if (v === undefined || v === null || v === false) continue;
+    if (k === "text") el.textContent = v;
+    else el.setAttribute(k, v === true ? "" : String(v));
+  }
+  for (const c of children) el.append(c);
+  return el;
+}
+
+/** Fixed decimals with a true minus sign. */
+export function fixed(x, digits) {
+  if (x === null || x === undefined || !Number.isFinite(x)) return "–";
+  const s = x.toFixed(digits);
+  return s.startsWith("-") ? `−${s.slice(1)}` : s;
+}
+
+/** Four significant digits, for hover read-outs. */
+export function sig(x) {
+  if (!Number.isFinite(x)) return "–";
+  const a = Math.abs(x);
+  const s = a !== 0 && (a < 1e-3 || a >= 1e5) ? x.toExponential(3) : x.toFixed(Math.max(0, 3 - Math.floor(Math.log10(a || 1))));
+  return s.startsWith("-") ? `−${s.slice(1)}` : s;
+}
+
+/** "Nice" tick values covering [lo, hi] with about `count` ticks. */
+export function ticks(lo, hi, count) {
+  const span = hi - lo;
+  if (!(span > 0)) return [lo];
+  const raw = span / Math.max(1, count);
+  const mag = 10 ** Math.floor(Math.log10(raw));
+  const step = [1, 2, 2.5, 5, 10].map((m) => m * mag).find((s) => s >= raw) ?? 10 * mag;
+  const out = [];
+  for (let t = Math.ceil(lo / step - 1e-9) * step; t <= hi + step * 1e-9; t += step) {
+    out.push(Math.abs(t) < step * 1e-9 ? 0 : t);
+  }
+  return out;
+}
+
+/** A tick label with just the decimals the step needs. */
+export function tickLabel(t, all) {
+  const step = all.length > 1 ? Math.abs(all[1] - all[0]) : 1;
+  const digits = Math.max(0, -Math.floor(Math.log10(step) + 1e-9) + (step / 10 ** Math.floor(Math.log10(step)) === 2.5 ? 1 : 0));
+  return fixed(t, digits);
+}
+
+/** A file name from a design name. */
+export function slug(name) {
+  return (name || "bicycle").toLowerCase().replace(/[^a-z0-9]+/g, "-").replace(/^-|-$/g, "") || "bicycle";
+}
+
+/** Offers `data` (string or Blob) as a download called `name`. */
+export function download(name, data, type) {
+  const blob = data instanceof Blob ? data : new Blob([data], { type });
+  const url = URL.createObjectURL(blob);
+  const a = html("a", { href: url, download: name });
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+/** A standalone SVG file's text from an <svg> element (hover layers removed). */
+export function svgText(svgEl) {
+  const clone = svgEl.cloneNode(true);
+  clone.querySelectorAll("[data-export=skip]").forEach((n) => n.remove());
+  clone.setAttribute("xmlns", SVG_NS);
+  return `<?xml version="1.0" encoding="UTF-8"?>\n${new XMLSerializer().serializeToString(clone)}\n`;
+}
+
+/** A PNG (Blob) of an <svg> element at `scale` times its size, on white. */
+export async function svgPng(svgEl, scale = 2) {
+  const width = Number(svgEl.getAttribute("width"));
+  const height = Number(svgEl.getAttribute("height"));
+  const url = URL.createObjectURL(new Blob([svgText(svgEl)], { type: "image/svg+xml" }));
+  try {
+    const img = new Image();
+    await new Promise((resolve, reject) => {
+      img.onload = resolve;
+      img.onerror = () => reject(new Error("the drawing could not be rendered"));
+      img.src = url;
+    });
+    const canvas = html("canvas", { width: Math.round(width * scale), height: Math.round(height * scale) });
+    const ctx = canvas.getContext("2d");
+    ctx.fillStyle = "#ffffff";
+    ctx.fillRect(0, 0, canvas.width, canvas.height);
+    ctx.drawImage(img, 0, 0, canvas.width, canvas.height);
+    return await new Promise((resolve) => canvas.toBlob(resolve, "image/png"));
+  } finally {
+    URL.revokeObjectURL(url);
+  }
+}
+
+export const FONT = "system-ui, -apple-system, 'Segoe UI', Roboto, 'Helvetica Neue', Arial, sans-serif";
