@@ -2,7 +2,7 @@
 //! (`e2e/test.mjs`, playwright-core from the crate's pinned npm packages), against a server on
 //! an ephemeral loopback port.
 //!
-//! Skipped, loudly, when Chromium is absent, unless `WHIPPLE_E2E_REQUIRED=1` (CI sets it), in
+//! Skipped, loudly, when Chromium is absent, unless `WHIPPLE_E2E_REQUIRED=1` or `CI` is set, in
 //! which case its absence fails the test. `CHROMIUM` overrides the browser's path.
 
 use std::path::{Path, PathBuf};
@@ -20,14 +20,16 @@ type TestResult = Result<(), Box<dyn std::error::Error + Send + Sync>>;
 async fn page_in_headless_chromium() -> TestResult {
     let chromium = std::env::var("CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
     if !Path::new(&chromium).exists() {
-        let required = std::env::var("WHIPPLE_E2E_REQUIRED").is_ok_and(|v| v == "1");
+        // Required in CI (which sets CI=true and installs Chromium) or when asked for.
+        let required = std::env::var("WHIPPLE_E2E_REQUIRED").is_ok_and(|v| v == "1")
+            || std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false");
         let message = format!(
             "\n\n*** whipple-web e2e test SKIPPED: no Chromium at {chromium}. ***\n\
              *** Install it with `apt-get install -y chromium` (or set CHROMIUM). ***\n"
         );
         if required {
             return Err(format!(
-                "WHIPPLE_E2E_REQUIRED=1 but there is no Chromium at {chromium}: \
+                "the e2e test is required here (CI or WHIPPLE_E2E_REQUIRED=1) but there is no Chromium at {chromium}: \
                  `apt-get install -y chromium` (or set CHROMIUM)"
             )
             .into());
