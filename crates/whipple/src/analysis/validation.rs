@@ -368,26 +368,49 @@ pub fn validate(
         });
     let (lo, hi) = if lo < hi { (lo, hi) } else { (lo, lo + 1.0) };
     let critical = critical_speeds(&canonical, lo, hi)?;
-    let mut out = Vec::with_capacity(methods.len());
-    for &method in methods {
-        let mut eigenvalues = Vec::with_capacity(speeds.len());
-        let mut diffs = Vec::with_capacity(speeds.len());
-        let mut matrix = Vec::new();
-        for (v, linear) in speeds.iter().zip(&eig.eigenvalues) {
-            let c = compare(&model, &canonical, *v, linear, method, study)?;
-            eigenvalues.push(c.eigenvalues);
-            diffs.push(c.max_abs_diff);
-            if let Some(m) = c.matrix_rel_diff {
-                matrix.push(m);
-            }
+    // Speeds are independent: share them among the machine's cores, in contiguous chunks.
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .clamp(1, speeds.len().max(1));
+    let chunk = speeds.len().div_ceil(threads).max(1);
+    let work = |range: std::ops::Range<usize>| -> Result<Vec<Vec<Comparison>>> {
+        range
+            .map(|i| {
+                methods
+                    .iter()
+                    .map(|&m| compare(&model, &canonical, speeds[i], &eig.eigenvalues[i], m, study))
+                    .collect::<Result<Vec<_>>>()
+            })
+            .collect()
+    };
+    let rows: Vec<Vec<Comparison>> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..speeds.len())
+            .step_by(chunk)
+            .map(|start| {
+                let range = start..(start + chunk).min(speeds.len());
+                scope.spawn(move || work(range))
+            })
+            .collect();
+        let mut all = Vec::with_capacity(speeds.len());
+        for h in handles {
+            let part = h.join().map_err(|_| Error::NonFinite {
+                context: "a validation worker thread panicked".into(),
+            })??;
+            all.extend(part);
         }
-        out.push(MethodSweep {
+        Ok::<_, Error>(all)
+    })?;
+    let out = methods
+        .iter()
+        .enumerate()
+        .map(|(k, &method)| MethodSweep {
             method,
-            eigenvalues,
-            max_abs_diff: diffs,
-            matrix_rel_diff: (method == Method::Exact).then_some(matrix),
-        });
-    }
+            eigenvalues: rows.iter().map(|r| r[k].eigenvalues).collect(),
+            max_abs_diff: rows.iter().map(|r| r[k].max_abs_diff).collect(),
+            matrix_rel_diff: (method == Method::Exact)
+                .then(|| rows.iter().filter_map(|r| r[k].matrix_rel_diff).collect()),
+        })
+        .collect();
     Ok(ValidationSweep {
         speeds: speeds.to_vec(),
         linear: eig.eigenvalues,
@@ -397,22 +420,33 @@ pub fn validate(
     })
 }
 
-/// An eigenvalue of the full-state Jacobian with its condition number.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ConditionedEigenvalue {
-    /// λ [1/s].
-    pub value: Complex64,
-    /// κ = ‖x‖ ‖y‖ / |yᴴ x| (x, y: right and left eigenvectors): a perturbation of size ε of
-    /// the matrix moves a simple eigenvalue by up to about κ ε. Infinite (or huge) for a
-    /// defective eigenvalue.
-    pub condition: f64,
+impl ValidationSweep {
+    /// The results of `method`, if it was asked for.
+    pub fn method(&self, method: Method) -> Option<&MethodSweep> {
+        self.methods.iter().find(|m| m.method == method)
+    }
 }
 
-/// Every eigenvalue of a matrix with its condition number, from faer's right eigenvectors
-/// V and the left ones as the rows of V⁻¹. Sorted by increasing |λ|.
-pub fn full_state_spectrum<const N: usize>(
+impl MethodSweep {
+    /// The largest eigenvalue difference over the speeds in [lo, hi] and the speed where it
+    /// occurs; `None` when no speed of the sweep lies there.
+    pub fn max_diff_between(&self, speeds: &[f64], lo: f64, hi: f64) -> Option<(f64, f64)> {
+        speeds
+            .iter()
+            .zip(&self.max_abs_diff)
+            .filter(|(v, _)| **v >= lo && **v <= hi)
+            .map(|(v, d)| (*d, *v))
+            .fold(None, |best: Option<(f64, f64)>, x| match best {
+                Some(b) if b.0 >= x.0 => Some(b),
+                _ => Some(x),
+            })
+    }
+}
+
+/// Right eigenvectors of a real square matrix, with their eigenvalues (faer).
+fn eigenvectors<const N: usize>(
     a: &SMatrix<f64, N, N>,
-) -> Result<Vec<ConditionedEigenvalue>> {
+) -> Result<(Vec<Complex64>, DMatrix<Complex64>)> {
     let m = faer::Mat::<f64>::from_fn(N, N, |i, j| a[(i, j)]);
     let evd = m.eigen().map_err(|e| Error::NoConvergence {
         method: faer_failure(&e),
@@ -421,30 +455,96 @@ pub fn full_state_spectrum<const N: usize>(
     })?;
     let u = evd.U();
     let s = evd.S().column_vector();
-    let v = DMatrix::<Complex64>::from_fn(N, N, |i, j| {
+    let values = (0..N).map(|k| Complex::new(s[k].re, s[k].im)).collect();
+    let vectors = DMatrix::<Complex64>::from_fn(N, N, |i, j| {
         let z = u[(i, j)];
         Complex::new(z.re, z.im)
     });
-    let w = v.clone().try_inverse();
-    let mut out: Vec<ConditionedEigenvalue> = (0..N)
-        .map(|k| {
-            let value = Complex::new(s[k].re, s[k].im);
-            let condition = match &w {
-                Some(w) => {
-                    let x = v.column(k).norm();
-                    let y = w.row(k).norm();
-                    let c = x * y;
-                    if c.is_finite() {
-                        c
-                    } else {
-                        f64::INFINITY
-                    }
-                }
-                None => f64::INFINITY,
-            };
-            ConditionedEigenvalue { value, condition }
-        })
+    Ok((values, vectors))
+}
+
+/// The eigenvalue of `a` nearest `near` and its condition number
+/// κ = ‖x‖ ‖y‖ / |yᴴ x| (x, y: its right and left eigenvectors, the left ones from Aᵀ): a
+/// perturbation of size ε of the matrix moves a simple eigenvalue by up to about κ ε; κ grows
+/// without bound as the eigenvalue approaches a defective one.
+pub fn eigenvalue_condition<const N: usize>(
+    a: &SMatrix<f64, N, N>,
+    near: Complex64,
+) -> Result<(Complex64, f64)> {
+    let nearest = |values: &[Complex64]| {
+        (0..values.len())
+            .min_by(|&i, &j| {
+                (values[i] - near)
+                    .norm()
+                    .total_cmp(&(values[j] - near).norm())
+            })
+            .unwrap_or(0)
+    };
+    let (values, right) = eigenvectors(a)?;
+    let (left_values, left) = eigenvectors(&a.transpose())?;
+    let (k, l) = (nearest(&values), nearest(&left_values));
+    let x = right.column(k);
+    // A left eigenvector y of A for λ is the conjugate of a right eigenvector of Aᵀ for λ.
+    let y_bar = left.column(l);
+    let overlap: Complex64 = y_bar.iter().zip(x.iter()).map(|(p, q)| p * q).sum();
+    Ok((values[k], x.norm() * y_bar.norm() / overlap.norm()))
+}
+
+/// The cluster of zero eigenvalues of a full-state Jacobian: its Jordan structure and how far
+/// round-off or derivative errors have spread it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ZeroCluster {
+    /// dim ker Aᵏ for k = 1…5 (singular values below 1e-9 of the largest): the number of
+    /// Jordan blocks at zero, then how many reach sizes 2, 3, … (differences of successive
+    /// entries). A non-defective zero would give equal entries.
+    pub kernel_dims: [usize; 5],
+    /// The largest |λ| among the eigenvalues of the cluster (those not picked as lean and steer,
+    /// smallest first, up to the largest relative jump in modulus): zero in exact arithmetic.
+    pub radius: f64,
+}
+
+/// The zero cluster of `a` (see [`ZeroCluster`]); `lean_steer` are the eigenvalues of `a`
+/// picked as lean and steer, left out of the radius.
+pub fn zero_cluster(a: &FullJacobian, lean_steer: &[Complex64; 4]) -> Result<ZeroCluster> {
+    let n = STATE_LEN;
+    let m = DMatrix::from_fn(n, n, |i, j| a[(i, j)]);
+    let mut power = DMatrix::<f64>::identity(n, n);
+    let mut kernel_dims = [0usize; 5];
+    for dim in kernel_dims.iter_mut() {
+        power = &power * &m;
+        let svd = power
+            .clone()
+            .try_svd(false, false, f64::EPSILON, 1000)
+            .ok_or(Error::NoConvergence {
+                method: "singular value decomposition",
+                iterations: 1000,
+                residual: f64::NAN,
+            })?;
+        let top = svd.singular_values.max();
+        *dim = svd
+            .singular_values
+            .iter()
+            .filter(|s| **s <= 1e-9 * top)
+            .count();
+    }
+    // The cluster: the eigenvalues not picked as lean and steer, smallest first, up to the
+    // largest relative jump in modulus (the constraint-drift eigenvalues lie far above).
+    let mut moduli: Vec<f64> = general_eigenvalues(a)?
+        .into_iter()
+        .filter(|z| !lean_steer.contains(z))
+        .map(|z| z.norm())
         .collect();
-    out.sort_by(|a, b| a.value.norm().total_cmp(&b.value.norm()));
-    Ok(out)
+    moduli.sort_by(f64::total_cmp);
+    let tiny = f64::MIN_POSITIVE;
+    let end = (1..moduli.len())
+        .max_by(|&i, &j| {
+            let ratio = |k: usize| moduli[k] / moduli[k - 1].max(tiny);
+            ratio(i).total_cmp(&ratio(j))
+        })
+        .unwrap_or(moduli.len());
+    let radius = moduli[..end].iter().copied().fold(0.0, f64::max);
+    Ok(ZeroCluster {
+        kernel_dims,
+        radius,
+    })
 }
