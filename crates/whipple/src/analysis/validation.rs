@@ -498,8 +498,8 @@ pub struct ZeroCluster {
     /// Jordan blocks at zero, then how many reach sizes 2, 3, … (differences of successive
     /// entries). A non-defective zero would give equal entries.
     pub kernel_dims: [usize; 5],
-    /// The largest |λ| among the eigenvalues of the cluster (those not picked as lean and steer,
-    /// smallest first, up to the largest relative jump in modulus): zero in exact arithmetic.
+    /// The largest |λ| among the eigenvalues of the cluster (the `kernel_dims[4]` smallest in
+    /// modulus, less any picked as lean and steer): zero in exact arithmetic.
     pub radius: f64,
 }
 
@@ -527,22 +527,16 @@ pub fn zero_cluster(a: &FullJacobian, lean_steer: &[Complex64; 4]) -> Result<Zer
             .filter(|s| **s <= 1e-9 * top)
             .count();
     }
-    // The cluster: the eigenvalues not picked as lean and steer, smallest first, up to the
-    // largest relative jump in modulus (the constraint-drift eigenvalues lie far above).
-    let mut moduli: Vec<f64> = general_eigenvalues(a)?
-        .into_iter()
+    // The cluster: the dim ker A⁵ eigenvalues smallest in modulus (the algebraic multiplicity
+    // of zero), less any picked as lean and steer (the capsize eigenvalue near v_c).
+    let mut values = general_eigenvalues(a)?;
+    values.sort_by(|p, q| p.norm().total_cmp(&q.norm()));
+    let radius = values
+        .iter()
+        .take(kernel_dims[4])
         .filter(|z| !lean_steer.contains(z))
         .map(|z| z.norm())
-        .collect();
-    moduli.sort_by(f64::total_cmp);
-    let tiny = f64::MIN_POSITIVE;
-    let end = (1..moduli.len())
-        .max_by(|&i, &j| {
-            let ratio = |k: usize| moduli[k] / moduli[k - 1].max(tiny);
-            ratio(i).total_cmp(&ratio(j))
-        })
-        .unwrap_or(moduli.len());
-    let radius = moduli[..end].iter().copied().fold(0.0, f64::max);
+        .fold(0.0, f64::max);
     Ok(ZeroCluster {
         kernel_dims,
         radius,
