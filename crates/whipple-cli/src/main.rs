@@ -6,6 +6,7 @@ mod commands;
 mod figures;
 mod output;
 mod simulate;
+mod validate;
 
 use std::process::ExitCode;
 
@@ -144,6 +145,25 @@ enum Command {
         #[arg(long)]
         open: bool,
     },
+    /// Linearize the non-linear model about upright straight running and compare its
+    /// eigenvalues with the linear model's, speed by speed (the JBike6 benchmark).
+    Validate {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// Speeds START:STOP:STEP in m/s, both ends included.
+        #[arg(long, default_value = "0:10:0.01", allow_hyphen_values = true)]
+        speeds: String,
+        /// Linearization: the study's finite differences, exact derivatives, or both.
+        #[arg(long, value_enum, default_value = "both")]
+        method: validate::MethodChoice,
+        /// Output format of the table on standard output.
+        #[arg(long, value_enum, default_value = "csv")]
+        format: validate::ValidateFormat,
+        /// Also write a report to this directory: the CSV, the figures, a summary.
+        #[arg(long)]
+        report: Option<std::path::PathBuf>,
+    },
     /// JBike6's stylized side view of the bicycle.
     Draw {
         /// A preset name or a parameter file (.toml, .json, .m).
@@ -195,6 +215,13 @@ fn main() -> ExitCode {
             address,
             open,
         } => commands::serve(address, port, open),
+        Command::Validate {
+            bike,
+            speeds,
+            method,
+            format,
+            report,
+        } => validate::validate(&bike, &speeds, method, format, report.as_deref()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -22,6 +22,7 @@ pub mod contact;
 pub mod forward;
 pub mod joints;
 pub mod projection;
+pub mod reduced;
 pub mod rotation;
 mod saddle;
 pub mod simulate;
@@ -33,6 +34,7 @@ use num_dual::Dual64;
 pub use bodies::{Bodies, BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
 pub use forward::{ContactForce, Derivatives, Inputs, Poses, HOLONOMIC_ROWS, VELOCITY_ROWS};
 pub use projection::{ProjectionMethod, ProjectionParams, ProjectionReport};
+pub use reduced::{FullStateField, LeanSteerField};
 pub use simulate::{
     simulate, Integrator, Outcome, Progress, ProgressFn, Sample, Simulation, SimulationSettings,
     TorqueFn, Wheel,
