@@ -6,6 +6,7 @@
 //! valgrind --tool=callgrind target/release/examples/profile_nonlinear forward   # 10 000 forward()
 //! valgrind --tool=callgrind target/release/examples/profile_nonlinear project   # 10 000 project()
 //! valgrind --tool=callgrind target/release/examples/profile_nonlinear simulate  # 1 s RK4, 1 ms
+//! target/release/examples/profile_nonlinear simulate 10                         # 10 s, for timing
 //! ```
 //!
 //! The states are those of the criterion bench `nonlinear`.
@@ -43,8 +44,15 @@ fn main() -> Result<(), whipple::Error> {
                 lean_rate: 0.5,
                 ..InitialConditions::upright(4.6)
             })?;
+            let duration = match std::env::args().nth(2) {
+                Some(text) => text.parse().map_err(|_| whipple::Error::InvalidArgument {
+                    what: "duration",
+                    rule: format!("must be a number of seconds, got {text}"),
+                })?,
+                None => 1.0,
+            };
             let settings = SimulationSettings {
-                duration: 1.0,
+                duration,
                 ..SimulationSettings::default()
             };
             let run = simulate(&model, black_box(start), &settings)?;

@@ -21,9 +21,9 @@
 use nalgebra::{DMatrix, DVector, Matrix3, RealField, SMatrix, SVector, Vector3};
 
 use super::bodies::{BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
+use super::rotation::SinCos;
 use super::state::{State, COORDINATES, SPEEDS, STATE_LEN};
 use super::Model;
-use super::rotation::SinCos;
 use super::{rotation, saddle};
 use crate::error::{Error, Result};
 
@@ -143,43 +143,72 @@ pub(crate) struct Tree<T: RealField + Copy> {
 
 /// Tree speeds that can move each body (the other columns of its J are zero): rear wheel
 /// ν, ω_B, σ_R; rear frame ν, ω_B; front frame ν, ω_B, δ̇; front wheel ν, ω_B, δ̇, σ_F.
-pub(crate) const TREE_COLUMNS: [&[usize]; BODIES] = [
-    &COLUMNS_REAR_WHEEL,
-    &COLUMNS_REAR_FRAME,
-    &COLUMNS_FRONT_FRAME,
-    &COLUMNS_FRONT_WHEEL,
-];
 const COLUMNS_REAR_WHEEL: [usize; 7] = [0, 1, 2, 3, 4, 5, 7];
 const COLUMNS_REAR_FRAME: [usize; 6] = [0, 1, 2, 3, 4, 5];
 const COLUMNS_FRONT_FRAME: [usize; 7] = [0, 1, 2, 3, 4, 5, 6];
 const COLUMNS_FRONT_WHEEL: [usize; 8] = [0, 1, 2, 3, 4, 5, 6, 8];
 
 /// One body's share of the reduced mass matrix TᵀMT and forces Tᵀ(f − Mc).
-struct Reduced<'a, T: RealField + Copy> {
-    mass: &'a mut SMatrix<T, TREE, TREE>,
-    force: &'a mut SVector<T, TREE>,
-    jac: &'a SMatrix<T, 6, TREE>,
-    m: T,
-    inertia: Matrix3<T>,
+pub(crate) struct Reduced<'a, T: RealField + Copy> {
+    pub mass: &'a mut SMatrix<T, TREE, TREE>,
+    pub force: &'a mut SVector<T, TREE>,
+    /// The body's J (6 × 9).
+    pub jac: &'a SMatrix<T, 6, TREE>,
+    pub m: T,
+    pub inertia: Matrix3<T>,
     /// f − M c of the body: world force, then body-axes torque.
-    generalized: SVector<T, 6>,
+    pub generalized: SVector<T, 6>,
 }
 
 impl<T: RealField + Copy> Reduced<'_, T> {
-    /// Adds `Jᵀ diag(m I₃, I) J` and `Jᵀ (f − Mc)` over the body's C non-zero columns of J,
-    /// with fixed-size products.
+    /// Adds body k's share over the tree speeds that can move it.
+    #[inline]
+    pub fn add_body(&mut self, k: usize) {
+        match k {
+            REAR_WHEEL => self.add(COLUMNS_REAR_WHEEL),
+            REAR_FRAME => self.add(COLUMNS_REAR_FRAME),
+            FRONT_FRAME => self.add(COLUMNS_FRONT_FRAME),
+            _ => self.add(COLUMNS_FRONT_WHEEL),
+        }
+    }
+
+    /// Adds `Jᵀ diag(m I₃, I) J` (upper triangle) and `Jᵀ (f − Mc)` over the body's C
+    /// non-zero columns of J, every entry one contiguous dot product of length 6.
     #[inline]
     fn add<const C: usize>(&mut self, cols: [usize; C]) {
         let j = SMatrix::<T, 6, C>::from_fn(|r, k| self.jac[(r, cols[k])]);
-        let jv = j.fixed_rows::<3>(0);
-        let jw = j.fixed_rows::<3>(3);
-        let block = jv.tr_mul(&jv) * self.m + jw.tr_mul(&(self.inertia * jw));
-        let f = j.tr_mul(&self.generalized);
-        for (a, &i) in cols.iter().enumerate() {
-            self.force[i] += f[a];
-            for (b, &k) in cols.iter().enumerate() {
-                self.mass[(i, k)] += block[(a, b)];
+        let mut mj = j;
+        for k in 0..C {
+            let w = Vector3::new(j[(3, k)], j[(4, k)], j[(5, k)]);
+            let iw = self.inertia * w;
+            mj.set_column(
+                k,
+                &SVector::<T, 6>::new(
+                    j[(0, k)] * self.m,
+                    j[(1, k)] * self.m,
+                    j[(2, k)] * self.m,
+                    iw.x,
+                    iw.y,
+                    iw.z,
+                ),
+            );
+        }
+        for (b, &jb) in cols.iter().enumerate() {
+            let mjb = mj.column(b);
+            for (a, &ia) in cols[..=b].iter().enumerate() {
+                self.mass[(ia, jb)] += j.column(a).dot(&mjb);
             }
+            self.force[jb] += j.column(b).dot(&self.generalized);
+        }
+    }
+}
+
+/// Copies the upper triangle of a square matrix into its lower triangle.
+#[inline]
+pub(crate) fn symmetrize<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) {
+    for j in 0..N {
+        for i in 0..j {
+            a[(j, i)] = a[(i, j)];
         }
     }
 }
@@ -345,9 +374,7 @@ impl Model {
         // Reduced mass matrix TᵀMT and forces Tᵀ(f − M c), over the columns that can be non-zero.
         let mut mass = SMatrix::<T, TREE, TREE>::zeros();
         let mut force = SVector::<T, TREE>::zeros();
-        for k in 0..BODIES {
-            let body = &self.bodies.body[k];
-            let (f, torque) = applied[k];
+        for (k, (body, &(f, torque))) in self.bodies.body.iter().zip(&applied).enumerate() {
             let m: T = c(body.mass);
             let inertia: Matrix3<T> = body.inertia.cast();
             let cv = tree.bias[k].fixed_rows::<3>(0).into_owned();
@@ -362,13 +389,9 @@ impl Model {
                 inertia,
                 generalized: SVector::<T, 6>::new(fv.x, fv.y, fv.z, fw.x, fw.y, fw.z),
             };
-            match k {
-                REAR_WHEEL => share.add(COLUMNS_REAR_WHEEL),
-                REAR_FRAME => share.add(COLUMNS_REAR_FRAME),
-                FRONT_FRAME => share.add(COLUMNS_FRONT_FRAME),
-                _ => share.add(COLUMNS_FRONT_WHEEL),
-            }
+            share.add_body(k);
         }
+        symmetrize(&mut mass);
 
         // Stage 4: contact rows in tree speeds.
         let mut g = SMatrix::<T, 6, TREE>::zeros();
@@ -439,12 +462,54 @@ impl Model {
         &self,
         state: &State<T>,
     ) -> (SMatrix<T, VELOCITY_ROWS, SPEEDS>, SVector<T, VELOCITY_ROWS>) {
-        let poses = Poses::new(&state.q);
+        self.velocity_rows_at(&Poses::new(&state.q), state)
+    }
+
+    /// The velocity residuals `D u` row by row from the rows' non-zero blocks, with the poses
+    /// of `state.q` already known (no 21 × 24 matrix).
+    pub(crate) fn velocity_residual_at(
+        &self,
+        poses: &Poses<f64>,
+        state: &State<f64>,
+    ) -> SVector<f64, VELOCITY_ROWS> {
+        let mut r = SVector::<f64, VELOCITY_ROWS>::zeros();
+        let speeds = |k: usize| state.u.fixed_rows::<6>(6 * k);
+        for (i, joint) in self.joints.iter().enumerate() {
+            let rows = joint.rows(
+                poses,
+                &state.angular_velocity(joint.parent),
+                &state.angular_velocity(joint.child),
+            );
+            r.fixed_rows_mut::<5>(5 * i).copy_from(
+                &(rows.parent * speeds(joint.parent) + rows.child * speeds(joint.child)),
+            );
+        }
+        for (i, contact) in self.contacts.iter().enumerate() {
+            let rows = contact.rows(
+                poses,
+                &state.velocity(contact.wheel),
+                &state.angular_velocity(contact.wheel),
+                &state.angular_velocity(contact.frame),
+            );
+            let du = rows.wheel * speeds(contact.wheel) + rows.frame * speeds(contact.frame);
+            r[15 + i] = du[2];
+            r[17 + 2 * i] = du[0];
+            r[18 + 2 * i] = du[1];
+        }
+        r
+    }
+
+    /// [`Model::velocity_rows`] with the poses of `state.q` already known.
+    pub(crate) fn velocity_rows_at<T: RealField + Copy>(
+        &self,
+        poses: &Poses<T>,
+        state: &State<T>,
+    ) -> (SMatrix<T, VELOCITY_ROWS, SPEEDS>, SVector<T, VELOCITY_ROWS>) {
         let mut d = SMatrix::<T, VELOCITY_ROWS, SPEEDS>::zeros();
         let mut gamma = SVector::<T, VELOCITY_ROWS>::zeros();
         for (i, joint) in self.joints.iter().enumerate() {
             let rows = joint.rows(
-                &poses,
+                poses,
                 &state.angular_velocity(joint.parent),
                 &state.angular_velocity(joint.child),
             );
@@ -456,7 +521,7 @@ impl Model {
         }
         for (i, contact) in self.contacts.iter().enumerate() {
             let rows = contact.rows(
-                &poses,
+                poses,
                 &state.velocity(contact.wheel),
                 &state.angular_velocity(contact.wheel),
                 &state.angular_velocity(contact.frame),

@@ -15,11 +15,7 @@ use nalgebra::{Matrix3, RealField, Vector3};
 /// `R = R_z(yaw) R_x(lean) R_y(pitch)`: body → world.
 #[inline]
 pub fn matrix<T: RealField + Copy>(yaw: T, lean: T, pitch: T) -> Matrix3<T> {
-    matrix_from_sin_cos(
-        SinCos::new(yaw),
-        SinCos::new(lean),
-        SinCos::new(pitch),
-    )
+    matrix_from_sin_cos(SinCos::new(yaw), SinCos::new(lean), SinCos::new(pitch))
 }
 
 /// Sine and cosine of one angle, computed once and shared by every formula that needs them.
