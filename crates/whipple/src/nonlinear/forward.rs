@@ -21,6 +21,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, RealField, SMatrix, SVector, Vector3};
 
 use super::bodies::{BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
+use super::rotation::SinCos;
 use super::state::{State, COORDINATES, SPEEDS, STATE_LEN};
 use super::Model;
 use super::{rotation, saddle};
@@ -45,13 +46,33 @@ pub struct Poses<T: RealField + Copy> {
 impl<T: RealField + Copy> Poses<T> {
     /// Stage 1: poses from the coordinates.
     pub fn new(q: &SVector<T, COORDINATES>) -> Self {
-        let mut rot = [Matrix3::identity(); BODIES];
-        let mut pos = [Vector3::zeros(); BODIES];
-        for k in 0..BODIES {
-            rot[k] = rotation::matrix(q[6 * k + 3], q[6 * k + 4], q[6 * k + 5]);
-            pos[k] = Vector3::new(q[6 * k], q[6 * k + 1], q[6 * k + 2]);
+        Self::from_angles(q, &Angles::new(q))
+    }
+
+    /// Poses from q and the sines and cosines of its angles.
+    #[inline]
+    pub(crate) fn from_angles(q: &SVector<T, COORDINATES>, angles: &Angles<T>) -> Self {
+        Poses {
+            rot: std::array::from_fn(|k| {
+                let [yaw, lean, pitch] = angles.0[k];
+                rotation::matrix_from_sin_cos(yaw, lean, pitch)
+            }),
+            pos: std::array::from_fn(|k| Vector3::new(q[6 * k], q[6 * k + 1], q[6 * k + 2])),
         }
-        Poses { rot, pos }
+    }
+}
+
+/// Sines and cosines of the twelve Euler angles (yaw, lean, pitch per body), computed once per
+/// evaluation and shared by the rotation matrices and the coordinate rates.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Angles<T>(pub [[SinCos<T>; 3]; BODIES]);
+
+impl<T: RealField + Copy> Angles<T> {
+    #[inline]
+    pub fn new(q: &SVector<T, COORDINATES>) -> Self {
+        Angles(std::array::from_fn(|k| {
+            std::array::from_fn(|i| SinCos::new(q[6 * k + 3 + i]))
+        }))
     }
 }
 
@@ -122,12 +143,75 @@ pub(crate) struct Tree<T: RealField + Copy> {
 
 /// Tree speeds that can move each body (the other columns of its J are zero): rear wheel
 /// ν, ω_B, σ_R; rear frame ν, ω_B; front frame ν, ω_B, δ̇; front wheel ν, ω_B, δ̇, σ_F.
-pub(crate) const TREE_COLUMNS: [&[usize]; BODIES] = [
-    &[0, 1, 2, 3, 4, 5, 7],
-    &[0, 1, 2, 3, 4, 5],
-    &[0, 1, 2, 3, 4, 5, 6],
-    &[0, 1, 2, 3, 4, 5, 6, 8],
-];
+const COLUMNS_REAR_WHEEL: [usize; 7] = [0, 1, 2, 3, 4, 5, 7];
+const COLUMNS_REAR_FRAME: [usize; 6] = [0, 1, 2, 3, 4, 5];
+const COLUMNS_FRONT_FRAME: [usize; 7] = [0, 1, 2, 3, 4, 5, 6];
+const COLUMNS_FRONT_WHEEL: [usize; 8] = [0, 1, 2, 3, 4, 5, 6, 8];
+
+/// One body's share of the reduced mass matrix TᵀMT and forces Tᵀ(f − Mc).
+pub(crate) struct Reduced<'a, T: RealField + Copy> {
+    pub mass: &'a mut SMatrix<T, TREE, TREE>,
+    pub force: &'a mut SVector<T, TREE>,
+    /// The body's J (6 × 9).
+    pub jac: &'a SMatrix<T, 6, TREE>,
+    pub m: T,
+    pub inertia: Matrix3<T>,
+    /// f − M c of the body: world force, then body-axes torque.
+    pub generalized: SVector<T, 6>,
+}
+
+impl<T: RealField + Copy> Reduced<'_, T> {
+    /// Adds body k's share over the tree speeds that can move it.
+    #[inline]
+    pub fn add_body(&mut self, k: usize) {
+        match k {
+            REAR_WHEEL => self.add(COLUMNS_REAR_WHEEL),
+            REAR_FRAME => self.add(COLUMNS_REAR_FRAME),
+            FRONT_FRAME => self.add(COLUMNS_FRONT_FRAME),
+            _ => self.add(COLUMNS_FRONT_WHEEL),
+        }
+    }
+
+    /// Adds `Jᵀ diag(m I₃, I) J` (upper triangle) and `Jᵀ (f − Mc)` over the body's C
+    /// non-zero columns of J, every entry one contiguous dot product of length 6.
+    #[inline]
+    fn add<const C: usize>(&mut self, cols: [usize; C]) {
+        let j = SMatrix::<T, 6, C>::from_fn(|r, k| self.jac[(r, cols[k])]);
+        let mut mj = j;
+        for k in 0..C {
+            let w = Vector3::new(j[(3, k)], j[(4, k)], j[(5, k)]);
+            let iw = self.inertia * w;
+            mj.set_column(
+                k,
+                &SVector::<T, 6>::new(
+                    j[(0, k)] * self.m,
+                    j[(1, k)] * self.m,
+                    j[(2, k)] * self.m,
+                    iw.x,
+                    iw.y,
+                    iw.z,
+                ),
+            );
+        }
+        for (b, &jb) in cols.iter().enumerate() {
+            let mjb = mj.column(b);
+            for (a, &ia) in cols[..=b].iter().enumerate() {
+                self.mass[(ia, jb)] += j.column(a).dot(&mjb);
+            }
+            self.force[jb] += j.column(b).dot(&self.generalized);
+        }
+    }
+}
+
+/// Copies the upper triangle of a square matrix into its lower triangle.
+#[inline]
+pub(crate) fn symmetrize<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) {
+    for j in 0..N {
+        for i in 0..j {
+            a[(j, i)] = a[(i, j)];
+        }
+    }
+}
 
 #[inline]
 fn c<T: RealField + Copy>(x: f64) -> T {
@@ -241,7 +325,7 @@ impl Model {
     /// Stage 3: applied forces per body (world force, body-axes torque).
     fn applied<T: RealField + Copy>(
         &self,
-        q: &SVector<T, COORDINATES>,
+        angles: &Angles<T>,
         poses: &Poses<T>,
         omega: &[Vector3<T>; BODIES],
         inputs: &Inputs<T>,
@@ -258,7 +342,8 @@ impl Model {
         let s_in_b = poses.rot[REAR_FRAME].transpose() * (poses.rot[FRONT_FRAME] * s);
         out[FRONT_FRAME].1 += s * inputs.steer_torque;
         out[REAR_FRAME].1 -= s_in_b * inputs.steer_torque;
-        let (sp, cp) = q[6 * REAR_FRAME + 5].sin_cos();
+        let pitch = angles.0[REAR_FRAME][2];
+        let (sp, cp) = (pitch.sin, pitch.cos);
         out[REAR_FRAME].1 += Vector3::new(cp, T::zero(), sp) * inputs.lean_torque;
         out
     }
@@ -281,50 +366,32 @@ impl Model {
         state: &State<T>,
         inputs: &Inputs<T>,
     ) -> Result<Derivatives<T>> {
-        let poses = Poses::new(&state.q);
+        let angles = Angles::new(&state.q);
+        let poses = Poses::from_angles(&state.q, &angles);
         let (tree, _) = self.tree(&poses, &state.u);
-        let applied = self.applied(&state.q, &poses, &tree.omega, inputs);
+        let applied = self.applied(&angles, &poses, &tree.omega, inputs);
 
-        // Reduced mass matrix TᵀMT and forces Tᵀ(f − M c), column pairs that can be non-zero.
+        // Reduced mass matrix TᵀMT and forces Tᵀ(f − M c), over the columns that can be non-zero.
         let mut mass = SMatrix::<T, TREE, TREE>::zeros();
         let mut force = SVector::<T, TREE>::zeros();
-        for k in 0..BODIES {
-            let body = &self.bodies.body[k];
+        for (k, (body, &(f, torque))) in self.bodies.body.iter().zip(&applied).enumerate() {
             let m: T = c(body.mass);
             let inertia: Matrix3<T> = body.inertia.cast();
-            let jac = &tree.jac[k];
-            let cols = TREE_COLUMNS[k];
-            let mut mj = SMatrix::<T, 6, TREE>::zeros();
-            for &j in cols {
-                let col = jac.column(j);
-                let w = Vector3::new(col[3], col[4], col[5]);
-                let iw = inertia * w;
-                mj.set_column(
-                    j,
-                    &SVector::<T, 6>::new(col[0] * m, col[1] * m, col[2] * m, iw.x, iw.y, iw.z),
-                );
-            }
-            for (a, &i) in cols.iter().enumerate() {
-                let ci = jac.column(i);
-                for &j in &cols[a..] {
-                    mass[(i, j)] += ci.dot(&mj.column(j));
-                }
-            }
-            let (f, torque) = applied[k];
             let cv = tree.bias[k].fixed_rows::<3>(0).into_owned();
             let cw = tree.bias[k].fixed_rows::<3>(3).into_owned();
             let fv = f - cv * m;
             let fw = torque - inertia * cw;
-            let generalized = SVector::<T, 6>::new(fv.x, fv.y, fv.z, fw.x, fw.y, fw.z);
-            for &i in cols {
-                force[i] += jac.column(i).dot(&generalized);
-            }
+            let mut share = Reduced {
+                mass: &mut mass,
+                force: &mut force,
+                jac: &tree.jac[k],
+                m,
+                inertia,
+                generalized: SVector::<T, 6>::new(fv.x, fv.y, fv.z, fw.x, fw.y, fw.z),
+            };
+            share.add_body(k);
         }
-        for i in 0..TREE {
-            for j in 0..i {
-                mass[(i, j)] = mass[(j, i)];
-            }
-        }
+        symmetrize(&mut mass);
 
         // Stage 4: contact rows in tree speeds.
         let mut g = SMatrix::<T, 6, TREE>::zeros();
@@ -363,7 +430,7 @@ impl Model {
                 .fixed_rows_mut::<6>(6 * k)
                 .copy_from(&(tree.jac[k] * w_dot + tree.bias[k]));
         }
-        let q_dot = coordinate_rates(&state.q, &state.u);
+        let q_dot = coordinate_rates(&angles, &state.u);
         let mut contact = [ContactForce {
             normal: T::zero(),
             longitudinal: T::zero(),
@@ -395,12 +462,54 @@ impl Model {
         &self,
         state: &State<T>,
     ) -> (SMatrix<T, VELOCITY_ROWS, SPEEDS>, SVector<T, VELOCITY_ROWS>) {
-        let poses = Poses::new(&state.q);
+        self.velocity_rows_at(&Poses::new(&state.q), state)
+    }
+
+    /// The velocity residuals `D u` row by row from the rows' non-zero blocks, with the poses
+    /// of `state.q` already known (no 21 × 24 matrix).
+    pub(crate) fn velocity_residual_at(
+        &self,
+        poses: &Poses<f64>,
+        state: &State<f64>,
+    ) -> SVector<f64, VELOCITY_ROWS> {
+        let mut r = SVector::<f64, VELOCITY_ROWS>::zeros();
+        let speeds = |k: usize| state.u.fixed_rows::<6>(6 * k);
+        for (i, joint) in self.joints.iter().enumerate() {
+            let rows = joint.rows(
+                poses,
+                &state.angular_velocity(joint.parent),
+                &state.angular_velocity(joint.child),
+            );
+            r.fixed_rows_mut::<5>(5 * i).copy_from(
+                &(rows.parent * speeds(joint.parent) + rows.child * speeds(joint.child)),
+            );
+        }
+        for (i, contact) in self.contacts.iter().enumerate() {
+            let rows = contact.rows(
+                poses,
+                &state.velocity(contact.wheel),
+                &state.angular_velocity(contact.wheel),
+                &state.angular_velocity(contact.frame),
+            );
+            let du = rows.wheel * speeds(contact.wheel) + rows.frame * speeds(contact.frame);
+            r[15 + i] = du[2];
+            r[17 + 2 * i] = du[0];
+            r[18 + 2 * i] = du[1];
+        }
+        r
+    }
+
+    /// [`Model::velocity_rows`] with the poses of `state.q` already known.
+    pub(crate) fn velocity_rows_at<T: RealField + Copy>(
+        &self,
+        poses: &Poses<T>,
+        state: &State<T>,
+    ) -> (SMatrix<T, VELOCITY_ROWS, SPEEDS>, SVector<T, VELOCITY_ROWS>) {
         let mut d = SMatrix::<T, VELOCITY_ROWS, SPEEDS>::zeros();
         let mut gamma = SVector::<T, VELOCITY_ROWS>::zeros();
         for (i, joint) in self.joints.iter().enumerate() {
             let rows = joint.rows(
-                &poses,
+                poses,
                 &state.angular_velocity(joint.parent),
                 &state.angular_velocity(joint.child),
             );
@@ -412,7 +521,7 @@ impl Model {
         }
         for (i, contact) in self.contacts.iter().enumerate() {
             let rows = contact.rows(
-                &poses,
+                poses,
                 &state.velocity(contact.wheel),
                 &state.angular_velocity(contact.wheel),
                 &state.angular_velocity(contact.frame),
@@ -437,9 +546,10 @@ impl Model {
         state: &State<f64>,
         inputs: &Inputs<f64>,
     ) -> Result<Derivatives<f64>> {
-        let poses = Poses::new(&state.q);
+        let angles = Angles::new(&state.q);
+        let poses = Poses::from_angles(&state.q, &angles);
         let omega: [Vector3<f64>; BODIES] = std::array::from_fn(|k| state.angular_velocity(k));
-        let applied = self.applied(&state.q, &poses, &omega, inputs);
+        let applied = self.applied(&angles, &poses, &omega, inputs);
         let (d, gamma) = self.velocity_rows(state);
         let n = SPEEDS + VELOCITY_ROWS;
         let mut kkt = DMatrix::<f64>::zeros(n, n);
@@ -478,16 +588,18 @@ impl Model {
             lateral: -nu(18 + 2 * i),
         });
         Ok(Derivatives {
-            q_dot: coordinate_rates(&state.q, &state.u),
+            q_dot: coordinate_rates(&angles, &state.u),
             u_dot,
             contact,
         })
     }
 }
 
-/// q̇ from q and u: velocities as they are, angle rates from body angular velocities.
-pub(crate) fn coordinate_rates<T: RealField + Copy>(
-    q: &SVector<T, COORDINATES>,
+/// q̇ from u, given the sines and cosines of q's angles: velocities as they are, angle rates
+/// from body angular velocities.
+#[inline]
+fn coordinate_rates<T: RealField + Copy>(
+    angles: &Angles<T>,
     u: &SVector<T, SPEEDS>,
 ) -> SVector<T, COORDINATES> {
     let mut q_dot = SVector::<T, COORDINATES>::zeros();
@@ -496,7 +608,8 @@ pub(crate) fn coordinate_rates<T: RealField + Copy>(
             .fixed_rows_mut::<3>(6 * k)
             .copy_from(&u.fixed_rows::<3>(6 * k));
         let omega = u.fixed_rows::<3>(6 * k + 3).into_owned();
-        let rates = rotation::body_to_rates(q[6 * k + 4], q[6 * k + 5], &omega);
+        let [_, lean, pitch] = angles.0[k];
+        let rates = rotation::body_to_rates_from_sin_cos(lean, pitch, &omega);
         q_dot.fixed_rows_mut::<3>(6 * k + 3).copy_from(&rates);
     }
     q_dot

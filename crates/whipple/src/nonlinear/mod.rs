@@ -204,24 +204,31 @@ impl Model {
         &self,
         q: &SVector<T, COORDINATES>,
     ) -> SVector<T, HOLONOMIC_ROWS> {
-        let poses = Poses::new(q);
+        self.holonomic_residual_at(&Poses::new(q))
+    }
+
+    /// [`Model::holonomic_residual`] from the poses.
+    pub(crate) fn holonomic_residual_at<T: RealField + Copy>(
+        &self,
+        poses: &Poses<T>,
+    ) -> SVector<T, HOLONOMIC_ROWS> {
         let mut r = SVector::<T, HOLONOMIC_ROWS>::zeros();
         for (i, joint) in self.joints.iter().enumerate() {
             r.fixed_rows_mut::<5>(5 * i)
-                .copy_from(&joint.residual(&poses));
+                .copy_from(&joint.residual(poses));
         }
         for (i, contact) in self.contacts.iter().enumerate() {
-            r[15 + i] = contact.height(&poses);
+            r[15 + i] = contact.height(poses);
         }
         r
     }
 
     /// Holonomic residuals and velocity-row residuals D u of a state.
     pub fn residuals(&self, state: &State<f64>) -> Residuals {
-        let (d, _) = self.velocity_rows(state);
+        let poses = Poses::new(&state.q);
         Residuals {
-            holonomic: self.holonomic_residual(&state.q),
-            velocity: d * state.u,
+            holonomic: self.holonomic_residual_at(&poses),
+            velocity: self.velocity_residual_at(&poses, state),
         }
     }
 
@@ -244,7 +251,11 @@ impl Model {
     /// δ: steer angle, the front frame's rotation relative to the rear frame about the steer
     /// axis, right positive \[rad\].
     pub fn steer<T: RealField + Copy>(&self, q: &SVector<T, COORDINATES>) -> T {
-        let poses = Poses::new(q);
+        self.steer_at(&Poses::new(q))
+    }
+
+    /// [`Model::steer`] from the poses.
+    pub(crate) fn steer_at<T: RealField + Copy>(&self, poses: &Poses<T>) -> T {
         let relative = poses.rot[REAR_FRAME].transpose() * poses.rot[FRONT_FRAME];
         let s: Vector3<T> = self.bodies.geometry.steer_axis.cast();
         let ey = Vector3::<T>::y();
@@ -254,7 +265,11 @@ impl Model {
 
     /// δ̇: steer rate [rad/s].
     pub fn steer_rate<T: RealField + Copy>(&self, state: &State<T>) -> T {
-        let poses = Poses::new(&state.q);
+        self.steer_rate_at(&Poses::new(&state.q), state)
+    }
+
+    /// [`Model::steer_rate`] from the poses of `state.q`.
+    fn steer_rate_at<T: RealField + Copy>(&self, poses: &Poses<T>, state: &State<T>) -> T {
         let a_hb = poses.rot[FRONT_FRAME].transpose() * poses.rot[REAR_FRAME];
         let s: Vector3<T> = self.bodies.geometry.steer_axis.cast();
         s.dot(&(state.angular_velocity(FRONT_FRAME) - a_hb * state.angular_velocity(REAR_FRAME)))
@@ -288,15 +303,20 @@ impl Model {
 
     /// All named quantities of a state.
     pub fn observe(&self, state: &State<f64>) -> StateView {
+        self.observe_at(&Poses::new(&state.q), state)
+    }
+
+    /// [`Model::observe`] from the poses of `state.q`.
+    pub(crate) fn observe_at(&self, poses: &Poses<f64>, state: &State<f64>) -> StateView {
         let rates = state.angle_rates(REAR_FRAME);
-        let [rear, front] = self.contact_points(&state.q);
+        let [rear, front] = self.contacts.map(|c| c.point(poses));
         StateView {
             lean: state.lean(),
-            steer: self.steer(&state.q),
+            steer: self.steer_at(poses),
             yaw: state.yaw(),
             pitch: state.pitch(),
             lean_rate: rates.y,
-            steer_rate: self.steer_rate(state),
+            steer_rate: self.steer_rate_at(poses, state),
             yaw_rate: rates.x,
             speed: self.speed(state),
             rear_contact_x: rear.x,
@@ -439,8 +459,11 @@ impl Model {
                 &Vector3::zeros(),
                 &Vector3::zeros(),
             );
-            g.fixed_rows_mut::<3>(3 * i)
-                .copy_from(&(rows.wheel * tree.jac[c.wheel] + rows.frame * tree.jac[c.frame]));
+            let mut gi = rows.wheel * tree.jac[c.wheel];
+            if c.is_skate() {
+                gi += rows.frame * tree.jac[c.frame];
+            }
+            g.fixed_rows_mut::<3>(3 * i).copy_from(&gi);
         }
         (tree, g)
     }

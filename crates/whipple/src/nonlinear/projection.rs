@@ -11,10 +11,10 @@
 //! `u = T w` the joint rows hold identically, so the projection is
 //! `min |T w − u|²` subject to `G w = 0`, a 15 × 15 saddle-point system.
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::{Matrix3, SMatrix, SVector};
 use num_dual::Dual64;
 
-use super::forward::{Poses, HOLONOMIC_ROWS, TREE, TREE_COLUMNS};
+use super::forward::{symmetrize, Poses, Reduced, HOLONOMIC_ROWS, TREE};
 use super::rotation;
 use super::state::{State, COORDINATES, LEAN, PITCH, SPEEDS, YAW};
 use super::{saddle, Model, BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
@@ -131,8 +131,21 @@ impl Model {
         q: &mut SVector<f64, COORDINATES>,
         params: &ProjectionParams,
     ) -> Result<ProjectionReport> {
+        self.project_positions_posed(q, params)
+            .map(|(report, _)| report)
+    }
+
+    /// [`Model::project_positions`], also returning the poses of the projected q.
+    fn project_positions_posed(
+        &self,
+        q: &mut SVector<f64, COORDINATES>,
+        params: &ProjectionParams,
+    ) -> Result<(ProjectionReport, Poses<f64>)> {
         match params.method {
-            ProjectionMethod::LeastNorm => self.project_least_norm(q, params),
+            ProjectionMethod::LeastNorm => {
+                let report = self.project_least_norm(q, params)?;
+                Ok((report, Poses::new(q)))
+            }
             ProjectionMethod::Coordinates => self.project_coordinates(q, params),
         }
     }
@@ -142,15 +155,16 @@ impl Model {
         &self,
         q: &mut SVector<f64, COORDINATES>,
         params: &ProjectionParams,
-    ) -> Result<ProjectionReport> {
+    ) -> Result<(ProjectionReport, Poses<f64>)> {
         let b = 6 * REAR_FRAME;
         let (yaw, lean, mut pitch) = (q[b + YAW], q[b + LEAN], q[b + PITCH]);
-        let steer = self.steer(q);
+        let poses = Poses::new(q);
+        let steer = self.steer_at(&poses);
         let wheel_angles = [
             q[6 * REAR_WHEEL + PITCH] - pitch,
             q[6 * FRONT_WHEEL + PITCH] - q[6 * FRONT_FRAME + PITCH],
         ];
-        let contact = self.contacts[0].point(&Poses::new(q));
+        let contact = self.contacts[0].point(&poses);
         let c = Dual64::from_re;
         let mut iterations = 0;
         loop {
@@ -184,17 +198,21 @@ impl Model {
             wheel_angles,
             [contact.x, contact.y],
         );
-        let residual = self.holonomic_residual(q).amax();
+        let poses = Poses::new(q);
+        let residual = self.holonomic_residual_at(&poses).amax();
         if residual.is_nan() || residual > params.tolerance {
             return Err(Error::ProjectionDiverged {
                 iterations,
                 residual,
             });
         }
-        Ok(ProjectionReport {
-            iterations,
-            residual,
-        })
+        Ok((
+            ProjectionReport {
+                iterations,
+                residual,
+            },
+            poses,
+        ))
     }
 
     /// The study's least-norm Newton projection: see [`ProjectionMethod::LeastNorm`].
@@ -241,26 +259,27 @@ impl Model {
 
     /// Replaces u by its least-norm correction onto the velocity constraints at q.
     pub fn project_velocities(&self, state: &mut State<f64>) -> Result<()> {
-        let poses = Poses::new(&state.q);
-        let (tree, g) = self.contact_tree_rows(&poses);
+        self.project_velocities_at(&Poses::new(&state.q), state)
+    }
+
+    /// [`Model::project_velocities`] with the poses of `state.q` already known.
+    fn project_velocities_at(&self, poses: &Poses<f64>, state: &mut State<f64>) -> Result<()> {
+        let (tree, g) = self.contact_tree_rows(poses);
+        // min |T w − u|²: the normal equations TᵀT w = Tᵀu, body by body (m = 1, I = identity).
         let mut gram = SMatrix::<f64, TREE, TREE>::zeros();
         let mut rhs = SVector::<f64, TREE>::zeros();
-        for (k, &cols) in TREE_COLUMNS.iter().enumerate() {
-            let j = &tree.jac[k];
-            let uk = state.u.fixed_rows::<6>(6 * k);
-            for (n, &a) in cols.iter().enumerate() {
-                let ca = j.column(a);
-                for &b in &cols[n..] {
-                    gram[(a, b)] += ca.dot(&j.column(b));
-                }
-                rhs[a] += ca.dot(&uk);
-            }
+        for k in 0..BODIES {
+            let mut share = Reduced {
+                mass: &mut gram,
+                force: &mut rhs,
+                jac: &tree.jac[k],
+                m: 1.0,
+                inertia: Matrix3::identity(),
+                generalized: state.u.fixed_rows::<6>(6 * k).into_owned(),
+            };
+            share.add_body(k);
         }
-        for a in 0..TREE {
-            for b in 0..a {
-                gram[(a, b)] = gram[(b, a)];
-            }
-        }
+        symmetrize(&mut gram);
         let (w, _) = saddle::solve(&gram, &g, &rhs, &SVector::zeros(), 0.0).ok_or_else(|| {
             Error::SingularDynamics {
                 context: "velocity projection: singular constraint rows".into(),
@@ -280,8 +299,18 @@ impl Model {
         state: &mut State<f64>,
         params: &ProjectionParams,
     ) -> Result<ProjectionReport> {
-        let report = self.project_positions(&mut state.q, params)?;
-        self.project_velocities(state)?;
-        Ok(report)
+        self.project_posed(state, params).map(|(report, _)| report)
+    }
+
+    /// [`Model::project`], also returning the poses of the projected coordinates (the
+    /// simulation's sample reuses them).
+    pub(crate) fn project_posed(
+        &self,
+        state: &mut State<f64>,
+        params: &ProjectionParams,
+    ) -> Result<(ProjectionReport, Poses<f64>)> {
+        let (report, poses) = self.project_positions_posed(&mut state.q, params)?;
+        self.project_velocities_at(&poses, state)?;
+        Ok((report, poses))
     }
 }

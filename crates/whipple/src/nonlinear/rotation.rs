@@ -15,9 +15,34 @@ use nalgebra::{Matrix3, RealField, Vector3};
 /// `R = R_z(yaw) R_x(lean) R_y(pitch)`: body → world.
 #[inline]
 pub fn matrix<T: RealField + Copy>(yaw: T, lean: T, pitch: T) -> Matrix3<T> {
-    let (sy, cy) = yaw.sin_cos();
-    let (sl, cl) = lean.sin_cos();
-    let (sp, cp) = pitch.sin_cos();
+    matrix_from_sin_cos(SinCos::new(yaw), SinCos::new(lean), SinCos::new(pitch))
+}
+
+/// Sine and cosine of one angle, computed once and shared by every formula that needs them.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SinCos<T> {
+    pub sin: T,
+    pub cos: T,
+}
+
+impl<T: RealField + Copy> SinCos<T> {
+    #[inline]
+    pub fn new(angle: T) -> Self {
+        let (sin, cos) = angle.sin_cos();
+        SinCos { sin, cos }
+    }
+}
+
+/// [`matrix`] from the sines and cosines of yaw, lean and pitch.
+#[inline]
+pub(crate) fn matrix_from_sin_cos<T: RealField + Copy>(
+    yaw: SinCos<T>,
+    lean: SinCos<T>,
+    pitch: SinCos<T>,
+) -> Matrix3<T> {
+    let (sy, cy) = (yaw.sin, yaw.cos);
+    let (sl, cl) = (lean.sin, lean.cos);
+    let (sp, cp) = (pitch.sin, pitch.cos);
     Matrix3::new(
         cy * cp - sy * sl * sp,
         -sy * cl,
@@ -45,8 +70,18 @@ pub fn rates_to_body<T: RealField + Copy>(lean: T, pitch: T) -> Matrix3<T> {
 /// [`rates_to_body`], singular at lean = ±90°.
 #[inline]
 pub fn body_to_rates<T: RealField + Copy>(lean: T, pitch: T, omega: &Vector3<T>) -> Vector3<T> {
-    let (sl, cl) = lean.sin_cos();
-    let (sp, cp) = pitch.sin_cos();
+    body_to_rates_from_sin_cos(SinCos::new(lean), SinCos::new(pitch), omega)
+}
+
+/// [`body_to_rates`] from the sines and cosines of lean and pitch.
+#[inline]
+pub(crate) fn body_to_rates_from_sin_cos<T: RealField + Copy>(
+    lean: SinCos<T>,
+    pitch: SinCos<T>,
+    omega: &Vector3<T>,
+) -> Vector3<T> {
+    let (sl, cl) = (lean.sin, lean.cos);
+    let (sp, cp) = (pitch.sin, pitch.cos);
     let yaw_rate = (-sp * omega.x + cp * omega.z) / cl;
     let lean_rate = cp * omega.x + sp * omega.z;
     let pitch_rate = omega.y - sl * yaw_rate;

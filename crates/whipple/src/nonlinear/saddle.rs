@@ -17,9 +17,12 @@ fn dot<T: RealField + Copy>(a: &[T], b: &[T]) -> T {
 }
 
 /// In-place Cholesky factorization `A = UᵀU`, U upper triangular in the upper triangle (so
-/// that, column-major, every inner product runs over contiguous memory). False when A is not
+/// that, column-major, every inner product runs over contiguous memory). Returns the
+/// reciprocals of U's diagonal (the substitutions multiply by them instead of dividing: one
+/// division per row instead of one per row and right-hand side); None when A is not
 /// (numerically) positive definite.
-fn cholesky<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) -> bool {
+fn cholesky<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) -> Option<[T; N]> {
+    let mut inverse = [T::zero(); N];
     let data = a.as_mut_slice();
     for j in 0..N {
         let (left, right) = data.split_at_mut(j * N);
@@ -27,32 +30,42 @@ fn cholesky<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) -> bo
         for i in 0..j {
             let ci = &left[i * N..i * N + N];
             let s = cj[i] - dot(&ci[..i], &cj[..i]);
-            cj[i] = s / ci[i];
+            cj[i] = s * inverse[i];
         }
         let d = cj[j] - dot(&cj[..j], &cj[..j]);
         if d <= T::zero() || !d.is_finite() {
-            return false;
+            return None;
         }
-        cj[j] = d.sqrt();
+        let root = d.sqrt();
+        cj[j] = root;
+        inverse[j] = T::one() / root;
     }
-    true
+    Some(inverse)
 }
 
-/// Solves Uᵀ y = b in place (U from [`cholesky`]).
-fn forward_substitute<T: RealField + Copy, const N: usize>(u: &SMatrix<T, N, N>, b: &mut [T]) {
+/// Solves Uᵀ y = b in place (U and the reciprocals of its diagonal from [`cholesky`]).
+fn forward_substitute<T: RealField + Copy, const N: usize>(
+    u: &SMatrix<T, N, N>,
+    inverse: &[T; N],
+    b: &mut [T],
+) {
     let data = u.as_slice();
     for i in 0..N {
         let ci = &data[i * N..i * N + N];
-        b[i] = (b[i] - dot(&ci[..i], &b[..i])) / ci[i];
+        b[i] = (b[i] - dot(&ci[..i], &b[..i])) * inverse[i];
     }
 }
 
 /// Solves U x = b in place.
-fn back_substitute<T: RealField + Copy, const N: usize>(u: &SMatrix<T, N, N>, b: &mut [T]) {
+fn back_substitute<T: RealField + Copy, const N: usize>(
+    u: &SMatrix<T, N, N>,
+    inverse: &[T; N],
+    b: &mut [T],
+) {
     let data = u.as_slice();
     for i in (0..N).rev() {
         let ci = &data[i * N..i * N + N];
-        let xi = b[i] / ci[i];
+        let xi = b[i] * inverse[i];
         b[i] = xi;
         for (bk, &uki) in b[..i].iter_mut().zip(&ci[..i]) {
             *bk -= uki * xi;
@@ -76,27 +89,23 @@ pub(crate) fn solve<T: RealField + Copy, const N: usize, const M: usize>(
         l += g.transpose() * g * rho;
         f += g.transpose() * gamma * rho;
     }
-    if !cholesky(&mut l) {
-        return None;
-    }
+    let l_inverse = cholesky(&mut l)?;
     // Y = U⁻ᵀ Gᵀ, column by column; z = U⁻ᵀ f.
     let mut y = g.transpose();
     for j in 0..M {
-        forward_substitute(&l, y.column_mut(j).as_mut_slice());
+        forward_substitute(&l, &l_inverse, y.column_mut(j).as_mut_slice());
     }
     let mut z = f;
-    forward_substitute(&l, z.as_mut_slice());
+    forward_substitute(&l, &l_inverse, z.as_mut_slice());
     // Schur complement S = G A⁻¹ Gᵀ = Yᵀ Y; S λ = G A⁻¹ f − γ = Yᵀ z − γ.
     let mut s = y.transpose() * y;
     let mut lambda = y.transpose() * z - gamma;
-    if !cholesky(&mut s) {
-        return None;
-    }
-    forward_substitute(&s, lambda.as_mut_slice());
-    back_substitute(&s, lambda.as_mut_slice());
+    let s_inverse = cholesky(&mut s)?;
+    forward_substitute(&s, &s_inverse, lambda.as_mut_slice());
+    back_substitute(&s, &s_inverse, lambda.as_mut_slice());
     // x = A⁻¹ (f − Gᵀ λ) = U⁻¹ (z − Y λ).
     let mut x = z - y * lambda;
-    back_substitute(&l, x.as_mut_slice());
+    back_substitute(&l, &l_inverse, x.as_mut_slice());
     Some((x, lambda))
 }
 

@@ -16,7 +16,7 @@ use std::fmt;
 
 use nalgebra::SVector;
 
-use super::forward::{ContactForce, Derivatives, Inputs};
+use super::forward::{ContactForce, Derivatives, Inputs, Poses};
 use super::projection::ProjectionParams;
 use super::state::{State, StateView, STATE_LEN};
 use super::Model;
@@ -255,11 +255,11 @@ fn sample(
     model: &Model,
     t: f64,
     state: &State<f64>,
+    poses: &Poses<f64>,
     d: &Derivatives<f64>,
     position_residual: f64,
 ) -> Sample {
-    let view = model.observe(state);
-    let (rows, _) = model.velocity_rows(state);
+    let view = model.observe_at(poses, state);
     Sample {
         t,
         lean: view.lean,
@@ -274,7 +274,7 @@ fn sample(
         speed: view.speed,
         energy: model.energy(state),
         position_residual,
-        velocity_residual: (rows * state.u).amax(),
+        velocity_residual: model.velocity_residual_at(poses, state).amax(),
         rear: d.contact[0],
         front: d.contact[1],
     }
@@ -318,10 +318,10 @@ pub fn simulate(
     };
     let t_end = settings.duration;
     let mut state = initial;
-    let report = model.project(&mut state, &settings.projection)?;
+    let (report, poses) = model.project_posed(&mut state, &settings.projection)?;
     let mut d = ode.derivatives(0.0, &state)?;
     let mut t = 0.0;
-    let mut samples = vec![sample(model, t, &state, &d, report.residual)];
+    let mut samples = vec![sample(model, t, &state, &poses, &d, report.residual)];
     let mut steps = 0;
     let mut rejected_steps = 0;
     // Lift-off is a normal force turning negative; a wheel pulled down from the start is not
@@ -454,7 +454,7 @@ pub fn simulate(
                 rejected_steps,
             ));
         }
-        let report = match model.project(&mut next, &settings.projection) {
+        let (report, poses) = match model.project_posed(&mut next, &settings.projection) {
             Ok(r) => r,
             Err(Error::ProjectionDiverged {
                 iterations,
@@ -490,7 +490,7 @@ pub fn simulate(
             }
         };
         steps += 1;
-        samples.push(sample(model, t_new, &next, &d_new, report.residual));
+        samples.push(sample(model, t_new, &next, &poses, &d_new, report.residual));
         if let Some(progress) = &settings.progress {
             progress(Progress {
                 t: t_new,
