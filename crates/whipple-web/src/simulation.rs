@@ -9,6 +9,7 @@ use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use whipple::integrate::dopri5::Dopri5Params;
+use whipple::integrate::rk4;
 use whipple::nonlinear::{
     simulate, ContactForce, InitialConditions, Integrator, Model, Outcome, Sample, Simulation,
     SimulationSettings, StateView, TorqueFn, Wheel,
@@ -148,8 +149,10 @@ pub fn check(request: &SimulateRequest, limits: &Limits) -> Result<Plan, ApiErro
                     format!("must be positive and at most the duration ({duration} s), got {dt}"),
                 ));
             }
-            let steps = (duration / dt).ceil();
-            if steps > max_steps as f64 {
+            // Counted as the integrator counts (a last step within 1e-9 of a whole one is not
+            // another step).
+            let steps = rk4::step_count(duration, dt);
+            if steps > max_steps {
                 return Err(unprocessable(
                     "limit_exceeded",
                     "dt",
@@ -236,13 +239,14 @@ impl From<ContactForce<f64>> for Force {
     }
 }
 
-/// One body's pose, world axes (x forward, y right, z down).
+/// One body's pose, world axes (x forward, y right, z down), in single precision: plenty for
+/// drawing, and half the JSON.
 #[derive(Serialize, Debug, Clone, Copy)]
 pub struct Pose {
     /// The body's origin, its centre of mass [m].
-    pub position: [f64; 3],
+    pub position: [f32; 3],
     /// Rotation matrix body → world, row by row.
-    pub rotation: [f64; 9],
+    pub rotation: [f32; 9],
 }
 
 /// One animation frame (a recorded sample).
@@ -354,7 +358,7 @@ fn describe(run: &Simulation, duration: f64, max_steps: usize) -> OutcomeJson {
                 t: *t,
                 wheel: Some(wheel_name(*wheel)),
                 message: format!(
-                    "the {} wheel lifts off at t = {t:.2} s: its normal force turned negative (lean {lean:.1}°{})",
+                    "the {} wheel lifts off at t = {t:.2} s (normal force below zero; lean {lean:.1}°{})",
                     wheel_name(*wheel),
                     if lean.abs() > 20.0 { ", falling" } else { "" }
                 ),
@@ -409,19 +413,21 @@ fn finite(s: &Sample) -> bool {
 
 fn frame(model: &Model, s: &Sample) -> Frame {
     let bodies = model.sample_poses(s).map(|p| {
-        let r = p.rotation;
+        let (x, r) = (p.position, p.rotation);
+        // Narrowed to f32 on purpose (see `Pose`).
+        let f = |v: f64| v as f32;
         Pose {
-            position: p.position.into(),
+            position: [f(x.x), f(x.y), f(x.z)],
             rotation: [
-                r[(0, 0)],
-                r[(0, 1)],
-                r[(0, 2)],
-                r[(1, 0)],
-                r[(1, 1)],
-                r[(1, 2)],
-                r[(2, 0)],
-                r[(2, 1)],
-                r[(2, 2)],
+                f(r[(0, 0)]),
+                f(r[(0, 1)]),
+                f(r[(0, 2)]),
+                f(r[(1, 0)]),
+                f(r[(1, 1)]),
+                f(r[(1, 2)]),
+                f(r[(2, 0)]),
+                f(r[(2, 1)]),
+                f(r[(2, 2)]),
             ],
         }
     });

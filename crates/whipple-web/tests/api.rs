@@ -526,9 +526,9 @@ async fn simulation_runs_and_sends_frames() -> TestResult {
     assert!(approx(&frames[0]["speed"], 4.6, 1e-9));
     // Upright at the start: the rear frame's centre of mass is at (x_B, 0, z_B) = (0.3, 0, -0.9).
     let rider = &frames[0]["bodies"][1];
-    assert!(approx(&rider["position"][0], 0.3, 1e-9));
-    assert!(approx(&rider["position"][2], -0.9, 1e-9));
-    assert!(approx(&rider["rotation"][0], 1.0, 1e-9));
+    assert!(approx(&rider["position"][0], 0.3, 1e-6));
+    assert!(approx(&rider["position"][2], -0.9, 1e-6));
+    assert!(approx(&rider["rotation"][0], 1.0, 1e-6));
     // The weave decays: the lean late in the run is smaller than early on.
     let peak = |from: usize, to: usize| {
         frames[from..to]
@@ -652,6 +652,12 @@ async fn simulation_refuses_bad_inputs_and_limits() -> TestResult {
             "limit of 100000",
         ),
         (
+            json!({"duration": 30.0, "dt": 2.9e-4}),
+            "limit_exceeded",
+            "dt",
+            "takes 103449 integration steps",
+        ),
+        (
             json!({"rtol": 1e-6}),
             "invalid_argument",
             "rtol",
@@ -703,6 +709,15 @@ async fn simulation_refuses_bad_inputs_and_limits() -> TestResult {
     let (status, body) = post(&app, "/api/simulate", &simulation(json!({"bike": bike}))?).await?;
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
     assert_eq!(body["error"]["field"], "mB");
+    // Exactly at the step limit is allowed (0.3 / 0.0003 is 1,000 steps to round-off).
+    let at_limit = whipple_web::app(Limits {
+        max_sim_steps: 1000,
+        ..Limits::default()
+    });
+    let request = simulation(json!({"duration": 0.3, "dt": 3e-4}))?;
+    let (status, body) = post(&at_limit, "/api/simulate", &request).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert_eq!(body["steps"], 1000);
     // A smaller limit is honoured, and the compute timeout names what to change.
     let small = whipple_web::app(Limits {
         max_sim_duration: 1.0,

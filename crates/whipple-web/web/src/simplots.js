@@ -56,7 +56,7 @@ export class TimePlot {
     const root = svg("svg", { width, height, viewBox: `0 0 ${width} ${height}`, "font-family": FONT, "font-size": 10.5, role: "img", "aria-label": "Lean and steer against time" });
     root.append(svg("rect", { x: 0, y: 0, width, height, fill: "#ffffff" }));
     const tt = ticks(0, tmax, Math.max(3, Math.round(pw / 70)));
-    const yt = ticks(-ymax, ymax, Math.max(3, Math.round(ph / 36)));
+    const yt = ticks(-ymax, ymax, Math.max(4, Math.round(ph / 30)));
     const grid = svg("g", { stroke: GRID });
     for (const v of tt) grid.append(svg("line", { x1: X(v), y1: m.top, x2: X(v), y2: m.top + ph }));
     for (const v of yt) grid.append(svg("line", { x1: m.left, y1: Y(v), x2: m.left + pw, y2: Y(v) }));
@@ -143,7 +143,7 @@ export class TrackPlot {
     const clipId = `clip-track-${Math.random().toString(36).slice(2, 8)}`;
     root.append(svg("defs", {}, svg("clipPath", { id: clipId }, svg("rect", { x: m.left, y: m.top, width: pw, height: ph }))));
     const xt = ticks(x0, x1, Math.max(3, Math.round(pw / 70)));
-    const yt = ticks(y0, y1, Math.max(2, Math.round(ph / 36)));
+    const yt = ticks(y0, y1, Math.max(3, Math.round(ph / 30)));
     const grid = svg("g", { stroke: GRID });
     for (const v of xt) grid.append(svg("line", { x1: X(v), y1: m.top, x2: X(v), y2: m.top + ph }));
     for (const v of yt) grid.append(svg("line", { x1: m.left, y1: Y(v), x2: m.left + pw, y2: Y(v) }));

@@ -188,7 +188,7 @@ export class SimView {
     this.target = this.focus(f0);
     this.controls.target.copy(this.target);
     const yaw = f0.yaw;
-    const [back, left, up] = [2.7, 1.9, 1.25];
+    const [back, left, up] = [2.4, 1.7, 1.1];
     const behind = new Vector3(-Math.cos(yaw) * back + Math.sin(yaw) * left, -(Math.sin(yaw) * back + Math.cos(yaw) * left), -up);
     this.camera.position.copy(this.toThree(new Vector3(f0.rear_contact[0], f0.rear_contact[1], 0).add(behind)));
     this.controls.update();
