@@ -32,7 +32,9 @@ export async function launch() {
     timeout: 30_000,
     args: [
       "--no-sandbox",
-      "--disable-gpu",
+      // WebGL (the simulation's 3-D view) on the CPU: SwiftShader through ANGLE.
+      "--enable-unsafe-swiftshader",
+      "--use-angle=swiftshader",
       "--disable-quic",
       "--no-first-run",
       "--disable-background-networking",

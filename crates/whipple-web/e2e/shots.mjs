@@ -68,6 +68,40 @@ try {
   await page.getByTestId("param-mrider").fill("-5");
   await page.waitForTimeout(800);
   await page.screenshot({ path: join(out, "docs-invalid-entry.png") });
+  // The simulation panel, at both common laptop widths.
+  await page.mouse.move(1, 1);
+  await page.getByTestId("param-mrider").fill("80");
+  await page.getByTestId("bike-select").selectOption("preset:benchmark");
+  await page.waitForTimeout(800);
+  await page.getByTestId("tab-sim").click();
+  const run = async (speed, seconds) => {
+    await page.fill("#sim-speed", String(speed));
+    await page.click("[data-testid=sim-run]");
+    await page.waitForFunction(() => !document.querySelector("[data-testid=sim-outcome]").classList.contains("running"));
+    await page.waitForTimeout(seconds * 1000);
+    await page.getByTestId("sim-play").click(); // pause mid-animation
+  };
+  for (const [width, height] of [[1440, 900], [1280, 800]]) {
+    await page.setViewportSize({ width, height });
+    await run(4.6, 2.5);
+    await page.screenshot({ path: join(out, `10-sim-weave-${width}.png`) });
+  }
+  await page.setViewportSize({ width: 1280, height: 760 });
+  await run(4.6, 3.2);
+  await page.screenshot({ path: join(out, "docs-simulation-weave.png") });
+  await run(3, 0.2);
+  await page.$eval("#sim-scrub", (e) => {
+    e.value = e.max;
+    e.dispatchEvent(new Event("input", { bubbles: true }));
+  });
+  await page.waitForTimeout(300);
+  await page.screenshot({ path: join(out, "docs-simulation-fall.png") });
+  await page.setViewportSize({ width: 1440, height: 900 });
+  await page.waitForTimeout(300);
+  await page.screenshot({ path: join(out, "11-sim-fall-1440.png") });
+  await page.setViewportSize({ width: 1024, height: 800 });
+  await page.waitForTimeout(300);
+  await page.screenshot({ path: join(out, "12-sim-narrow.png"), fullPage: true });
 } finally {
   await close();
 }

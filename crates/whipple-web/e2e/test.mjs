@@ -147,6 +147,100 @@ try {
   check(!(await page.evaluate(() => [...document.querySelectorAll("#bike-select option")].some((o) => o.textContent === "short trail, renamed"))), "Delete removes it and goes back to the Schwinn Crown");
   const [side] = await Promise.all([page.waitForEvent("download"), page.click("#side-svg")]);
   check(readFileSync(await side.path(), "utf8").includes("total 91.1 kg"), "the side view exports as SVG");
+  // The simulation panel: the benchmark bicycle at 4.6 m/s (self-stable: the weave decays).
+  await page.getByTestId("bike-select").selectOption("preset:benchmark");
+  await waitForText("capsize-speed", (t) => t.startsWith("6.0243"));
+  await page.getByTestId("tab-sim").click();
+  check((await page.locator("#panel-sim").isVisible()) && !(await page.locator("#panel-eigen").isVisible()), "the Simulation tab takes the eigenvalue plot's place");
+  const suggested = Number(await page.inputValue("#sim-speed"));
+  check(Math.abs(suggested - (4.2924 + 6.0243) / 2) < 0.01, `the suggested speed ${suggested} m/s is the middle of the self-stable range`);
+  await page.fill("#sim-duration", "31");
+  await page.click("[data-testid=sim-run]");
+  await waitForText("sim-message", (t) => t.includes("limit of 30 s"));
+  check(await page.locator("#sim-duration").evaluate((e) => e.classList.contains("invalid")), `a 31 s run is refused at the field: "${await text("sim-message")}"`);
+  await page.fill("#sim-speed", "4.6");
+  await page.fill("#sim-duration", "10");
+  const started = Date.now();
+  await page.click("[data-testid=sim-run]");
+  await waitForText("sim-outcome", (t) => t.startsWith("completed"));
+  check(await page.getByTestId("sim-message").isHidden(), `the run completes: "${await text("sim-outcome")}" (${Date.now() - started} ms with the request)`);
+  const simTime = async () => number(await text("sim-t"));
+  /** The displayed time and the scrub bar's position, read together. */
+  const reading = () => page.evaluate(() => ({
+    t: Number(document.getElementById("sim-t").textContent.replace("−", "-")),
+    scrub: Number(document.getElementById("sim-scrub").value),
+  }));
+  // SwiftShader draws slowly (and compiles its shaders on the first frame): poll.
+  const advanced = async (r0) => {
+    const until = Date.now() + 15_000;
+    while (Date.now() < until) {
+      await page.waitForTimeout(100);
+      const r = await reading();
+      if (r.t > r0.t && r.scrub > r0.scrub) return r;
+    }
+    return r0;
+  };
+  const r1 = await reading();
+  const r2 = await advanced(r1);
+  check(r2.t > r1.t && r2.scrub > r1.scrub, `the animation advances while playing: t ${r1.t} -> ${r2.t} s, scrub ${r1.scrub.toFixed(2)} -> ${r2.scrub.toFixed(2)}`);
+  const r3 = await advanced(r2);
+  check(r3.t > r2.t, `and keeps advancing: ${r3.t} s`);
+  await page.getByTestId("sim-play").click();
+  const p1 = await simTime();
+  await page.waitForTimeout(400);
+  check((await simTime()) === p1, `pause stops it at t = ${p1} s`);
+  const pixels = () => page.$eval("[data-testid=sim-canvas]", (c) => {
+    const gl = c.getContext("webgl2") ?? c.getContext("webgl");
+    if (!gl) return null;
+    const data = new Uint8Array(c.width * c.height * 4);
+    gl.readPixels(0, 0, c.width, c.height, gl.RGBA, gl.UNSIGNED_BYTE, data);
+    const colours = new Set();
+    let hash = 0;
+    let notSky = 0;
+    for (let i = 0; i < data.length; i += 4) {
+      const [r, g, b] = [data[i], data[i + 1], data[i + 2]];
+      if (Math.abs(r - 234) + Math.abs(g - 241) + Math.abs(b - 248) > 24) notSky += 1;
+      colours.add((r >> 4) * 256 + (g >> 4) * 16 + (b >> 4));
+      hash = (hash * 31 + r + 7 * g + 13 * b) % 1_000_000_007;
+    }
+    return { notSky: notSky / (data.length / 4), colours: colours.size, hash };
+  });
+  const shot1 = await pixels();
+  check(shot1 && shot1.notSky > 0.2 && shot1.colours > 20, `the 3-D view is drawn (WebGL): ${shot1 && (100 * shot1.notSky).toFixed(0)}% of the canvas off the sky colour, ${shot1?.colours} colours`);
+  const leanCursor = () => page.$eval("[data-testid=sim-cursor]", (e) => Number(e.getAttribute("x1")));
+  const marker = () => page.$eval("[data-testid=sim-track-marker]", (e) => Number(e.getAttribute("cx")));
+  const [c1, m1] = [await leanCursor(), await marker()];
+  await page.$eval("#sim-scrub", (e) => {
+    e.value = "7.5";
+    e.dispatchEvent(new Event("input", { bubbles: true }));
+  });
+  await waitForText("sim-t", (t) => t === "7.50");
+  check((await leanCursor()) > c1 && (await marker()) > m1, "scrubbing to 7.5 s moves the time plots' cursor and the ground-track marker");
+  const shot2 = await pixels();
+  check(shot2 && shot2.hash !== shot1.hash, "and redraws the 3-D view");
+  await page.selectOption("[data-testid=sim-rate]", "2");
+  // At 2x, simulated time runs twice as fast as the page's clock (measured in the page).
+  const rate = await page.evaluate(async () => {
+    const t = () => Number(document.getElementById("sim-t").textContent.replace("−", "-"));
+    document.getElementById("sim-play").click();
+    await new Promise((r) => setTimeout(r, 300));
+    const [t0, w0] = [t(), performance.now()];
+    await new Promise((r) => setTimeout(r, 1200));
+    const [t1, w1] = [t(), performance.now()];
+    document.getElementById("sim-play").click();
+    return (t1 - t0) / ((w1 - w0) / 1000);
+  });
+  check(rate > 1.5 && rate < 2.5, `at 2x the simulated time runs ${rate.toFixed(2)} times as fast as the clock`);
+
+  // A fall at 3 m/s, below the weave speed.
+  await page.fill("#sim-speed", "3");
+  await page.click("[data-testid=sim-run]");
+  await waitForText("sim-outcome", (t) => !t.startsWith("completed") && !t.startsWith("simulating"));
+  const fell = await text("sim-outcome");
+  const kind = await page.getByTestId("sim-outcome").getAttribute("data-kind");
+  check((kind === "fell" || kind === "wheel_lifted") && /t = \d/.test(fell), `at 3 m/s the outcome is shown: "${fell}"`);
+  await page.getByTestId("tab-eigen").click();
+  check(await page.locator("#panel-eigen").isVisible(), "the eigenvalue tab comes back");
   check(errors.length === 0, `no page errors (${errors.join("; ") || "none"})`);
   console.log(`e2e: ok (${checks} checks)`);
 } catch (e) {

@@ -27,6 +27,7 @@ use whipple::{Bicycle, Description};
 
 use crate::error::{quoted_field, ApiError};
 use crate::geometry::{side_view, SideView};
+use crate::simulation::{self, SimulateRequest, SimulateResponse};
 use crate::{assets, Limits};
 
 /// The OpenAPI 3 description of every `/api` route (served at `/api/openapi.json`).
@@ -58,6 +59,7 @@ pub fn app(limits: Limits) -> Router {
         .route("/api/bike/parse", post(parse_file))
         .route("/api/eigen", post(eigen))
         .route("/api/speeds", post(speeds))
+        .route("/api/simulate", post(simulate))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .layer(DefaultBodyLimit::max(limits.max_body_bytes))
@@ -176,9 +178,11 @@ fn bicycle_json(bike: &Bicycle) -> Result<Value, ApiError> {
     serde_json::from_str(&text).map_err(|e| ApiError::internal(e.to_string()))
 }
 
-/// Runs CPU-heavy work on the blocking pool, a bounded number at a time, within the limits.
+/// Runs CPU-heavy work on the blocking pool, a bounded number at a time, within the limits;
+/// `advice` ends the timeout's message (what to ask for instead).
 async fn compute<T: Send + 'static>(
     state: &AppState,
+    advice: &str,
     work: impl FnOnce() -> Result<T, ApiError> + Send + 'static,
 ) -> Result<T, ApiError> {
     let limits = state.limits;
@@ -212,7 +216,7 @@ async fn compute<T: Send + 'static>(
             StatusCode::SERVICE_UNAVAILABLE,
             "timeout",
             format!(
-                "the computation took longer than the server's limit of {} s; ask for fewer speeds",
+                "the computation took longer than the server's limit of {} s; {advice}",
                 limits.compute_timeout.as_secs_f64()
             ),
         )),
@@ -424,7 +428,7 @@ async fn eigen(
     let bike = bicycle(&request.bike)?;
     let grid = request.speeds;
     check_grid(grid, state.limits.max_speeds)?;
-    let response = compute(&state, move || {
+    let response = compute(&state, "ask for fewer speeds", move || {
         let benchmark = bike.benchmark()?;
         let canonical = Canonical::new(&benchmark)?;
         let speeds = speed_grid(grid.start, grid.stop, grid.step)?;
@@ -477,12 +481,32 @@ async fn speeds(
     let request: SpeedsRequest = json_body(body)?;
     let bike = bicycle(&request.bike)?;
     let range = request.range;
-    let result = compute(&state, move || {
+    let result = compute(&state, "ask for a narrower range", move || {
         let canonical = Canonical::new(&bike.benchmark()?)?;
         Ok(critical_speeds(&canonical, range.lo, range.hi)?)
     })
     .await?;
     Ok(Json(result))
+}
+
+async fn simulate(
+    State(state): State<AppState>,
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Json<SimulateResponse>, ApiError> {
+    let request: SimulateRequest = json_body(body)?;
+    let bike = bicycle(&request.bike)?;
+    let plan = simulation::check(&request, &state.limits)?;
+    let max_steps = state.limits.max_sim_steps;
+    let response = compute(
+        &state,
+        "simulate a shorter time or use a larger dt",
+        move || {
+            let benchmark = bike.benchmark()?;
+            simulation::run(bike.name.clone(), &benchmark, plan, max_steps)
+        },
+    )
+    .await?;
+    Ok(Json(response))
 }
 
 #[cfg(test)]
@@ -509,6 +533,7 @@ mod tests {
             "/api/bike/parse",
             "/api/eigen",
             "/api/speeds",
+            "/api/simulate",
         ];
         routed.sort();
         assert_eq!(documented, routed);

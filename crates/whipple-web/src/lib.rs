@@ -20,6 +20,7 @@ mod api;
 mod assets;
 mod error;
 pub mod geometry;
+pub mod simulation;
 
 use std::future::Future;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
@@ -35,6 +36,12 @@ pub struct Limits {
     pub max_body_bytes: usize,
     /// Most speeds in one eigenvalue sweep (default 100,000); more get 422.
     pub max_speeds: usize,
+    /// Longest simulated time of one simulation (default 30 s); longer gets 422.
+    pub max_sim_duration: f64,
+    /// Most integration steps of one simulation (default 100,000: 30 s with an RK4 step of
+    /// 0.3 ms; about 20 MB of samples and 2–3 s of one core); an RK4 request needing more gets
+    /// 422, an adaptive run stops there (outcome `step_limit`).
+    pub max_sim_steps: usize,
     /// Longest time a whole request may take, reading the body included (default 30 s); then 408.
     pub request_timeout: Duration,
     /// Longest time one computation may run (default 10 s); then 503.
@@ -50,6 +57,8 @@ impl Default for Limits {
         Limits {
             max_body_bytes: 1 << 20,
             max_speeds: 100_000,
+            max_sim_duration: 30.0,
+            max_sim_steps: 100_000,
             request_timeout: Duration::from_secs(30),
             compute_timeout: Duration::from_secs(10),
             queue_timeout: Duration::from_secs(10),

@@ -491,3 +491,251 @@ async fn a_full_server_says_busy() -> TestResult {
     assert_eq!(statuses, [StatusCode::OK, StatusCode::SERVICE_UNAVAILABLE]);
     Ok(())
 }
+
+fn simulation(fields: Value) -> Result<Value, Box<dyn std::error::Error>> {
+    let mut request =
+        json!({"bike": preset_json("benchmark")?, "speed": 4.6, "lean_rate": 0.5, "duration": 2.0});
+    if let (Some(request), Some(fields)) = (request.as_object_mut(), fields.as_object()) {
+        for (k, v) in fields {
+            request.insert(k.clone(), v.clone());
+        }
+    }
+    Ok(request)
+}
+
+/// The benchmark bicycle at 4.6 m/s (inside its self-stable range 4.29–6.02 m/s): the weave
+/// started by a lean rate of 0.5 rad/s decays; frames at 60 per second carry the poses.
+#[tokio::test]
+async fn simulation_runs_and_sends_frames() -> TestResult {
+    let app = app(Limits::default());
+    let (status, body) = post(
+        &app,
+        "/api/simulate",
+        &simulation(json!({"duration": 3.0}))?,
+    )
+    .await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert_eq!(body["outcome"]["kind"], "completed");
+    assert!(approx(&body["outcome"]["t"], 3.0, 1e-12));
+    assert_eq!(body["steps"], 3000);
+    let frames = body["frames"].as_array().ok_or("frames")?;
+    assert_eq!(frames.len(), 181, "60 frames per second, both ends");
+    assert!(approx(&frames[0]["t"], 0.0, 0.0));
+    assert!(approx(&frames[180]["t"], 3.0, 1e-9));
+    assert!(approx(&frames[0]["lean_rate"], 0.5, 1e-9));
+    assert!(approx(&frames[0]["speed"], 4.6, 1e-9));
+    // Upright at the start: the rear frame's centre of mass is at (x_B, 0, z_B) = (0.3, 0, -0.9).
+    let rider = &frames[0]["bodies"][1];
+    assert!(approx(&rider["position"][0], 0.3, 1e-6));
+    assert!(approx(&rider["position"][2], -0.9, 1e-6));
+    assert!(approx(&rider["rotation"][0], 1.0, 1e-6));
+    // The weave decays: the lean late in the run is smaller than early on.
+    let peak = |from: usize, to: usize| {
+        frames[from..to]
+            .iter()
+            .filter_map(|f| f["lean"].as_f64())
+            .fold(0.0_f64, |m, x| m.max(x.abs()))
+    };
+    assert!(
+        peak(150, 181) < 0.5 * peak(0, 60),
+        "{} vs {}",
+        peak(150, 181),
+        peak(0, 60)
+    );
+    assert!(frames[180]["rear_contact"][0]
+        .as_f64()
+        .is_some_and(|x| x > 13.0));
+    assert!(frames[90]["rear_force"]["normal"]
+        .as_f64()
+        .is_some_and(|n| n > 0.0));
+    assert!(approx(&body["geometry"]["rear_wheel_radius"], 0.3, 1e-12));
+    assert!(approx(&body["geometry"]["masses"][1], 85.0, 1e-12));
+    // The adaptive integrator gives the same motion.
+    let (status, adaptive) = post(
+        &app,
+        "/api/simulate",
+        &simulation(json!({"duration": 3.0, "integrator": "adaptive", "rtol": 1e-8}))?,
+    )
+    .await?;
+    assert_eq!(status, StatusCode::OK, "{adaptive}");
+    assert_eq!(adaptive["outcome"]["kind"], "completed");
+    let last = adaptive["frames"]
+        .as_array()
+        .and_then(|f| f.last())
+        .ok_or("frames")?;
+    assert!(approx(
+        &last["lean"],
+        frames[180]["lean"].as_f64().ok_or("lean")?,
+        1e-6
+    ));
+    Ok(())
+}
+
+/// At 3 m/s, below the weave speed, the benchmark bicycle falls over.
+#[tokio::test]
+async fn simulation_reports_a_fall() -> TestResult {
+    let app = app(Limits::default());
+    let (status, body) = post(
+        &app,
+        "/api/simulate",
+        &simulation(json!({"speed": 3.0, "duration": 10.0}))?,
+    )
+    .await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    let kind = body["outcome"]["kind"].as_str().ok_or("kind")?;
+    assert!(
+        kind == "fell" || kind == "wheel_lifted",
+        "{}",
+        body["outcome"]
+    );
+    let t = body["outcome"]["t"].as_f64().ok_or("t")?;
+    assert!(t > 0.5 && t < 10.0, "{t}");
+    let message = body["outcome"]["message"].as_str().ok_or("message")?;
+    assert!(message.contains(&format!("t = {t:.2} s")), "{message}");
+    let frames = body["frames"].as_array().ok_or("frames")?;
+    let last = frames.last().ok_or("no frames")?;
+    assert!(approx(&last["t"], t, 2e-3), "the last frame is the event");
+    assert!(last["lean"].as_f64().is_some_and(|l| l.abs() > 0.3));
+    Ok(())
+}
+
+#[tokio::test]
+async fn simulation_refuses_bad_inputs_and_limits() -> TestResult {
+    let app = app(Limits::default());
+    let cases = [
+        (
+            json!({"lean_deg": 90.0}),
+            "invalid_argument",
+            "lean_deg",
+            "below 90 degrees",
+        ),
+        (
+            json!({"lean_deg": -95.0}),
+            "invalid_argument",
+            "lean_deg",
+            "below 90 degrees",
+        ),
+        (
+            json!({"dt": 0.0}),
+            "invalid_argument",
+            "dt",
+            "must be positive",
+        ),
+        (
+            json!({"dt": -1e-3}),
+            "invalid_argument",
+            "dt",
+            "must be positive",
+        ),
+        (
+            json!({"dt": 3.0}),
+            "invalid_argument",
+            "dt",
+            "at most the duration",
+        ),
+        (
+            json!({"duration": 0.0}),
+            "invalid_argument",
+            "duration",
+            "must be positive",
+        ),
+        (
+            json!({"duration": 31.0}),
+            "limit_exceeded",
+            "duration",
+            "limit of 30 s",
+        ),
+        (
+            json!({"duration": 20.0, "dt": 1e-4}),
+            "limit_exceeded",
+            "dt",
+            "limit of 100000",
+        ),
+        (
+            json!({"duration": 30.0, "dt": 2.9e-4}),
+            "limit_exceeded",
+            "dt",
+            "takes 103449 integration steps",
+        ),
+        (
+            json!({"rtol": 1e-6}),
+            "invalid_argument",
+            "rtol",
+            "RK4 takes `dt`",
+        ),
+        (
+            json!({"integrator": "adaptive", "dt": 1e-3}),
+            "invalid_argument",
+            "dt",
+            "takes `rtol`",
+        ),
+        (
+            json!({"integrator": "adaptive", "rtol": 2.0}),
+            "invalid_argument",
+            "rtol",
+            "between 0 and 1",
+        ),
+    ];
+    for (fields, kind, field, words) in cases {
+        let (status, body) = post(&app, "/api/simulate", &simulation(fields.clone())?).await?;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{fields}: {body}");
+        assert_eq!(body["error"]["kind"], kind, "{fields}: {body}");
+        assert_eq!(body["error"]["field"], field, "{fields}: {body}");
+        let message = body["error"]["message"].as_str().unwrap_or("");
+        assert!(message.contains(words), "{fields}: {message}");
+    }
+    // Non-finite numbers: JSON has none, and one out of range is not a number.
+    let text = simulation(json!({}))?
+        .to_string()
+        .replace("\"speed\":4.6", "\"speed\":1e999");
+    let (status, _, body) = send(&app, Method::POST, "/api/simulate", Some(text)).await?;
+    assert!(
+        status == StatusCode::BAD_REQUEST || status == StatusCode::UNPROCESSABLE_ENTITY,
+        "{status} {body}"
+    );
+    // Wrong shapes and unknown keys.
+    for fields in [
+        json!({"speed": "fast"}),
+        json!({"integrator": "euler"}),
+        json!({"fall_angle": 30}),
+    ] {
+        let (status, body) = post(&app, "/api/simulate", &simulation(fields.clone())?).await?;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{fields}: {body}");
+        assert_eq!(body["error"]["kind"], "invalid_request");
+    }
+    // An invalid bicycle names its parameter.
+    let mut bike = preset_json("benchmark")?;
+    bike["benchmark"]["mB"] = json!(-1.0);
+    let (status, body) = post(&app, "/api/simulate", &simulation(json!({"bike": bike}))?).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(body["error"]["field"], "mB");
+    // Exactly at the step limit is allowed (0.3 / 0.0003 is 1,000 steps to round-off).
+    let at_limit = whipple_web::app(Limits {
+        max_sim_steps: 1000,
+        ..Limits::default()
+    });
+    let request = simulation(json!({"duration": 0.3, "dt": 3e-4}))?;
+    let (status, body) = post(&at_limit, "/api/simulate", &request).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert_eq!(body["steps"], 1000);
+    // A smaller limit is honoured, and the compute timeout names what to change.
+    let small = whipple_web::app(Limits {
+        max_sim_duration: 1.0,
+        ..Limits::default()
+    });
+    let (status, body) = post(&small, "/api/simulate", &simulation(json!({}))?).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert!(body["error"]["message"]
+        .as_str()
+        .is_some_and(|m| m.contains("limit of 1 s")));
+    let slow = whipple_web::app(Limits {
+        compute_timeout: Duration::from_micros(1),
+        ..Limits::default()
+    });
+    let (status, body) = post(&slow, "/api/simulate", &simulation(json!({}))?).await?;
+    assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE);
+    assert!(body["error"]["message"]
+        .as_str()
+        .is_some_and(|m| m.contains("shorter time")));
+    Ok(())
+}

@@ -1,5 +1,5 @@
 //! A bounded load on loopback: 2,000 requests, 64 at a time, across the endpoints the page
-//! calls most; every answer must be right. Prints the throughput (run with `--nocapture`;
+//! calls most (and a few simulations); every answer must be right. Prints the throughput (run with `--nocapture`;
 //! `--release` for the figure quoted in BENCHMARKS.md).
 
 use std::sync::Arc;
@@ -43,6 +43,9 @@ async fn two_thousand_requests_sixty_four_at_a_time() -> TestResult {
     let eigen = Bytes::from(
         json!({"bike": crown, "speeds": {"start": 0, "stop": 10, "step": 0.1}}).to_string(),
     );
+    let simulate = Bytes::from(
+        json!({"bike": crown, "speed": 6.0, "lean_rate": 0.5, "duration": 1.0}).to_string(),
+    );
     let client = Client::builder(TokioExecutor::new()).build_http::<Full<Bytes>>();
     let gate = Arc::new(Semaphore::new(CONCURRENCY));
     let started = Instant::now();
@@ -51,6 +54,8 @@ async fn two_thousand_requests_sixty_four_at_a_time() -> TestResult {
         let permit = gate.clone().acquire_owned().await?;
         let client = client.clone();
         let (method, path, body) = match i % 4 {
+            // One request in 40: a 1 s simulation (1,000 RK4 steps, 61 frames).
+            _ if i % 40 == 3 => (Method::POST, "/api/simulate", simulate.clone()),
             0 => (Method::GET, "/api/presets", Bytes::new()),
             1 => (Method::POST, "/api/bike/validate", validate.clone()),
             _ => (Method::POST, "/api/eigen", eigen.clone()),
@@ -73,6 +78,10 @@ async fn two_thousand_requests_sixty_four_at_a_time() -> TestResult {
                         .as_f64()
                         .is_some_and(|v| (v - 7.9807).abs() < 5e-5),
                     "/api/bike/validate" => body["form"] == "jbike6",
+                    "/api/simulate" => {
+                        body["outcome"]["kind"] == "completed"
+                            && body["frames"].as_array().is_some_and(|f| f.len() == 61)
+                    }
                     _ => body.as_array().is_some_and(|a| !a.is_empty()),
                 };
             Ok::<bool, Box<dyn std::error::Error + Send + Sync>>(ok)
@@ -88,7 +97,7 @@ async fn two_thousand_requests_sixty_four_at_a_time() -> TestResult {
     }
     let seconds = started.elapsed().as_secs_f64();
     println!(
-        "load: {REQUESTS} requests ({CONCURRENCY} concurrent; 1/4 presets, 1/4 validate, 1/2 eigen with 101 speeds) in {seconds:.2} s: {:.0} requests/s, {bad} errors",
+        "load: {REQUESTS} requests ({CONCURRENCY} concurrent; 1/4 presets, 1/4 validate, 1/2 eigen with 101 speeds, 1/40 of them 1 s simulations instead) in {seconds:.2} s: {:.0} requests/s, {bad} errors",
         REQUESTS as f64 / seconds
     );
     assert_eq!((good, bad), (REQUESTS, 0));

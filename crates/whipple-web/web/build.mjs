@@ -18,6 +18,9 @@ await build({
   format: "esm",
   target: ["es2020"],
   legalComments: "none",
+  // The page's imports (three) resolve from the node_modules beside this script (build.rs
+  // installs them in OUT_DIR/npm), not from the source tree, which has none in a fresh clone.
+  nodePaths: [join(dirname(fileURLToPath(import.meta.url)), "node_modules")],
   logLevel: "warning",
 });
 copyFileSync(join(web, "index.html"), join(out, "index.html"));

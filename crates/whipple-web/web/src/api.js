@@ -36,4 +36,6 @@ export const api = {
   eigen: (bike, speeds) => call("POST", "/api/eigen", { bike, speeds }),
   toml: (bike) => call("POST", "/api/bike/toml", { bike }),
   parse: (text, format) => call("POST", "/api/bike/parse", { text, format }),
+  /** `request`: {bike, speed, lean_deg, steer_deg, lean_rate, steer_rate, duration, ...}. */
+  simulate: (request) => call("POST", "/api/simulate", request),
 };

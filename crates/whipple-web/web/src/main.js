@@ -9,6 +9,7 @@ import { setPath } from "./fields.js";
 import { drawSideView } from "./sideview.js";
 import { EigenPlot } from "./plot.js";
 import { drawCritical } from "./critical.js";
+import { SimPanel } from "./sim.js";
 import { html, slug, download, svgText, svgPng } from "./format.js";
 
 const $ = (id) => document.getElementById(id);
@@ -36,6 +37,7 @@ const editor = new Editor($("editor-body"), (path, value) => {
   schedule();
 });
 const plot = new EigenPlot($("eigen-plot"));
+const sim = new SimPanel({ bike: () => clone(state.bike) });
 let sideSvg = null;
 
 // ---- messages ---------------------------------------------------------------------------
@@ -123,7 +125,7 @@ function renderEditor() {
   const isJbike6 = Boolean(state.bike.jbike6);
   $("tab-jbike6").disabled = !isJbike6;
   $("tab-jbike6").title = isJbike6 ? "JBike6's seven-body description" : "this design is described in the benchmark form";
-  for (const tab of document.querySelectorAll(".tab")) tab.setAttribute("aria-selected", String(tab.dataset.form === state.form));
+  for (const tab of document.querySelectorAll(".tab[data-form]")) tab.setAttribute("aria-selected", String(tab.dataset.form === state.form));
   if (state.form === "jbike6") {
     editor.render("jbike6", state.bike.jbike6);
   } else if (!isJbike6) {
@@ -152,7 +154,7 @@ function convertToBenchmark() {
   schedule();
 }
 
-for (const tab of document.querySelectorAll(".tab")) {
+for (const tab of document.querySelectorAll(".tab[data-form]")) {
   tab.addEventListener("click", () => {
     if (tab.disabled) return;
     state.form = tab.dataset.form;
@@ -235,6 +237,7 @@ async function recompute() {
   $("eigen-message").hidden = true;
   quiet("bike");
   state.eigen = eigen.value;
+  sim.suggestSpeed(state.eigen.critical);
   drawAll();
 }
 
@@ -285,6 +288,17 @@ function showStale(text) {
   if (text) say(text, "error");
   drawAll();
 }
+
+// ---- bottom panel: eigenvalues or simulation ------------------------------------------------
+
+function showView(view) {
+  $("panel-eigen").hidden = view !== "eigen";
+  $("panel-sim").hidden = view !== "sim";
+  document.querySelector(".layout").classList.toggle("sim-active", view === "sim");
+  for (const tab of document.querySelectorAll(".tab[data-view]")) tab.setAttribute("aria-selected", String(tab.dataset.view === view));
+  if (view === "eigen") drawAll();
+}
+for (const tab of document.querySelectorAll(".tab[data-view]")) tab.addEventListener("click", () => showView(tab.dataset.view));
 
 // ---- controls -----------------------------------------------------------------------------
 

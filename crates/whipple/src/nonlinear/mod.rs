@@ -39,7 +39,7 @@ pub use simulate::{
     simulate, Integrator, Outcome, Progress, ProgressFn, Sample, Simulation, SimulationSettings,
     TorqueFn, Wheel,
 };
-pub use state::{State, StateView, COORDINATES, SPEEDS, STATE_LEN};
+pub use state::{BodyPose, State, StateView, COORDINATES, SPEEDS, STATE_LEN};
 
 use crate::error::{Error, Result};
 use crate::parameters::BenchmarkParameters;
@@ -324,6 +324,73 @@ impl Model {
             front_contact_x: front.x,
             front_contact_y: front.y,
         }
+    }
+
+    /// θ_R, θ_F: rotation of the rear and front wheels relative to their frames, about the
+    /// axle (negative when rolling forward, never wrapped) \[rad\]. With the hub joints holding,
+    /// a wheel and its frame share yaw and lean, so this is the difference of their third
+    /// angles.
+    pub fn wheel_angles<T: RealField + Copy>(&self, q: &SVector<T, COORDINATES>) -> [T; 2] {
+        self.contacts
+            .map(|c| q[6 * c.wheel + state::PITCH] - q[6 * c.frame + state::PITCH])
+    }
+
+    /// The pose of each body ([`REAR_WHEEL`], [`REAR_FRAME`], [`FRONT_FRAME`], [`FRONT_WHEEL`]
+    /// order) in a state: origin (centre of mass) and rotation matrix, world axes.
+    ///
+    /// ```
+    /// use whipple::{BenchmarkParameters, nonlinear::{InitialConditions, Model, REAR_FRAME}};
+    /// let bike = BenchmarkParameters::meijaard2007();
+    /// let model = Model::new(&bike)?;
+    /// let state = model.initial_state(&InitialConditions::upright(5.0))?;
+    /// let poses = model.body_poses(&state);
+    /// // Upright: the rear frame's centre of mass is at (x_B, 0, z_B), its axes the world's.
+    /// assert!((poses[REAR_FRAME].position.x - bike.x_b).abs() < 1e-12);
+    /// assert!((poses[REAR_FRAME].position.z - bike.z_b).abs() < 1e-12);
+    /// assert!((poses[REAR_FRAME].rotation.determinant() - 1.0).abs() < 1e-12);
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn body_poses(&self, state: &State<f64>) -> [BodyPose; BODIES] {
+        Self::poses_of(&state.q)
+    }
+
+    /// The 24 coordinates of a recorded [`Sample`]: its lean, steer, yaw, pitch, wheel angles
+    /// and rear contact point determine the configuration (the constraints holding exactly), as
+    /// they did the state it was recorded from (to the projection's tolerance).
+    pub fn sample_coordinates(&self, sample: &Sample) -> SVector<f64, COORDINATES> {
+        self.configuration(
+            [sample.yaw, sample.lean, sample.pitch],
+            sample.steer,
+            [sample.rear_wheel_angle, sample.front_wheel_angle],
+            [sample.x, sample.y],
+        )
+    }
+
+    /// The pose of each body at a recorded [`Sample`] (see [`Model::body_poses`]), so that a
+    /// simulation can be animated from its samples alone.
+    ///
+    /// ```
+    /// use whipple::{BenchmarkParameters, nonlinear::*};
+    /// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+    /// let start = model.initial_state(&InitialConditions { lean_rate: 0.5, ..InitialConditions::upright(4.6) })?;
+    /// let run = simulate(&model, start, &SimulationSettings { duration: 0.5, ..SimulationSettings::default() })?;
+    /// let (last, exact) = (run.samples.last().expect("a sample"), model.body_poses(&run.final_state));
+    /// for (from_sample, from_state) in model.sample_poses(last).iter().zip(&exact) {
+    ///     assert!((from_sample.position - from_state.position).amax() < 1e-9);
+    ///     assert!((from_sample.rotation - from_state.rotation).amax() < 1e-9);
+    /// }
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn sample_poses(&self, sample: &Sample) -> [BodyPose; BODIES] {
+        Self::poses_of(&self.sample_coordinates(sample))
+    }
+
+    fn poses_of(q: &SVector<f64, COORDINATES>) -> [BodyPose; BODIES] {
+        let poses = Poses::new(q);
+        std::array::from_fn(|k| BodyPose {
+            position: poses.pos[k],
+            rotation: poses.rot[k],
+        })
     }
 
     /// Rotation matrices and origins of the rear and front frames, and the rear and front hub

@@ -161,7 +161,8 @@ pub enum Outcome {
     },
 }
 
-/// One recorded instant (after projection). Radians, metres, seconds, newtons, joules.
+/// One recorded instant (after projection). Radians, metres, seconds, newtons, joules. The
+/// configuration is complete: [`Model::sample_poses`] places the four bodies.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Sample {
     /// t \[s\].
@@ -176,6 +177,12 @@ pub struct Sample {
     pub steer_rate: f64,
     /// ψ \[rad\].
     pub yaw: f64,
+    /// θ_B: pitch of the rear frame (a dependent coordinate) \[rad\].
+    pub pitch: f64,
+    /// θ_R: rear wheel rotation relative to the rear frame (see [`Model::wheel_angles`]) \[rad\].
+    pub rear_wheel_angle: f64,
+    /// θ_F: front wheel rotation relative to the front frame \[rad\].
+    pub front_wheel_angle: f64,
     /// Rear contact x \[m\].
     pub x: f64,
     /// Rear contact y \[m\].
@@ -260,6 +267,7 @@ fn sample(
     position_residual: f64,
 ) -> Sample {
     let view = model.observe_at(poses, state);
+    let [rear_wheel_angle, front_wheel_angle] = model.wheel_angles(&state.q);
     Sample {
         t,
         lean: view.lean,
@@ -267,6 +275,9 @@ fn sample(
         lean_rate: view.lean_rate,
         steer_rate: view.steer_rate,
         yaw: view.yaw,
+        pitch: view.pitch,
+        rear_wheel_angle,
+        front_wheel_angle,
         x: view.rear_contact_x,
         y: view.rear_contact_y,
         front_x: view.front_contact_x,

@@ -10,7 +10,7 @@
 //!
 //! With these speeds the mass matrix is constant and block-diagonal, diag(m I₃, I_body) per body.
 
-use nalgebra::{RealField, SVector, Vector3};
+use nalgebra::{Matrix3, RealField, SVector, Vector3};
 
 /// Number of coordinates (3 position + 3 angles per body).
 pub const COORDINATES: usize = 24;
@@ -147,4 +147,19 @@ pub struct StateView {
     pub front_contact_x: f64,
     /// Front contact point, y \[m\].
     pub front_contact_y: f64,
+}
+
+/// Where one rigid body is and how it is turned, world axes (x forward, y right, z down, the
+/// benchmark's): what a drawing needs to place the body.
+///
+/// A point `p_body` given in the body's axes relative to its origin lies at
+/// `position + rotation * p_body` in the world. Every origin is the body's centre of mass (the
+/// hubs for the wheels; see [`super::bodies`]), and the attachment points in body axes are in
+/// [`super::bodies::Geometry`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BodyPose {
+    /// Position of the body's origin (its centre of mass), world axes \[m\].
+    pub position: Vector3<f64>,
+    /// Rotation matrix, body axes → world axes (orthonormal, determinant 1).
+    pub rotation: Matrix3<f64>,
 }
