@@ -1,29 +1,8 @@
 //! `whipple validate`, the real binary: the CSV header and values, JSON, the report directory.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
-fn whipple(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_whipple"))
-        .args(args)
-        .output()
-        .expect("the whipple binary runs")
-}
-
-fn stdout(output: &Output) -> String {
-    assert!(
-        output.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    String::from_utf8_lossy(&output.stdout).into_owned()
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
+use common::{scratch, stdout, whipple};
 
 const LIN: &str = "v,lin_re1,lin_im1,lin_re2,lin_im2,lin_re3,lin_im3,lin_re4,lin_im4";
 
