@@ -144,36 +144,18 @@ fn basu_mandal_2007_table_1_accelerations() -> Result<()> {
     Ok(())
 }
 
-/// A two-mass-skate-like bicycle (after Kooijman et al. 2011, Science 332:339–342): skates
-/// instead of wheels (zero radius, mass and inertia), negative trail, point masses.
+/// A two-mass-skate-like bicycle (after Kooijman et al. 2011, Science 332:339–342): the
+/// preset's skates (zero radius, mass and inertia) and point masses, with another wheelbase,
+/// negative trail and the rear mass behind the front contact.
 fn skate_bicycle() -> BenchmarkParameters {
     BenchmarkParameters {
         w: 0.7,
         c: -0.02,
-        lambda: 5f64.to_radians(),
-        r_r: 0.0,
-        m_r: 0.0,
-        i_rxx: 0.0,
-        i_ryy: 0.0,
         x_b: 0.3,
         z_b: -0.9,
-        m_b: 10.0,
-        i_bxx: 0.0,
-        i_byy: 0.0,
-        i_bzz: 0.0,
-        i_bxz: 0.0,
         x_h: 0.85,
         z_h: -0.5,
-        m_h: 1.0,
-        i_hxx: 0.0,
-        i_hyy: 0.0,
-        i_hzz: 0.0,
-        i_hxz: 0.0,
-        r_f: 0.0,
-        m_f: 0.0,
-        i_fxx: 0.0,
-        i_fyy: 0.0,
-        ..BenchmarkParameters::meijaard2007()
+        ..whipple::parameters::presets::two_mass_skate()
     }
 }
 
