@@ -13,17 +13,14 @@ use whipple::parameters::presets::PRESETS;
 use whipple::{Bicycle, Description};
 
 use crate::bike::{load, LoadedBike};
-use crate::output::{number, parse_pair, parse_triple, write_atomically};
+use crate::output::{number, parse_pair, parse_triple, print_stdout, write_atomically};
 use crate::{FileFormat, TableFormat, TextFormat};
 
 /// Prints `text` to standard output or writes it to `out`.
 fn emit(text: &str, out: Option<&Path>) -> Result<()> {
     match out {
         Some(path) => write_atomically(path, text.as_bytes()),
-        None => {
-            print!("{text}");
-            Ok(())
-        }
+        None => print_stdout(text),
     }
 }
 

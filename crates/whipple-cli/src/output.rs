@@ -38,6 +38,17 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     result
 }
 
+/// Writes `text` to standard output. A reader that went away (`whipple eig ... | head`) is not
+/// an error: the output it wanted has been delivered.
+pub fn print_stdout(text: &str) -> Result<()> {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        Err(e) => Err(e).context("writing to standard output"),
+    }
+}
+
 /// Shortest text that reads back as the same f64; refuses NaN and infinities.
 pub fn number(x: f64) -> Result<String> {
     if !x.is_finite() {

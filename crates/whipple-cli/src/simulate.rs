@@ -17,7 +17,7 @@ use whipple::nonlinear::{
 };
 
 use crate::bike::{load, LoadedBike};
-use crate::output::{number, write_atomically};
+use crate::output::{number, print_stdout, write_atomically};
 use crate::TableFormat;
 
 /// The integrators on offer.
@@ -550,7 +550,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     };
     match &args.out {
         Some(path) => write_atomically(path, text.as_bytes())?,
-        None => print!("{text}"),
+        None => print_stdout(&text)?,
     }
     if args.format != TableFormat::Table || args.out.is_some() {
         eprintln!("{}: {outcome}", bike.label);

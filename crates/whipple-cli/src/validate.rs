@@ -96,7 +96,7 @@ pub fn validate(
         ValidateFormat::Csv => csv(&sweep, &shown)?,
         ValidateFormat::Json => json_text(&bike, &sweep, &shown)?,
     };
-    print!("{text}");
+    crate::output::print_stdout(&text)?;
     if let Some(dir) = report {
         write_report(&bike, &sweep, &shown, &timings, dir)?;
         eprintln!("wrote the validation report to {}", dir.display());

@@ -522,3 +522,28 @@ fn simulate_refuses_bad_options_by_name() {
         assert!(err.contains(expected), "{extra:?}: {err}");
     }
 }
+
+/// `whipple eig ... | head`: a reader that goes away early is not a failure, and never a panic.
+#[test]
+fn a_closed_output_pipe_ends_the_run_quietly() {
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_whipple"))
+        .args([
+            "eig",
+            "--bike",
+            "benchmark",
+            "--speeds",
+            "0:10:0.0001",
+            "--format",
+            "csv",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the whipple binary runs");
+    drop(child.stdout.take()); // the reader goes away before reading anything
+    let output = child.wait_with_output().expect("it ends");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(output.status.success(), "{stderr}");
+}
