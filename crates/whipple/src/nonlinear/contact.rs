@@ -53,6 +53,27 @@ pub struct ContactRows<T: RealField + Copy> {
     pub contact_frame: ContactFrame<T>,
 }
 
+/// Directions, offset and rates at one contact, world axes.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ContactKinematics<T: RealField + Copy> {
+    /// a: the wheel's axle, and ȧ.
+    pub axle: Vector3<T>,
+    pub axle_dot: Vector3<T>,
+    /// The wheel's angular velocity.
+    pub omega: Vector3<T>,
+    /// f (longitudinal) and ḟ.
+    pub f: Vector3<T>,
+    pub f_dot: Vector3<T>,
+    /// n (lateral) and ṅ.
+    pub n: Vector3<T>,
+    pub n_dot: Vector3<T>,
+    /// Hub → contact point, and its rate.
+    pub rho: Vector3<T>,
+    pub rho_dot: Vector3<T>,
+    /// Material velocity of the wheel at the contact point (zero when rolling).
+    pub v_p: Vector3<T>,
+}
+
 impl KnifeEdge {
     /// True for a wheel of zero radius.
     pub fn is_skate(&self) -> bool {
@@ -83,6 +104,42 @@ impl KnifeEdge {
         poses.pos[self.wheel].z + (a.x * a.x + a.y * a.y).sqrt() * nalgebra::convert(self.radius)
     }
 
+    /// The contact's directions, offset and their rates from the wheel's velocity (world) and
+    /// angular velocity (body axes).
+    pub(crate) fn kinematics<T: RealField + Copy>(
+        &self,
+        poses: &Poses<T>,
+        v_wheel: &Vector3<T>,
+        omega_wheel: &Vector3<T>,
+    ) -> ContactKinematics<T> {
+        let rw = &poses.rot[self.wheel];
+        let a = rw.column(1).into_owned();
+        let w = rw * omega_wheel;
+        let a_dot = w.cross(&a);
+        let (f, s) = longitudinal(&a);
+        let ez = Vector3::z();
+        // ṡ and ḟ of s = |a × e_z|, f = (a × e_z)/s.
+        let s_dot = -a.z * a_dot.z / s;
+        let f_dot = (a_dot.cross(&ez) - f * s_dot) / s;
+        let n = Vector3::new(-f.y, f.x, T::zero());
+        let n_dot = Vector3::new(-f_dot.y, f_dot.x, T::zero());
+        let r: T = nalgebra::convert(self.radius);
+        let rho = f.cross(&a) * r;
+        let rho_dot = (f_dot.cross(&a) + f.cross(&a_dot)) * r;
+        ContactKinematics {
+            axle: a,
+            axle_dot: a_dot,
+            omega: w,
+            f,
+            f_dot,
+            n,
+            n_dot,
+            rho,
+            rho_dot,
+            v_p: v_wheel + w.cross(&rho),
+        }
+    }
+
     /// Velocity rows and γ from the wheel's velocity (world) and angular velocity (body axes)
     /// and its frame's angular velocity (body axes).
     pub fn rows<T: RealField + Copy>(
@@ -93,20 +150,19 @@ impl KnifeEdge {
         omega_frame: &Vector3<T>,
     ) -> ContactRows<T> {
         let rw = &poses.rot[self.wheel];
-        let a = rw.column(1).into_owned();
-        let w = rw * omega_wheel;
-        let a_dot = w.cross(&a);
-        let (f, s) = longitudinal(&a);
+        let ContactKinematics {
+            axle: a,
+            axle_dot: a_dot,
+            omega: w,
+            f,
+            f_dot,
+            n,
+            n_dot,
+            rho,
+            rho_dot,
+            v_p,
+        } = self.kinematics(poses, v_wheel, omega_wheel);
         let ez = Vector3::z();
-        // ṡ and ḟ of s = |a × e_z|, f = (a × e_z)/s.
-        let s_dot = -a.z * a_dot.z / s;
-        let f_dot = (a_dot.cross(&ez) - f * s_dot) / s;
-        let n = ez.cross(&f);
-        let n_dot = ez.cross(&f_dot);
-        let r: T = nalgebra::convert(self.radius);
-        let rho = f.cross(&a) * r;
-        let rho_dot = (f_dot.cross(&a) + f.cross(&a_dot)) * r;
-        let v_p = v_wheel + w.cross(&rho);
 
         let mut wheel = SMatrix::<T, 3, 6>::zeros();
         let mut frame = SMatrix::<T, 3, 6>::zeros();

@@ -21,6 +21,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3, RealField, SMatrix, SVector, Vector3};
 
 use super::bodies::{BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
+use super::contact::ContactFrame;
 use super::rotation::SinCos;
 use super::state::{State, COORDINATES, SPEEDS, STATE_LEN};
 use super::Model;
@@ -29,6 +30,8 @@ use crate::error::{Error, Result};
 
 /// Number of tree speeds w.
 pub(crate) const TREE: usize = 9;
+/// Number of tree speeds once the rear wheel's rolling rows are solved for ν.
+pub(crate) const ROLLING_TREE: usize = 6;
 /// Holonomic rows: 3 joints × 5 + 2 contact heights.
 pub const HOLONOMIC_ROWS: usize = 17;
 /// All velocity rows: the 17 holonomic ones differentiated, then 4 rolling (non-holonomic).
@@ -131,14 +134,32 @@ impl<T: RealField + Copy> Derivatives<T> {
 }
 
 /// Stage 2: the tree map u_i = J_i w, u̇_i = J_i ẇ + c_i, and the tree-consistent speeds.
+///
+/// J_i is stored in two parts: the columns of ν, which are the rear frame's rotation R_B in
+/// every body's translation rows (and zero in its rotation rows), and the columns of the six
+/// other tree speeds `[ω_B, δ̇, σ_R, σ_F]`.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Tree<T: RealField + Copy> {
-    pub jac: [SMatrix<T, 6, TREE>; BODIES],
+    /// R_B: the ν columns of every body's translation rows.
+    pub hub: Matrix3<T>,
+    /// The columns of `[ω_B, δ̇, σ_R, σ_F]`.
+    pub rest: [SMatrix<T, 6, ROLLING_TREE>; BODIES],
     pub bias: [SVector<T, 6>; BODIES],
     /// Velocities of the origins (world).
     pub velocity: [Vector3<T>; BODIES],
     /// Angular velocities (body axes).
     pub omega: [Vector3<T>; BODIES],
+}
+
+impl<T: RealField + Copy> Tree<T> {
+    /// Body k's whole J (6 × 9) over `w = [ν, ω_B, δ̇, σ_R, σ_F]`.
+    pub fn jac(&self, k: usize) -> SMatrix<T, 6, TREE> {
+        let mut j = SMatrix::<T, 6, TREE>::zeros();
+        j.fixed_view_mut::<3, 3>(0, 0).copy_from(&self.hub);
+        j.fixed_columns_mut::<ROLLING_TREE>(3)
+            .copy_from(&self.rest[k]);
+        j
+    }
 }
 
 /// Tree speeds that can move each body (the other columns of its J are zero): rear wheel
@@ -147,28 +168,44 @@ const COLUMNS_REAR_WHEEL: [usize; 7] = [0, 1, 2, 3, 4, 5, 7];
 const COLUMNS_REAR_FRAME: [usize; 6] = [0, 1, 2, 3, 4, 5];
 const COLUMNS_FRONT_FRAME: [usize; 7] = [0, 1, 2, 3, 4, 5, 6];
 const COLUMNS_FRONT_WHEEL: [usize; 8] = [0, 1, 2, 3, 4, 5, 6, 8];
+/// The same for the rolling tree `[ω_B, δ̇, σ_R, σ_F]`, where ω_B and σ_R move every body
+/// (rolling on the rear wheel).
+const ROLLING_REAR: [usize; 4] = [0, 1, 2, 4];
+const ROLLING_FRONT_FRAME: [usize; 5] = [0, 1, 2, 3, 4];
+const ROLLING_FRONT_WHEEL: [usize; 6] = [0, 1, 2, 3, 4, 5];
 
-/// One body's share of the reduced mass matrix TᵀMT and forces Tᵀ(f − Mc).
-pub(crate) struct Reduced<'a, T: RealField + Copy> {
-    pub mass: &'a mut SMatrix<T, TREE, TREE>,
-    pub force: &'a mut SVector<T, TREE>,
-    /// The body's J (6 × 9).
-    pub jac: &'a SMatrix<T, 6, TREE>,
+/// One body's share of the reduced mass matrix TᵀMT and forces Tᵀ(f − Mc), over N tree
+/// speeds (9, or 6 for the rolling tree).
+pub(crate) struct Reduced<'a, T: RealField + Copy, const N: usize> {
+    pub mass: &'a mut SMatrix<T, N, N>,
+    pub force: &'a mut SVector<T, N>,
+    /// The body's J (6 × N).
+    pub jac: &'a SMatrix<T, 6, N>,
     pub m: T,
     pub inertia: Matrix3<T>,
     /// f − M c of the body: world force, then body-axes torque.
     pub generalized: SVector<T, 6>,
 }
 
-impl<T: RealField + Copy> Reduced<'_, T> {
+impl<T: RealField + Copy, const N: usize> Reduced<'_, T, N> {
     /// Adds body k's share over the tree speeds that can move it.
     #[inline]
     pub fn add_body(&mut self, k: usize) {
-        match k {
-            REAR_WHEEL => self.add(COLUMNS_REAR_WHEEL),
-            REAR_FRAME => self.add(COLUMNS_REAR_FRAME),
-            FRONT_FRAME => self.add(COLUMNS_FRONT_FRAME),
-            _ => self.add(COLUMNS_FRONT_WHEEL),
+        if N == TREE {
+            match k {
+                REAR_WHEEL => self.add(COLUMNS_REAR_WHEEL),
+                REAR_FRAME => self.add(COLUMNS_REAR_FRAME),
+                FRONT_FRAME => self.add(COLUMNS_FRONT_FRAME),
+                _ => self.add(COLUMNS_FRONT_WHEEL),
+            }
+        } else if N == ROLLING_TREE {
+            match k {
+                REAR_WHEEL | REAR_FRAME => self.add(ROLLING_REAR),
+                FRONT_FRAME => self.add(ROLLING_FRONT_FRAME),
+                _ => self.add(ROLLING_FRONT_WHEEL),
+            }
+        } else {
+            self.add(std::array::from_fn::<usize, N, _>(|i| i));
         }
     }
 
@@ -202,6 +239,9 @@ impl<T: RealField + Copy> Reduced<'_, T> {
         }
     }
 }
+
+/// Applied forces per body: world force, body-axes torque.
+type Applied<T> = [(Vector3<T>, Vector3<T>); BODIES];
 
 /// Copies the upper triangle of a square matrix into its lower triangle.
 #[inline]
@@ -256,35 +296,33 @@ impl Model {
         w[7] = sigma_r;
         w[8] = sigma_f;
 
-        let mut jac = [SMatrix::<T, 6, TREE>::zeros(); BODIES];
+        // Columns [ω_B, δ̇, σ_R, σ_F] (the ν columns are R_B in every translation row).
+        let mut rest = [SMatrix::<T, 6, ROLLING_TREE>::zeros(); BODIES];
         // Rear wheel.
-        let j = &mut jac[REAR_WHEEL];
-        j.fixed_view_mut::<3, 3>(0, 0).copy_from(&rb);
-        j.fixed_view_mut::<3, 3>(3, 3).copy_from(&a_rb);
-        j.fixed_view_mut::<3, 1>(3, 7).copy_from(&ey);
+        let j = &mut rest[REAR_WHEEL];
+        j.fixed_view_mut::<3, 3>(3, 0).copy_from(&a_rb);
+        j.fixed_view_mut::<3, 1>(3, 4).copy_from(&ey);
         // Rear frame.
         let rb_pbr = rb * rotation::skew(&p_br);
-        let j = &mut jac[REAR_FRAME];
-        j.fixed_view_mut::<3, 3>(0, 0).copy_from(&rb);
-        j.fixed_view_mut::<3, 3>(0, 3).copy_from(&rb_pbr);
-        j.fixed_view_mut::<3, 3>(3, 3)
+        let j = &mut rest[REAR_FRAME];
+        j.fixed_view_mut::<3, 3>(0, 0).copy_from(&rb_pbr);
+        j.fixed_view_mut::<3, 3>(3, 0)
             .copy_from(&Matrix3::identity());
         // Front frame.
         let rh_phs = rh * rotation::skew(&p_hs);
-        let j = &mut jac[FRONT_FRAME];
-        j.fixed_view_mut::<3, 3>(0, 0).copy_from(&rb);
-        j.fixed_view_mut::<3, 3>(0, 3)
+        let j = &mut rest[FRONT_FRAME];
+        j.fixed_view_mut::<3, 3>(0, 0)
             .copy_from(&(rb_pbr - rb * rotation::skew(&p_bs) + rh_phs * a_hb));
-        j.fixed_view_mut::<3, 1>(0, 6).copy_from(&(rh_phs * s));
-        j.fixed_view_mut::<3, 3>(3, 3).copy_from(&a_hb);
-        j.fixed_view_mut::<3, 1>(3, 6).copy_from(&s);
+        j.fixed_view_mut::<3, 1>(0, 3).copy_from(&(rh_phs * s));
+        j.fixed_view_mut::<3, 3>(3, 0).copy_from(&a_hb);
+        j.fixed_view_mut::<3, 1>(3, 3).copy_from(&s);
         // Front wheel.
-        let jh = jac[FRONT_FRAME];
+        let jh = rest[FRONT_FRAME];
         let jh_w = jh.fixed_rows::<3>(3).into_owned();
         let jf_v = jh.fixed_rows::<3>(0) - rh * rotation::skew(&p_hf) * jh_w;
         let mut jf_w = a_fh * jh_w;
-        jf_w[(1, 8)] += T::one();
-        let j = &mut jac[FRONT_WHEEL];
+        jf_w[(1, 5)] += T::one();
+        let j = &mut rest[FRONT_WHEEL];
         j.fixed_rows_mut::<3>(0).copy_from(&jf_v);
         j.fixed_rows_mut::<3>(3).copy_from(&jf_w);
 
@@ -313,7 +351,8 @@ impl Model {
         let v_f = v_h + rh * w_h.cross(&p_hf);
         (
             Tree {
-                jac,
+                hub: rb,
+                rest,
                 bias,
                 velocity: [v_r, v_b, v_h, v_f],
                 omega: [w_r, w_b, w_h, w_f],
@@ -329,7 +368,7 @@ impl Model {
         poses: &Poses<T>,
         omega: &[Vector3<T>; BODIES],
         inputs: &Inputs<T>,
-    ) -> [(Vector3<T>, Vector3<T>); BODIES] {
+    ) -> Applied<T> {
         let g: T = c(self.bodies.geometry.g);
         let mut out = [(Vector3::zeros(), Vector3::zeros()); BODIES];
         for k in 0..BODIES {
@@ -368,23 +407,171 @@ impl Model {
     ) -> Result<Derivatives<T>> {
         let angles = Angles::new(&state.q);
         let poses = Poses::from_angles(&state.q, &angles);
-        let (tree, _) = self.tree(&poses, &state.u);
+        let (mut tree, _) = self.tree(&poses, &state.u);
         let applied = self.applied(&angles, &poses, &tree.omega, inputs);
+        let (u_dot, contact) = if self.contacts[0].is_skate() {
+            self.solve_general(&poses, &tree, &applied)?
+        } else {
+            self.solve_rolling(&poses, &mut tree, &applied)?
+        };
+        Ok(Derivatives {
+            q_dot: coordinate_rates(&angles, &state.u),
+            u_dot,
+            contact,
+        })
+    }
 
-        // Reduced mass matrix TᵀMT and forces Tᵀ(f − M c), over the columns that can be non-zero.
-        let mut mass = SMatrix::<T, TREE, TREE>::zeros();
-        let mut force = SVector::<T, TREE>::zeros();
-        for (k, (body, &(f, torque))) in self.bodies.body.iter().zip(&applied).enumerate() {
+    /// Stages 4–5 with all six contact rows in the nine tree speeds (any bicycle, skates
+    /// included).
+    fn solve_general<T: RealField + Copy>(
+        &self,
+        poses: &Poses<T>,
+        tree: &Tree<T>,
+        applied: &Applied<T>,
+    ) -> Result<(SVector<T, SPEEDS>, [ContactForce<T>; 2])> {
+        let jac: [SMatrix<T, 6, TREE>; BODIES] = std::array::from_fn(|k| tree.jac(k));
+        let mut g = SMatrix::<T, 6, TREE>::zeros();
+        let mut gamma = SVector::<T, 6>::zeros();
+        for i in 0..2 {
+            let (gi, ci, _) = self.contact_rows_in(i, poses, tree, &jac, &tree.bias);
+            g.fixed_rows_mut::<3>(3 * i).copy_from(&gi);
+            gamma.fixed_rows_mut::<3>(3 * i).copy_from(&ci);
+        }
+        let (u_dot, nu) = self.solve_saddle(&jac, &tree.bias, applied, &g, &gamma)?;
+        let contact =
+            std::array::from_fn(|i| self.contact_force(i, &nu.fixed_rows::<3>(3 * i).into_owned()));
+        Ok((u_dot, contact))
+    }
+
+    /// Stages 4–5 for a rolling rear wheel: its three rows are solved for ν exactly
+    /// ([`Model::roll_on_rear_wheel`]), leaving the front contact's three rows in six tree speeds; the rear
+    /// contact force follows from the balance of linear momentum of the whole bicycle (the
+    /// joint forces are internal).
+    fn solve_rolling<T: RealField + Copy>(
+        &self,
+        poses: &Poses<T>,
+        tree: &mut Tree<T>,
+        applied: &Applied<T>,
+    ) -> Result<(SVector<T, SPEEDS>, [ContactForce<T>; 2])> {
+        let [f, n] = self.roll_on_rear_wheel(poses, tree);
+        let (g, gamma, frame) = self.contact_rows_in(1, poses, tree, &tree.rest, &tree.bias);
+        let (u_dot, nu) = self.solve_saddle(&tree.rest, &tree.bias, applied, &g, &gamma)?;
+        let front = self.contact_force(1, &nu);
+        let on_front = frame.longitudinal * front.longitudinal + frame.lateral * front.lateral
+            - Vector3::z() * front.normal;
+        let mut on_rear = -on_front;
+        for (k, body) in self.bodies.body.iter().enumerate() {
+            let m: T = c(body.mass);
+            on_rear += u_dot.fixed_rows::<3>(6 * k) * m - applied[k].0;
+        }
+        let rear = ContactForce {
+            normal: -on_rear.z,
+            longitudinal: on_rear.dot(&f),
+            lateral: on_rear.dot(&n),
+        };
+        Ok((u_dot, [rear, front]))
+    }
+
+    /// Solves the rear wheel's three rolling rows for ν (a rolling rear wheel, not a skate), in
+    /// place: afterwards `tree.rest` and `tree.bias` give every body's `u_i = J'_i w'` and
+    /// `u̇_i = J'_i ẇ' + c'_i` in the six tree speeds `w' = [ω_B, δ̇, σ_R, σ_F]`, satisfying the
+    /// joint rows and the rear contact rows. With the rear contact's directions
+    /// `E = [f n e_z]ᵀ` (orthonormal) the rows read `E R_B ν̇ + G' ẇ' = γ̃`, so
+    /// `R_B ν̇ = Eᵀ(γ̃ − G' ẇ')`: every body's translation rows gain `−EᵀG' = [ρ]× R_W J'_R` (the
+    /// hub velocity ρ × Ω of rolling about the contact) and its bias `Eᵀγ̃`. Returns the rear
+    /// contact's longitudinal and lateral directions (world).
+    pub(crate) fn roll_on_rear_wheel<T: RealField + Copy>(
+        &self,
+        poses: &Poses<T>,
+        tree: &mut Tree<T>,
+    ) -> [Vector3<T>; 2] {
+        let rear = &self.contacts[0];
+        let k = rear.kinematics(poses, &tree.velocity[REAR_WHEEL], &tree.omega[REAR_WHEEL]);
+        let mut hub = SMatrix::<T, 3, ROLLING_TREE>::zeros();
+        for j in 0..3 {
+            hub.set_column(j, &k.rho.cross(&tree.hub.column(j).into_owned()));
+        }
+        hub.set_column(4, &k.rho.cross(&k.axle));
+        let c_v = tree.bias[REAR_WHEEL].fixed_rows::<3>(0).into_owned();
+        let c_w = poses.rot[REAR_WHEEL] * tree.bias[REAR_WHEEL].fixed_rows::<3>(3);
+        let hub_bias = -(k.f * k.f_dot.dot(&k.v_p) + k.n * k.n_dot.dot(&k.v_p))
+            - k.omega.cross(&k.rho_dot)
+            - c_v
+            - c_w.cross(&k.rho);
+        for b in 0..BODIES {
+            let mut v = tree.rest[b].fixed_rows_mut::<3>(0);
+            v += hub;
+            let mut c = tree.bias[b].fixed_rows_mut::<3>(0);
+            c += hub_bias;
+        }
+        [k.f, k.n]
+    }
+
+    /// Contact i's three rows in the tree speeds of `jac`, their right-hand side `γ − D c`,
+    /// and the contact's directions.
+    fn contact_rows_in<T: RealField + Copy, const N: usize>(
+        &self,
+        i: usize,
+        poses: &Poses<T>,
+        tree: &Tree<T>,
+        jac: &[SMatrix<T, 6, N>; BODIES],
+        bias: &[SVector<T, 6>; BODIES],
+    ) -> (SMatrix<T, 3, N>, SVector<T, 3>, ContactFrame<T>) {
+        let contact = &self.contacts[i];
+        let (wheel, frame) = (contact.wheel, contact.frame);
+        let rows = contact.rows(
+            poses,
+            &tree.velocity[wheel],
+            &tree.omega[wheel],
+            &tree.omega[frame],
+        );
+        let mut g = rows.wheel * jac[wheel];
+        let mut gamma = rows.gamma - rows.wheel * bias[wheel];
+        if contact.is_skate() {
+            g += rows.frame * jac[frame];
+            gamma -= rows.frame * bias[frame];
+        }
+        (g, gamma, rows.contact_frame)
+    }
+
+    /// Contact i's force from its three multipliers `ν = −μ` (the multipliers act along
+    /// `[f, n, e_z]`, e_z down; a skate's first row is its spin lock, not a force).
+    fn contact_force<T: RealField + Copy>(&self, i: usize, nu: &SVector<T, 3>) -> ContactForce<T> {
+        ContactForce {
+            normal: nu[2],
+            longitudinal: if self.contacts[i].is_skate() {
+                T::zero()
+            } else {
+                -nu[0]
+            },
+            lateral: -nu[1],
+        }
+    }
+
+    /// Stage 5: the reduced mass matrix TᵀMT and forces Tᵀ(f − M c) over N tree speeds, the
+    /// saddle-point solve `[TᵀMT Gᵀ; G 0][ẇ; ν] = [Tᵀ(f − Mc); γ̃]` with M contact rows, and
+    /// `u̇ = J ẇ + c`.
+    fn solve_saddle<T: RealField + Copy, const N: usize, const M: usize>(
+        &self,
+        jac: &[SMatrix<T, 6, N>; BODIES],
+        bias: &[SVector<T, 6>; BODIES],
+        applied: &Applied<T>,
+        g: &SMatrix<T, M, N>,
+        gamma: &SVector<T, M>,
+    ) -> Result<(SVector<T, SPEEDS>, SVector<T, M>)> {
+        let mut mass = SMatrix::<T, N, N>::zeros();
+        let mut force = SVector::<T, N>::zeros();
+        for (k, (body, &(f, torque))) in self.bodies.body.iter().zip(applied).enumerate() {
             let m: T = c(body.mass);
             let inertia: Matrix3<T> = body.inertia.cast();
-            let cv = tree.bias[k].fixed_rows::<3>(0).into_owned();
-            let cw = tree.bias[k].fixed_rows::<3>(3).into_owned();
+            let cv = bias[k].fixed_rows::<3>(0).into_owned();
+            let cw = bias[k].fixed_rows::<3>(3).into_owned();
             let fv = f - cv * m;
             let fw = torque - inertia * cw;
             let mut share = Reduced {
                 mass: &mut mass,
                 force: &mut force,
-                jac: &tree.jac[k],
+                jac: &jac[k],
                 m,
                 inertia,
                 generalized: SVector::<T, 6>::new(fv.x, fv.y, fv.z, fw.x, fw.y, fw.z),
@@ -392,64 +579,21 @@ impl Model {
             share.add_body(k);
         }
         symmetrize(&mut mass);
-
-        // Stage 4: contact rows in tree speeds.
-        let mut g = SMatrix::<T, 6, TREE>::zeros();
-        let mut gamma = SVector::<T, 6>::zeros();
-        for (i, contact) in self.contacts.iter().enumerate() {
-            let (wheel, frame) = (contact.wheel, contact.frame);
-            let rows = contact.rows(
-                &poses,
-                &tree.velocity[wheel],
-                &tree.omega[wheel],
-                &tree.omega[frame],
-            );
-            let mut gi = rows.wheel * tree.jac[wheel];
-            let mut ci = rows.gamma - rows.wheel * tree.bias[wheel];
-            if contact.is_skate() {
-                gi += rows.frame * tree.jac[frame];
-                ci -= rows.frame * tree.bias[frame];
-            }
-            g.fixed_rows_mut::<3>(3 * i).copy_from(&gi);
-            gamma.fixed_rows_mut::<3>(3 * i).copy_from(&ci);
-        }
-
-        // Stage 5: solve [TᵀMT Gᵀ; G 0][ẇ; ν] = [Tᵀ(f − Mc); γ − D c], μ = −ν.
-        let solved = saddle::solve(&mass, &g, &force, &gamma, self.augmentation)
-            .or_else(|| saddle::solve(&mass, &g, &force, &gamma, self.fallback_augmentation()))
+        let solved = saddle::solve(&mass, g, &force, gamma, self.augmentation)
+            .or_else(|| saddle::solve(&mass, g, &force, gamma, self.fallback_augmentation()))
             .filter(|(x, y)| x.iter().chain(y.iter()).all(|v| v.is_finite()));
         let Some((w_dot, nu)) = solved else {
             return Err(Error::SingularDynamics {
                 context: "the saddle-point matrix [TᵀMT Gᵀ; G 0] is singular".into(),
             });
         };
-
         let mut u_dot = SVector::<T, SPEEDS>::zeros();
         for k in 0..BODIES {
             u_dot
                 .fixed_rows_mut::<6>(6 * k)
-                .copy_from(&(tree.jac[k] * w_dot + tree.bias[k]));
+                .copy_from(&(jac[k] * w_dot + bias[k]));
         }
-        let q_dot = coordinate_rates(&angles, &state.u);
-        let mut contact = [ContactForce {
-            normal: T::zero(),
-            longitudinal: T::zero(),
-            lateral: T::zero(),
-        }; 2];
-        for (i, edge) in self.contacts.iter().enumerate() {
-            // μ = −ν: the multipliers act along [f, n, e_z] (e_z down).
-            let nu = nu.fixed_rows::<3>(3 * i);
-            contact[i] = ContactForce {
-                normal: nu[2],
-                longitudinal: if edge.is_skate() { T::zero() } else { -nu[0] },
-                lateral: -nu[1],
-            };
-        }
-        Ok(Derivatives {
-            q_dot,
-            u_dot,
-            contact,
-        })
+        Ok((u_dot, nu))
     }
 
     /// All 21 velocity rows `D` (17 differentiated holonomic rows, then 4 rolling rows) and

@@ -526,9 +526,9 @@ impl Model {
                 &Vector3::zeros(),
                 &Vector3::zeros(),
             );
-            let mut gi = rows.wheel * tree.jac[c.wheel];
+            let mut gi = rows.wheel * tree.jac(c.wheel);
             if c.is_skate() {
-                gi += rows.frame * tree.jac[c.frame];
+                gi += rows.frame * tree.jac(c.frame);
             }
             g.fixed_rows_mut::<3>(3 * i).copy_from(&gi);
         }
@@ -563,7 +563,7 @@ impl Model {
         ]);
         let mut u = SVector::<f64, SPEEDS>::zeros();
         for k in 0..BODIES {
-            u.fixed_rows_mut::<6>(6 * k).copy_from(&(tree.jac[k] * w));
+            u.fixed_rows_mut::<6>(6 * k).copy_from(&(tree.jac(k) * w));
         }
         u
     }
@@ -635,7 +635,7 @@ impl Model {
             })?;
         let mut u = SVector::<f64, SPEEDS>::zeros();
         for k in 0..BODIES {
-            u.fixed_rows_mut::<6>(6 * k).copy_from(&(tree.jac[k] * w));
+            u.fixed_rows_mut::<6>(6 * k).copy_from(&(tree.jac(k) * w));
         }
         Ok(State { q, u })
     }

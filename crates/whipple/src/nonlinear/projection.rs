@@ -272,7 +272,7 @@ impl Model {
             let mut share = Reduced {
                 mass: &mut gram,
                 force: &mut rhs,
-                jac: &tree.jac[k],
+                jac: &tree.jac(k),
                 m: 1.0,
                 inertia: Matrix3::identity(),
                 generalized: state.u.fixed_rows::<6>(6 * k).into_owned(),
@@ -287,7 +287,7 @@ impl Model {
         })?;
         let mut u = SVector::<f64, SPEEDS>::zeros();
         for k in 0..BODIES {
-            u.fixed_rows_mut::<6>(6 * k).copy_from(&(tree.jac[k] * w));
+            u.fixed_rows_mut::<6>(6 * k).copy_from(&(tree.jac(k) * w));
         }
         state.u = u;
         Ok(())

@@ -96,7 +96,7 @@ impl Model {
         for (i, contact) in self.contacts.iter().enumerate() {
             let rows = contact.rows(&poses, &zero3, &zero3, &zero3);
             a.fixed_view_mut::<3, TREE>(3 * i, 0).copy_from(
-                &(rows.wheel * tree.jac[contact.wheel] + rows.frame * tree.jac[contact.frame]),
+                &(rows.wheel * tree.jac(contact.wheel) + rows.frame * tree.jac(contact.frame)),
             );
         }
         // Forward speed: the rear hub velocity ν (rear frame axes) along the heading (+x).
@@ -122,7 +122,7 @@ impl Model {
             })?;
         let mut u = SVector::<T, SPEEDS>::zeros();
         for k in 0..BODIES {
-            u.fixed_rows_mut::<6>(6 * k).copy_from(&(tree.jac[k] * w));
+            u.fixed_rows_mut::<6>(6 * k).copy_from(&(tree.jac(k) * w));
         }
         Ok(State { q, u })
     }
