@@ -509,7 +509,7 @@ impl Model {
 
     /// Contact i's three rows in the tree speeds of `jac`, their right-hand side `γ − D c`,
     /// and the contact's directions.
-    fn contact_rows_in<T: RealField + Copy, const N: usize>(
+    pub(crate) fn contact_rows_in<T: RealField + Copy, const N: usize>(
         &self,
         i: usize,
         poses: &Poses<T>,

@@ -262,34 +262,24 @@ impl Model {
         self.project_velocities_at(&Poses::new(&state.q), state)
     }
 
-    /// [`Model::project_velocities`] with the poses of `state.q` already known.
+    /// [`Model::project_velocities`] with the poses of `state.q` already known. For a rolling
+    /// rear wheel the rear contact rows are solved for the hub velocity first
+    /// ([`Model::roll_on_rear_wheel`]), which leaves six tree speeds and the three front rows.
     fn project_velocities_at(&self, poses: &Poses<f64>, state: &mut State<f64>) -> Result<()> {
-        let (tree, g) = self.contact_tree_rows(poses);
-        // min |T w − u|²: the normal equations TᵀT w = Tᵀu, body by body (m = 1, I = identity).
-        let mut gram = SMatrix::<f64, TREE, TREE>::zeros();
-        let mut rhs = SVector::<f64, TREE>::zeros();
-        for k in 0..BODIES {
-            let mut share = Reduced {
-                mass: &mut gram,
-                force: &mut rhs,
-                jac: &tree.jac(k),
-                m: 1.0,
-                inertia: Matrix3::identity(),
-                generalized: state.u.fixed_rows::<6>(6 * k).into_owned(),
-            };
-            share.add_body(k);
-        }
-        symmetrize(&mut gram);
-        let (w, _) = saddle::solve(&gram, &g, &rhs, &SVector::zeros(), 0.0).ok_or_else(|| {
-            Error::SingularDynamics {
-                context: "velocity projection: singular constraint rows".into(),
+        let (mut tree, _) = self.tree(poses, &SVector::zeros());
+        state.u = if self.contacts[0].is_skate() {
+            let jac: [SMatrix<f64, 6, TREE>; BODIES] = std::array::from_fn(|k| tree.jac(k));
+            let mut g = SMatrix::<f64, 6, TREE>::zeros();
+            for i in 0..2 {
+                let (gi, _, _) = self.contact_rows_in(i, poses, &tree, &jac, &tree.bias);
+                g.fixed_rows_mut::<3>(3 * i).copy_from(&gi);
             }
-        })?;
-        let mut u = SVector::<f64, SPEEDS>::zeros();
-        for k in 0..BODIES {
-            u.fixed_rows_mut::<6>(6 * k).copy_from(&(tree.jac(k) * w));
-        }
-        state.u = u;
+            least_norm_speeds(&jac, &g, &state.u)?
+        } else {
+            self.roll_on_rear_wheel(poses, &mut tree);
+            let (g, _, _) = self.contact_rows_in(1, poses, &tree, &tree.rest, &tree.bias);
+            least_norm_speeds(&tree.rest, &g, &state.u)?
+        };
         Ok(())
     }
 
@@ -313,4 +303,38 @@ impl Model {
         self.project_velocities_at(&poses, state)?;
         Ok((report, poses))
     }
+}
+
+/// The speeds `T w` nearest to u (least squares over all 24 speeds, unweighted) among those
+/// with `G w = 0`: `min |T w − u|²` subject to `G w = 0`, whose normal equations `TᵀT w = Tᵀu`
+/// are assembled body by body (m = 1, I = identity).
+fn least_norm_speeds<const N: usize, const M: usize>(
+    jac: &[SMatrix<f64, 6, N>; BODIES],
+    g: &SMatrix<f64, M, N>,
+    u: &SVector<f64, SPEEDS>,
+) -> Result<SVector<f64, SPEEDS>> {
+    let mut gram = SMatrix::<f64, N, N>::zeros();
+    let mut rhs = SVector::<f64, N>::zeros();
+    for (k, jac) in jac.iter().enumerate() {
+        let mut share = Reduced {
+            mass: &mut gram,
+            force: &mut rhs,
+            jac,
+            m: 1.0,
+            inertia: Matrix3::identity(),
+            generalized: u.fixed_rows::<6>(6 * k).into_owned(),
+        };
+        share.add_body(k);
+    }
+    symmetrize(&mut gram);
+    let (w, _) = saddle::solve(&gram, g, &rhs, &SVector::zeros(), 0.0).ok_or_else(|| {
+        Error::SingularDynamics {
+            context: "velocity projection: singular constraint rows".into(),
+        }
+    })?;
+    let mut out = SVector::<f64, SPEEDS>::zeros();
+    for (k, jac) in jac.iter().enumerate() {
+        out.fixed_rows_mut::<6>(6 * k).copy_from(&(jac * w));
+    }
+    Ok(out)
 }

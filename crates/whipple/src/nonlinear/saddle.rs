@@ -11,65 +11,65 @@
 
 use nalgebra::{RealField, SMatrix, SVector};
 
-#[inline]
-fn dot<T: RealField + Copy>(a: &[T], b: &[T]) -> T {
-    a.iter().zip(b).fold(T::zero(), |s, (&x, &y)| s + x * y)
-}
-
-/// In-place Cholesky factorization `A = UᵀU`, U upper triangular in the upper triangle (so
-/// that, column-major, every inner product runs over contiguous memory). Returns the
-/// reciprocals of U's diagonal (the substitutions multiply by them instead of dividing: one
-/// division per row instead of one per row and right-hand side); None when A is not
-/// (numerically) positive definite.
+/// In-place Cholesky factorization `A = UᵀU`, U upper triangular in the upper triangle.
+/// Returns the reciprocals of U's diagonal (the substitutions multiply by them instead of
+/// dividing: one division per row instead of one per row and right-hand side); None when A is
+/// not (numerically) positive definite. Every loop bound is a constant of N, so the compiler
+/// unrolls the small factorizations completely.
+#[inline(always)]
 fn cholesky<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) -> Option<[T; N]> {
     let mut inverse = [T::zero(); N];
-    let data = a.as_mut_slice();
     for j in 0..N {
-        let (left, right) = data.split_at_mut(j * N);
-        let cj = &mut right[..N];
         for i in 0..j {
-            let ci = &left[i * N..i * N + N];
-            let s = cj[i] - dot(&ci[..i], &cj[..i]);
-            cj[i] = s * inverse[i];
+            let mut s = a[(i, j)];
+            for k in 0..i {
+                s -= a[(k, i)] * a[(k, j)];
+            }
+            a[(i, j)] = s * inverse[i];
         }
-        let d = cj[j] - dot(&cj[..j], &cj[..j]);
+        let mut d = a[(j, j)];
+        for k in 0..j {
+            d -= a[(k, j)] * a[(k, j)];
+        }
         if d <= T::zero() || !d.is_finite() {
             return None;
         }
         let root = d.sqrt();
-        cj[j] = root;
+        a[(j, j)] = root;
         inverse[j] = T::one() / root;
     }
     Some(inverse)
 }
 
 /// Solves Uᵀ y = b in place (U and the reciprocals of its diagonal from [`cholesky`]).
+#[inline(always)]
 fn forward_substitute<T: RealField + Copy, const N: usize>(
     u: &SMatrix<T, N, N>,
     inverse: &[T; N],
-    b: &mut [T],
+    b: &mut [T; N],
 ) {
-    let data = u.as_slice();
     for i in 0..N {
-        let ci = &data[i * N..i * N + N];
-        b[i] = (b[i] - dot(&ci[..i], &b[..i])) * inverse[i];
+        let mut s = b[i];
+        for k in 0..i {
+            s -= u[(k, i)] * b[k];
+        }
+        b[i] = s * inverse[i];
     }
 }
 
 /// Solves U x = b in place.
+#[inline(always)]
 fn back_substitute<T: RealField + Copy, const N: usize>(
     u: &SMatrix<T, N, N>,
     inverse: &[T; N],
-    b: &mut [T],
+    b: &mut [T; N],
 ) {
-    let data = u.as_slice();
     for i in (0..N).rev() {
-        let ci = &data[i * N..i * N + N];
-        let xi = b[i] * inverse[i];
-        b[i] = xi;
-        for (bk, &uki) in b[..i].iter_mut().zip(&ci[..i]) {
-            *bk -= uki * xi;
+        let mut s = b[i];
+        for k in i + 1..N {
+            s -= u[(i, k)] * b[k];
         }
+        b[i] = s * inverse[i];
     }
 }
 
@@ -91,22 +91,46 @@ pub(crate) fn solve<T: RealField + Copy, const N: usize, const M: usize>(
     }
     let l_inverse = cholesky(&mut l)?;
     // Y = U⁻ᵀ Gᵀ, column by column; z = U⁻ᵀ f.
-    let mut y = g.transpose();
-    for j in 0..M {
-        forward_substitute(&l, &l_inverse, y.column_mut(j).as_mut_slice());
+    let mut y = [[T::zero(); N]; M];
+    for (j, column) in y.iter_mut().enumerate() {
+        for (i, entry) in column.iter_mut().enumerate() {
+            *entry = g[(j, i)];
+        }
+        forward_substitute(&l, &l_inverse, column);
     }
-    let mut z = f;
-    forward_substitute(&l, &l_inverse, z.as_mut_slice());
+    let mut z = [T::zero(); N];
+    for (i, entry) in z.iter_mut().enumerate() {
+        *entry = f[i];
+    }
+    forward_substitute(&l, &l_inverse, &mut z);
     // Schur complement S = G A⁻¹ Gᵀ = Yᵀ Y; S λ = G A⁻¹ f − γ = Yᵀ z − γ.
-    let mut s = y.transpose() * y;
-    let mut lambda = y.transpose() * z - gamma;
+    let mut s = SMatrix::<T, M, M>::zeros();
+    let mut lambda = [T::zero(); M];
+    for a in 0..M {
+        for b in a..M {
+            let mut sum = T::zero();
+            for k in 0..N {
+                sum += y[a][k] * y[b][k];
+            }
+            s[(a, b)] = sum;
+        }
+        let mut sum = -gamma[a];
+        for k in 0..N {
+            sum += y[a][k] * z[k];
+        }
+        lambda[a] = sum;
+    }
     let s_inverse = cholesky(&mut s)?;
-    forward_substitute(&s, &s_inverse, lambda.as_mut_slice());
-    back_substitute(&s, &s_inverse, lambda.as_mut_slice());
+    forward_substitute(&s, &s_inverse, &mut lambda);
+    back_substitute(&s, &s_inverse, &mut lambda);
     // x = A⁻¹ (f − Gᵀ λ) = U⁻¹ (z − Y λ).
-    let mut x = z - y * lambda;
-    back_substitute(&l, &l_inverse, x.as_mut_slice());
-    Some((x, lambda))
+    for (k, column) in y.iter().enumerate() {
+        for i in 0..N {
+            z[i] -= column[i] * lambda[k];
+        }
+    }
+    back_substitute(&l, &l_inverse, &mut z);
+    Some((SVector::from(z), SVector::from(lambda)))
 }
 
 #[cfg(test)]
