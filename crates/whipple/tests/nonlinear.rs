@@ -3,7 +3,7 @@
 
 use std::f64::consts::PI;
 
-use nalgebra::{Matrix4, SVector, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix4, SVector, Vector3};
 use num_dual::Dual64;
 use whipple::analysis::eigen;
 use whipple::integrate::Dopri5Params;
@@ -315,6 +315,42 @@ fn structured_solve_matches_dense_reference_off_the_contact_constraints() -> Res
                 );
             }
         }
+    }
+    Ok(())
+}
+
+/// The velocity projection is the orthogonal projection of u onto the null space of all 21
+/// velocity rows, `u − Dᵀ(DDᵀ)⁻¹Du`, computed here densely, for every bicycle.
+#[test]
+fn velocity_projection_is_the_least_norm_correction() -> Result<()> {
+    for (name, bike) in all_bicycles()? {
+        let model = Model::new(&bike)?;
+        let state = model.initial_state(&InitialConditions {
+            lean: 0.25,
+            steer: -0.3,
+            lean_rate: 0.4,
+            ..InitialConditions::upright(3.5)
+        })?;
+        let mut disturbed = state;
+        for (i, u) in disturbed.u.iter_mut().enumerate() {
+            *u += 0.05 * ((i as f64) * 1.7).sin();
+        }
+        let (d, _) = model.velocity_rows(&disturbed);
+        let (d, u) = (
+            DMatrix::from_iterator(21, 24, d.iter().copied()),
+            DVector::from_iterator(24, disturbed.u.iter().copied()),
+        );
+        let gram = (&d * d.transpose()).lu();
+        let correction = d.transpose() * gram.solve(&(&d * &u)).expect("regular rows");
+        let expected = u - correction;
+        model.project_velocities(&mut disturbed)?;
+        let got = DVector::from_iterator(24, disturbed.u.iter().copied());
+        assert!(
+            (&got - &expected).amax() < 1e-12 * expected.amax(),
+            "{name}: {}",
+            (&got - &expected).amax()
+        );
+        assert!(model.residuals(&disturbed).max_velocity() < 1e-13, "{name}");
     }
     Ok(())
 }
