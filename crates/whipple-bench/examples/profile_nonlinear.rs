@@ -7,6 +7,7 @@
 //! valgrind --tool=callgrind target/release/examples/profile_nonlinear project   # 10 000 project()
 //! valgrind --tool=callgrind target/release/examples/profile_nonlinear simulate  # 1 s RK4, 1 ms
 //! target/release/examples/profile_nonlinear simulate 10                         # 10 s, for timing
+//! perf record target/release/examples/profile_nonlinear forward 2000000         # for sampling
 //! ```
 //!
 //! The states are those of the criterion bench `nonlinear`.
@@ -30,7 +31,11 @@ fn main() -> Result<(), whipple::Error> {
             })?;
             let inputs = Inputs::default();
             let mut projected = state;
-            for _ in 0..10_000 {
+            let calls: usize = std::env::args()
+                .nth(2)
+                .and_then(|text| text.parse().ok())
+                .unwrap_or(10_000);
+            for _ in 0..calls {
                 if what == "forward" {
                     black_box(model.forward(black_box(&state), black_box(&inputs))?);
                 } else {

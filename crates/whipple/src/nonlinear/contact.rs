@@ -116,11 +116,13 @@ impl KnifeEdge {
         let a = rw.column(1).into_owned();
         let w = rw * omega_wheel;
         let a_dot = w.cross(&a);
-        let (f, s) = longitudinal(&a);
+        let s = (a.x * a.x + a.y * a.y).sqrt();
+        let inverse = T::one() / s;
+        let f = Vector3::new(a.y * inverse, -a.x * inverse, T::zero());
         let ez = Vector3::z();
         // ṡ and ḟ of s = |a × e_z|, f = (a × e_z)/s.
-        let s_dot = -a.z * a_dot.z / s;
-        let f_dot = (a_dot.cross(&ez) - f * s_dot) / s;
+        let s_dot = -a.z * a_dot.z * inverse;
+        let f_dot = (a_dot.cross(&ez) - f * s_dot) * inverse;
         let n = Vector3::new(-f.y, f.x, T::zero());
         let n_dot = Vector3::new(-f_dot.y, f_dot.x, T::zero());
         let r: T = nalgebra::convert(self.radius);

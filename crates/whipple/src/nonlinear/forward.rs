@@ -7,13 +7,21 @@
 //!    and `u̇_i = J_i ẇ + c_i` (c_i: centripetal and gyroscopic-coupling terms). Every `J_i w`
 //!    satisfies the 15 joint velocity rows identically, so `T = [J_i]` spans their null space;
 //! 3. **forces**: gravity, gyroscopic torques `−ω × Iω`, rider torques (steer, lean);
-//! 4. **constraint rows**: the six contact rows `D_c` (two normal, four rolling) and their γ;
-//! 5. **solve**: the saddle-point system `[M Dᵀ; D 0][u̇; μ] = [f; γ]` projected onto the joint
-//!    null space, `[TᵀMT  Gᵀ; G  0][ẇ; −μ_c] = [Tᵀ(f − M c); γ_c − D_c c]` with `G = D_c T`:
-//!    15 × 15 instead of 45 × 45, solved at once for the accelerations and the contact
-//!    multipliers by LU with partial pivoting. `TᵀMT` may be singular (massless wheels): the
-//!    saddle-point matrix stays regular whenever the bicycle has inertia in every direction the
-//!    constraints leave free, and M⁻¹ is never formed.
+//! 4. **constraint rows**: the six contact rows `D_c` (two normal, four rolling) and their γ.
+//!    For a rolling rear wheel (radius > 0) its three rows are solved for ν exactly first
+//!    (`Model::roll_on_rear_wheel`: ν̇ = (E R_B)ᵀ(γ̃ − G' ẇ') with the orthonormal contact
+//!    directions E), leaving six tree speeds `w' = [ω_B, δ̇, σ_R, σ_F]` and the front
+//!    contact's three rows; a rear skate keeps all nine speeds and six rows;
+//! 5. **solve**: the saddle-point system `[M Dᵀ; D 0][u̇; μ] = [f; γ]` projected onto the
+//!    remaining null space, `[TᵀMT  Gᵀ; G  0][ẇ; −μ_c] = [Tᵀ(f − M c); γ_c − D_c c]` with
+//!    `G = D_c T`: 9 × 9 (or 15 × 15) instead of 45 × 45, solved at once for the accelerations
+//!    and the contact multipliers by Cholesky factors of TᵀMT and of the Schur complement
+//!    (`saddle.rs`). `TᵀMT` may be singular (massless wheels): it is then augmented by ρGᵀG,
+//!    the saddle-point matrix stays regular whenever the bicycle has inertia in every direction
+//!    the constraints leave free, and M⁻¹ is never formed. The eliminated rear multipliers are
+//!    recovered from the balance of linear momentum of the four bodies (the joint forces are
+//!    internal): the ground's force on the rear wheel is `Σ m_i a_i − Σ f_i` minus the front
+//!    contact force.
 //!
 //! [`Model::forward_reference`] solves the full 45 × 45 system with every row (no tree), as a
 //! check of the structured path.
@@ -444,9 +452,9 @@ impl Model {
     }
 
     /// Stages 4–5 for a rolling rear wheel: its three rows are solved for ν exactly
-    /// ([`Model::roll_on_rear_wheel`]), leaving the front contact's three rows in six tree speeds; the rear
-    /// contact force follows from the balance of linear momentum of the whole bicycle (the
-    /// joint forces are internal).
+    /// ([`Model::roll_on_rear_wheel`]), leaving the front contact's three rows in six tree
+    /// speeds; the rear contact force follows from the balance of linear momentum of the whole
+    /// bicycle (the joint forces are internal).
     fn solve_rolling<T: RealField + Copy>(
         &self,
         poses: &Poses<T>,

@@ -9,7 +9,9 @@
 //! Velocities: `u ← u − Dᵀ (D Dᵀ)⁻¹ D u`, the orthogonal projection of u onto the null space of
 //! all 21 velocity rows. It is computed in the nine tree speeds of [`super::forward`]: with
 //! `u = T w` the joint rows hold identically, so the projection is
-//! `min |T w − u|²` subject to `G w = 0`, a 15 × 15 saddle-point system.
+//! `min |T w − u|²` subject to `G w = 0`, a 15 × 15 saddle-point system; for a rolling rear wheel
+//! its rows are solved for the hub velocity first (as in [`Model::forward`]), which leaves six
+//! tree speeds and the three front rows, a 9 × 9 system with the same solution.
 
 use nalgebra::{Matrix3, SMatrix, SVector};
 use num_dual::Dual64;

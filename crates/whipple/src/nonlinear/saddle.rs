@@ -1,6 +1,7 @@
 //! Stage 5 of the forward dynamics: the saddle-point system
-//! `[A Gᵀ; G 0][x; y] = [f; γ]` with A (9 × 9) symmetric and positive definite on the null space
-//! of G (6 × 9, full row rank), by Cholesky factors and the Schur complement `G A⁻¹ Gᵀ`:
+//! `[A Gᵀ; G 0][x; y] = [f; γ]` with A (N × N, N = 6 or 9) symmetric and positive definite on
+//! the null space of G (M × N, full row rank), by UᵀDU factors (Cholesky without square roots)
+//! of A and of the Schur complement `G A⁻¹ Gᵀ`:
 //! no pivoting, no branch on values other than the positivity checks of the factorizations,
 //! so dual numbers pass through it exactly.
 //!
@@ -11,65 +12,60 @@
 
 use nalgebra::{RealField, SMatrix, SVector};
 
-/// In-place Cholesky factorization `A = UᵀU`, U upper triangular in the upper triangle.
-/// Returns the reciprocals of U's diagonal (the substitutions multiply by them instead of
-/// dividing: one division per row instead of one per row and right-hand side); None when A is
-/// not (numerically) positive definite. Every loop bound is a constant of N, so the compiler
-/// unrolls the small factorizations completely.
+/// In-place factorization `A = UᵀDU` (U unit upper triangular in the strict upper triangle,
+/// D diagonal), without square roots: the pivots are a chain of dependent operations, and a
+/// square root would lengthen every link. Returns the reciprocals of D (the solves multiply by
+/// them instead of dividing); None when A is not (numerically) positive definite. Every loop
+/// bound is a constant of N, so the compiler unrolls the small factorizations completely.
 #[inline(always)]
-fn cholesky<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) -> Option<[T; N]> {
+fn factor<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) -> Option<[T; N]> {
     let mut inverse = [T::zero(); N];
     for j in 0..N {
+        // w_i = d_i u_ij, then u_ij = w_i / d_i.
+        let mut w = [T::zero(); N];
         for i in 0..j {
             let mut s = a[(i, j)];
             for k in 0..i {
-                s -= a[(k, i)] * a[(k, j)];
+                s -= a[(k, i)] * w[k];
             }
-            a[(i, j)] = s * inverse[i];
+            w[i] = s;
         }
         let mut d = a[(j, j)];
-        for k in 0..j {
-            d -= a[(k, j)] * a[(k, j)];
+        for i in 0..j {
+            let u = w[i] * inverse[i];
+            a[(i, j)] = u;
+            d -= u * w[i];
         }
         if d <= T::zero() || !d.is_finite() {
             return None;
         }
-        let root = d.sqrt();
-        a[(j, j)] = root;
-        inverse[j] = T::one() / root;
+        a[(j, j)] = d;
+        inverse[j] = T::one() / d;
     }
     Some(inverse)
 }
 
-/// Solves Uᵀ y = b in place (U and the reciprocals of its diagonal from [`cholesky`]).
+/// Solves Uᵀ y = b in place (U unit upper triangular from [`factor`]).
 #[inline(always)]
-fn forward_substitute<T: RealField + Copy, const N: usize>(
-    u: &SMatrix<T, N, N>,
-    inverse: &[T; N],
-    b: &mut [T; N],
-) {
+fn forward_substitute<T: RealField + Copy, const N: usize>(u: &SMatrix<T, N, N>, b: &mut [T; N]) {
     for i in 0..N {
         let mut s = b[i];
         for k in 0..i {
             s -= u[(k, i)] * b[k];
         }
-        b[i] = s * inverse[i];
+        b[i] = s;
     }
 }
 
 /// Solves U x = b in place.
 #[inline(always)]
-fn back_substitute<T: RealField + Copy, const N: usize>(
-    u: &SMatrix<T, N, N>,
-    inverse: &[T; N],
-    b: &mut [T; N],
-) {
+fn back_substitute<T: RealField + Copy, const N: usize>(u: &SMatrix<T, N, N>, b: &mut [T; N]) {
     for i in (0..N).rev() {
         let mut s = b[i];
         for k in i + 1..N {
             s -= u[(i, k)] * b[k];
         }
-        b[i] = s * inverse[i];
+        b[i] = s;
     }
 }
 
@@ -89,47 +85,57 @@ pub(crate) fn solve<T: RealField + Copy, const N: usize, const M: usize>(
         l += g.transpose() * g * rho;
         f += g.transpose() * gamma * rho;
     }
-    let l_inverse = cholesky(&mut l)?;
+    let d_inverse = factor(&mut l)?;
     // Y = U⁻ᵀ Gᵀ, column by column; z = U⁻ᵀ f.
     let mut y = [[T::zero(); N]; M];
     for (j, column) in y.iter_mut().enumerate() {
         for (i, entry) in column.iter_mut().enumerate() {
             *entry = g[(j, i)];
         }
-        forward_substitute(&l, &l_inverse, column);
+        forward_substitute(&l, column);
     }
     let mut z = [T::zero(); N];
     for (i, entry) in z.iter_mut().enumerate() {
         *entry = f[i];
     }
-    forward_substitute(&l, &l_inverse, &mut z);
-    // Schur complement S = G A⁻¹ Gᵀ = Yᵀ Y; S λ = G A⁻¹ f − γ = Yᵀ z − γ.
+    forward_substitute(&l, &mut z);
+    // Schur complement S = G A⁻¹ Gᵀ = Yᵀ D⁻¹ Y; S λ = G A⁻¹ f − γ = Yᵀ D⁻¹ z − γ.
+    let mut dz = z;
+    for (entry, &inverse) in dz.iter_mut().zip(&d_inverse) {
+        *entry *= inverse;
+    }
     let mut s = SMatrix::<T, M, M>::zeros();
     let mut lambda = [T::zero(); M];
     for a in 0..M {
         for b in a..M {
             let mut sum = T::zero();
             for k in 0..N {
-                sum += y[a][k] * y[b][k];
+                sum += y[a][k] * d_inverse[k] * y[b][k];
             }
             s[(a, b)] = sum;
         }
         let mut sum = -gamma[a];
         for k in 0..N {
-            sum += y[a][k] * z[k];
+            sum += y[a][k] * dz[k];
         }
         lambda[a] = sum;
     }
-    let s_inverse = cholesky(&mut s)?;
-    forward_substitute(&s, &s_inverse, &mut lambda);
-    back_substitute(&s, &s_inverse, &mut lambda);
-    // x = A⁻¹ (f − Gᵀ λ) = U⁻¹ (z − Y λ).
+    let s_inverse = factor(&mut s)?;
+    forward_substitute(&s, &mut lambda);
+    for (entry, &inverse) in lambda.iter_mut().zip(&s_inverse) {
+        *entry *= inverse;
+    }
+    back_substitute(&s, &mut lambda);
+    // x = A⁻¹ (f − Gᵀ λ) = U⁻¹ D⁻¹ (z − Y λ).
     for (k, column) in y.iter().enumerate() {
         for i in 0..N {
             z[i] -= column[i] * lambda[k];
         }
     }
-    back_substitute(&l, &l_inverse, &mut z);
+    for (entry, &inverse) in z.iter_mut().zip(&d_inverse) {
+        *entry *= inverse;
+    }
+    back_substitute(&l, &mut z);
     Some((SVector::from(z), SVector::from(lambda)))
 }
 
