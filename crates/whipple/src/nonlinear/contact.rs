@@ -152,31 +152,23 @@ impl KnifeEdge {
         omega_frame: &Vector3<T>,
     ) -> ContactRows<T> {
         let rw = &poses.rot[self.wheel];
-        let ContactKinematics {
-            axle: a,
-            axle_dot: a_dot,
-            omega: w,
-            f,
-            f_dot,
-            n,
-            n_dot,
-            rho,
-            rho_dot,
-            v_p,
-        } = self.kinematics(poses, v_wheel, omega_wheel);
+        let k = self.kinematics(poses, v_wheel, omega_wheel);
         let ez = Vector3::z();
 
         let mut wheel = SMatrix::<T, 3, 6>::zeros();
         let mut frame = SMatrix::<T, 3, 6>::zeros();
         let mut gamma = SVector::<T, 3>::zeros();
-        let directions = [f, n, ez];
-        let rates = [f_dot, n_dot, Vector3::zeros()];
-        for k in 0..3 {
-            let e = directions[k];
-            wheel.fixed_view_mut::<1, 3>(k, 0).copy_from(&e.transpose());
-            let rot_row = (rw.transpose() * rho.cross(&e)).transpose();
-            wheel.fixed_view_mut::<1, 3>(k, 3).copy_from(&rot_row);
-            gamma[k] = -(rates[k].dot(&v_p) + e.dot(&w.cross(&rho_dot)));
+        let directions = [k.f, k.n, ez];
+        let rates = [k.f_dot, k.n_dot, Vector3::zeros()];
+        let spin_of_offset = k.omega.cross(&k.rho_dot);
+        for row in 0..3 {
+            let e = directions[row];
+            wheel
+                .fixed_view_mut::<1, 3>(row, 0)
+                .copy_from(&e.transpose());
+            let rot_row = (rw.transpose() * k.rho.cross(&e)).transpose();
+            wheel.fixed_view_mut::<1, 3>(row, 3).copy_from(&rot_row);
+            gamma[row] = -(rates[row].dot(&k.v_p) + e.dot(&spin_of_offset));
         }
         if self.is_skate() {
             let rf = &poses.rot[self.frame];
@@ -184,20 +176,20 @@ impl KnifeEdge {
             wheel.fixed_view_mut::<1, 3>(0, 0).fill(T::zero());
             wheel
                 .fixed_view_mut::<1, 3>(0, 3)
-                .copy_from(&(rw.transpose() * a).transpose());
+                .copy_from(&(rw.transpose() * k.axle).transpose());
             frame
                 .fixed_view_mut::<1, 3>(0, 3)
-                .copy_from(&(-(rf.transpose() * a).transpose()));
-            gamma[0] = -(w - w_frame).dot(&a_dot);
+                .copy_from(&(-(rf.transpose() * k.axle).transpose()));
+            gamma[0] = -(k.omega - w_frame).dot(&k.axle_dot);
         }
         ContactRows {
             wheel,
             frame,
             gamma,
             contact_frame: ContactFrame {
-                longitudinal: f,
-                lateral: n,
-                offset: rho,
+                longitudinal: k.f,
+                lateral: k.n,
+                offset: k.rho,
             },
         }
     }
