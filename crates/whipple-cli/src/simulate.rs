@@ -8,12 +8,11 @@ use std::time::{Duration, Instant};
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use exmex::prelude::*;
 use serde_json::json;
 use whipple::integrate::dopri5::Dopri5Params;
 use whipple::nonlinear::{
     simulate, InitialConditions, Integrator, Model, Outcome, Sample, Simulation,
-    SimulationSettings, StateView, TorqueFn, Wheel,
+    SimulationSettings, TorqueExpression, TorqueFn, Wheel,
 };
 
 use crate::bike::{load, LoadedBike};
@@ -51,7 +50,8 @@ pub struct SimulateArgs {
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub steer_rate: f64,
     /// Steer torque in N m as an expression of t, lean, steer, lean_rate, steer_rate, yaw and
-    /// speed (radians, seconds), e.g. "0.5*sin(2*t)" or "-10*lean - 2*lean_rate".
+    /// speed (radians, seconds), e.g. "0.5*sin(2*t)" or "10*lean + 20*lean_rate" (steering into
+    /// the lean, which holds the benchmark bicycle up at 3 m/s).
     #[arg(long, allow_hyphen_values = true)]
     pub steer_torque: Option<String>,
     /// Lean torque in N m, an expression like --steer-torque.
@@ -87,49 +87,14 @@ pub struct SimulateArgs {
     pub plot: Option<PathBuf>,
 }
 
-/// The names an expression may use, in the order the evaluator receives them.
-const VARIABLES: [&str; 7] = [
-    "lean",
-    "lean_rate",
-    "speed",
-    "steer",
-    "steer_rate",
-    "t",
-    "yaw",
-];
-
-fn value_of(name: &str, t: f64, s: &StateView) -> f64 {
-    match name {
-        "lean" => s.lean,
-        "lean_rate" => s.lean_rate,
-        "speed" => s.speed,
-        "steer" => s.steer,
-        "steer_rate" => s.steer_rate,
-        "yaw" => s.yaw,
-        _ => t,
-    }
-}
-
-/// Compiles a torque expression; its variables must be among [`VARIABLES`].
+/// Compiles a torque expression (the library's [`TorqueExpression`]), naming the option in its
+/// error.
 fn torque(option: &str, text: &str) -> Result<TorqueFn> {
-    let expr = exmex::parse::<f64>(text)
-        .map_err(|e| anyhow::anyhow!("{option}: cannot read `{text}`: {e}"))?;
-    let names: Vec<String> = expr.var_names().to_vec();
-    if let Some(unknown) = names.iter().find(|n| !VARIABLES.contains(&n.as_str())) {
-        bail!(
-            "{option}: unknown name `{unknown}` in `{text}` (use {})",
-            VARIABLES.join(", ")
-        );
+    match TorqueExpression::parse(text) {
+        Ok(expression) => Ok(expression.into_torque()),
+        Err(whipple::Error::InvalidArgument { rule, .. }) => bail!("{option}: {rule}"),
+        Err(other) => Err(anyhow::Error::new(other).context(option.to_string())),
     }
-    // Check it evaluates to a number at rest before the run starts.
-    let probe: Vec<f64> = names.iter().map(|_| 0.0).collect();
-    expr.eval(&probe)
-        .map_err(|e| anyhow::anyhow!("{option}: cannot evaluate `{text}`: {e}"))?;
-    Ok(Box::new(move |t: f64, s: &StateView| {
-        let values: Vec<f64> = names.iter().map(|n| value_of(n, t, s)).collect();
-        // A failed evaluation gives NaN, which the run reports as a non-finite state.
-        expr.eval(&values).unwrap_or(f64::NAN)
-    }))
 }
 
 fn check_finite(option: &str, x: f64) -> Result<()> {

@@ -239,6 +239,16 @@ try {
   const fell = await text("sim-outcome");
   const kind = await page.getByTestId("sim-outcome").getAttribute("data-kind");
   check((kind === "fell" || kind === "wheel_lifted") && /t = \d/.test(fell), `at 3 m/s the outcome is shown: "${fell}"`);
+  // A rider's steer torque as an expression: one with an unknown name is refused at the field;
+  // steering into the lean holds the bicycle up at the same 3 m/s.
+  await page.fill("#sim-steer-torque", "2*foo");
+  await page.click("[data-testid=sim-run]");
+  await waitForText("sim-message", (t) => t.includes("unknown name `foo`"));
+  check(await page.locator("#sim-steer-torque").evaluate((e) => e.classList.contains("invalid")), `an unknown name in the steer torque is refused at the field: "${await text("sim-message")}"`);
+  await page.fill("#sim-steer-torque", "10*lean + 20*lean_rate");
+  await page.click("[data-testid=sim-run]");
+  await waitForText("sim-outcome", (t) => t.startsWith("completed"));
+  check(!(await page.locator("#sim-steer-torque").evaluate((e) => e.classList.contains("invalid"))), `steering into the lean holds it up at 3 m/s: "${await text("sim-outcome")}"`);
   await page.getByTestId("tab-eigen").click();
   check(await page.locator("#panel-eigen").isVisible(), "the eigenvalue tab comes back");
   check(errors.length === 0, `no page errors (${errors.join("; ") || "none"})`);

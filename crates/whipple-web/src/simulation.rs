@@ -12,7 +12,7 @@ use whipple::integrate::dopri5::Dopri5Params;
 use whipple::integrate::rk4;
 use whipple::nonlinear::{
     simulate, ContactForce, InitialConditions, Integrator, Model, Outcome, Sample, Simulation,
-    SimulationSettings, StateView, TorqueFn, Wheel,
+    SimulationSettings, StateView, TorqueExpression, TorqueFn, Wheel,
 };
 use whipple::BenchmarkParameters;
 
@@ -68,18 +68,74 @@ pub struct SimulateRequest {
     pub dt: Option<f64>,
     /// Relative tolerance of the adaptive integrator (default 1e-8); only with it.
     pub rtol: Option<f64>,
-    /// T_δ: a constant steer torque [N m] (default 0, hands free).
+    /// T_δ: steer torque [N m], a number or an expression of t, lean, steer, lean_rate,
+    /// steer_rate, yaw and speed (default 0, hands free).
     #[serde(default)]
-    pub steer_torque: f64,
+    pub steer_torque: TorqueInput,
+    /// T_φ: lean torque [N m], as `steer_torque` (default 0).
+    #[serde(default)]
+    pub lean_torque: TorqueInput,
+}
+
+/// A rider torque as the request gives it: a constant, or an expression (the CLI's language,
+/// [`TorqueExpression`]).
+#[derive(Deserialize, Debug, Clone, PartialEq)]
+#[serde(untagged)]
+pub enum TorqueInput {
+    /// A constant torque [N m].
+    Constant(f64),
+    /// An expression of time and the state [N m].
+    Expression(String),
+}
+
+impl Default for TorqueInput {
+    fn default() -> Self {
+        TorqueInput::Constant(0.0)
+    }
+}
+
+/// A checked rider torque.
+#[derive(Debug, Clone)]
+enum Torque {
+    None,
+    Constant(f64),
+    Expression(Box<TorqueExpression>),
+}
+
+impl Torque {
+    fn check(field: &str, input: &TorqueInput) -> Result<Self, ApiError> {
+        match input {
+            TorqueInput::Constant(x) if !x.is_finite() => Err(invalid(
+                field,
+                format!("must be a finite number or an expression, got {x}"),
+            )),
+            TorqueInput::Constant(x) if *x == 0.0 => Ok(Torque::None),
+            TorqueInput::Constant(x) => Ok(Torque::Constant(*x)),
+            TorqueInput::Expression(text) => match TorqueExpression::parse(text) {
+                Ok(expression) => Ok(Torque::Expression(Box::new(expression))),
+                Err(whipple::Error::InvalidArgument { rule, .. }) => Err(invalid(field, rule)),
+                Err(other) => Err(invalid(field, other.to_string())),
+            },
+        }
+    }
+
+    fn into_fn(self) -> Option<TorqueFn> {
+        match self {
+            Torque::None => None,
+            Torque::Constant(x) => Some(Box::new(move |_: f64, _: &StateView| x)),
+            Torque::Expression(expression) => Some((*expression).into_torque()),
+        }
+    }
 }
 
 /// A checked request: everything [`run`] needs.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct Plan {
     initial: InitialConditions,
     integrator: Integrator,
     duration: f64,
-    steer_torque: f64,
+    steer_torque: Torque,
+    lean_torque: Torque,
 }
 
 fn unprocessable(kind: &'static str, field: &str, rule: String, message: String) -> ApiError {
@@ -100,7 +156,6 @@ pub fn check(request: &SimulateRequest, limits: &Limits) -> Result<Plan, ApiErro
         ("lean_rate", request.lean_rate),
         ("steer_rate", request.steer_rate),
         ("duration", request.duration),
-        ("steer_torque", request.steer_torque),
     ] {
         if !x.is_finite() {
             return Err(invalid(field, format!("must be a finite number, got {x}")));
@@ -199,7 +254,8 @@ pub fn check(request: &SimulateRequest, limits: &Limits) -> Result<Plan, ApiErro
         },
         integrator,
         duration,
-        steer_torque: request.steer_torque,
+        steer_torque: Torque::check("steer_torque", &request.steer_torque)?,
+        lean_torque: Torque::check("lean_torque", &request.lean_torque)?,
     })
 }
 
@@ -473,13 +529,11 @@ pub fn run(
 ) -> Result<SimulateResponse, ApiError> {
     let model = Model::new(parameters)?;
     let start = model.initial_state(&plan.initial)?;
-    let torque = plan.steer_torque;
-    let steer_torque: Option<TorqueFn> =
-        (torque != 0.0).then(|| Box::new(move |_: f64, _: &StateView| torque) as TorqueFn);
     let settings = SimulationSettings {
         integrator: plan.integrator,
         duration: plan.duration,
-        steer_torque,
+        steer_torque: plan.steer_torque.into_fn(),
+        lean_torque: plan.lean_torque.into_fn(),
         ..SimulationSettings::default()
     };
     let simulation = simulate(&model, start, &settings)?;

@@ -599,6 +599,51 @@ async fn simulation_reports_a_fall() -> TestResult {
     Ok(())
 }
 
+/// Rider torques as numbers or as expressions of time and the state: at 3 m/s, where the
+/// hands-free benchmark bicycle falls, a steer torque that steers into the lean (the CLI's
+/// language; gains chosen by the linear model's closed-loop eigenvalues) keeps it up; a constant and the same constant written as an expression give the
+/// same motion.
+#[tokio::test]
+async fn simulation_takes_rider_torques_as_expressions() -> TestResult {
+    let app = app(Limits::default());
+    let (status, body) = post(
+        &app,
+        "/api/simulate",
+        &simulation(json!({
+            "speed": 3.0,
+            "duration": 5.0,
+            "steer_torque": "10*lean + 20*lean_rate",
+        }))?,
+    )
+    .await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert_eq!(body["outcome"]["kind"], "completed", "{}", body["outcome"]);
+    let frames = body["frames"].as_array().ok_or("frames")?;
+    let late = frames[240..]
+        .iter()
+        .filter_map(|f| f["lean"].as_f64())
+        .fold(0.0_f64, |m, x| m.max(x.abs()));
+    assert!(late < 0.01, "the controlled lean dies out: {late}");
+    let mut last = Vec::new();
+    for torque in [json!(0.3), json!("0.3 + 0*t")] {
+        let (status, body) = post(
+            &app,
+            "/api/simulate",
+            &simulation(json!({"lean_torque": torque}))?,
+        )
+        .await?;
+        assert_eq!(status, StatusCode::OK, "{body}");
+        let frames = body["frames"].as_array().ok_or("frames")?;
+        last.push(
+            frames.last().ok_or("no frames")?["lean"]
+                .as_f64()
+                .ok_or("lean")?,
+        );
+    }
+    assert!((last[0] - last[1]).abs() < 1e-12, "{last:?}");
+    Ok(())
+}
+
 #[tokio::test]
 async fn simulation_refuses_bad_inputs_and_limits() -> TestResult {
     let app = app(Limits::default());
@@ -674,6 +719,24 @@ async fn simulation_refuses_bad_inputs_and_limits() -> TestResult {
             "invalid_argument",
             "rtol",
             "between 0 and 1",
+        ),
+        (
+            json!({"steer_torque": "sin(t"}),
+            "invalid_argument",
+            "steer_torque",
+            "cannot read `sin(t`",
+        ),
+        (
+            json!({"lean_torque": "2*foo"}),
+            "invalid_argument",
+            "lean_torque",
+            "unknown name `foo`",
+        ),
+        (
+            json!({"steer_torque": "1/t"}),
+            "invalid_argument",
+            "steer_torque",
+            "not a finite number at rest",
         ),
     ];
     for (fields, kind, field, words) in cases {

@@ -18,6 +18,11 @@ const INPUTS = [
   ["sim-steer-rate", "steer_rate"],
   ["sim-duration", "duration"],
 ];
+/** Rider torques: a number, or an expression the server parses (the CLI's language). */
+const TORQUES = [
+  ["sim-steer-torque", "steer_torque"],
+  ["sim-lean-torque", "lean_torque"],
+];
 
 /** Index of the last frame at or before time `t` (frames sorted by time). */
 function frameAt(frames, t) {
@@ -90,7 +95,7 @@ export class SimPanel {
 
   async run() {
     const request = { bike: this.bike() };
-    for (const [id] of INPUTS) $(id).classList.remove("invalid");
+    for (const [id] of [...INPUTS, ...TORQUES]) $(id).classList.remove("invalid");
     for (const [id, key] of INPUTS) {
       const x = parseNumber($(id).value);
       if (x === null) {
@@ -99,6 +104,12 @@ export class SimPanel {
         return;
       }
       request[key] = x;
+    }
+    for (const [id, key] of TORQUES) {
+      const text = $(id).value.trim();
+      const x = parseNumber(text);
+      if (text === "") request[key] = 0;
+      else request[key] = x === null ? text : x;
     }
     this.pause();
     this.say("");
@@ -113,7 +124,7 @@ export class SimPanel {
       this.seek(0);
       this.play();
     } catch (e) {
-      const input = INPUTS.find(([, key]) => key === e.field);
+      const input = [...INPUTS, ...TORQUES].find(([, key]) => key === e.field);
       if (input) $(input[0]).classList.add("invalid");
       this.say(e.message);
       $("sim-outcome").className = "sim-outcome";

@@ -19,6 +19,7 @@
 
 pub mod bodies;
 pub mod contact;
+pub mod expression;
 pub mod forward;
 pub mod joints;
 pub mod projection;
@@ -32,6 +33,7 @@ use nalgebra::{RealField, SMatrix, SVector, Vector3};
 use num_dual::Dual64;
 
 pub use bodies::{Bodies, BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
+pub use expression::TorqueExpression;
 pub use forward::{ContactForce, Derivatives, Inputs, Poses, HOLONOMIC_ROWS, VELOCITY_ROWS};
 pub use projection::{ProjectionMethod, ProjectionParams, ProjectionReport};
 pub use reduced::{FullStateField, LeanSteerField};
