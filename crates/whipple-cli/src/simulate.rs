@@ -227,6 +227,7 @@ fn describe(run: &Simulation) -> (String, bool) {
             format!("stopped: the adaptive step size became too small at t = {t:.4} s"),
             true,
         ),
+        Outcome::Stopped { t } => (format!("stopped on request at t = {t:.4} s"), true),
         Outcome::Failed { t, error } => (format!("stopped at t = {t:.4} s: {error}"), true),
     }
 }

@@ -4,6 +4,7 @@
 //! "benchmark": {...}}` or `{..., "jbike6": {...}}`) and are read and written by
 //! `whipple::parameters::io`, so the API, the CLI and the files agree on every key and rule.
 
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 use axum::body::Bytes;
@@ -178,12 +179,24 @@ fn bicycle_json(bike: &Bicycle) -> Result<Value, ApiError> {
     serde_json::from_str(&text).map_err(|e| ApiError::internal(e.to_string()))
 }
 
+/// Sets its flag when dropped: when the request's future ends, whether the work finished, its
+/// time ran out or the client went away.
+struct StopOnDrop(Arc<AtomicBool>);
+
+impl Drop for StopOnDrop {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
+}
+
 /// Runs CPU-heavy work on the blocking pool, a bounded number at a time, within the limits;
-/// `advice` ends the timeout's message (what to ask for instead).
+/// `advice` ends the timeout's message (what to ask for instead). The work gets a stop flag,
+/// set once nobody waits for its result any more (time up, client gone): work that can stop
+/// early (a simulation) should, to give its computing slot back.
 async fn compute<T: Send + 'static>(
     state: &AppState,
     advice: &str,
-    work: impl FnOnce() -> Result<T, ApiError> + Send + 'static,
+    work: impl FnOnce(Arc<AtomicBool>) -> Result<T, ApiError> + Send + 'static,
 ) -> Result<T, ApiError> {
     let limits = state.limits;
     let permit = tokio::time::timeout(
@@ -202,10 +215,12 @@ async fn compute<T: Send + 'static>(
         )
     })?
     .map_err(|_| ApiError::internal("the computing pool is closed"))?;
+    let stop = StopOnDrop(Arc::new(AtomicBool::new(false)));
+    let flag = stop.0.clone();
     let task = tokio::task::spawn_blocking(move || {
         // The slot stays taken until the work ends, even if the client has gone.
         let _permit = permit;
-        work()
+        work(flag)
     });
     match tokio::time::timeout(limits.compute_timeout, task).await {
         Ok(Ok(result)) => result,
@@ -428,7 +443,7 @@ async fn eigen(
     let bike = bicycle(&request.bike)?;
     let grid = request.speeds;
     check_grid(grid, state.limits.max_speeds)?;
-    let response = compute(&state, "ask for fewer speeds", move || {
+    let response = compute(&state, "ask for fewer speeds", move |_| {
         let benchmark = bike.benchmark()?;
         let canonical = Canonical::new(&benchmark)?;
         let speeds = speed_grid(grid.start, grid.stop, grid.step)?;
@@ -481,7 +496,7 @@ async fn speeds(
     let request: SpeedsRequest = json_body(body)?;
     let bike = bicycle(&request.bike)?;
     let range = request.range;
-    let result = compute(&state, "ask for a narrower range", move || {
+    let result = compute(&state, "ask for a narrower range", move |_| {
         let canonical = Canonical::new(&bike.benchmark()?)?;
         Ok(critical_speeds(&canonical, range.lo, range.hi)?)
     })
@@ -500,9 +515,9 @@ async fn simulate(
     let response = compute(
         &state,
         "simulate a shorter time or use a larger dt",
-        move || {
+        move |stop| {
             let benchmark = bike.benchmark()?;
-            simulation::run(bike.name.clone(), &benchmark, plan, max_steps)
+            simulation::run(bike.name.clone(), &benchmark, plan, max_steps, stop)
         },
     )
     .await?;
@@ -512,6 +527,45 @@ async fn simulate(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Work whose result nobody waits for any more is told to stop: after a timeout the flag
+    /// is set while the work still runs, so a simulation gives its computing slot back instead
+    /// of running to its step limit.
+    #[tokio::test]
+    async fn timed_out_work_is_told_to_stop() {
+        let limits = Limits {
+            compute_timeout: std::time::Duration::from_millis(20),
+            ..Limits::default()
+        };
+        let state = AppState {
+            limits,
+            computing: Arc::new(Semaphore::new(1)),
+        };
+        let saw_stop = Arc::new(AtomicBool::new(false));
+        let seen = saw_stop.clone();
+        let result = compute(&state, "wait less", move |stop| {
+            // Bounded: 30 s at most, unless told to stop.
+            let until = std::time::Instant::now() + std::time::Duration::from_secs(30);
+            while std::time::Instant::now() < until {
+                if stop.load(Ordering::Relaxed) {
+                    seen.store(true, Ordering::Relaxed);
+                    return Ok(());
+                }
+                std::thread::sleep(std::time::Duration::from_millis(1));
+            }
+            Ok(())
+        })
+        .await;
+        assert!(matches!(result, Err(ref e) if e.status == StatusCode::SERVICE_UNAVAILABLE));
+        // The slot comes back as soon as the work has stopped, long before its 30 s.
+        let permit = tokio::time::timeout(
+            std::time::Duration::from_secs(10),
+            state.computing.clone().acquire_owned(),
+        )
+        .await;
+        assert!(matches!(permit, Ok(Ok(_))), "the slot did not come back");
+        assert!(saw_stop.load(Ordering::Relaxed));
+    }
 
     /// Every route under /api is in the OpenAPI document and every documented path is routed.
     #[test]

@@ -5,6 +5,9 @@
 //! (`max_sim_duration`) and the number of integration steps (`max_sim_steps`, which bounds
 //! both the time and the memory of a run, since the library keeps one sample per step).
 
+use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
+
 use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
@@ -263,7 +266,7 @@ pub fn check(request: &SimulateRequest, limits: &Limits) -> Result<Plan, ApiErro
 #[derive(Serialize, Debug)]
 pub struct OutcomeJson {
     /// `completed`, `fell`, `wheel_lifted`, `projection_failed`, `non_finite_state`,
-    /// `step_limit` or `failed`.
+    /// `step_limit`, `stopped` or `failed`.
     pub kind: &'static str,
     /// When it happened [s] (the end time for `completed`).
     pub t: f64,
@@ -439,6 +442,11 @@ fn describe(run: &Simulation, duration: f64, max_steps: usize) -> OutcomeJson {
             *t,
             format!("stopped at t = {t:.2} s: the adaptive integrator's step became too small or it reached this server's limit of {max_steps} steps; loosen rtol or simulate a shorter time"),
         ),
+        Outcome::Stopped { t } => plain(
+            "stopped",
+            *t,
+            format!("stopped at t = {t:.2} s: nobody waits for the result any more (time up or client gone)"),
+        ),
         Outcome::Failed { t, error } => plain(
             "failed",
             *t,
@@ -526,6 +534,7 @@ pub fn run(
     parameters: &BenchmarkParameters,
     plan: Plan,
     max_steps: usize,
+    stop: Arc<AtomicBool>,
 ) -> Result<SimulateResponse, ApiError> {
     let model = Model::new(parameters)?;
     let start = model.initial_state(&plan.initial)?;
@@ -534,6 +543,7 @@ pub fn run(
         duration: plan.duration,
         steer_torque: plan.steer_torque.into_fn(),
         lean_torque: plan.lean_torque.into_fn(),
+        stop: Some(stop),
         ..SimulationSettings::default()
     };
     let simulation = simulate(&model, start, &settings)?;

@@ -9,8 +9,9 @@ use whipple::analysis::eigen;
 use whipple::integrate::Dopri5Params;
 use whipple::linear::Canonical;
 use whipple::nonlinear::{
-    rotation, simulate, InitialConditions, Inputs, Integrator, Model, Outcome, ProjectionMethod,
-    ProjectionParams, SimulationSettings, State, REAR_FRAME, REAR_WHEEL, STATE_LEN,
+    rotation, simulate, InitialConditions, Inputs, Integrator, Model, Outcome, Progress,
+    ProjectionMethod, ProjectionParams, SimulationSettings, State, REAR_FRAME, REAR_WHEEL,
+    STATE_LEN,
 };
 use whipple::parameters::presets;
 use whipple::{BenchmarkParameters, Result};
@@ -455,6 +456,38 @@ fn weave_settings(integrator: Integrator, duration: f64) -> SimulationSettings {
         duration,
         ..SimulationSettings::default()
     }
+}
+
+/// A run stopped from outside (here by its own progress hook, as another thread would) ends
+/// before its next step with the samples so far.
+#[test]
+fn a_run_stops_when_asked() -> Result<()> {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Arc;
+    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+    let start = model.initial_state(&InitialConditions {
+        lean_rate: 0.5,
+        ..InitialConditions::upright(4.6)
+    })?;
+    let stop = Arc::new(AtomicBool::new(false));
+    let flag = stop.clone();
+    let settings = SimulationSettings {
+        stop: Some(stop),
+        progress: Some(Box::new(move |p: Progress| {
+            if p.steps == 100 {
+                flag.store(true, Ordering::Relaxed);
+            }
+        })),
+        ..weave_settings(Integrator::Rk4 { dt: 1e-3 }, 10.0)
+    };
+    let run = simulate(&model, start, &settings)?;
+    match run.outcome {
+        Outcome::Stopped { t } => assert!((t - 0.1).abs() < 1e-12, "{t}"),
+        other => panic!("{other:?}"),
+    }
+    assert_eq!(run.steps, 100);
+    assert_eq!(run.samples.len(), 101);
+    Ok(())
 }
 
 /// Without inputs the total energy is conserved and the constraints hold after projection.

@@ -13,6 +13,8 @@
 //! ```
 
 use std::fmt;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 use nalgebra::SVector;
 
@@ -72,6 +74,10 @@ pub struct SimulationSettings {
     pub stop_on_lift_off: bool,
     /// Called after each accepted step.
     pub progress: Option<ProgressFn>,
+    /// Set it to true, from any thread, to end the run before its next step (outcome
+    /// [`Outcome::Stopped`], the samples so far kept): a server stops a run whose client has
+    /// gone or whose time is up.
+    pub stop: Option<Arc<AtomicBool>>,
 }
 
 impl Default for SimulationSettings {
@@ -85,6 +91,7 @@ impl Default for SimulationSettings {
             projection: ProjectionParams::default(),
             stop_on_lift_off: true,
             progress: None,
+            stop: None,
         }
     }
 }
@@ -100,6 +107,7 @@ impl fmt::Debug for SimulationSettings {
             .field("projection", &self.projection)
             .field("stop_on_lift_off", &self.stop_on_lift_off)
             .field("progress", &self.progress.is_some())
+            .field("stop", &self.stop)
             .finish()
     }
 }
@@ -149,6 +157,11 @@ pub enum Outcome {
     },
     /// The adaptive step size fell below its minimum, or its step limit was reached, at t.
     StepSizeTooSmall {
+        /// Time \[s\].
+        t: f64,
+    },
+    /// The run was stopped from outside ([`SimulationSettings::stop`]) at time t.
+    Stopped {
         /// Time \[s\].
         t: f64,
     },
@@ -381,6 +394,19 @@ pub fn simulate(
             return Ok(finish(
                 samples,
                 Outcome::Completed,
+                state,
+                steps,
+                rejected_steps,
+            ));
+        }
+        if settings
+            .stop
+            .as_ref()
+            .is_some_and(|stop| stop.load(Ordering::Relaxed))
+        {
+            return Ok(finish(
+                samples,
+                Outcome::Stopped { t },
                 state,
                 steps,
                 rejected_steps,
