@@ -177,6 +177,16 @@ fn all_bicycles() -> Result<Vec<(String, BenchmarkParameters)>> {
         ..BenchmarkParameters::meijaard2007()
     };
     out.push(("massless wheels (local)".into(), massless_wheels));
+    // A rolling rear wheel with a front skate: the rear rows are solved, the front skate's
+    // spin lock stays a row.
+    let front_skate = BenchmarkParameters {
+        r_f: 0.0,
+        m_f: 0.0,
+        i_fxx: 0.0,
+        i_fyy: 0.0,
+        ..BenchmarkParameters::meijaard2007()
+    };
+    out.push(("front skate (local)".into(), front_skate));
     Ok(out)
 }
 
