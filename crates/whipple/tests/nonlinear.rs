@@ -460,6 +460,17 @@ fn dual_numbers_pass_through_forward() -> Result<()> {
     Ok(())
 }
 
+/// The benchmark bicycle upright at `speed` with the lean-rate kick of 0.5 rad/s that the
+/// study's runs (and BENCHMARKS.md) use.
+fn kicked_benchmark(speed: f64) -> Result<(Model, State<f64>)> {
+    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+    let start = model.initial_state(&InitialConditions {
+        lean_rate: 0.5,
+        ..InitialConditions::upright(speed)
+    })?;
+    Ok((model, start))
+}
+
 fn weave_settings(integrator: Integrator, duration: f64) -> SimulationSettings {
     SimulationSettings {
         integrator,
@@ -474,11 +485,7 @@ fn weave_settings(integrator: Integrator, duration: f64) -> SimulationSettings {
 fn a_run_stops_when_asked() -> Result<()> {
     use std::sync::atomic::{AtomicBool, Ordering};
     use std::sync::Arc;
-    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
-    let start = model.initial_state(&InitialConditions {
-        lean_rate: 0.5,
-        ..InitialConditions::upright(4.6)
-    })?;
+    let (model, start) = kicked_benchmark(4.6)?;
     let stop = Arc::new(AtomicBool::new(false));
     let flag = stop.clone();
     let settings = SimulationSettings {
@@ -503,11 +510,7 @@ fn a_run_stops_when_asked() -> Result<()> {
 /// Without inputs the total energy is conserved and the constraints hold after projection.
 #[test]
 fn energy_is_conserved_and_constraints_hold() -> Result<()> {
-    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
-    let start = model.initial_state(&InitialConditions {
-        lean_rate: 0.5,
-        ..InitialConditions::upright(4.6)
-    })?;
+    let (model, start) = kicked_benchmark(4.6)?;
     let dopri = Integrator::Dopri5(Dopri5Params {
         rtol: 1e-10,
         atol: 1e-12,
@@ -552,11 +555,7 @@ fn energy_is_conserved_and_constraints_hold() -> Result<()> {
 /// The benchmark bicycle's weave decays at 4.6 m/s (self-stable range 4.29–6.02 m/s).
 #[test]
 fn weave_decays_at_4_6_m_per_s() -> Result<()> {
-    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
-    let start = model.initial_state(&InitialConditions {
-        lean_rate: 0.5,
-        ..InitialConditions::upright(4.6)
-    })?;
+    let (model, start) = kicked_benchmark(4.6)?;
     let run = simulate(
         &model,
         start,
@@ -580,11 +579,7 @@ fn weave_decays_at_4_6_m_per_s() -> Result<()> {
 /// the lean reaches 60°: with lift-off detection on, that is where the run stops.
 #[test]
 fn falls_at_3_m_per_s() -> Result<()> {
-    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
-    let start = model.initial_state(&InitialConditions {
-        lean_rate: 0.5,
-        ..InitialConditions::upright(3.0)
-    })?;
+    let (model, start) = kicked_benchmark(3.0)?;
     let settings = SimulationSettings {
         stop_on_lift_off: false,
         ..weave_settings(Integrator::Rk4 { dt: 1e-3 }, 20.0)
@@ -618,11 +613,7 @@ fn falls_at_3_m_per_s() -> Result<()> {
 /// At 8 m/s (above the capsize speed) the weave dies out and a slow capsize lean builds up.
 #[test]
 fn slow_capsize_at_8_m_per_s() -> Result<()> {
-    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
-    let start = model.initial_state(&InitialConditions {
-        lean_rate: 0.5,
-        ..InitialConditions::upright(8.0)
-    })?;
+    let (model, start) = kicked_benchmark(8.0)?;
     let run = simulate(
         &model,
         start,
