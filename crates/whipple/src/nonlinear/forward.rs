@@ -15,8 +15,8 @@
 //! 5. **solve**: the saddle-point system `[M Dᵀ; D 0][u̇; μ] = [f; γ]` projected onto the
 //!    remaining null space, `[TᵀMT  Gᵀ; G  0][ẇ; −μ_c] = [Tᵀ(f − M c); γ_c − D_c c]` with
 //!    `G = D_c T`: 9 × 9 (or 15 × 15) instead of 45 × 45, solved at once for the accelerations
-//!    and the contact multipliers by Cholesky factors of TᵀMT and of the Schur complement
-//!    (`saddle.rs`). `TᵀMT` may be singular (massless wheels): it is then augmented by ρGᵀG,
+//!    and the contact multipliers by UᵀDU factors (Cholesky without square roots) of TᵀMT and
+//!    of the Schur complement (`saddle.rs`). `TᵀMT` may be singular (massless wheels): it is then augmented by ρGᵀG,
 //!    the saddle-point matrix stays regular whenever the bicycle has inertia in every direction
 //!    the constraints leave free, and M⁻¹ is never formed. The eliminated rear multipliers are
 //!    recovered from the balance of linear momentum of the four bodies (the joint forces are
