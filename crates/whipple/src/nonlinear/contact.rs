@@ -116,9 +116,7 @@ impl KnifeEdge {
         let a = rw.column(1).into_owned();
         let w = rw * omega_wheel;
         let a_dot = w.cross(&a);
-        let s = (a.x * a.x + a.y * a.y).sqrt();
-        let inverse = T::one() / s;
-        let f = Vector3::new(a.y * inverse, -a.x * inverse, T::zero());
+        let (f, inverse) = longitudinal(&a);
         let ez = Vector3::z();
         // ṡ and ḟ of s = |a × e_z|, f = (a × e_z)/s.
         let s_dot = -a.z * a_dot.z * inverse;
@@ -195,9 +193,13 @@ impl KnifeEdge {
     }
 }
 
-/// f = (a × e_z)/|a × e_z| and |a × e_z| for a unit axle a that is not vertical.
+/// f = (a × e_z)/|a × e_z| and 1/|a × e_z| for a unit axle a that is not vertical (one
+/// division).
 #[inline]
 fn longitudinal<T: RealField + Copy>(a: &Vector3<T>) -> (Vector3<T>, T) {
-    let s = (a.x * a.x + a.y * a.y).sqrt();
-    (Vector3::new(a.y / s, -a.x / s, T::zero()), s)
+    let inverse = T::one() / (a.x * a.x + a.y * a.y).sqrt();
+    (
+        Vector3::new(a.y * inverse, -a.x * inverse, T::zero()),
+        inverse,
+    )
 }

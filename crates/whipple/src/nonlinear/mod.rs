@@ -514,27 +514,20 @@ impl Model {
         })
     }
 
-    /// The tree Jacobians and the contact rows expressed in the nine tree speeds.
+    /// The tree Jacobians J_k (6 × 9 each) and the six contact rows expressed in the nine tree
+    /// speeds (they depend on the configuration only).
     pub(crate) fn contact_tree_rows(
         &self,
         poses: &Poses<f64>,
-    ) -> (forward::Tree<f64>, SMatrix<f64, 6, TREE>) {
+    ) -> ([SMatrix<f64, 6, TREE>; BODIES], SMatrix<f64, 6, TREE>) {
         let (tree, _) = self.tree(poses, &SVector::zeros());
+        let jac: [SMatrix<f64, 6, TREE>; BODIES] = std::array::from_fn(|k| tree.jac(k));
         let mut g = SMatrix::<f64, 6, TREE>::zeros();
-        for (i, c) in self.contacts.iter().enumerate() {
-            let rows = c.rows(
-                poses,
-                &Vector3::zeros(),
-                &Vector3::zeros(),
-                &Vector3::zeros(),
-            );
-            let mut gi = rows.wheel * tree.jac(c.wheel);
-            if c.is_skate() {
-                gi += rows.frame * tree.jac(c.frame);
-            }
+        for i in 0..2 {
+            let (gi, _, _) = self.contact_rows_in(i, poses, &tree, &jac, &tree.bias);
             g.fixed_rows_mut::<3>(3 * i).copy_from(&gi);
         }
-        (tree, g)
+        (jac, g)
     }
 
     /// The speeds of all four bodies from the nine tree speeds: the rear hub's velocity (world
@@ -609,7 +602,7 @@ impl Model {
             [ic.rear_contact_x, ic.rear_contact_y],
         );
         let poses = Poses::new(&q);
-        let (tree, g) = self.contact_tree_rows(&poses);
+        let (jac, g) = self.contact_tree_rows(&poses);
         // Nine equations in the nine tree speeds: six contact rows and the three given speeds.
         let mut a = SMatrix::<f64, TREE, TREE>::zeros();
         let mut b = SVector::<f64, TREE>::zeros();
@@ -636,8 +629,8 @@ impl Model {
                     .into(),
             })?;
         let mut u = SVector::<f64, SPEEDS>::zeros();
-        for k in 0..BODIES {
-            u.fixed_rows_mut::<6>(6 * k).copy_from(&(tree.jac(k) * w));
+        for (k, jac) in jac.iter().enumerate() {
+            u.fixed_rows_mut::<6>(6 * k).copy_from(&(jac * w));
         }
         Ok(State { q, u })
     }

@@ -16,7 +16,7 @@
 use nalgebra::{Matrix3, SMatrix, SVector};
 use num_dual::Dual64;
 
-use super::forward::{symmetrize, Poses, Reduced, HOLONOMIC_ROWS, TREE};
+use super::forward::{symmetrize, Poses, Reduced, HOLONOMIC_ROWS};
 use super::rotation;
 use super::state::{State, COORDINATES, LEAN, PITCH, SPEEDS, YAW};
 use super::{saddle, Model, BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
@@ -268,16 +268,11 @@ impl Model {
     /// rear wheel the rear contact rows are solved for the hub velocity first
     /// ([`Model::roll_on_rear_wheel`]), which leaves six tree speeds and the three front rows.
     fn project_velocities_at(&self, poses: &Poses<f64>, state: &mut State<f64>) -> Result<()> {
-        let (mut tree, _) = self.tree(poses, &SVector::zeros());
         state.u = if self.contacts[0].is_skate() {
-            let jac: [SMatrix<f64, 6, TREE>; BODIES] = std::array::from_fn(|k| tree.jac(k));
-            let mut g = SMatrix::<f64, 6, TREE>::zeros();
-            for i in 0..2 {
-                let (gi, _, _) = self.contact_rows_in(i, poses, &tree, &jac, &tree.bias);
-                g.fixed_rows_mut::<3>(3 * i).copy_from(&gi);
-            }
+            let (jac, g) = self.contact_tree_rows(poses);
             least_norm_speeds(&jac, &g, &state.u)?
         } else {
+            let (mut tree, _) = self.tree(poses, &SVector::zeros());
             self.roll_on_rear_wheel(poses, &mut tree);
             let (g, _, _) = self.contact_rows_in(1, poses, &tree, &tree.rest, &tree.bias);
             least_norm_speeds(&tree.rest, &g, &state.u)?

@@ -69,6 +69,14 @@ fn back_substitute<T: RealField + Copy, const N: usize>(u: &SMatrix<T, N, N>, b:
     }
 }
 
+/// Multiplies b entry by entry by the reciprocals of D (the diagonal solve).
+#[inline(always)]
+fn scale<T: RealField + Copy, const N: usize>(b: &mut [T; N], d_inverse: &[T; N]) {
+    for (entry, &inverse) in b.iter_mut().zip(d_inverse) {
+        *entry *= inverse;
+    }
+}
+
 /// Solves `[A Gᵀ; G 0][x; y] = [f; γ]`; `rho` > 0 augments A by ρ GᵀG first (see the module
 /// documentation). None when a factorization fails (the system is singular).
 pub(crate) fn solve<T: RealField + Copy, const N: usize, const M: usize>(
@@ -94,16 +102,11 @@ pub(crate) fn solve<T: RealField + Copy, const N: usize, const M: usize>(
         }
         forward_substitute(&l, column);
     }
-    let mut z = [T::zero(); N];
-    for (i, entry) in z.iter_mut().enumerate() {
-        *entry = f[i];
-    }
+    let mut z: [T; N] = f.into();
     forward_substitute(&l, &mut z);
     // Schur complement S = G A⁻¹ Gᵀ = Yᵀ D⁻¹ Y; S λ = G A⁻¹ f − γ = Yᵀ D⁻¹ z − γ.
     let mut dz = z;
-    for (entry, &inverse) in dz.iter_mut().zip(&d_inverse) {
-        *entry *= inverse;
-    }
+    scale(&mut dz, &d_inverse);
     let mut s = SMatrix::<T, M, M>::zeros();
     let mut lambda = [T::zero(); M];
     for a in 0..M {
@@ -122,9 +125,7 @@ pub(crate) fn solve<T: RealField + Copy, const N: usize, const M: usize>(
     }
     let s_inverse = factor(&mut s)?;
     forward_substitute(&s, &mut lambda);
-    for (entry, &inverse) in lambda.iter_mut().zip(&s_inverse) {
-        *entry *= inverse;
-    }
+    scale(&mut lambda, &s_inverse);
     back_substitute(&s, &mut lambda);
     // x = A⁻¹ (f − Gᵀ λ) = U⁻¹ D⁻¹ (z − Y λ).
     for (k, column) in y.iter().enumerate() {
@@ -132,9 +133,7 @@ pub(crate) fn solve<T: RealField + Copy, const N: usize, const M: usize>(
             z[i] -= column[i] * lambda[k];
         }
     }
-    for (entry, &inverse) in z.iter_mut().zip(&d_inverse) {
-        *entry *= inverse;
-    }
+    scale(&mut z, &d_inverse);
     back_substitute(&l, &mut z);
     Some((SVector::from(z), SVector::from(lambda)))
 }
