@@ -6,7 +6,6 @@ import { api } from "./api.js";
 import { parseNumber } from "./editor.js";
 import { fixed, html } from "./format.js";
 import { TimePlot, TrackPlot } from "./simplots.js";
-import { SimView } from "./view3d.js";
 
 const $ = (id) => document.getElementById(id);
 const DEG = 180 / Math.PI;
@@ -63,11 +62,15 @@ export class SimPanel {
     this.setEnabled(false);
   }
 
-  /** The 3-D view, created on first use (WebGL may be missing: then the plots still work). */
-  ensureView() {
+  /**
+   * The 3-D view, created on first use: three.js is fetched only then (it is most of the
+   * page's weight). WebGL may be missing: then the plots still work.
+   */
+  async ensureView() {
     if (this.view || this.viewError) return this.view;
     try {
-      this.view = new SimView($("sim-view"));
+      const { SimView } = await import("./view3d.js");
+      this.view = this.view ?? new SimView($("sim-view"));
     } catch (e) {
       this.viewError = e;
       $("sim-view").replaceChildren(html("div", { class: "sim-no-view", text: `The 3-D view needs WebGL, which this browser does not offer (${e.message}). The plots below still follow the simulation.` }));
@@ -119,7 +122,7 @@ export class SimPanel {
     try {
       const result = await api.simulate(request);
       this.load(result);
-      this.ensureView();
+      await this.ensureView();
       this.view?.load(result);
       this.seek(0);
       this.play();

@@ -1,0 +1,212 @@
+//! `POST /api/modes` and `POST /api/linear/response`: the linear model's eigenmodes at one
+//! speed (what `whipple modes` prints), and its free response from an initial state (the
+//! prediction the page draws beside a simulation of the non-linear bicycle). Both only call
+//! the library ([`mode_shapes`], [`StateSpace::free_response`]) and shape its answer as JSON.
+
+use axum::http::StatusCode;
+use nalgebra::Vector4;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use whipple::analysis::modes::mode_shapes;
+use whipple::linear::{Canonical, StateSpace};
+
+use crate::error::ApiError;
+use crate::Limits;
+
+/// The body of `POST /api/modes`.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct ModesRequest {
+    /// The bicycle, in the parameter files' JSON layout.
+    pub bike: Value,
+    /// v: forward speed [m/s].
+    pub speed: f64,
+}
+
+/// One mode: its name, eigenvalue [1/s] as [re, im] and eigenvector x = [φ, δ, φ̇, δ̇] as
+/// [re, im] pairs (unit length, largest component real and positive).
+#[derive(Serialize, Debug)]
+pub struct ModeJson {
+    mode: &'static str,
+    eigenvalue: [f64; 2],
+    eigenvector: [[f64; 2]; 4],
+}
+
+/// The answer of `POST /api/modes`.
+#[derive(Serialize, Debug)]
+pub struct ModesResponse {
+    name: Option<String>,
+    speed: f64,
+    /// The eigenvector's components, in order.
+    state: [&'static str; 4],
+    /// Sorted by decreasing real part of the eigenvalue.
+    modes: Vec<ModeJson>,
+}
+
+fn invalid(field: &str, rule: String) -> ApiError {
+    ApiError::new(
+        StatusCode::UNPROCESSABLE_ENTITY,
+        "invalid_argument",
+        format!("invalid `{field}`: {rule}"),
+    )
+    .at(field, rule)
+}
+
+fn finite(field: &str, x: f64) -> Result<f64, ApiError> {
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(invalid(field, format!("must be a finite number, got {x}")))
+    }
+}
+
+/// Checks the speed before any work.
+pub fn check_modes(request: &ModesRequest) -> Result<f64, ApiError> {
+    finite("speed", request.speed)
+}
+
+/// The modes of `canonical` at `speed`.
+pub fn modes(
+    name: Option<String>,
+    canonical: &Canonical,
+    speed: f64,
+) -> Result<ModesResponse, ApiError> {
+    let shapes = mode_shapes(canonical, speed)?;
+    let modes = shapes
+        .iter()
+        .map(|s| ModeJson {
+            mode: s.mode.name(),
+            eigenvalue: [s.pair.value.re, s.pair.value.im],
+            // Adding 0.0 turns a negative zero into zero.
+            eigenvector: s.pair.vector.map(|z| [z.re + 0.0, z.im + 0.0]).into(),
+        })
+        .collect::<Vec<_>>();
+    if modes
+        .iter()
+        .any(|m| !m.eigenvalue.iter().chain(m.eigenvector.iter().flatten()).all(|x| x.is_finite()))
+    {
+        return Err(ApiError::from(whipple::Error::NonFinite {
+            context: format!("the eigenmodes at {speed} m/s"),
+        }));
+    }
+    Ok(ModesResponse {
+        name,
+        speed,
+        state: ["lean", "steer", "lean_rate", "steer_rate"],
+        modes,
+    })
+}
+
+/// The body of `POST /api/linear/response`: the simulation's initial numbers, in its units
+/// (degrees for the angles, radians per second for the rates).
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct ResponseRequest {
+    /// The bicycle, in the parameter files' JSON layout.
+    pub bike: Value,
+    /// v: forward speed [m/s].
+    pub speed: f64,
+    /// φ₀ [deg] (default 0).
+    #[serde(default)]
+    pub lean_deg: f64,
+    /// δ₀ [deg] (default 0).
+    #[serde(default)]
+    pub steer_deg: f64,
+    /// φ̇₀ [rad/s] (default 0).
+    #[serde(default)]
+    pub lean_rate: f64,
+    /// δ̇₀ [rad/s] (default 0).
+    #[serde(default)]
+    pub steer_rate: f64,
+    /// Time span [s], positive and at most the server's simulation limit.
+    pub duration: f64,
+    /// Sample interval [s] (default 1/60 s, the simulation's frame interval).
+    pub dt: Option<f64>,
+}
+
+/// A checked response request.
+#[derive(Debug, Clone, Copy)]
+pub struct ResponsePlan {
+    speed: f64,
+    x0: Vector4<f64>,
+    dt: f64,
+    steps: usize,
+}
+
+/// The answer of `POST /api/linear/response`: angles [rad] and rates [rad/s] at times `t` [s].
+#[derive(Serialize, Debug)]
+pub struct ResponseJson {
+    name: Option<String>,
+    speed: f64,
+    t: Vec<f64>,
+    lean: Vec<f64>,
+    steer: Vec<f64>,
+    lean_rate: Vec<f64>,
+    steer_rate: Vec<f64>,
+}
+
+/// Checks a response request against the rules and the limits, before any work.
+pub fn check_response(request: &ResponseRequest, limits: &Limits) -> Result<ResponsePlan, ApiError> {
+    let speed = finite("speed", request.speed)?;
+    let lean = finite("lean_deg", request.lean_deg)?;
+    let steer = finite("steer_deg", request.steer_deg)?;
+    let lean_rate = finite("lean_rate", request.lean_rate)?;
+    let steer_rate = finite("steer_rate", request.steer_rate)?;
+    let duration = finite("duration", request.duration)?;
+    if duration <= 0.0 {
+        return Err(invalid("duration", format!("must be positive, got {duration} s")));
+    }
+    if duration > limits.max_sim_duration {
+        let max = limits.max_sim_duration;
+        return Err(ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "limit_exceeded",
+            format!("a response of {duration} s is longer than this server's limit of {max} s per request"),
+        )
+        .at("duration", format!("at most {max} s per request")));
+    }
+    let dt = finite("dt", request.dt.unwrap_or(1.0 / crate::simulation::FRAME_RATE))?;
+    if dt <= 0.0 {
+        return Err(invalid("dt", format!("must be positive, got {dt} s")));
+    }
+    let count = (duration / dt).ceil();
+    if count > limits.max_sim_steps as f64 {
+        return Err(ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "limit_exceeded",
+            format!(
+                "{duration} s at dt = {dt} s is {count} samples, more than this server's limit of {}; use a larger dt",
+                limits.max_sim_steps
+            ),
+        )
+        .at("dt", format!("at most {} samples", limits.max_sim_steps)));
+    }
+    // The last sample falls on `duration` exactly.
+    let steps = (count as usize).max(1);
+    Ok(ResponsePlan {
+        speed,
+        x0: Vector4::new(lean.to_radians(), steer.to_radians(), lean_rate, steer_rate),
+        dt: duration / steps as f64,
+        steps,
+    })
+}
+
+/// The free response planned.
+pub fn response(
+    name: Option<String>,
+    canonical: &Canonical,
+    plan: ResponsePlan,
+) -> Result<ResponseJson, ApiError> {
+    let ss = StateSpace::new(canonical, plan.speed)?;
+    let states = ss.free_response(&plan.x0, plan.dt, plan.steps)?;
+    let column = |k: usize| states.iter().map(|x| x[k]).collect::<Vec<f64>>();
+    Ok(ResponseJson {
+        name,
+        speed: plan.speed,
+        t: (0..states.len()).map(|k| k as f64 * plan.dt).collect(),
+        lean: column(0),
+        steer: column(1),
+        lean_rate: column(2),
+        steer_rate: column(3),
+    })
+}
