@@ -6,7 +6,7 @@ use std::path::Path;
 use anyhow::{bail, Context, Result};
 use nalgebra::Matrix2;
 use serde_json::json;
-use whipple::analysis::{eigen, stability, sweep};
+use whipple::analysis::{stability, sweep};
 use whipple::linear::Canonical;
 use whipple::parameters::io::{benchmark_key_doc, write, Format};
 use whipple::parameters::presets::PRESETS;
