@@ -79,11 +79,13 @@ export class Chart {
     return this.view ?? this.extent();
   }
 
-  setView(view) {
+  /** Sets the view; drawn at the next frame (`now`: at once). */
+  setView(view, now = false) {
     const v = { ...view };
     if (!(v.x1 > v.x0) || !(v.y1 > v.y0) || ![v.x0, v.x1, v.y0, v.y1].every(Number.isFinite)) return;
     this.view = v;
-    this.scheduleDraw();
+    if (now) this.draw();
+    else this.scheduleDraw();
   }
 
   reset() {
@@ -96,7 +98,7 @@ export class Chart {
     const fit = this.fitY(v.x0, v.x1);
     if (fit && fit.y1 > fit.y0) {
       const pad = 0.05 * (fit.y1 - fit.y0);
-      this.setView({ ...v, y0: fit.y0 - pad, y1: fit.y1 + pad });
+      this.setView({ ...v, y0: fit.y0 - pad, y1: fit.y1 + pad }, true);
     }
   }
 
@@ -198,7 +200,7 @@ export class Chart {
           this.setView({
             x0: wide ? Math.min(a.x, b.x) : f.x0, x1: wide ? Math.max(a.x, b.x) : f.x1,
             y0: tall ? Math.min(a.y, b.y) : f.y0, y1: tall ? Math.max(a.y, b.y) : f.y1,
-          });
+          }, true);
         }
       }
       drag = pointers.size ? drag : null;
@@ -267,6 +269,10 @@ export class Chart {
 
   /** Draws everything for the current view and size. */
   draw() {
+    if (this.drawPending) {
+      cancelAnimationFrame(this.drawPending);
+      this.drawPending = 0;
+    }
     if (!this.ready()) return;
     const width = Math.max(this.minWidth, Math.round(this.container.clientWidth));
     const height = Math.max(this.minHeight, Math.round(this.container.clientHeight));

@@ -69,7 +69,9 @@ export class Editor {
       });
       // Degrees converted from radians to 8 digits: 70.977782, not 70.9777819047 (the radians
       // stay as stored until the field is edited).
-      input.value = spec.angle ? inputText(Number((value * DEG).toPrecision(8))) : inputText(value);
+      // A read-only (converted) value is shown to 6 digits; the file keeps them all.
+      const shown = spec.angle ? Number((value * DEG).toPrecision(8)) : value;
+      input.value = readOnly && Number.isFinite(shown) ? String(Number(shown.toPrecision(6))) : inputText(shown);
       input.title = spec.triple ? `${cell.label}: ${spec.hint}` : spec.hint;
       input.dataset.what = `${group} ${spec.label}${spec.triple ? ` ${cell.label}` : ""}`;
       input.dataset.last = input.value;
@@ -118,7 +120,7 @@ export class Editor {
       input.dispatchEvent(new Event("input", { bubbles: true }));
       input.focus();
     });
-    hint.append(html("span", { text: `${num(x)}° is unusual for ${spec.hint}: did you mean ${shown}° (${num(x)} rad)? ` }), accept);
+    hint.append(html("span", { text: `${num(x)}° is unusual for the ${spec.hint}: did you mean ${shown}°? (${num(x)} rad) ` }), accept);
   }
 
   markLocal(input, message) {

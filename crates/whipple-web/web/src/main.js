@@ -451,6 +451,8 @@ function showView(view, { push = true } = {}) {
   if (view === "eigen" || view === "locus") drawAll();
   if (view === "modes") modes.compute();
   else modes.stop();
+  // three.js is fetched when the Simulation tab first opens, not with the page.
+  if (view === "sim") sim.ensureView();
   if (push) remember(true);
 }
 const viewTabs = [...document.querySelectorAll(".tab[data-view]")];

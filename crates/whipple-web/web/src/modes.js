@@ -189,7 +189,7 @@ export class ModesPanel {
       return;
     }
     box.hidden = false;
-    const W = 270, H = 140;
+    const W = 300, H = 150;
     const root = svg("svg", { width: W, height: H, viewBox: `0 0 ${W} ${H}`, "font-family": FONT, "font-size": 10.5, role: "img", "aria-label": `${m.words}: the bicycle seen from behind and from above` });
     root.append(svg("rect", { x: 0, y: 0, width: W, height: H, fill: "#ffffff", "fill-opacity": 0.94, rx: 8, stroke: "#d1d5db" }));
     root.append(svg("text", { x: 10, y: 16, fill: "#111827", "font-weight": 600 }, `${m.mode} at ${num(this.speed())} m/s`));
