@@ -95,8 +95,10 @@ const downloadOf = async (click) => {
 async function section(name, body) {
   if (only && !only.test(name)) return;
   console.log(`${name}`);
+  const started = Date.now();
   try {
     await body();
+    console.log(`  (${((Date.now() - started) / 1000).toFixed(1)} s)`);
   } catch (e) {
     failures.push(`${name}: ${e.message.split("\n")[0]}`);
     console.log(`  FAILED: ${e.message.split("\n")[0]}`);
