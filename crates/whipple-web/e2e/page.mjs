@@ -17,7 +17,7 @@ if (!url || !/^http:\/\/(127\.0\.0\.1|localhost|\[::1\])[:/]/.test(url)) {
   console.error("usage: node page.mjs http://127.0.0.1:PORT/ (loopback only)");
   process.exit(2);
 }
-const LIMIT_MS = Number(process.env.E2E_TIMEOUT_MS ?? 140_000);
+const LIMIT_MS = Number(process.env.E2E_TIMEOUT_MS ?? 290_000);
 const watchdog = setTimeout(() => {
   console.error(`e2e page: FAILED: gave up after ${LIMIT_MS / 1000} s`);
   process.exit(1);
@@ -83,6 +83,12 @@ async function open(path = "", viewport = { width: 1440, height: 900 }) {
   await page.goto(new URL(path, url).href);
   await page.waitForSelector("body[data-ready=true]", { timeout: 20_000 });
   await waitForText("capsize-speed", (t) => /\d/.test(t));
+}
+/** Waits for a run to end and pauses its animation (SwiftShader's drawing costs a core). */
+async function ran(predicate) {
+  const outcome = await waitForText("sim-outcome", (t) => !/simulating/.test(t) && predicate(t), 30_000);
+  if ((await page.getByTestId("sim-play").getAttribute("aria-pressed")) === "true") await page.getByTestId("sim-play").click();
+  return outcome;
 }
 const pick = (key) => page.getByTestId("bike-select").selectOption(key);
 const xTicks = (id) => page.$$eval(`[data-testid=${id}] svg > g[fill] > text`, (ts) => ts.map((t) => t.textContent).join(" "));
@@ -270,7 +276,7 @@ await section("bug 6: a refused simulation says what the plots still show", asyn
   await page.fill("#sim-speed", "4.6");
   await page.fill("#sim-duration", "2");
   await page.click("[data-testid=sim-run]");
-  await waitForText("sim-outcome", (t) => t.startsWith("completed"), 20_000);
+  await ran((t) => t.startsWith("completed"));
   await page.fill("#sim-steer-torque", "2*foo");
   await page.click("[data-testid=sim-run]");
   await waitForText("sim-message", (t) => t.includes("foo"));
@@ -390,7 +396,7 @@ await section("explore: zoom, pan, box zoom, reset, autoscale and keyboard on th
   await page.fill("#sim-speed", "4.6");
   await page.fill("#sim-duration", "3");
   await page.click("[data-testid=sim-run]");
-  await waitForText("sim-outcome", (t) => t.startsWith("completed"), 20_000);
+  await ran((t) => t.startsWith("completed"));
   const tb = await plotBox("sim-time-plot");
   const t0 = await xTicks("sim-time-plot");
   await page.mouse.move(tb.x + tb.width * 0.5, tb.y + tb.height * 0.6);
@@ -476,7 +482,7 @@ await section("modes: in words, animated, and played in 3-D", async () => {
   const r = await text("mode-anim-readout");
   check(t1 !== t2 && /φ/.test(r), `the weave is animated beside the side view: ${r}`);
   await page.getByTestId("mode-3d-weave").click();
-  await waitForText("sim-outcome", (t) => t.startsWith("completed"), 20_000);
+  await ran((t) => t.startsWith("completed"));
   check(await page.locator("#panel-sim").isVisible() && (await page.inputValue("#sim-speed")) === "5", "Play in 3-D runs the simulation from the weave's shape");
   await page.waitForSelector("[data-testid=sim-canvas]", { timeout: 15_000 });
   check(true, "in the 3-D view");
@@ -488,7 +494,7 @@ await section("simulation: overlay, linear prediction, CSV, time axis ending whe
   await page.fill("#sim-speed", "4.6");
   await page.fill("#sim-duration", "4");
   await page.click("[data-testid=sim-run]");
-  await waitForText("sim-outcome", (t) => t.startsWith("completed"), 20_000);
+  await ran((t) => t.startsWith("completed"));
   check((await page.locator("[data-testid=sim-linear-curve]").count()) === 1, "the linear model's prediction is drawn");
   const csv = await downloadOf(() => page.click("[data-testid=sim-csv]"));
   const head = csv.text.split("\n");
@@ -497,7 +503,7 @@ await section("simulation: overlay, linear prediction, CSV, time axis ending whe
   await page.fill("#sim-speed", "3");
   await page.fill("#sim-duration", "10");
   await page.click("[data-testid=sim-run]");
-  const fell = await waitForText("sim-outcome", (t) => /t = \d/.test(t), 20_000);
+  const fell = await ran((t) => /t = \d/.test(t));
   check((await page.locator("[data-testid=sim-overlay-curve]").count()) === 1, "the earlier run stays overlaid");
   const end = Number(fell.match(/t = ([\d.]+)/)[1]);
   const ticks = (await xTicks("sim-time-plot")).split(" ").map(Number).filter(Number.isFinite);

@@ -232,9 +232,15 @@ mod tests {
             + named.iter().map(|a| a.brotli.len()).sum::<usize>();
         assert!(initial < 100_000, "initial page {initial} bytes compressed");
         // three.js is not part of it but is there for the 3-D views.
-        assert!(ASSETS.iter().any(|a| a.name.starts_with("view3d-") && a.identity.len() > 300_000));
+        assert!(ASSETS
+            .iter()
+            .any(|a| a.name.starts_with("view3d-") && a.identity.len() > 300_000));
         for a in ASSETS {
-            assert!(a.gzip.len() < a.identity.len() && a.brotli.len() < a.identity.len(), "{}", a.name);
+            assert!(
+                a.gzip.len() < a.identity.len() && a.brotli.len() < a.identity.len(),
+                "{}",
+                a.name
+            );
             assert_eq!(a.immutable, a.name != "index.html");
         }
     }
@@ -249,7 +255,9 @@ mod tests {
             request = request.header(*k, *v);
         }
         let app = crate::app(crate::Limits::default());
-        Ok(app.oneshot(request.body(axum::body::Body::empty())?).await?)
+        Ok(app
+            .oneshot(request.body(axum::body::Body::empty())?)
+            .await?)
     }
 
     /// Through the router: brotli when accepted, gzip for older clients, the bytes as they are
@@ -268,8 +276,13 @@ mod tests {
         let h = br.headers();
         assert_eq!(h[header::CONTENT_ENCODING], "br");
         assert_eq!(h[header::VARY], "Accept-Encoding");
-        assert_eq!(h[header::CACHE_CONTROL], "public, max-age=31536000, immutable");
-        assert!(h[header::CONTENT_TYPE].to_str()?.starts_with("text/javascript"));
+        assert_eq!(
+            h[header::CACHE_CONTROL],
+            "public, max-age=31536000, immutable"
+        );
+        assert!(h[header::CONTENT_TYPE]
+            .to_str()?
+            .starts_with("text/javascript"));
         let tag = h[header::ETAG].to_str()?.to_string();
         let body = br.into_body().collect().await?.to_bytes();
         assert_eq!(&body[..], script.brotli);

@@ -81,10 +81,12 @@ pub fn modes(
             eigenvector: s.pair.vector.map(|z| [z.re + 0.0, z.im + 0.0]).into(),
         })
         .collect::<Vec<_>>();
-    if modes
-        .iter()
-        .any(|m| !m.eigenvalue.iter().chain(m.eigenvector.iter().flatten()).all(|x| x.is_finite()))
-    {
+    if modes.iter().any(|m| {
+        !m.eigenvalue
+            .iter()
+            .chain(m.eigenvector.iter().flatten())
+            .all(|x| x.is_finite())
+    }) {
         return Err(ApiError::from(whipple::Error::NonFinite {
             context: format!("the eigenmodes at {speed} m/s"),
         }));
@@ -146,7 +148,10 @@ pub struct ResponseJson {
 }
 
 /// Checks a response request against the rules and the limits, before any work.
-pub fn check_response(request: &ResponseRequest, limits: &Limits) -> Result<ResponsePlan, ApiError> {
+pub fn check_response(
+    request: &ResponseRequest,
+    limits: &Limits,
+) -> Result<ResponsePlan, ApiError> {
     let speed = finite("speed", request.speed)?;
     let lean = finite("lean_deg", request.lean_deg)?;
     let steer = finite("steer_deg", request.steer_deg)?;
@@ -154,7 +159,10 @@ pub fn check_response(request: &ResponseRequest, limits: &Limits) -> Result<Resp
     let steer_rate = finite("steer_rate", request.steer_rate)?;
     let duration = finite("duration", request.duration)?;
     if duration <= 0.0 {
-        return Err(invalid("duration", format!("must be positive, got {duration} s")));
+        return Err(invalid(
+            "duration",
+            format!("must be positive, got {duration} s"),
+        ));
     }
     if duration > limits.max_sim_duration {
         let max = limits.max_sim_duration;
@@ -165,7 +173,10 @@ pub fn check_response(request: &ResponseRequest, limits: &Limits) -> Result<Resp
         )
         .at("duration", format!("at most {max} s per request")));
     }
-    let dt = finite("dt", request.dt.unwrap_or(1.0 / crate::simulation::FRAME_RATE))?;
+    let dt = finite(
+        "dt",
+        request.dt.unwrap_or(1.0 / crate::simulation::FRAME_RATE),
+    )?;
     if dt <= 0.0 {
         return Err(invalid("dt", format!("must be positive, got {dt} s")));
     }
@@ -209,4 +220,132 @@ pub fn response(
         lean_rate: column(2),
         steer_rate: column(3),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use axum::body::Body;
+    use axum::http::{Request, StatusCode};
+    use http_body_util::BodyExt;
+    use serde_json::{json, Value};
+    use tower::ServiceExt;
+
+    use crate::{app, Limits};
+
+    async fn post(
+        path: &str,
+        body: Value,
+    ) -> Result<(StatusCode, Value), Box<dyn std::error::Error>> {
+        let request = Request::builder()
+            .method("POST")
+            .uri(path)
+            .header("content-type", "application/json")
+            .body(Body::from(body.to_string()))?;
+        let response = app(Limits::default()).oneshot(request).await?;
+        let status = response.status();
+        let bytes = response.into_body().collect().await?.to_bytes();
+        Ok((status, serde_json::from_slice(&bytes)?))
+    }
+
+    async fn benchmark() -> Result<Value, Box<dyn std::error::Error>> {
+        let request = Request::builder()
+            .uri("/api/presets/benchmark")
+            .body(Body::empty())?;
+        let response = app(Limits::default()).oneshot(request).await?;
+        let bytes = response.into_body().collect().await?.to_bytes();
+        Ok(serde_json::from_slice(&bytes)?)
+    }
+
+    /// Meijaard et al. 2007, Table 2: at 5 m/s the weave is −0.775341882195 ± 4.46486771378823i
+    /// and the capsize eigenvalue −0.322866429004; each eigenvector satisfies x = [q; λq].
+    #[tokio::test]
+    async fn modes_of_the_benchmark_at_5_m_s() -> Result<(), Box<dyn std::error::Error>> {
+        let (status, body) = post(
+            "/api/modes",
+            json!({"bike": benchmark().await?, "speed": 5.0}),
+        )
+        .await?;
+        assert_eq!(status, StatusCode::OK, "{body}");
+        let modes = body["modes"].as_array().ok_or("no modes")?;
+        assert_eq!(modes.len(), 4);
+        let weave: Vec<&Value> = modes.iter().filter(|m| m["mode"] == "weave").collect();
+        assert_eq!(weave.len(), 2);
+        for m in &weave {
+            let re = m["eigenvalue"][0].as_f64().ok_or("re")?;
+            let im = m["eigenvalue"][1].as_f64().ok_or("im")?;
+            assert!((re + 0.775341882195).abs() < 1e-10, "{re}");
+            assert!((im.abs() - 4.46486771378823).abs() < 1e-10, "{im}");
+        }
+        let capsize = modes
+            .iter()
+            .find(|m| m["mode"] == "capsize")
+            .ok_or("no capsize")?;
+        let lambda = capsize["eigenvalue"][0].as_f64().ok_or("re")?;
+        assert!((lambda + 0.322866429004).abs() < 1e-10, "{lambda}");
+        for m in modes {
+            let l = (
+                m["eigenvalue"][0].as_f64().ok_or("re")?,
+                m["eigenvalue"][1].as_f64().ok_or("im")?,
+            );
+            let x = |k: usize, p: usize| m["eigenvector"][k][p].as_f64().unwrap_or(f64::NAN);
+            for (q, rate) in [(0, 2), (1, 3)] {
+                let (qr, qi) = (x(q, 0), x(q, 1));
+                let expected = (l.0 * qr - l.1 * qi, l.0 * qi + l.1 * qr);
+                assert!(
+                    (x(rate, 0) - expected.0).abs() < 1e-12
+                        && (x(rate, 1) - expected.1).abs() < 1e-12
+                );
+            }
+        }
+        let (status, body) = post(
+            "/api/modes",
+            json!({"bike": benchmark().await?, "speed": "fast"}),
+        )
+        .await?;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+        Ok(())
+    }
+
+    /// The linear response from the simulation's initial numbers: starts where asked, ends at
+    /// `duration`, decays at 4.6 m/s (self-stable); limits and bad numbers are 422 with the field.
+    #[tokio::test]
+    async fn linear_response_and_its_limits() -> Result<(), Box<dyn std::error::Error>> {
+        let bike = benchmark().await?;
+        let (status, body) = post(
+            "/api/linear/response",
+            json!({"bike": bike, "speed": 4.6, "lean_deg": 2.0, "lean_rate": 0.5, "duration": 10.0, "dt": 0.01}),
+        )
+        .await?;
+        assert_eq!(status, StatusCode::OK, "{body}");
+        let t = body["t"].as_array().ok_or("t")?;
+        assert_eq!(t.len(), 1001);
+        assert!((t[1000].as_f64().unwrap_or(0.0) - 10.0).abs() < 1e-12);
+        assert!((body["lean"][0].as_f64().unwrap_or(0.0) - 2f64.to_radians()).abs() < 1e-15);
+        assert_eq!(body["lean_rate"][0].as_f64(), Some(0.5));
+        let end = body["lean"][1000].as_f64().unwrap_or(1.0).abs();
+        assert!(end < 1e-3, "{end}");
+        for (request, field) in [
+            (
+                json!({"bike": bike, "speed": 4.6, "duration": 31.0}),
+                "duration",
+            ),
+            (
+                json!({"bike": bike, "speed": 4.6, "duration": 0.0}),
+                "duration",
+            ),
+            (
+                json!({"bike": bike, "speed": 4.6, "duration": 10.0, "dt": 1e-5}),
+                "dt",
+            ),
+            (
+                json!({"bike": bike, "speed": 4.6, "duration": 1.0, "dt": -1.0}),
+                "dt",
+            ),
+        ] {
+            let (status, body) = post("/api/linear/response", request).await?;
+            assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+            assert_eq!(body["error"]["field"], field, "{body}");
+        }
+        Ok(())
+    }
 }

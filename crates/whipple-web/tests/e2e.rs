@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 use whipple_web::{ServeOptions, Server};
 
 /// The whole browser run must end within this.
-const LIMIT: Duration = Duration::from_secs(240);
+const LIMIT: Duration = Duration::from_secs(300);
 
 type TestResult = Result<(), Box<dyn std::error::Error + Send + Sync>>;
 
@@ -84,7 +84,11 @@ fn run_node(script: &Path, url: &str, chromium: &str) -> TestResult {
             return if status.success() {
                 Ok(())
             } else {
-                Err(format!("{} failed ({status}); see its output above", script.display()).into())
+                Err(format!(
+                    "{} failed ({status}); see its output above",
+                    script.display()
+                )
+                .into())
             };
         }
         if started.elapsed() > LIMIT {

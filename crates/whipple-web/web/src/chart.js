@@ -45,9 +45,9 @@ export class Chart {
     this.box = html("div", { class: "zoom-box", hidden: true });
     this.live = html("div", { class: "sr-only", "aria-live": "polite" });
     const button = (text, title, testid) => html("button", { type: "button", class: "btn tiny", title, text, "data-testid": testid, tabindex: "-1" });
-    this.boxButton = button("Box zoom", "Drag a box to zoom into it (or shift-drag)", "zoom-box");
+    this.boxButton = button("Box", "Box zoom: drag a box to zoom into it (or shift-drag)", "zoom-box");
     this.boxButton.setAttribute("aria-pressed", "false");
-    this.autoButton = button("Autoscale", "Fit the vertical axis to the curves shown (A)", "zoom-auto");
+    this.autoButton = button("Fit y", "Autoscale: fit the vertical axis to the curves shown (A)", "zoom-auto");
     this.resetButton = button("Reset", "Back to the full view (double-click, 0)", "zoom-reset");
     this.tools = html("div", { class: "plot-tools" }, this.boxButton, this.autoButton, this.resetButton);
     container.replaceChildren(this.holder, this.tooltip, this.box, this.tools, this.live);
@@ -276,7 +276,8 @@ export class Chart {
     if (!this.ready()) return;
     const width = Math.max(this.minWidth, Math.round(this.container.clientWidth));
     const height = Math.max(this.minHeight, Math.round(this.container.clientHeight));
-    const m = this.margin;
+    // The legend (drawn by the plot) may wrap on a narrow screen: the plot then starts lower.
+    const m = { ...this.margin, top: this.margin.top + (this.legendExtra ?? 0) };
     const pw = Math.max(20, width - m.left - m.right);
     const ph = Math.max(20, height - m.top - m.bottom);
     const v = this.currentView();
@@ -308,7 +309,21 @@ export class Chart {
     axes.append(svg("text", { x: m.left + pw / 2, y: height - 6, "text-anchor": "middle", fill: INK, "font-size": this.fontSize + 1 }, this.xLabel));
     axes.append(svg("text", { x: 13, y: m.top + ph / 2, "text-anchor": "middle", fill: INK, "font-size": this.fontSize + 1, transform: `rotate(-90 13 ${m.top + ph / 2})` }, this.yLabel));
     root.append(axes);
+    frame.legendWidth = Math.max(120, pw - 150); // room for the zoom buttons at the right
     this.render(root, frame);
+    if (frame.legendBottom !== undefined) {
+      const extra = Math.max(0, frame.legendBottom + 14 - this.margin.top);
+      if (extra !== (this.legendExtra ?? 0) && !this.relaying) {
+        this.legendExtra = extra;
+        this.relaying = true;
+        try {
+          this.draw();
+        } finally {
+          this.relaying = false;
+        }
+        return;
+      }
+    }
     root.append(svg("rect", { x: m.left, y: m.top, width: pw, height: ph, fill: "none", stroke: "#9ca3af", "stroke-width": 1 }));
     if (this.stale) {
       root.append(svg("rect", { x: m.left, y: m.top, width: pw, height: ph, fill: "#ffffff", "fill-opacity": 0.62, "data-testid": "stale-veil" }));

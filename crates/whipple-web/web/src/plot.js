@@ -134,13 +134,18 @@ export class EigenPlot extends Chart {
     root.append(curves);
 
     const marks = svg("g", { "font-size": 11 });
+    const placed = [];
     const mark = (v, label, colour, row, dash) => {
       if (v === null || v === undefined || v < f.x0 || v > f.x1) return;
       marks.append(svg("line", { x1: X(v), y1: top, x2: X(v), y2: top + ph, stroke: colour, "stroke-width": 1.2, "stroke-dasharray": dash }));
-      const ty = row >= 0 ? top + 14 + 17 * row : top + ph - 22 + 17 * (row + 1);
       const text = `${label} ${fixed(v, 3)}`;
       const w = text.length * 6.2 + 8;
       const tx = X(v) + w + 4 > left + pw ? X(v) - w - 3 : X(v) + 3;
+      // Labels that would overlap go one row further in.
+      const step = row >= 0 ? 1 : -1;
+      while (placed.some((p) => p.row === row && tx < p.x1 + 2 && tx + w > p.x0 - 2)) row += step;
+      placed.push({ row, x0: tx, x1: tx + w });
+      const ty = row >= 0 ? top + 14 + 17 * row : top + ph - 22 + 17 * (row + 1);
       marks.append(svg("rect", { x: tx, y: ty - 11, width: w, height: 15, rx: 3, fill: "#ffffff", "fill-opacity": 0.9, stroke: colour, "stroke-width": 0.8 }));
       marks.append(svg("text", { x: tx + 4, y: ty, fill: colour }, text));
     };
@@ -163,7 +168,7 @@ export class EigenPlot extends Chart {
     for (const mode of [...new Set(primary.eigen.eigenvalues.map((c) => c.mode))]) items.push({ draw: seg(modeColour(mode), null, 3), text: mode });
     items.push({ draw: (x, y) => svg("rect", { x, y: y - 6, width: 18, height: 12, fill: STABLE, stroke: "#86efac" }), text: "self-stable" });
     others.forEach((d, k) => items.push({ draw: seg(COMPARE_COLOURS[k % COMPARE_COLOURS.length], null, 1.6), text: d.label }));
-    legend(root, items, left, pw);
+    f.legendBottom = legend(root, items, left, f.legendWidth);
   }
 
   readAt(h, f) {
@@ -267,7 +272,7 @@ export class LocusPlot extends Chart {
     root.append(bar);
     const items = [{ draw: (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: ramp(0.6), "stroke-width": 3 }), text: `${primary.label}: colour is speed` }];
     others.forEach((d, k) => items.push({ draw: (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: COMPARE_COLOURS[k % COMPARE_COLOURS.length], "stroke-width": 1.6 }), text: d.label }));
-    legend(root, items, left, pw);
+    f.legendBottom = legend(root, items, left, f.legendWidth);
   }
 
   readAt(h, f) {

@@ -85,7 +85,7 @@ export class TimePlot extends Chart {
     const items = [{ draw: seg(SIM_COLOURS.lean), text: "lean φ" }, { draw: seg(SIM_COLOURS.steer), text: "steer δ" }];
     if (run.linear) items.push({ draw: seg(INK, "5 3", 1.2), text: "linear model" });
     this.runs.slice(1).forEach((r, k) => items.push({ draw: seg(OVERLAY[k % OVERLAY.length][0]), text: r.label }));
-    legend(root, items, f.left, f.pw, 10.5);
+    f.legendBottom = legend(root, items, f.left, f.legendWidth, 10.5);
     this.cursorLine = svg("line", { y1: f.top, y2: f.top + f.ph, stroke: INK, "stroke-width": 1, "stroke-dasharray": "3 2", "data-testid": "sim-cursor" });
     this.leanDot = svg("circle", { r: 3.5, fill: SIM_COLOURS.lean });
     this.steerDot = svg("circle", { r: 3.5, fill: SIM_COLOURS.steer });
@@ -191,7 +191,7 @@ export class TrackPlot extends Chart {
     paths.append(svg("path", { d: path(fx, fy, X, Y), stroke: SIM_COLOURS.front, "stroke-dasharray": "5 3" }));
     root.append(paths);
     const seg = (colour, dash) => (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: colour, "stroke-width": 2, "stroke-dasharray": dash });
-    legend(root, [{ draw: seg(SIM_COLOURS.rear), text: "rear contact" }, { draw: seg(SIM_COLOURS.front, "5 3"), text: "front contact" }], f.left, f.pw, 10.5);
+    f.legendBottom = legend(root, [{ draw: seg(SIM_COLOURS.rear), text: "rear contact" }, { draw: seg(SIM_COLOURS.front, "5 3"), text: "front contact" }], f.left, f.legendWidth, 10.5);
     this.bikeLine = svg("line", { stroke: INK, "stroke-width": 2.5, "stroke-linecap": "round" });
     this.rearDot = svg("circle", { r: 4, fill: SIM_COLOURS.rear, "data-testid": "sim-track-marker" });
     this.frontDot = svg("circle", { r: 4, fill: SIM_COLOURS.front });

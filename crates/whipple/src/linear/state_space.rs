@@ -162,9 +162,14 @@ mod free_response_tests {
         let x0 = Vector4::new(0.01, 0.0, 0.0, 0.0);
         assert!(ss.free_response(&x0, 0.0, 10).is_err());
         assert!(ss.free_response(&x0, f64::NAN, 10).is_err());
-        assert!(ss.free_response(&Vector4::new(f64::NAN, 0.0, 0.0, 0.0), 0.01, 10).is_err());
+        assert!(ss
+            .free_response(&Vector4::new(f64::NAN, 0.0, 0.0, 0.0), 0.01, 10)
+            .is_err());
         // At 1 m/s the capsize-like mode grows by e^{~3 t}: past f64 long before 1e5 s.
-        assert!(matches!(ss.free_response(&x0, 100.0, 1000), Err(Error::NonFinite { .. })));
+        assert!(matches!(
+            ss.free_response(&x0, 100.0, 1000),
+            Err(Error::NonFinite { .. })
+        ));
         Ok(())
     }
 }
