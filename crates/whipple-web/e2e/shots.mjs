@@ -30,11 +30,12 @@ try {
     const height = width <= 400 ? 844 : width <= 1300 ? 800 : 1080;
     await page.setViewportSize({ width, height });
     const shot = async (name) => {
-      await page.screenshot({ path: join(out, `${width}-${name}.png`), fullPage: width <= 400 });
+      await page.screenshot({ path: join(out, `${width}-${name}.png`), fullPage: width <= 400 && !name.includes("hover") && !name.includes("zoom") });
       console.log(`${width}-${name}.png`);
     };
     await ready("?bike=preset:schwinn-crown");
     await shot("1-crown");
+    await page.getByTestId("eigen-plot").scrollIntoViewIfNeeded();
     const box = await page.getByTestId("eigen-plot").boundingBox();
     await page.mouse.move(box.x + box.width * 0.55, box.y + box.height * 0.5);
     await page.waitForTimeout(200);

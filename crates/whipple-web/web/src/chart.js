@@ -309,7 +309,7 @@ export class Chart {
     axes.append(svg("text", { x: m.left + pw / 2, y: height - 6, "text-anchor": "middle", fill: INK, "font-size": this.fontSize + 1 }, this.xLabel));
     axes.append(svg("text", { x: 13, y: m.top + ph / 2, "text-anchor": "middle", fill: INK, "font-size": this.fontSize + 1, transform: `rotate(-90 13 ${m.top + ph / 2})` }, this.yLabel));
     root.append(axes);
-    frame.legendWidth = Math.max(120, pw - 150); // room for the zoom buttons at the right
+    frame.legendWidth = Math.max(120, pw - 130); // room for the zoom buttons at the right
     this.render(root, frame);
     if (frame.legendBottom !== undefined) {
       const extra = Math.max(0, frame.legendBottom + 14 - this.margin.top);
