@@ -143,9 +143,10 @@ mod free_response_tests {
                 for (k, x) in states.iter().enumerate() {
                     let t = k as f64 * dt;
                     let expected = pair.vector.map(|z| (z * (pair.value * t).exp()).re);
-                    let scale = expected.norm().max(1e-3);
+                    // Against the unit initial state: the eigenvector's round-off along a
+                    // growing mode (+3/s at 0.5 m/s) grows with it while this mode decays.
                     assert!(
-                        (x - expected).norm() <= 1e-9 * scale,
+                        (x - expected).norm() <= 1e-9,
                         "v = {speed}, λ = {}, t = {t}: {x:?} vs {expected:?}",
                         pair.value
                     );
