@@ -44,7 +44,7 @@ function axeSource() {
 
 const { context, close } = await launch();
 const page = context.pages()[0] ?? (await context.newPage());
-page.setDefaultTimeout(10_000);
+page.setDefaultTimeout(20_000);
 const errors = [];
 page.on("pageerror", (e) => errors.push(e.message));
 const origin = new URL(url).origin;

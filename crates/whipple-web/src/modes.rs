@@ -322,8 +322,9 @@ mod tests {
         assert!((t[1000].as_f64().unwrap_or(0.0) - 10.0).abs() < 1e-12);
         assert!((body["lean"][0].as_f64().unwrap_or(0.0) - 2f64.to_radians()).abs() < 1e-15);
         assert_eq!(body["lean_rate"][0].as_f64(), Some(0.5));
+        // The weave has died out; the slow capsize mode (−0.15/s at 4.6 m/s) is decaying.
         let end = body["lean"][1000].as_f64().unwrap_or(1.0).abs();
-        assert!(end < 1e-3, "{end}");
+        assert!(end < 0.1 * 2f64.to_radians(), "{end}");
         for (request, field) in [
             (
                 json!({"bike": bike, "speed": 4.6, "duration": 31.0}),

@@ -28,7 +28,12 @@ async fn page_issue_14_in_headless_chromium() -> TestResult {
     run_script("e2e/page.mjs").await
 }
 
+/// One browser at a time: two SwiftShader-drawn pages on CI's two cores would slow each other
+/// past their timeouts.
+static ONE_BROWSER: tokio::sync::Mutex<()> = tokio::sync::Mutex::const_new(());
+
 async fn run_script(name: &'static str) -> TestResult {
+    let _turn = ONE_BROWSER.lock().await;
     let chromium = std::env::var("CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
     if !Path::new(&chromium).exists() {
         // Required in CI (which sets CI=true and installs Chromium) or when asked for.
