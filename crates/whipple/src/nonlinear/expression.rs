@@ -1,17 +1,25 @@
-//! Rider torques written as expressions of time and the state, such as `0.5*sin(2*t)` or
-//! `10*lean + 20*lean_rate`: parsed once (by exmex), checked for unknown names, and turned into
+//! Rider torques written as expressions of time and the state, such as `0.5*sin(2*t)`,
+//! `1e3*t` or `10*lean + 20*lean_rate`: parsed once, checked for unknown names, and turned into
 //! a [`TorqueFn`] for [`super::SimulationSettings`]. The command line and the web API read the
 //! same language.
+//!
+//! The language: numbers in decimal or scientific notation (`2`, `0.5`, `.5`, `2.5e-1`,
+//! `1E3`); the names of [`VARIABLES`]; the constants `pi` (also `PI`, `π`), `e` (also `E`) and
+//! `tau` (also `TAU`); `+ - * /` and `^` (power, right-associative, binding tighter than a
+//! leading minus: `-2^2` is −4); parentheses; the functions of [`FUNCTIONS`] (one argument) and
+//! `atan2(y, x)`, `min(a, b)`, `max(a, b)`. The parser is written here rather than taken from
+//! an expression library so that every message points at a column of what was typed, numbers
+//! take scientific notation, and both the length and the nesting depth are bounded (no
+//! recursion a hostile input can drive deep).
 //!
 //! ```
 //! use whipple::nonlinear::TorqueExpression;
 //! let torque = TorqueExpression::parse("10*lean + 20*lean_rate")?;
 //! assert_eq!(torque.text(), "10*lean + 20*lean_rate");
 //! assert!(TorqueExpression::parse("2*foo").is_err());
+//! assert!(TorqueExpression::parse("2.5e-1*sin(3*t)").is_ok());
 //! # Ok::<(), whipple::Error>(())
 //! ```
-
-use exmex::prelude::*;
 
 use super::simulate::TorqueFn;
 use super::state::StateView;
@@ -29,17 +37,45 @@ pub const VARIABLES: [&str; 7] = [
     "yaw",
 ];
 
+/// The functions of one argument an expression may call (`log` is the natural logarithm, as
+/// `ln`).
+pub const FUNCTIONS: [&str; 26] = [
+    "abs", "acos", "acosh", "asin", "asinh", "atan", "atanh", "cbrt", "ceil", "cos", "cosh",
+    "exp", "floor", "fract", "ln", "log", "log10", "log2", "round", "sign", "signum", "sin",
+    "sinh", "sqrt", "tan", "tanh",
+];
+
+/// The functions of two arguments.
+pub const BINARY_FUNCTIONS: [&str; 3] = ["atan2", "max", "min"];
+
 /// Longest expression accepted, in bytes.
 pub const MAX_LENGTH: usize = 1000;
+
+/// Deepest nesting of parentheses, function calls and signs accepted.
+pub const MAX_DEPTH: usize = 64;
+
+/// One step of the compiled (postfix) program.
+#[derive(Debug, Clone, Copy)]
+enum Op {
+    Number(f64),
+    Variable(usize),
+    Negate,
+    Add,
+    Subtract,
+    Multiply,
+    Divide,
+    Power,
+    Call(fn(f64) -> f64),
+    Call2(fn(f64, f64) -> f64),
+}
 
 /// A parsed torque expression [N m].
 #[derive(Debug, Clone)]
 pub struct TorqueExpression {
     text: String,
-    expr: FlatEx<f64>,
-    /// For each of the expression's variables (in the order exmex wants their values), its
-    /// index in [`VARIABLES`].
-    slots: Vec<usize>,
+    program: Vec<Op>,
+    /// Most values on the evaluation stack at once.
+    stack: usize,
 }
 
 fn value(slot: usize, t: f64, s: &StateView) -> f64 {
@@ -54,9 +90,378 @@ fn value(slot: usize, t: f64, s: &StateView) -> f64 {
     }
 }
 
+fn unary(name: &str) -> Option<fn(f64) -> f64> {
+    Some(match name {
+        "abs" => f64::abs,
+        "acos" => f64::acos,
+        "acosh" => f64::acosh,
+        "asin" => f64::asin,
+        "asinh" => f64::asinh,
+        "atan" => f64::atan,
+        "atanh" => f64::atanh,
+        "cbrt" => f64::cbrt,
+        "ceil" => f64::ceil,
+        "cos" => f64::cos,
+        "cosh" => f64::cosh,
+        "exp" => f64::exp,
+        "floor" => f64::floor,
+        "fract" => f64::fract,
+        "ln" | "log" => f64::ln,
+        "log10" => f64::log10,
+        "log2" => f64::log2,
+        "round" => f64::round,
+        // signum(0) is 1 in Rust; a rider's sign function is 0 at 0.
+        "sign" | "signum" => |x: f64| if x == 0.0 { 0.0 } else { x.signum() },
+        "sin" => f64::sin,
+        "sinh" => f64::sinh,
+        "sqrt" => f64::sqrt,
+        "tan" => f64::tan,
+        "tanh" => f64::tanh,
+        _ => return None,
+    })
+}
+
+fn binary(name: &str) -> Option<fn(f64, f64) -> f64> {
+    Some(match name {
+        "atan2" => f64::atan2,
+        "max" => f64::max,
+        "min" => f64::min,
+        _ => return None,
+    })
+}
+
+fn constant(name: &str) -> Option<f64> {
+    Some(match name {
+        "pi" | "PI" | "π" => std::f64::consts::PI,
+        "e" | "E" => std::f64::consts::E,
+        "tau" | "TAU" | "τ" => std::f64::consts::TAU,
+        _ => return None,
+    })
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Token<'a> {
+    Number(f64),
+    Name(&'a str),
+    Symbol(char),
+}
+
+/// A token and the 1-based column (in characters) where it starts.
+type Located<'a> = (Token<'a>, usize);
+
+fn describe(token: Option<&Located<'_>>) -> String {
+    match token {
+        None => "the end".into(),
+        Some((Token::Number(_), column)) => format!("a number at column {column}"),
+        Some((Token::Name(name), column)) => format!("`{name}` at column {column}"),
+        Some((Token::Symbol(c), column)) => format!("`{c}` at column {column}"),
+    }
+}
+
+fn tokens(text: &str) -> std::result::Result<Vec<Located<'_>>, String> {
+    let mut out = Vec::new();
+    let chars: Vec<(usize, char)> = text.char_indices().collect();
+    let mut i = 0;
+    while i < chars.len() {
+        let (start, c) = chars[i];
+        let column = i + 1;
+        if c.is_whitespace() {
+            i += 1;
+        } else if c.is_ascii_digit() || c == '.' {
+            // digits [. digits] [(e|E) [+|-] digits], the exponent only when digits follow.
+            let mut j = i;
+            let digits = |j: &mut usize| {
+                while *j < chars.len() && chars[*j].1.is_ascii_digit() {
+                    *j += 1;
+                }
+            };
+            digits(&mut j);
+            if j < chars.len() && chars[j].1 == '.' {
+                j += 1;
+                digits(&mut j);
+            }
+            if j < chars.len() && matches!(chars[j].1, 'e' | 'E') {
+                let mut k = j + 1;
+                if k < chars.len() && matches!(chars[k].1, '+' | '-') {
+                    k += 1;
+                }
+                if k < chars.len() && chars[k].1.is_ascii_digit() {
+                    digits(&mut k);
+                    j = k;
+                }
+            }
+            let end = chars.get(j).map_or(text.len(), |&(b, _)| b);
+            let literal = &text[start..end];
+            let x: f64 = literal
+                .parse()
+                .map_err(|_| format!("`{literal}` at column {column} is not a number"))?;
+            if !x.is_finite() {
+                return Err(format!(
+                    "the number `{literal}` at column {column} is too large for a double"
+                ));
+            }
+            out.push((Token::Number(x), column));
+            i = j;
+        } else if c.is_alphabetic() || c == '_' {
+            let mut j = i;
+            while j < chars.len() && (chars[j].1.is_alphanumeric() || chars[j].1 == '_') {
+                j += 1;
+            }
+            let end = chars.get(j).map_or(text.len(), |&(b, _)| b);
+            out.push((Token::Name(&text[start..end]), column));
+            i = j;
+        } else if "+-*/^(),".contains(c) {
+            out.push((Token::Symbol(c), column));
+            i += 1;
+        } else {
+            return Err(format!(
+                "`{}` at column {column} is not part of the expression language (numbers, names, + - * / ^, parentheses, functions)",
+                c.escape_debug()
+            ));
+        }
+    }
+    Ok(out)
+}
+
+/// Recursive descent over the tokens, bounded by [`MAX_DEPTH`], emitting postfix code.
+struct Parser<'a> {
+    tokens: Vec<Located<'a>>,
+    at: usize,
+    program: Vec<Op>,
+    depth: usize,
+}
+
+type Step = std::result::Result<(), String>;
+
+impl<'a> Parser<'a> {
+    fn peek(&self) -> Option<&Located<'a>> {
+        self.tokens.get(self.at)
+    }
+
+    fn peek_symbol(&self, symbol: char) -> bool {
+        matches!(self.peek(), Some((Token::Symbol(c), _)) if *c == symbol)
+    }
+
+    fn deeper(&mut self) -> Step {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(format!(
+                "nested more than {MAX_DEPTH} levels deep at {}",
+                describe(self.peek())
+            ));
+        }
+        Ok(())
+    }
+
+    fn expect(&mut self, symbol: char, context: &str) -> Step {
+        if self.peek_symbol(symbol) {
+            self.at += 1;
+            Ok(())
+        } else {
+            Err(format!(
+                "expected `{symbol}` {context}, found {}",
+                describe(self.peek())
+            ))
+        }
+    }
+
+    /// sum := product (('+' | '-') product)*
+    fn sum(&mut self) -> Step {
+        self.product()?;
+        loop {
+            let op = match self.peek() {
+                Some((Token::Symbol('+'), _)) => Op::Add,
+                Some((Token::Symbol('-'), _)) => Op::Subtract,
+                _ => return Ok(()),
+            };
+            self.at += 1;
+            self.product()?;
+            self.program.push(op);
+        }
+    }
+
+    /// product := signed (('*' | '/') signed)*
+    fn product(&mut self) -> Step {
+        self.signed()?;
+        loop {
+            let op = match self.peek() {
+                Some((Token::Symbol('*'), _)) => Op::Multiply,
+                Some((Token::Symbol('/'), _)) => Op::Divide,
+                _ => return Ok(()),
+            };
+            self.at += 1;
+            self.signed()?;
+            self.program.push(op);
+        }
+    }
+
+    /// signed := ('-' | '+') signed | power
+    fn signed(&mut self) -> Step {
+        self.deeper()?;
+        let result = match self.peek() {
+            Some((Token::Symbol('-'), _)) => {
+                self.at += 1;
+                self.signed().map(|()| self.program.push(Op::Negate))
+            }
+            Some((Token::Symbol('+'), _)) => {
+                self.at += 1;
+                self.signed()
+            }
+            _ => self.power(),
+        };
+        self.depth -= 1;
+        result
+    }
+
+    /// power := primary ('^' signed)?   (right-associative; the exponent may carry a sign)
+    fn power(&mut self) -> Step {
+        self.primary()?;
+        if self.peek_symbol('^') {
+            self.at += 1;
+            self.signed()?;
+            self.program.push(Op::Power);
+        }
+        Ok(())
+    }
+
+    /// primary := number | variable | constant | function '(' sum [',' sum] ')' | '(' sum ')'
+    fn primary(&mut self) -> Step {
+        let Some(&(token, column)) = self.peek() else {
+            return Err("the expression ends where a number, a name or `(` was expected".into());
+        };
+        self.at += 1;
+        match token {
+            Token::Number(x) => self.program.push(Op::Number(x)),
+            Token::Symbol('(') => {
+                self.deeper()?;
+                self.sum()?;
+                self.expect(')', &format!("to close the `(` at column {column}"))?;
+                self.depth -= 1;
+            }
+            Token::Symbol(c) => {
+                return Err(format!(
+                    "`{c}` at column {column} where a number, a name or `(` was expected"
+                ))
+            }
+            Token::Name(name) => {
+                let call = self.peek_symbol('(');
+                if let Some(slot) = VARIABLES.iter().position(|v| *v == name) {
+                    self.program.push(Op::Variable(slot));
+                } else if let (false, Some(x)) = (call, constant(name)) {
+                    self.program.push(Op::Number(x));
+                } else if let (true, Some(f)) = (call, unary(name)) {
+                    self.arguments(name, column, 1)?;
+                    self.program.push(Op::Call(f));
+                } else if let (true, Some(f)) = (call, binary(name)) {
+                    self.arguments(name, column, 2)?;
+                    self.program.push(Op::Call2(f));
+                } else if call && constant(name).is_some() {
+                    return Err(format!(
+                        "`{name}` at column {column} is a constant, not a function"
+                    ));
+                } else if unary(name).is_some() || binary(name).is_some() {
+                    return Err(format!(
+                        "the function `{name}` at column {column} needs its argument in parentheses, as `{name}(t)`"
+                    ));
+                } else {
+                    return Err(format!(
+                        "unknown name `{name}` at column {column} (the variables are {}; the functions {}, atan2, min, max; the constants pi, e, tau)",
+                        VARIABLES.join(", "),
+                        FUNCTIONS.join(", ")
+                    ));
+                }
+            }
+        }
+        // Two operands side by side (`2 t`, `2(t)`, `t sin(t)`): say so here rather than
+        // later as a stray token.
+        if let Some((Token::Number(_) | Token::Name(_), _)) | Some((Token::Symbol('('), _)) =
+            self.peek()
+        {
+            return Err(format!(
+                "{} follows an operand without an operator between them (write `*` for a product)",
+                describe(self.peek())
+            ));
+        }
+        Ok(())
+    }
+
+    fn arguments(&mut self, name: &str, column: usize, count: usize) -> Step {
+        self.deeper()?;
+        self.at += 1; // '('
+        for k in 0..count {
+            if k > 0 {
+                self.expect(
+                    ',',
+                    &format!("between the arguments of `{name}` (it takes {count})"),
+                )?;
+            }
+            self.sum()?;
+        }
+        if self.peek_symbol(',') {
+            return Err(format!(
+                "`{name}` at column {column} takes {count} argument{}, found more",
+                if count == 1 { "" } else { "s" }
+            ));
+        }
+        self.expect(
+            ')',
+            &format!("to close the call of `{name}` at column {column}"),
+        )?;
+        self.depth -= 1;
+        Ok(())
+    }
+}
+
+/// The stack depth `program` needs (it is well formed by construction).
+fn stack_depth(program: &[Op]) -> usize {
+    let (mut depth, mut most) = (0usize, 0usize);
+    for op in program {
+        match op {
+            Op::Number(_) | Op::Variable(_) => depth += 1,
+            Op::Negate | Op::Call(_) => {}
+            _ => depth = depth.saturating_sub(1),
+        }
+        most = most.max(depth);
+    }
+    most
+}
+
+fn run(program: &[Op], stack: &mut Vec<f64>, variables: &[f64; VARIABLES.len()]) -> f64 {
+    stack.clear();
+    for op in program {
+        let x = match *op {
+            Op::Number(x) => x,
+            Op::Variable(slot) => variables[slot],
+            Op::Negate => -stack.pop().unwrap_or(f64::NAN),
+            Op::Call(f) => f(stack.pop().unwrap_or(f64::NAN)),
+            _ => {
+                let b = stack.pop().unwrap_or(f64::NAN);
+                let a = stack.pop().unwrap_or(f64::NAN);
+                match *op {
+                    Op::Add => a + b,
+                    Op::Subtract => a - b,
+                    Op::Multiply => a * b,
+                    Op::Divide => a / b,
+                    Op::Power => a.powf(b),
+                    Op::Call2(f) => f(a, b),
+                    _ => f64::NAN,
+                }
+            }
+        };
+        stack.push(x);
+    }
+    // A well-formed program leaves exactly one value.
+    if stack.len() == 1 {
+        stack[0]
+    } else {
+        f64::NAN
+    }
+}
+
 impl TorqueExpression {
-    /// Parses `text`; its names must be among [`VARIABLES`] and it must evaluate to a finite
-    /// number at rest (every variable zero).
+    /// Parses `text`; its names must be among [`VARIABLES`], the constants and the functions,
+    /// and it must evaluate to a finite number at rest (every variable zero). The error's rule
+    /// says what is wrong and at which column.
     pub fn parse(text: &str) -> Result<Self> {
         let invalid = |rule: String| Error::InvalidArgument {
             what: "torque expression",
@@ -68,31 +473,45 @@ impl TorqueExpression {
                 text.len()
             )));
         }
-        let expr =
-            exmex::parse::<f64>(text).map_err(|e| invalid(format!("cannot read `{text}`: {e}")))?;
-        let mut slots = Vec::with_capacity(VARIABLES.len());
-        for name in expr.var_names() {
-            let slot = VARIABLES.iter().position(|v| v == name).ok_or_else(|| {
-                invalid(format!(
-                    "unknown name `{name}` in `{text}` (use {})",
-                    VARIABLES.join(", ")
-                ))
-            })?;
-            slots.push(slot);
+        // Quoted in messages with its control characters escaped, so that it cannot break the
+        // message's lines.
+        let shown = text.escape_debug().to_string();
+        let cannot_read = |why: String| invalid(format!("cannot read `{shown}`: {why}"));
+        let tokens = tokens(text).map_err(&cannot_read)?;
+        if tokens.is_empty() {
+            return Err(invalid(
+                "is empty (write 0 for no torque, or an expression such as `0.5*sin(2*t)`)".into(),
+            ));
         }
-        let at_rest = expr
-            .eval(&vec![0.0; slots.len()])
-            .map_err(|e| invalid(format!("cannot evaluate `{text}`: {e}")))?;
+        let mut parser = Parser {
+            tokens,
+            at: 0,
+            program: Vec::new(),
+            depth: 0,
+        };
+        parser.sum().map_err(&cannot_read)?;
+        if let Some(rest) = parser.peek() {
+            let why = match rest {
+                (Token::Symbol(')'), column) => {
+                    format!("the `)` at column {column} closes no `(`")
+                }
+                _ => format!("{} where an operator was expected", describe(Some(rest))),
+            };
+            return Err(cannot_read(why));
+        }
+        let program = parser.program;
+        let expression = TorqueExpression {
+            text: text.to_string(),
+            stack: stack_depth(&program),
+            program,
+        };
+        let at_rest = expression.eval(0.0, &StateView::default());
         if !at_rest.is_finite() {
             return Err(invalid(format!(
-                "`{text}` is not a finite number at rest (t = 0, every angle and rate 0): {at_rest}"
+                "`{shown}` is not a finite number at rest (t = 0, every angle and rate 0): {at_rest}"
             )));
         }
-        Ok(TorqueExpression {
-            text: text.to_string(),
-            expr,
-            slots,
-        })
+        Ok(expression)
     }
 
     /// The text it was parsed from.
@@ -100,16 +519,12 @@ impl TorqueExpression {
         &self.text
     }
 
-    /// The torque at time t [s] in state s [N m]; NaN when the expression cannot be evaluated
-    /// there (a simulation then stops with a non-finite state).
+    /// The torque at time t [s] in state s [N m]; NaN or an infinity where the expression is
+    /// not finite there (`1/(t - 0.5)` at t = 0.5, `sqrt(0.5 - t)` after it).
     pub fn eval(&self, t: f64, s: &StateView) -> f64 {
-        let mut values = [0.0; VARIABLES.len()];
-        for (value_of, &slot) in values.iter_mut().zip(&self.slots) {
-            *value_of = value(slot, t, s);
-        }
-        self.expr
-            .eval(&values[..self.slots.len()])
-            .unwrap_or(f64::NAN)
+        let variables: [f64; VARIABLES.len()] = std::array::from_fn(|slot| value(slot, t, s));
+        let mut stack = Vec::with_capacity(self.stack);
+        run(&self.program, &mut stack, &variables)
     }
 
     /// The expression as a rider input of a simulation.
@@ -121,6 +536,23 @@ impl TorqueExpression {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn at_rest(text: &str) -> f64 {
+        match TorqueExpression::parse(text) {
+            Ok(e) => e.eval(0.0, &StateView::default()),
+            Err(e) => panic!("{text}: {e}"),
+        }
+    }
+
+    fn rule(text: &str) -> String {
+        match TorqueExpression::parse(text) {
+            Err(Error::InvalidArgument { what, rule }) => {
+                assert_eq!(what, "torque expression");
+                rule
+            }
+            other => panic!("{text}: {other:?}"),
+        }
+    }
 
     #[test]
     fn evaluates_with_the_state() -> Result<()> {
@@ -135,21 +567,92 @@ mod tests {
         Ok(())
     }
 
+    /// Issue 10: `1e3*t` and `2.5e-1*sin(3*t)` were refused with the expression library's
+    /// internal message ("we have 1 ops and 3 node").
+    #[test]
+    fn issue_10_torque_expressions_take_scientific_notation() -> Result<()> {
+        let s = StateView::default();
+        assert_eq!(TorqueExpression::parse("1e3*t")?.eval(2.0, &s), 2000.0);
+        let x = TorqueExpression::parse("2.5e-1*sin(3*t)")?.eval(0.5, &s);
+        assert!((x - 0.25 * 1.5f64.sin()).abs() < 1e-16);
+        assert_eq!(at_rest("1E+2"), 100.0);
+        assert_eq!(at_rest(".5e1"), 5.0);
+        assert_eq!(at_rest("2.e0"), 2.0);
+        // `e` alone is Euler's number; `2e` is not a number, and a product needs its `*`.
+        assert_eq!(at_rest("2*e"), 2.0 * std::f64::consts::E);
+        assert!(rule("2e").contains("without an operator"));
+        Ok(())
+    }
+
+    #[test]
+    fn follows_the_usual_precedence() {
+        assert_eq!(at_rest("1 + 2*3"), 7.0);
+        assert_eq!(at_rest("2^3^2"), 512.0);
+        assert_eq!(at_rest("-2^2"), -4.0);
+        assert_eq!(at_rest("2^-1"), 0.5);
+        assert_eq!(at_rest("(1 + 2)*3"), 9.0);
+        assert_eq!(at_rest("8/2/2"), 2.0);
+        assert_eq!(at_rest("1 - 2 - 3"), -4.0);
+        assert_eq!(at_rest("--1"), 1.0);
+        assert_eq!(at_rest("max(1, min(2, 3)) + atan2(0, 1)"), 2.0);
+        assert!((at_rest("cos(pi)") + 1.0).abs() < 1e-15);
+        assert_eq!(at_rest("sign(0)"), 0.0);
+    }
+
+    /// Every message names the place and never an internal detail of the parser.
     #[test]
     fn refuses_bad_expressions_by_rule() {
-        for (text, rule) in [
-            ("sin(t", "cannot read"),
-            ("2*foo", "unknown name `foo`"),
+        for (text, expected) in [
+            ("sin(t", "expected `)` to close the call of `sin` at column 1, found the end"),
+            ("2*foo", "unknown name `foo` at column 3"),
             ("1/t", "not a finite number at rest"),
+            ("1+*2", "`*` at column 3 where a number, a name or `(` was expected"),
+            ("(1", "to close the `(` at column 1"),
+            ("1)", "the `)` at column 2 closes no `(`"),
+            ("2 t", "`t` at column 3 follows an operand"),
+            ("sin t", "needs its argument in parentheses"),
+            ("min(1)", "expected `,` between the arguments of `min`"),
+            ("sin(1, 2)", "takes 1 argument, found more"),
+            ("1e999", "too large for a double"),
+            ("1 # 2", "`#` at column 3 is not part of"),
+            ("", "is empty"),
+            ("   ", "is empty"),
+            ("t +", "the expression ends where"),
         ] {
-            match TorqueExpression::parse(text) {
-                Err(Error::InvalidArgument { what, rule: got }) => {
-                    assert_eq!(what, "torque expression");
-                    assert!(got.contains(rule), "{text}: {got}");
-                }
-                other => panic!("{text}: {other:?}"),
-            }
+            let got = rule(text);
+            assert!(got.contains(expected), "{text}: {got}");
+            assert!(!got.contains("node") && !got.contains("Operator"), "{got}");
         }
         assert!(TorqueExpression::parse(&"1+".repeat(600)).is_err());
+    }
+
+    /// Deep nesting is refused with a message instead of exhausting the stack.
+    #[test]
+    fn nesting_is_bounded() {
+        let deep = format!("{}t{}", "(".repeat(400), ")".repeat(400));
+        assert!(rule(&deep).contains("nested more than"));
+        let signs = format!("{}t", "-".repeat(900));
+        assert!(rule(&signs).contains("nested more than"));
+        let fine = format!("{}t{}", "(".repeat(30), ")".repeat(30));
+        assert_eq!(at_rest(&fine), 0.0);
+    }
+
+    /// A control character in an expression is escaped in the message.
+    #[test]
+    fn messages_escape_control_characters() {
+        let got = rule("1+\n*2");
+        assert!(!got.contains('\n'), "{got}");
+    }
+
+    /// Non-finite values during a run come out of `eval` as they are (the simulation reports
+    /// them).
+    #[test]
+    fn non_finite_values_are_returned_as_they_are() -> Result<()> {
+        let s = StateView::default();
+        let pole = TorqueExpression::parse("1/(t-0.5)")?;
+        assert!(pole.eval(0.5, &s).is_infinite());
+        let root = TorqueExpression::parse("sqrt(0.5-t)")?;
+        assert!(root.eval(0.75, &s).is_nan());
+        Ok(())
     }
 }
