@@ -37,6 +37,8 @@ pub use eigen::{eigen_comparison_plot, eigen_plot, mode_colour, BikeEigen, Eigen
 pub use error::{Error, Result};
 pub use figure::{Figure, Format};
 pub use side_view::side_view;
-pub use table::{eigen_csv, eigen_table};
+pub use table::{
+    eigen_csv, eigen_csv_row, eigen_table, eigen_table_header, eigen_table_row, EIGEN_CSV_HEADER,
+};
 pub use time_series::{time_series_plot, SimulationSeries};
 pub use xy::{line_plot, xy_log_plot, Marker, Series, XyPlotOptions};

@@ -1,5 +1,7 @@
 //! Tables of eigenvalues: CSV for files, fixed-width text for the terminal.
 
+use whipple::analysis::eigen::Complex64;
+use whipple::analysis::modes::Mode;
 use whipple::analysis::sweep::EigenSweep;
 
 /// The eigenvalue sweep as CSV: header `v,re1,im1,re2,im2,re3,im3,re4,im4`, one row per speed,
@@ -14,42 +16,63 @@ use whipple::analysis::sweep::EigenSweep;
 /// assert!(csv.lines().nth(2).unwrap().starts_with("5,"));
 /// ```
 pub fn eigen_csv(sweep: &EigenSweep) -> String {
-    let mut out = String::from("v,re1,im1,re2,im2,re3,im3,re4,im4\n");
+    let mut out = String::from(EIGEN_CSV_HEADER);
     for (v, values) in sweep.speeds.iter().zip(&sweep.eigenvalues) {
-        out.push_str(&v.to_string());
-        for l in values {
-            out.push_str(&format!(",{},{}", l.re, l.im));
-        }
-        out.push('\n');
+        out.push_str(&eigen_csv_row(*v, values));
     }
+    out
+}
+
+/// The header line of [`eigen_csv`], newline included.
+pub const EIGEN_CSV_HEADER: &str = "v,re1,im1,re2,im2,re3,im3,re4,im4\n";
+
+/// One row of [`eigen_csv`], newline included (for writing a sweep as it is computed).
+pub fn eigen_csv_row(v: f64, values: &[Complex64; 4]) -> String {
+    let mut out = v.to_string();
+    for l in values {
+        out.push_str(&format!(",{},{}", l.re, l.im));
+    }
+    out.push('\n');
     out
 }
 
 /// The eigenvalue sweep as a fixed-width text table for the terminal: speed, then each column
 /// headed by its mode name, a complex eigenvalue written `re ± im i`, ten decimals.
 pub fn eigen_table(sweep: &EigenSweep) -> String {
+    let mut out = eigen_table_header(&sweep.modes);
+    for (v, values) in sweep.speeds.iter().zip(&sweep.eigenvalues) {
+        out.push_str(&eigen_table_row(*v, values));
+    }
+    out
+}
+
+/// The header line of [`eigen_table`] for columns of these modes, newline included.
+pub fn eigen_table_header(modes: &[Mode; 4]) -> String {
     let mut out = format!("{:>8}", "v");
-    for (k, mode) in sweep.modes.iter().enumerate() {
+    for (k, mode) in modes.iter().enumerate() {
         out.push_str(&format!(" {:>30}", format!("{} ({})", mode.name(), k + 1)));
     }
     out.push('\n');
-    for (v, values) in sweep.speeds.iter().zip(&sweep.eigenvalues) {
-        out.push_str(&format!("{v:>8.4}"));
-        for l in values {
-            let cell = if l.im == 0.0 {
-                format!("{:.10}", l.re)
-            } else {
-                format!(
-                    "{:.10} {} {:.10}i",
-                    l.re,
-                    if l.im < 0.0 { '-' } else { '+' },
-                    l.im.abs()
-                )
-            };
-            out.push_str(&format!(" {cell:>30}"));
-        }
-        out.push('\n');
+    out
+}
+
+/// One row of [`eigen_table`], newline included.
+pub fn eigen_table_row(v: f64, values: &[Complex64; 4]) -> String {
+    let mut out = format!("{v:>8.4}");
+    for l in values {
+        let cell = if l.im == 0.0 {
+            format!("{:.10}", l.re)
+        } else {
+            format!(
+                "{:.10} {} {:.10}i",
+                l.re,
+                if l.im < 0.0 { '-' } else { '+' },
+                l.im.abs()
+            )
+        };
+        out.push_str(&format!(" {cell:>30}"));
     }
+    out.push('\n');
     out
 }
 

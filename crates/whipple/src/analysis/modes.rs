@@ -69,17 +69,25 @@ const PERMUTATIONS: [[usize; 4]; 24] = [
     [3, 2, 1, 0],
 ];
 
-/// Reorders each speed's eigenvalues so that column k follows one continuous track.
-pub fn track(eigenvalues: &mut [[Complex64; 4]]) {
-    for i in 1..eigenvalues.len() {
-        let previous = eigenvalues[i - 1];
-        let predicted: [Complex64; 4] = if i >= 2 {
-            let before = eigenvalues[i - 2];
-            std::array::from_fn(|k| previous[k] * 2.0 - before[k])
-        } else {
-            previous
+/// Tracking one speed at a time: column k of each result continues column k of the results
+/// before it (see the module documentation). [`track`] over a slice is the same, speed by speed.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Tracker {
+    previous: Option<[Complex64; 4]>,
+    before: Option<[Complex64; 4]>,
+}
+
+impl Tracker {
+    /// The eigenvalues `current` reordered to continue the tracks.
+    pub fn next(&mut self, current: [Complex64; 4]) -> [Complex64; 4] {
+        let Some(previous) = self.previous else {
+            self.previous = Some(current);
+            return current;
         };
-        let current = eigenvalues[i];
+        let predicted: [Complex64; 4] = match self.before {
+            Some(before) => std::array::from_fn(|k| previous[k] * 2.0 - before[k]),
+            None => previous,
+        };
         let mut best = PERMUTATIONS[0];
         let mut best_cost = f64::INFINITY;
         for perm in PERMUTATIONS.iter() {
@@ -91,7 +99,18 @@ pub fn track(eigenvalues: &mut [[Complex64; 4]]) {
                 best = *perm;
             }
         }
-        eigenvalues[i] = std::array::from_fn(|k| current[best[k]]);
+        let tracked = std::array::from_fn(|k| current[best[k]]);
+        self.before = Some(previous);
+        self.previous = Some(tracked);
+        tracked
+    }
+}
+
+/// Reorders each speed's eigenvalues so that column k follows one continuous track.
+pub fn track(eigenvalues: &mut [[Complex64; 4]]) {
+    let mut tracker = Tracker::default();
+    for values in eigenvalues.iter_mut() {
+        *values = tracker.next(*values);
     }
 }
 
@@ -115,35 +134,57 @@ fn vote(values: &[Complex64; 4]) -> Option<[Mode; 4]> {
     Some(labels)
 }
 
-/// Labels for the four tracked columns (see the module documentation).
-pub fn classify(tracked: &[[Complex64; 4]]) -> [Mode; 4] {
-    let modes = [Mode::Weave, Mode::Capsize, Mode::Castering];
-    let mut votes = [[0usize; 3]; 4];
-    for values in tracked {
+/// The labels' votes, gathered one tracked speed at a time ([`classify`] over a slice is the
+/// same).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Votes {
+    /// `votes[column][m]`: speeds at which the column showed weave, capsize, castering.
+    votes: [[usize; 3]; 4],
+}
+
+const LABELS: [Mode; 3] = [Mode::Weave, Mode::Capsize, Mode::Castering];
+
+impl Votes {
+    /// Counts the votes of one speed's tracked eigenvalues.
+    pub fn add(&mut self, values: &[Complex64; 4]) {
         if let Some(labels) = vote(values) {
             for k in 0..4 {
-                if let Some(m) = modes.iter().position(|&m| m == labels[k]) {
-                    votes[k][m] += 1;
+                if let Some(m) = LABELS.iter().position(|&m| m == labels[k]) {
+                    self.votes[k][m] += 1;
                 }
             }
         }
     }
-    let mut labels = [Mode::Unclassified; 4];
-    // Assign the weave to the two columns with most weave votes, then capsize and castering.
-    let mut taken = [false; 4];
-    for (m, mode) in modes.iter().enumerate() {
-        let slots = if *mode == Mode::Weave { 2 } else { 1 };
-        for _ in 0..slots {
-            let best = (0..4)
-                .filter(|&k| !taken[k] && votes[k][m] > 0)
-                .max_by_key(|&k| votes[k][m]);
-            if let Some(k) = best {
-                taken[k] = true;
-                labels[k] = *mode;
+
+    /// Labels for the four tracked columns (see the module documentation).
+    pub fn labels(&self) -> [Mode; 4] {
+        let votes = &self.votes;
+        let mut labels = [Mode::Unclassified; 4];
+        // Assign the weave to the two columns with most weave votes, then capsize and castering.
+        let mut taken = [false; 4];
+        for (m, mode) in LABELS.iter().enumerate() {
+            let slots = if *mode == Mode::Weave { 2 } else { 1 };
+            for _ in 0..slots {
+                let best = (0..4)
+                    .filter(|&k| !taken[k] && votes[k][m] > 0)
+                    .max_by_key(|&k| votes[k][m]);
+                if let Some(k) = best {
+                    taken[k] = true;
+                    labels[k] = *mode;
+                }
             }
         }
+        labels
     }
-    labels
+}
+
+/// Labels for the four tracked columns (see the module documentation).
+pub fn classify(tracked: &[[Complex64; 4]]) -> [Mode; 4] {
+    let mut votes = Votes::default();
+    for values in tracked {
+        votes.add(values);
+    }
+    votes.labels()
 }
 
 /// One eigenmode at one speed: its name, eigenvalue and shape.

@@ -1,15 +1,104 @@
 //! Speed sweeps: eigenvalues at many speeds, modes tracked and labelled.
 
 use super::eigen::{quartic_roots, Complex64};
-use super::modes::{classify, track, Mode};
+use super::modes::{Mode, Tracker, Votes};
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, CharacteristicPolynomial};
 
 /// The largest number of speeds one sweep may hold.
 pub const MAX_SPEEDS: usize = 10_000_000;
 
+/// An evenly spaced grid of speeds START:STOP:STEP, both ends included (STOP is included when
+/// it lies on the grid to within round-off), held as its three numbers: a grid of any size
+/// costs no memory until it is collected ([`speed_grid`]) or swept ([`SweepPlan`]).
+///
+/// ```
+/// use whipple::analysis::sweep::SpeedGrid;
+/// let grid = SpeedGrid::new(0.0, 1.0, 0.25)?;
+/// assert_eq!(grid.len(), 5);
+/// assert_eq!(grid.iter().collect::<Vec<_>>(), vec![0.0, 0.25, 0.5, 0.75, 1.0]);
+/// # Ok::<(), whipple::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpeedGrid {
+    start: f64,
+    stop: f64,
+    step: f64,
+    intervals: u64,
+}
+
+/// The most speeds a [`SpeedGrid`] may describe (callers bound what they sweep far lower).
+pub const MAX_GRID_SPEEDS: f64 = 1e15;
+
+impl SpeedGrid {
+    /// The grid START:STOP:STEP: finite numbers, STEP > 0, STOP ≥ START.
+    pub fn new(start: f64, stop: f64, step: f64) -> Result<Self> {
+        if !(start.is_finite() && stop.is_finite() && step.is_finite()) {
+            return Err(Error::InvalidArgument {
+                what: "speeds",
+                rule: format!("START:STOP:STEP must be finite numbers, got {start}:{stop}:{step}"),
+            });
+        }
+        if step <= 0.0 {
+            return Err(Error::InvalidArgument {
+                what: "speeds",
+                rule: format!("STEP must be greater than zero, got {step}"),
+            });
+        }
+        if stop < start {
+            return Err(Error::InvalidArgument {
+                what: "speeds",
+                rule: format!("STOP ({stop}) must not be less than START ({start})"),
+            });
+        }
+        let intervals = ((stop - start) / step * (1.0 + 1e-12) + 1e-9).floor();
+        if !(intervals + 1.0 <= MAX_GRID_SPEEDS) {
+            return Err(Error::InvalidArgument {
+                what: "speeds",
+                rule: format!(
+                    "{start}:{stop}:{step} holds {:e} speeds, more than any sweep can take",
+                    intervals + 1.0
+                ),
+            });
+        }
+        Ok(SpeedGrid {
+            start,
+            stop,
+            step,
+            intervals: intervals as u64,
+        })
+    }
+
+    /// How many speeds the grid holds.
+    pub fn len(&self) -> u64 {
+        self.intervals + 1
+    }
+
+    /// Never empty (START is always on it); for clippy's sake.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// The i-th speed (0-based), as [`speed_grid`] lists it.
+    pub fn speed(&self, i: u64) -> f64 {
+        let n = self.intervals;
+        let v = self.start + self.step * i as f64;
+        if i == n && (v - self.stop).abs() <= 1e-9 * self.step {
+            self.stop
+        } else {
+            v
+        }
+    }
+
+    /// The speeds in order.
+    pub fn iter(&self) -> impl Iterator<Item = f64> + Clone + '_ {
+        (0..=self.intervals).map(|i| self.speed(i))
+    }
+}
+
 /// Evenly spaced speeds START:STOP:STEP, both ends included (STOP is included when it lies on
-/// the grid to within round-off).
+/// the grid to within round-off), at most [`MAX_SPEEDS`] of them; [`SpeedGrid`] describes a
+/// larger grid without holding it.
 ///
 /// ```
 /// let v = whipple::analysis::sweep::speed_grid(0.0, 1.0, 0.25)?;
@@ -17,44 +106,17 @@ pub const MAX_SPEEDS: usize = 10_000_000;
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub fn speed_grid(start: f64, stop: f64, step: f64) -> Result<Vec<f64>> {
-    if !(start.is_finite() && stop.is_finite() && step.is_finite()) {
-        return Err(Error::InvalidArgument {
-            what: "speeds",
-            rule: format!("START:STOP:STEP must be finite numbers, got {start}:{stop}:{step}"),
-        });
-    }
-    if step <= 0.0 {
-        return Err(Error::InvalidArgument {
-            what: "speeds",
-            rule: format!("STEP must be greater than zero, got {step}"),
-        });
-    }
-    if stop < start {
-        return Err(Error::InvalidArgument {
-            what: "speeds",
-            rule: format!("STOP ({stop}) must not be less than START ({start})"),
-        });
-    }
-    let intervals = ((stop - start) / step * (1.0 + 1e-12) + 1e-9).floor();
-    if intervals + 1.0 > MAX_SPEEDS as f64 {
+    let grid = SpeedGrid::new(start, stop, step)?;
+    if grid.len() > MAX_SPEEDS as u64 {
         return Err(Error::InvalidArgument {
             what: "speeds",
             rule: format!(
-                "{start}:{stop}:{step} holds {} speeds, more than the limit of {MAX_SPEEDS}",
-                intervals + 1.0
+                "{start}:{stop}:{step} holds {} speeds, more than the limit of {MAX_SPEEDS} held at once (64 bytes each)",
+                grid.len()
             ),
         });
     }
-    let n = intervals as usize;
-    Ok((0..=n)
-        .map(|i| {
-            if i == n && ((start + step * i as f64) - stop).abs() <= 1e-9 * step {
-                stop
-            } else {
-                start + step * i as f64
-            }
-        })
-        .collect())
+    Ok(grid.iter().collect())
 }
 
 /// Eigenvalues over a sweep of speeds, each column one tracked mode.
@@ -92,7 +154,7 @@ const MAX_EXTRA_SPEEDS: f64 = 2_000_000.0;
 /// Sweeps the eigenvalues over `speeds` (any order is tracked as given; sorted input gives
 /// continuous tracks). Where neighbouring speeds lie more than 0.02 m/s apart, the modes are
 /// tracked through intermediate speeds (not reported), so a coarse sweep is labelled as a fine
-/// one would be.
+/// one would be. The whole sweep is held in memory; [`SweepPlan`] streams it row by row.
 ///
 /// ```
 /// use whipple::{BenchmarkParameters, linear::Canonical, analysis::sweep};
@@ -102,70 +164,164 @@ const MAX_EXTRA_SPEEDS: f64 = 2_000_000.0;
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub fn eigen_sweep(canonical: &Canonical, speeds: &[f64]) -> Result<EigenSweep> {
-    if let Some(v) = speeds.iter().find(|v| !v.is_finite()) {
-        return Err(Error::InvalidArgument {
-            what: "speeds",
-            rule: format!("every speed must be finite, got {v}"),
-        });
-    }
-    let poly = CharacteristicPolynomial::new(canonical);
-    // Every speed the tracking visits, and where the requested ones sit among them.
-    let wanted = |a: f64, b: f64| {
-        ((b - a).abs() / TRACKING_STEP)
-            .ceil()
-            .min(MAX_SUBSTEPS as f64)
-    };
-    let total: f64 = speeds.windows(2).map(|w| wanted(w[0], w[1])).sum();
-    let share = if total > MAX_EXTRA_SPEEDS {
-        MAX_EXTRA_SPEEDS / total
-    } else {
-        1.0
-    };
-    let mut visited = Vec::with_capacity(speeds.len());
-    let mut reported = Vec::with_capacity(speeds.len());
-    for (i, &v) in speeds.iter().enumerate() {
-        if i > 0 {
-            let previous = speeds[i - 1];
-            let substeps = (wanted(previous, v) * share).floor() as usize;
-            for k in 1..substeps {
-                visited.push(previous + (v - previous) * k as f64 / substeps as f64);
-            }
-        }
-        reported.push(visited.len());
-        visited.push(v);
-    }
-    let mut all = visited
-        .iter()
-        .map(|&v| quartic_roots(&poly.at_speed(v)))
-        .collect::<Result<Vec<_>>>()?;
-    track(&mut all);
-    let labels = classify(&all);
-    let mut eigenvalues: Vec<[Complex64; 4]> = reported.iter().map(|&k| all[k]).collect();
-    let mut order = [0usize, 1, 2, 3];
-    let first = eigenvalues.first().copied();
-    order.sort_by(|&i, &j| {
-        mode_rank(labels[i])
-            .cmp(&mode_rank(labels[j]))
-            .then_with(|| match first {
-                Some(f) => f[j].re.total_cmp(&f[i].re),
-                None => std::cmp::Ordering::Equal,
-            })
-    });
-    let modes = order.map(|k| labels[k]);
-    for values in eigenvalues.iter_mut() {
-        let mut reordered: [Complex64; 4] = order.map(|k| values[k]);
-        if modes[0] == Mode::Weave && modes[1] == Mode::Weave {
-            let (a, b) = (reordered[0], reordered[1]);
-            if b.im > a.im || (b.im == a.im && b.re > a.re) {
-                reordered[0] = b;
-                reordered[1] = a;
-            }
-        }
-        *values = reordered;
-    }
+    let plan = SweepPlan::new(canonical, speeds.iter().copied())?;
+    let mut eigenvalues = Vec::with_capacity(speeds.len());
+    plan.rows(|_, values| {
+        eigenvalues.push(*values);
+        Ok::<(), Error>(())
+    })?;
     Ok(EigenSweep {
         speeds: speeds.to_vec(),
         eigenvalues,
-        modes,
+        modes: plan.modes,
     })
+}
+
+/// A sweep of any length in bounded memory: [`SweepPlan::new`] runs it once to track and label
+/// the modes (what the columns are is known before the first row), [`SweepPlan::rows`] runs it
+/// again and hands each speed's eigenvalues, in the column order of [`SweepPlan::modes`], to a
+/// callback. Twice the work of [`eigen_sweep`], none of its memory; the rows are the same,
+/// bit for bit.
+///
+/// ```
+/// use whipple::{BenchmarkParameters, linear::Canonical, analysis::sweep::{SpeedGrid, SweepPlan}};
+/// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
+/// let grid = SpeedGrid::new(0.0, 10.0, 0.01)?;
+/// let plan = SweepPlan::new(&canonical, grid.iter())?;
+/// let mut rows = 0;
+/// plan.rows(|v, eigenvalues| { rows += 1; Ok::<(), whipple::Error>(()) })?;
+/// assert_eq!(rows, 1001);
+/// # Ok::<(), whipple::Error>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct SweepPlan<I> {
+    poly: CharacteristicPolynomial,
+    speeds: I,
+    /// The fraction of the wanted intermediate speeds taken (≤ 1).
+    share: f64,
+    /// Reported column k is tracked column `order[k]`.
+    order: [usize; 4],
+    /// The mode of each reported column.
+    modes: [Mode; 4],
+}
+
+/// Speeds to visit between two requested ones, before the share is applied.
+fn wanted(a: f64, b: f64) -> f64 {
+    ((b - a).abs() / TRACKING_STEP)
+        .ceil()
+        .min(MAX_SUBSTEPS as f64)
+}
+
+/// Runs the tracking over `speeds` and calls `each(reported, tracked eigenvalues)` at every
+/// speed visited, intermediate ones included (`reported` false).
+fn visit<I, E>(
+    poly: &CharacteristicPolynomial,
+    speeds: I,
+    share: f64,
+    mut each: impl FnMut(Option<f64>, &[Complex64; 4]) -> std::result::Result<(), E>,
+) -> std::result::Result<(), E>
+where
+    I: Iterator<Item = f64>,
+    E: From<Error>,
+{
+    let mut tracker = Tracker::default();
+    let mut previous: Option<f64> = None;
+    for v in speeds {
+        if let Some(p) = previous {
+            let substeps = (wanted(p, v) * share).floor() as usize;
+            for k in 1..substeps {
+                let u = p + (v - p) * k as f64 / substeps as f64;
+                let values = tracker.next(quartic_roots(&poly.at_speed(u))?);
+                each(None, &values)?;
+            }
+        }
+        let values = tracker.next(quartic_roots(&poly.at_speed(v))?);
+        each(Some(v), &values)?;
+        previous = Some(v);
+    }
+    Ok(())
+}
+
+impl<I: Iterator<Item = f64> + Clone> SweepPlan<I> {
+    /// Checks the speeds (every one finite), then sweeps them once to track and label the
+    /// modes.
+    pub fn new(canonical: &Canonical, speeds: I) -> Result<Self> {
+        let mut total = 0.0;
+        let mut previous: Option<f64> = None;
+        for v in speeds.clone() {
+            if !v.is_finite() {
+                return Err(Error::InvalidArgument {
+                    what: "speeds",
+                    rule: format!("every speed must be finite, got {v}"),
+                });
+            }
+            if let Some(p) = previous {
+                total += wanted(p, v);
+            }
+            previous = Some(v);
+        }
+        let share = if total > MAX_EXTRA_SPEEDS {
+            MAX_EXTRA_SPEEDS / total
+        } else {
+            1.0
+        };
+        let poly = CharacteristicPolynomial::new(canonical);
+        let mut votes = Votes::default();
+        let mut first: Option<[Complex64; 4]> = None;
+        visit(&poly, speeds.clone(), share, |reported, values| {
+            votes.add(values);
+            if reported.is_some() && first.is_none() {
+                first = Some(*values);
+            }
+            Ok::<(), Error>(())
+        })?;
+        let labels = votes.labels();
+        let mut order = [0usize, 1, 2, 3];
+        order.sort_by(|&i, &j| {
+            mode_rank(labels[i])
+                .cmp(&mode_rank(labels[j]))
+                .then_with(|| match first {
+                    Some(f) => f[j].re.total_cmp(&f[i].re),
+                    None => std::cmp::Ordering::Equal,
+                })
+        });
+        Ok(SweepPlan {
+            poly,
+            speeds,
+            share,
+            modes: order.map(|k| labels[k]),
+            order,
+        })
+    }
+
+    /// The mode of each column: weave, weave, capsize, castering (then unclassified); within
+    /// the weave pair the eigenvalue of positive imaginary part (or the larger real one, below
+    /// the double-root speed) comes first.
+    pub fn modes(&self) -> [Mode; 4] {
+        self.modes
+    }
+
+    /// Sweeps again, calling `row(v, eigenvalues)` for each requested speed in order, the
+    /// eigenvalues [1/s] in the column order of [`SweepPlan::modes`]. Stops at the first
+    /// error `row` returns.
+    pub fn rows<E: From<Error>>(
+        &self,
+        mut row: impl FnMut(f64, &[Complex64; 4]) -> std::result::Result<(), E>,
+    ) -> std::result::Result<(), E> {
+        let weave_pair = self.modes[0] == Mode::Weave && self.modes[1] == Mode::Weave;
+        visit(&self.poly, self.speeds.clone(), self.share, |reported, values| {
+            let Some(v) = reported else {
+                return Ok(());
+            };
+            let mut reordered: [Complex64; 4] = self.order.map(|k| values[k]);
+            if weave_pair {
+                let (a, b) = (reordered[0], reordered[1]);
+                if b.im > a.im || (b.im == a.im && b.re > a.re) {
+                    reordered[0] = b;
+                    reordered[1] = a;
+                }
+            }
+            row(v, &reordered)
+        })
+    }
 }
