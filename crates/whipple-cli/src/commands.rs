@@ -13,16 +13,25 @@ use whipple::parameters::presets::PRESETS;
 use whipple::{Bicycle, Description};
 
 use crate::bike::{load, LoadedBike};
-use crate::output::{number, parse_pair, parse_triple, print_stdout, write_atomically};
+use crate::output::{self, number, parse_pair, parse_triple, print_stdout, Sink, Target};
 use crate::{FileFormat, TableFormat, TextFormat};
 
-/// Prints `text` to standard output or writes it to `out`.
-fn emit(text: &str, out: Option<&Path>) -> Result<()> {
+/// Prints `text` to standard output or writes it whole to `out` (checked before the work).
+fn emit(text: &str, out: Option<&Target>) -> Result<()> {
     match out {
-        Some(path) => write_atomically(path, text.as_bytes()),
+        Some(target) => target.write_whole(text.as_bytes()),
         None => print_stdout(text),
     }
 }
+
+/// The most speeds `eig` sweeps: each is computed twice (the modes are labelled by a first
+/// pass, the rows streamed by a second, so memory stays bounded whatever the count) and
+/// written as a row of about 170 bytes of CSV or 400 of JSON.
+pub const MAX_EIG_SPEEDS: u64 = 10_000_000;
+
+/// The most speeds an eigenvalue plot draws: a longer sweep is thinned to every k-th speed
+/// (a figure a few thousand pixels wide shows no more).
+pub const MAX_PLOT_SPEEDS: u64 = 20_000;
 
 pub fn presets() -> Result<()> {
     let mut text = String::new();
@@ -72,6 +81,7 @@ pub fn show(arg: &str) -> Result<()> {
 }
 
 pub fn convert(arg: &str, to: FileFormat, keep_form: bool, out: Option<&Path>) -> Result<()> {
+    let out = out.map(|p| Target::check("--out", p)).transpose()?;
     let bike = load(arg)?;
     let bicycle = if keep_form {
         bike.bicycle.clone()
@@ -94,7 +104,7 @@ pub fn convert(arg: &str, to: FileFormat, keep_form: bool, out: Option<&Path>) -
             format!("writing {}", bike.label)
         }
     })?;
-    emit(&text, out)
+    emit(&text, out.as_ref())
 }
 
 fn canonical(bike: &LoadedBike) -> Result<Canonical> {
@@ -165,43 +175,109 @@ pub fn eig(
     out: Option<&Path>,
     plot: Option<&Path>,
 ) -> Result<()> {
+    let out = out.map(|p| Target::check("--out", p)).transpose()?;
+    let plot = plot
+        .map(|p| {
+            // Fail on an unknown extension before any work is done.
+            whipple_report::Format::from_path(p)
+                .with_context(|| format!("--plot {}", p.display()))?;
+            Target::check("--plot", p)
+        })
+        .transpose()?;
+    if let (Some(a), Some(b)) = (&out, &plot) {
+        output::distinct(a, b)?;
+    }
     let bike = load(arg)?;
     let (start, stop, step) = parse_triple(speeds, "--speeds")?;
-    let grid = sweep::speed_grid(start, stop, step).context("--speeds")?;
-    let c = canonical(&bike)?;
-    let s = sweep::eigen_sweep(&c, &grid)?;
-    if let Some(path) = plot {
-        let critical = stability::critical_speeds(&c, start.min(stop), stop.max(start + step))?;
-        crate::figures::eigen_plot(&bike, &s, &critical, path)?;
+    let grid = sweep::SpeedGrid::new(start, stop, step).context("--speeds")?;
+    if grid.len() > MAX_EIG_SPEEDS {
+        bail!(
+            "--speeds {speeds} holds {} speeds, more than the limit of {MAX_EIG_SPEEDS} \
+             (each speed is solved twice and written as a row of about 170 bytes: the limit \
+             is about 1.7 GB of CSV); use a larger step or a narrower range",
+            grid.len()
+        );
     }
-    let text = match format {
-        TableFormat::Csv => whipple_report::eigen_csv(&s),
-        TableFormat::Json => {
-            let mut rows = Vec::with_capacity(s.speeds.len());
-            for (v, values) in s.speeds.iter().zip(&s.eigenvalues) {
-                number(*v)?;
-                let mut eigs = Vec::new();
-                for (l, mode) in values.iter().zip(s.modes) {
-                    number(l.re)?;
-                    number(l.im)?;
-                    eigs.push(json!({"re": l.re, "im": l.im, "mode": mode.name()}));
-                }
-                rows.push(json!({"v": v, "eigenvalues": eigs}));
-            }
-            let doc = json!({
-                "bike": bike.label,
-                "modes": s.modes.map(|m| m.name()),
-                "rows": rows,
-            });
-            format!("{}\n", serde_json::to_string_pretty(&doc)?)
-        }
-        TableFormat::Table => format!(
+    let c = canonical(&bike)?;
+    // Every output is opened (its temporary file created) before the work.
+    let mut sink = match &out {
+        Some(target) => target.open()?,
+        None => Sink::stdout(),
+    };
+    let plot_sink = plot.as_ref().map(Target::open).transpose()?;
+    let plan = sweep::SweepPlan::new(&c, grid.iter())?;
+    let modes = plan.modes();
+    let every = grid.len().div_ceil(MAX_PLOT_SPEEDS).max(1);
+    let last = grid.len() - 1;
+    let mut shown = sweep::EigenSweep {
+        speeds: Vec::new(),
+        eigenvalues: Vec::new(),
+        modes,
+    };
+    match format {
+        TableFormat::Csv => sink.text(whipple_report::EIGEN_CSV_HEADER)?,
+        TableFormat::Json => sink.text(&format!(
+            "{{\n  \"bike\": {},\n  \"modes\": {},\n  \"rows\": [",
+            serde_json::to_string(&bike.label)?,
+            serde_json::to_string(&modes.map(|m| m.name()))?
+        ))?,
+        TableFormat::Table => sink.text(&format!(
             "{}: eigenvalues [1/s] against forward speed v [m/s]\n{}",
             bike.label,
-            whipple_report::eigen_table(&s)
-        ),
-    };
-    emit(&text, out)
+            whipple_report::eigen_table_header(&modes)
+        ))?,
+    }
+    let mut i = 0u64;
+    plan.rows(|v, values| -> Result<()> {
+        if let Some(l) = values
+            .iter()
+            .find(|l| !(l.re.is_finite() && l.im.is_finite()))
+        {
+            bail!("the eigenvalue {l} at v = {v} m/s is not a finite number");
+        }
+        let row = match format {
+            TableFormat::Csv => whipple_report::eigen_csv_row(v, values),
+            TableFormat::Table => whipple_report::eigen_table_row(v, values),
+            TableFormat::Json => {
+                let eigs: Vec<_> = values
+                    .iter()
+                    .zip(modes)
+                    .map(|(l, mode)| json!({"re": l.re, "im": l.im, "mode": mode.name()}))
+                    .collect();
+                format!(
+                    "{}\n    {}",
+                    if i == 0 { "" } else { "," },
+                    serde_json::to_string(&json!({"v": v, "eigenvalues": eigs}))?
+                )
+            }
+        };
+        sink.text(&row)?;
+        if plot_sink.is_some() && (i % every == 0 || i == last) {
+            shown.speeds.push(v);
+            shown.eigenvalues.push(*values);
+        }
+        i += 1;
+        Ok(())
+    })?;
+    if format == TableFormat::Json {
+        sink.text("\n  ]\n}\n")?;
+    }
+    let mut finished = vec![sink.finish()?];
+    if let (Some(mut plot_sink), Some(target)) = (plot_sink, &plot) {
+        if every > 1 {
+            eprintln!(
+                "note: {} draws every {every}th of the {} speeds ({} points)",
+                target.describe(),
+                grid.len(),
+                shown.speeds.len()
+            );
+        }
+        let critical = stability::critical_speeds(&c, start.min(stop), stop.max(start + step))?;
+        let bytes = crate::figures::eigen_plot_bytes(&bike, &shown, &critical, target.path())?;
+        plot_sink.bytes(&bytes)?;
+        finished.push(plot_sink.finish()?);
+    }
+    output::commit(finished)
 }
 
 pub fn modes(arg: &str, speed: f64, format: TextFormat) -> Result<()> {
@@ -210,7 +286,8 @@ pub fn modes(arg: &str, speed: f64, format: TextFormat) -> Result<()> {
         bail!("--speed must be a finite number, got {speed}");
     }
     let c = canonical(&bike)?;
-    let pairs: Vec<_> = whipple::analysis::modes::mode_shapes(&c, speed)?
+    let pairs: Vec<_> = whipple::analysis::modes::mode_shapes(&c, speed)
+        .with_context(|| format!("--speed {speed}"))?
         .into_iter()
         .map(|shape| (shape.pair, shape.mode.name()))
         .collect();
@@ -387,8 +464,10 @@ pub fn speeds(arg: &str, range: &str, format: TextFormat) -> Result<()> {
 }
 
 pub fn draw(arg: &str, out: &Path) -> Result<()> {
+    whipple_report::Format::from_path(out).with_context(|| format!("--out {}", out.display()))?;
+    let target = Target::check("--out", out)?;
     let bike = load(arg)?;
-    crate::figures::side_view(&bike, out)
+    crate::figures::side_view(&bike, &target)
 }
 
 pub fn serve(address: std::net::IpAddr, port: u16, open: bool) -> Result<()> {

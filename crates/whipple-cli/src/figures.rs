@@ -7,34 +7,32 @@ use whipple::analysis::{stability::CriticalSpeeds, sweep::EigenSweep};
 use whipple_report::{EigenPlotOptions, Figure};
 
 use crate::bike::LoadedBike;
-use crate::output::write_atomically;
+use crate::output::Target;
 
-fn write_figure(figure: &Figure, path: &Path) -> Result<()> {
-    let bytes = figure
+/// The figure's bytes in the format `path`'s extension names.
+fn render(figure: &Figure, path: &Path) -> Result<Vec<u8>> {
+    figure
         .render_for_path(path)
-        .with_context(|| format!("drawing {}", path.display()))?;
-    write_atomically(path, &bytes)
+        .with_context(|| format!("drawing {}", path.display()))
 }
 
-pub fn eigen_plot(
+/// The eigenvalue plot of `sweep`, rendered for `path` (not written).
+pub fn eigen_plot_bytes(
     bike: &LoadedBike,
     sweep: &EigenSweep,
     critical: &CriticalSpeeds,
     path: &Path,
-) -> Result<()> {
-    // Fail on an unknown extension before any work is done.
-    whipple_report::Format::from_path(path)
-        .with_context(|| format!("--plot {}", path.display()))?;
+) -> Result<Vec<u8>> {
     let options = EigenPlotOptions {
         title: Some(format!("{}: eigenvalues against forward speed", bike.label)),
         ..EigenPlotOptions::default()
     };
     let figure = whipple_report::eigen_plot(sweep, critical, &options)?;
-    write_figure(&figure, path)
+    render(&figure, path)
 }
 
-pub fn side_view(bike: &LoadedBike, path: &Path) -> Result<()> {
-    whipple_report::Format::from_path(path).with_context(|| format!("--out {}", path.display()))?;
+/// JBike6's side view, written to `target`.
+pub fn side_view(bike: &LoadedBike, target: &Target) -> Result<()> {
     let figure = whipple_report::side_view(&bike.benchmark, bike.bicycle.jbike6(), &bike.label);
-    write_figure(&figure, path)
+    target.write_whole(&render(&figure, target.path())?)
 }

@@ -16,7 +16,7 @@ use whipple::nonlinear::{
 };
 
 use crate::bike::{load, LoadedBike};
-use crate::output::{number, print_stdout, write_atomically};
+use crate::output::{self, number, Sink, Target};
 use crate::TableFormat;
 
 /// The integrators on offer.
@@ -97,6 +97,14 @@ fn torque(option: &str, text: &str) -> Result<TorqueFn> {
     }
 }
 
+/// The most steps one run may take (RK4 refuses more up front; the adaptive integrator stops
+/// there): every step is held as a [`Sample`] and written as a row of text, so this bounds the
+/// memory of a run to about 1 GiB.
+pub const MAX_STEPS: usize = 1_500_000;
+
+/// About how long one CSV row of a sample is, in bytes (20 shortest round-trip numbers).
+const ROW_BYTES: usize = 400;
+
 fn check_finite(option: &str, x: f64) -> Result<()> {
     if !x.is_finite() {
         bail!("{option} must be a finite number, got {x}");
@@ -145,8 +153,17 @@ fn settings(args: &SimulateArgs) -> Result<SimulationSettings> {
                 );
             }
             let steps = args.duration / dt;
-            if steps > 1e8 {
-                bail!("--duration / --dt asks for {steps:.0} steps, more than the limit of 1e8");
+            if steps > MAX_STEPS as f64 {
+                bail!(
+                    "--duration {} with --dt {dt:e} asks for {steps:.3e} steps, more than the \
+                     limit of {MAX_STEPS} (each step is kept as a sample of {} bytes and \
+                     written as a row of about {ROW_BYTES} bytes: the limit keeps a run within \
+                     about {:.1} GiB); use a larger --dt or a shorter --duration",
+                    args.duration,
+                    std::mem::size_of::<Sample>(),
+                    (MAX_STEPS * (std::mem::size_of::<Sample>() + ROW_BYTES)) as f64
+                        / (1u64 << 30) as f64
+                );
             }
             Integrator::Rk4 { dt }
         }
@@ -162,6 +179,8 @@ fn settings(args: &SimulateArgs) -> Result<SimulationSettings> {
             Integrator::Dopri5(Dopri5Params {
                 rtol,
                 atol: rtol * 1e-2,
+                // The same memory bound as RK4's: a run that needs more steps stops there.
+                max_steps: MAX_STEPS,
                 ..Dopri5Params::default()
             })
         }
@@ -429,7 +448,8 @@ fn short_outcome(run: &Simulation) -> String {
     }
 }
 
-fn plot(bike: &LoadedBike, args: &SimulateArgs, run: &Simulation, path: &Path) -> Result<()> {
+/// The plot of `run`, rendered for `path` (not written).
+fn plot(bike: &LoadedBike, args: &SimulateArgs, run: &Simulation, path: &Path) -> Result<Vec<u8>> {
     let samples: Vec<&Sample> = finite_samples(run).collect();
     let mut events = Vec::new();
     match run.outcome {
@@ -454,17 +474,30 @@ fn plot(bike: &LoadedBike, args: &SimulateArgs, run: &Simulation, path: &Path) -
         outcome: Some(short_outcome(run)),
     };
     let figure = whipple_report::time_series_plot(&series)?;
-    let bytes = figure
+    figure
         .render_for_path(path)
-        .with_context(|| format!("drawing {}", path.display()))?;
-    write_atomically(path, &bytes)
+        .with_context(|| format!("drawing {}", path.display()))
 }
 
 pub fn run(args: &SimulateArgs) -> Result<()> {
     let settings_without_progress = settings(args)?;
-    if let Some(path) = &args.plot {
-        whipple_report::Format::from_path(path)
-            .with_context(|| format!("--plot {}", path.display()))?;
+    // Every output is checked before the work, and none is put in place unless all are written.
+    let plot_target = args
+        .plot
+        .as_deref()
+        .map(|path| {
+            whipple_report::Format::from_path(path)
+                .with_context(|| format!("--plot {}", path.display()))?;
+            Target::check("--plot", path)
+        })
+        .transpose()?;
+    let out_target = args
+        .out
+        .as_deref()
+        .map(|path| Target::check("--out", path))
+        .transpose()?;
+    if let (Some(a), Some(b)) = (&out_target, &plot_target) {
+        output::distinct(a, b)?;
     }
     let bike = load(&args.bike)?;
     let model = Model::new(&bike.benchmark)
@@ -506,18 +539,25 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     bar.finish_and_clear();
 
     let (outcome, failed) = describe(&run);
-    if let Some(path) = &args.plot {
-        plot(&bike, args, &run, path)?;
+    let mut finished = Vec::new();
+    if let Some(target) = &plot_target {
+        let bytes = plot(&bike, args, &run, target.path())?;
+        let mut sink = target.open()?;
+        sink.bytes(&bytes)?;
+        finished.push(sink.finish()?);
     }
     let text = match args.format {
         TableFormat::Csv => csv(&run)?,
         TableFormat::Json => json_doc(&bike, args, &run, &outcome)?,
         TableFormat::Table => table(&bike, args, &run, &outcome)?,
     };
-    match &args.out {
-        Some(path) => write_atomically(path, text.as_bytes())?,
-        None => print_stdout(&text)?,
-    }
+    let mut sink = match &out_target {
+        Some(target) => target.open()?,
+        None => Sink::stdout(),
+    };
+    sink.text(&text)?;
+    finished.push(sink.finish()?);
+    output::commit(finished)?;
     if args.format != TableFormat::Table || args.out.is_some() {
         eprintln!("{}: {outcome}", bike.label);
     }

@@ -20,7 +20,7 @@ use whipple::nonlinear::Model;
 use whipple_report::{line_plot, xy_log_plot, Dash, Figure, Marker, Series, XyPlotOptions};
 
 use crate::bike::{load, LoadedBike};
-use crate::output::{number, parse_triple, write_atomically};
+use crate::output::{self, number, parse_triple, Finished, ReportDir};
 
 /// Which linearizations to compare with the linear model.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -62,10 +62,11 @@ pub fn validate(
         MethodChoice::Ad => vec![Method::Exact],
         MethodChoice::Both => vec![Method::FiniteDifferences, Method::Exact],
     };
-    if let Some(dir) = report {
-        std::fs::create_dir_all(dir)
-            .with_context(|| format!("creating the report directory {}", dir.display()))?;
-    }
+    // The report directory is checked (and created when missing) before any work; a failed
+    // run removes a directory it created and leaves no partial report in any directory.
+    let report_dir = report
+        .map(|dir| ReportDir::prepare("--report", dir))
+        .transpose()?;
     let study = StudyParams::default();
     // One run per method, so that each is timed on its own.
     let mut timings = Vec::new();
@@ -96,10 +97,17 @@ pub fn validate(
         ValidateFormat::Csv => csv(&sweep, &shown)?,
         ValidateFormat::Json => json_text(&bike, &sweep, &shown)?,
     };
-    crate::output::print_stdout(&text)?;
-    if let Some(dir) = report {
-        write_report(&bike, &sweep, &shown, &timings, dir)?;
-        eprintln!("wrote the validation report to {}", dir.display());
+    // Every report file is drawn and written to its temporary file before anything is
+    // printed or put in place.
+    let staged = report_dir
+        .as_ref()
+        .map(|dir| write_report(&bike, &sweep, &shown, &timings, dir))
+        .transpose()?;
+    output::print_stdout(&text)?;
+    if let (Some(dir), Some(staged)) = (report_dir, staged) {
+        output::commit(staged)?;
+        eprintln!("wrote the validation report to {}", dir.path().display());
+        dir.keep();
     }
     Ok(())
 }
@@ -172,11 +180,25 @@ fn json_text(bike: &LoadedBike, sweep: &ValidationSweep, shown: &[&MethodSweep])
     Ok(format!("{}\n", serde_json::to_string_pretty(&doc)?))
 }
 
-fn write_figure(figure: &Figure, path: &Path) -> Result<()> {
+/// Writes `bytes` as the report's file `name` to its temporary file, for [`output::commit`].
+fn stage(dir: &ReportDir, name: &str, bytes: &[u8], staged: &mut Vec<Finished>) -> Result<()> {
+    let mut sink = dir.file(name)?.open()?;
+    sink.bytes(bytes)?;
+    staged.push(sink.finish()?);
+    Ok(())
+}
+
+fn write_figure(
+    figure: &Figure,
+    dir: &ReportDir,
+    name: &str,
+    staged: &mut Vec<Finished>,
+) -> Result<()> {
+    let path = dir.path().join(name);
     let bytes = figure
-        .render_for_path(path)
+        .render_for_path(&path)
         .with_context(|| format!("drawing {}", path.display()))?;
-    write_atomically(path, &bytes)
+    stage(dir, name, &bytes, staged)
 }
 
 fn markers(sweep: &ValidationSweep) -> Vec<Marker> {
@@ -239,9 +261,15 @@ fn write_report(
     sweep: &ValidationSweep,
     shown: &[&MethodSweep],
     timings: &[(Method, f64)],
-    dir: &Path,
-) -> Result<()> {
-    write_atomically(&dir.join("validation.csv"), csv(sweep, shown)?.as_bytes())?;
+    dir: &ReportDir,
+) -> Result<Vec<Finished>> {
+    let mut staged = Vec::new();
+    stage(
+        dir,
+        "validation.csv",
+        csv(sweep, shown)?.as_bytes(),
+        &mut staged,
+    )?;
     let marks = markers(sweep);
     let mut figures = Vec::new();
     for (file, part, what) in [
@@ -277,7 +305,12 @@ fn write_report(
             y_label: what.to_string(),
             ..XyPlotOptions::default()
         };
-        write_figure(&line_plot(&series, &marks, &options)?, &dir.join(file))?;
+        write_figure(
+            &line_plot(&series, &marks, &options)?,
+            dir,
+            file,
+            &mut staged,
+        )?;
         figures.push((
             file.to_string(),
             format!("{what} of the eigenvalues against speed, both models"),
@@ -297,7 +330,9 @@ fn write_report(
         };
         write_figure(
             &xy_log_plot(&[difference_series(sweep, m)], &marks, &options)?,
-            &dir.join(&file),
+            dir,
+            &file,
+            &mut staged,
         )?;
         figures.push((
             file,
@@ -323,7 +358,9 @@ fn write_report(
     };
     write_figure(
         &xy_log_plot(&all, &marks, &options)?,
-        &dir.join("difference_all.png"),
+        dir,
+        "difference_all.png",
+        &mut staged,
     )?;
     figures.push((
         "difference_all.png".into(),
@@ -348,7 +385,9 @@ fn write_report(
             .collect();
         write_figure(
             &xy_log_plot(&near, &marks, &options)?,
-            &dir.join("difference_capsize.png"),
+            dir,
+            "difference_capsize.png",
+            &mut staged,
         )?;
         figures.push((
             "difference_capsize.png".into(),
@@ -356,7 +395,8 @@ fn write_report(
         ));
     }
     let summary = summary(bike, sweep, shown, timings, &figures)?;
-    write_atomically(&dir.join("summary.md"), summary.as_bytes())
+    stage(dir, "summary.md", summary.as_bytes(), &mut staged)?;
+    Ok(staged)
 }
 
 fn sci(x: f64) -> String {

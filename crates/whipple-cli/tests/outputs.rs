@@ -1,0 +1,251 @@
+//! Issue 10, outputs: every output is checked before the work, written whole or not at all,
+//! written through symbolic links and directly into devices, never replacing something that is
+//! not a regular file. The real binary, run as a user runs it.
+
+mod common;
+
+use std::fs;
+use std::io::{BufRead, BufReader};
+use std::process::{Command, Stdio};
+
+use common::{scratch, stderr_of_failure, stdout, whipple};
+
+const EIG: [&str; 5] = ["eig", "--bike", "benchmark", "--speeds", "0:10:0.5"];
+
+fn eig_with(extra: &[&str]) -> std::process::Output {
+    let mut args = EIG.to_vec();
+    args.extend_from_slice(extra);
+    whipple(&args)
+}
+
+#[test]
+fn issue_10_dev_full_is_an_error_naming_the_option() {
+    if fs::metadata("/dev/full").is_err() {
+        return; // not a Linux machine
+    }
+    let err = stderr_of_failure(&eig_with(&["--out", "/dev/full"]));
+    assert!(err.contains("--out /dev/full"), "{err}");
+    // /dev/full is still the device.
+    use std::os::unix::fs::FileTypeExt;
+    assert!(fs::metadata("/dev/full")
+        .expect("/dev/full")
+        .file_type()
+        .is_char_device());
+}
+
+#[test]
+fn issue_10_dev_null_is_written_in_place_and_stays_a_device() {
+    use std::os::unix::fs::FileTypeExt;
+    if fs::metadata("/dev/null").is_err() {
+        return;
+    }
+    stdout(&eig_with(&["--out", "/dev/null"]));
+    assert!(fs::metadata("/dev/null")
+        .expect("/dev/null")
+        .file_type()
+        .is_char_device());
+}
+
+#[test]
+fn issue_10_a_directory_as_out_is_refused_naming_out() {
+    let dir = scratch("out-is-a-directory");
+    let err = stderr_of_failure(&eig_with(&["--out", dir.to_str().expect("utf-8")]));
+    assert!(
+        err.contains("--out") && err.contains("is a directory"),
+        "{err}"
+    );
+}
+
+#[test]
+fn issue_10_a_missing_directory_is_refused_before_the_work() {
+    let dir = scratch("missing-directory");
+    let out = dir.join("old.csv");
+    fs::write(&out, "old contents\n").expect("write");
+    let plot = dir.join("no-such-dir").join("plot.svg");
+    let err = stderr_of_failure(&eig_with(&[
+        "--out",
+        out.to_str().expect("utf-8"),
+        "--plot",
+        plot.to_str().expect("utf-8"),
+    ]));
+    assert!(
+        err.contains("--plot") && err.contains("does not exist"),
+        "{err}"
+    );
+    assert_eq!(fs::read_to_string(&out).expect("read"), "old contents\n");
+}
+
+#[test]
+fn issue_10_a_failing_run_leaves_the_old_file_intact() {
+    let dir = scratch("failing-run");
+    let out = dir.join("old.csv");
+    fs::write(&out, "old contents\n").expect("write");
+    // A bicycle that cannot be read fails after the outputs were checked.
+    let err = stderr_of_failure(&whipple(&[
+        "eig",
+        "--bike",
+        "no-such-bicycle.toml",
+        "--speeds",
+        "0:1:1",
+        "--out",
+        out.to_str().expect("utf-8"),
+    ]));
+    assert!(err.contains("no-such-bicycle"), "{err}");
+    assert_eq!(fs::read_to_string(&out).expect("read"), "old contents\n");
+    // No temporary file is left beside it.
+    let names: Vec<_> = fs::read_dir(&dir)
+        .expect("list")
+        .map(|e| e.expect("entry").file_name())
+        .collect();
+    assert_eq!(names, vec![std::ffi::OsString::from("old.csv")]);
+}
+
+#[test]
+fn issue_10_a_symlink_stays_a_link_and_its_target_is_written() {
+    let dir = scratch("symlink-out");
+    let real = dir.join("real.csv");
+    fs::write(&real, "old\n").expect("write");
+    let link = dir.join("link.csv");
+    std::os::unix::fs::symlink("real.csv", &link).expect("symlink");
+    stdout(&eig_with(&[
+        "--format",
+        "csv",
+        "--out",
+        link.to_str().expect("utf-8"),
+    ]));
+    assert!(fs::symlink_metadata(&link)
+        .expect("link")
+        .file_type()
+        .is_symlink());
+    let text = fs::read_to_string(&real).expect("read");
+    assert!(text.starts_with("v,re1,im1"), "{text}");
+}
+
+#[test]
+fn issue_10_a_replaced_file_keeps_its_permissions() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = scratch("permissions");
+    let out = dir.join("eig.csv");
+    fs::write(&out, "old\n").expect("write");
+    fs::set_permissions(&out, fs::Permissions::from_mode(0o640)).expect("chmod");
+    stdout(&eig_with(&["--out", out.to_str().expect("utf-8")]));
+    let mode = fs::metadata(&out).expect("meta").permissions().mode() & 0o777;
+    assert_eq!(mode, 0o640);
+}
+
+#[test]
+fn issue_10_out_and_plot_naming_one_file_are_refused() {
+    let dir = scratch("same-file");
+    let path = dir.join("x.svg");
+    let p = path.to_str().expect("utf-8");
+    let err = stderr_of_failure(&eig_with(&["--out", p, "--plot", p]));
+    assert!(err.contains("name the same file"), "{err}");
+    assert!(!path.exists());
+}
+
+/// `validate --report` left a CSV and six PNGs behind when `summary.md` could not be written.
+#[test]
+fn issue_10_validate_report_is_whole_or_not_at_all() {
+    let dir = scratch("partial-report");
+    let report = dir.join("report");
+    fs::create_dir_all(report.join("summary.md")).expect("a directory in the way");
+    let err = stderr_of_failure(&whipple(&[
+        "validate",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "4:5:0.5",
+        "--report",
+        report.to_str().expect("utf-8"),
+    ]));
+    assert!(
+        err.contains("--report") && err.contains("summary.md"),
+        "{err}"
+    );
+    let names: Vec<_> = fs::read_dir(&report)
+        .expect("list")
+        .map(|e| e.expect("entry").file_name())
+        .collect();
+    assert_eq!(names, vec![std::ffi::OsString::from("summary.md")]);
+}
+
+/// A report directory the command created is removed again when the command fails.
+#[test]
+fn issue_10_validate_report_into_a_missing_parent_is_refused_before_the_work() {
+    let dir = scratch("report-missing-parent");
+    let report = dir.join("a").join("b");
+    let err = stderr_of_failure(&whipple(&[
+        "validate",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "4:5:0.5",
+        "--report",
+        report.to_str().expect("utf-8"),
+    ]));
+    assert!(
+        err.contains("--report") && err.contains("does not exist"),
+        "{err}"
+    );
+    assert!(!dir.join("a").exists());
+}
+
+/// `simulate --duration 1e-4 --dt 1e-12` was accepted (1e8 steps) and grew towards ~25 GB.
+#[test]
+fn issue_10_simulate_refuses_runs_past_the_memory_bound() {
+    let err = stderr_of_failure(&whipple(&[
+        "simulate",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "5",
+        "--duration",
+        "1e-4",
+        "--dt",
+        "1e-12",
+    ]));
+    assert!(err.contains("--dt") && err.contains("GiB"), "{err}");
+}
+
+/// `simulate --out` and `--plot` are checked before the run and land together.
+#[test]
+fn issue_10_simulate_checks_its_outputs_before_the_run() {
+    let dir = scratch("simulate-outputs");
+    let out = dir.join("run.csv");
+    let err = stderr_of_failure(&whipple(&[
+        "simulate",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "5",
+        "--duration",
+        "0.1",
+        "--out",
+        out.to_str().expect("utf-8"),
+        "--plot",
+        dir.to_str().expect("utf-8"),
+    ]));
+    assert!(err.contains("--plot"), "{err}");
+    assert!(!out.exists());
+}
+
+/// `whipple eig ... | head -1`: the reader going away ends the run quietly, with success.
+#[test]
+fn issue_10_a_closed_stdout_ends_quietly() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_whipple"))
+        .args(["eig", "--bike", "benchmark", "--speeds", "0:1000:0.001"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("runs");
+    {
+        let out = child.stdout.take().expect("stdout");
+        let mut first = String::new();
+        BufReader::new(out).read_line(&mut first).expect("a line");
+        assert!(!first.is_empty());
+    } // the pipe is closed here
+    let output = child.wait_with_output().expect("ends");
+    let err = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{err}");
+    assert!(err.is_empty(), "{err}");
+}
