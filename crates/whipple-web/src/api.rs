@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 use axum::body::Bytes;
-use axum::extract::rejection::BytesRejection;
+use axum::extract::rejection::{BytesRejection, PathRejection};
 use axum::extract::{DefaultBodyLimit, Path, Request, State};
 use axum::http::{header, HeaderValue, StatusCode};
 use axum::middleware::{self, Next};
@@ -115,10 +115,9 @@ async fn method_not_allowed(request: Request) -> ApiError {
     )
 }
 
-/// Reads a JSON body: 413 past the size limit, 400 when it is not JSON, 422 when it is JSON of
-/// the wrong shape.
-fn json_body<T: DeserializeOwned>(body: Result<Bytes, BytesRejection>) -> Result<T, ApiError> {
-    let bytes = body.map_err(|rejection| {
+/// The request body: 413 past the size limit, 400 when it cannot be read.
+fn body_bytes(body: Result<Bytes, BytesRejection>) -> Result<Bytes, ApiError> {
+    body.map_err(|rejection| {
         if rejection.status() == StatusCode::PAYLOAD_TOO_LARGE {
             ApiError::new(
                 StatusCode::PAYLOAD_TOO_LARGE,
@@ -132,7 +131,13 @@ fn json_body<T: DeserializeOwned>(body: Result<Bytes, BytesRejection>) -> Result
                 rejection.body_text(),
             )
         }
-    })?;
+    })
+}
+
+/// Reads a JSON body: 413 past the size limit, 400 when it is not JSON, 422 when it is JSON of
+/// the wrong shape.
+fn json_body<T: DeserializeOwned>(body: Result<Bytes, BytesRejection>) -> Result<T, ApiError> {
+    let bytes = body_bytes(body)?;
     serde_json::from_slice(&bytes).map_err(|e| {
         use serde_json::error::Category;
         match e.classify() {
@@ -290,7 +295,15 @@ async fn list_presets() -> Json<Vec<PresetSummary>> {
     )
 }
 
-async fn get_preset(Path(name): Path<String>) -> Result<Json<Value>, ApiError> {
+async fn get_preset(name: Result<Path<String>, PathRejection>) -> Result<Json<Value>, ApiError> {
+    // A name that is not UTF-8 once decoded (`/api/presets/%ff`) is answered in JSON too.
+    let Path(name) = name.map_err(|rejection| {
+        ApiError::new(
+            StatusCode::NOT_FOUND,
+            "not_found",
+            format!("no such preset: {}", rejection.body_text()),
+        )
+    })?;
     let preset = presets::find(&name)?;
     Ok(Json(bicycle_json(&preset.bicycle())?))
 }
@@ -320,12 +333,24 @@ struct Validated {
     side_view: SideView,
 }
 
-async fn validate(body: Result<Bytes, BytesRejection>) -> Result<Json<Validated>, ApiError> {
-    let request: BikeRequest = json_body(body)?;
+async fn validate(
+    State(state): State<AppState>,
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Json<Validated>, ApiError> {
+    let bytes = body_bytes(body)?;
+    compute(&state, "send a smaller bicycle", move |_| {
+        validate_bike(bytes)
+    })
+    .await
+    .map(Json)
+}
+
+fn validate_bike(bytes: Bytes) -> Result<Validated, ApiError> {
+    let request: BikeRequest = json_body(Ok(bytes))?;
     let bike = bicycle(&request.bike)?;
     let benchmark = bike.benchmark()?;
     let view = side_view(&bike, &benchmark);
-    Ok(Json(Validated {
+    Ok(Validated {
         name: bike.name.clone(),
         form: form_name(&bike.description),
         derived: Derived {
@@ -335,7 +360,7 @@ async fn validate(body: Result<Bytes, BytesRejection>) -> Result<Json<Validated>
         },
         benchmark,
         side_view: view,
-    }))
+    })
 }
 
 #[derive(Serialize)]
@@ -343,12 +368,20 @@ struct TomlText {
     toml: String,
 }
 
-async fn to_toml(body: Result<Bytes, BytesRejection>) -> Result<Json<TomlText>, ApiError> {
-    let request: BikeRequest = json_body(body)?;
-    let bike = bicycle(&request.bike)?;
-    Ok(Json(TomlText {
-        toml: io::write(&bike, Format::Toml)?,
-    }))
+async fn to_toml(
+    State(state): State<AppState>,
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Json<TomlText>, ApiError> {
+    let bytes = body_bytes(body)?;
+    compute(&state, "send a smaller bicycle", move |_| {
+        let request: BikeRequest = json_body(Ok(bytes))?;
+        let bike = bicycle(&request.bike)?;
+        Ok(TomlText {
+            toml: io::write(&bike, Format::Toml)?,
+        })
+    })
+    .await
+    .map(Json)
 }
 
 #[derive(Deserialize, Clone, Copy)]
@@ -371,17 +404,27 @@ struct Parsed {
     bike: Value,
 }
 
-async fn parse_file(body: Result<Bytes, BytesRejection>) -> Result<Json<Parsed>, ApiError> {
-    let request: ParseRequest = json_body(body)?;
-    let format = match request.format {
-        FileFormat::Toml => Format::Toml,
-        FileFormat::Json => Format::Json,
-        FileFormat::M => Format::Jbike6M,
-    };
-    let bike = io::parse(&request.text, format)?;
-    Ok(Json(Parsed {
-        bike: bicycle_json(&bike)?,
-    }))
+async fn parse_file(
+    State(state): State<AppState>,
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Json<Parsed>, ApiError> {
+    let bytes = body_bytes(body)?;
+    // Parsing a file of up to the body limit is work: on the computing pool, not the
+    // workers that answer `/api/health`.
+    compute(&state, "send a smaller file", move |_| {
+        let request: ParseRequest = json_body(Ok(bytes))?;
+        let format = match request.format {
+            FileFormat::Toml => Format::Toml,
+            FileFormat::Json => Format::Json,
+            FileFormat::M => Format::Jbike6M,
+        };
+        let bike = io::parse(&request.text, format)?;
+        Ok(Parsed {
+            bike: bicycle_json(&bike)?,
+        })
+    })
+    .await
+    .map(Json)
 }
 
 #[derive(Deserialize, Clone, Copy)]

@@ -18,6 +18,7 @@
 
 mod api;
 mod assets;
+mod connection;
 mod error;
 pub mod geometry;
 pub mod modes;
@@ -51,6 +52,16 @@ pub struct Limits {
     pub queue_timeout: Duration,
     /// Computations run at once on the blocking pool (default: the number of CPUs, at least 2).
     pub max_concurrent_computations: usize,
+    /// Longest time a client may take to send a request's headers, from the moment the
+    /// server waits for them (default 10 s); then the connection is closed. Guards against a
+    /// client that trickles a byte at a time to hold a connection.
+    pub header_timeout: Duration,
+    /// Longest time a connection may go without a byte read or written (default 60 s, longer
+    /// than any request may take); then it is closed. Guards against clients that stop reading.
+    pub idle_timeout: Duration,
+    /// Connections served at once (default 256); further ones wait in the kernel's backlog
+    /// until one closes.
+    pub max_connections: usize,
 }
 
 impl Default for Limits {
@@ -66,6 +77,9 @@ impl Default for Limits {
             max_concurrent_computations: std::thread::available_parallelism()
                 .map_or(2, |n| n.get())
                 .max(2),
+            header_timeout: Duration::from_secs(10),
+            idle_timeout: Duration::from_secs(60),
+            max_connections: 256,
         }
     }
 }
@@ -153,15 +167,15 @@ impl Server {
         format!("http://{}/", self.address)
     }
 
-    /// Serves until `shutdown` completes, then finishes the requests under way.
+    /// Serves until `shutdown` completes, then finishes the requests under way (for at most
+    /// the request timeout). Each connection is bounded by [`Limits::header_timeout`] and
+    /// [`Limits::idle_timeout`], and at most [`Limits::max_connections`] are served at once.
     pub async fn serve_until(
         self,
         shutdown: impl Future<Output = ()> + Send + 'static,
     ) -> Result<(), ServeError> {
-        axum::serve(self.listener, app(self.limits))
-            .with_graceful_shutdown(shutdown)
-            .await
-            .map_err(ServeError::Serve)
+        connection::serve(self.listener, self.limits, shutdown).await;
+        Ok(())
     }
 }
 
