@@ -309,19 +309,24 @@ impl<I: Iterator<Item = f64> + Clone> SweepPlan<I> {
         mut row: impl FnMut(f64, &[Complex64; 4]) -> std::result::Result<(), E>,
     ) -> std::result::Result<(), E> {
         let weave_pair = self.modes[0] == Mode::Weave && self.modes[1] == Mode::Weave;
-        visit(&self.poly, self.speeds.clone(), self.share, |reported, values| {
-            let Some(v) = reported else {
-                return Ok(());
-            };
-            let mut reordered: [Complex64; 4] = self.order.map(|k| values[k]);
-            if weave_pair {
-                let (a, b) = (reordered[0], reordered[1]);
-                if b.im > a.im || (b.im == a.im && b.re > a.re) {
-                    reordered[0] = b;
-                    reordered[1] = a;
+        visit(
+            &self.poly,
+            self.speeds.clone(),
+            self.share,
+            |reported, values| {
+                let Some(v) = reported else {
+                    return Ok(());
+                };
+                let mut reordered: [Complex64; 4] = self.order.map(|k| values[k]);
+                if weave_pair {
+                    let (a, b) = (reordered[0], reordered[1]);
+                    if b.im > a.im || (b.im == a.im && b.re > a.re) {
+                        reordered[0] = b;
+                        reordered[1] = a;
+                    }
                 }
-            }
-            row(v, &reordered)
-        })
+                row(v, &reordered)
+            },
+        )
     }
 }

@@ -40,9 +40,9 @@ pub const VARIABLES: [&str; 7] = [
 /// The functions of one argument an expression may call (`log` is the natural logarithm, as
 /// `ln`).
 pub const FUNCTIONS: [&str; 26] = [
-    "abs", "acos", "acosh", "asin", "asinh", "atan", "atanh", "cbrt", "ceil", "cos", "cosh",
-    "exp", "floor", "fract", "ln", "log", "log10", "log2", "round", "sign", "signum", "sin",
-    "sinh", "sqrt", "tan", "tanh",
+    "abs", "acos", "acosh", "asin", "asinh", "atan", "atanh", "cbrt", "ceil", "cos", "cosh", "exp",
+    "floor", "fract", "ln", "log", "log10", "log2", "round", "sign", "signum", "sin", "sinh",
+    "sqrt", "tan", "tanh",
 ];
 
 /// The functions of two arguments.
@@ -603,10 +603,16 @@ mod tests {
     #[test]
     fn refuses_bad_expressions_by_rule() {
         for (text, expected) in [
-            ("sin(t", "expected `)` to close the call of `sin` at column 1, found the end"),
+            (
+                "sin(t",
+                "expected `)` to close the call of `sin` at column 1, found the end",
+            ),
             ("2*foo", "unknown name `foo` at column 3"),
             ("1/t", "not a finite number at rest"),
-            ("1+*2", "`*` at column 3 where a number, a name or `(` was expected"),
+            (
+                "1+*2",
+                "`*` at column 3 where a number, a name or `(` was expected",
+            ),
             ("(1", "to close the `(` at column 1"),
             ("1)", "the `)` at column 2 closes no `(`"),
             ("2 t", "`t` at column 3 follows an operand"),
