@@ -148,9 +148,9 @@ impl Votes {
     /// Counts the votes of one speed's tracked eigenvalues.
     pub fn add(&mut self, values: &[Complex64; 4]) {
         if let Some(labels) = vote(values) {
-            for k in 0..4 {
-                if let Some(m) = LABELS.iter().position(|&m| m == labels[k]) {
-                    self.votes[k][m] += 1;
+            for (column, label) in self.votes.iter_mut().zip(labels) {
+                if let Some(m) = LABELS.iter().position(|&m| m == label) {
+                    column[m] += 1;
                 }
             }
         }

@@ -52,7 +52,8 @@ impl SpeedGrid {
             });
         }
         let intervals = ((stop - start) / step * (1.0 + 1e-12) + 1e-9).floor();
-        if !(intervals + 1.0 <= MAX_GRID_SPEEDS) {
+        // Also refuses a NaN count (`!(x <= max)` is true for NaN).
+        if intervals.is_nan() || intervals + 1.0 > MAX_GRID_SPEEDS {
             return Err(Error::InvalidArgument {
                 what: "speeds",
                 rule: format!(
