@@ -278,8 +278,22 @@ fn to_toml(bike: &Bicycle) -> String {
 }
 
 fn toml_string(s: &str) -> String {
-    // serde_json's string escaping is valid TOML basic-string escaping.
-    serde_json::to_string(s).unwrap_or_else(|_| "\"\"".to_string())
+    // A TOML basic string: `"` and `\` escaped, and every control character (U+007F DEL
+    // included, which TOML refuses raw but JSON's escaping leaves as it is) as `\uXXXX`.
+    let mut out = String::with_capacity(s.len() + 2);
+    out.push('"');
+    for ch in s.chars() {
+        match ch {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            '\n' => out.push_str("\\n"),
+            '\t' => out.push_str("\\t"),
+            c if c.is_control() => out.push_str(&format!("\\u{:04X}", u32::from(c))),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
 }
 
 fn toml_array(values: &[f64; 3]) -> String {
@@ -328,9 +342,12 @@ pub fn benchmark_key_doc(key: &str) -> &'static str {
 fn to_jbike6_m(name: Option<&str>, p: &Jbike6Parameters) -> String {
     let mut out = String::new();
     if let Some(name) = name {
-        out.push_str(&format!("% {name}\n"));
+        // One comment line whatever the name holds (a newline would inject a statement).
+        out.push_str(&format!("% {}\n", name.escape_debug()));
     }
-    let num = |x: f64| format!("{x:.8}");
+    // Shortest text that reads back as the same number (8 decimals lost digits, and read a
+    // valid tiny inertia back as 0).
+    let num = |x: f64| format!("{x:?}");
     let arr = |v: &[f64; 3]| format!("[{} {} {}]", num(v[0]), num(v[1]), num(v[2]));
     out.push_str(&format!(
         "wheelbase = {};\nhead_angle = {};\ntrail = {};\ngravity = {};\n",
