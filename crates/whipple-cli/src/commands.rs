@@ -283,11 +283,11 @@ pub fn eig(
 pub fn modes(arg: &str, speed: f64, format: TextFormat) -> Result<()> {
     let bike = load(arg)?;
     if !speed.is_finite() {
-        bail!("--speed must be a finite number, got {speed}");
+        bail!("--speed must be a finite number, got {speed:?}");
     }
     let c = canonical(&bike)?;
     let pairs: Vec<_> = whipple::analysis::modes::mode_shapes(&c, speed)
-        .with_context(|| format!("--speed {speed}"))?
+        .with_context(|| format!("--speed {speed:?}"))?
         .into_iter()
         .map(|shape| (shape.pair, shape.mode.name()))
         .collect();

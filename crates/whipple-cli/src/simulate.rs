@@ -58,19 +58,19 @@ pub struct SimulateArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub lean_torque: Option<String>,
     /// Simulated time in seconds.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub duration: f64,
     /// The integrator.
     #[arg(long, value_enum, default_value = "rk4")]
     pub integrator: IntegratorChoice,
     /// Step of the RK4 integrator in seconds (default 0.001).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub dt: Option<f64>,
     /// Relative tolerance of the adaptive integrator (default 1e-8).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub rtol: Option<f64>,
     /// The bicycle has fallen when |lean| passes this angle, in degrees.
-    #[arg(long, default_value_t = 60.0)]
+    #[arg(long, default_value_t = 60.0, allow_hyphen_values = true)]
     pub fall_angle: f64,
     /// Go on when a wheel's normal force turns negative (by default the run stops there: the
     /// wheel would lift off, which the model's bilateral contacts cannot show).
@@ -107,7 +107,7 @@ const ROW_BYTES: usize = 400;
 
 fn check_finite(option: &str, x: f64) -> Result<()> {
     if !x.is_finite() {
-        bail!("{option} must be a finite number, got {x}");
+        bail!("{option} must be a finite number, got {x:?}");
     }
     Ok(())
 }
@@ -126,18 +126,18 @@ fn settings(args: &SimulateArgs) -> Result<SimulationSettings> {
     }
     if args.lean.abs() >= 90.0 {
         bail!(
-            "--lean must be below 90 degrees in size (the bicycle would lie on the ground), got {}",
+            "--lean must be below 90 degrees in size (the bicycle would lie on the ground), got {:?}",
             args.lean
         );
     }
     if !(args.fall_angle > 0.0 && args.fall_angle < 90.0) {
         bail!(
-            "--fall-angle must lie between 0 and 90 degrees, got {}",
+            "--fall-angle must lie between 0 and 90 degrees, got {:?}",
             args.fall_angle
         );
     }
     if args.duration <= 0.0 {
-        bail!("--duration must be positive, got {}", args.duration);
+        bail!("--duration must be positive, got {:?}", args.duration);
     }
     let integrator = match args.integrator {
         IntegratorChoice::Rk4 => {
@@ -148,14 +148,14 @@ fn settings(args: &SimulateArgs) -> Result<SimulationSettings> {
             check_finite("--dt", dt)?;
             if dt <= 0.0 || dt > args.duration {
                 bail!(
-                    "--dt must be positive and at most the duration ({} s), got {dt}",
+                    "--dt must be positive and at most the duration ({:?} s), got {dt:?}",
                     args.duration
                 );
             }
             let steps = args.duration / dt;
             if steps > MAX_STEPS as f64 {
                 bail!(
-                    "--duration {} with --dt {dt:e} asks for {steps:.3e} steps, more than the \
+                    "--duration {:?} with --dt {dt:?} asks for {steps:.3e} steps, more than the \
                      limit of {MAX_STEPS} (each step is kept as a sample of {} bytes and \
                      written as a row of about {ROW_BYTES} bytes: the limit keeps a run within \
                      about {:.1} GiB); use a larger --dt or a shorter --duration",
@@ -174,7 +174,7 @@ fn settings(args: &SimulateArgs) -> Result<SimulationSettings> {
             let rtol = args.rtol.unwrap_or(1e-8);
             check_finite("--rtol", rtol)?;
             if !(rtol > 0.0 && rtol < 1.0) {
-                bail!("--rtol must lie between 0 and 1, got {rtol}");
+                bail!("--rtol must lie between 0 and 1, got {rtol:?}");
             }
             Integrator::Dopri5(Dopri5Params {
                 rtol,

@@ -204,7 +204,9 @@ pub fn check(request: &SimulateRequest, limits: &Limits) -> Result<Plan, ApiErro
             if !(dt.is_finite() && dt > 0.0 && dt <= duration) {
                 return Err(invalid(
                     "dt",
-                    format!("must be positive and at most the duration ({duration} s), got {dt}"),
+                    format!(
+                        "must be positive and at most the duration ({duration:?} s), got {dt:?}"
+                    ),
                 ));
             }
             // Counted as the integrator counts (a last step within 1e-9 of a whole one is not
