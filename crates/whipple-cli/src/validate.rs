@@ -42,6 +42,9 @@ pub enum ValidateFormat {
     Json,
 }
 
+/// The most speeds one validation sweeps (`--speeds 0:1e5:0.01` would have taken a day).
+pub const MAX_VALIDATE_SPEEDS: u64 = 100_000;
+
 /// Half-width of the interval about v_d where eigenvalues are ill-conditioned [m/s].
 const DOUBLE_ROOT_HALF_WIDTH: f64 = 0.02;
 /// Half-width of the interval about v_c called "near the capsize speed" [m/s].
@@ -56,6 +59,16 @@ pub fn validate(
 ) -> Result<()> {
     let bike = load(arg)?;
     let (start, stop, step) = parse_triple(speeds, "--speeds")?;
+    let count = sweep::SpeedGrid::new(start, stop, step)
+        .context("--speeds")?
+        .len();
+    if count > MAX_VALIDATE_SPEEDS {
+        anyhow::bail!(
+            "--speeds {speeds} holds {count} speeds, more than the limit of {MAX_VALIDATE_SPEEDS} \
+             (each speed linearizes the non-linear model by every method, about 10 ms of one \
+             core: the limit is about 20 minutes); use a larger step or a narrower range"
+        );
+    }
     let grid = sweep::speed_grid(start, stop, step).context("--speeds")?;
     let methods: Vec<Method> = match choice {
         MethodChoice::Fd => vec![Method::FiniteDifferences],

@@ -56,3 +56,16 @@ fn issue_10_tiny_steps_are_shown_in_scientific_notation() {
     assert!(err.contains("--dt") && err.contains("1e-300"), "{err}");
     assert!(err.len() < 400, "{err}");
 }
+
+/// `validate --speeds 0:1e5:0.01` was accepted and would have taken a day.
+#[test]
+fn issue_10_validate_refuses_sweeps_past_its_time_bound() {
+    let err = stderr_of_failure(&whipple(&[
+        "validate",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "0:1e5:0.01",
+    ]));
+    assert!(err.contains("--speeds") && err.contains("minutes"), "{err}");
+}
