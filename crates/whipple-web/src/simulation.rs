@@ -547,16 +547,16 @@ pub fn run(
         ..SimulationSettings::default()
     };
     let simulation = simulate(&model, start, &settings)?;
-    let g = &model.bodies.geometry;
+    let g = &model.bodies().geometry;
     let geometry = DrawingGeometry {
-        rear_wheel_radius: g.r_r,
-        front_wheel_radius: g.r_f,
+        rear_wheel_radius: model.parameters().r_r,
+        front_wheel_radius: model.parameters().r_f,
         rear_hub_in_rear_frame: g.rear_hub_in_b.into(),
         steer_point_in_rear_frame: g.steer_point_in_b.into(),
         steer_point_in_front_frame: g.steer_point_in_h.into(),
         front_hub_in_front_frame: g.front_hub_in_h.into(),
         steer_axis: g.steer_axis.into(),
-        masses: model.bodies.body.map(|b| b.mass),
+        masses: model.bodies().body.map(|b| b.mass),
     };
     let frames = thin(&simulation.samples)
         .into_iter()

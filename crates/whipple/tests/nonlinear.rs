@@ -10,7 +10,7 @@ use whipple::integrate::Dopri5Params;
 use whipple::linear::Canonical;
 use whipple::nonlinear::{
     rotation, simulate, InitialConditions, Inputs, Integrator, Model, Outcome, Progress,
-    ProjectionMethod, ProjectionParams, SimulationSettings, State, REAR_FRAME, REAR_WHEEL,
+    ProjectionMethod, ProjectionSettings, SimulationSettings, State, REAR_FRAME, REAR_WHEEL,
     STATE_LEN,
 };
 use whipple::parameters::presets;
@@ -58,7 +58,7 @@ mod basu_mandal_2007 {
 
 fn basu_state(model: &Model) -> State<f64> {
     use basu_mandal_2007::*;
-    let r_r = model.parameters.r_r;
+    let r_r = model.parameters().r_r;
     let (yaw, lean, pitch, steer) = (-THETA, PI / 2.0 - PSI, PI - PHI, -PSIF);
     // Rear contact from the rear wheel centre (the contact is r_R cos ψ to the left of the
     // centre's ground projection, across the heading).
@@ -523,7 +523,7 @@ fn energy_is_conserved_and_constraints_hold() -> Result<()> {
         (dopri, ProjectionMethod::LeastNorm),
     ] {
         let settings = SimulationSettings {
-            projection: ProjectionParams {
+            projection: ProjectionSettings {
                 method,
                 ..Default::default()
             },

@@ -44,7 +44,7 @@ use crate::error::{Error, Result};
 use crate::linear::{Canonical, StateSpace};
 use crate::nonlinear::reduced::{spin_free_derivative, spin_free_vector, state_from_spin_free};
 use crate::nonlinear::{
-    FullStateField, InitialConditions, LeanSteerField, Model, ProjectionMethod, ProjectionParams,
+    FullStateField, InitialConditions, LeanSteerField, Model, ProjectionMethod, ProjectionSettings,
     State, STATE_LEN,
 };
 use crate::parameters::BenchmarkParameters;
@@ -94,16 +94,16 @@ pub struct StudyParams {
     /// evaluated, as the study did; `None` evaluates the perturbed state as it is. Default: the
     /// study's least-norm projection ([`ProjectionMethod::LeastNorm`]), tolerance 1e-13, at
     /// least one Newton iteration.
-    pub projection: Option<ProjectionParams>,
+    pub projection: Option<ProjectionSettings>,
 }
 
 impl Default for StudyParams {
     fn default() -> Self {
         StudyParams {
             fd: FdParams::default(),
-            projection: Some(ProjectionParams {
+            projection: Some(ProjectionSettings {
                 method: ProjectionMethod::LeastNorm,
-                ..ProjectionParams::default()
+                ..ProjectionSettings::default()
             }),
         }
     }

@@ -18,8 +18,9 @@ use std::sync::Arc;
 
 use nalgebra::SVector;
 
-use super::forward::{ContactForce, Derivatives, Inputs, Poses};
-use super::projection::ProjectionParams;
+use super::forward::{ContactForce, Derivatives, Inputs};
+use super::poses::Poses;
+use super::projection::ProjectionSettings;
 use super::state::{State, StateView, STATE_LEN};
 use super::Model;
 use crate::error::{Error, Result};
@@ -69,7 +70,7 @@ pub struct SimulationSettings {
     /// Lean torque T_φ(t, state) [N m]; `None` for none.
     pub lean_torque: Option<TorqueFn>,
     /// Projection settings.
-    pub projection: ProjectionParams,
+    pub projection: ProjectionSettings,
     /// Stop when a wheel's normal force becomes negative (it would lift off). Default true.
     pub stop_on_lift_off: bool,
     /// Called after each accepted step.
@@ -88,7 +89,7 @@ impl Default for SimulationSettings {
             fall_angle: std::f64::consts::FRAC_PI_3,
             steer_torque: None,
             lean_torque: None,
-            projection: ProjectionParams::default(),
+            projection: ProjectionSettings::default(),
             stop_on_lift_off: true,
             progress: None,
             stop: None,
