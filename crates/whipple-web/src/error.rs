@@ -105,9 +105,16 @@ impl From<Error> for ApiError {
             Error::InvalidArgument { what, rule } => {
                 ApiError::new(unprocessable, "invalid_argument", message).at(what, rule)
             }
-            Error::NoConvergence { .. } | Error::NonFinite { .. } => {
-                ApiError::new(unprocessable, "numerical", message)
+            Error::LimitExceeded { what, rule } => {
+                ApiError::new(unprocessable, "limit_exceeded", message).at(what, rule)
             }
+            // What the numbers asked for cannot be computed: the bicycle or the state given is
+            // at fault, not the server (the endpoint names the fields that made it).
+            Error::NoConvergence { .. }
+            | Error::NonFinite { .. }
+            | Error::SingularDynamics { .. }
+            | Error::ProjectionDiverged { .. }
+            | Error::NonFiniteState { .. } => ApiError::new(unprocessable, "numerical", message),
             _ => ApiError::internal(message),
         }
     }

@@ -54,6 +54,15 @@ pub enum Error {
         /// What is wrong with it.
         rule: String,
     },
+    /// A request asks for more work than a bound allows (for example more integration steps
+    /// than a simulation may take).
+    #[error("{what}: {rule}")]
+    LimitExceeded {
+        /// The argument's name (for example `dt`).
+        what: &'static str,
+        /// The bound and how far the request is past it.
+        rule: String,
+    },
     /// A numerical method did not reach its tolerance within its iteration bound.
     #[error("{method} did not converge after {iterations} iterations (residual {residual:e})")]
     NoConvergence {

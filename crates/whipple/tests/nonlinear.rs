@@ -6,12 +6,11 @@ use std::f64::consts::PI;
 use nalgebra::{DMatrix, DVector, Matrix4, SVector, Vector3};
 use num_dual::Dual64;
 use whipple::analysis::eigen;
-use whipple::integrate::Dopri5Params;
+use whipple::integrate::{Dopri5Settings, Integrator};
 use whipple::linear::Canonical;
 use whipple::nonlinear::{
-    rotation, simulate, InitialConditions, Inputs, Integrator, Model, Outcome, Progress,
-    ProjectionMethod, ProjectionSettings, SimulationSettings, State, REAR_FRAME, REAR_WHEEL,
-    STATE_LEN,
+    rotation, simulate, InitialConditions, Inputs, Model, Outcome, Progress, ProjectionMethod,
+    ProjectionSettings, SimulationSettings, State, REAR_FRAME, REAR_WHEEL, STATE_LEN,
 };
 use whipple::parameters::presets;
 use whipple::{BenchmarkParameters, Result};
@@ -511,7 +510,7 @@ fn a_run_stops_when_asked() -> Result<()> {
 #[test]
 fn energy_is_conserved_and_constraints_hold() -> Result<()> {
     let (model, start) = kicked_benchmark(4.6)?;
-    let dopri = Integrator::Dopri5(Dopri5Params {
+    let dopri = Integrator::Dopri5(Dopri5Settings {
         rtol: 1e-10,
         atol: 1e-12,
         ..Default::default()

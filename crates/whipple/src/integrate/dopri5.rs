@@ -50,7 +50,7 @@ const D7: f64 = 69997945.0 / 29380423.0;
 
 /// Settings of the adaptive method, with their defaults.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Dopri5Params {
+pub struct Dopri5Settings {
     /// Relative tolerance per component. Default 1e-8.
     pub rtol: f64,
     /// Absolute tolerance per component. Default 1e-10.
@@ -65,20 +65,28 @@ pub struct Dopri5Params {
     pub max_steps: usize,
 }
 
-impl Default for Dopri5Params {
+impl Default for Dopri5Settings {
+    /// [`Dopri5Settings::with_rtol`] of [`super::DEFAULT_RTOL`]: rtol 1e-8, atol 1e-10.
     fn default() -> Self {
-        Dopri5Params {
-            rtol: 1e-8,
-            atol: 1e-10,
+        Dopri5Settings::with_rtol(super::DEFAULT_RTOL)
+    }
+}
+
+impl Dopri5Settings {
+    /// Relative tolerance `rtol`, absolute tolerance `rtol`·1e-2, the first step chosen from
+    /// the initial slope, no largest step, smallest step 1e-12 s, at most 10 000 000 step
+    /// attempts.
+    pub fn with_rtol(rtol: f64) -> Self {
+        Dopri5Settings {
+            rtol,
+            atol: rtol * 1e-2,
             initial_step: None,
             max_step: f64::INFINITY,
             min_step: 1e-12,
             max_steps: 10_000_000,
         }
     }
-}
 
-impl Dopri5Params {
     /// Checks the settings.
     pub fn validate(&self) -> Result<()> {
         let bad = |what: &'static str, rule: String| Err(Error::InvalidArgument { what, rule });
@@ -133,7 +141,7 @@ pub struct DenseOutput<const N: usize> {
 
 impl<const N: usize> DenseOutput<N> {
     /// The constant interpolant y over [t0, t0 + h].
-    pub fn constant(t0: f64, h: f64, y: &SVector<f64, N>) -> Self {
+    pub(crate) fn constant(t0: f64, h: f64, y: &SVector<f64, N>) -> Self {
         DenseOutput {
             t0,
             h,
@@ -158,7 +166,7 @@ impl<const N: usize> DenseOutput<N> {
 
 /// One attempted step.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Attempt<const N: usize> {
+pub(crate) struct Attempt<const N: usize> {
     /// Fifth-order solution at t + h.
     pub y: SVector<f64, N>,
     /// f(t + h, y) (first slope of the next step unless y is changed).
@@ -169,14 +177,27 @@ pub struct Attempt<const N: usize> {
     pub dense: DenseOutput<N>,
 }
 
+impl<const N: usize> Attempt<N> {
+    /// An attempt whose evaluation failed (a trial state too far off): infinite error, so that
+    /// it is rejected and its constant interpolant never evaluated.
+    pub(crate) fn failed(t: f64, h: f64, y: &SVector<f64, N>, k1: &SVector<f64, N>) -> Self {
+        Attempt {
+            y: *y,
+            k7: *k1,
+            error: f64::INFINITY,
+            dense: DenseOutput::constant(t, h, y),
+        }
+    }
+}
+
 /// One step attempt of size h from (t, y) with slope k1 = f(t, y).
-pub fn attempt<S: OdeSystem<N>, const N: usize>(
+pub(crate) fn attempt<S: OdeSystem<N>, const N: usize>(
     system: &S,
     t: f64,
     y: &SVector<f64, N>,
     k1: &SVector<f64, N>,
     h: f64,
-    params: &Dopri5Params,
+    params: &Dopri5Settings,
 ) -> Result<Attempt<N>> {
     let k2 = system.rhs(t + C2 * h, &(y + k1 * (h * A21)))?;
     let k3 = system.rhs(t + C3 * h, &(y + (k1 * A31 + k2 * A32) * h))?;
@@ -221,7 +242,7 @@ pub fn attempt<S: OdeSystem<N>, const N: usize>(
 
 /// PI step-size control (Hairer & Wanner §IV.2): proposes steps and judges attempts.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Controller {
+pub(crate) struct Controller {
     h: f64,
     previous_error: f64,
     rejected: bool,
@@ -237,7 +258,7 @@ const MAX_FACTOR: f64 = 10.0;
 impl Controller {
     /// A controller whose first step comes from the settings or from the initial slope.
     pub fn new<const N: usize>(
-        params: &Dopri5Params,
+        params: &Dopri5Settings,
         y: &SVector<f64, N>,
         f: &SVector<f64, N>,
         span: f64,

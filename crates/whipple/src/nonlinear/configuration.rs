@@ -7,8 +7,8 @@
 use nalgebra::{Matrix3, RealField, SVector, Vector3};
 use num_dual::Dual64;
 
+use super::outcome::Sample;
 use super::rotation;
-use super::simulate::Sample;
 use super::state::COORDINATES;
 use super::topology::{
     FRONT_CONTACT, FRONT_FRAME, FRONT_HUB, FRONT_WHEEL, REAR_CONTACT, REAR_FRAME, REAR_HUB,

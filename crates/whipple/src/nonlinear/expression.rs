@@ -13,7 +13,7 @@
 
 use exmex::prelude::*;
 
-use super::simulate::TorqueFn;
+use super::settings::TorqueFn;
 use super::state::StateView;
 use crate::error::{Error, Result};
 

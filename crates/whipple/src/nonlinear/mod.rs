@@ -45,6 +45,7 @@ mod forward;
 mod initial;
 mod joints;
 mod model;
+mod outcome;
 mod poses;
 mod projection;
 mod readout;
@@ -52,6 +53,7 @@ pub(crate) mod reduced;
 mod reference;
 pub mod rotation;
 mod saddle;
+mod settings;
 mod simulate;
 mod state;
 mod topology;
@@ -63,12 +65,14 @@ pub use expression::{TorqueExpression, MAX_LENGTH as MAX_EXPRESSION_LENGTH, VARI
 pub use forward::{ContactForce, Derivatives, Inputs};
 pub use initial::InitialConditions;
 pub use model::Model;
+pub use outcome::{Outcome, Progress, Sample, Simulation, Wheel};
 pub use projection::{ProjectionMethod, ProjectionReport, ProjectionSettings};
 pub use reduced::{FullStateField, LeanSteerField};
-pub use simulate::{
-    simulate, Integrator, Outcome, Progress, ProgressFn, Sample, Simulation, SimulationSettings,
-    TorqueFn, Wheel,
+pub use settings::{
+    IntegratorKind, ProgressFn, SimulationRequest, SimulationSettings, TorqueFn, TorqueInput,
+    DEFAULT_FALL_ANGLE_DEG, MAX_STEPS,
 };
+pub use simulate::simulate;
 pub use state::{BodyPose, State, StateView, COORDINATES, LEAN, PITCH, SPEEDS, STATE_LEN, YAW};
 pub use topology::{
     BODIES, BODY_NAMES, FRONT_FRAME, FRONT_WHEEL, HOLONOMIC_ROWS, REAR_FRAME, REAR_WHEEL,

@@ -5,8 +5,8 @@ use nalgebra::{RealField, SVector, Vector3};
 use num_dual::Dual64;
 
 use super::forward::Derivatives;
+use super::outcome::Sample;
 use super::poses::Poses;
-use super::simulate::Sample;
 use super::state::{BodyPose, State, StateView, COORDINATES, PITCH};
 use super::topology::{BODIES, FRONT_FRAME, REAR_FRAME, REAR_WHEEL};
 use super::Model;
