@@ -6,7 +6,7 @@
 //! over the scalar, so that dual numbers carry exact derivatives through it.
 //! [`Model::lean_steer_field`] is then ẋ = f(x) = [φ̇, δ̇, φ̈, δ̈] of the full non-linear
 //! dynamics restricted to the constraint manifold; its Jacobian at x = 0 is the non-linear
-//! model's own A(v) (see [`crate::analysis::validation::lean_steer_matrix`]).
+//! model's own A(v) (see [`crate::analysis::comparison::lean_steer_matrix`]).
 //!
 //! The coordinates left out — yaw, rear contact position, wheel rotations — are ignorable: the
 //! dynamics do not depend on them (the bicycle is the same wherever it is and however far its
