@@ -28,6 +28,7 @@ pub mod integrate;
 pub mod linear;
 pub mod nonlinear;
 pub mod parameters;
+pub mod side_view;
 
 pub use error::{Error, Result};
 pub use parameters::{BenchmarkParameters, Bicycle, Description, Jbike6Parameters};

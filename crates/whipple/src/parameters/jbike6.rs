@@ -299,6 +299,15 @@ impl Jbike6Parameters {
         Ok(())
     }
 
+    /// Where a front body's centre of mass is, (x forward from the rear contact, y up) [m]:
+    /// `ucm` perpendicular to the steer axis (forward and up) and `vcm` along it (up) from the
+    /// point where the axis meets the ground, w + c ahead of the rear contact.
+    pub fn front_body_centre(&self, b: &Jbike6FrontBody) -> [f64; 2] {
+        let (s, c) = self.steer_axis_tilt().sin_cos();
+        let front_point = self.wheelbase + self.trail;
+        [front_point + b.ucm * c - b.vcm * s, b.ucm * s + b.vcm * c]
+    }
+
     /// Converts to the 25 benchmark parameters (plus g): B = rider + frame + rack, H = fork +
     /// basket, combined with the parallel-axis theorem; with T a combined tensor in JBike6's
     /// axes, x_B = x, z_B = −y, I_Bxx = T_xx, I_Bzz = T_yy, I_Byy = T_zz, I_Bxz = −T_xy.
@@ -315,21 +324,14 @@ impl Jbike6Parameters {
     pub fn to_benchmark(&self) -> Result<BenchmarkParameters> {
         self.validate()?;
         let lambda = self.steer_axis_tilt();
-        let (s, c) = lambda.sin_cos();
         let rear = PlanarBody::combine(&[
             rear_body(&self.rider),
             rear_body(&self.frame),
             rear_body(&self.rack),
         ]);
-        let front_point = self.wheelbase + self.trail;
         let place = |b: &Jbike6FrontBody| {
-            PlanarBody::new(
-                b.m,
-                front_point + b.ucm * c - b.vcm * s,
-                b.ucm * s + b.vcm * c,
-                b.inertia,
-                b.alpha,
-            )
+            let [x, y] = self.front_body_centre(b);
+            PlanarBody::new(b.m, x, y, b.inertia, b.alpha)
         };
         let front = PlanarBody::combine(&[place(&self.fork), place(&self.basket)]);
         let bike = BenchmarkParameters {
