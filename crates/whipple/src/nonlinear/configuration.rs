@@ -81,7 +81,7 @@ impl Model {
 
     /// Height (z, down) of the front wheel's lowest rim point in the configuration of
     /// [`Model::configuration`]; zero when the front wheel touches the ground.
-    pub fn front_height<T: RealField + Copy>(
+    pub(crate) fn front_height<T: RealField + Copy>(
         &self,
         angles: [T; 3],
         steer: T,
@@ -139,7 +139,7 @@ impl Model {
 
     /// The rear frame pitch that puts the front wheel on the ground, by Newton iteration
     /// (derivative by a dual number) from `guess`.
-    pub fn pitch_for(&self, lean: f64, steer: f64, guess: f64) -> Result<f64> {
+    pub(crate) fn pitch_for(&self, lean: f64, steer: f64, guess: f64) -> Result<f64> {
         let mut pitch = guess;
         let mut residual = f64::INFINITY;
         for _ in 0..PITCH_ITERATIONS {

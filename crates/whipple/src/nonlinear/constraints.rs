@@ -178,7 +178,7 @@ impl Model {
 
     /// ∂r/∂q of the 17 holonomic residuals: the holonomic velocity rows times the map from
     /// angle rates to body angular velocities.
-    pub fn holonomic_jacobian(
+    pub(crate) fn holonomic_jacobian(
         &self,
         q: &SVector<f64, COORDINATES>,
     ) -> SMatrix<f64, HOLONOMIC_ROWS, COORDINATES> {
