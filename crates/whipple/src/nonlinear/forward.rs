@@ -314,9 +314,9 @@ impl Model {
             });
         };
         let mut u_dot = speeds_of(jac, &w_dot);
-        for k in 0..BODIES {
+        for (k, c) in bias.iter().enumerate() {
             let mut rows = u_dot.fixed_rows_mut::<6>(6 * k);
-            rows += bias[k];
+            rows += c;
         }
         Ok((u_dot, nu))
     }

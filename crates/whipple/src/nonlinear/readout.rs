@@ -115,7 +115,7 @@ impl Model {
             .map(|c| q[6 * c.wheel + PITCH] - q[6 * c.frame + PITCH])
     }
 
-    /// The pose of each body ([`REAR_WHEEL`], [`REAR_FRAME`], [`FRONT_FRAME`], [`FRONT_WHEEL`]
+    /// The pose of each body ([`super::REAR_WHEEL`], [`super::REAR_FRAME`], [`super::FRONT_FRAME`], [`super::FRONT_WHEEL`]
     /// order) in a state: origin (centre of mass) and rotation matrix, world axes.
     ///
     /// ```

@@ -181,7 +181,7 @@ impl VectorField<4> for LeanSteerField<'_> {
 /// The non-linear model's full first-order form, 48 states, ẏ = F(y) from [`Model::forward`],
 /// unforced: y = [q; ũ], where ũ is the model's speeds u except that each wheel's angular
 /// velocity is expressed in axes that follow the wheel's yaw and lean but not its spin,
-/// ω̃ = R_y(θ) ω (θ: the wheel's third Euler angle; see [`spin_free_vector`]).
+/// ω̃ = R_y(θ) ω (θ: the wheel's third Euler angle; see `spin_free_vector`).
 ///
 /// Why: the model's own speeds give a wheel's angular velocity in its body axes, which spin
 /// with the wheel. In them the Jacobian of [q̇; u̇] at one instant of steady running is only

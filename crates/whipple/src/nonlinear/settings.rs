@@ -193,9 +193,9 @@ impl TorqueInput {
 pub struct SimulationRequest {
     /// v: forward speed [m/s].
     pub speed: f64,
-    /// φ₀: initial lean [deg], below 90 in size.
+    /// φ₀: initial lean \[deg\], below 90 in size.
     pub lean_deg: f64,
-    /// δ₀: initial steer [deg].
+    /// δ₀: initial steer \[deg\].
     pub steer_deg: f64,
     /// φ̇₀: initial lean rate [rad/s].
     pub lean_rate: f64,
@@ -214,7 +214,7 @@ pub struct SimulationRequest {
     pub steer_torque: TorqueInput,
     /// T_φ: lean torque (default none).
     pub lean_torque: TorqueInput,
-    /// The bicycle has fallen when |lean| passes this angle [deg], in (0, 90).
+    /// The bicycle has fallen when |lean| passes this angle \[deg\], in (0, 90).
     pub fall_angle_deg: f64,
     /// Stop when a wheel's normal force turns negative (default true).
     pub stop_on_lift_off: bool,

@@ -46,7 +46,7 @@ pub fn upright_state(model: &Model, speed: f64) -> Result<State<f64>> {
 
 /// The non-linear model's A(v) for x = [φ, δ, φ̇, δ̇] about upright straight running at
 /// `speed`, by exact forward-mode derivatives of [`Model::lean_steer_field`]; comparable entry
-/// by entry with the linear model's [`StateSpace::a`].
+/// by entry with the linear model's `StateSpace::a` ([`crate::StateSpace`]).
 ///
 /// ```
 /// use whipple::{lean_steer_matrix, BenchmarkParameters, Canonical, Model, StateSpace};
