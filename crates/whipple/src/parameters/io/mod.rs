@@ -139,8 +139,9 @@ impl Format {
                 line: 0,
                 column: 0,
                 message: format!(
-                    "cannot tell the format of {}: {why}. The formats are {list}. Name one with \
-                     --format (or give the file its extension)",
+                    "cannot tell the format of {}: {why}. The formats are {list}. Name one \
+                     (the CLI's --bike-format, the web API's `format`) or give the file its \
+                     extension",
                     shorten(file_name, 80)
                 ),
             })
