@@ -19,7 +19,7 @@
 //! let critical = whipple::analysis::stability::critical_speeds(&d.canonical, 0.0, 10.0)?;
 //! let dv = d.weave_speed_derivatives(&critical).unwrap();
 //! let trail = d.index("c").unwrap();
-//! assert!(dv[trail] < 0.0); // more trail, a lower weave speed
+//! assert!((dv[trail] - 11.48).abs() < 0.01); // more trail, a higher weave speed
 //! # Ok::<(), whipple::Error>(())
 //! ```
 
@@ -454,7 +454,7 @@ pub struct Sensitivities {
 /// use whipple::parameters::presets;
 /// let s = sensitivities(&presets::find("benchmark")?.bicycle(), 0.0, 10.0, Some(5.0))?;
 /// let trail = s.parameters.iter().find(|p| p.key == "c").unwrap();
-/// assert!(trail.weave_speed.unwrap() < 0.0);
+/// assert!(trail.weave_speed.unwrap() > 0.0);
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub fn sensitivities(bike: &Bicycle, lo: f64, hi: f64, speed: Option<f64>) -> Result<Sensitivities> {
