@@ -67,7 +67,9 @@ pub fn load(arg: &str) -> Result<LoadedBike> {
             let extension = path.extension().and_then(|e| e.to_str());
             let looks_like_file = path.is_file()
                 || opts.format.is_some()
-                || extension.is_some_and(|e| Format::from_extension(e).is_some() || e.eq_ignore_ascii_case("txt"));
+                || extension.is_some_and(|e| {
+                    Format::from_extension(e).is_some() || e.eq_ignore_ascii_case("txt")
+                });
             if !looks_like_file {
                 let known = presets::names();
                 bail!(
@@ -79,7 +81,10 @@ pub fn load(arg: &str) -> Result<LoadedBike> {
                 .with_context(|| format!("reading parameters from {}", path.display()))?;
             let text = String::from_utf8(bytes)
                 .map_err(|_| anyhow!("{}: the file is not UTF-8 text", path.display()))?;
-            let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            let name = path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
             let format = match opts.format {
                 Some(f) => f,
                 None => Format::detect(&name, &text).map_err(|e| located(e, path, &text))?,

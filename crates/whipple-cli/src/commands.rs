@@ -6,12 +6,12 @@ use std::path::Path;
 use anyhow::{bail, Context, Result};
 use nalgebra::Matrix2;
 use serde_json::json;
+use whipple::analysis::sensitivity;
 use whipple::analysis::{eigen, stability, sweep};
 use whipple::linear::Canonical;
-use whipple::analysis::sensitivity;
 use whipple::parameters::io::{write, Format};
-use whipple::parameters::table::key_doc;
 use whipple::parameters::presets::PRESETS;
+use whipple::parameters::table::key_doc;
 use whipple::{Bicycle, Description};
 
 use crate::bike::{load, LoadedBike};
@@ -426,7 +426,11 @@ pub fn speeds(arg: &str, range: &str, format: TextFormat) -> Result<()> {
         TextFormat::Json => {
             let mut ranges = Vec::new();
             let mut range_sigmas = Vec::new();
-            for ((a, b), (sa, sb)) in s.stable_speed_ranges.iter().zip(&su.stable_speed_ranges_sigma) {
+            for ((a, b), (sa, sb)) in s
+                .stable_speed_ranges
+                .iter()
+                .zip(&su.stable_speed_ranges_sigma)
+            {
                 ranges.push(json!([a, b]));
                 range_sigmas.push(json!([optional(*sa)?, optional(*sb)?]));
             }
@@ -459,19 +463,35 @@ pub fn speeds(arg: &str, range: &str, format: TextFormat) -> Result<()> {
                 t.push_str(" (± one standard deviation, first order, parameters independent)");
             }
             t.push('\n');
-            write!(t, "  double root speed v_d  {}", show(s.double_root_speed, su.double_root_speed_sigma)?)?;
+            write!(
+                t,
+                "  double root speed v_d  {}",
+                show(s.double_root_speed, su.double_root_speed_sigma)?
+            )?;
             if let Some(l) = s.double_root_eigenvalue {
                 write!(t, "  (double eigenvalue {} 1/s)", number(l)?)?;
             }
-            write!(t, "\n  weave speed v_w        {}", show(s.weave_speed, su.weave_speed_sigma)?)?;
+            write!(
+                t,
+                "\n  weave speed v_w        {}",
+                show(s.weave_speed, su.weave_speed_sigma)?
+            )?;
             if let Some(w) = s.weave_frequency {
                 write!(t, "  (weave frequency {} rad/s)", number(w)?)?;
             }
-            writeln!(t, "\n  capsize speed v_c      {}", show(s.capsize_speed, su.capsize_speed_sigma)?)?;
+            writeln!(
+                t,
+                "\n  capsize speed v_c      {}",
+                show(s.capsize_speed, su.capsize_speed_sigma)?
+            )?;
             if s.stable_speed_ranges.is_empty() {
                 writeln!(t, "  self-stable            nowhere in {lo}..{hi} m/s")?;
             }
-            for ((a, b), (sa, sb)) in s.stable_speed_ranges.iter().zip(&su.stable_speed_ranges_sigma) {
+            for ((a, b), (sa, sb)) in s
+                .stable_speed_ranges
+                .iter()
+                .zip(&su.stable_speed_ranges_sigma)
+            {
                 let open_end = if *b == hi {
                     " (up to the end of the range)"
                 } else {
@@ -479,7 +499,9 @@ pub fn speeds(arg: &str, range: &str, format: TextFormat) -> Result<()> {
                 };
                 let end = |v: f64, sg: Option<f64>| -> Result<String> {
                     Ok(match sg {
-                        Some(sg) if uncertain && sg > 0.0 => format!("{} ± {}", round_to_sigma(v, sg), round_sigma(sg)),
+                        Some(sg) if uncertain && sg > 0.0 => {
+                            format!("{} ± {}", round_to_sigma(v, sg), round_sigma(sg))
+                        }
                         _ => number(v)?,
                     })
                 };
@@ -504,13 +526,11 @@ fn eigen_sigma_bands(bike: &LoadedBike, s: &sweep::EigenSweep) -> Result<Vec<[(f
         let sig = sensitivity::eigenvalue_sigmas(&d, *v)?;
         let mut out = [(f64::NAN, f64::NAN); 4];
         for (k, l) in row.iter().enumerate() {
-            let nearest = sig
-                .iter()
-                .min_by(|a, b| {
-                    let da = (a.re - l.re).hypot(a.im - l.im);
-                    let db = (b.re - l.re).hypot(b.im - l.im);
-                    da.total_cmp(&db)
-                });
+            let nearest = sig.iter().min_by(|a, b| {
+                let da = (a.re - l.re).hypot(a.im - l.im);
+                let db = (b.re - l.re).hypot(b.im - l.im);
+                da.total_cmp(&db)
+            });
             if let Some(e) = nearest {
                 if let Some(sr) = e.re_sigma {
                     out[k] = (l.re - sr, l.re + sr);
@@ -541,7 +561,8 @@ pub fn sensitivity(
         }
     }
     if let Some(path) = plot {
-        whipple_report::Format::from_path(path).with_context(|| format!("--plot {}", path.display()))?;
+        whipple_report::Format::from_path(path)
+            .with_context(|| format!("--plot {}", path.display()))?;
     }
     let s = sensitivity::sensitivities(&bike.bicycle, lo, hi, speed)
         .with_context(|| format!("the sensitivities of {}", bike.label))?;
@@ -560,7 +581,16 @@ pub fn sensitivity(
             doc["bike"] = json!(bike.label);
             doc["warnings"] = bike.warnings_json();
             for p in &s.parameters {
-                for x in [p.weave_speed, p.capsize_speed, p.stable_width, p.weave_real, p.capsize_real].into_iter().flatten() {
+                for x in [
+                    p.weave_speed,
+                    p.capsize_speed,
+                    p.stable_width,
+                    p.weave_real,
+                    p.capsize_real,
+                ]
+                .into_iter()
+                .flatten()
+                {
                     number(x)?;
                 }
             }
@@ -605,16 +635,32 @@ pub fn sensitivity(
                 show(c.capsize_speed),
                 show(s.stable_range.map(|(a, b)| b - a))
             )?;
-            writeln!(t, "  d/dp: derivative per unit of p; e: elasticity d ln(.)/d ln p (dimensionless)")?;
+            writeln!(
+                t,
+                "  d/dp: derivative per unit of p; e: elasticity d ln(.)/d ln p (dimensionless)"
+            )?;
             let g = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4e}"));
             let e = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:+.4}"));
             write!(
                 t,
                 "  {:<16} {:>8} {:>14} {:>12} {:>9} {:>12} {:>9} {:>12} {:>9}",
-                "parameter", "unit", "value", "dv_w/dp", "e(v_w)", "dv_c/dp", "e(v_c)", "dwidth/dp", "e(width)"
+                "parameter",
+                "unit",
+                "value",
+                "dv_w/dp",
+                "e(v_w)",
+                "dv_c/dp",
+                "e(v_c)",
+                "dwidth/dp",
+                "e(width)"
             )?;
             if let Some(v) = speed {
-                write!(t, " {:>12} {:>12}", format!("dRe_w/dp@{v}"), format!("dRe_c/dp@{v}"))?;
+                write!(
+                    t,
+                    " {:>12} {:>12}",
+                    format!("dRe_w/dp@{v}"),
+                    format!("dRe_c/dp@{v}")
+                )?;
             }
             writeln!(t)?;
             for p in &s.parameters {

@@ -28,7 +28,10 @@ pub fn eigen_plot(
         .with_context(|| format!("--plot {}", path.display()))?;
     let options = EigenPlotOptions {
         title: Some(if sigma_bands.is_some() {
-            format!("{}: eigenvalues against forward speed (real parts ± 1σ shaded)", bike.label)
+            format!(
+                "{}: eigenvalues against forward speed (real parts ± 1σ shaded)",
+                bike.label
+            )
         } else {
             format!("{}: eigenvalues against forward speed", bike.label)
         }),
@@ -62,7 +65,10 @@ pub fn tornado(
         })
         .collect();
     let title = match s.critical.weave_speed {
-        Some(v) => format!("{}: what moves the weave speed (v_w = {v:.4} m/s)", bike.label),
+        Some(v) => format!(
+            "{}: what moves the weave speed (v_w = {v:.4} m/s)",
+            bike.label
+        ),
         None => format!("{}: what moves the weave speed", bike.label),
     };
     let figure = whipple_report::tornado_plot(
@@ -71,6 +77,11 @@ pub fn tornado(
         &title,
         "elasticity of v_w, ∂ln v_w / ∂ln p (1 % more p moves v_w by this many %)",
     )
-    .with_context(|| format!("the tornado plot of {} (no weave speed in the range?)", bike.label))?;
+    .with_context(|| {
+        format!(
+            "the tornado plot of {} (no weave speed in the range?)",
+            bike.label
+        )
+    })?;
     write_figure(&figure, path)
 }

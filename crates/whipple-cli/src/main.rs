@@ -256,7 +256,14 @@ fn main() -> ExitCode {
             out,
             plot,
             sigma_bands,
-        } => commands::eig(&bike, &speeds, format, out.as_deref(), plot.as_deref(), sigma_bands),
+        } => commands::eig(
+            &bike,
+            &speeds,
+            format,
+            out.as_deref(),
+            plot.as_deref(),
+            sigma_bands,
+        ),
         Command::Sensitivity {
             bike,
             speed,
@@ -264,7 +271,14 @@ fn main() -> ExitCode {
             format,
             out,
             plot,
-        } => commands::sensitivity(&bike, speed, &range, format, out.as_deref(), plot.as_deref()),
+        } => commands::sensitivity(
+            &bike,
+            speed,
+            &range,
+            format,
+            out.as_deref(),
+            plot.as_deref(),
+        ),
         Command::Modes {
             bike,
             speed,

@@ -106,9 +106,8 @@ impl From<Error> for ApiError {
             Error::InvalidArgument { what, rule } => {
                 ApiError::new(unprocessable, "invalid_argument", message).at(what, rule)
             }
-            Error::Strict { field, .. } => {
-                ApiError::new(unprocessable, "strict", message).at(field, "a warning, with strict set")
-            }
+            Error::Strict { field, .. } => ApiError::new(unprocessable, "strict", message)
+                .at(field, "a warning, with strict set"),
             Error::NoConvergence { .. } | Error::NonFinite { .. } => {
                 ApiError::new(unprocessable, "numerical", message)
             }

@@ -5,7 +5,9 @@
 
 use std::path::{Path, PathBuf};
 
-use whipple::analysis::sensitivity::{critical_speeds_sigma, sensitivities, with_parameter, Derivatives};
+use whipple::analysis::sensitivity::{
+    critical_speeds_sigma, sensitivities, with_parameter, Derivatives,
+};
 use whipple::analysis::stability::critical_speeds;
 use whipple::linear::Canonical;
 use whipple::parameters::io::{parse, write, Format};
@@ -15,18 +17,27 @@ use whipple::Error;
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
 fn data(dir: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(dir)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(dir)
 }
 
 fn files() -> Vec<(String, PathBuf)> {
     let mut out = Vec::new();
-    for dir in ["bicycleparameters", "humancontrol", "bicycleparameters-yaml"] {
+    for dir in [
+        "bicycleparameters",
+        "humancontrol",
+        "bicycleparameters-yaml",
+    ] {
         let mut entries: Vec<PathBuf> = std::fs::read_dir(data(dir))
             .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
             .unwrap_or_default();
         entries.sort();
         for path in entries {
-            let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            let name = path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
             if name.ends_with(".txt") || name.ends_with(".yml") {
                 out.push((format!("{dir}/{name}"), path));
             }
@@ -37,7 +48,10 @@ fn files() -> Vec<(String, PathBuf)> {
 
 fn read(path: &Path) -> Result<Bicycle, Error> {
     let text = std::fs::read_to_string(path).unwrap_or_default();
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     parse(&text, Format::detect(&name, &text)?)
 }
 
@@ -61,16 +75,26 @@ fn every_field_file_matches_bicycleparameters() -> TestResult {
         }
         if name.ends_with("principal-browserjason.yml") {
             let message = result.err().map(|e| e.to_string()).unwrap_or_default();
-            assert!(message.contains("`principal` parameterization"), "{name}: {message}");
+            assert!(
+                message.contains("`principal` parameterization"),
+                "{name}: {message}"
+            );
             continue;
         }
         let bike = result.map_err(|e| format!("{name}: {e}"))?;
         let checked = bike.check().map_err(|e| format!("{name}: {e}"))?;
-        for n in checked.notices.iter().filter(|n| n.severity == Severity::Warning) {
+        for n in checked
+            .notices
+            .iter()
+            .filter(|n| n.severity == Severity::Warning)
+        {
             warned.push(format!("{name}: {}", n.field));
         }
         let entry = &reference["files"][&name];
-        assert!(!entry.is_null(), "{name} has no BicycleParameters reference");
+        assert!(
+            !entry.is_null(),
+            "{name} has no BicycleParameters reference"
+        );
         if entry.get("bicycleparameters_error").is_some() {
             continue; // the two-mass skate: BicycleParameters divides by its zero wheel radius
         }
@@ -80,14 +104,23 @@ fn every_field_file_matches_bicycleparameters() -> TestResult {
         assert_eq!(ours.stable_speed_ranges.len(), theirs.len(), "{name}");
         for ((lo, hi), r) in ours.stable_speed_ranges.iter().zip(theirs) {
             let (tlo, thi) = (r[0].as_f64().ok_or("lo")?, r[1].as_f64().ok_or("hi")?);
-            assert!((lo - tlo).abs() < 1e-9, "{name}: stable from {lo}, BicycleParameters {tlo}");
-            assert!((hi - thi).abs() < 1e-9, "{name}: stable to {hi}, BicycleParameters {thi}");
+            assert!(
+                (lo - tlo).abs() < 1e-9,
+                "{name}: stable from {lo}, BicycleParameters {tlo}"
+            );
+            assert!(
+                (hi - thi).abs() < 1e-9,
+                "{name}: stable to {hi}, BicycleParameters {thi}"
+            );
         }
         let m = entry["M"].as_array().ok_or("M")?;
         for i in 0..2 {
             for j in 0..2 {
                 let t = m[i][j].as_f64().ok_or("M entry")?;
-                assert!((canonical.m[(i, j)] - t).abs() <= 1e-12 * t.abs().max(1.0), "{name} M");
+                assert!(
+                    (canonical.m[(i, j)] - t).abs() <= 1e-12 * t.abs().max(1.0),
+                    "{name} M"
+                );
             }
         }
         compared += 1;
@@ -95,8 +128,16 @@ fn every_field_file_matches_bicycleparameters() -> TestResult {
     assert_eq!(compared, 32, "files compared with BicycleParameters");
     // The measured bicycles whose tensors break the triangle inequality are warned about,
     // not refused (issue 11): Browser and Yellow among them.
-    assert!(warned.iter().any(|w| w.contains("BrowserBenchmark") && w.contains("IByy")), "{warned:?}");
-    assert!(warned.iter().any(|w| w.contains("humancontrol/YellowPar")), "{warned:?}");
+    assert!(
+        warned
+            .iter()
+            .any(|w| w.contains("BrowserBenchmark") && w.contains("IByy")),
+        "{warned:?}"
+    );
+    assert!(
+        warned.iter().any(|w| w.contains("humancontrol/YellowPar")),
+        "{warned:?}"
+    );
     eprintln!("warnings: {warned:#?}");
     Ok(())
 }
@@ -115,10 +156,17 @@ fn every_field_file_round_trips_through_every_writer() -> TestResult {
             Format::Yaml,
         ] {
             let text = write(&bike, format)?;
-            let back = parse(&text, format).map_err(|e| format!("{name} as {format:?}: {e}\n{text}"))?;
+            let back =
+                parse(&text, format).map_err(|e| format!("{name} as {format:?}: {e}\n{text}"))?;
             assert_eq!(back.description, bike.description, "{name} as {format:?}");
             assert_eq!(back.sigma, bike.sigma, "{name} as {format:?}");
-            let keys = |b: &Bicycle| b.extras.iter().filter(|e| e.value.is_some()).map(|e| (e.key.clone(), e.value)).collect::<Vec<_>>();
+            let keys = |b: &Bicycle| {
+                b.extras
+                    .iter()
+                    .filter(|e| e.value.is_some())
+                    .map(|e| (e.key.clone(), e.value))
+                    .collect::<Vec<_>>()
+            };
             let mut a = keys(&bike);
             let mut b = keys(&back);
             a.sort_by(|x, y| x.0.cmp(&y.0));
@@ -135,15 +183,25 @@ fn every_field_file_round_trips_through_every_writer() -> TestResult {
 fn weave_speed_sensitivity_to_trail_matches_central_difference() -> TestResult {
     let bike = presets::find("benchmark")?.bicycle();
     let s = sensitivities(&bike, 0.0, 10.0, None)?;
-    let exact = s.parameters.iter().find(|p| p.key == "c").and_then(|p| p.weave_speed).ok_or("dv_w/dc")?;
+    let exact = s
+        .parameters
+        .iter()
+        .find(|p| p.key == "c")
+        .and_then(|p| p.weave_speed)
+        .ok_or("dv_w/dc")?;
     let vw = |c: f64| -> Result<f64, Box<dyn std::error::Error>> {
         let b = with_parameter(&bike, "c", c).ok_or("c")?;
         let canonical = Canonical::new(&b.benchmark()?)?;
-        Ok(critical_speeds(&canonical, 0.0, 10.0)?.weave_speed.ok_or("v_w")?)
+        Ok(critical_speeds(&canonical, 0.0, 10.0)?
+            .weave_speed
+            .ok_or("v_w")?)
     };
     let h = 1e-5;
     let central = (vw(0.08 + h)? - vw(0.08 - h)?) / (2.0 * h);
-    assert!(((exact - central) / central).abs() < 1e-8, "exact {exact}, central {central}");
+    assert!(
+        ((exact - central) / central).abs() < 1e-8,
+        "exact {exact}, central {central}"
+    );
     Ok(())
 }
 
@@ -169,8 +227,16 @@ fn every_sensitivity_matches_central_differences() -> TestResult {
             let tol = |x: f64| 1e-5 * x.abs().max(1e-3);
             let ew = p.weave_speed.ok_or("dv_w")?;
             let ec = p.capsize_speed.ok_or("dv_c")?;
-            assert!((ew - dw).abs() < tol(dw), "{preset} {}: dv_w exact {ew}, central {dw}", p.key);
-            assert!((ec - dc).abs() < tol(dc), "{preset} {}: dv_c exact {ec}, central {dc}", p.key);
+            assert!(
+                (ew - dw).abs() < tol(dw),
+                "{preset} {}: dv_w exact {ew}, central {dw}",
+                p.key
+            );
+            assert!(
+                (ec - dc).abs() < tol(dc),
+                "{preset} {}: dv_c exact {ec}, central {dc}",
+                p.key
+            );
         }
     }
     Ok(())
@@ -221,8 +287,14 @@ fn weave_speed_sigma_agrees_with_monte_carlo() -> TestResult {
     let std = (samples.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt();
     // The standard error of a sample standard deviation is σ/√(2(n−1)): 1.6 % here.
     let standard_error = sigma / (2.0 * (n as f64 - 1.0)).sqrt();
-    assert!((std - sigma).abs() < 3.0 * standard_error, "first order {sigma}, Monte Carlo {std} ± {standard_error}");
-    assert!((mean - first_order.speeds.weave_speed.ok_or("v_w")?).abs() < 4.0 * sigma / (n as f64).sqrt() + 0.01 * sigma);
+    assert!(
+        (std - sigma).abs() < 3.0 * standard_error,
+        "first order {sigma}, Monte Carlo {std} ± {standard_error}"
+    );
+    assert!(
+        (mean - first_order.speeds.weave_speed.ok_or("v_w")?).abs()
+            < 4.0 * sigma / (n as f64).sqrt() + 0.01 * sigma
+    );
     eprintln!("Fisher v_w σ: first order {sigma:.6}, Monte Carlo {std:.6} (n = {n}, standard error {standard_error:.6})");
     Ok(())
 }
@@ -235,18 +307,27 @@ fn eigenvalue_derivatives_match_central_differences() -> TestResult {
     let derivs = d.eigenvalue_derivatives(5.0)?;
     let k = d.index("mB").ok_or("mB")?;
     let h = 1e-4;
-    let eig = |m: f64| -> Result<[whipple::analysis::eigen::Complex64; 4], Box<dyn std::error::Error>> {
-        let b = with_parameter(&bike, "mB", m).ok_or("mB")?;
-        Ok(whipple::analysis::eigen::eigenvalues(&Canonical::new(&b.benchmark()?)?, 5.0)?)
-    };
+    let eig =
+        |m: f64| -> Result<[whipple::analysis::eigen::Complex64; 4], Box<dyn std::error::Error>> {
+            let b = with_parameter(&bike, "mB", m).ok_or("mB")?;
+            Ok(whipple::analysis::eigen::eigenvalues(
+                &Canonical::new(&b.benchmark()?)?,
+                5.0,
+            )?)
+        };
     let (up, down) = (eig(85.0 + h)?, eig(85.0 - h)?);
     for (l, dl) in &derivs {
         let dl = dl.as_ref().ok_or("simple eigenvalue")?[k];
         let near = |set: &[whipple::analysis::eigen::Complex64; 4]| {
-            *set.iter().min_by(|a, b| (**a - l).norm().total_cmp(&(**b - l).norm())).unwrap_or(l)
+            *set.iter()
+                .min_by(|a, b| (**a - l).norm().total_cmp(&(**b - l).norm()))
+                .unwrap_or(l)
         };
         let fd = (near(&up) - near(&down)) / (2.0 * h);
-        assert!((fd - dl).norm() < 1e-6 * (1.0 + dl.norm()), "λ = {l}: exact {dl}, central {fd}");
+        assert!(
+            (fd - dl).norm() < 1e-6 * (1.0 + dl.norm()),
+            "λ = {l}: exact {dl}, central {fd}"
+        );
     }
     Ok(())
 }

@@ -74,9 +74,8 @@ fn benchmark_of(form: Form, values: &[Dual64]) -> Result<BenchmarkParameters<Dua
     };
     Ok(match form {
         Form::Benchmark => BenchmarkParameters::from_array(values.try_into().map_err(|_| bad())?),
-        Form::Jbike6 => {
-            Jbike6Parameters::from_array(values.try_into().map_err(|_| bad())?).to_benchmark_unchecked()
-        }
+        Form::Jbike6 => Jbike6Parameters::from_array(values.try_into().map_err(|_| bad())?)
+            .to_benchmark_unchecked(),
     })
 }
 
@@ -149,7 +148,9 @@ impl Derivatives {
 
     /// The position of a parameter (by file key) in [`Derivatives::parameters`].
     pub fn index(&self, key: &str) -> Option<usize> {
-        self.parameters.iter().position(|p| p.key == key || p.path == key)
+        self.parameters
+            .iter()
+            .position(|p| p.key == key || p.path == key)
     }
 
     /// The canonical matrices as dual numbers in the direction of parameter `i`.
@@ -202,12 +203,20 @@ impl Derivatives {
                 self.sigma_of(&d)
             })
         };
-        [pick(&|c| c.m), pick(&|c| c.c1), pick(&|c| c.k0), pick(&|c| c.k2)]
+        [
+            pick(&|c| c.m),
+            pick(&|c| c.c1),
+            pick(&|c| c.k0),
+            pick(&|c| c.k2),
+        ]
     }
 
     /// dλ/dpᵢ of each eigenvalue at speed v (in the order of [`eigenvalues`]); `None` for an
     /// eigenvalue at a double root, where it is not differentiable.
-    pub fn eigenvalue_derivatives(&self, v: f64) -> Result<Vec<(Complex64, Option<Vec<Complex64>>)>> {
+    pub fn eigenvalue_derivatives(
+        &self,
+        v: f64,
+    ) -> Result<Vec<(Complex64, Option<Vec<Complex64>>)>> {
         let lambdas = eigenvalues(&self.canonical, v)?;
         let a = self.canonical.quartic_at(v);
         let da = self.quartic_derivatives(v);
@@ -273,7 +282,10 @@ impl Derivatives {
     /// dv_d/dpᵢ of the double-root speed: at (λ_d, v_d) both p and ∂p/∂λ vanish, so
     /// dv_d = −(∂p/∂pᵢ)/(∂p/∂v).
     pub fn double_root_speed_derivatives(&self, critical: &CriticalSpeeds) -> Option<Vec<f64>> {
-        let (v, l) = (critical.double_root_speed?, critical.double_root_eigenvalue?);
+        let (v, l) = (
+            critical.double_root_speed?,
+            critical.double_root_eigenvalue?,
+        );
         let at = |a: [Dual64; 5]| {
             let mut p = a[4];
             for k in (0..4).rev() {
@@ -457,7 +469,12 @@ pub struct Sensitivities {
 /// assert!(trail.weave_speed.unwrap() > 0.0);
 /// # Ok::<(), whipple::Error>(())
 /// ```
-pub fn sensitivities(bike: &Bicycle, lo: f64, hi: f64, speed: Option<f64>) -> Result<Sensitivities> {
+pub fn sensitivities(
+    bike: &Bicycle,
+    lo: f64,
+    hi: f64,
+    speed: Option<f64>,
+) -> Result<Sensitivities> {
     let d = Derivatives::new(bike)?;
     let critical = critical_speeds(&d.canonical, lo, hi)?;
     let dw = d.weave_speed_derivatives(&critical);
@@ -485,12 +502,16 @@ pub fn sensitivities(bike: &Bicycle, lo: f64, hi: f64, speed: Option<f64>) -> Re
         let last = sweep.eigenvalues.last().copied().unwrap_or_default();
         let derivs = d.eigenvalue_derivatives(v)?;
         let find = |mode: Mode| -> Option<(f64, Option<Vec<f64>>)> {
-            let k = (0..4).find(|k| sweep.modes[*k] == mode && (mode != Mode::Weave || last[*k].im >= 0.0))?;
+            let k = (0..4)
+                .find(|k| sweep.modes[*k] == mode && (mode != Mode::Weave || last[*k].im >= 0.0))?;
             let target = last[k];
             let (l, dl) = derivs
                 .iter()
                 .min_by(|a, b| (a.0 - target).norm().total_cmp(&(b.0 - target).norm()))?;
-            Some((l.re, dl.as_ref().map(|dl| dl.iter().map(|z| z.re).collect())))
+            Some((
+                l.re,
+                dl.as_ref().map(|dl| dl.iter().map(|z| z.re).collect()),
+            ))
         };
         if let Some((r, dr)) = find(Mode::Weave) {
             weave_real = Some(r);
@@ -522,7 +543,11 @@ pub fn sensitivities(bike: &Bicycle, lo: f64, hi: f64, speed: Option<f64>) -> Re
                 capsize_speed: pick(&dc),
                 stable_width: pick(&dwidth),
                 weave_speed_elasticity: elasticity(pick(&dw), d.values[i], critical.weave_speed),
-                capsize_speed_elasticity: elasticity(pick(&dc), d.values[i], critical.capsize_speed),
+                capsize_speed_elasticity: elasticity(
+                    pick(&dc),
+                    d.values[i],
+                    critical.capsize_speed,
+                ),
                 stable_width_elasticity: elasticity(pick(&dwidth), d.values[i], width),
                 weave_real: pick(&dwr),
                 capsize_real: pick(&dcr),
@@ -548,7 +573,9 @@ pub fn with_parameter(bike: &Bicycle, key: &str, value: f64) -> Option<Bicycle> 
     let mut values = bike.description.values();
     values[i] = value;
     let description = match form {
-        Form::Benchmark => Description::Benchmark(BenchmarkParameters::from_array(values.try_into().ok()?)),
+        Form::Benchmark => {
+            Description::Benchmark(BenchmarkParameters::from_array(values.try_into().ok()?))
+        }
         Form::Jbike6 => Description::Jbike6(Jbike6Parameters::from_array(values.try_into().ok()?)),
     };
     Some(Bicycle {

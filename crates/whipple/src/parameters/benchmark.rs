@@ -187,28 +187,65 @@ impl BenchmarkParameters {
             });
         }
         for (body, mass_key, mass, inertia) in [
-            ("the rear wheel R", "mR", self.m_r, vec![("IRxx", self.i_rxx), ("IRyy", self.i_ryy)]),
+            (
+                "the rear wheel R",
+                "mR",
+                self.m_r,
+                vec![("IRxx", self.i_rxx), ("IRyy", self.i_ryy)],
+            ),
             (
                 "the rear body B",
                 "mB",
                 self.m_b,
-                vec![("IBxx", self.i_bxx), ("IByy", self.i_byy), ("IBzz", self.i_bzz), ("IBxz", self.i_bxz)],
+                vec![
+                    ("IBxx", self.i_bxx),
+                    ("IByy", self.i_byy),
+                    ("IBzz", self.i_bzz),
+                    ("IBxz", self.i_bxz),
+                ],
             ),
             (
                 "the front frame H",
                 "mH",
                 self.m_h,
-                vec![("IHxx", self.i_hxx), ("IHyy", self.i_hyy), ("IHzz", self.i_hzz), ("IHxz", self.i_hxz)],
+                vec![
+                    ("IHxx", self.i_hxx),
+                    ("IHyy", self.i_hyy),
+                    ("IHzz", self.i_hzz),
+                    ("IHxz", self.i_hxz),
+                ],
             ),
-            ("the front wheel F", "mF", self.m_f, vec![("IFxx", self.i_fxx), ("IFyy", self.i_fyy)]),
+            (
+                "the front wheel F",
+                "mF",
+                self.m_f,
+                vec![("IFxx", self.i_fxx), ("IFyy", self.i_fyy)],
+            ),
         ] {
             zero_mass_inertia(body, mass_key, mass, &inertia)?;
         }
         wheel_inertia("R", self.r_r, self.i_rxx, self.i_ryy, &mut notices)?;
         wheel_inertia("F", self.r_f, self.i_fxx, self.i_fyy, &mut notices)?;
-        frame_inertia("B", self.i_bxx, self.i_byy, self.i_bzz, self.i_bxz, &mut notices)?;
-        frame_inertia("H", self.i_hxx, self.i_hyy, self.i_hzz, self.i_hxz, &mut notices)?;
-        for (key, z, body) in [("zB", self.z_b, "rear body B"), ("zH", self.z_h, "front frame H")] {
+        frame_inertia(
+            "B",
+            self.i_bxx,
+            self.i_byy,
+            self.i_bzz,
+            self.i_bxz,
+            &mut notices,
+        )?;
+        frame_inertia(
+            "H",
+            self.i_hxx,
+            self.i_hyy,
+            self.i_hzz,
+            self.i_hxz,
+            &mut notices,
+        )?;
+        for (key, z, body) in [
+            ("zB", self.z_b, "rear body B"),
+            ("zH", self.z_h, "front frame H"),
+        ] {
             if z > 0.0 {
                 notices.push(Notice::warning(
                     key,
@@ -223,7 +260,8 @@ impl BenchmarkParameters {
         }
 
         let m = crate::linear::Canonical::from_unchecked(self).m;
-        if m.iter().any(|x| !x.is_finite()) {
+        let det = m[(0, 0)] * m[(1, 1)] - m[(0, 1)] * m[(1, 0)];
+        if m.iter().any(|x| !x.is_finite()) || !det.is_finite() {
             // Overflow: name the largest number, the likely culprit.
             let (field, value) = self
                 .fields()
@@ -236,7 +274,6 @@ impl BenchmarkParameters {
                 "is too large: the mass matrix M of the linearized model overflows double precision",
             ));
         }
-        let det = m[(0, 0)] * m[(1, 1)] - m[(0, 1)] * m[(1, 0)];
         if !(m[(0, 0)] > 0.0 && det > 0.0) {
             return Err(Error::InvalidBicycle {
                 fields: "all masses, inertias and geometry".into(),

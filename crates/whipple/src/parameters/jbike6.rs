@@ -635,13 +635,36 @@ impl<T: Copy> Jbike6Parameters<T> {
         let mut out = Vec::with_capacity(JBIKE6_COUNT);
         out.extend([self.wheelbase, self.head_angle, self.trail, self.gravity]);
         for w in [&self.rear_wheel, &self.front_wheel] {
-            out.extend([w.diameter, w.m, w.inertia[0], w.inertia[1], w.inertia[2], w.alpha]);
+            out.extend([
+                w.diameter,
+                w.m,
+                w.inertia[0],
+                w.inertia[1],
+                w.inertia[2],
+                w.alpha,
+            ]);
         }
         for b in [&self.rider, &self.frame, &self.rack] {
-            out.extend([b.m, b.xcm, b.ycm, b.inertia[0], b.inertia[1], b.inertia[2], b.alpha]);
+            out.extend([
+                b.m,
+                b.xcm,
+                b.ycm,
+                b.inertia[0],
+                b.inertia[1],
+                b.inertia[2],
+                b.alpha,
+            ]);
         }
         for b in [&self.fork, &self.basket] {
-            out.extend([b.m, b.ucm, b.vcm, b.inertia[0], b.inertia[1], b.inertia[2], b.alpha]);
+            out.extend([
+                b.m,
+                b.ucm,
+                b.vcm,
+                b.inertia[0],
+                b.inertia[1],
+                b.inertia[2],
+                b.alpha,
+            ]);
         }
         let mut array = [self.wheelbase; JBIKE6_COUNT];
         array.copy_from_slice(&out);
@@ -851,7 +874,10 @@ fn rename_error(error: Error) -> Error {
     match error {
         Error::InvalidParameter { field, value, rule } => {
             let name = jbike6_names(&field);
-            if name.is_empty() || name.contains(',') || name.contains('(') && name.contains("combined") {
+            if name.is_empty()
+                || name.contains(',')
+                || name.contains('(') && name.contains("combined")
+            {
                 Error::InvalidBicycle {
                     fields: rename_fields(&field),
                     rule: format!(
@@ -1051,7 +1077,13 @@ impl Jbike6Parameters {
     }
 }
 
-fn inertia_of_massless(title: &str, mass_key: &str, m: f64, name: &str, inertia: [f64; 3]) -> Result<()> {
+fn inertia_of_massless(
+    title: &str,
+    mass_key: &str,
+    m: f64,
+    name: &str,
+    inertia: [f64; 3],
+) -> Result<()> {
     let keys = [
         format!("I{name}(1)"),
         format!("I{name}(2)"),

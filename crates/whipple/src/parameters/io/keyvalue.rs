@@ -75,7 +75,10 @@ pub(crate) fn parse(text: &str, format: Format) -> Result<Bicycle> {
                         line_no,
                         code.len() - code.trim_start().len() + 1,
                         None,
-                        format!("expected `key = value`, found `{}`", shorten(code.trim(), 60)),
+                        format!(
+                            "expected `key = value`, found `{}`",
+                            shorten(code.trim(), 60)
+                        ),
                     ))
                 }
             },
@@ -125,7 +128,8 @@ pub(crate) fn parse(text: &str, format: Format) -> Result<Bicycle> {
             };
             let sigma = match sigma_text {
                 Some(s) => {
-                    let sigma = parse_number(s).map_err(|e| at(format!("standard deviation: {e}")))?;
+                    let sigma =
+                        parse_number(s).map_err(|e| at(format!("standard deviation: {e}")))?;
                     if sigma < 0.0 {
                         return Err(at(format!(
                             "a standard deviation cannot be negative (`+/-{}`)",
@@ -140,8 +144,17 @@ pub(crate) fn parse(text: &str, format: Format) -> Result<Bicycle> {
         }
         let n = values.len() as f64;
         let value = values.iter().map(|v| v.0).sum::<f64>() / n;
-        let sigma = if values.iter().any(|v| v.1.is_some()) {
-            Some(values.iter().map(|v| v.1.unwrap_or(0.0).powi(2)).sum::<f64>().sqrt() / n)
+        let sigma = if values.len() == 1 {
+            values[0].1
+        } else if values.iter().any(|v| v.1.is_some()) {
+            Some(
+                values
+                    .iter()
+                    .map(|v| v.1.unwrap_or(0.0).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+                    / n,
+            )
         } else {
             None
         };
@@ -194,7 +207,27 @@ fn is_raw_measurement(key: &str) -> bool {
         || key.strip_prefix("Tt").is_some_and(body)
         || key.strip_prefix("alpha").is_some_and(body)
         || (key.starts_with('a') && key.len() <= 3 && key[1..].starts_with(['B', 'H', 'S', 'G']))
-        || matches!(key, "f" | "gamma" | "lF" | "lP" | "lR" | "dF" | "dR" | "dP" | "nF" | "nR" | "mP" | "h1" | "h2" | "h3" | "h4" | "h5" | "d" | "d2" | "d4")
+        || matches!(
+            key,
+            "f" | "gamma"
+                | "lF"
+                | "lP"
+                | "lR"
+                | "dF"
+                | "dR"
+                | "dP"
+                | "nF"
+                | "nR"
+                | "mP"
+                | "h1"
+                | "h2"
+                | "h3"
+                | "h4"
+                | "h5"
+                | "d"
+                | "d2"
+                | "d4"
+        )
 }
 
 /// The meaning of a key that is not a benchmark parameter, for notes and for writing it back.
@@ -270,10 +303,18 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
     let missing: Vec<&str> = BENCHMARK_TABLE
         .iter()
         .enumerate()
-        .filter(|(i, p)| values[*i].is_none() && !matches!(p.key, "IByy" | "IHyy" | "mH" | "xH" | "zH" | "IHxx" | "IHzz" | "IHxz"))
+        .filter(|(i, p)| {
+            values[*i].is_none()
+                && !matches!(
+                    p.key,
+                    "IByy" | "IHyy" | "mH" | "xH" | "zH" | "IHxx" | "IHzz" | "IHxz"
+                )
+        })
         .map(|(_, p)| p.key)
         .collect();
-    let present_b = entries.iter().all(|e| e.key.ends_with('B') || e.key.starts_with("IB"));
+    let present_b = entries
+        .iter()
+        .all(|e| e.key.ends_with('B') || e.key.starts_with("IB"));
     if !missing.is_empty() && present_b && !entries.is_empty() {
         return Err(error_at(
             format,
@@ -354,7 +395,14 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
     }
     let bike = BenchmarkParameters::from_array(filled);
     for e in &extras {
-        check_extra(e, &bike, combined.as_ref().map(|c| &c[..]), values[index_of(Form::Benchmark, "mH").unwrap_or(17)].is_some(), format, &mut notices)?;
+        check_extra(
+            e,
+            &bike,
+            combined.as_ref().map(|c| &c[..]),
+            values[index_of(Form::Benchmark, "mH").unwrap_or(17)].is_some(),
+            format,
+            &mut notices,
+        )?;
     }
     Ok(Bicycle {
         description: Description::Benchmark(bike),
@@ -425,7 +473,10 @@ fn check_extra(
                 ),
             ));
         }
-        notices.push(Notice::note(key, format!("`{key}` equals `{xx_key}`: {meaning}")));
+        notices.push(Notice::note(
+            key,
+            format!("`{key}` equals `{xx_key}`: {meaning}"),
+        ));
         return Ok(());
     }
     if key == "d1" || key == "d3" {
@@ -438,7 +489,10 @@ fn check_extra(
         if agree(e.value, implied, e.allowance) {
             notices.push(Notice::note(
                 key,
-                format!("`{key}` = {} agrees with the benchmark geometry ({meaning})", e.text),
+                format!(
+                    "`{key}` = {} agrees with the benchmark geometry ({meaning})",
+                    e.text
+                ),
             ));
         } else {
             let pct = percent((e.value - implied).abs(), implied);
@@ -460,11 +514,16 @@ fn check_extra(
     if SPLIT_FORK.contains(&key) {
         if key == "mG" {
             if let (Some(c), true) = (combined, h_given) {
-                let h = [bike.m_h, bike.x_h, bike.z_h, bike.i_hxx, bike.i_hyy, bike.i_hzz, bike.i_hxz];
+                let h = [
+                    bike.m_h, bike.x_h, bike.z_h, bike.i_hxx, bike.i_hyy, bike.i_hzz, bike.i_hxz,
+                ];
                 let names = ["mH", "xH", "zH", "IHxx", "IHyy", "IHzz", "IHxz"];
                 let mut worst: Option<(usize, f64)> = None;
                 for k in 0..7 {
-                    let scale = h[k].abs().max(c[k].abs()).max(if k < 3 { 1e-3 } else { 1e-6 });
+                    let scale = h[k]
+                        .abs()
+                        .max(c[k].abs())
+                        .max(if k < 3 { 1e-3 } else { 1e-6 });
                     let rel = (h[k] - c[k]).abs() / scale;
                     if rel > 1e-3 && worst.is_none_or(|(_, w)| rel > w) {
                         worst = Some((k, rel));
@@ -501,7 +560,10 @@ fn check_extra(
         }
         return Ok(());
     }
-    if matches!(key, "parameterization" | "parameters" | "rider" | "description") {
+    if matches!(
+        key,
+        "parameterization" | "parameters" | "rider" | "description"
+    ) {
         return Ok(());
     }
     notices.push(Notice::note(
@@ -630,7 +692,8 @@ impl Parser<'_> {
                     }
                 }
                 let s: String = self.t[start..self.i].iter().collect();
-                s.parse::<f64>().map_err(|_| format!("`{}` is not a number", shorten(&s, 40)))
+                s.parse::<f64>()
+                    .map_err(|_| format!("`{}` is not a number", shorten(&s, 40)))
             }
             Some(c) if c.is_ascii_alphabetic() => {
                 let start = self.i;

@@ -108,7 +108,13 @@ fn statements(text: &str) -> Result<Vec<Statement>> {
         current.clear();
     }
     if depth > 0 {
-        return Err(error_at(F, bracket_line, 1, None, "missing `]`: a `[` is never closed"));
+        return Err(error_at(
+            F,
+            bracket_line,
+            1,
+            None,
+            "missing `]`: a `[` is never closed",
+        ));
     }
     if !current.trim().is_empty() {
         out.push(Statement {
@@ -136,7 +142,10 @@ pub fn parse_jbike6_m(text: &str) -> Result<Jbike6Parameters> {
                 line_no,
                 column,
                 None,
-                format!("expected `name = value;`, found `{}`", shorten(st.text.trim(), 60)),
+                format!(
+                    "expected `name = value;`, found `{}`",
+                    shorten(st.text.trim(), 60)
+                ),
             ));
         };
         let name = st.text[..eq].trim();

@@ -43,7 +43,11 @@ pub enum Format {
 
 /// Every format with its `--format` name and a line on what it is.
 pub const FORMATS: [(Format, &str, &str); 6] = [
-    (Format::Toml, "toml", "TOML, whipple's hand-edited layout (.toml)"),
+    (
+        Format::Toml,
+        "toml",
+        "TOML, whipple's hand-edited layout (.toml)",
+    ),
     (Format::Json, "json", "JSON, the same layout (.json)"),
     (Format::Jbike6M, "m", "JBike6's MATLAB assignments (.m)"),
     (
@@ -161,7 +165,10 @@ impl Format {
                 matches!((l.find(':'), l.find('=')), (Some(c), None) | (Some(c), Some(_)) if l.find('=').is_none_or(|e| c < e))
             })
             .count();
-        let assignment = lines.iter().filter(|l| l.contains('=') || l.contains(',')).count();
+        let assignment = lines
+            .iter()
+            .filter(|l| l.contains('=') || l.contains(','))
+            .count();
         if colon > 0 && assignment == 0 {
             return Ok(Format::Yaml);
         }
@@ -219,8 +226,9 @@ pub fn parse(text: &str, format: Format) -> Result<Bicycle> {
     match format {
         Format::Toml => tree::parse_toml(text),
         Format::Json => tree::parse_json(text),
-        Format::Jbike6M => matlab::parse_jbike6_m(text)
-            .map(|p| Bicycle::new(super::Description::Jbike6(p))),
+        Format::Jbike6M => {
+            matlab::parse_jbike6_m(text).map(|p| Bicycle::new(super::Description::Jbike6(p)))
+        }
         Format::BicycleParametersTxt => keyvalue::parse(text, Format::BicycleParametersTxt),
         Format::HumanControlTxt => keyvalue::parse(text, Format::HumanControlTxt),
         Format::Yaml => yaml::parse(text),
@@ -300,8 +308,8 @@ pub(crate) fn rounding_allowance(token: &str) -> f64 {
         Some(p) => (&t[..p], t[p + 1..].parse::<i32>().unwrap_or(0)),
         None => (t, 0),
     };
-    let decimals = mantissa
-        .split_once('.')
-        .map_or(0, |(_, frac)| frac.chars().filter(|c| c.is_ascii_digit()).count());
+    let decimals = mantissa.split_once('.').map_or(0, |(_, frac)| {
+        frac.chars().filter(|c| c.is_ascii_digit()).count()
+    });
     0.5 * 10f64.powi(exponent - decimals as i32)
 }

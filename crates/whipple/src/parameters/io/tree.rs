@@ -62,12 +62,7 @@ pub(crate) fn parse_toml(text: &str) -> Result<Bicycle> {
     Reader { format }.layout(&root)
 }
 
-fn toml_node(
-    text: &str,
-    table: &toml::de::DeTable<'_>,
-    offset: usize,
-    _inline: bool,
-) -> Node {
+fn toml_node(text: &str, table: &toml::de::DeTable<'_>, offset: usize, _inline: bool) -> Node {
     let (line, column) = line_column(text, offset);
     let entries = table
         .iter()
@@ -157,7 +152,10 @@ fn json_node(text: &str, v: &serde_json::Value, key: Option<&str>) -> Node {
     let value = match v {
         J::Number(n) => match n.as_f64() {
             Some(x) if x.is_finite() => Value::Number(x, n.to_string()),
-            _ => Value::Bad(format!("`{}` is not a finite number", shorten(&n.to_string(), 40))),
+            _ => Value::Bad(format!(
+                "`{}` is not a finite number",
+                shorten(&n.to_string(), 40)
+            )),
         },
         J::String(s) => Value::Text(s.clone()),
         J::Bool(_) => Value::Bool,
@@ -272,7 +270,11 @@ impl Reader {
                 };
                 if let Some(s) = s {
                     if s < 0.0 {
-                        return Err(self.err(node, field, format!("the standard deviation of `{field}` cannot be negative")));
+                        return Err(self.err(
+                            node,
+                            field,
+                            format!("the standard deviation of `{field}` cannot be negative"),
+                        ));
                     }
                     if s > 0.0 {
                         sigma.insert(field.to_string(), s);
@@ -280,7 +282,14 @@ impl Reader {
                 }
                 Ok(value)
             }
-            other => Err(self.err(node, field, format!("`{field}` must be a number (or {{ value, sigma }}), not {}", other.kind()))),
+            other => Err(self.err(
+                node,
+                field,
+                format!(
+                    "`{field}` must be a number (or {{ value, sigma }}), not {}",
+                    other.kind()
+                ),
+            )),
         }
     }
 
@@ -288,11 +297,19 @@ impl Reader {
         let mut values: [Option<f64>; 26] = [None; 26];
         for (key, n) in entries(node) {
             let Some(i) = BENCHMARK_TABLE.iter().position(|p| p.key == key) else {
-                return Err(self.err(n, key, format!(
-                    "unknown key `{}` in the benchmark table (keys: {})",
-                    shorten(key, 40),
-                    BENCHMARK_TABLE.iter().map(|p| p.key).collect::<Vec<_>>().join(", ")
-                )));
+                return Err(self.err(
+                    n,
+                    key,
+                    format!(
+                        "unknown key `{}` in the benchmark table (keys: {})",
+                        shorten(key, 40),
+                        BENCHMARK_TABLE
+                            .iter()
+                            .map(|p| p.key)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                ));
             };
             values[i] = Some(self.number(n, key, &mut bike.sigma)?);
         }
@@ -303,33 +320,72 @@ impl Reader {
             .map(|(p, _)| p.key)
             .collect();
         if let Some(first) = missing.first() {
-            return Err(self.err(node, first, format!("missing keys in the benchmark table: {}", missing.join(", "))));
+            return Err(self.err(
+                node,
+                first,
+                format!(
+                    "missing keys in the benchmark table: {}",
+                    missing.join(", ")
+                ),
+            ));
         }
-        Ok(BenchmarkParameters::from_array(values.map(|v| v.unwrap_or(0.0))))
+        Ok(BenchmarkParameters::from_array(
+            values.map(|v| v.unwrap_or(0.0)),
+        ))
     }
 
     fn jbike6(&self, node: &Node, bike: &mut Bicycle) -> Result<Jbike6Parameters> {
         let mut values: Vec<Option<f64>> = vec![None; JBIKE6_TABLE.len()];
-        let bodies = ["rear_wheel", "front_wheel", "rider", "frame", "rack", "fork", "basket"];
+        let bodies = [
+            "rear_wheel",
+            "front_wheel",
+            "rider",
+            "frame",
+            "rack",
+            "fork",
+            "basket",
+        ];
         for (key, n) in entries(node) {
             if bodies.contains(&key.as_str()) {
                 if !matches!(n.value, Value::Table(_)) {
-                    return Err(self.err(n, key, format!("`{key}` must be a table, not {}", n.value.kind())));
+                    return Err(self.err(
+                        n,
+                        key,
+                        format!("`{key}` must be a table, not {}", n.value.kind()),
+                    ));
                 }
                 for (field, v) in entries(n) {
                     let path = format!("{key}.{field}");
                     if field == "I" {
                         let Value::Array(items) = &v.value else {
-                            return Err(self.err(v, &path, format!("`{path}` must be three numbers [I11, I22, Izz], not {}", v.value.kind())));
+                            return Err(self.err(
+                                v,
+                                &path,
+                                format!(
+                                    "`{path}` must be three numbers [I11, I22, Izz], not {}",
+                                    v.value.kind()
+                                ),
+                            ));
                         };
                         if items.len() != 3 {
                             return Err(self.err(v, &path, format!("`{path}` needs exactly three numbers [I11, I22, Izz], found {}", items.len())));
                         }
                         for (k, item) in items.iter().enumerate() {
                             let p = format!("{key}.I[{}]", k + 1);
-                            let Some(i) = JBIKE6_TABLE.iter().position(|t| t.path == p) else { continue };
-                            let item = if item.line == 0 { Node { line: v.line, column: v.column, ..item.clone() } } else { item.clone() };
-                            values[i] = Some(self.number(&item, JBIKE6_TABLE[i].key, &mut bike.sigma)?);
+                            let Some(i) = JBIKE6_TABLE.iter().position(|t| t.path == p) else {
+                                continue;
+                            };
+                            let item = if item.line == 0 {
+                                Node {
+                                    line: v.line,
+                                    column: v.column,
+                                    ..item.clone()
+                                }
+                            } else {
+                                item.clone()
+                            };
+                            values[i] =
+                                Some(self.number(&item, JBIKE6_TABLE[i].key, &mut bike.sigma)?);
                         }
                         continue;
                     }
@@ -338,12 +394,21 @@ impl Reader {
                             .iter()
                             .filter_map(|t| t.path.strip_prefix(&format!("{key}.")))
                             .map(|f| f.split('[').next().unwrap_or(f))
-                            .fold(Vec::new(), |mut a, f| { if !a.contains(&f) { a.push(f) } a });
-                        return Err(self.err(v, &path, format!(
-                            "unknown key `{}` in `{key}` (keys: {})",
-                            shorten(field, 40),
-                            allowed.join(", ")
-                        )));
+                            .fold(Vec::new(), |mut a, f| {
+                                if !a.contains(&f) {
+                                    a.push(f)
+                                }
+                                a
+                            });
+                        return Err(self.err(
+                            v,
+                            &path,
+                            format!(
+                                "unknown key `{}` in `{key}` (keys: {})",
+                                shorten(field, 40),
+                                allowed.join(", ")
+                            ),
+                        ));
                     };
                     values[i] = Some(self.number(v, JBIKE6_TABLE[i].key, &mut bike.sigma)?);
                 }
@@ -368,7 +433,11 @@ impl Reader {
             .map(|(p, _)| p.path)
             .collect();
         if let Some(first) = missing.first() {
-            return Err(self.err(node, first, format!("missing keys in the jbike6 table: {}", missing.join(", "))));
+            return Err(self.err(
+                node,
+                first,
+                format!("missing keys in the jbike6 table: {}", missing.join(", ")),
+            ));
         }
         let mut array = [0.0; 51];
         for (a, v) in array.iter_mut().zip(values) {
@@ -400,7 +469,8 @@ impl Reader {
                     (text, Some(x))
                 }
             };
-            bike.notices.push(Notice::note(key.clone(), format!("`{key}`: {meaning}")));
+            bike.notices
+                .push(Notice::note(key.clone(), format!("`{key}`: {meaning}")));
             bike.extras.push(Extra {
                 key: key.clone(),
                 text,

@@ -3,7 +3,9 @@
 
 use super::Format;
 use crate::error::{Error, Result};
-use crate::parameters::{Bicycle, Description, Extra, ParameterInfo, BENCHMARK_TABLE, JBIKE6_TABLE};
+use crate::parameters::{
+    Bicycle, Description, Extra, ParameterInfo, BENCHMARK_TABLE, JBIKE6_TABLE,
+};
 
 pub(crate) fn write(bike: &Bicycle, format: Format) -> Result<String> {
     for (key, value) in bike
@@ -28,7 +30,8 @@ pub(crate) fn write(bike: &Bicycle, format: Format) -> Result<String> {
             Description::Jbike6(_) => Ok(matlab(bike)),
             Description::Benchmark(_) => Err(Error::InvalidArgument {
                 what: "format",
-                rule: "only a bicycle described in JBike6's form can be written as a .m file".into(),
+                rule: "only a bicycle described in JBike6's form can be written as a .m file"
+                    .into(),
             }),
         },
         Format::BicycleParametersTxt | Format::HumanControlTxt | Format::Yaml => {
@@ -114,7 +117,9 @@ fn value_json(bike: &Bicycle, key: &str, x: f64) -> String {
 
 fn extra_toml(e: &Extra) -> String {
     match (e.value, e.sigma) {
-        (Some(v), Some(s)) if s > 0.0 => format!("{{ value = {}, sigma = {} }}", number(v), number(s)),
+        (Some(v), Some(s)) if s > 0.0 => {
+            format!("{{ value = {}, sigma = {} }}", number(v), number(s))
+        }
         (Some(v), _) => number(v),
         (None, _) => toml_string(&e.text),
     }
@@ -142,7 +147,12 @@ fn toml(bike: &Bicycle) -> String {
                  [benchmark]\n",
             );
             for (p, x) in BENCHMARK_TABLE.iter().zip(&values) {
-                out.push_str(&format!("{} = {} # {}\n", p.key, value_toml(bike, p.key, *x), p.doc()));
+                out.push_str(&format!(
+                    "{} = {} # {}\n",
+                    p.key,
+                    value_toml(bike, p.key, *x),
+                    p.doc()
+                ));
             }
         }
         Description::Jbike6(_) => {
@@ -169,15 +179,26 @@ fn toml(bike: &Bicycle) -> String {
                     k += 3;
                     continue;
                 }
-                out.push_str(&format!("{field} = {} # {}\n", value_toml(bike, p.key, values[k]), p.doc()));
+                out.push_str(&format!(
+                    "{field} = {} # {}\n",
+                    value_toml(bike, p.key, values[k]),
+                    p.doc()
+                ));
                 k += 1;
             }
         }
     }
     if !bike.extras.is_empty() {
-        out.push_str("\n# Keys of other models, not used by the Whipple model (kept as written).\n[extra]\n");
+        out.push_str(
+            "\n# Keys of other models, not used by the Whipple model (kept as written).\n[extra]\n",
+        );
         for e in &bike.extras {
-            out.push_str(&format!("{} = {} # {}\n", e.key, extra_toml(e), comment_text(&e.meaning)));
+            out.push_str(&format!(
+                "{} = {} # {}\n",
+                e.key,
+                extra_toml(e),
+                comment_text(&e.meaning)
+            ));
         }
     }
     out
@@ -214,7 +235,11 @@ fn json(bike: &Bicycle) -> String {
                 let p = &JBIKE6_TABLE[k];
                 match p.path.split_once('.') {
                     None => {
-                        top.push(format!("    \"{}\": {}", p.path, value_json(bike, p.key, values[k])));
+                        top.push(format!(
+                            "    \"{}\": {}",
+                            p.path,
+                            value_json(bike, p.key, values[k])
+                        ));
                         k += 1;
                     }
                     Some((table, field)) => {
@@ -229,7 +254,10 @@ fn json(bike: &Bicycle) -> String {
                             format!("      \"I\": [{}]", items.join(", "))
                         } else {
                             k += 1;
-                            format!("      \"{field}\": {}", value_json(bike, p.key, values[k - 1]))
+                            format!(
+                                "      \"{field}\": {}",
+                                value_json(bike, p.key, values[k - 1])
+                            )
                         };
                         if let Some(g) = groups.last_mut() {
                             g.1.push(entry);
@@ -238,7 +266,10 @@ fn json(bike: &Bicycle) -> String {
                 }
             }
             for (table, items) in groups {
-                top.push(format!("    \"{table}\": {{\n{}\n    }}", items.join(",\n")));
+                top.push(format!(
+                    "    \"{table}\": {{\n{}\n    }}",
+                    items.join(",\n")
+                ));
             }
             fields.push(format!("  \"jbike6\": {{\n{}\n  }}", top.join(",\n")));
         }
@@ -322,7 +353,10 @@ fn key_value(bike: &Bicycle, format: Format) -> String {
         })
         .collect();
     for e in &bike.extras {
-        if matches!(e.key.as_str(), "parameterization" | "parameters" | "description" | "rider") {
+        if matches!(
+            e.key.as_str(),
+            "parameterization" | "parameters" | "description" | "rider"
+        ) {
             continue;
         }
         let text = match (e.value, e.sigma) {
@@ -380,7 +414,11 @@ fn yaml(bike: &Bicycle) -> String {
         .sigma
         .iter()
         .map(|(k, s)| (k.clone(), *s))
-        .chain(bike.extras.iter().filter_map(|e| e.sigma.filter(|s| *s > 0.0).map(|s| (e.key.clone(), s))))
+        .chain(
+            bike.extras
+                .iter()
+                .filter_map(|e| e.sigma.filter(|s| *s > 0.0).map(|s| (e.key.clone(), s))),
+        )
         .collect();
     if !sigmas.is_empty() {
         out.push_str("sigma:\n");

@@ -54,7 +54,13 @@ pub(crate) fn parse(text: &str) -> Result<crate::parameters::Bicycle> {
         let line_no = i + 1;
         i += 1;
         if raw.contains('\t') && raw.trim_start().len() != raw.len() && raw.starts_with('\t') {
-            return Err(error_at(F, line_no, 1, None, "YAML indentation must use spaces, not tabs"));
+            return Err(error_at(
+                F,
+                line_no,
+                1,
+                None,
+                "YAML indentation must use spaces, not tabs",
+            ));
         }
         let code = strip_comment(raw);
         if code.trim().is_empty() || code.trim() == "---" {
@@ -81,7 +87,13 @@ pub(crate) fn parse(text: &str) -> Result<crate::parameters::Bicycle> {
                     section = Some((key.clone(), line_no));
                     continue;
                 }
-                return Err(error_at(F, line_no, 1, Some(&key), format!("`{key}` has no value")));
+                return Err(error_at(
+                    F,
+                    line_no,
+                    1,
+                    Some(&key),
+                    format!("`{key}` has no value"),
+                ));
             }
             if value == "|" || value == ">" || value.starts_with("|-") || value.starts_with(">-") {
                 let mut block = Vec::new();
@@ -113,8 +125,8 @@ pub(crate) fn parse(text: &str) -> Result<crate::parameters::Bicycle> {
         }
         match &section {
             Some((name, _)) if name == "values" => {
-                let number = parse_number(value)
-                    .map_err(|e| error_at(F, line_no, column, Some(&key), e))?;
+                let number =
+                    parse_number(value).map_err(|e| error_at(F, line_no, column, Some(&key), e))?;
                 values.push(Entry {
                     key: key.clone(),
                     value: number,
@@ -126,8 +138,8 @@ pub(crate) fn parse(text: &str) -> Result<crate::parameters::Bicycle> {
                 });
             }
             Some((name, _)) if name == "sigma" => {
-                let number = parse_number(value)
-                    .map_err(|e| error_at(F, line_no, column, Some(&key), e))?;
+                let number =
+                    parse_number(value).map_err(|e| error_at(F, line_no, column, Some(&key), e))?;
                 if number < 0.0 {
                     return Err(error_at(
                         F,
@@ -200,7 +212,8 @@ pub(crate) fn parse(text: &str) -> Result<crate::parameters::Bicycle> {
         // A flat map of the benchmark keys.
         for (key, value, line) in &top {
             let column = key.len() + 3;
-            let number = parse_number(value).map_err(|e| error_at(F, *line, column, Some(key), e))?;
+            let number =
+                parse_number(value).map_err(|e| error_at(F, *line, column, Some(key), e))?;
             values.push(Entry {
                 key: key.clone(),
                 value: number,
@@ -221,7 +234,10 @@ pub(crate) fn parse(text: &str) -> Result<crate::parameters::Bicycle> {
                     *line,
                     1,
                     Some(key),
-                    format!("`sigma` names `{}`, which `values` does not hold", shorten(key, 40)),
+                    format!(
+                        "`sigma` names `{}`, which `values` does not hold",
+                        shorten(key, 40)
+                    ),
                 ))
             }
         }
