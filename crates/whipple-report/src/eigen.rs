@@ -304,6 +304,8 @@ impl EigenFigure {
         if let (Some(bands), Some(b)) = (&self.options.sigma_bands, self.bikes.first()) {
             let s = &b.sweep;
             let n = s.speeds.len().min(bands.len());
+            // k indexes both the modes and each speed's bands.
+            #[allow(clippy::needless_range_loop)]
             for k in 0..4 {
                 let col = colour(s.modes[k]);
                 let mut j = 0;

@@ -114,9 +114,9 @@ fn every_field_file_matches_bicycleparameters() -> TestResult {
             );
         }
         let m = entry["M"].as_array().ok_or("M")?;
-        for i in 0..2 {
+        for (i, row) in m.iter().enumerate() {
             for j in 0..2 {
-                let t = m[i][j].as_f64().ok_or("M entry")?;
+                let t = row[j].as_f64().ok_or("M entry")?;
                 assert!(
                     (canonical.m[(i, j)] - t).abs() <= 1e-12 * t.abs().max(1.0),
                     "{name} M"

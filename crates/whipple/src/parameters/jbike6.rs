@@ -948,7 +948,7 @@ impl Jbike6Parameters {
             }
         }
         for (field, value) in [("wheelbase", self.wheelbase), ("gravity", self.gravity)] {
-            if !(value > 0.0) {
+            if value.is_nan() || value <= 0.0 {
                 return Err(Error::InvalidParameter {
                     field: field.into(),
                     value,
