@@ -73,8 +73,8 @@ pub fn load(arg: &str) -> Result<LoadedBike> {
             if !looks_like_file {
                 let known = presets::names();
                 bail!(
-                    "`{arg}` is neither a preset (known presets: {known}) nor a parameter file \
-                     (--bike takes a preset name or a .toml, .json, .m, .txt or .yml file)"
+                    "unknown preset `{arg}` (known presets: {known}), and no parameter file of \
+                     that name (--bike takes a preset name or a .toml, .json, .m, .txt or .yml file)"
                 );
             }
             let bytes = std::fs::read(path)
