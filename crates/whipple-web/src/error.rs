@@ -89,10 +89,11 @@ impl From<Error> for ApiError {
                 line,
                 column,
                 message: what,
+                field,
                 ..
             } => {
                 let mut e = ApiError::new(unprocessable, "parse", message);
-                e.body.field = quoted_field(&what);
+                e.body.field = field.or_else(|| quoted_field(&what));
                 e.body.rule = Some(what);
                 e.body.line = (line > 0).then_some(line);
                 e.body.column = (column > 0).then_some(column);
@@ -105,6 +106,8 @@ impl From<Error> for ApiError {
             Error::InvalidArgument { what, rule } => {
                 ApiError::new(unprocessable, "invalid_argument", message).at(what, rule)
             }
+            Error::Strict { field, .. } => ApiError::new(unprocessable, "strict", message)
+                .at(field, "a warning, with strict set"),
             Error::NoConvergence { .. } | Error::NonFinite { .. } => {
                 ApiError::new(unprocessable, "numerical", message)
             }

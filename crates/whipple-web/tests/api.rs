@@ -411,7 +411,7 @@ async fn malformed_requests() -> TestResult {
     let (status, body) = post(
         &app,
         "/api/bike/parse",
-        &json!({"text": "", "format": "yaml"}),
+        &json!({"text": "", "format": "pdf"}),
     )
     .await?;
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
@@ -806,5 +806,75 @@ async fn simulation_refuses_bad_inputs_and_limits() -> TestResult {
     assert!(body["error"]["message"]
         .as_str()
         .is_some_and(|m| m.contains("shorter time")));
+    Ok(())
+}
+
+/// Issue 9: the parameter table is served whole, and the OpenAPI document's benchmark keys are
+/// the table's.
+#[tokio::test]
+async fn the_parameter_table_is_served_and_matches_openapi(
+) -> Result<(), Box<dyn std::error::Error>> {
+    let app = app(Limits::default());
+    let (status, body) = get(&app, "/api/parameters").await?;
+    assert_eq!(status, StatusCode::OK);
+    let benchmark = body["benchmark"].as_array().ok_or("benchmark")?;
+    assert_eq!(benchmark.len(), 26);
+    assert_eq!(body["jbike6"].as_array().map(Vec::len), Some(51));
+    assert_eq!(benchmark[2]["key"], "lam");
+    assert_eq!(benchmark[12]["linear"], false); // IByy
+    let (_, doc) = get(&app, "/api/openapi.json").await?;
+    let required = doc["components"]["schemas"]["BenchmarkParameters"]["required"]
+        .as_array()
+        .ok_or("required")?;
+    let keys: Vec<&Value> = benchmark.iter().map(|p| &p["key"]).collect();
+    assert_eq!(required.iter().collect::<Vec<_>>(), keys);
+    Ok(())
+}
+
+/// Issue 11: sensitivities and sigmas over the API; warnings in validate; NaN refused by parse.
+#[tokio::test]
+async fn sensitivity_warnings_and_nan() -> Result<(), Box<dyn std::error::Error>> {
+    let app = app(Limits::default());
+    let mut bike = preset_json("benchmark")?;
+    bike["benchmark"]["c"] = json!({"value": 0.08, "sigma": 0.001});
+    let (status, body) = post(
+        &app,
+        "/api/sensitivity",
+        &json!({"bike": bike, "range": {"lo": 0, "hi": 10}, "speed": 5}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    let trail = body["parameters"]
+        .as_array()
+        .ok_or("parameters")?
+        .iter()
+        .find(|p| p["key"] == "c")
+        .ok_or("c")?;
+    assert!(approx(&trail["weave_speed"], 11.48, 0.01), "{trail}");
+    assert!(body["weave_speed_sigma"].as_f64().unwrap_or(0.0) > 0.011);
+    let mut odd = preset_json("benchmark")?;
+    odd["benchmark"]["IByy"] = json!(13.0);
+    let (status, body) = post(&app, "/api/bike/validate", &json!({"bike": odd})).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert_eq!(body["warnings"][0]["field"], "IByy");
+    assert_eq!(body["warnings"][0]["severity"], "warning");
+    let text =
+        write(&presets::find("benchmark")?.bicycle(), Format::Toml)?.replacen("0.08", "nan", 1);
+    let (status, body) = post(
+        &app,
+        "/api/bike/parse",
+        &json!({"text": text, "format": "toml"}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    assert_eq!(body["error"]["field"], "c");
+    let (status, body) = post(
+        &app,
+        "/api/bike/parse",
+        &json!({"text": "w=1.02\nlam=pi/10\n", "format": "auto", "file_name": "BenchmarkPar.txt"}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    assert_eq!(body["error"]["kind"], "parse");
     Ok(())
 }

@@ -5,6 +5,7 @@ pub mod eigen;
 pub mod linearize;
 pub mod modes;
 pub mod roots;
+pub mod sensitivity;
 pub mod stability;
 pub mod sweep;
 pub mod validation;
