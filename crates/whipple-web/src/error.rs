@@ -105,7 +105,12 @@ impl From<Error> for ApiError {
             Error::InvalidArgument { what, rule } => {
                 ApiError::new(unprocessable, "invalid_argument", message).at(what, rule)
             }
-            Error::NoConvergence { .. } | Error::NonFinite { .. } => {
+            // A user's numbers can drive any numerical failure: 422 naming it, never a 500.
+            Error::NoConvergence { .. }
+            | Error::NonFinite { .. }
+            | Error::ProjectionDiverged { .. }
+            | Error::NonFiniteState { .. }
+            | Error::SingularDynamics { .. } => {
                 ApiError::new(unprocessable, "numerical", message)
             }
             _ => ApiError::internal(message),

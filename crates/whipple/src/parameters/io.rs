@@ -278,8 +278,9 @@ fn to_toml(bike: &Bicycle) -> String {
 }
 
 fn toml_string(s: &str) -> String {
-    // serde_json's string escaping is valid TOML basic-string escaping.
-    serde_json::to_string(s).unwrap_or_else(|_| "\"\"".to_string())
+    // TOML's own escaping: JSON's leaves characters raw (DEL, U+0080..U+009F) that a TOML
+    // basic string may not hold.
+    toml::Value::String(s.to_string()).to_string()
 }
 
 fn toml_array(values: &[f64; 3]) -> String {
@@ -328,7 +329,8 @@ pub fn benchmark_key_doc(key: &str) -> &'static str {
 fn to_jbike6_m(name: Option<&str>, p: &Jbike6Parameters) -> String {
     let mut out = String::new();
     if let Some(name) = name {
-        out.push_str(&format!("% {name}\n"));
+        // One comment line: a line break in the name would start a statement.
+        out.push_str(&format!("% {}\n", name.replace(['\n', '\r'], " ")));
     }
     let num = |x: f64| format!("{x:.8}");
     let arr = |v: &[f64; 3]| format!("[{} {} {}]", num(v[0]), num(v[1]), num(v[2]));
