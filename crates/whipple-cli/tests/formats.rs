@@ -13,13 +13,29 @@ use whipple::parameters::presets;
 /// per speed, Meijaard et al. 2007's Table 2 to the ten decimals printed.
 #[test]
 fn eig_table_shows_table_2() {
-    let out = stdout(&whipple(&["eig", "--bike", "benchmark", "--speeds", "4:6:1"]));
+    let out = stdout(&whipple(&[
+        "eig",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "4:6:1",
+    ]));
     let lines: Vec<&str> = out.lines().collect();
     assert!(lines[0].starts_with("benchmark: eigenvalues"), "{out}");
     let header: Vec<&str> = lines[1].split_whitespace().collect();
     assert_eq!(
         header,
-        ["v", "weave", "(1)", "weave", "(2)", "capsize", "(3)", "castering", "(4)"]
+        [
+            "v",
+            "weave",
+            "(1)",
+            "weave",
+            "(2)",
+            "capsize",
+            "(3)",
+            "castering",
+            "(4)"
+        ]
     );
     assert_eq!(lines.len(), 5, "{out}");
     // v, weave re + im i, weave re - im i, capsize, castering (Table 2, 5 m/s).
@@ -172,16 +188,30 @@ fn simulate_csv_has_the_documented_columns() {
     let x_t = (b.m_b * b.x_b + b.m_h * b.x_h + b.m_f * b.w) / m_t;
     let weight = m_t * b.g;
     let close = |x: f64, y: f64| (x - y).abs() < 1e-9 * y.abs().max(1.0);
-    assert!(close(first[12], weight * (b.w - x_t) / b.w), "rear normal {}", first[12]);
-    assert!(close(first[15], weight * x_t / b.w), "front normal {}", first[15]);
+    assert!(
+        close(first[12], weight * (b.w - x_t) / b.w),
+        "rear normal {}",
+        first[12]
+    );
+    assert!(
+        close(first[15], weight * x_t / b.w),
+        "front normal {}",
+        first[15]
+    );
     for k in [13, 14, 16, 17] {
         assert!(first[k].abs() < 1e-9, "friction {k}: {}", first[k]);
     }
-    assert!(close(first[18], b.w) && first[19].abs() < 1e-12, "front contact");
+    assert!(
+        close(first[18], b.w) && first[19].abs() < 1e-12,
+        "front contact"
+    );
     let last = &rows[10];
     assert!(close(last[0], 0.01) && close(last[6], 0.05) && close(last[8], 5.0));
     assert!(close(last[18], b.w + 0.05));
-    assert!(rows.iter().all(|r| r[10] < 1e-12 && r[11] < 1e-12), "residuals");
+    assert!(
+        rows.iter().all(|r| r[10] < 1e-12 && r[11] < 1e-12),
+        "residuals"
+    );
 }
 
 /// The README's promise for a run that fails: a message naming what happened and when, a
@@ -231,7 +261,10 @@ fn a_failed_simulation_says_why_exits_non_zero_and_keeps_its_samples() {
         args.extend_from_slice(extra);
         let err = stderr_of_failure(&whipple(&args));
         assert!(err.contains(words), "{extra:?}: {err}");
-        assert!(err.contains("the samples computed before that were written"), "{err}");
+        assert!(
+            err.contains("the samples computed before that were written"),
+            "{err}"
+        );
         let rows = csv_rows(&std::fs::read_to_string(&path).expect("the samples were written"));
         if samples > 0 {
             assert_eq!(rows.len(), samples, "{extra:?}");
@@ -290,8 +323,11 @@ fn the_fall_angle_option_ends_the_run_there() {
 fn output_files_are_written_whole_through_a_rename() {
     let dir = scratch("atomic-rename");
     let target = dir.join("eig.csv");
-    std::fs::write(&target, "old contents that are longer than nothing\n".repeat(100))
-        .expect("write");
+    std::fs::write(
+        &target,
+        "old contents that are longer than nothing\n".repeat(100),
+    )
+    .expect("write");
     let args = |out: &str| {
         vec![
             "eig".to_string(),

@@ -110,9 +110,7 @@ impl From<Error> for ApiError {
             | Error::NonFinite { .. }
             | Error::ProjectionDiverged { .. }
             | Error::NonFiniteState { .. }
-            | Error::SingularDynamics { .. } => {
-                ApiError::new(unprocessable, "numerical", message)
-            }
+            | Error::SingularDynamics { .. } => ApiError::new(unprocessable, "numerical", message),
             _ => ApiError::internal(message),
         }
     }

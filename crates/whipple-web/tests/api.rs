@@ -584,18 +584,30 @@ async fn simulation_reports_a_fall() -> TestResult {
     )
     .await?;
     assert_eq!(status, StatusCode::OK, "{body}");
-    assert_eq!(body["outcome"]["kind"], "wheel_lifted", "{}", body["outcome"]);
+    assert_eq!(
+        body["outcome"]["kind"], "wheel_lifted",
+        "{}",
+        body["outcome"]
+    );
     assert_eq!(body["outcome"]["wheel"], "rear");
     let t = body["outcome"]["t"].as_f64().ok_or("t")?;
     assert!((t - 1.60357).abs() < 1e-4, "{t}");
     assert_eq!(body["steps"], 1604);
     let message = body["outcome"]["message"].as_str().ok_or("message")?;
-    assert!(message.contains("the rear wheel lifts off at t = 1.60 s"), "{message}");
+    assert!(
+        message.contains("the rear wheel lifts off at t = 1.60 s"),
+        "{message}"
+    );
     assert!(message.contains("lean -41.1°, falling"), "{message}");
     let frames = body["frames"].as_array().ok_or("frames")?;
     let last = frames.last().ok_or("no frames")?;
-    assert!(approx(&last["t"], 1.604, 1e-9), "the last frame is the event's step");
-    assert!(last["rear_force"]["normal"].as_f64().is_some_and(|n| n < 0.0));
+    assert!(
+        approx(&last["t"], 1.604, 1e-9),
+        "the last frame is the event's step"
+    );
+    assert!(last["rear_force"]["normal"]
+        .as_f64()
+        .is_some_and(|n| n < 0.0));
     Ok(())
 }
 
@@ -622,8 +634,16 @@ async fn simulation_failures_are_reported() -> TestResult {
     for (fields, kind, t, words) in cases {
         let (status, body) = post(&app, "/api/simulate", &simulation(fields.clone())?).await?;
         assert_eq!(status, StatusCode::OK, "{fields}: {body}");
-        assert_eq!(body["outcome"]["kind"], kind, "{fields}: {}", body["outcome"]);
-        assert!(approx(&body["outcome"]["t"], t, 1e-12), "{}", body["outcome"]);
+        assert_eq!(
+            body["outcome"]["kind"], kind,
+            "{fields}: {}",
+            body["outcome"]
+        );
+        assert!(
+            approx(&body["outcome"]["t"], t, 1e-12),
+            "{}",
+            body["outcome"]
+        );
         let message = body["outcome"]["message"].as_str().unwrap_or("");
         assert!(message.contains(words), "{message}");
         assert!(body["frames"].as_array().is_some_and(|f| !f.is_empty()));
@@ -643,8 +663,12 @@ async fn simulation_failures_are_reported() -> TestResult {
         .is_some_and(|m| m.contains("limit of 30 steps")));
     // A lean a hair's breadth from 90 degrees: the start cannot be projected onto the
     // constraints.
-    let (status, body) =
-        post(&app, "/api/simulate", &simulation(json!({"lean_deg": 89.999999}))?).await?;
+    let (status, body) = post(
+        &app,
+        "/api/simulate",
+        &simulation(json!({"lean_deg": 89.999999}))?,
+    )
+    .await?;
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
     assert_eq!(body["error"]["kind"], "numerical");
     assert!(body["error"]["message"]
@@ -697,7 +721,10 @@ async fn simulation_takes_rider_torques_as_expressions() -> TestResult {
     assert!((last[0] - last[1]).abs() < 1e-12, "{last:?}");
     // And the torque acts: a lean torque to the right leans the bicycle further right than none,
     // one to the left less (its sign is the benchmark's, lean right positive).
-    assert!(last[0] > last[2] + 1e-3 && last[3] < last[2] - 1e-3, "{last:?}");
+    assert!(
+        last[0] > last[2] + 1e-3 && last[3] < last[2] - 1e-3,
+        "{last:?}"
+    );
     Ok(())
 }
 
@@ -888,7 +915,12 @@ async fn openapi_describes_exactly_the_routes_the_router_serves() -> TestResult 
         if !path.starts_with("/api/") {
             continue;
         }
-        for (verb, method) in [("get(", "GET"), ("post(", "POST"), ("put(", "PUT"), ("delete(", "DELETE")] {
+        for (verb, method) in [
+            ("get(", "GET"),
+            ("post(", "POST"),
+            ("put(", "PUT"),
+            ("delete(", "DELETE"),
+        ] {
             if handlers.contains(verb) {
                 routed.push((path.to_string(), method.to_string()));
             }
@@ -901,11 +933,19 @@ async fn openapi_describes_exactly_the_routes_the_router_serves() -> TestResult 
         let method = Method::from_bytes(method.as_bytes())?;
         let body = (method == Method::POST).then(|| "{}".to_string());
         let (status, _, text) = send(&app, method.clone(), &concrete, body).await?;
-        assert_ne!(status, StatusCode::METHOD_NOT_ALLOWED, "{method} {path}: {text}");
+        assert_ne!(
+            status,
+            StatusCode::METHOD_NOT_ALLOWED,
+            "{method} {path}: {text}"
+        );
         let kind = serde_json::from_str::<Value>(&text)
             .ok()
             .and_then(|v| v["error"]["kind"].as_str().map(str::to_string));
-        assert_ne!(kind.as_deref(), Some("not_found"), "{method} {path}: {text}");
+        assert_ne!(
+            kind.as_deref(),
+            Some("not_found"),
+            "{method} {path}: {text}"
+        );
         for other in [Method::GET, Method::POST, Method::PUT, Method::DELETE] {
             let listed = documented
                 .iter()
@@ -925,12 +965,20 @@ async fn openapi_describes_exactly_the_routes_the_router_serves() -> TestResult 
 #[tokio::test]
 async fn security_headers_are_sent() -> TestResult {
     let app = app(Limits::default());
-    for path in ["/", "/assets/app.js", "/assets/app.css", "/api/health", "/api/nothing"] {
+    for path in [
+        "/",
+        "/assets/app.js",
+        "/assets/app.css",
+        "/api/health",
+        "/api/nothing",
+    ] {
         let request = Request::builder().uri(path).body(Body::empty())?;
         let response = app.clone().oneshot(request).await?;
         let headers = response.headers();
         assert_eq!(
-            headers.get(header::X_CONTENT_TYPE_OPTIONS).and_then(|v| v.to_str().ok()),
+            headers
+                .get(header::X_CONTENT_TYPE_OPTIONS)
+                .and_then(|v| v.to_str().ok()),
             Some("nosniff"),
             "{path}"
         );
@@ -939,7 +987,13 @@ async fn security_headers_are_sent() -> TestResult {
                 .get(header::CONTENT_SECURITY_POLICY)
                 .and_then(|v| v.to_str().ok())
                 .unwrap_or_default();
-            for rule in ["default-src 'self'", "script-src 'self'", "object-src 'none'", "frame-ancestors 'none'", "base-uri 'none'"] {
+            for rule in [
+                "default-src 'self'",
+                "script-src 'self'",
+                "object-src 'none'",
+                "frame-ancestors 'none'",
+                "base-uri 'none'",
+            ] {
                 assert!(csp.contains(rule), "{path}: {csp}");
             }
             assert!(!csp.contains("unsafe-eval"), "{path}: {csp}");

@@ -113,7 +113,10 @@ fn a_singular_torque_makes_the_adaptive_step_too_small() -> Result<()> {
     };
     let run = simulate(&model, upright(&model, 5.0)?, &settings)?;
     let Outcome::StepSizeTooSmall { t } = run.outcome else {
-        panic!("expected the step size to become too small, got {:?}", run.outcome);
+        panic!(
+            "expected the step size to become too small, got {:?}",
+            run.outcome
+        );
     };
     assert!(t < 0.5 && t > 0.5 - 1e-6, "{t}");
     assert!(run.rejected_steps > 0);
@@ -214,7 +217,10 @@ fn position_projection_reports_divergence() -> Result<()> {
                 ..ProjectionParams::default()
             },
         )?;
-        assert!(report.residual <= 1e-13 && report.iterations >= 2, "{report:?}");
+        assert!(
+            report.residual <= 1e-13 && report.iterations >= 2,
+            "{report:?}"
+        );
     }
     Ok(())
 }

@@ -187,8 +187,17 @@ fn toml_unknown_and_missing_keys_are_refused() {
     let wrong_type = good.replace("w = 1.02", "w = \"wide\"");
     assert_ne!(wrong_type, good);
     let (line, _, message) = parse_error(&wrong_type, Format::Toml);
-    assert!(message.contains("wide") && message.contains("f64"), "{message}");
-    assert!(wrong_type.lines().nth(line - 1).is_some_and(|l| l.starts_with("w = ")), "line {line}");
+    assert!(
+        message.contains("wide") && message.contains("f64"),
+        "{message}"
+    );
+    assert!(
+        wrong_type
+            .lines()
+            .nth(line - 1)
+            .is_some_and(|l| l.starts_with("w = ")),
+        "line {line}"
+    );
 }
 
 #[test]

@@ -638,12 +638,19 @@ fn falls_at_3_m_per_s() -> Result<()> {
             20.0,
         ),
     )?;
-    let Outcome::WheelLifted { t: t_adaptive, wheel } = adaptive.outcome else {
+    let Outcome::WheelLifted {
+        t: t_adaptive,
+        wheel,
+    } = adaptive.outcome
+    else {
         panic!("expected a wheel to lift, got {:?}", adaptive.outcome);
     };
     assert_eq!(wheel, Wheel::Rear);
     println!("lift-off at {t_lift} (RK4) and {t_adaptive} (adaptive), lean {lean_deg:.2} deg");
-    assert!((t_adaptive - t_lift).abs() < 2e-3, "{t_adaptive} vs {t_lift}");
+    assert!(
+        (t_adaptive - t_lift).abs() < 2e-3,
+        "{t_adaptive} vs {t_lift}"
+    );
 
     let settings = SimulationSettings {
         stop_on_lift_off: false,
@@ -654,7 +661,10 @@ fn falls_at_3_m_per_s() -> Result<()> {
         panic!("expected a fall, got {:?}", run.outcome);
     };
     assert!(t > t_lift && t < t_lift + 0.2, "{t}");
-    assert!((lean.abs() - std::f64::consts::FRAC_PI_3).abs() < 1e-12, "{lean}");
+    assert!(
+        (lean.abs() - std::f64::consts::FRAC_PI_3).abs() < 1e-12,
+        "{lean}"
+    );
     let last = run.samples.last().copied().unwrap_or_default();
     assert!(last.t >= t && last.t - t < dt);
     assert_eq!(run.steps, (t / dt).ceil() as usize);
@@ -737,8 +747,14 @@ fn skate_and_massless_wheels_simulate() -> Result<()> {
         let (got, t) = match run.outcome {
             Outcome::Completed => ("completed", 2.0),
             Outcome::Fell { t, .. } => ("fell", t),
-            Outcome::WheelLifted { t, wheel: Wheel::Rear } => ("rear lifts", t),
-            Outcome::WheelLifted { t, wheel: Wheel::Front } => ("front lifts", t),
+            Outcome::WheelLifted {
+                t,
+                wheel: Wheel::Rear,
+            } => ("rear lifts", t),
+            Outcome::WheelLifted {
+                t,
+                wheel: Wheel::Front,
+            } => ("front lifts", t),
             ref other => panic!("{name}: {other:?}"),
         };
         assert_eq!(got, expected, "{name}");

@@ -233,7 +233,10 @@ fn two_mass_skate_matches_an_independent_derivation() -> Result<()> {
     let listed = serde_json::json!({ "benchmark": reference["bicycle"] }).to_string();
     let listed = whipple::parameters::io::parse(&listed, whipple::parameters::io::Format::Json)?
         .benchmark()?;
-    assert_eq!(listed, bike, "the reference is computed for the preset's numbers");
+    assert_eq!(
+        listed, bike,
+        "the reference is computed for the preset's numbers"
+    );
     let c = Canonical::new(&bike)?;
     let matrix = |key: &str| {
         let m = &reference[key];

@@ -18,7 +18,12 @@ fn every_preset_reads_back_identically_in_every_format() {
     for preset in PRESETS {
         let bike = preset.bicycle();
         for format in [Format::Toml, Format::Json] {
-            assert_eq!(round_trip(&bike, format), bike, "{} in {format:?}", preset.name);
+            assert_eq!(
+                round_trip(&bike, format),
+                bike,
+                "{} in {format:?}",
+                preset.name
+            );
         }
         if let Description::Jbike6(p) = &bike.description {
             let back = round_trip(&bike, Format::Jbike6M);

@@ -118,7 +118,11 @@ fn largest_difference(
     for reference in scenario["samples"].as_array().expect("samples") {
         let t = number(&reference["t"]);
         let sample = at(t)?;
-        assert!((sample.t - t).abs() < 1e-12, "sampled at {} for {t}", sample.t);
+        assert!(
+            (sample.t - t).abs() < 1e-12,
+            "sampled at {} for {t}",
+            sample.t
+        );
         for name in QUANTITIES {
             let d = (quantity(&sample, name) - number(&reference[name])).abs();
             if d > worst.0 {
@@ -186,7 +190,11 @@ fn rk4_follows_the_independent_trajectories() -> Result<()> {
             "{}: RK4 dt = 2 ms {coarse:.2e} ({where_coarse}), 1 ms {fine:.2e} ({where_fine}), order {order:.2}",
             scenario["name"]
         );
-        assert!(fine < 3e-9, "{}: {fine:e} at {where_fine}", scenario["name"]);
+        assert!(
+            fine < 3e-9,
+            "{}: {fine:e} at {where_fine}",
+            scenario["name"]
+        );
         assert!(
             (3.6..4.4).contains(&order),
             "{}: order {order}",
@@ -207,8 +215,16 @@ fn the_adaptive_integrator_follows_the_independent_trajectories() -> Result<()> 
             "{}: adaptive rtol 1e-10 {loose:.2e} ({where_loose}), 1e-12 {tight:.2e} ({where_tight})",
             scenario["name"]
         );
-        assert!(loose < 3e-10, "{}: {loose:e} at {where_loose}", scenario["name"]);
-        assert!(tight < 1e-11, "{}: {tight:e} at {where_tight}", scenario["name"]);
+        assert!(
+            loose < 3e-10,
+            "{}: {loose:e} at {where_loose}",
+            scenario["name"]
+        );
+        assert!(
+            tight < 1e-11,
+            "{}: {tight:e} at {where_tight}",
+            scenario["name"]
+        );
         assert!(tight < loose, "{}", scenario["name"]);
     }
     Ok(())

@@ -393,7 +393,11 @@ mod tests {
         // The fifth-order solution's own local error is far below the estimate (order 6).
         let a = attempt(&oscillator, t, &y, &k1, 0.1, &params).expect("finite");
         let local = (a.y - exact(t + 0.1)).amax();
-        assert!(local < 0.2 * e[1], "local error {local} vs estimate {}", e[1]);
+        assert!(
+            local < 0.2 * e[1],
+            "local error {local} vs estimate {}",
+            e[1]
+        );
     }
 
     fn adaptive(rtol: f64) -> Method {
@@ -420,7 +424,10 @@ mod tests {
                 .fold(0.0, f64::max);
             let steps = run.t.len() - 1;
             assert!(error < 50.0 * rtol, "rtol {rtol}: error {error}");
-            assert!(error > 0.01 * rtol, "rtol {rtol}: error {error} suspiciously small");
+            assert!(
+                error > 0.01 * rtol,
+                "rtol {rtol}: error {error} suspiciously small"
+            );
             if let Some((e0, s0)) = previous {
                 assert!(e0 / error > 30.0, "rtol {rtol}: {e0} -> {error}");
                 let growth = steps as f64 / s0 as f64;
@@ -468,7 +475,10 @@ mod tests {
                 rejected += 1;
             }
         }
-        assert!(rejected >= 2, "a first step of 1 s at 1e-10 is rejected: {rejected}");
+        assert!(
+            rejected >= 2,
+            "a first step of 1 s at 1e-10 is rejected: {rejected}"
+        );
         assert!(accepted > 50, "{accepted}");
         assert!((y - exact(t)).amax() < 1e-8);
         // A non-finite error (a failed evaluation) is a rejection at the smallest factor.
@@ -503,7 +513,10 @@ mod tests {
         }
         for pair in mid_errors.windows(2) {
             let order = (pair[0] / pair[1]).log2();
-            assert!((4.6..5.6).contains(&order), "dense order {order}: {mid_errors:?}");
+            assert!(
+                (4.6..5.6).contains(&order),
+                "dense order {order}: {mid_errors:?}"
+            );
         }
         // Along an adaptive run the interpolant is as accurate as the steps.
         let params = Dopri5Params {
@@ -599,9 +612,19 @@ mod tests {
     #[test]
     fn a_non_finite_state_is_an_error_with_its_time() {
         let f = |t: f64, _y: &SVector<f64, 1>| {
-            Ok(SVector::<f64, 1>::new(if t >= 0.5 { f64::INFINITY } else { 1.0 }))
+            Ok(SVector::<f64, 1>::new(if t >= 0.5 {
+                f64::INFINITY
+            } else {
+                1.0
+            }))
         };
-        match solve(&f, 0.0, SVector::<f64, 1>::zeros(), 1.0, &Method::Rk4 { dt: 0.1 }) {
+        match solve(
+            &f,
+            0.0,
+            SVector::<f64, 1>::zeros(),
+            1.0,
+            &Method::Rk4 { dt: 0.1 },
+        ) {
             Err(Error::NonFiniteState { t }) => assert!((t - 0.5).abs() < 1e-12, "{t}"),
             other => panic!("expected a non-finite state, got {other:?}"),
         }
