@@ -456,6 +456,10 @@ mod tests {
         let (mut accepted, mut rejected) = (0, 0);
         let mut after_rejection = false;
         while t < 5.0 {
+            assert!(
+                accepted + rejected < 100_000,
+                "the controller does not advance"
+            );
             let h = controller.step().min(5.0 - t);
             let a = attempt(&oscillator, t, &y, &k1, h, &params)?;
             if controller.accept(a.error, h)? {
@@ -528,7 +532,10 @@ mod tests {
         let mut k1 = oscillator(t, &y).expect("finite");
         let mut controller = Controller::new(&params, &y, &k1, 3.0);
         let mut worst = 0.0f64;
+        let mut attempts = 0;
         while t < 3.0 {
+            attempts += 1;
+            assert!(attempts < 100_000, "the controller does not advance");
             let h = controller.step().min(3.0 - t);
             let a = attempt(&oscillator, t, &y, &k1, h, &params).expect("finite");
             if controller.accept(a.error, h).expect("step") {
