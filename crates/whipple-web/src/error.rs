@@ -108,9 +108,12 @@ impl From<Error> for ApiError {
             }
             Error::Strict { field, .. } => ApiError::new(unprocessable, "strict", message)
                 .at(field, "a warning, with strict set"),
-            Error::NoConvergence { .. } | Error::NonFinite { .. } => {
-                ApiError::new(unprocessable, "numerical", message)
-            }
+            // A user's numbers can drive any numerical failure: 422 naming it, never a 500.
+            Error::NoConvergence { .. }
+            | Error::NonFinite { .. }
+            | Error::ProjectionDiverged { .. }
+            | Error::NonFiniteState { .. }
+            | Error::SingularDynamics { .. } => ApiError::new(unprocessable, "numerical", message),
             _ => ApiError::internal(message),
         }
     }

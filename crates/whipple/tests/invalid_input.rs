@@ -190,9 +190,21 @@ fn toml_unknown_and_missing_keys_are_refused() {
     let (_, _, message) = parse_error("name = \"x\"\n", Format::Toml);
     assert!(message.contains("benchmark") && message.contains("jbike6"));
     let (_, _, message) = parse_error("w = \"wide\"\n", Format::Toml);
+    assert!(message.contains("unknown field `w`"), "{message}");
+    // A number of the wrong type names its key and what was expected.
+    let wrong_type = good.replace("w = 1.02", "w = \"wide\"");
+    assert_ne!(wrong_type, good);
+    let (line, _, message) = parse_error(&wrong_type, Format::Toml);
     assert!(
-        message.contains("`w`") || message.contains("w"),
+        message.contains("wide") && message.contains("f64"),
         "{message}"
+    );
+    assert!(
+        wrong_type
+            .lines()
+            .nth(line - 1)
+            .is_some_and(|l| l.starts_with("w = ")),
+        "line {line}"
     );
 }
 
