@@ -30,6 +30,7 @@ mod figure;
 mod side_view;
 mod table;
 mod time_series;
+mod tornado;
 mod xy;
 
 pub use draw::Dash;
@@ -39,4 +40,5 @@ pub use figure::{Figure, Format};
 pub use side_view::side_view;
 pub use table::{eigen_csv, eigen_table};
 pub use time_series::{time_series_plot, SimulationSeries};
+pub use tornado::{tornado_plot, Bar};
 pub use xy::{line_plot, xy_log_plot, Marker, Series, XyPlotOptions};

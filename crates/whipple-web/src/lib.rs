@@ -20,6 +20,7 @@ mod api;
 mod assets;
 mod error;
 pub mod geometry;
+pub mod modes;
 pub mod simulation;
 
 use std::future::Future;

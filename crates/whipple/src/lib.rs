@@ -81,6 +81,14 @@ pub use error::Error;
 /// ```
 pub use error::Result;
 
+/// A piece of a user's input cut for a message (the library's messages and the front ends'
+/// quote input the same way).
+///
+/// ```
+/// assert_eq!(whipple::shorten("abcdef", 4), "abc…");
+/// ```
+pub use error::shorten;
+
 /// A bicycle as it was described (benchmark or JBike6 form), with its name and source.
 ///
 /// ```

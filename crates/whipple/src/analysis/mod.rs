@@ -6,5 +6,6 @@ pub mod eigen;
 pub mod linearize;
 pub mod modes;
 pub mod roots;
+pub mod sensitivity;
 pub mod stability;
 pub mod sweep;

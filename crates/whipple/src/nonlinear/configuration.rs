@@ -139,7 +139,7 @@ impl Model {
 
     /// The rear frame pitch that puts the front wheel on the ground, by Newton iteration
     /// (derivative by a dual number) from `guess`.
-    pub(crate) fn pitch_for(&self, lean: f64, steer: f64, guess: f64) -> Result<f64> {
+    pub fn pitch_for(&self, lean: f64, steer: f64, guess: f64) -> Result<f64> {
         let mut pitch = guess;
         let mut residual = f64::INFINITY;
         for _ in 0..PITCH_ITERATIONS {

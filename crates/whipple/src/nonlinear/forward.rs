@@ -306,13 +306,21 @@ impl Model {
         }
         symmetrize(&mut mass);
         let solved = saddle::solve(&mass, g, &force, gamma, self.augmentation)
-            .or_else(|| saddle::solve(&mass, g, &force, gamma, self.fallback_augmentation()))
-            .filter(|(x, y)| x.iter().chain(y.iter()).all(|v| v.is_finite()));
+            .or_else(|| saddle::solve(&mass, g, &force, gamma, self.fallback_augmentation()));
         let Some((w_dot, nu)) = solved else {
             return Err(Error::SingularDynamics {
                 context: "the saddle-point matrix [TᵀMT Gᵀ; G 0] is singular".into(),
             });
         };
+        // A regular system whose solution overflows (speeds or torques far out of range) is
+        // not singular: say what happened.
+        if !w_dot.iter().chain(nu.iter()).all(|v| v.is_finite()) {
+            return Err(Error::NonFinite {
+                context: "the equations of motion: the accelerations overflow (speeds or \
+                          torques out of range)"
+                    .into(),
+            });
+        }
         let mut u_dot = speeds_of(jac, &w_dot);
         for (k, c) in bias.iter().enumerate() {
             let mut rows = u_dot.fixed_rows_mut::<6>(6 * k);

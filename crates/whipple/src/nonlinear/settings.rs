@@ -108,7 +108,7 @@ impl SimulationSettings {
         }
         let p = &self.projection;
         if !(p.tolerance.is_finite() && p.tolerance > 0.0)
-            || p.max_iterations == 0
+            || p.min_iterations == 0
             || p.min_iterations > p.max_iterations
         {
             return Err(Error::InvalidArgument {

@@ -37,8 +37,14 @@ pub(crate) struct BicycleOde<'a> {
 }
 
 impl BicycleOde<'_> {
-    /// Forward dynamics with the inputs evaluated at (t, state).
+    /// Forward dynamics with the inputs evaluated at (t, state). A non-finite state or rider
+    /// torque is [`Error::NonFiniteState`] at t (not a singular system, which is what the
+    /// solve would otherwise report).
     pub fn derivatives(&self, t: f64, state: &State<f64>) -> Result<Derivatives<f64>> {
+        let finite = |x: &f64| x.is_finite();
+        if !(state.q.iter().all(finite) && state.u.iter().all(finite)) {
+            return Err(Error::NonFiniteState { t });
+        }
         let inputs = if self.steer_torque.is_some() || self.lean_torque.is_some() {
             let view = self.model.observe(state);
             Inputs {
@@ -48,6 +54,9 @@ impl BicycleOde<'_> {
         } else {
             Inputs::default()
         };
+        if !(inputs.steer_torque.is_finite() && inputs.lean_torque.is_finite()) {
+            return Err(Error::NonFiniteState { t });
+        }
         self.model.forward(state, &inputs)
     }
 }
