@@ -11,8 +11,9 @@ use libfuzzer_sys::fuzz_target;
 use tower::ServiceExt;
 use whipple_web::{app, Limits};
 
-const ROUTES: [&str; 8] = [
+const ROUTES: [&str; 9] = [
     "/api/bike/validate",
+    "/api/sensitivity",
     "/api/bike/toml",
     "/api/bike/parse",
     "/api/eigen",

@@ -89,6 +89,7 @@ fn speeds_json_has_the_documented_keys() {
             "capsize_speed",
             "double_root_speed",
             "stable_speed_ranges",
+            "warnings",
             "weave_speed"
         ]
     );

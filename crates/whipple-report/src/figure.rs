@@ -107,6 +107,7 @@ pub(crate) enum Content {
     SideView(Box<crate::side_view::SideViewFigure>),
     TimeSeries(Box<crate::time_series::TimeSeriesFigure>),
     Xy(Box<crate::xy::XyFigure>),
+    Tornado(Box<crate::tornado::TornadoFigure>),
 }
 
 /// A figure ready to render: its size in pixels and what it shows. Built by
@@ -229,6 +230,7 @@ impl Figure {
             Content::SideView(_) => "side view",
             Content::TimeSeries(_) => "time series plot",
             Content::Xy(_) => "line plot",
+            Content::Tornado(_) => "tornado plot",
         }
     }
 
@@ -239,6 +241,7 @@ impl Figure {
             Content::SideView(f) => f.draw(root),
             Content::TimeSeries(f) => f.draw(root),
             Content::Xy(f) => f.draw(root),
+            Content::Tornado(f) => f.draw(root),
         }
     }
 }

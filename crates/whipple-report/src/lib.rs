@@ -30,6 +30,7 @@ mod figure;
 mod side_view;
 mod table;
 mod time_series;
+mod tornado;
 mod xy;
 
 pub use draw::Dash;
@@ -41,4 +42,5 @@ pub use table::{
     eigen_csv, eigen_csv_row, eigen_table, eigen_table_header, eigen_table_row, EIGEN_CSV_HEADER,
 };
 pub use time_series::{time_series_plot, SimulationSeries};
+pub use tornado::{tornado_plot, Bar};
 pub use xy::{line_plot, xy_log_plot, Marker, Series, XyPlotOptions};

@@ -21,11 +21,11 @@
 //! # Ok::<(), whipple::Error>(())
 //! ```
 
-use super::simulate::TorqueFn;
+use super::settings::TorqueFn;
 use super::state::StateView;
 use crate::error::{Error, Result};
 
-/// The names an expression may use: time t [s], the lean, steer and yaw angles [rad], their
+/// The names an expression may use: time t \[s\], the lean, steer and yaw angles \[rad\], their
 /// rates [rad/s] and the forward speed [m/s].
 pub const VARIABLES: [&str; 7] = [
     "lean",
@@ -519,7 +519,7 @@ impl TorqueExpression {
         &self.text
     }
 
-    /// The torque at time t [s] in state s [N m]; NaN or an infinity where the expression is
+    /// The torque at time t \[s\] in state s \[N m\]; NaN or an infinity where the expression is
     /// not finite there (`1/(t - 0.5)` at t = 0.5, `sqrt(0.5 - t)` after it).
     pub fn eval(&self, t: f64, s: &StateView) -> f64 {
         let variables: [f64; VARIABLES.len()] = std::array::from_fn(|slot| value(slot, t, s));
