@@ -59,7 +59,7 @@ async fn closed_within(
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn issue_10_a_client_trickling_its_headers_is_disconnected() -> TestResult {
     let (address, _stop) = start(Limits {
-        // header_timeout
+        header_timeout: Duration::from_millis(300),
         ..Limits::default()
     })
     .await?;
@@ -86,7 +86,7 @@ async fn issue_10_a_client_trickling_its_headers_is_disconnected() -> TestResult
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn issue_10_an_idle_connection_is_closed() -> TestResult {
     let (address, _stop) = start(Limits {
-        // idle
+        idle_timeout: Duration::from_millis(300),
         ..Limits::default()
     })
     .await?;
@@ -103,6 +103,8 @@ async fn issue_10_an_idle_connection_is_closed() -> TestResult {
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn a_prompt_client_is_answered_on_a_kept_alive_connection() -> TestResult {
     let (address, _stop) = start(Limits {
+        header_timeout: Duration::from_secs(2),
+        idle_timeout: Duration::from_secs(2),
         ..Limits::default()
     })
     .await?;
@@ -124,6 +126,7 @@ async fn a_prompt_client_is_answered_on_a_kept_alive_connection() -> TestResult 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn connections_past_the_limit_wait_for_a_free_slot() -> TestResult {
     let (address, _stop) = start(Limits {
+        max_connections: 1,
         ..Limits::default()
     })
     .await?;
