@@ -13,11 +13,11 @@ use whipple::parameters::presets::PRESETS;
 use whipple::{Bicycle, Description};
 
 use crate::bike::{load, LoadedBike};
-use crate::output::{number, parse_pair, parse_triple, print_stdout, write_atomically};
+use crate::output::{number, parse_triple, print_stdout, write_atomically};
 use crate::{FileFormat, TableFormat, TextFormat};
 
 /// Prints `text` to standard output or writes it to `out`.
-fn emit(text: &str, out: Option<&Path>) -> Result<()> {
+pub fn emit(text: &str, out: Option<&Path>) -> Result<()> {
     match out {
         Some(path) => write_atomically(path, text.as_bytes()),
         None => print_stdout(text),
@@ -97,7 +97,7 @@ pub fn convert(arg: &str, to: FileFormat, keep_form: bool, out: Option<&Path>) -
     emit(&text, out)
 }
 
-fn canonical(bike: &LoadedBike) -> Result<Canonical> {
+pub fn canonical(bike: &LoadedBike) -> Result<Canonical> {
     Canonical::new(&bike.benchmark).with_context(|| format!("building the model of {}", bike.label))
 }
 
@@ -337,78 +337,6 @@ pub fn modes(arg: &str, speed: f64, format: TextFormat) -> Result<()> {
                             .to_degrees()
                     )?;
                 }
-            }
-            t
-        }
-    };
-    emit(&text, None)
-}
-
-fn optional(x: Option<f64>) -> Result<serde_json::Value> {
-    match x {
-        Some(v) => {
-            number(v)?;
-            Ok(json!(v))
-        }
-        None => Ok(serde_json::Value::Null),
-    }
-}
-
-pub fn speeds(arg: &str, range: &str, format: TextFormat) -> Result<()> {
-    let bike = load(arg)?;
-    let (lo, hi) = parse_pair(range, "--range")?;
-    if lo >= hi {
-        bail!("--range: LO ({lo}) must be less than HI ({hi})");
-    }
-    let c = canonical(&bike)?;
-    let s = stability::critical_speeds(&c, lo, hi)?;
-    let text = match format {
-        TextFormat::Json => {
-            let mut ranges = Vec::new();
-            for (a, b) in &s.stable_speed_ranges {
-                ranges.push(json!([a, b]));
-            }
-            let doc = json!({
-                "double_root_speed": optional(s.double_root_speed)?,
-                "weave_speed": optional(s.weave_speed)?,
-                "capsize_speed": optional(s.capsize_speed)?,
-                "stable_speed_ranges": ranges,
-            });
-            format!("{}\n", serde_json::to_string_pretty(&doc)?)
-        }
-        TextFormat::Table => {
-            let none = format!("none in {lo}..{hi} m/s");
-            let show = |x: Option<f64>| -> Result<String> {
-                Ok(match x {
-                    Some(v) => format!("{} m/s", number(v)?),
-                    None => none.clone(),
-                })
-            };
-            let mut t = format!("{}: critical speeds in {lo}..{hi} m/s\n", bike.label);
-            write!(t, "  double root speed v_d  {}", show(s.double_root_speed)?)?;
-            if let Some(l) = s.double_root_eigenvalue {
-                write!(t, "  (double eigenvalue {} 1/s)", number(l)?)?;
-            }
-            write!(t, "\n  weave speed v_w        {}", show(s.weave_speed)?)?;
-            if let Some(w) = s.weave_frequency {
-                write!(t, "  (weave frequency {} rad/s)", number(w)?)?;
-            }
-            writeln!(t, "\n  capsize speed v_c      {}", show(s.capsize_speed)?)?;
-            if s.stable_speed_ranges.is_empty() {
-                writeln!(t, "  self-stable            nowhere in {lo}..{hi} m/s")?;
-            }
-            for (a, b) in &s.stable_speed_ranges {
-                let open_end = if *b == hi {
-                    " (up to the end of the range)"
-                } else {
-                    ""
-                };
-                writeln!(
-                    t,
-                    "  self-stable            {} .. {} m/s{open_end}",
-                    number(*a)?,
-                    number(*b)?
-                )?;
             }
             t
         }

@@ -6,6 +6,7 @@ mod commands;
 mod figures;
 mod output;
 mod simulate;
+mod speeds;
 mod validate;
 
 use std::process::ExitCode;
@@ -124,9 +125,9 @@ enum Command {
         /// A preset name or a parameter file (.toml, .json, .m).
         #[arg(long)]
         bike: String,
-        /// Speed range LO:HI searched, in m/s.
-        #[arg(long, default_value = "0:20", allow_hyphen_values = true)]
-        range: String,
+        /// Speed range LO:HI in m/s; HI may be `inf` (default: every speed v >= 0).
+        #[arg(long, allow_hyphen_values = true)]
+        range: Option<String>,
         /// Output format.
         #[arg(long, value_enum, default_value = "table")]
         format: TextFormat,
@@ -207,7 +208,7 @@ fn main() -> ExitCode {
             bike,
             range,
             format,
-        } => commands::speeds(&bike, &range, format),
+        } => speeds::speeds(&bike, range.as_deref(), format),
         Command::Draw { bike, out } => commands::draw(&bike, &out),
         Command::Simulate(args) => simulate::run(&args),
         Command::Serve {

@@ -108,6 +108,9 @@ pub fn eigen_sweep(canonical: &Canonical, speeds: &[f64]) -> Result<EigenSweep> 
             rule: format!("every speed must be finite, got {v}"),
         });
     }
+    // Refuses matrices whose characteristic polynomial double precision cannot form
+    // (overflow, a determinant of M lost to cancellation) instead of sweeping garbage.
+    crate::linear::SpeedPolynomials::new(canonical)?;
     let poly = CharacteristicPolynomial::new(canonical);
     // Every speed the tracking visits, and where the requested ones sit among them.
     let wanted = |a: f64, b: f64| {
