@@ -23,6 +23,7 @@
 #![warn(missing_docs)]
 
 mod clip;
+mod design;
 mod draw;
 mod eigen;
 mod error;
@@ -32,6 +33,7 @@ mod table;
 mod time_series;
 mod xy;
 
+pub use design::{design_map, design_study, MapData, StudyData};
 pub use draw::Dash;
 pub use eigen::{eigen_comparison_plot, eigen_plot, mode_colour, BikeEigen, EigenPlotOptions};
 pub use error::{Error, Result};

@@ -112,6 +112,12 @@ fn vote(values: &[Complex64; 4]) -> Option<[Mode; 4]> {
     Some(labels)
 }
 
+/// The labels at one speed where the spectrum shows the benchmark's pattern (one complex pair:
+/// weave; two real eigenvalues: the larger capsize, the smaller castering), else `None`.
+pub fn pattern_labels(values: &[Complex64; 4]) -> Option<[Mode; 4]> {
+    vote(values)
+}
+
 /// Labels for the four tracked columns (see the module documentation).
 pub fn classify(tracked: &[[Complex64; 4]]) -> [Mode; 4] {
     let modes = [Mode::Weave, Mode::Capsize, Mode::Castering];
