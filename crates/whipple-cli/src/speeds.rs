@@ -99,7 +99,10 @@ pub fn table(label: &str, s: &CriticalSpeeds) -> Result<String> {
         })
     };
     let mut t = format!("{label}: critical speeds for {where_} (certified)\n");
-    write!(t, "  double root speed v_d  {}", show(s.double_root_speed)?)?;
+    match &s.double_root_unavailable {
+        Some(why) => write!(t, "  double root speed v_d  not given: {why}")?,
+        None => write!(t, "  double root speed v_d  {}", show(s.double_root_speed)?)?,
+    }
     if let Some(l) = s.double_root_eigenvalue {
         write!(t, "  (double eigenvalue {} 1/s)", number(l)?)?;
     }

@@ -723,7 +723,14 @@ pub fn analyse(
         unresolved: s.unresolved,
     };
     if options.double_root {
-        q.double_root_speed = stability::critical_speeds(&canonical, lo, hi)?.double_root_speed;
+        let c = stability::critical_speeds(&canonical, lo, hi)?;
+        if let Some(why) = c.double_root_unavailable {
+            return Err(Error::AccuracyLost {
+                quantity: "the double-root speed".into(),
+                reason: why,
+            });
+        }
+        q.double_root_speed = c.double_root_speed;
     }
     if let Some(v) = speed {
         let roots = quartic_roots(&CharacteristicPolynomial::new(&canonical).at_speed(v))?;

@@ -73,6 +73,10 @@ pub struct CriticalSpeeds {
     /// which a coefficient's sign is lost), in increasing order; normally empty.
     #[serde(serialize_with = "serialize_ranges")]
     pub unresolved: Vec<(f64, f64)>,
+    /// Why v_d could not be given, where round-off in the discriminant (degree 12 in v) does not
+    /// allow it; the other speeds are unaffected. `None` normally.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub double_root_unavailable: Option<String>,
 }
 
 /// Where an eigenvalue crosses the imaginary axis.
@@ -657,8 +661,16 @@ pub fn critical_speeds(canonical: &Canonical, lo: f64, hi: f64) -> Result<Critic
     let capsize = crossings
         .iter()
         .find(|c| c.kind == CrossingKind::Real && c.unstable_above > c.unstable_below);
+    let mut double_root_unavailable = None;
     let (double_root_speed, double_root_eigenvalue) =
-        double_root(canonical, &sp, lo, hi, &mut unresolved)?;
+        match double_root(canonical, &sp, lo, hi, &mut unresolved) {
+            Ok(found) => found,
+            Err(e @ Error::AccuracyLost { .. }) => {
+                double_root_unavailable = Some(e.to_string());
+                (None, None)
+            }
+            Err(e) => return Err(e),
+        };
     unresolved.sort_by(|a, b| a.0.total_cmp(&b.0));
     Ok(CriticalSpeeds {
         range: (lo, hi),
@@ -670,6 +682,7 @@ pub fn critical_speeds(canonical: &Canonical, lo: f64, hi: f64) -> Result<Critic
         stable_speed_ranges: stable,
         crossings,
         unresolved,
+        double_root_unavailable,
     })
 }
 
