@@ -210,11 +210,14 @@ fn agrees_with_a_dense_scan(c: &Canonical, lo: f64, hi: f64) -> Result<usize> {
     Ok(checked)
 }
 
+/// Every preset up to 1e4 m/s (beyond, the two-mass skate's smallest eigenvalues, of size 1/v
+/// beside ones of size v, are below what the dense eigensolver resolves; the random bicycles
+/// below go to 1e6 m/s).
 #[test]
 fn presets_agree_with_a_dense_scan() -> Result<()> {
     for p in presets::PRESETS {
         let c = Canonical::new(&p.bicycle().benchmark()?)?;
-        assert!(agrees_with_a_dense_scan(&c, 0.0, 1e6)? > 10_000, "{}", p.name);
+        assert!(agrees_with_a_dense_scan(&c, 0.0, 1e4)? > 10_000, "{}", p.name);
     }
     Ok(())
 }
