@@ -148,13 +148,25 @@ fn csv_row(out: &mut String, r: &DesignRow, two: bool) {
         num(q.weave_speed),
         num(q.capsize_speed),
         num(q.weave_frequency),
-        if ok { u8::from(q.stable).to_string() } else { String::new() },
-        if ok { num(Some(q.stable_width)) } else { String::new() },
+        if ok {
+            u8::from(q.stable).to_string()
+        } else {
+            String::new()
+        },
+        if ok {
+            num(Some(q.stable_width))
+        } else {
+            String::new()
+        },
         num(q.stable_from),
         num(q.stable_to),
         num(q.max_real),
         q.max_real_mode.map_or("", |m| m.name()),
-        if ok { u8::from(q.unresolved).to_string() } else { String::new() },
+        if ok {
+            u8::from(q.unresolved).to_string()
+        } else {
+            String::new()
+        },
         match r.status {
             DesignStatus::Ok => "ok",
             DesignStatus::Invalid => "invalid",
@@ -240,9 +252,7 @@ impl Sink {
     fn write(&mut self, text: &str) -> Result<()> {
         match self.writer.write_all(text.as_bytes()) {
             Ok(()) => Ok(()),
-            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe && self.target.is_none() => {
-                Ok(())
-            }
+            Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe && self.target.is_none() => Ok(()),
             Err(e) => Err(e).context("writing the rows"),
         }
     }
@@ -298,7 +308,11 @@ fn progress(total: u64) -> indicatif::ProgressBar {
 /// Runs `map` (two axes) or `study` (one).
 pub fn run(args: &DesignArgs<'_>) -> Result<()> {
     let bike = load(args.bike)?;
-    let x = Axis::parse(args.x, &bike.bicycle).context(if args.y.is_some() { "--x" } else { "--vary" })?;
+    let x = Axis::parse(args.x, &bike.bicycle).context(if args.y.is_some() {
+        "--x"
+    } else {
+        "--vary"
+    })?;
     let y = match args.y {
         Some(spec) => Some(Axis::parse(spec, &bike.bicycle).context("--y")?),
         None => None,
@@ -308,7 +322,8 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
         None => (0.0, f64::INFINITY),
     };
     let speed_axis = matches!(x.parameter, Parameter::Speed)
-        || y.as_ref().is_some_and(|a| matches!(a.parameter, Parameter::Speed));
+        || y.as_ref()
+            .is_some_and(|a| matches!(a.parameter, Parameter::Speed));
     if args.quantity == Quantity::MaxReal && args.speed.is_none() && !speed_axis {
         bail!("--quantity max-real needs --speed V (or an axis named speed)");
     }
@@ -334,9 +349,16 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
     }
     if let Some(p) = args.plot {
         whipple_report::Format::from_path(p)?;
-        let dir = p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        let dir = p
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
         if !dir.is_dir() {
-            bail!("cannot write {}: the directory {} does not exist", p.display(), dir.display());
+            bail!(
+                "cannot write {}: the directory {} does not exist",
+                p.display(),
+                dir.display()
+            );
         }
     }
     let label = bike.label.clone();
@@ -346,7 +368,11 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
     let mut head = String::new();
     match args.format {
         DesignFormat::Csv => {
-            writeln!(head, "# whipple design study: {}", study_line(&label, &study)?)?;
+            writeln!(
+                head,
+                "# whipple design study: {}",
+                study_line(&label, &study)?
+            )?;
             if shard != Shard::WHOLE {
                 writeln!(
                     head,
@@ -387,11 +413,11 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
                     if written > 0 {
                         text.push_str(",\n");
                     }
-                    text.push_str(
-                        &serde_json::to_string(&JsonRow(r)).map_err(|e| whipple::Error::NonFinite {
+                    text.push_str(&serde_json::to_string(&JsonRow(r)).map_err(|e| {
+                        whipple::Error::NonFinite {
                             context: e.to_string(),
-                        })?,
-                    );
+                        }
+                    })?);
                 }
             }
             written += 1;
@@ -404,10 +430,11 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
                 }
             }
         }
-        sink.write(&text).map_err(|e| whipple::Error::InvalidArgument {
-            what: "output",
-            rule: format!("{e:#}"),
-        })?;
+        sink.write(&text)
+            .map_err(|e| whipple::Error::InvalidArgument {
+                what: "output",
+                rule: format!("{e:#}"),
+            })?;
         bar.inc(rows.len() as u64);
         if on_terminal && !shown && started.elapsed().as_secs_f64() > 1.0 {
             bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
@@ -419,7 +446,9 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
     if let Err(e) = result {
         // The sink's temporary file is removed when it is dropped: nothing half-written.
         if stop.load(Ordering::Relaxed) {
-            bail!("stopped by Ctrl-C after {written} designs; nothing was written to the output file");
+            bail!(
+                "stopped by Ctrl-C after {written} designs; nothing was written to the output file"
+            );
         }
         return Err(anyhow!(e)).context(format!("the study of {label}"));
     }
@@ -455,7 +484,12 @@ fn axis_label(a: &Axis) -> String {
     format!("{} [{}]", a.name, a.unit())
 }
 
-fn study_figure(label: &str, x: &Axis, rows: &[DesignRow], base: Option<f64>) -> Result<whipple_report::Figure> {
+fn study_figure(
+    label: &str,
+    x: &Axis,
+    rows: &[DesignRow],
+    base: Option<f64>,
+) -> Result<whipple_report::Figure> {
     let mut data = StudyData {
         title: format!("{label}: critical speeds against {}", x.name),
         x_label: axis_label(x),
@@ -535,7 +569,8 @@ pub fn merge(
     let mut study: Option<(String, String)> = None;
     let mut parts = Vec::new();
     for path in files {
-        let file = std::fs::File::open(path).with_context(|| format!("reading {}", path.display()))?;
+        let file =
+            std::fs::File::open(path).with_context(|| format!("reading {}", path.display()))?;
         let mut lines = std::io::BufReader::new(file).lines();
         let line = |l: Option<std::io::Result<String>>| -> Result<String> {
             Ok(l.transpose()?.unwrap_or_default())
@@ -544,35 +579,58 @@ pub fn merge(
         let shard_line = line(lines.next())?;
         let header_line = line(lines.next())?;
         let Some(description) = first_line.strip_prefix("# whipple design study: ") else {
-            bail!("{} is not a CSV file written by `whipple map` or `whipple study`", path.display());
+            bail!(
+                "{} is not a CSV file written by `whipple map` or `whipple study`",
+                path.display()
+            );
         };
         let Some(rest) = shard_line.strip_prefix("# shard ") else {
-            bail!("{} is not a shard (no `# shard I/N` line): it is a whole study already", path.display());
+            bail!(
+                "{} is not a shard (no `# shard I/N` line): it is a whole study already",
+                path.display()
+            );
         };
         let parse = || -> Option<(u64, u64, u64, u64)> {
             let (ik, range) = rest.split_once(": designs ")?;
             let (i, n) = ik.split_once('/')?;
             let (a, b) = range.split_once("..")?;
-            Some((i.parse().ok()?, n.parse().ok()?, a.parse().ok()?, b.parse().ok()?))
+            Some((
+                i.parse().ok()?,
+                n.parse().ok()?,
+                a.parse().ok()?,
+                b.parse().ok()?,
+            ))
         };
-        let (index, count, first, end) =
-            parse().ok_or_else(|| anyhow!("{}: unreadable shard line `{shard_line}`", path.display()))?;
+        let (index, count, first, end) = parse()
+            .ok_or_else(|| anyhow!("{}: unreadable shard line `{shard_line}`", path.display()))?;
         match &study {
             None => study = Some((description.to_string(), header_line.clone())),
             Some((d, h)) => {
                 if d != description || *h != header_line {
-                    bail!("{} belongs to another study than {}", path.display(), files[0].display());
+                    bail!(
+                        "{} belongs to another study than {}",
+                        path.display(),
+                        files[0].display()
+                    );
                 }
             }
         }
-        parts.push(Part { path: path.clone(), index, count, first, end });
+        parts.push(Part {
+            path: path.clone(),
+            index,
+            count,
+            first,
+            end,
+        });
     }
     parts.sort_by_key(|p| p.index);
     let count = parts[0].count;
-    let designs: u64 = serde_json::from_str::<serde_json::Value>(&study.as_ref().map(|s| s.0.clone()).unwrap_or_default())
-        .ok()
-        .and_then(|d| d["designs"].as_u64())
-        .ok_or_else(|| anyhow!("unreadable study line"))?;
+    let designs: u64 = serde_json::from_str::<serde_json::Value>(
+        &study.as_ref().map(|s| s.0.clone()).unwrap_or_default(),
+    )
+    .ok()
+    .and_then(|d| d["designs"].as_u64())
+    .ok_or_else(|| anyhow!("unreadable study line"))?;
     for (k, p) in parts.iter().enumerate() {
         if p.count != count || p.index != k as u64 {
             bail!(
@@ -582,17 +640,33 @@ pub fn merge(
                 p.path.display()
             );
         }
-        let want = Shard { index: p.index, count }.indices(designs);
+        let want = Shard {
+            index: p.index,
+            count,
+        }
+        .indices(designs);
         if (p.first, p.end) != want {
-            bail!("{}: its design range does not match its shard", p.path.display());
+            bail!(
+                "{}: its design range does not match its shard",
+                p.path.display()
+            );
         }
     }
     if parts.len() as u64 != count {
-        bail!("{} of {count} shards given: missing {}", parts.len(), (parts.len() as u64..count).map(|k| format!("{k}/{count}")).collect::<Vec<_>>().join(", "));
+        bail!(
+            "{} of {count} shards given: missing {}",
+            parts.len(),
+            (parts.len() as u64..count)
+                .map(|k| format!("{k}/{count}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
     }
     let (description, header_line) = study.unwrap_or_default();
     let mut sink = Sink::open(out)?;
-    sink.write(&format!("# whipple design study: {description}\n{header_line}\n"))?;
+    sink.write(&format!(
+        "# whipple design study: {description}\n{header_line}\n"
+    ))?;
     let columns: Vec<&str> = header_line.split(',').collect();
     let col = columns.iter().position(|c| *c == quantity.column());
     let stable_col = columns.iter().position(|c| *c == "stable");
@@ -620,7 +694,11 @@ pub fn merge(
             sink.write("\n")?;
         }
         if rows != p.end - p.first {
-            bail!("{} holds {rows} rows, its shard {} (was it cut short?)", p.path.display(), p.end - p.first);
+            bail!(
+                "{} holds {rows} rows, its shard {} (was it cut short?)",
+                p.path.display(),
+                p.end - p.first
+            );
         }
     }
     sink.finish()?;

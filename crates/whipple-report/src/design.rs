@@ -95,7 +95,10 @@ pub fn design_map(data: &MapData) -> Result<Figure> {
     if data.x.2 == 0 || data.y.2 == 0 || n > MAX_CELLS {
         return Err(Error::InvalidArgument {
             what: "map",
-            rule: format!("needs 1..={MAX_CELLS} cells, got {} x {}", data.x.2, data.y.2),
+            rule: format!(
+                "needs 1..={MAX_CELLS} cells, got {} x {}",
+                data.x.2, data.y.2
+            ),
         });
     }
     if data.values.len() != n || data.stable.len() != n {
@@ -214,13 +217,28 @@ impl MapFigure {
         let (x0, x1, nx) = self.data.x;
         let (y0, y1, ny) = self.data.y;
         let at = |i: usize, j: usize| self.data.stable[j * nx + i];
-        let px = |i: f64| if nx > 1 { x0 + (x1 - x0) * i / (nx - 1) as f64 } else { x0 };
-        let py = |j: f64| if ny > 1 { y0 + (y1 - y0) * j / (ny - 1) as f64 } else { y0 };
+        let px = |i: f64| {
+            if nx > 1 {
+                x0 + (x1 - x0) * i / (nx - 1) as f64
+            } else {
+                x0
+            }
+        };
+        let py = |j: f64| {
+            if ny > 1 {
+                y0 + (y1 - y0) * j / (ny - 1) as f64
+            } else {
+                y0
+            }
+        };
         let mut out = Vec::new();
         for j in 0..ny.saturating_sub(1) {
             for i in 0..nx.saturating_sub(1) {
                 let c = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
-                let case = c.iter().enumerate().fold(0u8, |m, (k, &b)| m | (u8::from(b) << k));
+                let case = c
+                    .iter()
+                    .enumerate()
+                    .fold(0u8, |m, (k, &b)| m | (u8::from(b) << k));
                 if case == 0 || case == 15 {
                     continue;
                 }
@@ -345,7 +363,11 @@ impl MapFigure {
             None => (self.data.quantity.as_str(), ""),
         };
         let mut line_y = 6;
-        for line in wrap(name, 22).iter().map(String::as_str).chain(std::iter::once(unit)) {
+        for line in wrap(name, 22)
+            .iter()
+            .map(String::as_str)
+            .chain(std::iter::once(unit))
+        {
             bar.draw(&Text::new(line.to_string(), (6, line_y), text(13.0, &DARK)))
                 .or_draw(FIGURE)?;
             line_y += 16;
@@ -374,8 +396,12 @@ impl MapFigure {
             text(13.0, &DARK),
         ))
         .or_draw(FIGURE)?;
-        bar.draw(&Text::new("exists (inside)", (34, y + 60), text(13.0, &DARK)))
-            .or_draw(FIGURE)?;
+        bar.draw(&Text::new(
+            "exists (inside)",
+            (34, y + 60),
+            text(13.0, &DARK),
+        ))
+        .or_draw(FIGURE)?;
         let _ = bw;
         Ok(())
     }
@@ -386,16 +412,28 @@ impl StudyFigure {
         const FIGURE: &str = "design study";
         let d = &self.data;
         let mut top = 0.0f64;
-        for v in d.weave.iter().chain(&d.capsize).chain(&d.stable_from).chain(&d.stable_to) {
+        for v in d
+            .weave
+            .iter()
+            .chain(&d.capsize)
+            .chain(&d.stable_from)
+            .chain(&d.stable_to)
+        {
             if let Some(v) = v.filter(|v| v.is_finite()) {
                 top = top.max(v);
             }
         }
         let top = if top > 0.0 { top * 1.1 } else { 10.0 };
-        let (xa, xb) = d.x.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-            (a.min(x), b.max(x))
-        });
-        let (xa, xb) = if xa < xb { (xa, xb) } else { (xa - 0.5, xa + 0.5) };
+        let (xa, xb) =
+            d.x.iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                    (a.min(x), b.max(x))
+                });
+        let (xa, xb) = if xa < xb {
+            (xa, xb)
+        } else {
+            (xa - 0.5, xa + 0.5)
+        };
         let mut chart = ChartBuilder::on(root)
             .margin(16)
             .caption(&d.title, text(20.0, &DARK))
@@ -474,7 +512,9 @@ impl StudyFigure {
             )))
             .or_draw(FIGURE)?
             .label("self-stable")
-            .legend(|(x, y)| Rectangle::new([(x, y - 6), (x + 20, y + 6)], GREEN.mix(0.3).filled()));
+            .legend(|(x, y)| {
+                Rectangle::new([(x, y - 6), (x + 20, y + 6)], GREEN.mix(0.3).filled())
+            });
         if let Some(b) = d.base {
             if b >= xa && b <= xb {
                 chart
@@ -484,7 +524,9 @@ impl StudyFigure {
                     )))
                     .or_draw(FIGURE)?
                     .label("base design")
-                    .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], DARK.stroke_width(1)));
+                    .legend(|(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], DARK.stroke_width(1))
+                    });
             }
         }
         chart
@@ -519,7 +561,11 @@ pub(crate) fn base64(bytes: &[u8]) -> String {
     const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
     for chunk in bytes.chunks(3) {
-        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
+        let b = [
+            chunk[0],
+            *chunk.get(1).unwrap_or(&0),
+            *chunk.get(2).unwrap_or(&0),
+        ];
         let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
         for k in 0..4 {
             if k <= chunk.len() {

@@ -105,6 +105,7 @@ impl From<Error> for ApiError {
             Error::InvalidArgument { what, rule } => {
                 ApiError::new(unprocessable, "invalid_argument", message).at(what, rule)
             }
+            Error::AccuracyLost { .. } => ApiError::new(unprocessable, "accuracy_lost", message),
             Error::NoConvergence { .. } | Error::NonFinite { .. } => {
                 ApiError::new(unprocessable, "numerical", message)
             }

@@ -24,7 +24,11 @@ const TABLE_2: (f64, f64, f64) = (0.68428307889246, 4.29238253634111, 6.02426201
 fn speeds_range_0_20000_finds_the_weave() -> Result<()> {
     for hi in [20.0, 20000.0, 1e5, 1e6, f64::INFINITY] {
         let s = stability::critical_speeds(&preset("benchmark")?, 0.0, hi)?;
-        assert_abs_diff_eq!(s.double_root_speed.unwrap_or(0.0), TABLE_2.0, epsilon = 1e-12);
+        assert_abs_diff_eq!(
+            s.double_root_speed.unwrap_or(0.0),
+            TABLE_2.0,
+            epsilon = 1e-12
+        );
         assert_abs_diff_eq!(s.weave_speed.unwrap_or(0.0), TABLE_2.1, epsilon = 1e-12);
         assert_abs_diff_eq!(s.capsize_speed.unwrap_or(0.0), TABLE_2.2, epsilon = 1e-12);
         assert_eq!(s.stable_speed_ranges.len(), 1, "{hi}");
@@ -40,12 +44,18 @@ fn speeds_range_0_1e5_finds_the_weave_of_schwinn_crown_and_browser_jason() -> Re
     for name in ["schwinn-crown", "browser-jason"] {
         let c = preset(name)?;
         let all = stability::critical_speeds(&c, 0.0, f64::INFINITY)?;
-        assert!(all.weave_speed.is_some() && all.capsize_speed.is_some(), "{name}");
+        assert!(
+            all.weave_speed.is_some() && all.capsize_speed.is_some(),
+            "{name}"
+        );
         for hi in [20.0, 20000.0, 1e5] {
             let s = stability::critical_speeds(&c, 0.0, hi)?;
             assert_eq!(s.weave_speed, all.weave_speed, "{name} 0..{hi}");
             assert_eq!(s.capsize_speed, all.capsize_speed, "{name} 0..{hi}");
-            assert_eq!(s.stable_speed_ranges, all.stable_speed_ranges, "{name} 0..{hi}");
+            assert_eq!(
+                s.stable_speed_ranges, all.stable_speed_ranges,
+                "{name} 0..{hi}"
+            );
         }
     }
     // Dressel's Schwinn Crown capsize speed, 7.9807 m/s with JBike6's gravity.
@@ -66,8 +76,13 @@ fn an_unbounded_stable_range_is_reported_as_such() -> Result<()> {
     let (lo, hi) = s.stable_speed_ranges[0];
     assert_eq!(lo, vw);
     // Either truly unbounded or open above a horizon far beyond any physical speed.
-    assert!(hi == f64::INFINITY || (hi > 1e6 && s.unresolved.last().map(|u| u.1) == Some(f64::INFINITY)));
-    let json = serde_json::to_value(&s).map_err(|e| Error::NonFinite { context: e.to_string() })?;
+    assert!(
+        hi == f64::INFINITY
+            || (hi > 1e6 && s.unresolved.last().map(|u| u.1) == Some(f64::INFINITY))
+    );
+    let json = serde_json::to_value(&s).map_err(|e| Error::NonFinite {
+        context: e.to_string(),
+    })?;
     assert_eq!(json["range"], serde_json::json!([0.0, null]));
     Ok(())
 }
@@ -96,7 +111,10 @@ fn g_1e300_scales_the_critical_speeds_instead_of_printing_none() -> Result<()> {
 #[test]
 fn mb_1e18_reports_accuracy_lost_instead_of_garbage_eigenvalues() -> Result<()> {
     let c = modified(|b| b.m_b = 1e18)?;
-    assert!(matches!(eigen::eigenvalues(&c, 5.0), Err(Error::AccuracyLost { .. })));
+    assert!(matches!(
+        eigen::eigenvalues(&c, 5.0),
+        Err(Error::AccuracyLost { .. })
+    ));
     assert!(matches!(
         stability::critical_speeds(&c, 0.0, f64::INFINITY),
         Err(Error::AccuracyLost { .. })
@@ -126,7 +144,10 @@ fn max_real(c: &Canonical, v: f64) -> Result<(f64, f64)> {
     let values = m.eigenvalues().map_err(|e| Error::NonFinite {
         context: format!("faer's eigenvalues at {v}: {e:?}"),
     })?;
-    let re = values.iter().map(|z| z.re).fold(f64::NEG_INFINITY, f64::max);
+    let re = values
+        .iter()
+        .map(|z| z.re)
+        .fold(f64::NEG_INFINITY, f64::max);
     let scale = values.iter().map(|z| z.norm()).fold(1.0, f64::max);
     Ok((re, scale))
 }
@@ -168,7 +189,9 @@ fn agrees_with_a_dense_scan(c: &Canonical, lo: f64, hi: f64) -> Result<usize> {
         s.crossings
             .iter()
             .any(|x| (v - x.speed).abs() <= 1e-7 * x.speed.abs().max(1.0))
-            || s.unresolved.iter().any(|u| v >= u.0 - 1e-7 && v <= u.1 + 1e-7)
+            || s.unresolved
+                .iter()
+                .any(|u| v >= u.0 - 1e-7 && v <= u.1 + 1e-7)
     };
     let mut checked = 0;
     let mut previous: Option<(f64, bool)> = None;
@@ -201,7 +224,10 @@ fn agrees_with_a_dense_scan(c: &Canonical, lo: f64, hi: f64) -> Result<usize> {
             if was != stable_scan {
                 let between = s.crossings.iter().any(|x| x.speed > u && x.speed < v)
                     || s.unresolved.iter().any(|r| r.1 > u && r.0 < v);
-                assert!(between, "a change between {u} and {v} without a certified crossing");
+                assert!(
+                    between,
+                    "a change between {u} and {v} without a certified crossing"
+                );
             }
         }
         previous = Some((v, stable_scan));
@@ -217,40 +243,52 @@ fn agrees_with_a_dense_scan(c: &Canonical, lo: f64, hi: f64) -> Result<usize> {
 fn presets_agree_with_a_dense_scan() -> Result<()> {
     for p in presets::PRESETS {
         let c = Canonical::new(&p.bicycle().benchmark()?)?;
-        assert!(agrees_with_a_dense_scan(&c, 0.0, 1e4)? > 10_000, "{}", p.name);
+        assert!(
+            agrees_with_a_dense_scan(&c, 0.0, 1e4)? > 10_000,
+            "{}",
+            p.name
+        );
     }
     Ok(())
 }
 
 fn random_bicycle() -> impl Strategy<Value = BenchmarkParameters> {
     (
-        (0.8f64..1.3, -0.05f64..0.3, -0.2f64..0.7, 0.25f64..0.4, 0.25f64..0.4),
+        (
+            0.8f64..1.3,
+            -0.05f64..0.3,
+            -0.2f64..0.7,
+            0.25f64..0.4,
+            0.25f64..0.4,
+        ),
         (40.0f64..130.0, 0.1f64..0.7, -1.3f64..-0.5, 0.5f64..2.0),
         (0.5f64..8.0, -0.9f64..-0.4, 0.0f64..1.5, 0.2f64..3.0),
     )
-        .prop_map(|((w, c, lam, r_r, r_f), (m_b, x_b, z_b, s_b), (m_h, z_h, x_h, spin))| {
-            let mut b = BenchmarkParameters::meijaard2007();
-            b.w = w;
-            b.c = c;
-            b.lambda = lam;
-            b.r_r = r_r;
-            b.r_f = r_f;
-            b.m_b = m_b;
-            b.x_b = x_b;
-            b.z_b = z_b;
-            b.i_bxx *= s_b;
-            b.i_bzz *= s_b;
-            b.i_bxz *= s_b;
-            b.i_byy *= s_b;
-            b.m_h = m_h;
-            b.z_h = z_h;
-            b.x_h = x_h * w;
-            b.i_ryy *= spin;
-            b.i_rxx *= spin;
-            b.i_fyy *= spin;
-            b.i_fxx *= spin;
-            b
-        })
+        .prop_map(
+            |((w, c, lam, r_r, r_f), (m_b, x_b, z_b, s_b), (m_h, z_h, x_h, spin))| {
+                let mut b = BenchmarkParameters::meijaard2007();
+                b.w = w;
+                b.c = c;
+                b.lambda = lam;
+                b.r_r = r_r;
+                b.r_f = r_f;
+                b.m_b = m_b;
+                b.x_b = x_b;
+                b.z_b = z_b;
+                b.i_bxx *= s_b;
+                b.i_bzz *= s_b;
+                b.i_bxz *= s_b;
+                b.i_byy *= s_b;
+                b.m_h = m_h;
+                b.z_h = z_h;
+                b.x_h = x_h * w;
+                b.i_ryy *= spin;
+                b.i_rxx *= spin;
+                b.i_fyy *= spin;
+                b.i_fxx *= spin;
+                b
+            },
+        )
 }
 
 proptest! {

@@ -169,7 +169,10 @@ impl Axis {
                         let names: Vec<String> = j.fields().into_iter().map(|(n, _)| n).collect();
                         return Err(unknown(
                             name,
-                            format!("{}, wheel_diameter; speed; _deg after an angle", names.join(", ")),
+                            format!(
+                                "{}, wheel_diameter; speed; _deg after an angle",
+                                names.join(", ")
+                            ),
                         ));
                     }
                     let is_angle = stem == "head_angle" || stem.starts_with("alphaI");
@@ -564,7 +567,12 @@ impl Study {
         }
         // The base itself must be a valid bicycle.
         base.benchmark()?;
-        Ok(Study { base, x, y, options })
+        Ok(Study {
+            base,
+            x,
+            y,
+            options,
+        })
     }
 
     /// Number of designs.
