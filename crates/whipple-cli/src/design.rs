@@ -222,6 +222,25 @@ impl Sink {
                 writer: Box::new(BufWriter::new(std::io::stdout())),
             }),
             Some(path) => {
+                // Through a symlink to its target; straight into anything that is not a
+                // regular file (a device, a pipe): only a regular file is replaced by rename.
+                let path = &match std::fs::canonicalize(path) {
+                    Ok(real) => real,
+                    Err(_) => path.to_path_buf(),
+                };
+                if let Ok(meta) = std::fs::metadata(path) {
+                    if !meta.is_file() {
+                        let file = std::fs::OpenOptions::new()
+                            .write(true)
+                            .open(path)
+                            .with_context(|| format!("opening {}", path.display()))?;
+                        return Ok(Sink {
+                            target: None,
+                            tmp: None,
+                            writer: Box::new(BufWriter::with_capacity(1 << 20, file)),
+                        });
+                    }
+                }
                 let dir = match path.parent() {
                     Some(d) if !d.as_os_str().is_empty() => d,
                     _ => Path::new("."),

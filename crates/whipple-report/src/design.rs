@@ -111,13 +111,17 @@ pub fn design_map(data: &MapData) -> Result<Figure> {
             ),
         });
     }
-    let mut lo = f64::INFINITY;
-    let mut hi = f64::NEG_INFINITY;
-    for &v in &data.values {
-        if v.is_finite() {
-            lo = lo.min(v);
-            hi = hi.max(v);
-        }
+    // The colour scale spans the 1st to 99th percentile of the finite values, so that a few
+    // extreme designs do not wash out the rest; values beyond are drawn in the end colours
+    // (the colour bar says so).
+    let mut finite: Vec<f64> = data.values.iter().copied().filter(|v| v.is_finite()).collect();
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    if !finite.is_empty() {
+        let n = finite.len();
+        let at = |q: f64| ((n - 1) as f64 * q).round() as usize;
+        let (a, b) = (at(0.01), at(0.99));
+        lo = *finite.select_nth_unstable_by(a, f64::total_cmp).1;
+        hi = *finite.select_nth_unstable_by(b, f64::total_cmp).1;
     }
     if !(lo <= hi) {
         (lo, hi) = (0.0, 1.0);
