@@ -2,7 +2,9 @@
 //!
 //! Steps: copy `web/package.json` and `web/package-lock.json` to `OUT_DIR/npm`, run `npm ci`
 //! there (skipped when the lockfile is unchanged since the last run), then run `web/build.mjs`
-//! (esbuild) from there, reading `web/src` and `web/index.html` and writing `OUT_DIR/assets`.
+//! (esbuild, then gzip and brotli from Node's zlib) from there, reading `web/src` and
+//! `web/index.html` and writing `OUT_DIR/assets`: the content-hashed files, their compressed
+//! copies and `assets.rs`, the table `src/assets.rs` includes.
 //! Nothing is written into the source tree. Cargo reruns this script only when a front-end
 //! source, the package files or this script change.
 //!
@@ -80,7 +82,7 @@ fn build() -> Result<(), String> {
             .current_dir(&npm_dir),
         "node build.mjs (bundling the page with esbuild)",
     )?;
-    for name in ["index.html", "app.js", "app.css"] {
+    for name in ["index.html", "index.html.br", "manifest.json", "assets.rs"] {
         if !assets.join(name).is_file() {
             return Err(format!("the bundler did not write {name}"));
         }

@@ -6,7 +6,7 @@ use std::path::Path;
 use anyhow::{bail, Context, Result};
 use nalgebra::Matrix2;
 use serde_json::json;
-use whipple::analysis::{eigen, stability, sweep};
+use whipple::analysis::{stability, sweep};
 use whipple::linear::Canonical;
 use whipple::parameters::io::{benchmark_key_doc, write, Format};
 use whipple::parameters::presets::PRESETS;
@@ -204,46 +204,16 @@ pub fn eig(
     emit(&text, out)
 }
 
-/// Labels for the four eigenvalues at one speed: the modes of a sweep from rest to well past
-/// that speed, tracked through it.
-fn labelled_eigenpairs(
-    c: &Canonical,
-    speed: f64,
-) -> Result<Vec<(whipple::analysis::eigen::EigenPair, &'static str)>> {
-    let pairs = eigen::eigenpairs(c, speed)?;
-    let top = speed.abs().max(10.0) * 1.5;
-    let mut grid = sweep::speed_grid(0.0, top, top / 3000.0)?;
-    grid.push(speed.abs());
-    grid.sort_by(f64::total_cmp);
-    let s = sweep::eigen_sweep(c, &grid)?;
-    let at = grid
-        .iter()
-        .position(|v| *v == speed.abs())
-        .unwrap_or_default();
-    let values = s.eigenvalues[at];
-    let mut out = Vec::new();
-    for pair in pairs {
-        // Eigenvalues at -v are those at v (the sweep runs at |v|) only when v >= 0.
-        let label = if speed >= 0.0 {
-            values
-                .iter()
-                .position(|l| (l - pair.value).norm() <= 1e-9 * (1.0 + l.norm()))
-                .map_or("unclassified", |k| s.modes[k].name())
-        } else {
-            "unclassified"
-        };
-        out.push((pair, label));
-    }
-    Ok(out)
-}
-
 pub fn modes(arg: &str, speed: f64, format: TextFormat) -> Result<()> {
     let bike = load(arg)?;
     if !speed.is_finite() {
         bail!("--speed must be a finite number, got {speed}");
     }
     let c = canonical(&bike)?;
-    let pairs = labelled_eigenpairs(&c, speed)?;
+    let pairs: Vec<_> = whipple::analysis::modes::mode_shapes(&c, speed)?
+        .into_iter()
+        .map(|shape| (shape.pair, shape.mode.name()))
+        .collect();
     let text = match format {
         TextFormat::Json => {
             let mut rows = Vec::new();

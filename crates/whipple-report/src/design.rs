@@ -114,7 +114,12 @@ pub fn design_map(data: &MapData) -> Result<Figure> {
     // The colour scale spans the 1st to 99th percentile of the finite values, so that a few
     // extreme designs do not wash out the rest; values beyond are drawn in the end colours
     // (the colour bar says so).
-    let mut finite: Vec<f64> = data.values.iter().copied().filter(|v| v.is_finite()).collect();
+    let mut finite: Vec<f64> = data
+        .values
+        .iter()
+        .copied()
+        .filter(|v| v.is_finite())
+        .collect();
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     if !finite.is_empty() {
         let n = finite.len();

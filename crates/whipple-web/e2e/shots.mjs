@@ -1,107 +1,85 @@
-// Screenshots of the page's states: node shots.mjs URL OUT_DIR
+// Screenshots of the page's states at a phone's, a laptop's and a desktop's width:
+//   node shots.mjs URL OUT_DIR [WIDTHS]     (WIDTHS default 390,1280,1920)
+// Writes OUT_DIR/WIDTH-STATE.png; docs/screenshots holds a selection.
 import { launch } from "./browser.mjs";
-import { mkdirSync } from "node:fs";
+import { mkdirSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
 
-const [url, out = "/tmp/whipple-shots"] = process.argv.slice(2);
+const [url, out = "/tmp/whipple-shots", list = "390,1280,1920"] = process.argv.slice(2);
 mkdirSync(out, { recursive: true });
+const widths = list.split(",").map(Number);
 const { context, close } = await launch();
-try {
-  const page = context.pages()[0] ?? (await context.newPage());
-  page.on("console", (m) => console.log(`[page ${m.type()}] ${m.text()}`));
-  page.on("pageerror", (e) => console.log(`[page error] ${e.message}`));
-  await page.goto(url);
+const page = context.pages()[0] ?? (await context.newPage());
+page.on("pageerror", (e) => console.log(`[page error] ${e.message}`));
+const ready = async (query) => {
+  await page.goto(new URL(query, url).href);
   await page.waitForSelector("body[data-ready=true]", { timeout: 20_000 });
+  await page.waitForFunction(() => /\d/.test(document.querySelector("[data-testid=capsize-speed]")?.textContent ?? ""));
   await page.waitForTimeout(300);
-  await page.screenshot({ path: join(out, "1-crown.png") });
-  // Hover on the plot.
-  const box = await page.getByTestId("plot-overlay").boundingBox();
-  await page.mouse.move(box.x + box.width * 0.62, box.y + box.height * 0.5);
-  await page.waitForTimeout(150);
-  await page.screenshot({ path: join(out, "2-hover.png") });
-  // Compare with the benchmark bicycle.
-  await page.getByTestId("compare-select").selectOption("preset:benchmark");
-  await page.waitForTimeout(800);
-  await page.mouse.move(10, 10);
-  await page.screenshot({ path: join(out, "3-compare.png") });
-  // Invalid mass.
-  await page.getByTestId("param-mrider").fill("-5");
-  await page.waitForTimeout(800);
-  await page.screenshot({ path: join(out, "4-invalid.png") });
-  await page.getByTestId("param-mrider").fill("80");
-  // Benchmark tab.
-  await page.getByTestId("compare-select").selectOption("");
-  await page.click("#tab-benchmark");
-  await page.waitForTimeout(600);
-  await page.screenshot({ path: join(out, "5-benchmark-tab.png") });
-  // The two-mass skate.
-  await page.getByTestId("bike-select").selectOption("preset:two-mass-skate");
-  await page.waitForTimeout(800);
-  await page.screenshot({ path: join(out, "6-skate.png") });
-  await page.setViewportSize({ width: 1024, height: 800 });
-  await page.getByTestId("bike-select").selectOption("preset:benchmark");
-  await page.waitForTimeout(800);
-  await page.screenshot({ path: join(out, "7-narrow.png"), fullPage: true });
-  // A speed grid that is too fine, and a file that does not parse.
-  await page.fill("#v-step", "0.00000001");
-  await page.press("#v-step", "Enter");
-  await page.waitForTimeout(800);
-  await page.screenshot({ path: join(out, "8-too-many-speeds.png") });
-  await page.fill("#v-step", "0.01");
-  await page.press("#v-step", "Enter");
-  const bad = join(out, "broken.toml");
-  (await import("node:fs")).writeFileSync(bad, "name = \"broken\"\n[benchmark]\nw = = 1\n");
-  await page.setInputFiles("#file-input", bad);
-  await page.waitForTimeout(800);
-  await page.screenshot({ path: join(out, "9-bad-file.png") });
-  // Two small ones for the README.
-  await page.setViewportSize({ width: 1280, height: 760 });
-  await page.getByTestId("bike-select").selectOption("preset:schwinn-crown");
-  await page.getByTestId("compare-select").selectOption("preset:benchmark");
-  await page.waitForTimeout(1000);
-  const plot = await page.getByTestId("plot-overlay").boundingBox();
-  await page.mouse.move(plot.x + plot.width * 0.45, plot.y + plot.height * 0.5);
-  await page.waitForTimeout(200);
-  await page.screenshot({ path: join(out, "docs-whipple-serve.png") });
-  await page.mouse.move(1, 1);
-  await page.getByTestId("compare-select").selectOption("");
-  await page.getByTestId("param-mrider").fill("-5");
-  await page.waitForTimeout(800);
-  await page.screenshot({ path: join(out, "docs-invalid-entry.png") });
-  // The simulation panel, at both common laptop widths.
-  await page.mouse.move(1, 1);
-  await page.getByTestId("param-mrider").fill("80");
-  await page.getByTestId("bike-select").selectOption("preset:benchmark");
-  await page.waitForTimeout(800);
-  await page.getByTestId("tab-sim").click();
-  const run = async (speed, seconds) => {
-    await page.fill("#sim-speed", String(speed));
-    await page.click("[data-testid=sim-run]");
-    await page.waitForFunction(() => !document.querySelector("[data-testid=sim-outcome]").classList.contains("running"));
-    await page.waitForTimeout(seconds * 1000);
-    await page.getByTestId("sim-play").click(); // pause mid-animation
-  };
-  for (const [width, height] of [[1440, 900], [1280, 800]]) {
+};
+const run = async (speed, seconds, duration = 10) => {
+  await page.fill("#sim-speed", String(speed));
+  await page.fill("#sim-duration", String(duration));
+  await page.click("[data-testid=sim-run]");
+  await page.waitForFunction(() => !document.querySelector("[data-testid=sim-outcome]").classList.contains("running"), null, { timeout: 30_000 });
+  await page.waitForTimeout(seconds * 1000);
+  if ((await page.getByTestId("sim-play").getAttribute("aria-pressed")) === "true") await page.getByTestId("sim-play").click();
+};
+try {
+  for (const width of widths) {
+    const height = width <= 400 ? 844 : width <= 1300 ? 800 : 1080;
     await page.setViewportSize({ width, height });
+    const shot = async (name) => {
+      await page.screenshot({ path: join(out, `${width}-${name}.png`), fullPage: width <= 400 && !name.includes("hover") && !name.includes("zoom") });
+      console.log(`${width}-${name}.png`);
+    };
+    await ready("?bike=preset:schwinn-crown");
+    await shot("1-crown");
+    await page.getByTestId("eigen-plot").scrollIntoViewIfNeeded();
+    const box = await page.getByTestId("eigen-plot").boundingBox();
+    await page.mouse.move(box.x + box.width * 0.55, box.y + box.height * 0.5);
+    await page.waitForTimeout(200);
+    await shot("2-hover");
+    await page.mouse.wheel(0, -500);
+    await page.waitForTimeout(300);
+    await shot("3-zoomed");
+    await page.mouse.move(1, 1);
+    await ready("?bike=preset:schwinn-crown&cmp=preset:benchmark,preset:browser-jason");
+    await page.waitForTimeout(600);
+    await shot("4-compare-three");
+    await ready("?bike=preset:schwinn-crown");
+    await page.getByTestId("param-mrider").fill("-5");
+    await page.waitForTimeout(900);
+    await shot("5-invalid");
+    await page.getByTestId("param-mrider").fill("abc");
+    await page.waitForTimeout(500);
+    await shot("6-not-a-number");
+    await page.getByTestId("param-mrider").fill("80");
+    await page.getByTestId("param-head_angle").fill("1.2388");
+    await page.waitForTimeout(700);
+    await shot("7-did-you-mean");
+    await ready("?bike=preset:benchmark&tab=locus");
+    await shot("8-root-locus");
+    await ready("?bike=preset:benchmark&tab=modes&mv=5");
+    await page.waitForTimeout(1200);
+    await shot("9-modes");
+    await ready("?bike=preset:benchmark&tab=sim");
     await run(4.6, 2.5);
-    await page.screenshot({ path: join(out, `10-sim-weave-${width}.png`) });
+    await run(5.5, 2.5);
+    await shot("10-sim-weave");
+    await run(3, 0.3);
+    await page.$eval("#sim-scrub", (e) => {
+      e.value = e.max;
+      e.dispatchEvent(new Event("input", { bubbles: true }));
+    });
+    await page.waitForTimeout(300);
+    await shot("11-sim-fall");
+    await ready("?bike=preset:schwinn-crown");
+    await page.getByTestId("param-trail").fill("-0.05");
+    await page.waitForTimeout(900);
+    await shot("12-negative-trail");
   }
-  await page.setViewportSize({ width: 1280, height: 760 });
-  await run(4.6, 3.2);
-  await page.screenshot({ path: join(out, "docs-simulation-weave.png") });
-  await run(3, 0.2);
-  await page.$eval("#sim-scrub", (e) => {
-    e.value = e.max;
-    e.dispatchEvent(new Event("input", { bubbles: true }));
-  });
-  await page.waitForTimeout(300);
-  await page.screenshot({ path: join(out, "docs-simulation-fall.png") });
-  await page.setViewportSize({ width: 1440, height: 900 });
-  await page.waitForTimeout(300);
-  await page.screenshot({ path: join(out, "11-sim-fall-1440.png") });
-  await page.setViewportSize({ width: 1024, height: 800 });
-  await page.waitForTimeout(300);
-  await page.screenshot({ path: join(out, "12-sim-narrow.png"), fullPage: true });
+  writeFileSync(join(out, "done"), "");
 } finally {
   await close();
 }

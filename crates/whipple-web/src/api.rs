@@ -28,6 +28,7 @@ use whipple::{Bicycle, Description};
 
 use crate::error::{quoted_field, ApiError};
 use crate::geometry::{side_view, SideView};
+use crate::modes::{self as mode_api, ModesRequest, ModesResponse, ResponseJson, ResponseRequest};
 use crate::simulation::{self, SimulateRequest, SimulateResponse};
 use crate::{assets, Limits};
 
@@ -49,8 +50,7 @@ pub fn app(limits: Limits) -> Router {
     };
     Router::new()
         .route("/", get(assets::index))
-        .route("/assets/app.js", get(assets::app_js))
-        .route("/assets/app.css", get(assets::app_css))
+        .route("/assets/{name}", get(assets::file))
         .route("/api/health", get(health))
         .route("/api/openapi.json", get(openapi))
         .route("/api/presets", get(list_presets))
@@ -61,6 +61,8 @@ pub fn app(limits: Limits) -> Router {
         .route("/api/eigen", post(eigen))
         .route("/api/speeds", post(speeds))
         .route("/api/simulate", post(simulate))
+        .route("/api/modes", post(modes))
+        .route("/api/linear/response", post(linear_response))
         .route("/api/map", post(crate::design::map))
         .route("/api/study", post(crate::design::study))
         .fallback(not_found)
@@ -539,6 +541,36 @@ async fn simulate(
     Ok(Json(response))
 }
 
+async fn modes(
+    State(state): State<AppState>,
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Json<ModesResponse>, ApiError> {
+    let request: ModesRequest = json_body(body)?;
+    let bike = bicycle(&request.bike)?;
+    let speed = mode_api::check_modes(&request)?;
+    let response = compute(&state, "try again", move |_| {
+        let canonical = Canonical::new(&bike.benchmark()?)?;
+        mode_api::modes(bike.name.clone(), &canonical, speed)
+    })
+    .await?;
+    Ok(Json(response))
+}
+
+async fn linear_response(
+    State(state): State<AppState>,
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Json<ResponseJson>, ApiError> {
+    let request: ResponseRequest = json_body(body)?;
+    let bike = bicycle(&request.bike)?;
+    let plan = mode_api::check_response(&request, &state.limits)?;
+    let response = compute(&state, "ask for a shorter time or a larger dt", move |_| {
+        let canonical = Canonical::new(&bike.benchmark()?)?;
+        mode_api::response(bike.name.clone(), &canonical, plan)
+    })
+    .await?;
+    Ok(Json(response))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -603,6 +635,8 @@ mod tests {
             "/api/eigen",
             "/api/speeds",
             "/api/simulate",
+            "/api/modes",
+            "/api/linear/response",
             "/api/map",
             "/api/study",
         ];
@@ -619,7 +653,8 @@ mod tests {
             .as_object()
             .map(|p| p.keys().cloned().collect())
             .unwrap_or_default();
-        let script = assets::APP_JS;
+        let text = assets::script_text();
+        let script = text.as_str();
         let mut used = Vec::new();
         let mut rest = script;
         while let Some(at) = rest.find("/api/") {

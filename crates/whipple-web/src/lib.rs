@@ -21,6 +21,7 @@ mod assets;
 mod design;
 mod error;
 pub mod geometry;
+pub mod modes;
 pub mod simulation;
 
 use std::future::Future;

@@ -82,12 +82,18 @@ async fn page_and_assets_are_served() -> TestResult {
     let (status, content_type, html) = send(&app, Method::GET, "/", None).await?;
     assert_eq!(status, StatusCode::OK);
     assert!(content_type.starts_with("text/html"));
-    assert!(html.contains("/assets/app.js") && html.contains("/assets/app.css"));
-    let (status, content_type, js) = send(&app, Method::GET, "/assets/app.js", None).await?;
+    // Content-hashed names (app-HASH.js, app-HASH.css), as the page names them.
+    let named = |ext: &str| {
+        html.split('"')
+            .find(|s| s.starts_with("/assets/app-") && s.ends_with(ext))
+            .map(str::to_string)
+            .ok_or(format!("the page names no /assets/app-*{ext}"))
+    };
+    let (status, content_type, js) = send(&app, Method::GET, &named(".js")?, None).await?;
     assert_eq!(status, StatusCode::OK);
     assert!(content_type.starts_with("text/javascript"));
     assert!(js.contains("/api/eigen"));
-    let (status, content_type, _) = send(&app, Method::GET, "/assets/app.css", None).await?;
+    let (status, content_type, _) = send(&app, Method::GET, &named(".css")?, None).await?;
     assert_eq!(status, StatusCode::OK);
     assert!(content_type.starts_with("text/css"));
     Ok(())

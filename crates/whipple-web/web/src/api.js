@@ -38,4 +38,8 @@ export const api = {
   parse: (text, format) => call("POST", "/api/bike/parse", { text, format }),
   /** `request`: {bike, speed, lean_deg, steer_deg, lean_rate, steer_rate, duration, ...}. */
   simulate: (request) => call("POST", "/api/simulate", request),
+  /** The eigenmodes at one speed: {modes: [{mode, eigenvalue: [re, im], eigenvector}]}. */
+  modes: (bike, speed) => call("POST", "/api/modes", { bike, speed }),
+  /** The linear model's free response: `request` as /api/simulate's initial numbers. */
+  linearResponse: (request) => call("POST", "/api/linear/response", request),
 };

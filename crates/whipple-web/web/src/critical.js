@@ -1,10 +1,30 @@
-// The critical-speeds table: v_d, v_w, v_c and the self-stable ranges, for the design and the
-// one it is compared with.
+// The critical-speeds table: v_d, v_w, v_c and the self-stable ranges, one column per design
+// (the edited one first, then those it is compared with).
 
-import { html, fixed } from "./format.js";
+import { html, fixed, num } from "./format.js";
+import { COMPARE_COLOURS } from "./plot.js";
 
-function speed(v) {
-  return v === null || v === undefined ? "none" : fixed(v, 4);
+/**
+ * What the sweep says about a mode where the critical speed is absent from the range: the sign
+ * of its real part over the whole range ("unstable at every speed" reads differently from
+ * "none", which would suggest it never goes wrong).
+ */
+function throughout(eigen, mode) {
+  const cols = eigen?.eigenvalues.filter((c) => c.mode === mode) ?? [];
+  if (!cols.length) return null;
+  const res = cols.flatMap((c) => c.re);
+  if (res.every((x) => x > 0)) return "unstable";
+  if (res.every((x) => x < 0)) return "stable";
+  return null;
+}
+
+function speed(v, eigen, mode, range) {
+  if (v !== null && v !== undefined) return fixed(v, 4);
+  const where = range ? ` ${fixed(range[0], 1)}–${fixed(range[1], 1)}` : "";
+  const state = mode && throughout(eigen, mode);
+  if (state === "unstable") return `none: unstable at every speed${where}`;
+  if (state === "stable") return `none: stable at every speed${where}`;
+  return `none in${where}`;
 }
 
 function ranges(c) {
@@ -15,33 +35,35 @@ function ranges(c) {
     .join(", ");
 }
 
-/** Fills `container` with the table for `primary` and optional `secondary` ({label, critical}). */
-export function drawCritical(container, primary, secondary, { stale = false } = {}) {
+/** Fills `container` with the table for `designs` ([{label, eigen}], the first edited). */
+export function drawCritical(container, designs, { stale = false } = {}) {
   const rows = [
-    ["weave", "v_w", (c) => speed(c?.weave_speed), "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
-    ["capsize", "v_c", (c) => speed(c?.capsize_speed), "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
-    ["double root", "v_d", (c) => speed(c?.double_root_speed), "double-root-speed", "two real eigenvalues meet and become the weave pair", "#9ca3af"],
+    ["weave", "v_w", (c, e) => speed(c?.weave_speed, e, "weave", c?.range), "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
+    ["capsize", "v_c", (c, e) => speed(c?.capsize_speed, e, "capsize", c?.range), "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
+    ["double root", "v_d", (c) => speed(c?.double_root_speed, null, null, c?.range), "double-root-speed", "two real eigenvalues meet and become the weave pair", "#9ca3af"],
     ["ω at v_w", "rad/s", (c) => (c?.weave_frequency == null ? "–" : fixed(c.weave_frequency, 3)), "weave-frequency", "the weave's angular frequency |Im λ| at v_w", null],
     ["self-stable", "", (c) => ranges(c), "stable-ranges", "all eigenvalues have negative real parts", "#86efac"],
   ];
-  const table = html("table", { class: `critical-table${stale ? " stale" : ""}` });
-  const head = html("tr", {}, html("th", { class: "unit", text: "m/s" }), html("th", { class: "primary", text: primary.label }));
-  if (secondary) head.append(html("th", { class: "secondary", text: secondary.label }));
+  const table = html("table", { class: `critical-table${stale ? " stale" : ""}`, "data-columns": String(designs.length) });
+  const head = html("tr", {}, html("th", { class: "unit", scope: "col", text: "m/s" }));
+  designs.forEach((d, k) => head.append(html("th", { scope: "col", class: k ? "secondary" : "primary", style: k ? `color:${COMPARE_COLOURS[(k - 1) % COMPARE_COLOURS.length]}` : null, text: d.label, title: d.label })));
   table.append(html("thead", {}, head));
   const body = html("tbody");
   for (const [name, symbol, value, id, hint, colour] of rows) {
     const tr = html("tr", { title: hint, class: id === "stable-ranges" ? "stable" : "" });
     const dot = html("span", { class: "dot", style: `background:${colour ?? "transparent"}` });
-    tr.append(html("td", { class: "what" }, dot, html("span", { text: name }), symbol ? html("span", { class: "symbol", text: ` ${symbol}` }) : ""));
-    tr.append(html("td", { class: "value", "data-testid": id, text: value(primary.critical) }));
-    if (secondary) tr.append(html("td", { class: "value secondary", "data-testid": `compare-${id}`, text: value(secondary.critical) }));
+    tr.append(html("th", { scope: "row", class: "what" }, dot, html("span", { text: name }), symbol ? html("span", { class: "symbol", text: ` ${symbol}` }) : ""));
+    designs.forEach((d, k) => {
+      const c = d.eigen?.critical ?? null;
+      tr.append(html("td", { class: `value${k ? " secondary" : ""}`, "data-testid": k === 0 ? id : k === 1 ? `compare-${id}` : `compare${k}-${id}`, text: value(c, d.eigen) }));
+    });
     body.append(tr);
   }
   table.append(body);
-  const range = primary.critical?.range;
+  const range = designs[0].eigen?.critical?.range;
   const meta = document.getElementById("critical-meta");
-  if (meta) meta.textContent = range ? `linear model, ${fixed(range[0], 1)} – ${fixed(range[1], 1)} m/s` : "";
-  const open = primary.critical?.stable_speed_ranges.some(([, b]) => b >= range[1]);
+  if (meta) meta.textContent = range ? `linear model, ${num(range[0])} – ${num(range[1])} m/s` : "";
+  const open = designs[0].eigen?.critical?.stable_speed_ranges.some(([, b]) => b >= range[1]);
   const note = html("p", { class: "note", text: range ? (open ? "“+”: still stable at the end of the plotted speeds." : "") : "Give a speed range to find the critical speeds." });
-  container.replaceChildren(table, note);
+  container.replaceChildren(html("div", { class: "table-scroll" }, table), note);
 }

@@ -1,13 +1,10 @@
-// The parameter editor: one form per layout, numbers with units, the library's messages shown
-// in place next to the field they name.
+// The parameter editor: one form per layout, numbers with units, angles in degrees, the
+// library's messages shown in place next to the field they name.
 
 import { JBIKE6_GROUPS, BENCHMARK_GROUPS, getPath } from "./fields.js";
-import { html, fixed } from "./format.js";
+import { html, inputText, num } from "./format.js";
 
-/** Text for a number in an input: the shortest form that reads back the same. */
-function show(x) {
-  return Number.isFinite(x) ? String(x) : "";
-}
+const DEG = 180 / Math.PI;
 
 /** Parses what was typed; null when it is not a finite number. */
 export function parseNumber(text) {
@@ -17,11 +14,18 @@ export function parseNumber(text) {
   return Number.isFinite(x) ? x : null;
 }
 
+/** What is wrong with text that is not a number. */
+function notANumber(text) {
+  return text.trim() === "" ? "empty: type a number" : "not a number";
+}
+
 export class Editor {
-  /** `onInput(path, value)` is called for every valid number typed. */
-  constructor(container, onInput) {
+  /** `onInput(path, value)` is called for every valid number typed (angles in radians);
+   * `onLocal()` whenever a field starts or stops holding text that is not a number. */
+  constructor(container, onInput, onLocal = () => {}) {
     this.container = container;
     this.onInput = onInput;
+    this.onLocal = onLocal;
     this.inputs = [];
   }
 
@@ -35,17 +39,20 @@ export class Editor {
       const details = html("details", { class: "group", open: true });
       details.append(html("summary", { text: group.title }));
       const grid = html("div", { class: "rows" });
-      for (const row of group.rows) grid.append(this.row(row, values, readOnly));
+      for (const row of group.rows) grid.append(this.row(row, values, readOnly, group.title));
       details.append(grid);
       this.container.append(details);
     }
+    this.onLocal();
   }
 
-  row(spec, values, readOnly) {
+  row(spec, values, readOnly, group) {
     const cells = spec.triple ?? [spec];
     const row = html("div", { class: `row${spec.triple ? " triple" : ""}`, title: spec.hint });
     row.append(html("label", { class: "sym", text: spec.label, for: `in-${cells[0].lib}` }));
     const boxes = html("div", { class: "inputs" });
+    const error = html("div", { class: "row-error", "data-testid": `error-${cells[0].lib}`, role: "status" });
+    const hint = html("div", { class: "row-hint", "data-testid": `hint-${cells[0].lib}` });
     for (const cell of cells) {
       const value = getPath(values, cell.path);
       const input = html("input", {
@@ -56,67 +63,111 @@ export class Editor {
         autocomplete: "off",
         "data-lib": cell.lib,
         "data-testid": `param-${cell.lib}`,
-        "aria-label": `${spec.hint} ${cell.label}`,
+        "aria-label": `${group}: ${spec.hint}${spec.triple ? ` ${cell.label}` : ""} [${spec.unit}]`,
         placeholder: spec.triple ? cell.label : "",
         readonly: readOnly,
       });
-      input.value = show(value);
+      // Degrees converted from radians to 8 digits: 70.977782, not 70.9777819047 (the radians
+      // stay as stored until the field is edited).
+      // A read-only (converted) value is shown to 6 digits; the file keeps them all.
+      const shown = spec.angle ? Number((value * DEG).toPrecision(8)) : value;
+      input.value = readOnly && Number.isFinite(shown) ? String(Number(shown.toPrecision(6))) : inputText(shown);
       input.title = spec.triple ? `${cell.label}: ${spec.hint}` : spec.hint;
+      input.dataset.what = `${group} ${spec.label}${spec.triple ? ` ${cell.label}` : ""}`;
+      input.dataset.last = input.value;
       if (!readOnly) {
         input.addEventListener("input", () => {
           const x = parseNumber(input.value);
+          const wasLocal = input.classList.contains("local");
           if (x === null) {
-            this.markLocal(input, "not a number");
-          } else {
-            this.unmarkLocal(input);
-            if (spec.angle) row.querySelector(".deg").textContent = degrees(x);
-            this.onInput(cell.path, x);
+            this.markLocal(input, notANumber(input.value));
+            if (!wasLocal) this.onLocal();
+            return;
           }
+          this.unmarkLocal(input);
+          if (spec.angle) this.suggestDegrees(spec, input, x, hint);
+          this.onInput(cell.path, spec.angle ? x / DEG : x);
+          if (wasLocal) this.onLocal();
         });
       }
       this.inputs.push(input);
       boxes.append(input);
     }
     row.append(boxes);
-    const unit = html("span", { class: "unit", text: spec.unit });
-    row.append(unit);
-    if (spec.angle) {
-      row.append(html("span", { class: "deg", text: degrees(getPath(values, spec.path)) }));
-    }
-    row.append(html("div", { class: "row-error", "data-testid": `error-${cells[0].lib}` }));
+    row.append(html("span", { class: "unit", text: spec.unit }));
+    if (spec.angle) row.append(html("span", { class: "deg", text: Number.isFinite(getPath(values, spec.path)) ? `${num(getPath(values, spec.path), 5)} rad` : "" }));
+    row.append(error, hint);
     return row;
+  }
+
+  /**
+   * An angle typed in radians where degrees are asked for: offers the degrees, e.g. "did you
+   * mean 72°?" for a head angle of 1.2566. The value typed stays as typed until accepted.
+   */
+  suggestDegrees(spec, input, x, hint) {
+    const row = input.closest(".row");
+    const rad = row.querySelector(".deg");
+    if (rad) rad.textContent = `${num(x / DEG, 5)} rad`;
+    hint.replaceChildren();
+    const [lo, hi] = spec.plausible ?? [];
+    if (lo === undefined || (x >= lo && x <= hi)) return;
+    const asDegrees = x * DEG;
+    if (!(asDegrees >= lo && asDegrees <= hi)) return;
+    const shown = num(asDegrees, 4);
+    const accept = html("button", { type: "button", class: "btn tiny", text: `use ${shown}°`, "data-testid": `accept-${input.dataset.lib}` });
+    accept.addEventListener("click", () => {
+      input.value = shown;
+      input.dispatchEvent(new Event("input", { bubbles: true }));
+      input.focus();
+    });
+    hint.append(html("span", { text: `${num(x)}° is unusual for the ${spec.hint}: did you mean ${shown}°? (${num(x)} rad) ` }), accept);
   }
 
   markLocal(input, message) {
     input.classList.add("invalid", "local");
+    input.setAttribute("aria-invalid", "true");
     const err = input.closest(".row").querySelector(".row-error");
     err.textContent = message;
   }
 
   unmarkLocal(input) {
     input.classList.remove("local");
-    if (!input.classList.contains("server")) input.classList.remove("invalid");
+    if (!input.classList.contains("server")) {
+      input.classList.remove("invalid");
+      input.removeAttribute("aria-invalid");
+    }
     const row = input.closest(".row");
-    if (!row.querySelector("input.invalid")) row.querySelector(".row-error").textContent = "";
+    if (!row.querySelector("input.local")) row.querySelector(".row-error").textContent = row.querySelector("input.server") ? row.querySelector(".row-error").dataset.rule ?? "" : "";
   }
 
-  /** True when some input holds text that is not a number. */
+  /** The fields holding text that is not a number: [{lib, what, text}]. */
+  localErrors() {
+    return this.inputs.filter((i) => i.classList.contains("local")).map((i) => ({ lib: i.dataset.lib, what: i.dataset.what, text: i.value }));
+  }
+
   hasLocalErrors() {
     return this.inputs.some((i) => i.classList.contains("local"));
   }
 
-  /** Marks the fields an API error names (`field`, comma separated) with its rule; returns how many. */
-  flag(error) {
+  /**
+   * Marks the fields an API error names (`field`, comma separated; benchmark names translated
+   * through `sources` when the form shown is JBike6's) with `rule`; returns how many.
+   */
+  flag(error, { sources = null, rule = null } = {}) {
     this.clearServerFlags();
     if (!error?.field) return 0;
-    const names = error.field.split(",").map((s) => s.trim().split(" ")[0]).filter(Boolean);
+    let names = error.field.split(",").map((s) => s.trim().split(" ")[0]).filter(Boolean);
+    const own = (n) => this.inputs.some((i) => i.dataset.lib === n || (i.dataset.lib.startsWith(n) && /^[(xyz]/.test(i.dataset.lib.slice(n.length))));
+    if (sources && !names.some(own)) names = names.flatMap((n) => sources[n] ?? []);
     let count = 0;
     for (const input of this.inputs) {
       const lib = input.dataset.lib;
       if (names.some((n) => lib === n || (lib.startsWith(n) && /^[(xyz]/.test(lib.slice(n.length))))) {
         input.classList.add("invalid", "server");
+        input.setAttribute("aria-invalid", "true");
         const err = input.closest(".row").querySelector(".row-error");
-        err.textContent = error.rule ?? error.message;
+        err.dataset.rule = rule ?? error.rule ?? error.message;
+        if (!input.classList.contains("local")) err.textContent = err.dataset.rule;
         count += 1;
       }
     }
@@ -131,12 +182,9 @@ export class Editor {
       input.classList.remove("server");
       if (!input.classList.contains("local")) {
         input.classList.remove("invalid");
+        input.removeAttribute("aria-invalid");
         input.closest(".row").querySelector(".row-error").textContent = "";
       }
     }
   }
-}
-
-function degrees(rad) {
-  return Number.isFinite(rad) ? `${fixed((rad * 180) / Math.PI, 2)}°` : "";
 }

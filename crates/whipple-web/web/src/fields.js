@@ -1,5 +1,7 @@
 // The parameter forms: every number of the JBike6 and benchmark layouts, with the name the
-// library uses in its messages (`lib`), a label, a unit and a one-line meaning.
+// library uses in its messages (`lib`), a label, a unit and a one-line meaning. Angles are
+// stored in radians (the files' unit) and typed in degrees (`angle: true`); `plausible` is the
+// range in degrees where a value is expected, so that one typed in radians can be recognised.
 
 const I3 = ["I11", "I22", "Izz"];
 
@@ -10,7 +12,7 @@ function wheel(key, lib, title) {
       { path: [key, "D"], lib: `D${lib}`, label: "D", unit: "m", hint: "diameter" },
       { path: [key, "m"], lib: `m${lib}`, label: "m", unit: "kg", hint: "mass" },
       { triple: [0, 1, 2].map((k) => ({ path: [key, "I", k], lib: `I${lib}(${k + 1})`, label: I3[k] })), label: "I", unit: "kg m²", hint: "principal moments: two diametral, then spin" },
-      { path: [key, "alpha"], lib: `alphaI${lib}`, label: "α", unit: "rad", hint: "angle of axis 1 from x", angle: true },
+      { path: [key, "alpha"], lib: `alphaI${lib}`, label: "α", unit: "°", hint: "angle of axis 1 from x", angle: true },
     ],
   };
 }
@@ -23,7 +25,7 @@ function rearBody(key, title) {
       { path: [key, "xcm"], lib: `xcm${key}`, label: "x", unit: "m", hint: "centre of mass, forward of the rear contact" },
       { path: [key, "ycm"], lib: `ycm${key}`, label: "y", unit: "m", hint: "centre of mass, above the ground" },
       { triple: [0, 1, 2].map((k) => ({ path: [key, "I", k], lib: `I${key}(${k + 1})`, label: I3[k] })), label: "I", unit: "kg m²", hint: "principal moments about the centre of mass" },
-      { path: [key, "alpha"], lib: `alphaI${key}`, label: "α", unit: "rad", hint: "angle of axis 1 from x, counter-clockwise", angle: true },
+      { path: [key, "alpha"], lib: `alphaI${key}`, label: "α", unit: "°", hint: "angle of axis 1 from x, counter-clockwise", angle: true },
     ],
   };
 }
@@ -36,7 +38,7 @@ function frontBody(key, title) {
       { path: [key, "ucm"], lib: `ucm${key}`, label: "u", unit: "m", hint: "centre of mass, perpendicular to the steer axis (forward)" },
       { path: [key, "vcm"], lib: `vcm${key}`, label: "v", unit: "m", hint: "centre of mass, up the steer axis from the ground" },
       { triple: [0, 1, 2].map((k) => ({ path: [key, "I", k], lib: `I${key}(${k + 1})`, label: I3[k] })), label: "I", unit: "kg m²", hint: "principal moments about the centre of mass" },
-      { path: [key, "alpha"], lib: `alphaI${key}`, label: "α", unit: "rad", hint: "angle of axis 1 from x, counter-clockwise", angle: true },
+      { path: [key, "alpha"], lib: `alphaI${key}`, label: "α", unit: "°", hint: "angle of axis 1 from x, counter-clockwise", angle: true },
     ],
   };
 }
@@ -47,7 +49,7 @@ export const JBIKE6_GROUPS = [
     title: "Geometry",
     rows: [
       { path: ["wheelbase"], lib: "wheelbase", label: "wheelbase", unit: "m", hint: "horizontal distance between the wheel contacts" },
-      { path: ["head_angle"], lib: "head_angle", label: "head angle", unit: "rad", hint: "steer axis angle from the horizontal", angle: true },
+      { path: ["head_angle"], lib: "head_angle", label: "head angle", unit: "°", hint: "steer axis angle from the horizontal", angle: true, plausible: [45, 90] },
       { path: ["trail"], lib: "trail", label: "trail", unit: "m", hint: "front contact behind the steer axis' ground point" },
       { path: ["gravity"], lib: "gravity", label: "gravity", unit: "m/s²", hint: "gravitational acceleration" },
     ],
@@ -72,7 +74,7 @@ export const BENCHMARK_GROUPS = [
     rows: [
       b("w", "w", "m", "wheelbase"),
       b("c", "c", "m", "trail"),
-      b("lam", "λ", "rad", "steer axis tilt from the vertical", { angle: true }),
+      b("lam", "λ", "°", "steer axis tilt from the vertical", { angle: true, plausible: [0, 45] }),
       b("g", "g", "m/s²", "gravitational acceleration"),
     ],
   },
@@ -119,3 +121,23 @@ export function setPath(obj, path, value) {
   for (const k of path.slice(0, -1)) o = o[k];
   o[path[path.length - 1]] = value;
 }
+
+/**
+ * Where a rule of the benchmark form, checked after JBike6's bodies are combined, comes from in
+ * the JBike6 form: the fields to flag for a benchmark name in an error.
+ */
+export const JBIKE6_SOURCES = {
+  w: ["wheelbase"], c: ["trail"], lam: ["head_angle"], g: ["gravity"],
+  rR: ["Drearwheel"], mR: ["mrearwheel"], IRxx: ["Irearwheel(1)", "Irearwheel(2)"], IRyy: ["Irearwheel(3)", "Drearwheel"],
+  rF: ["Dfrontwheel"], mF: ["mfrontwheel"], IFxx: ["Ifrontwheel(1)", "Ifrontwheel(2)"], IFyy: ["Ifrontwheel(3)", "Dfrontwheel"],
+  ...Object.fromEntries(["xB", "zB", "mB", "IBxx", "IByy", "IBzz", "IBxz"].map((k) => [k, ["mrider", "mframe", "mrack"]])),
+  ...Object.fromEntries(["xH", "zH", "mH", "IHxx", "IHyy", "IHzz", "IHxz"].map((k) => [k, ["mfork", "mbasket"]])),
+};
+
+/** Display names of the presets (the API lists their file names and summaries). */
+export const PRESET_TITLES = {
+  benchmark: "Benchmark bicycle (Meijaard et al. 2007)",
+  "schwinn-crown": "Schwinn Crown (JBike6 default)",
+  "two-mass-skate": "Two-mass skate (Kooijman et al. 2011)",
+  "browser-jason": "Batavus Browser with rider Jason (Moore 2012)",
+};

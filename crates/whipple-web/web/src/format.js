@@ -108,3 +108,47 @@ export async function svgPng(svgEl, scale = 2) {
 }
 
 export const FONT = "system-ui, -apple-system, 'Segoe UI', Roboto, 'Helvetica Neue', Arial, sans-serif";
+
+/** A true minus sign. */
+export function minus(s) {
+  return s.startsWith("-") ? `−${s.slice(1)}` : s;
+}
+
+/**
+ * A number as a person reads it: `digits` significant digits, trailing zeros dropped
+ * (25.759999999999998 → "25.76"), exponent form only for very large or small magnitudes.
+ */
+export function num(x, digits = 4) {
+  if (x === null || x === undefined || !Number.isFinite(x)) return "–";
+  if (x === 0) return "0";
+  const a = Math.abs(x);
+  if (a < 1e-4 || a >= 1e7) return minus(x.toExponential(digits - 1).replace(/\.?0+e/, "e"));
+  let s = x.toPrecision(digits);
+  if (s.includes("e")) s = Number(s).toString();
+  if (s.includes(".")) s = s.replace(/0+$/, "").replace(/\.$/, "");
+  return minus(s);
+}
+
+/** A value for an input box: 12 significant digits, so that round-off never shows. */
+export function inputText(x) {
+  if (!Number.isFinite(x)) return "";
+  const s = Number(x.toPrecision(12)).toString();
+  return s;
+}
+
+/** A time span in words: "1.4 s", "0.25 s", "12 s", "2 min". */
+export function seconds(t) {
+  if (!Number.isFinite(t)) return "–";
+  if (t >= 120) return `${num(t / 60, 2)} min`;
+  return `${num(t, t < 10 ? 2 : 3)} s`;
+}
+
+/** A colour along a perceptually even ramp (viridis-like), for `f` in [0, 1]. */
+export function ramp(f) {
+  const stops = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
+  const t = Math.max(0, Math.min(1, f)) * (stops.length - 1);
+  const i = Math.min(stops.length - 2, Math.floor(t));
+  const u = t - i;
+  const c = stops[i].map((a, k) => Math.round(a + (stops[i + 1][k] - a) * u));
+  return `rgb(${c[0]},${c[1]},${c[2]})`;
+}

@@ -1,53 +1,88 @@
-// The page: a bike picker, the parameter editor, the side view, the critical speeds and the
-// eigenvalues against speed, kept in step with the API.
+// The page: a bike picker, the parameter editor, the side view, the critical speeds, and below
+// them the eigenvalues against speed, the root locus, the modes and the simulation, kept in
+// step with the API. Rule: nothing on the page shows numbers that do not match the form — a
+// result that no longer matches is veiled and says why — and the whole state lives in the URL
+// (see url.js), so that a link reproduces what its sender saw and back/forward work.
 
 import "./style.css";
 import { api } from "./api.js";
 import { listDesigns, saveDesign, deleteDesign, findDesign } from "./store.js";
 import { Editor, parseNumber } from "./editor.js";
-import { setPath } from "./fields.js";
+import { setPath, JBIKE6_SOURCES, JBIKE6_GROUPS, BENCHMARK_GROUPS, PRESET_TITLES } from "./fields.js";
 import { drawSideView } from "./sideview.js";
-import { EigenPlot } from "./plot.js";
+import { EigenPlot, LocusPlot, COMPARE_COLOURS } from "./plot.js";
 import { drawCritical } from "./critical.js";
 import { SimPanel } from "./sim.js";
-import { html, slug, download, svgText, svgPng } from "./format.js";
+import { ModesPanel } from "./modes.js";
+import { readUrl, writeUrl, diffEdits } from "./url.js";
+import { html, slug, download, svgText, svgPng, num } from "./format.js";
 
 const $ = (id) => document.getElementById(id);
 const clone = (x) => JSON.parse(JSON.stringify(x));
+const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
 const DEFAULT_PRESET = "schwinn-crown";
+const MAX_COMPARED = 5;
+const VIEWS = ["eigen", "locus", "modes", "sim"];
 
 const state = {
   presets: [],
   key: "",
   designId: null,
+  base: null, // the bicycle as picked (preset or saved design): edits are relative to it
   bike: null,
   form: "jbike6",
-  modified: false,
   validated: null,
   eigen: null,
   valid: true,
-  compare: { key: "", bike: null, eigen: null, validated: null, label: "" },
+  lastError: null,
+  compare: [], // [{key, bike, eigen, validated, label}]
+  view: "eigen",
+  restoring: false,
 };
 
-const editor = new Editor($("editor-body"), (path, value) => {
-  const table = state.bike.jbike6 ? (state.form === "jbike6" ? state.bike.jbike6 : null) : state.bike.benchmark;
-  if (!table) return;
-  setPath(table, path, value);
-  setModified(true);
-  schedule();
-});
+const editor = new Editor(
+  $("editor-body"),
+  (path, value) => {
+    const table = state.bike.jbike6 ? (state.form === "jbike6" ? state.bike.jbike6 : null) : state.bike.benchmark;
+    if (!table) return;
+    setPath(table, path, value);
+    updateModified();
+    schedule();
+    remember(false);
+  },
+  () => schedule(),
+);
 const plot = new EigenPlot($("eigen-plot"));
-const sim = new SimPanel({ bike: () => clone(state.bike) });
+const locus = new LocusPlot($("locus-plot"));
+const sim = new SimPanel({ bike: () => clone(state.bike), label: () => currentLabel(), onRun: () => remember(true) });
+const modes = new ModesPanel({
+  bike: () => clone(state.bike),
+  label: () => currentLabel(),
+  onChange: () => remember(true),
+  onPlay3d: (initial) => {
+    sim.setInputs({ speed: num(initial.speed, 6), lean_deg: num(initial.lean_deg, 4), steer_deg: num(initial.steer_deg, 4), lean_rate: num(initial.lean_rate, 4), steer_rate: num(initial.steer_rate, 4), duration: num(initial.duration, 3), steer_torque: "0", lean_torque: "0" });
+    showView("sim");
+    sim.run();
+  },
+});
 let sideSvg = null;
 
 // ---- messages ---------------------------------------------------------------------------
 
-/** Shows a message; `source` says who may clear it ("bike" for validation, else any caller). */
-function say(text, kind = "info", source = "general") {
+/**
+ * Shows a message; `source` says who may clear it ("bike" for validation, "local" for text in
+ * a number field, else any caller); `actions`: [{text, run}] buttons after the text.
+ */
+function say(text, kind = "info", source = "general", actions = []) {
   const box = $("message");
   box.className = `message ${kind}`;
   box.dataset.source = source;
   box.replaceChildren(html("span", { text }));
+  for (const a of actions) {
+    const b = html("button", { type: "button", class: "btn tiny", text: a.text, "data-testid": a.testid ?? null });
+    b.addEventListener("click", a.run);
+    box.append(" ", b);
+  }
   box.hidden = !text;
 }
 
@@ -59,26 +94,25 @@ function quiet(source) {
 
 // ---- picker -------------------------------------------------------------------------------
 
-function optionLabel(p) {
-  return p.name === DEFAULT_PRESET ? `${p.name} (JBike6 default)` : p.name;
+function presetTitle(name) {
+  return PRESET_TITLES[name] ?? name;
 }
 
 function fillPickers() {
   const designs = listDesigns();
   for (const select of [$("bike-select"), $("compare-select")]) {
-    const keep = select.value;
     select.replaceChildren();
-    if (select.id === "compare-select") select.append(html("option", { value: "", text: "— nothing —" }));
+    if (select.id === "compare-select") select.append(html("option", { value: "", text: state.compare.length ? "— add a design, or clear all —" : "— add a design —" }));
     const presets = html("optgroup", { label: "Presets" });
-    for (const p of state.presets) presets.append(html("option", { value: `preset:${p.name}`, text: optionLabel(p), title: p.summary }));
+    for (const p of state.presets) presets.append(html("option", { value: `preset:${p.name}`, text: presetTitle(p.name), title: `${p.summary} (${p.source})` }));
     select.append(presets);
     const mine = html("optgroup", { label: designs.length ? "My designs" : "My designs (none saved yet)" });
     for (const d of designs) mine.append(html("option", { value: `design:${d.id}`, text: d.name }));
     select.append(mine);
-    select.value = keep;
   }
   $("bike-select").value = state.key;
-  $("compare-select").value = state.compare.key;
+  $("compare-select").value = "";
+  drawCompareList();
 }
 
 async function bikeFor(key) {
@@ -91,32 +125,86 @@ async function bikeFor(key) {
 
 function labelFor(key, bike) {
   if (key.startsWith("design:")) return findDesign(key.slice(7))?.name ?? bike?.name ?? "design";
-  return bike?.name ?? key.slice(7);
+  if (key.startsWith("preset:")) return presetTitle(key.slice(7));
+  return bike?.name ?? "bicycle";
 }
 
-async function select(key) {
+function currentLabel() {
+  if (state.key.startsWith("preset:") && state.bike?.name === state.base?.name) return presetTitle(state.key.slice(7));
+  return state.bike?.name ?? labelFor(state.key, state.bike);
+}
+
+/** Picks a bicycle. Unsaved edits of the one left are kept for an undo. */
+async function select(key, { edits = null, def = null, keepMessage = false } = {}) {
+  const leaving = state.bike && isModified() ? { key: state.key, designId: state.designId, base: clone(state.base), bike: clone(state.bike), form: state.form, label: currentLabel() } : null;
   try {
-    const bike = await bikeFor(key);
+    const base = def ?? (await bikeFor(key));
     state.key = key;
     state.designId = key.startsWith("design:") ? key.slice(7) : null;
-    state.bike = bike;
-    state.form = bike.jbike6 ? "jbike6" : "benchmark";
+    state.base = clone(base);
+    state.bike = clone(base);
+    if (edits) applyEdits(state.bike, edits);
+    state.form = state.bike.jbike6 ? "jbike6" : "benchmark";
     state.validated = null;
-    setModified(false);
-    $("design-name").value = bike.name ?? "";
+    state.lastError = null;
+    $("design-name").value = state.bike.name ?? "";
     $("delete-design").hidden = !state.designId;
     fillPickers();
-    quiet();
+    updateModified();
+    if (!keepMessage) quiet();
     renderEditor();
+    if (leaving && !state.restoring) {
+      say(`Your edits to “${leaving.label}” are not saved; they are kept here until you leave the page.`, "info", "undo", [
+        { text: `Back to the edited “${leaving.label}”`, testid: "undo-switch", run: () => restore(leaving) },
+      ]);
+    }
     await recompute();
   } catch (e) {
     say(e.message, "error");
   }
 }
 
-function setModified(on) {
-  state.modified = on;
-  $("modified").hidden = !on;
+/** Goes back to a bicycle as it was (an undo of a switch). */
+async function restore(saved) {
+  state.key = saved.key;
+  state.designId = saved.designId;
+  state.base = saved.base;
+  state.bike = saved.bike;
+  state.form = saved.form;
+  state.validated = null;
+  $("design-name").value = state.bike.name ?? "";
+  $("delete-design").hidden = !state.designId;
+  fillPickers();
+  updateModified();
+  quiet();
+  renderEditor();
+  remember(true);
+  await recompute();
+}
+
+function isModified() {
+  return Boolean(state.base && state.bike && !same(state.base, state.bike));
+}
+
+function updateModified() {
+  $("modified").hidden = !isModified();
+}
+
+/** Applies {path: value} edits (paths as url.js writes them) to a bicycle. */
+function applyEdits(bike, edits) {
+  for (const [path, value] of Object.entries(edits)) {
+    if (path === "name") {
+      bike.name = value;
+      continue;
+    }
+    const parts = path.split(".").map((p) => (/^\d+$/.test(p) ? Number(p) : p));
+    const table = bike.jbike6 ?? bike.benchmark;
+    try {
+      setPath(table, parts, value);
+    } catch {
+      // A path that this bicycle does not have: ignored (the URL came from another layout).
+    }
+  }
 }
 
 // ---- editor -------------------------------------------------------------------------------
@@ -146,11 +234,13 @@ function convertToBenchmark() {
   }
   state.bike = { ...(state.bike.name ? { name: `${state.bike.name} (benchmark form)` } : {}), ...(state.bike.source ? { source: state.bike.source } : {}), benchmark: clone(state.validated.benchmark) };
   state.designId = null;
+  state.key = "converted:";
   $("design-name").value = state.bike.name ?? "";
   state.form = "benchmark";
-  setModified(true);
+  updateModified();
   renderEditor();
   say("Now in the benchmark form: save it to keep it.");
+  remember(true);
   schedule();
 }
 
@@ -159,7 +249,7 @@ for (const tab of document.querySelectorAll(".tab[data-form]")) {
     if (tab.disabled) return;
     state.form = tab.dataset.form;
     renderEditor();
-    if (state.lastError) editor.flag(state.lastError);
+    if (state.lastError) flagError(state.lastError);
   });
 }
 
@@ -167,7 +257,8 @@ $("design-name").addEventListener("input", () => {
   const name = $("design-name").value.trim();
   if (name) state.bike.name = name;
   else delete state.bike.name;
-  setModified(true);
+  updateModified();
+  remember(false);
 });
 
 // ---- computing ----------------------------------------------------------------------------
@@ -188,14 +279,46 @@ function schedule() {
   timer = setTimeout(recompute, 120);
 }
 
+/** Why the results shown do not match the form, or null when they do. */
+function staleReason() {
+  const local = editor.localErrors();
+  if (local.length) return `not recomputed: ${local.map((l) => l.what).join(", ")} ${local.length > 1 ? "are" : "is"} not a number`;
+  if (!state.valid) return "not recomputed: the parameters are invalid";
+  return null;
+}
+
+/** The library's error in the form's words (a benchmark rule met in the JBike6 form). */
+function flagError(error) {
+  const jbike6 = Boolean(state.bike.jbike6) && state.form === "jbike6";
+  const isOwn = JBIKE6_GROUPS.some((g) => g.rows.some((r) => (r.triple ?? [r]).some((c) => error.field && c.lib.startsWith(error.field))));
+  if (jbike6 && error.field && !isOwn && JBIKE6_SOURCES[error.field]) {
+    const names = JBIKE6_SOURCES[error.field];
+    const rule = `${error.rule ?? error.message} (the benchmark form's ${error.field}, from these JBike6 entries)`;
+    editor.flag({ ...error, field: names.join(",") }, { rule });
+    return { translated: true, names };
+  }
+  return { translated: false, count: editor.flag(error) };
+}
+
+function describeField(lib) {
+  for (const g of [...JBIKE6_GROUPS, ...BENCHMARK_GROUPS]) {
+    for (const r of g.rows) for (const c of r.triple ?? [r]) if (c.lib === lib) return `${g.title.toLowerCase()} ${r.label}${r.triple ? ` ${c.label}` : ""}`;
+  }
+  return lib;
+}
+
 let sequence = 0;
 async function recompute() {
   const mine = ++sequence;
-  if (editor.hasLocalErrors()) {
-    say("Some entries are not numbers.", "error", "bike");
-    showStale();
+  const local = editor.localErrors();
+  if (local.length) {
+    // Nothing is asked of the server: the results stay as they were, veiled, and say why.
+    const what = local.map((l) => `${l.what} (${l.text.trim() === "" ? "empty" : `“${l.text}”`})`).join(", ");
+    say(`Not recomputed: ${what} ${local.length > 1 ? "are" : "is"} not a number. The results shown are for the last numbers typed.`, "error", "local");
+    drawAll();
     return;
   }
+  if ($("message").dataset.source === "local") quiet("local");
   const grid = speedGrid();
   for (const id of ["v-start", "v-stop", "v-step"]) $(id).classList.remove("invalid");
   if (Object.values(grid).some((x) => x === null)) {
@@ -211,13 +334,15 @@ async function recompute() {
     const error = validated.reason;
     state.valid = false;
     state.lastError = error;
-    const flagged = editor.flag(error);
-    say(error.message, "error", "bike");
-    $("message").dataset.field = error.field ?? "";
-    if (!flagged && state.bike.jbike6 && state.form === "jbike6") {
-      $("message").append(html("span", { class: "hint", text: " (a rule of the benchmark form, checked after combining the bodies)" }));
+    const flagged = flagError(error);
+    if (flagged.translated) {
+      const names = flagged.names.map(describeField).join(", ");
+      say(`The bicycle is not valid: ${error.rule ?? error.message}. Checked on the benchmark form after combining the bodies (${error.field}); it comes from: ${names}.`, "error", "bike");
+    } else {
+      say(error.message, "error", "bike");
     }
-    showStale();
+    $("message").dataset.field = error.field ?? "";
+    drawAll();
     return;
   }
   state.valid = true;
@@ -237,112 +362,281 @@ async function recompute() {
   $("eigen-message").hidden = true;
   quiet("bike");
   state.eigen = eigen.value;
-  sim.suggestSpeed(state.eigen.critical);
+  sim.suggestSpeed(state.eigen.critical, currentLabel());
+  modes.suggest(state.eigen.critical);
   drawAll();
+  if (state.view === "modes") modes.compute();
+  if (!window.whippleFirstPlot) {
+    window.whippleFirstPlot = performance.now();
+    performance.mark("whipple:first-plot");
+  }
 }
 
 async function recomputeCompare() {
-  const c = state.compare;
-  if (!c.key) {
-    c.eigen = null;
-    c.validated = null;
-    drawAll();
-    return;
-  }
   const grid = speedGrid();
-  try {
-    c.bike = c.bike ?? (await bikeFor(c.key));
-    c.label = labelFor(c.key, c.bike);
-    const [validated, eigen] = await Promise.all([api.validate(c.bike), api.eigen(c.bike, grid)]);
-    c.validated = validated;
-    c.eigen = eigen;
-  } catch (e) {
-    c.eigen = null;
-    c.validated = null;
-    say(`The design compared with cannot be computed: ${e.message}`, "error");
-  }
+  if (Object.values(grid).some((x) => x === null)) return;
+  await Promise.all(state.compare.map(async (c) => {
+    try {
+      c.bike = c.bike ?? (await bikeFor(c.key));
+      c.label = labelFor(c.key, c.bike);
+      const [validated, eigen] = await Promise.all([api.validate(c.bike), api.eigen(c.bike, grid)]);
+      c.validated = validated;
+      c.eigen = eigen;
+      c.error = null;
+    } catch (e) {
+      c.eigen = null;
+      c.validated = null;
+      c.error = e.message;
+    }
+  }));
+  drawCompareList();
   drawAll();
 }
 
-function currentLabel() {
-  return state.bike?.name ?? labelFor(state.key, state.bike);
+function drawCompareList() {
+  const list = $("compare-list");
+  list.replaceChildren();
+  state.compare.forEach((c, k) => {
+    const remove = html("button", { type: "button", class: "chip-x", "aria-label": `Stop comparing with ${c.label || labelFor(c.key)}`, text: "×" });
+    remove.addEventListener("click", () => {
+      state.compare.splice(k, 1);
+      drawCompareList();
+      fillPickers();
+      drawAll();
+      remember(true);
+    });
+    list.append(html("li", { class: "chip", title: c.error ?? "" },
+      html("span", { class: "tt-dot", style: `background:${COMPARE_COLOURS[k % COMPARE_COLOURS.length]}` }),
+      html("span", { text: `${c.label || labelFor(c.key)}${c.error ? " (cannot be computed)" : ""}` }), remove));
+  });
+  list.hidden = !state.compare.length;
 }
 
 function drawSide() {
   if (!state.validated) return;
-  sideSvg = drawSideView($("side-view"), state.validated.side_view, state.compare.validated?.side_view ?? null, { stale: !state.valid });
+  const ghost = state.compare.find((c) => c.validated)?.validated.side_view ?? null;
+  sideSvg = drawSideView($("side-view"), state.validated.side_view, ghost, { stale: Boolean(staleReason()), reason: staleReason() });
   const v = state.validated;
-  $("side-meta").textContent = `${v.form === "jbike6" ? "JBike6 form" : "benchmark form"} · ${v.derived.total_mass.toFixed(1)} kg · head angle ${v.derived.head_angle_deg.toFixed(2)}°`;
+  $("side-meta").textContent = `${v.form === "jbike6" ? "JBike6 form" : "benchmark form"} · ${num(v.derived.total_mass, 4)} kg · head angle ${num(v.derived.head_angle_deg, 4)}°`;
+}
+
+function designsShown() {
+  const primary = { label: currentLabel(), eigen: state.eigen };
+  return [primary, ...state.compare.filter((c) => c.eigen).map((c) => ({ label: c.label, eigen: c.eigen }))];
 }
 
 function drawAll() {
   drawSide();
   if (!state.eigen) return;
-  const primary = { label: currentLabel(), eigen: state.eigen };
-  const secondary = state.compare.eigen ? { label: state.compare.label, eigen: state.compare.eigen } : null;
-  plot.update(primary, secondary, { ylim: yLimit(), stale: !state.valid });
-  drawCritical($("critical"), { label: primary.label, critical: state.eigen.critical }, secondary && { label: secondary.label, critical: secondary.eigen.critical }, { stale: !state.valid });
+  const designs = designsShown();
+  const stale = staleReason();
+  if (state.view === "eigen") plot.update(designs, { ylim: yLimit(), stale });
+  if (state.view === "locus") locus.update(designs, { ylim: yLimit(), stale });
+  drawCritical($("critical"), designs, { stale: Boolean(stale) });
 }
 
-function showStale(text) {
-  if (text) say(text, "error");
-  drawAll();
-}
+// ---- bottom panel: eigenvalues, root locus, modes, simulation -------------------------------
 
-// ---- bottom panel: eigenvalues or simulation ------------------------------------------------
-
-function showView(view) {
-  $("panel-eigen").hidden = view !== "eigen";
-  $("panel-sim").hidden = view !== "sim";
+function showView(view, { push = true } = {}) {
+  if (!VIEWS.includes(view)) view = "eigen";
+  state.view = view;
+  for (const v of VIEWS) $(`panel-${v}`).hidden = v !== view;
+  $("speed-controls").hidden = !(view === "eigen" || view === "locus");
   document.querySelector(".layout").classList.toggle("sim-active", view === "sim");
-  for (const tab of document.querySelectorAll(".tab[data-view]")) tab.setAttribute("aria-selected", String(tab.dataset.view === view));
-  if (view === "eigen") drawAll();
+  for (const tab of document.querySelectorAll(".tab[data-view]")) {
+    const on = tab.dataset.view === view;
+    tab.setAttribute("aria-selected", String(on));
+    tab.tabIndex = on ? 0 : -1;
+  }
+  if (view === "eigen" || view === "locus") drawAll();
+  if (view === "modes") modes.compute();
+  else modes.stop();
+  // three.js is fetched when the Simulation tab first opens, not with the page.
+  if (view === "sim") sim.ensureView();
+  if (push) remember(true);
 }
-for (const tab of document.querySelectorAll(".tab[data-view]")) tab.addEventListener("click", () => showView(tab.dataset.view));
+const viewTabs = [...document.querySelectorAll(".tab[data-view]")];
+for (const tab of viewTabs) {
+  tab.addEventListener("click", () => showView(tab.dataset.view));
+  // Arrow keys move between the tabs (the ARIA tabs pattern).
+  tab.addEventListener("keydown", (e) => {
+    const k = viewTabs.indexOf(tab);
+    const next = e.key === "ArrowRight" ? k + 1 : e.key === "ArrowLeft" ? k - 1 : null;
+    if (next === null) return;
+    const t = viewTabs[(next + viewTabs.length) % viewTabs.length];
+    t.focus();
+    showView(t.dataset.view);
+  });
+}
+
+// ---- the URL ------------------------------------------------------------------------------
+
+/** The state as the URL carries it. */
+function snapshot() {
+  const s = {
+    bike: state.key,
+    edits: null,
+    def: null,
+    compare: state.compare.map((c) => c.key),
+    speeds: [$("v-start").value, $("v-stop").value, $("v-step").value].join(":"),
+    ylim: $("y-limit").value,
+    view: state.view,
+    mode: $("mode-speed").value,
+    sim: sim.inputs(),
+  };
+  if (state.key.startsWith("preset:")) {
+    const edits = diffEdits(state.base, state.bike);
+    if (Object.keys(edits).length) s.edits = edits;
+  } else {
+    // A design of this browser, a file or a conversion: the receiver has none of them.
+    s.def = state.bike;
+  }
+  return s;
+}
+
+/** Records the state in the URL: a new history entry (`push`) or the current one replaced. */
+function remember(push) {
+  if (state.restoring || !state.bike) return;
+  writeUrl(snapshot(), push);
+}
+
+/** Restores everything the URL says. */
+async function applyUrl() {
+  const s = readUrl();
+  state.restoring = true;
+  try {
+    if (s.speeds) {
+      const [a, b, c] = s.speeds.split(":");
+      if (c !== undefined) {
+        $("v-start").value = a;
+        $("v-stop").value = b;
+        $("v-step").value = c;
+      }
+    }
+    if (s.ylim) $("y-limit").value = s.ylim;
+    if (s.mode) {
+      $("mode-speed").value = s.mode;
+      modes.speedEdited = true;
+    }
+    if (s.sim) sim.setInputs(s.sim);
+    state.compare = (s.compare ?? []).filter((k) => k.startsWith("preset:") || findDesign(k.slice(7))).slice(0, MAX_COMPARED).map((key) => ({ key, bike: null, eigen: null, validated: null, label: "" }));
+    showView(s.view ?? "eigen", { push: false });
+    let key = s.bike || `preset:${DEFAULT_PRESET}`;
+    let def = s.def ?? null;
+    if (def && key.startsWith("design:") && !findDesign(key.slice(7))) key = "link:";
+    if (!def && key.startsWith("design:") && !findDesign(key.slice(7))) key = `preset:${DEFAULT_PRESET}`;
+    if (!def && !key.startsWith("preset:") && !key.startsWith("design:")) key = `preset:${DEFAULT_PRESET}`;
+    if (def && key.startsWith("design:")) {
+      // The design as the link has it (it may hold edits not saved).
+      await select(key, { def: findDesign(key.slice(7)).bike, keepMessage: true });
+      state.bike = def;
+      renderEditor();
+      updateModified();
+      await recompute();
+    } else if (def) {
+      await select(key, { def, keepMessage: true });
+    } else {
+      await select(key, { edits: s.edits, keepMessage: true });
+    }
+    await recomputeCompare();
+  } finally {
+    state.restoring = false;
+  }
+}
+
+window.addEventListener("popstate", () => applyUrl());
 
 // ---- controls -----------------------------------------------------------------------------
 
-$("bike-select").addEventListener("change", (e) => select(e.target.value));
+$("bike-select").addEventListener("change", async (e) => {
+  await select(e.target.value);
+  remember(true);
+});
 $("compare-select").addEventListener("change", (e) => {
-  state.compare = { key: e.target.value, bike: null, eigen: null, validated: null, label: "" };
+  const key = e.target.value;
+  if (!key) state.compare = [];
+  else if (!state.compare.some((c) => c.key === key)) {
+    if (state.compare.length >= MAX_COMPARED) state.compare.shift();
+    state.compare.push({ key, bike: null, eigen: null, validated: null, label: "" });
+  }
+  fillPickers();
+  remember(true);
   recomputeCompare();
 });
 for (const id of ["v-start", "v-stop", "v-step"]) {
   $(id).addEventListener("change", () => {
     schedule();
     recomputeCompare();
+    remember(true);
   });
 }
-$("y-limit").addEventListener("change", drawAll);
+$("y-limit").addEventListener("change", () => {
+  drawAll();
+  remember(true);
+});
+
+/** Saving refuses a form with text in a number field (it would save the last number). */
+function refuseSave(what) {
+  const local = editor.localErrors();
+  if (!local.length) return false;
+  say(`Not saved: ${local.map((l) => l.what).join(", ")} ${local.length > 1 ? "are" : "is"} not a number. Mend ${local.length > 1 ? "them" : "it"} before saving ${what}.`, "error", "local");
+  return true;
+}
 
 $("save-design").addEventListener("click", () => {
+  if (refuseSave("to My designs")) return;
   const name = state.bike.name || "My design";
   state.bike.name = name;
   $("design-name").value = name;
   const design = saveDesign({ id: state.designId ?? undefined, name, bike: clone(state.bike) });
   state.designId = design.id;
   state.key = `design:${design.id}`;
-  setModified(false);
+  state.base = clone(state.bike);
+  updateModified();
   $("delete-design").hidden = false;
   fillPickers();
   say(`Saved “${name}” to My designs (kept in this browser).`);
+  remember(true);
 });
 
-$("delete-design").addEventListener("click", () => {
+$("delete-design").addEventListener("click", async () => {
   if (!state.designId) return;
-  const name = findDesign(state.designId)?.name ?? "design";
+  const design = findDesign(state.designId);
+  if (!design) return;
   deleteDesign(state.designId);
-  if (state.compare.key === state.key) state.compare = { key: "", bike: null, eigen: null, validated: null, label: "" };
-  say(`Deleted “${name}” from My designs.`);
-  select(`preset:${DEFAULT_PRESET}`);
+  state.compare = state.compare.filter((c) => c.key !== state.key);
+  state.base = null; // nothing left to keep edits for
+  await select(`preset:${DEFAULT_PRESET}`);
+  say(`Deleted “${design.name}” from My designs.`, "info", "undo", [{
+    text: "Undo",
+    testid: "undo-delete",
+    run: async () => {
+      saveDesign(design);
+      await select(`design:${design.id}`);
+      say(`“${design.name}” is back in My designs.`);
+      remember(true);
+    },
+  }]);
+  remember(true);
 });
 
 $("save-toml").addEventListener("click", async () => {
+  if (refuseSave("as TOML")) return;
   try {
     const { toml } = await api.toml(state.bike);
-    download(`${slug(state.bike.name)}.toml`, toml, "application/toml");
+    download(`${slug(state.bike.name ?? currentLabel())}.toml`, toml, "application/toml");
   } catch (e) {
     say(e.message, "error");
+  }
+});
+
+$("copy-link").addEventListener("click", async () => {
+  remember(false);
+  try {
+    await navigator.clipboard.writeText(location.href);
+    say("The link to this view is copied.");
+  } catch {
+    say(`The link to this view: ${location.href}`);
   }
 });
 
@@ -356,9 +650,23 @@ $("file-input").addEventListener("change", async (e) => {
   try {
     const { bike } = await api.parse(await file.text(), format);
     bike.name = bike.name ?? file.name.replace(/\.[^.]*$/, "");
-    const design = saveDesign({ name: bike.name, bike });
+    const designs = listDesigns();
+    // The same file opened twice is the same design; another bicycle of the same name gets a
+    // number.
+    const twin = designs.find((d) => d.name === bike.name && same(d.bike, bike));
+    if (twin) {
+      await select(`design:${twin.id}`);
+      say(`${file.name} is already in My designs as “${twin.name}”.`);
+      remember(true);
+      return;
+    }
+    let name = bike.name;
+    for (let n = 2; designs.some((d) => d.name === name); n += 1) name = `${bike.name} (${n})`;
+    bike.name = name;
+    const design = saveDesign({ name, bike });
     await select(`design:${design.id}`);
-    if ($("message").hidden) say(`Loaded ${file.name} into My designs.`);
+    if ($("message").hidden || $("message").dataset.source === "undo") say(`Loaded ${file.name} into My designs${name !== file.name.replace(/\.[^.]*$/, "") ? ` as “${name}”` : ""}.`);
+    remember(true);
   } catch (err) {
     say(`${file.name}: ${err.message}`, "error");
   }
@@ -367,13 +675,34 @@ $("file-input").addEventListener("change", async (e) => {
 const exportName = (what) => `${slug(currentLabel())}-${what}`;
 $("eigen-csv").addEventListener("click", () => {
   if (!state.eigen) return;
-  const cols = state.eigen.eigenvalues;
-  const lines = ["v,re1,im1,re2,im2,re3,im3,re4,im4"];
-  state.eigen.speeds.forEach((v, i) => lines.push([v, ...cols.flatMap((c) => [c.re[i], c.im[i]])].join(",")));
+  const designs = designsShown();
+  const header = ["v"];
+  const columns = [];
+  designs.forEach((d, k) => {
+    const prefix = k === 0 ? "" : `${slug(d.label)}_`;
+    d.eigen.eigenvalues.forEach((c, j) => {
+      header.push(`${prefix}re${j + 1}_${c.mode}`, `${prefix}im${j + 1}_${c.mode}`);
+      columns.push([d, c]);
+    });
+  });
+  const lines = [
+    `# whipple eigenvalues [1/s] against speed v [m/s] of ${designs[0].label}${designs.length > 1 ? `; compared: ${designs.slice(1).map((d) => d.label).join(", ")}` : ""}`,
+    header.join(","),
+  ];
+  state.eigen.speeds.forEach((v, i) => {
+    const row = [v];
+    for (const [d, c] of columns) {
+      // A compared design on another grid contributes where it has the same speed.
+      const j = d === designs[0] ? i : d.eigen.speeds.indexOf(v);
+      row.push(j >= 0 ? c.re[j] : "", j >= 0 ? c.im[j] : "");
+    }
+    lines.push(row.join(","));
+  });
   download(`${exportName("eigenvalues")}.csv`, `${lines.join("\n")}\n`, "text/csv");
 });
-$("eigen-svg").addEventListener("click", () => plot.svgEl && download(`${exportName("eigenvalues")}.svg`, svgText(plot.svgEl), "image/svg+xml"));
-$("eigen-png").addEventListener("click", async () => plot.svgEl && download(`${exportName("eigenvalues")}.png`, await svgPng(plot.svgEl)));
+const shownPlot = () => (state.view === "locus" ? locus : plot);
+$("eigen-svg").addEventListener("click", () => shownPlot().svgEl && download(`${exportName(state.view === "locus" ? "root-locus" : "eigenvalues")}.svg`, svgText(shownPlot().svgEl), "image/svg+xml"));
+$("eigen-png").addEventListener("click", async () => shownPlot().svgEl && download(`${exportName(state.view === "locus" ? "root-locus" : "eigenvalues")}.png`, await svgPng(shownPlot().svgEl)));
 $("side-svg").addEventListener("click", () => sideSvg && download(`${exportName("side-view")}.svg`, svgText(sideSvg), "image/svg+xml"));
 $("side-png").addEventListener("click", async () => sideSvg && download(`${exportName("side-view")}.png`, await svgPng(sideSvg)));
 
@@ -394,6 +723,7 @@ new ResizeObserver(() => {
   }
   state.key = `preset:${DEFAULT_PRESET}`;
   fillPickers();
-  await select(state.key);
+  await applyUrl();
+  writeUrl(snapshot(), false);
   document.body.dataset.ready = "true";
 })();

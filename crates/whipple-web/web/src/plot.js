@@ -1,230 +1,310 @@
-// Eigenvalues against forward speed, drawn as SVG: real parts solid, imaginary parts dashed
-// (positive ones, as in Meijaard et al. 2007, Fig. 3), coloured by mode; the self-stable range
-// shaded; critical speeds marked; values read out under the pointer; a second design in grey.
+// Eigenvalues against forward speed: real parts solid, imaginary parts dashed (positive ones, as
+// in Meijaard et al. 2007, Fig. 3), coloured by mode; the self-stable range shaded; critical
+// speeds marked; the compared designs each in one colour; values read out under the pointer.
+// And the root locus: the same eigenvalues in the complex plane, coloured by speed.
 
-import { svg, html, fixed, sig, ticks, tickLabel, FONT } from "./format.js";
+import { svg, html, fixed, num, ramp } from "./format.js";
+import { Chart, nearest, visibleRange, legend } from "./chart.js";
 
 export const MODE_COLOURS = { weave: "#2563eb", capsize: "#dc2626", castering: "#7c3aed", unclassified: "#6b7280" };
-const COMPARE = "#64748b";
+/** Colours of the compared designs, in order. */
+export const COMPARE_COLOURS = ["#475569", "#c2410c", "#047857", "#a21caf", "#0e7490", "#854d0e"];
 const STABLE = "#dcfce7";
 const INK = "#1f2937";
-const GRID = "#e5e7eb";
 
-/** Index of the speed nearest `v` in the sorted `speeds`. */
-function nearest(speeds, v) {
-  let lo = 0, hi = speeds.length - 1;
-  while (hi - lo > 1) {
-    const mid = (lo + hi) >> 1;
-    if (speeds[mid] < v) lo = mid; else hi = mid;
-  }
-  return Math.abs(speeds[lo] - v) <= Math.abs(speeds[hi] - v) ? lo : hi;
+const modeColour = (mode) => MODE_COLOURS[mode] ?? MODE_COLOURS.unclassified;
+
+/** The rows of a design's eigenvalues at index `i`, a conjugate pair read out once. */
+function readDesign(rows, dots, design, i, colourOf, X, Y, imaginary = true) {
+  rows.push(html("div", { class: "tt-name", text: design.label }));
+  const cols = design.eigen.eigenvalues;
+  const seen = new Set();
+  const x = X ? X(design.eigen.speeds[i]) : 0;
+  cols.forEach((c, k) => {
+    const re = c.re[i], im = c.im[i];
+    const colour = colourOf(c.mode);
+    if (X) dots.push({ x, y: Y(re), colour });
+    if (X && imaginary && im > 0) dots.push({ x, y: Y(im), colour, hollow: true });
+    if (seen.has(k)) return;
+    const partner = cols.findIndex((o, j) => j !== k && !seen.has(j) && im !== 0 && Math.abs(o.re[i] - re) <= 1e-9 * (1 + Math.abs(re)) && Math.abs(o.im[i] + im) <= 1e-9 * (1 + Math.abs(im)));
+    if (partner >= 0) seen.add(partner);
+    seen.add(k);
+    const value = im !== 0 ? `${num(re)} ± ${num(Math.abs(im))}i` : num(re);
+    rows.push(html("div", { class: "tt-row" }, html("span", { class: "tt-dot", style: `background:${colour}` }), html("span", { class: "tt-mode", text: c.mode }), html("span", { class: "tt-val", text: value })));
+  });
 }
 
-export class EigenPlot {
+/** The same speed on another design's grid, or -1 when it has none within half a step. */
+function sameSpeed(design, v) {
+  const s = design.eigen.speeds;
+  const j = nearest(s, v);
+  const half = 0.5 * Math.abs((s[1] ?? s[0]) - s[0]);
+  return Math.abs(s[j] - v) <= 1e-9 + half ? j : -1;
+}
+
+export class EigenPlot extends Chart {
   constructor(container) {
-    this.container = container;
-    this.data = null;
-    this.svgEl = null;
-    this.tooltip = html("div", { class: "tooltip", hidden: true, "data-testid": "plot-tooltip" });
-    this.holder = html("div", { class: "plot-holder" });
-    container.replaceChildren(this.holder, this.tooltip);
-    let pending = 0;
-    new ResizeObserver(() => {
-      cancelAnimationFrame(pending);
-      pending = requestAnimationFrame(() => this.data && this.draw());
-    }).observe(container);
+    super(container, { label: "Eigenvalues against forward speed", xLabel: "forward speed v [m/s]", yLabel: "eigenvalue λ [1/s]", testid: "plot" });
+    this.designs = null;
+  }
+
+  ready() {
+    return Boolean(this.designs?.length);
   }
 
   /**
-   * `primary` and `secondary`: {label, eigen} where `eigen` is /api/eigen's answer (secondary
-   * may be null). `ylim`: the vertical axis runs from −ylim to ylim.
+   * `designs`: [{label, eigen}] with /api/eigen's answers, the first the design edited.
+   * `ylim`: the full view's vertical axis runs from −ylim to ylim. `stale`: a reason the curves
+   * do not match the form, drawn over them (null when they do).
    */
-  update(primary, secondary, { ylim = 10, stale = false } = {}) {
-    this.data = { primary, secondary, ylim, stale };
+  update(designs, { ylim = 10, stale = null, keepView = true } = {}) {
+    const speeds = designs[0].eigen.speeds;
+    const key = `${speeds[0]}:${speeds[speeds.length - 1]}:${ylim}`;
+    if (!keepView || key !== this.viewKey) this.view = null;
+    this.viewKey = key;
+    this.designs = designs;
+    this.ylim = ylim;
+    this.stale = stale;
     this.draw();
   }
 
-  draw() {
-    const { primary, secondary, ylim, stale } = this.data;
-    const width = Math.max(360, Math.round(this.container.clientWidth));
-    const height = Math.max(240, Math.round(this.container.clientHeight));
-    const m = { left: 56, right: 18, top: 40, bottom: 44 };
-    const pw = width - m.left - m.right;
-    const ph = height - m.top - m.bottom;
-    const speeds = primary.eigen.speeds;
-    const vmin = speeds[0];
-    const vmax = speeds[speeds.length - 1] > vmin ? speeds[speeds.length - 1] : vmin + 1;
-    const X = (v) => m.left + ((v - vmin) / (vmax - vmin)) * pw;
-    const Y = (y) => m.top + ((ylim - Math.max(-10 * ylim, Math.min(10 * ylim, y))) / (2 * ylim)) * ph;
+  extent() {
+    const s = this.designs[0].eigen.speeds;
+    const x0 = s[0];
+    const x1 = s[s.length - 1] > x0 ? s[s.length - 1] : x0 + 1;
+    return { x0, x1, y0: -this.ylim, y1: this.ylim };
+  }
 
-    const root = svg("svg", { width, height, viewBox: `0 0 ${width} ${height}`, "font-family": FONT, "font-size": 11, role: "img", "aria-label": "Eigenvalues against forward speed" });
-    root.append(svg("rect", { x: 0, y: 0, width, height, fill: "#ffffff" }));
-    const clipId = `clip-${Math.random().toString(36).slice(2, 8)}`;
-    root.append(svg("defs", {}, svg("clipPath", { id: clipId }, svg("rect", { x: m.left, y: m.top, width: pw, height: ph }))));
-
-    // Self-stable speed ranges of the primary design.
-    const crit = primary.eigen.critical;
-    const shade = svg("g", { "clip-path": `url(#${clipId})` });
-    for (const [a, b] of crit?.stable_speed_ranges ?? []) {
-      shade.append(svg("rect", { x: X(a), y: m.top, width: Math.max(0, X(b) - X(a)), height: ph, fill: STABLE, "data-testid": "stable-range" }));
-      shade.append(svg("text", { x: (X(a) + X(b)) / 2, y: m.top + ph - 8, "text-anchor": "middle", fill: "#15803d", "font-size": 11, "font-weight": 600 }, "self-stable"));
+  fitY(x0, x1) {
+    let lo = Infinity, hi = -Infinity;
+    for (const d of this.designs) {
+      const [i0, i1] = visibleRange(d.eigen.speeds, x0, x1);
+      for (const c of d.eigen.eigenvalues) {
+        for (let i = i0; i <= i1; i += 1) {
+          lo = Math.min(lo, c.re[i]);
+          hi = Math.max(hi, c.re[i], c.im[i] > 0 ? c.im[i] : -Infinity);
+        }
+      }
     }
-    root.append(shade);
+    return Number.isFinite(lo) && Number.isFinite(hi) ? { y0: lo, y1: hi } : null;
+  }
 
-    // Grid and axes.
-    const vt = ticks(vmin, vmax, Math.max(4, Math.round(pw / 80)));
-    const yt = ticks(-ylim, ylim, Math.max(4, Math.round(ph / 50)));
-    const grid = svg("g", { stroke: GRID, "stroke-width": 1 });
-    for (const t of vt) grid.append(svg("line", { x1: X(t), y1: m.top, x2: X(t), y2: m.top + ph }));
-    for (const t of yt) grid.append(svg("line", { x1: m.left, y1: Y(t), x2: m.left + pw, y2: Y(t) }));
-    root.append(grid);
-    root.append(svg("line", { x1: m.left, y1: Y(0), x2: m.left + pw, y2: Y(0), stroke: "#9ca3af", "stroke-width": 1 }));
-    const axes = svg("g", { fill: "#4b5563" });
-    for (const t of vt) axes.append(svg("text", { x: X(t), y: m.top + ph + 16, "text-anchor": "middle" }, tickLabel(t, vt)));
-    for (const t of yt) axes.append(svg("text", { x: m.left - 7, y: Y(t) + 4, "text-anchor": "end" }, tickLabel(t, yt)));
-    axes.append(svg("text", { x: m.left + pw / 2, y: height - 8, "text-anchor": "middle", fill: INK, "font-size": 12 }, "forward speed v [m/s]"));
-    axes.append(svg("text", { x: 14, y: m.top + ph / 2, "text-anchor": "middle", fill: INK, "font-size": 12, transform: `rotate(-90 14 ${m.top + ph / 2})` }, "eigenvalue λ [1/s]"));
-    root.append(axes);
-    root.append(svg("rect", { x: m.left, y: m.top, width: pw, height: ph, fill: "none", stroke: "#9ca3af", "stroke-width": 1 }));
+  xs() {
+    return this.designs[0].eigen.speeds;
+  }
 
-    // Curves: decimated to about four points per pixel.
-    const curves = svg("g", { "clip-path": `url(#${clipId})`, fill: "none", "stroke-linejoin": "round" });
-    const trace = (eigen, colourOf, widthRe, faint) => {
-      const n = eigen.speeds.length;
-      const every = Math.max(1, Math.floor(n / (4 * pw)));
-      eigen.eigenvalues.forEach((col) => {
+  render(root, f) {
+    const { X, Y, left, top, pw, ph } = f;
+    const [primary, ...others] = this.designs;
+    const crit = primary.eigen.critical;
+    const shade = svg("g", { "clip-path": f.clip });
+    for (const [a, b] of crit?.stable_speed_ranges ?? []) {
+      const xa = Math.max(left, X(a)), xb = Math.min(left + pw, X(b));
+      if (xb <= xa) continue;
+      shade.append(svg("rect", { x: xa, y: top, width: xb - xa, height: ph, fill: STABLE, "data-testid": "stable-range" }));
+      if (xb - xa > 60) shade.append(svg("text", { x: (xa + xb) / 2, y: top + ph - 8, "text-anchor": "middle", fill: "#15803d", "font-size": 11, "font-weight": 600 }, "self-stable"));
+    }
+    root.insertBefore(shade, root.children[2]);
+
+    const curves = svg("g", { "clip-path": f.clip, fill: "none", "stroke-linejoin": "round" });
+    const trace = (design, colourOf, width, testid) => {
+      const { speeds, eigenvalues } = design.eigen;
+      const [i0, i1] = visibleRange(speeds, f.x0, f.x1);
+      const every = Math.max(1, Math.floor((i1 - i0) / (4 * pw)));
+      const indices = [];
+      for (let i = i0; i <= i1; i += every) indices.push(i);
+      if (indices[indices.length - 1] !== i1) indices.push(i1);
+      for (const col of eigenvalues) {
         const colour = colourOf(col.mode);
-        let re = "";
-        let im = "";
-        let imOpen = false;
-        const indices = [];
-        for (let i = 0; i < n; i += every) indices.push(i);
-        if (indices[indices.length - 1] !== n - 1) indices.push(n - 1);
+        let re = "", im = "", open = false;
         for (const i of indices) {
-          const x = X(eigen.speeds[i]).toFixed(2);
+          const x = X(speeds[i]).toFixed(2);
           re += `${re ? "L" : "M"}${x},${Y(col.re[i]).toFixed(2)}`;
           if (col.im[i] > 0) {
-            im += `${imOpen ? "L" : "M"}${x},${Y(col.im[i]).toFixed(2)}`;
-            imOpen = true;
-          } else {
-            imOpen = false;
-          }
+            im += `${open ? "L" : "M"}${x},${Y(col.im[i]).toFixed(2)}`;
+            open = true;
+          } else open = false;
         }
-        curves.append(svg("path", { d: re, stroke: colour, "stroke-width": widthRe, "stroke-opacity": faint ? 0.8 : 1 }));
-        if (im) curves.append(svg("path", { d: im, stroke: colour, "stroke-width": widthRe * 0.85, "stroke-dasharray": "6 4", "stroke-opacity": faint ? 0.8 : 1 }));
-      });
+        curves.append(svg("path", { d: re, stroke: colour, "stroke-width": width, "data-testid": testid }));
+        if (im) curves.append(svg("path", { d: im, stroke: colour, "stroke-width": width * 0.85, "stroke-dasharray": "6 4" }));
+      }
     };
-    if (secondary) trace(secondary.eigen, () => COMPARE, 1.4, true);
-    trace(primary.eigen, (mode) => MODE_COLOURS[mode] ?? MODE_COLOURS.unclassified, 2, false);
+    others.forEach((d, k) => trace(d, () => COMPARE_COLOURS[k % COMPARE_COLOURS.length], 1.4, "compare-curve"));
+    trace(primary, modeColour, 2, "eigen-curve");
     root.append(curves);
 
-    // Critical speeds: primary labelled at the top, comparison at the bottom.
     const marks = svg("g", { "font-size": 11 });
-    const mark = (v, label, colour, top, dash) => {
-      if (v === null || v === undefined || v < vmin || v > vmax) return;
-      marks.append(svg("line", { x1: X(v), y1: m.top, x2: X(v), y2: m.top + ph, stroke: colour, "stroke-width": 1.2, "stroke-dasharray": dash }));
-      const ty = top ? m.top + 14 : m.top + ph - 22;
+    const placed = [];
+    const mark = (v, label, colour, row, dash) => {
+      if (v === null || v === undefined || v < f.x0 || v > f.x1) return;
+      marks.append(svg("line", { x1: X(v), y1: top, x2: X(v), y2: top + ph, stroke: colour, "stroke-width": 1.2, "stroke-dasharray": dash }));
       const text = `${label} ${fixed(v, 3)}`;
       const w = text.length * 6.2 + 8;
-      const left = X(v) + w + 4 > m.left + pw;
-      const tx = left ? X(v) - w - 3 : X(v) + 3;
+      const tx = X(v) + w + 4 > left + pw ? X(v) - w - 3 : X(v) + 3;
+      // Labels that would overlap go one row further in.
+      const step = row >= 0 ? 1 : -1;
+      while (placed.some((p) => p.row === row && tx < p.x1 + 2 && tx + w > p.x0 - 2)) row += step;
+      placed.push({ row, x0: tx, x1: tx + w });
+      const ty = row >= 0 ? top + 14 + 17 * row : top + ph - 22 + 17 * (row + 1);
       marks.append(svg("rect", { x: tx, y: ty - 11, width: w, height: 15, rx: 3, fill: "#ffffff", "fill-opacity": 0.9, stroke: colour, "stroke-width": 0.8 }));
       marks.append(svg("text", { x: tx + 4, y: ty, fill: colour }, text));
     };
-    if (secondary?.eigen.critical) {
-      const c = secondary.eigen.critical;
-      mark(c.weave_speed, "v_w", COMPARE, false, "4 3");
-      mark(c.capsize_speed, "v_c", COMPARE, false, "4 3");
-    }
+    others.forEach((d, k) => {
+      const c = d.eigen.critical;
+      if (!c) return;
+      const colour = COMPARE_COLOURS[k % COMPARE_COLOURS.length];
+      mark(c.weave_speed, "v_w", colour, -1 - k, "4 3");
+      mark(c.capsize_speed, "v_c", colour, -1 - k, "4 3");
+    });
     if (crit) {
-      mark(crit.double_root_speed, "v_d", "#6b7280", true, "2 3");
-      mark(crit.weave_speed, "v_w", MODE_COLOURS.weave, true, "6 3");
-      mark(crit.capsize_speed, "v_c", MODE_COLOURS.capsize, true, "6 3");
+      mark(crit.double_root_speed, "v_d", "#4b5563", 0, "2 3");
+      mark(crit.weave_speed, "v_w", MODE_COLOURS.weave, 0, "6 3");
+      mark(crit.capsize_speed, "v_c", MODE_COLOURS.capsize, 0, "6 3");
     }
     root.append(marks);
 
-    // Legend above the plot.
-    const legend = svg("g", { "font-size": 11, fill: INK });
-    let lx = m.left;
-    const ly = 18;
-    const item = (draw, text) => {
-      legend.append(draw(lx, ly));
-      legend.append(svg("text", { x: lx + 24, y: ly + 4 }, text));
-      lx += 30 + text.length * 6.1;
-    };
     const seg = (colour, dash, w = 2) => (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: colour, "stroke-width": w, "stroke-dasharray": dash });
-    item(seg(INK), "Re λ");
-    item(seg(INK, "6 4"), "Im λ");
-    const modes = [...new Set(primary.eigen.eigenvalues.map((c) => c.mode))];
-    for (const mode of modes) item(seg(MODE_COLOURS[mode] ?? MODE_COLOURS.unclassified, null, 3), mode);
-    item((x, y) => svg("rect", { x, y: y - 6, width: 18, height: 12, fill: STABLE, stroke: "#86efac" }), "self-stable");
-    if (secondary) item(seg(COMPARE, null, 1.6), `compared: ${secondary.label}`);
-    root.append(legend);
+    const items = [{ draw: seg(INK), text: "Re λ" }, { draw: seg(INK, "6 4"), text: "Im λ" }];
+    for (const mode of [...new Set(primary.eigen.eigenvalues.map((c) => c.mode))]) items.push({ draw: seg(modeColour(mode), null, 3), text: mode });
+    items.push({ draw: (x, y) => svg("rect", { x, y: y - 6, width: 18, height: 12, fill: STABLE, stroke: "#86efac" }), text: "self-stable" });
+    others.forEach((d, k) => items.push({ draw: seg(COMPARE_COLOURS[k % COMPARE_COLOURS.length], null, 1.6), text: d.label }));
+    f.legendBottom = legend(root, items, left, f.legendWidth);
+  }
 
-    if (stale) {
-      root.append(svg("rect", { x: m.left, y: m.top, width: pw, height: ph, fill: "#ffffff", "fill-opacity": 0.6 }));
-      root.append(svg("text", { x: m.left + pw / 2, y: m.top + 30, "text-anchor": "middle", "font-size": 12, fill: "#b91c1c" }, "not recomputed: the parameters are invalid"));
-    }
-
-    // Hover read-out (not exported).
-    const hover = svg("g", { "data-export": "skip", "pointer-events": "none", visibility: "hidden" });
-    const cross = svg("line", { y1: m.top, y2: m.top + ph, stroke: INK, "stroke-width": 0.8, "stroke-dasharray": "3 3" });
-    hover.append(cross);
-    const dots = svg("g", { "clip-path": `url(#${clipId})` });
-    hover.append(dots);
-    root.append(hover);
-    const overlay = svg("rect", { x: m.left, y: m.top, width: pw, height: ph, fill: "transparent", "data-export": "skip", "data-testid": "plot-overlay" });
-    root.append(overlay);
-    const read = (clientX) => {
-      const box = root.getBoundingClientRect();
-      const px = ((clientX - box.left) / box.width) * width;
-      const v = vmin + ((px - m.left) / pw) * (vmax - vmin);
-      const i = nearest(speeds, v);
-      const x = X(speeds[i]);
-      cross.setAttribute("x1", x);
-      cross.setAttribute("x2", x);
-      dots.replaceChildren();
-      const rows = [html("div", { class: "tt-v", text: `v = ${sig(speeds[i])} m/s` })];
-      const readDesign = (d, colourOf, idx) => {
-        rows.push(html("div", { class: "tt-name", text: d.label }));
-        const cols = d.eigen.eigenvalues;
-        const seen = new Set();
-        cols.forEach((c, k) => {
-          const re = c.re[idx], im = c.im[idx];
-          const colour = colourOf(c.mode);
-          dots.append(svg("circle", { cx: x, cy: Y(re), r: 3, fill: colour }));
-          if (im > 0) dots.append(svg("circle", { cx: x, cy: Y(im), r: 3, fill: "#ffffff", stroke: colour, "stroke-width": 1.5 }));
-          if (seen.has(k)) return;
-          // A conjugate pair is read out once.
-          const partner = cols.findIndex((o, j) => j !== k && !seen.has(j) && im !== 0 && Math.abs(o.re[idx] - re) <= 1e-9 * (1 + Math.abs(re)) && Math.abs(o.im[idx] + im) <= 1e-9 * (1 + Math.abs(im)));
-          if (partner >= 0) seen.add(partner);
-          seen.add(k);
-          const value = im !== 0 ? `${sig(re)} ± ${sig(Math.abs(im))}i` : sig(re);
-          const row = html("div", { class: "tt-row" }, html("span", { class: "tt-dot", style: `background:${colour}` }), html("span", { class: "tt-mode", text: c.mode }), html("span", { class: "tt-val", text: value }));
-          rows.push(row);
-        });
-      };
-      readDesign(primary, (mode) => MODE_COLOURS[mode] ?? MODE_COLOURS.unclassified, i);
-      if (secondary) {
-        const s = secondary.eigen.speeds;
-        const j = nearest(s, speeds[i]);
-        if (Math.abs(s[j] - speeds[i]) <= 1e-9 + 0.5 * Math.abs((s[1] ?? s[0]) - s[0])) readDesign(secondary, () => COMPARE, j);
-      }
-      this.tooltip.replaceChildren(...rows);
-      this.tooltip.hidden = false;
-      hover.setAttribute("visibility", "visible");
-      const cw = this.container.clientWidth;
-      const tx = (x / width) * box.width;
-      this.tooltip.style.left = `${tx + 14 + 220 > cw ? tx - 14 - this.tooltip.offsetWidth : tx + 14}px`;
-      this.tooltip.style.top = `${m.top + 26}px`;
-    };
-    overlay.addEventListener("pointermove", (e) => read(e.clientX));
-    overlay.addEventListener("pointerleave", () => {
-      hover.setAttribute("visibility", "hidden");
-      this.tooltip.hidden = true;
+  readAt(h, f) {
+    const [primary, ...others] = this.designs;
+    const speeds = primary.eigen.speeds;
+    const v = h.key ?? this.toData(h).x;
+    const i = nearest(speeds, v);
+    if (h.key === undefined) this.hover.index = i;
+    const rows = [html("div", { class: "tt-v", text: `v = ${num(speeds[i])} m/s` })];
+    const dots = [];
+    readDesign(rows, dots, primary, i, modeColour, f.X, f.Y);
+    others.forEach((d, k) => {
+      const j = sameSpeed(d, speeds[i]);
+      if (j >= 0) readDesign(rows, dots, d, j, () => COMPARE_COLOURS[k % COMPARE_COLOURS.length], f.X, f.Y);
     });
+    return { rows, dots, x: f.X(speeds[i]) };
+  }
+}
 
-    this.holder.replaceChildren(root);
-    this.svgEl = root;
+/** The root locus: each eigenvalue's path in the complex plane as speed rises, coloured by speed. */
+export class LocusPlot extends Chart {
+  constructor(container) {
+    super(container, { label: "Root locus: eigenvalues in the complex plane, coloured by speed", xLabel: "Re λ [1/s]", yLabel: "Im λ [1/s]", crosshair: false, margin: { left: 56, right: 64, top: 36, bottom: 42 } });
+    this.designs = null;
+  }
+
+  ready() {
+    return Boolean(this.designs?.length);
+  }
+
+  update(designs, { ylim = 10, stale = null } = {}) {
+    const s = designs[0].eigen.speeds;
+    const key = `${s[0]}:${s[s.length - 1]}:${ylim}`;
+    if (key !== this.viewKey) this.view = null;
+    this.viewKey = key;
+    this.designs = designs;
+    this.ylim = ylim;
+    this.stale = stale;
+    this.draw();
+  }
+
+  extent() {
+    const y = this.ylim;
+    return { x0: -1.6 * y, x1: 0.8 * y, y0: -y, y1: y };
+  }
+
+  fitY(x0, x1) {
+    let lo = Infinity, hi = -Infinity;
+    for (const d of this.designs) {
+      for (const c of d.eigen.eigenvalues) {
+        c.re.forEach((re, i) => {
+          if (re >= x0 && re <= x1) {
+            lo = Math.min(lo, c.im[i]);
+            hi = Math.max(hi, c.im[i]);
+          }
+        });
+      }
+    }
+    return Number.isFinite(lo) && hi > lo ? { y0: lo, y1: hi } : null;
+  }
+
+  xs() {
+    return this.designs[0].eigen.speeds;
+  }
+
+  render(root, f) {
+    const { X, Y, left, top, pw, ph } = f;
+    const [primary, ...others] = this.designs;
+    const speeds = primary.eigen.speeds;
+    const [v0, v1] = [speeds[0], speeds[speeds.length - 1]];
+    this.speedRange = [v0, v1];
+    const g = svg("g", { "clip-path": f.clip, fill: "none", "stroke-linecap": "round" });
+    // The imaginary axis: where modes change stability.
+    if (f.x0 < 0 && f.x1 > 0) g.append(svg("line", { x1: X(0), y1: top, x2: X(0), y2: top + ph, stroke: "#9ca3af" }));
+    others.forEach((d, k) => {
+      for (const c of d.eigen.eigenvalues) {
+        let p = "";
+        c.re.forEach((re, i) => { p += `${p ? "L" : "M"}${X(re).toFixed(1)},${Y(c.im[i]).toFixed(1)}`; });
+        g.append(svg("path", { d: p, stroke: COMPARE_COLOURS[k % COMPARE_COLOURS.length], "stroke-width": 1.2, "stroke-opacity": 0.8 }));
+      }
+    });
+    // Coloured by speed: one path per colour band, so the drawing stays light.
+    const bands = 48;
+    const every = Math.max(1, Math.floor(speeds.length / 1500));
+    for (const c of primary.eigen.eigenvalues) {
+      const paths = Array.from({ length: bands }, () => "");
+      for (let i = every; i < speeds.length; i += every) {
+        const b = Math.min(bands - 1, Math.floor(((speeds[i] - v0) / Math.max(1e-12, v1 - v0)) * bands));
+        paths[b] += `M${X(c.re[i - every]).toFixed(1)},${Y(c.im[i - every]).toFixed(1)}L${X(c.re[i]).toFixed(1)},${Y(c.im[i]).toFixed(1)}`;
+      }
+      paths.forEach((d, b) => d && g.append(svg("path", { d, stroke: ramp((b + 0.5) / bands), "stroke-width": 2.6, "data-testid": "locus-curve" })));
+    }
+    root.append(g);
+    // Colour bar: speed.
+    const bar = svg("g", { "font-size": 10.5, fill: "#4b5563" });
+    const bx = left + pw + 14, bw = 12;
+    for (let k = 0; k < 32; k += 1) bar.append(svg("rect", { x: bx, y: top + ph - ((k + 1) / 32) * ph, width: bw, height: ph / 32 + 0.5, fill: ramp((k + 0.5) / 32) }));
+    bar.append(svg("text", { x: bx + bw / 2, y: top - 6, "text-anchor": "middle" }, "v [m/s]"));
+    bar.append(svg("text", { x: bx + bw + 3, y: top + 10 }, num(v1, 3)));
+    bar.append(svg("text", { x: bx + bw + 3, y: top + ph }, num(v0, 3)));
+    root.append(bar);
+    const items = [{ draw: (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: ramp(0.6), "stroke-width": 3 }), text: `${primary.label}: colour is speed` }];
+    others.forEach((d, k) => items.push({ draw: (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: COMPARE_COLOURS[k % COMPARE_COLOURS.length], "stroke-width": 1.6 }), text: d.label }));
+    f.legendBottom = legend(root, items, left, f.legendWidth);
+  }
+
+  readAt(h, f) {
+    const [primary, ...others] = this.designs;
+    const speeds = primary.eigen.speeds;
+    let i = h.index;
+    if (h.key === undefined) {
+      // The speed whose eigenvalue lies nearest the pointer (in pixels).
+      let best = Infinity;
+      for (const c of primary.eigen.eigenvalues) {
+        c.re.forEach((re, k) => {
+          const d = (f.X(re) - h.px) ** 2 + (f.Y(c.im[k]) - h.py) ** 2;
+          if (d < best) {
+            best = d;
+            i = k;
+          }
+        });
+      }
+      if (best > 40 ** 2) return null;
+      this.hover.index = i;
+    }
+    const rows = [html("div", { class: "tt-v", text: `v = ${num(speeds[i])} m/s` })];
+    const dots = [];
+    const colourOf = () => ramp((speeds[i] - speeds[0]) / Math.max(1e-12, speeds[speeds.length - 1] - speeds[0]));
+    readDesign(rows, [], primary, i, modeColour, null, null);
+    for (const c of primary.eigen.eigenvalues) dots.push({ x: f.X(c.re[i]), y: f.Y(c.im[i]), colour: colourOf(), r: 4.5 });
+    others.forEach((d, k) => {
+      const j = sameSpeed(d, speeds[i]);
+      if (j < 0) return;
+      readDesign(rows, [], d, j, () => COMPARE_COLOURS[k % COMPARE_COLOURS.length], null, null);
+      for (const c of d.eigen.eigenvalues) dots.push({ x: f.X(c.re[j]), y: f.Y(c.im[j]), colour: COMPARE_COLOURS[k % COMPARE_COLOURS.length], hollow: true });
+    });
+    return { rows, dots };
   }
 }

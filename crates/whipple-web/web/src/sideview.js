@@ -33,7 +33,7 @@ function comSymbol(x, y, r, colour) {
  * Draws `view` (and, faint, `ghost`: a second design's view) into `container`, fitted to its
  * size. Returns the <svg> element.
  */
-export function drawSideView(container, view, ghost = null, { stale = false } = {}) {
+export function drawSideView(container, view, ghost = null, { stale = false, reason = null } = {}) {
   const width = Math.max(320, Math.round(container.clientWidth));
   const height = Math.max(220, Math.round(container.clientHeight));
   const views = ghost ? [view, ghost] : [view];
@@ -162,7 +162,7 @@ export function drawSideView(container, view, ghost = null, { stale = false } = 
 
   if (stale) {
     root.append(svg("rect", { x: 0, y: 0, width, height, fill: "#ffffff", "fill-opacity": 0.6 }));
-    root.append(svg("text", { x: width / 2, y: 24, "text-anchor": "middle", "font-size": 12, fill: "#b91c1c" }, "not redrawn: the parameters are invalid"));
+    root.append(svg("text", { x: width / 2, y: 24, "text-anchor": "middle", "font-size": 12, fill: "#b91c1c" }, reason ?? "not redrawn: the parameters are invalid"));
   }
   container.replaceChildren(root);
   return root;

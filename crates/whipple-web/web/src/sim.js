@@ -1,12 +1,13 @@
 // The simulation panel: speed and initial perturbation in, /api/simulate, then an animated 3-D
 // view with play / pause / scrub / playback rate beside lean and steer against time and the
-// ground track, all following one current frame.
+// ground track, all following one current frame. Earlier runs stay overlaid (faint) until
+// cleared; a hands-free run is drawn with the linear model's prediction from the same initial
+// state (/api/linear/response); the time series export as CSV.
 
 import { api } from "./api.js";
 import { parseNumber } from "./editor.js";
-import { fixed, html } from "./format.js";
+import { fixed, html, num, slug, download } from "./format.js";
 import { TimePlot, TrackPlot } from "./simplots.js";
-import { SimView } from "./view3d.js";
 
 const $ = (id) => document.getElementById(id);
 const DEG = 180 / Math.PI;
@@ -23,6 +24,8 @@ const TORQUES = [
   ["sim-steer-torque", "steer_torque"],
   ["sim-lean-torque", "lean_torque"],
 ];
+/** Runs kept: the current one and up to this many earlier ones, overlaid. */
+const KEEP = 4;
 
 /** Index of the last frame at or before time `t` (frames sorted by time). */
 function frameAt(frames, t) {
@@ -35,11 +38,26 @@ function frameAt(frames, t) {
   return lo;
 }
 
+/** A short name of a run's inputs, for the legend and the CSV. */
+function runLabel(r) {
+  const parts = [`v ${num(r.speed)}`];
+  if (r.lean_deg) parts.push(`φ₀ ${num(r.lean_deg)}°`);
+  if (r.steer_deg) parts.push(`δ₀ ${num(r.steer_deg)}°`);
+  if (r.lean_rate) parts.push(`φ̇₀ ${num(r.lean_rate)}`);
+  if (r.steer_rate) parts.push(`δ̇₀ ${num(r.steer_rate)}`);
+  if (r.steer_torque && r.steer_torque !== 0) parts.push(`T_δ ${r.steer_torque}`);
+  if (r.lean_torque && r.lean_torque !== 0) parts.push(`T_φ ${r.lean_torque}`);
+  return parts.join(", ");
+}
+
 export class SimPanel {
-  /** `bike()` gives the current bicycle (files' JSON layout). */
-  constructor({ bike }) {
+  /** `bike()` gives the current bicycle (files' JSON layout); `onRun()` is told of each run. */
+  constructor({ bike, label, onRun }) {
     this.bike = bike;
+    this.label = label;
+    this.onRun = onRun ?? (() => {});
     this.result = null;
+    this.runs = [];
     this.time = 0;
     this.index = 0;
     this.playing = false;
@@ -54,20 +72,31 @@ export class SimPanel {
     });
     $("sim-speed").addEventListener("input", () => {
       this.speedEdited = true;
+      this.noteSpeed();
     });
     $("sim-play").addEventListener("click", () => (this.playing ? this.pause() : this.play()));
     $("sim-scrub").addEventListener("input", () => this.seek(Number($("sim-scrub").value)));
     $("sim-rate").addEventListener("change", () => {
       this.last = performance.now();
     });
+    $("sim-csv").addEventListener("click", () => this.exportCsv());
+    $("sim-clear").addEventListener("click", () => {
+      this.runs = this.runs.slice(0, 1);
+      this.drawPlots();
+    });
+    $("sim-linear").addEventListener("change", () => this.drawPlots());
     this.setEnabled(false);
   }
 
-  /** The 3-D view, created on first use (WebGL may be missing: then the plots still work). */
-  ensureView() {
+  /**
+   * The 3-D view, created on first use: three.js is fetched only then (it is most of the
+   * page's weight). WebGL may be missing: then the plots still work.
+   */
+  async ensureView() {
     if (this.view || this.viewError) return this.view;
     try {
-      this.view = new SimView($("sim-view"));
+      const { SimView } = await import("./view3d.js");
+      this.view = this.view ?? new SimView($("sim-view"));
     } catch (e) {
       this.viewError = e;
       $("sim-view").replaceChildren(html("div", { class: "sim-no-view", text: `The 3-D view needs WebGL, which this browser does not offer (${e.message}). The plots below still follow the simulation.` }));
@@ -75,33 +104,68 @@ export class SimPanel {
     return this.view;
   }
 
-  /** Suggests a speed inside the first self-stable range (its middle), else 5 m/s. */
-  suggestSpeed(critical) {
-    if (this.speedEdited) return;
+  /**
+   * Says where the current bicycle is self-stable, and suggests the middle of that range as
+   * the speed unless the user typed one.
+   */
+  suggestSpeed(critical, label) {
     const range = critical?.stable_speed_ranges?.[0];
-    const v = range ? 0.5 * (range[0] + range[1]) : 5;
-    $("sim-speed").value = String(Math.round(v * 100) / 100);
-    $("sim-speed-hint").textContent = range ? `middle of the self-stable range ${fixed(range[0], 2)}–${fixed(range[1], 2)} m/s` : "no self-stable range found";
+    const name = label ? `${label}: ` : "";
+    if (!this.speedEdited) {
+      const v = range ? 0.5 * (range[0] + range[1]) : 5;
+      $("sim-speed").value = String(Math.round(v * 100) / 100);
+    }
+    const where = range
+      ? `self-stable ${fixed(range[0], 2)}–${fixed(range[1], 2)} m/s${this.speedEdited ? "" : " (v set to its middle)"}`
+      : `no self-stable speed in ${fixed(critical?.range?.[0] ?? 0, 1)}–${fixed(critical?.range?.[1] ?? 10, 1)} m/s`;
+    $("sim-speed-hint").textContent = `${name}${where}`;
+    this.noteSpeed();
+  }
+
+  /** A word under a negative speed: the bicycle then rides backwards. */
+  noteSpeed() {
+    const v = parseNumber($("sim-speed").value);
+    const note = $("sim-speed-note");
+    note.textContent = v !== null && v < 0 ? `v = ${num(v)} m/s: riding backwards` : "";
+    note.hidden = !note.textContent;
   }
 
   setEnabled(on) {
-    for (const id of ["sim-play", "sim-scrub", "sim-rate"]) $(id).disabled = !on;
+    for (const id of ["sim-play", "sim-scrub", "sim-rate", "sim-csv"]) $(id).disabled = !on;
   }
 
-  say(text) {
+  say(text, kind = "error") {
+    $("sim-message").className = `message ${kind}`;
     $("sim-message").textContent = text;
     $("sim-message").hidden = !text;
   }
 
-  async run() {
+  /** The inputs as typed (for the URL). */
+  inputs() {
+    const out = {};
+    for (const [id, key] of [...INPUTS, ...TORQUES]) out[key] = $(id).value;
+    return out;
+  }
+
+  /** Fills the inputs (from the URL); a speed given counts as typed. */
+  setInputs(values) {
+    for (const [id, key] of [...INPUTS, ...TORQUES]) {
+      if (values[key] !== undefined) $(id).value = values[key];
+    }
+    if (values.speed !== undefined) this.speedEdited = true;
+    this.noteSpeed();
+  }
+
+  /** The request for the inputs, or null (the field flagged) when one is not a number. */
+  request() {
     const request = { bike: this.bike() };
     for (const [id] of [...INPUTS, ...TORQUES]) $(id).classList.remove("invalid");
     for (const [id, key] of INPUTS) {
       const x = parseNumber($(id).value);
       if (x === null) {
         $(id).classList.add("invalid");
-        this.say(`${$(id).dataset.label} must be a number.`);
-        return;
+        this.refused(`${$(id).dataset.label} must be a number.`);
+        return null;
       }
       request[key] = x;
     }
@@ -111,27 +175,57 @@ export class SimPanel {
       if (text === "") request[key] = 0;
       else request[key] = x === null ? text : x;
     }
+    return request;
+  }
+
+  /** A run refused: the message, and the pill says what the plots still show. */
+  refused(message) {
+    this.say(message);
+    const pill = $("sim-outcome");
+    pill.className = "sim-outcome bad";
+    pill.dataset.kind = "refused";
+    pill.textContent = this.result ? `refused, not run: still showing the previous run (${runLabel(this.runs[0].request)})` : "refused, not run";
+  }
+
+  async run() {
+    const request = this.request();
+    if (!request) return;
     this.pause();
-    this.say("");
+    this.say(request.speed < 0 ? `v = ${num(request.speed)} m/s: the bicycle rides backwards (the linear model has no self-stable speed below zero).` : "", "warning");
     $("sim-run").disabled = true;
     $("sim-outcome").className = "sim-outcome running";
     $("sim-outcome").textContent = "simulating…";
     try {
       const result = await api.simulate(request);
+      const run = { request, result, label: runLabel(request), linear: null };
+      const handsFree = request.steer_torque === 0 && request.lean_torque === 0;
+      if (handsFree) {
+        const end = result.frames[result.frames.length - 1].t;
+        const { bike, speed, lean_deg, steer_deg, lean_rate, steer_rate } = request;
+        run.linear = await api.linearResponse({ bike, speed, lean_deg, steer_deg, lean_rate, steer_rate, duration: Math.max(end, 1e-3), dt: 1 / result.frame_rate }).catch(() => null);
+      }
+      this.runs = [run, ...this.runs].slice(0, KEEP);
       this.load(result);
-      this.ensureView();
+      $("sim-linear-note").textContent = handsFree ? "" : "linear model: hands-free runs only";
+      this.onRun(request);
+      await this.ensureView();
       this.view?.load(result);
       this.seek(0);
       this.play();
     } catch (e) {
       const input = [...INPUTS, ...TORQUES].find(([, key]) => key === e.field);
       if (input) $(input[0]).classList.add("invalid");
-      this.say(e.message);
-      $("sim-outcome").className = "sim-outcome";
-      $("sim-outcome").textContent = this.result ? "" : "not run yet";
+      this.refused(e.message);
     } finally {
       $("sim-run").disabled = false;
     }
+  }
+
+  drawPlots() {
+    if (!this.runs.length) return;
+    const showLinear = $("sim-linear").checked;
+    this.timePlot.update(this.runs.map((r, k) => ({ ...r, linear: k === 0 && showLinear ? r.linear : null })));
+    $("sim-clear").disabled = this.runs.length < 2;
   }
 
   load(result) {
@@ -145,10 +239,29 @@ export class SimPanel {
     $("sim-outcome").className = `sim-outcome ${o.kind === "completed" ? "good" : "bad"}`;
     $("sim-outcome").textContent = o.message;
     $("sim-outcome").dataset.kind = o.kind;
-    $("sim-meta").textContent = `${result.name ?? "bicycle"} · ${result.steps.toLocaleString("en")} steps · ${frames.length} frames`;
-    this.timePlot.update(result);
+    $("sim-meta").textContent = `${result.name ?? "bicycle"} · ${runLabel(this.runs[0].request)} · ${result.steps.toLocaleString("en")} steps`;
+    this.drawPlots();
     this.trackPlot.update(result);
     this.setEnabled(true);
+  }
+
+  /** The current run's time series (and the linear prediction) as CSV, named after the bike. */
+  exportCsv() {
+    const run = this.runs[0];
+    if (!run) return;
+    const r = run.request;
+    const lines = [
+      `# whipple simulation of ${run.result.name ?? this.label()}: ${run.label}; ${run.result.outcome.message}`,
+      "# angles in degrees, rates in rad/s, positions in m; linear_*: the linear model from the same initial state (hands free)",
+    ];
+    const linear = run.linear;
+    lines.push(["t", "lean_deg", "steer_deg", "lean_rate", "steer_rate", "yaw_deg", "speed", "rear_x", "rear_y", "front_x", "front_y", ...(linear ? ["linear_lean_deg", "linear_steer_deg"] : [])].join(","));
+    run.result.frames.forEach((f, i) => {
+      const row = [f.t, f.lean * DEG, f.steer * DEG, f.lean_rate, f.steer_rate, f.yaw * DEG, f.speed, ...f.rear_contact, ...f.front_contact];
+      if (linear) row.push(linear.lean[i] * DEG, linear.steer[i] * DEG);
+      lines.push(row.map((x) => (x === undefined ? "" : String(x))).join(","));
+    });
+    download(`${slug(run.result.name ?? this.label())}-simulation-v${num(r.speed)}.csv`, `${lines.join("\n")}\n`, "text/csv");
   }
 
   play() {

@@ -1,187 +1,233 @@
-// The simulation's SVG plots: lean and steer against time with a cursor at the current frame,
-// and the ground track (contact points seen from above) with the current position marked.
+// The simulation's plots: lean and steer against time (several runs overlaid, the linear model's
+// prediction from the same initial state dashed, a cursor at the current frame), and the
+// ground track (contact points seen from above) with the current position marked.
 
-import { svg, ticks, tickLabel, FONT } from "./format.js";
+import { svg, html, num } from "./format.js";
+import { Chart, nearest, legend } from "./chart.js";
 
 const INK = "#1f2937";
-const GRID = "#e5e7eb";
 export const SIM_COLOURS = { lean: "#2563eb", steer: "#d97706", rear: "#374151", front: "#dc2626" };
+/** Earlier runs kept for comparison, faint, one colour pair each. */
+const OVERLAY = [["#93c5fd", "#fcd34d"], ["#a5b4fc", "#fdba74"], ["#99f6e4", "#fca5a5"], ["#c4b5fd", "#fde68a"]];
 const DEG = 180 / Math.PI;
 
-function frameBox(container, minW, minH) {
-  return {
-    width: Math.max(minW, Math.round(container.clientWidth)),
-    height: Math.max(minH, Math.round(container.clientHeight)),
-  };
-}
-
-function polyline(xs, ys, X, Y) {
+function path(xs, ys, X, Y, every = 1) {
   let d = "";
-  for (let i = 0; i < xs.length; i += 1) d += `${i ? "L" : "M"}${X(xs[i]).toFixed(1)} ${Y(ys[i]).toFixed(1)}`;
+  for (let i = 0; i < xs.length; i += every) d += `${d ? "L" : "M"}${X(xs[i]).toFixed(1)} ${Y(ys[i]).toFixed(1)}`;
+  if (xs.length && (xs.length - 1) % every) d += `L${X(xs[xs.length - 1]).toFixed(1)} ${Y(ys[ys.length - 1]).toFixed(1)}`;
   return d;
 }
 
-function axesText(root, x, y, text, attrs = {}) {
-  root.append(svg("text", { x, y, fill: "#4b5563", ...attrs }, text));
-}
-
 /** Lean and steer [deg] against t [s]; `cursor(i)` moves the current-frame line. */
-export class TimePlot {
+export class TimePlot extends Chart {
   constructor(container) {
-    this.container = container;
-    this.frames = null;
+    super(container, { label: "Lean and steer against time", xLabel: "t [s]", yLabel: "angle [°]", margin: { left: 46, right: 12, top: 36, bottom: 36 }, minWidth: 240, minHeight: 140, fontSize: 10.5 });
+    this.runs = null;
     this.index = 0;
-    new ResizeObserver(() => this.frames && this.draw()).observe(container);
   }
 
-  update(result) {
-    this.result = result;
-    this.frames = result.frames;
+  ready() {
+    return Boolean(this.runs?.length);
+  }
+
+  /** `runs`: [{label, result, linear}] newest first; the first is the one animated. */
+  update(runs) {
+    this.runs = runs;
+    this.view = null;
     this.draw();
   }
 
-  draw() {
-    const { width, height } = frameBox(this.container, 240, 120);
-    const m = { left: 44, right: 12, top: 22, bottom: 30 };
-    const pw = width - m.left - m.right;
-    const ph = height - m.top - m.bottom;
-    const t = this.frames.map((f) => f.t);
-    const lean = this.frames.map((f) => f.lean * DEG);
-    const steer = this.frames.map((f) => f.steer * DEG);
-    const tmax = Math.max(this.result.duration, t[t.length - 1] || 0, 1e-3);
-    let ymax = Math.max(1, ...lean.map(Math.abs), ...steer.map(Math.abs));
-    ymax = Math.min(ymax * 1.08, 180);
-    const X = (x) => m.left + (x / tmax) * pw;
-    const Y = (y) => m.top + ((ymax - Math.max(-ymax, Math.min(ymax, y))) / (2 * ymax)) * ph;
-    const root = svg("svg", { width, height, viewBox: `0 0 ${width} ${height}`, "font-family": FONT, "font-size": 10.5, role: "img", "aria-label": "Lean and steer against time" });
-    root.append(svg("rect", { x: 0, y: 0, width, height, fill: "#ffffff" }));
-    const tt = ticks(0, tmax, Math.max(3, Math.round(pw / 70)));
-    const yt = ticks(-ymax, ymax, Math.max(4, Math.round(ph / 30)));
-    const grid = svg("g", { stroke: GRID });
-    for (const v of tt) grid.append(svg("line", { x1: X(v), y1: m.top, x2: X(v), y2: m.top + ph }));
-    for (const v of yt) grid.append(svg("line", { x1: m.left, y1: Y(v), x2: m.left + pw, y2: Y(v) }));
-    root.append(grid);
-    root.append(svg("line", { x1: m.left, y1: Y(0), x2: m.left + pw, y2: Y(0), stroke: "#9ca3af" }));
-    for (const v of tt) axesText(root, X(v), m.top + ph + 13, tickLabel(v, tt), { "text-anchor": "middle" });
-    for (const v of yt) axesText(root, m.left - 5, Y(v) + 3.5, tickLabel(v, yt), { "text-anchor": "end" });
-    axesText(root, m.left + pw, height - 4, "t [s]", { "text-anchor": "end", fill: INK });
-    axesText(root, 11, m.top + ph / 2, "angle [°]", { "text-anchor": "middle", fill: INK, transform: `rotate(-90 11 ${m.top + ph / 2})` });
-    root.append(svg("rect", { x: m.left, y: m.top, width: pw, height: ph, fill: "none", stroke: "#9ca3af" }));
-    const curves = svg("g", { fill: "none", "stroke-width": 1.8, "stroke-linejoin": "round" });
-    curves.append(svg("path", { d: polyline(t, lean, X, Y), stroke: SIM_COLOURS.lean, "data-testid": "sim-lean-curve" }));
-    curves.append(svg("path", { d: polyline(t, steer, X, Y), stroke: SIM_COLOURS.steer }));
-    root.append(curves);
-    // Legend.
-    const legend = svg("g", { "font-size": 11, fill: INK });
-    [["lean φ", SIM_COLOURS.lean], ["steer δ", SIM_COLOURS.steer]].forEach(([label, colour], k) => {
-      const x = m.left + k * 86;
-      legend.append(svg("line", { x1: x, y1: 11, x2: x + 18, y2: 11, stroke: colour, "stroke-width": 2.5 }));
-      legend.append(svg("text", { x: x + 23, y: 15 }, label));
+  /** The time axis ends where the runs shown end (a fall ends the run early). */
+  extent() {
+    const end = Math.max(...this.runs.map((r) => r.result.frames[r.result.frames.length - 1].t), 1e-3);
+    let y = 1;
+    for (const r of this.runs) for (const f of r.result.frames) y = Math.max(y, Math.abs(f.lean * DEG), Math.abs(f.steer * DEG));
+    y = Math.min(y * 1.08, 180);
+    return { x0: 0, x1: end, y0: -y, y1: y };
+  }
+
+  fitY(x0, x1) {
+    let lo = Infinity, hi = -Infinity;
+    for (const r of this.runs) {
+      for (const f of r.result.frames) {
+        if (f.t < x0 || f.t > x1) continue;
+        lo = Math.min(lo, f.lean * DEG, f.steer * DEG);
+        hi = Math.max(hi, f.lean * DEG, f.steer * DEG);
+      }
+    }
+    return hi > lo ? { y0: lo, y1: hi } : null;
+  }
+
+  xs() {
+    return this.runs[0].result.frames.map((f) => f.t);
+  }
+
+  render(root, f) {
+    const { X, Y } = f;
+    const curves = svg("g", { "clip-path": f.clip, fill: "none", "stroke-linejoin": "round" });
+    this.runs.slice(1).forEach((r, k) => {
+      const [lc, sc] = OVERLAY[k % OVERLAY.length];
+      const t = r.result.frames.map((fr) => fr.t);
+      curves.append(svg("path", { d: path(t, r.result.frames.map((fr) => fr.lean * DEG), X, Y), stroke: lc, "stroke-width": 1.4, "data-testid": "sim-overlay-curve" }));
+      curves.append(svg("path", { d: path(t, r.result.frames.map((fr) => fr.steer * DEG), X, Y), stroke: sc, "stroke-width": 1.4 }));
     });
-    root.append(legend);
-    // The current frame.
-    this.cursorLine = svg("line", { y1: m.top, y2: m.top + ph, stroke: INK, "stroke-width": 1, "stroke-dasharray": "3 2", "data-testid": "sim-cursor" });
+    const run = this.runs[0];
+    if (run.linear) {
+      const l = run.linear;
+      curves.append(svg("path", { d: path(l.t, l.lean.map((x) => x * DEG), X, Y), stroke: SIM_COLOURS.lean, "stroke-width": 1.2, "stroke-dasharray": "5 3", "data-testid": "sim-linear-curve" }));
+      curves.append(svg("path", { d: path(l.t, l.steer.map((x) => x * DEG), X, Y), stroke: SIM_COLOURS.steer, "stroke-width": 1.2, "stroke-dasharray": "5 3" }));
+    }
+    const t = run.result.frames.map((fr) => fr.t);
+    curves.append(svg("path", { d: path(t, run.result.frames.map((fr) => fr.lean * DEG), X, Y), stroke: SIM_COLOURS.lean, "stroke-width": 1.8, "data-testid": "sim-lean-curve" }));
+    curves.append(svg("path", { d: path(t, run.result.frames.map((fr) => fr.steer * DEG), X, Y), stroke: SIM_COLOURS.steer, "stroke-width": 1.8 }));
+    root.append(curves);
+    const seg = (colour, dash, w = 2.5) => (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: colour, "stroke-width": w, "stroke-dasharray": dash });
+    const items = [{ draw: seg(SIM_COLOURS.lean), text: "lean φ" }, { draw: seg(SIM_COLOURS.steer), text: "steer δ" }];
+    if (run.linear) items.push({ draw: seg(INK, "5 3", 1.2), text: "linear model" });
+    this.runs.slice(1).forEach((r, k) => items.push({ draw: seg(OVERLAY[k % OVERLAY.length][0]), text: r.label }));
+    f.legendBottom = legend(root, items, f.left, f.legendWidth, 10.5);
+    this.cursorLine = svg("line", { y1: f.top, y2: f.top + f.ph, stroke: INK, "stroke-width": 1, "stroke-dasharray": "3 2", "data-testid": "sim-cursor" });
     this.leanDot = svg("circle", { r: 3.5, fill: SIM_COLOURS.lean });
     this.steerDot = svg("circle", { r: 3.5, fill: SIM_COLOURS.steer });
-    root.append(this.cursorLine, this.leanDot, this.steerDot);
-    this.X = X;
-    this.Y = Y;
-    this.container.replaceChildren(root);
+    const g = svg("g", { "clip-path": f.clip }, this.cursorLine, this.leanDot, this.steerDot);
+    root.append(g);
     this.cursor(this.index);
+  }
+
+  readAt(h, f) {
+    const run = this.runs[0];
+    const times = run.result.frames.map((fr) => fr.t);
+    const t = h.key ?? this.toData(h).x;
+    const i = nearest(times, t);
+    if (h.key === undefined) this.hover.index = i;
+    const fr = run.result.frames[i];
+    const rows = [html("div", { class: "tt-v", text: `t = ${num(fr.t)} s` })];
+    const row = (name, colour, value) => rows.push(html("div", { class: "tt-row" }, html("span", { class: "tt-dot", style: `background:${colour}` }), html("span", { class: "tt-mode", text: name }), html("span", { class: "tt-val", text: value })));
+    row("lean φ", SIM_COLOURS.lean, `${num(fr.lean * DEG)}°`);
+    row("steer δ", SIM_COLOURS.steer, `${num(fr.steer * DEG)}°`);
+    const dots = [{ x: f.X(fr.t), y: f.Y(fr.lean * DEG), colour: SIM_COLOURS.lean }, { x: f.X(fr.t), y: f.Y(fr.steer * DEG), colour: SIM_COLOURS.steer }];
+    if (run.linear) {
+      const j = nearest(run.linear.t, fr.t);
+      row("linear φ", SIM_COLOURS.lean, `${num(run.linear.lean[j] * DEG)}°`);
+      row("linear δ", SIM_COLOURS.steer, `${num(run.linear.steer[j] * DEG)}°`);
+    }
+    this.runs.slice(1).forEach((r, k) => {
+      const ts = r.result.frames.map((x) => x.t);
+      const j = nearest(ts, fr.t);
+      if (Math.abs(ts[j] - fr.t) > 0.05) return;
+      rows.push(html("div", { class: "tt-name", text: r.label }));
+      row("lean φ", OVERLAY[k % OVERLAY.length][0], `${num(r.result.frames[j].lean * DEG)}°`);
+      row("steer δ", OVERLAY[k % OVERLAY.length][1], `${num(r.result.frames[j].steer * DEG)}°`);
+    });
+    return { rows, dots, x: f.X(fr.t) };
   }
 
   cursor(i) {
     this.index = i;
-    const f = this.frames?.[i];
-    if (!f || !this.cursorLine) return;
-    const x = this.X(f.t).toFixed(1);
+    const fr = this.runs?.[0]?.result.frames[i];
+    if (!fr || !this.cursorLine || !this.frame) return;
+    const x = this.frame.X(fr.t).toFixed(1);
     this.cursorLine.setAttribute("x1", x);
     this.cursorLine.setAttribute("x2", x);
     this.leanDot.setAttribute("cx", x);
-    this.leanDot.setAttribute("cy", this.Y(f.lean * DEG).toFixed(1));
+    this.leanDot.setAttribute("cy", this.frame.Y(fr.lean * DEG).toFixed(1));
     this.steerDot.setAttribute("cx", x);
-    this.steerDot.setAttribute("cy", this.Y(f.steer * DEG).toFixed(1));
+    this.steerDot.setAttribute("cy", this.frame.Y(fr.steer * DEG).toFixed(1));
   }
 }
 
 /** The contact points' paths seen from above (x forward to the right, y right downwards). */
-export class TrackPlot {
+export class TrackPlot extends Chart {
   constructor(container) {
-    this.container = container;
+    super(container, { label: "Ground track seen from above", xLabel: "x [m] (forward)", yLabel: "y [m] (right)", margin: { left: 46, right: 12, top: 36, bottom: 36 }, minWidth: 240, minHeight: 120, fontSize: 10.5, crosshair: false, flipY: true });
     this.frames = null;
     this.index = 0;
-    new ResizeObserver(() => this.frames && this.draw()).observe(container);
+  }
+
+  ready() {
+    return Boolean(this.frames?.length);
   }
 
   update(result) {
     this.frames = result.frames;
+    this.view = null;
     this.draw();
   }
 
-  draw() {
-    const { width, height } = frameBox(this.container, 240, 100);
-    const m = { left: 44, right: 12, top: 22, bottom: 30 };
-    const pw = width - m.left - m.right;
-    const ph = height - m.top - m.bottom;
+  /** Equal scales, the track centred; a nearly straight track has its sideways excursions
+   * stretched (up to 20x), which the plot says. */
+  extent() {
+    const m = this.margin;
+    const pw = Math.max(20, Math.max(this.minWidth, this.container.clientWidth) - m.left - m.right);
+    const ph = Math.max(20, Math.max(this.minHeight, this.container.clientHeight) - m.top - m.bottom);
     const xs = this.frames.flatMap((f) => [f.rear_contact[0], f.front_contact[0]]);
     const ys = this.frames.flatMap((f) => [f.rear_contact[1], f.front_contact[1]]);
-    let [x0, x1] = [Math.min(...xs), Math.max(...xs)];
-    let [y0, y1] = [Math.min(...ys), Math.max(...ys)];
-    // Equal scales on both axes, the track centred; a nearly straight track has its sideways
-    // excursions stretched (up to 20x), which the plot says.
+    const [x0, x1] = [Math.min(...xs), Math.max(...xs)];
+    const [y0, y1] = [Math.min(...ys), Math.max(...ys)];
     const scale = Math.min(pw / Math.max(x1 - x0, 0.5), ph / Math.max(y1 - y0, 0.5)) * 0.94;
     let yScale = scale;
     if ((y1 - y0) * scale < 0.4 * ph) yScale = Math.min(20 * scale, (0.7 * ph) / Math.max(y1 - y0, 1e-3));
-    const stretch = yScale / scale;
     const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
-    x0 = cx - pw / 2 / scale; x1 = cx + pw / 2 / scale;
-    y0 = cy - ph / 2 / yScale; y1 = cy + ph / 2 / yScale;
-    const X = (x) => m.left + (x - x0) * scale;
-    const Y = (y) => m.top + (y - y0) * yScale;
-    const root = svg("svg", { width, height, viewBox: `0 0 ${width} ${height}`, "font-family": FONT, "font-size": 10.5, role: "img", "aria-label": "Ground track" });
-    root.append(svg("rect", { x: 0, y: 0, width, height, fill: "#ffffff" }));
-    const clipId = `clip-track-${Math.random().toString(36).slice(2, 8)}`;
-    root.append(svg("defs", {}, svg("clipPath", { id: clipId }, svg("rect", { x: m.left, y: m.top, width: pw, height: ph }))));
-    const xt = ticks(x0, x1, Math.max(3, Math.round(pw / 70)));
-    const yt = ticks(y0, y1, Math.max(3, Math.round(ph / 30)));
-    const grid = svg("g", { stroke: GRID });
-    for (const v of xt) grid.append(svg("line", { x1: X(v), y1: m.top, x2: X(v), y2: m.top + ph }));
-    for (const v of yt) grid.append(svg("line", { x1: m.left, y1: Y(v), x2: m.left + pw, y2: Y(v) }));
-    root.append(grid);
-    for (const v of xt) axesText(root, X(v), m.top + ph + 13, tickLabel(v, xt), { "text-anchor": "middle" });
-    for (const v of yt) axesText(root, m.left - 5, Y(v) + 3.5, tickLabel(v, yt), { "text-anchor": "end" });
-    axesText(root, m.left + pw, height - 4, "x [m] (forward)", { "text-anchor": "end", fill: INK });
-    if (stretch > 1.05) axesText(root, m.left + pw - 4, m.top + 13, `sideways ×${stretch.toFixed(stretch < 10 ? 1 : 0)}`, { "text-anchor": "end", fill: "#b45309", "data-testid": "sim-track-stretch" });
-    axesText(root, 11, m.top + ph / 2, "y [m]", { "text-anchor": "middle", fill: INK, transform: `rotate(-90 11 ${m.top + ph / 2})` });
-    root.append(svg("rect", { x: m.left, y: m.top, width: pw, height: ph, fill: "none", stroke: "#9ca3af" }));
-    const paths = svg("g", { fill: "none", "stroke-width": 1.6, "clip-path": `url(#${clipId})` });
-    const rx = this.frames.map((f) => f.rear_contact[0]), ry = this.frames.map((f) => f.rear_contact[1]);
-    const fx = this.frames.map((f) => f.front_contact[0]), fy = this.frames.map((f) => f.front_contact[1]);
-    paths.append(svg("path", { d: polyline(rx, ry, X, Y), stroke: SIM_COLOURS.rear }));
-    paths.append(svg("path", { d: polyline(fx, fy, X, Y), stroke: SIM_COLOURS.front, "stroke-dasharray": "5 3" }));
+    return { x0: cx - pw / 2 / scale, x1: cx + pw / 2 / scale, y0: cy - ph / 2 / yScale, y1: cy + ph / 2 / yScale };
+  }
+
+  fitY(x0, x1) {
+    const ys = this.frames.filter((f) => f.rear_contact[0] >= x0 && f.rear_contact[0] <= x1).flatMap((f) => [f.rear_contact[1], f.front_contact[1]]);
+    return ys.length ? { y0: Math.min(...ys), y1: Math.max(...ys) } : null;
+  }
+
+  xs() {
+    return this.frames.map((f) => f.rear_contact[0]);
+  }
+
+  render(root, f) {
+    const { X, Y } = f;
+    const stretch = (f.ph / (f.y1 - f.y0)) / (f.pw / (f.x1 - f.x0));
+    if (stretch > 1.05) root.append(svg("text", { x: f.left + f.pw - 4, y: f.top + 13, "text-anchor": "end", fill: "#92400e", "data-testid": "sim-track-stretch" }, `sideways ×${num(stretch, 2)}`));
+    const paths = svg("g", { fill: "none", "stroke-width": 1.6, "clip-path": f.clip });
+    const rx = this.frames.map((fr) => fr.rear_contact[0]), ry = this.frames.map((fr) => fr.rear_contact[1]);
+    const fx = this.frames.map((fr) => fr.front_contact[0]), fy = this.frames.map((fr) => fr.front_contact[1]);
+    paths.append(svg("path", { d: path(rx, ry, X, Y), stroke: SIM_COLOURS.rear }));
+    paths.append(svg("path", { d: path(fx, fy, X, Y), stroke: SIM_COLOURS.front, "stroke-dasharray": "5 3" }));
     root.append(paths);
-    const legend = svg("g", { "font-size": 11, fill: INK });
-    [["rear contact", SIM_COLOURS.rear, null], ["front contact", SIM_COLOURS.front, "5 3"]].forEach(([label, colour, dash], k) => {
-      const x = m.left + k * 112;
-      legend.append(svg("line", { x1: x, y1: 11, x2: x + 18, y2: 11, stroke: colour, "stroke-width": 2, "stroke-dasharray": dash }));
-      legend.append(svg("text", { x: x + 23, y: 15 }, label));
-    });
-    root.append(legend);
+    const seg = (colour, dash) => (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: colour, "stroke-width": 2, "stroke-dasharray": dash });
+    f.legendBottom = legend(root, [{ draw: seg(SIM_COLOURS.rear), text: "rear contact" }, { draw: seg(SIM_COLOURS.front, "5 3"), text: "front contact" }], f.left, f.legendWidth, 10.5);
     this.bikeLine = svg("line", { stroke: INK, "stroke-width": 2.5, "stroke-linecap": "round" });
     this.rearDot = svg("circle", { r: 4, fill: SIM_COLOURS.rear, "data-testid": "sim-track-marker" });
     this.frontDot = svg("circle", { r: 4, fill: SIM_COLOURS.front });
-    root.append(this.bikeLine, this.rearDot, this.frontDot);
-    this.X = X;
-    this.Y = Y;
-    this.container.replaceChildren(root);
+    root.append(svg("g", { "clip-path": f.clip }, this.bikeLine, this.rearDot, this.frontDot));
     this.cursor(this.index);
+  }
+
+  readAt(h, f) {
+    let i = h.index;
+    if (h.key === undefined) {
+      let best = Infinity;
+      this.frames.forEach((fr, k) => {
+        const d = (f.X(fr.rear_contact[0]) - h.px) ** 2 + (f.Y(fr.rear_contact[1]) - h.py) ** 2;
+        if (d < best) {
+          best = d;
+          i = k;
+        }
+      });
+      if (best > 30 ** 2) return null;
+      this.hover.index = i;
+    }
+    const fr = this.frames[i];
+    const rows = [
+      html("div", { class: "tt-v", text: `t = ${num(fr.t)} s` }),
+      html("div", { class: "tt-row" }, html("span", { class: "tt-dot", style: `background:${SIM_COLOURS.rear}` }), html("span", { class: "tt-mode", text: "rear" }), html("span", { class: "tt-val", text: `${num(fr.rear_contact[0])}, ${num(fr.rear_contact[1])} m` })),
+      html("div", { class: "tt-row" }, html("span", { class: "tt-dot", style: `background:${SIM_COLOURS.front}` }), html("span", { class: "tt-mode", text: "front" }), html("span", { class: "tt-val", text: `${num(fr.front_contact[0])}, ${num(fr.front_contact[1])} m` })),
+    ];
+    return { rows, dots: [{ x: f.X(fr.rear_contact[0]), y: f.Y(fr.rear_contact[1]), colour: SIM_COLOURS.rear, r: 5 }], x: f.X(fr.rear_contact[0]) };
   }
 
   cursor(i) {
     this.index = i;
-    const f = this.frames?.[i];
-    if (!f || !this.rearDot) return;
-    const [ax, ay, bx, by] = [this.X(f.rear_contact[0]), this.Y(f.rear_contact[1]), this.X(f.front_contact[0]), this.Y(f.front_contact[1])].map((v) => v.toFixed(1));
+    const fr = this.frames?.[i];
+    if (!fr || !this.rearDot || !this.frame) return;
+    const { X, Y } = this.frame;
+    const [ax, ay, bx, by] = [X(fr.rear_contact[0]), Y(fr.rear_contact[1]), X(fr.front_contact[0]), Y(fr.front_contact[1])].map((v) => v.toFixed(1));
     this.rearDot.setAttribute("cx", ax);
     this.rearDot.setAttribute("cy", ay);
     this.frontDot.setAttribute("cx", bx);

@@ -11,7 +11,10 @@
 
 use serde::Serialize;
 
-use super::eigen::Complex64;
+use super::eigen::{eigenpairs, Complex64, EigenPair};
+use super::sweep::{eigen_sweep, speed_grid};
+use crate::error::Result;
+use crate::linear::Canonical;
 
 /// The name of an eigenmode.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -147,4 +150,52 @@ pub fn classify(tracked: &[[Complex64; 4]]) -> [Mode; 4] {
         }
     }
     labels
+}
+
+/// One eigenmode at one speed: its name, eigenvalue and shape.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModeShape {
+    /// The mode's name, from a sweep through this speed ([`Mode::Unclassified`] at negative
+    /// speeds, where the sweep's labels do not apply).
+    pub mode: Mode,
+    /// The eigenvalue and eigenvector x = [φ, δ, φ̇, δ̇] (unit length, largest component real).
+    pub pair: EigenPair,
+}
+
+/// The four eigenmodes at `speed`, named: the eigenpairs of A(v) (sorted by decreasing real
+/// part) labelled by a sweep from rest to 1.5 × max(|v|, 10 m/s), 3000 steps, tracked through
+/// `speed` (what `whipple modes` prints and the page animates).
+///
+/// ```
+/// use whipple::analysis::modes::{mode_shapes, Mode};
+/// use whipple::{BenchmarkParameters, linear::Canonical};
+/// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
+/// let shapes = mode_shapes(&canonical, 5.0)?;
+/// assert_eq!(shapes.iter().filter(|s| s.mode == Mode::Weave).count(), 2);
+/// # Ok::<(), whipple::Error>(())
+/// ```
+pub fn mode_shapes(canonical: &Canonical, speed: f64) -> Result<[ModeShape; 4]> {
+    let pairs = eigenpairs(canonical, speed)?;
+    let top = speed.abs().max(10.0) * 1.5;
+    let mut grid = speed_grid(0.0, top, top / 3000.0)?;
+    grid.push(speed.abs());
+    grid.sort_by(f64::total_cmp);
+    let sweep = eigen_sweep(canonical, &grid)?;
+    let at = grid
+        .iter()
+        .position(|v| *v == speed.abs())
+        .unwrap_or_default();
+    let values = sweep.eigenvalues[at];
+    Ok(pairs.map(|pair| {
+        // Eigenvalues at -v are those at v (the sweep runs at |v|) only when v >= 0.
+        let mode = if speed >= 0.0 {
+            values
+                .iter()
+                .position(|l| (l - pair.value).norm() <= 1e-9 * (1.0 + l.norm()))
+                .map_or(Mode::Unclassified, |k| sweep.modes[k])
+        } else {
+            Mode::Unclassified
+        };
+        ModeShape { mode, pair }
+    }))
 }

@@ -1,0 +1,567 @@
+// End-to-end checks of issue 14 (the page never shows numbers that do not match the form; plots
+// to explore; modes; links; weight; accessibility; layouts) in headless Chromium:
+//   node page.mjs URL
+// Run by crates/whipple-web/tests/e2e.rs. Each section starts from a fresh load of the page and
+// runs even when an earlier one failed (E2E_KEEP_GOING=1 is the default), so a run against an
+// older page lists every check that page fails; the exit status is 1 when any failed.
+// Prints the navigation-to-plot time and the page's weight as the browser received it.
+import { launch } from "./browser.mjs";
+import { readFileSync, writeFileSync, mkdtempSync, rmSync, existsSync } from "node:fs";
+import { createRequire } from "node:module";
+import { join, resolve } from "node:path";
+import { tmpdir } from "node:os";
+import { fileURLToPath } from "node:url";
+
+const url = process.argv[2];
+if (!url || !/^http:\/\/(127\.0\.0\.1|localhost|\[::1\])[:/]/.test(url)) {
+  console.error("usage: node page.mjs http://127.0.0.1:PORT/ (loopback only)");
+  process.exit(2);
+}
+const LIMIT_MS = Number(process.env.E2E_TIMEOUT_MS ?? 290_000);
+const watchdog = setTimeout(() => {
+  console.error(`e2e page: FAILED: gave up after ${LIMIT_MS / 1000} s`);
+  process.exit(1);
+}, LIMIT_MS);
+const only = process.env.E2E_ONLY ? new RegExp(process.env.E2E_ONLY) : null;
+
+let checks = 0;
+const failures = [];
+function check(condition, what) {
+  if (!condition) throw new Error(`check failed: ${what}`);
+  checks += 1;
+  console.log(`  ok ${checks}: ${what}`);
+}
+
+function axeSource() {
+  const here = fileURLToPath(new URL(".", import.meta.url));
+  const places = [process.env.WHIPPLE_WEB_NODE_MODULES, process.env.AXE_NODE_MODULES, join(here, "..", "web", "node_modules")].filter(Boolean);
+  for (const dir of places) {
+    const file = join(resolve(dir), "axe-core", "axe.min.js");
+    if (existsSync(file)) return readFileSync(file, "utf8");
+  }
+  throw new Error(`axe-core not found in ${places.join(" or ")}`);
+}
+
+const { context, close } = await launch();
+const page = context.pages()[0] ?? (await context.newPage());
+page.setDefaultTimeout(20_000);
+const errors = [];
+page.on("pageerror", (e) => errors.push(e.message));
+const origin = new URL(url).origin;
+const responses = [];
+page.on("response", (r) => responses.push(r));
+await page.route("**/*", (route) => {
+  const u = route.request().url();
+  if (u.startsWith(origin) || u.startsWith("data:") || u.startsWith("blob:")) return route.continue();
+  errors.push(`request off loopback: ${u}`);
+  return route.abort();
+});
+
+const text = async (id) => ((await page.getByTestId(id).first().textContent({ timeout: 3_000 })) ?? "").trim();
+const number = (s) => Number(s.replace("−", "-").replace(/[^0-9.eE+-].*$/, ""));
+async function waitFor(what, predicate, ms = 10_000) {
+  const until = Date.now() + ms;
+  let last;
+  while (Date.now() < until) {
+    last = await predicate().catch((e) => `(${e.message})`);
+    if (last === true) return;
+    await page.waitForTimeout(80);
+  }
+  throw new Error(`timed out waiting for ${what} (last: ${JSON.stringify(last)})`);
+}
+const waitForText = async (id, predicate, ms) => {
+  let seen = null;
+  await waitFor(`${id}`, async () => {
+    seen = await page.getByTestId(id).first().textContent({ timeout: 1_000 });
+    return seen !== null && predicate(seen.trim()) ? true : seen;
+  }, ms);
+  return seen.trim();
+};
+/** A fresh page at `path` (a query string), ready. */
+async function open(path = "", viewport = { width: 1440, height: 900 }) {
+  await page.setViewportSize(viewport);
+  await page.goto(new URL(path, url).href);
+  await page.waitForSelector("body[data-ready=true]", { timeout: 20_000 });
+  await waitForText("capsize-speed", (t) => /\d/.test(t));
+}
+/** Waits for a run to end and pauses its animation (SwiftShader's drawing costs a core). */
+async function ran(predicate) {
+  const outcome = await waitForText("sim-outcome", (t) => !/simulating/.test(t) && predicate(t), 30_000);
+  if ((await page.getByTestId("sim-play").getAttribute("aria-pressed")) === "true") await page.getByTestId("sim-play").click();
+  return outcome;
+}
+const pick = (key) => page.getByTestId("bike-select").selectOption(key);
+const xTicks = (id) => page.$$eval(`[data-testid=${id}] svg > g[fill] > text`, (ts) => ts.map((t) => t.textContent).join(" "));
+const plotBox = async (id) => page.getByTestId(id).boundingBox();
+const downloadOf = async (click) => {
+  const [d] = await Promise.all([page.waitForEvent("download", { timeout: 5_000 }), click()]);
+  return { name: d.suggestedFilename(), text: readFileSync(await d.path(), "utf8") };
+};
+
+async function section(name, body) {
+  if (only && !only.test(name)) return;
+  console.log(`${name}`);
+  const started = Date.now();
+  try {
+    await body();
+    console.log(`  (${((Date.now() - started) / 1000).toFixed(1)} s)`);
+  } catch (e) {
+    failures.push(`${name}: ${e.message.split("\n")[0]}`);
+    console.log(`  FAILED: ${e.message.split("\n")[0]}`);
+    const shot = join(tmpdir(), `whipple-e2e-page-${failures.length}.png`);
+    await page.screenshot({ path: shot }).catch(() => {});
+    console.log(`  screenshot: ${shot}`);
+  }
+}
+
+const timings = {};
+
+await section("weight: the first load is small and compressed; three.js comes with the Simulation tab", async () => {
+  responses.length = 0;
+  await page.setViewportSize({ width: 1440, height: 900 });
+  const started = Date.now();
+  await page.goto(url);
+  await page.waitForFunction(() => document.querySelector("[data-testid=eigen-plot] svg path[d*=L]"), null, { polling: "raf", timeout: 20_000 });
+  const atPlot = await page.evaluate(() => performance.now());
+  timings.navigationToPlotMs = Math.round(atPlot);
+  timings.wallMs = Date.now() - started;
+  await page.waitForTimeout(300);
+  let transferred = 0;
+  let raw = 0;
+  const assets = [];
+  for (const r of responses) {
+    const u = new URL(r.url());
+    if (u.pathname.startsWith("/api/")) continue;
+    const h = await r.allHeaders();
+    const body = await r.body().catch(() => Buffer.alloc(0));
+    const sent = Number(h["content-length"] ?? body.length);
+    transferred += sent;
+    raw += body.length;
+    assets.push({ path: u.pathname, sent, encoding: h["content-encoding"] ?? "identity", cache: h["cache-control"] ?? "", etag: h.etag ?? "" });
+  }
+  timings.initialTransferred = transferred;
+  timings.initialUncompressed = raw;
+  console.log(`  navigation to plot: ${timings.navigationToPlotMs} ms (performance.now at the first drawn curve); the page's files: ${transferred} bytes sent, ${raw} bytes unpacked`);
+  for (const a of assets) console.log(`    ${a.path} ${a.sent} B ${a.encoding} "${a.cache}" ${a.etag}`);
+  check(transferred < 100_000, `the initial page is under 100 KB as sent: ${transferred} bytes`);
+  check(!assets.some((a) => /three|view3d/.test(a.path)), "three.js is not part of it");
+  const scripts = assets.filter((a) => a.path.endsWith(".js") || a.path.endsWith(".css"));
+  check(scripts.length >= 2 && scripts.every((a) => a.encoding === "br" || a.encoding === "gzip"), `scripts and styles are compressed: ${scripts.map((a) => `${a.path} ${a.encoding}`).join(", ")}`);
+  check(scripts.every((a) => /max-age=31536000/.test(a.cache) && /immutable/.test(a.cache) && a.etag), "hashed names are cached for a year, with ETags");
+  const pageAsset = assets.find((a) => a.path === "/");
+  check(pageAsset && /no-cache/.test(pageAsset.cache) && pageAsset.etag, "the page itself is revalidated (no-cache, ETag)");
+  // A revalidation of the page costs a 304.
+  const again = await page.evaluate(async (etag) => (await fetch("/", { headers: { "if-none-match": etag } })).status, pageAsset.etag);
+  check(again === 304, `If-None-Match answers 304 (${again})`);
+  responses.length = 0;
+  await page.getByTestId("tab-sim").click();
+  await waitFor("three.js to be fetched", async () => responses.some((r) => /view3d-.*\.js$/.test(r.url())));
+  check(true, "opening the Simulation tab fetches the 3-D code");
+});
+
+await section("bug 1: the hover read-out follows a redraw (bicycle switched with the keyboard)", async () => {
+  await open("?bike=preset:schwinn-crown");
+  const box = await plotBox("eigen-plot");
+  await page.mouse.move(box.x + box.width * 0.6, box.y + box.height * 0.5);
+  await page.getByTestId("plot-tooltip").waitFor({ state: "visible" });
+  const before = await text("plot-tooltip");
+  await page.getByTestId("bike-select").focus();
+  await page.keyboard.press("ArrowUp"); // the benchmark bicycle is the first preset
+  await waitForText("capsize-speed", (t) => t.startsWith("6.0243"));
+  await page.waitForTimeout(300);
+  const visible = await page.getByTestId("plot-tooltip").isVisible();
+  const after = visible ? await text("plot-tooltip") : "";
+  check(!visible || (after !== before && /benchmark/i.test(after) && !/schwinn/i.test(after)), `after the switch the read-out shows the new bicycle's values: "${after.slice(0, 60)}…" (was "${before.slice(0, 60)}…")`);
+  // And after the speed range changes.
+  await page.fill("#v-stop", "8");
+  await page.press("#v-stop", "Enter");
+  await page.waitForTimeout(600);
+  const v = (await text("plot-tooltip").catch(() => "")).match(/v = ([\d.]+)/);
+  check(!v || Number(v[1]) <= 8, `after a new speed range the read-out's speed lies in it (${v?.[1]})`);
+});
+
+await section("bug 2: text in a number field is reflected everywhere, and nothing else is applied", async () => {
+  await open("?bike=preset:schwinn-crown");
+  await page.getByTestId("param-mrider").fill("abc");
+  await waitForText("error-mrider", (t) => t === "not a number");
+  await page.waitForTimeout(400);
+  const message = await page.getByTestId("message").isVisible() ? await text("message") : "";
+  check(/not a number/.test(message) && /rider/i.test(message), `the top message names the field: "${message}"`);
+  check(await page.locator("[data-testid=eigen-plot] [data-testid=stale-veil]").count() === 1, "the plot is veiled: it is the last numbers' result");
+  await page.getByTestId("param-mrider").fill("-5");
+  await waitForText("message", (t) => t.includes("-5"));
+  await page.getByTestId("param-mrider").fill("abc");
+  await page.waitForTimeout(400);
+  const m2 = await text("message");
+  check(!m2.includes("-5") && /not a number/.test(m2), `-5 then abc: the message follows the field: "${m2}"`);
+  const capsize = await text("capsize-speed");
+  await page.getByTestId("param-trail").fill("0.05");
+  await page.waitForTimeout(600);
+  check((await text("capsize-speed")) === capsize && /not a number/.test(await text("message")), "an edit of another field meanwhile is not computed and the page keeps saying why");
+  check(await page.locator("[data-testid=eigen-plot] [data-testid=stale-veil]").count() === 1, "and the plot stays veiled");
+  await page.getByTestId("param-mrider").fill("");
+  await waitForText("error-mrider", (t) => /empty/.test(t));
+  check(true, "an empty field says it is empty");
+  await page.getByTestId("param-mrider").fill("80");
+  await waitForText("capsize-speed", (t) => t !== capsize && /\d/.test(t));
+  check(await page.locator("[data-testid=eigen-plot] [data-testid=stale-veil]").count() === 0 && !(await page.getByTestId("message").isVisible()), `mended, both edits are applied at once: v_c ${await text("capsize-speed")}`);
+});
+
+await section("bug 3: saving with text in a field is refused", async () => {
+  await open("?bike=preset:schwinn-crown");
+  await page.evaluate(() => localStorage.clear());
+  await page.getByTestId("param-mrider").fill("abc");
+  let downloaded = false;
+  const listener = () => { downloaded = true; };
+  page.on("download", listener);
+  await page.click("#save-toml");
+  await page.waitForTimeout(1200);
+  page.off("download", listener);
+  check(!downloaded && /not saved/i.test(await text("message")), `Save TOML refuses: "${await text("message")}"`);
+  await page.click("#save-design");
+  await page.waitForTimeout(300);
+  check(await page.evaluate(() => (JSON.parse(localStorage.getItem("whipple.designs.v1") ?? "[]")).length === 0) && /not saved/i.test(await text("message")), "Save to my designs refuses too");
+});
+
+await section("bug 4: edits survive a switch (undo) and a reload; a deletion can be undone", async () => {
+  await open("?bike=preset:schwinn-crown");
+  await page.evaluate(() => localStorage.clear());
+  await page.getByTestId("param-trail").fill("0.05");
+  await waitForText("capsize-speed", (t) => !t.startsWith("7.9807"));
+  const edited = await text("capsize-speed");
+  await page.reload();
+  await page.waitForSelector("body[data-ready=true]");
+  await waitForText("capsize-speed", (t) => t === edited);
+  check((await page.inputValue("[data-testid=param-trail]")) === "0.05", "a reload keeps the unsaved edit");
+  await pick("preset:benchmark");
+  await waitForText("capsize-speed", (t) => t.startsWith("6.0243"));
+  check(await page.getByTestId("undo-switch").isVisible(), `switching says the edits are kept: "${await text("message")}"`);
+  await page.getByTestId("undo-switch").click();
+  await waitForText("capsize-speed", (t) => t === edited);
+  check((await page.inputValue("[data-testid=param-trail]")) === "0.05", "and the undo brings them back");
+  await page.fill("#design-name", "to delete");
+  await page.click("#save-design");
+  await page.click("#delete-design");
+  await waitForText("capsize-speed", (t) => t.startsWith("7.9807"));
+  await page.waitForTimeout(500);
+  check(await page.getByTestId("undo-delete").isVisible(), `the deletion's message stays, with an undo: "${await text("message")}"`);
+  await page.getByTestId("undo-delete").click();
+  await waitForText("capsize-speed", (t) => t === edited);
+  check(await page.evaluate(() => JSON.parse(localStorage.getItem("whipple.designs.v1")).some((d) => d.name === "to delete")), "undo restores the design");
+});
+
+await section("bug 5: opening the same file twice makes one design", async () => {
+  await open("?bike=preset:benchmark");
+  await page.evaluate(() => localStorage.clear());
+  const dir = mkdtempSync(join(tmpdir(), "whipple-e2e-page-"));
+  const file = join(dir, "twice.toml");
+  const toml = await page.evaluate(async () => {
+    const bike = await (await fetch("/api/presets/benchmark")).json();
+    bike.name = "opened twice";
+    return (await (await fetch("/api/bike/toml", { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ bike }) })).json()).toml;
+  });
+  writeFileSync(file, toml);
+  await page.setInputFiles("#file-input", file);
+  await page.waitForFunction(() => document.querySelector("#bike-select").value.startsWith("design:"));
+  await page.setInputFiles("#file-input", file);
+  await page.waitForTimeout(800);
+  rmSync(dir, { recursive: true, force: true });
+  const names = await page.evaluate(() => JSON.parse(localStorage.getItem("whipple.designs.v1")).map((d) => d.name));
+  check(names.filter((n) => n === "opened twice").length === 1, `one design after two opens: ${JSON.stringify(names)}`);
+});
+
+await section("bug 6: a refused simulation says what the plots still show", async () => {
+  await open("?bike=preset:benchmark&tab=sim");
+  await page.getByTestId("tab-sim").click();
+  await page.fill("#sim-speed", "4.6");
+  await page.fill("#sim-duration", "2");
+  await page.click("[data-testid=sim-run]");
+  await ran((t) => t.startsWith("completed"));
+  await page.fill("#sim-steer-torque", "2*foo");
+  await page.click("[data-testid=sim-run]");
+  await waitForText("sim-message", (t) => t.includes("foo"));
+  const pill = await text("sim-outcome");
+  check(/refused/.test(pill) && /previous run/.test(pill), `the outcome says the run was refused and the plots are the previous run's: "${pill}"`);
+});
+
+await section("bug 7: the speed hint follows the bicycle", async () => {
+  await open("?bike=preset:schwinn-crown");
+  await page.getByTestId("tab-sim").click();
+  await page.fill("#sim-speed", "6");
+  await pick("preset:benchmark");
+  await waitForText("capsize-speed", (t) => t.startsWith("6.0243"));
+  const hint = await waitForText("sim-speed-hint", (t) => t.length > 0);
+  check(/4\.29/.test(hint) && /6\.02/.test(hint), `after switching, the hint gives the benchmark's range: "${hint}"`);
+  check((await page.inputValue("#sim-speed")) === "6", "and the speed typed stays");
+});
+
+await section("bug 8: with negative trail the table says the capsize mode is unstable at every speed", async () => {
+  await open("?bike=preset:schwinn-crown");
+  await page.getByTestId("param-trail").fill("-0.05");
+  const vc = await waitForText("capsize-speed", (t) => !t.startsWith("7.98"));
+  check(/unstable at every speed/.test(vc), `v_c reads "${vc}"`);
+});
+
+await section("bug 9: a benchmark rule met in the JBike6 form flags the JBike6 fields", async () => {
+  await open("?bike=preset:schwinn-crown");
+  await page.getByTestId("param-Dfrontwheel").fill("0");
+  await waitForText("error-Dfrontwheel", (t) => t.length > 0);
+  const flagged = await page.getByTestId("param-Dfrontwheel").evaluate((e) => e.classList.contains("invalid"));
+  const message = await text("message");
+  check(flagged, `the front wheel's D is flagged: "${await text("error-Dfrontwheel")}"`);
+  check(!message.startsWith("invalid parameter `IFyy`") && /front wheel/i.test(message), `the message speaks of the JBike6 entries: "${message}"`);
+});
+
+await section("bug 10: a negative simulation speed is answered", async () => {
+  await open("?bike=preset:benchmark");
+  await page.getByTestId("tab-sim").click();
+  await page.fill("#sim-speed", "-2");
+  await page.waitForTimeout(200);
+  const note = (await page.getByTestId("sim-speed-note").isVisible()) ? await text("sim-speed-note") : "";
+  check(/backwards/.test(note), `a negative speed is named: "${note}"`);
+});
+
+await section("bug 11: no sideways scroll at 768 and 390 px; 1920 px uses the width", async () => {
+  for (const [width, height] of [[768, 1024], [390, 844]]) {
+    await open("?bike=preset:benchmark", { width, height });
+    for (const tab of ["eigen", "sim"]) {
+      await page.getByTestId(`tab-${tab}`).click();
+      await page.waitForTimeout(300);
+      const { scroll, inner, wide } = await page.evaluate(() => ({
+        scroll: document.documentElement.scrollWidth,
+        inner: window.innerWidth,
+        wide: [...document.querySelectorAll("body *")].filter((e) => e.getBoundingClientRect().right > window.innerWidth + 1 && e.getClientRects().length && getComputedStyle(e).visibility !== "hidden").map((e) => e.id || e.className || e.tagName).slice(0, 5),
+      }));
+      check(scroll <= inner, `${width} px, ${tab} tab: the page is ${scroll} px wide (${wide.join(", ") || "nothing sticks out"})`);
+    }
+    const plot = await plotBox("sim-time-plot");
+    check(plot && plot.width > 200 && plot.x >= 0 && plot.x + plot.width <= width + 1, `${width} px: the time plot fits (${Math.round(plot?.width ?? 0)} px wide)`);
+  }
+  await open("?bike=preset:benchmark", { width: 1920, height: 1080 });
+  const plot = await plotBox("eigen-plot");
+  const editorBox = await page.locator(".editor").boundingBox();
+  check(plot.width > 1000 && editorBox.x < plot.x, `1920 px: the editor beside a ${Math.round(plot.width)} px plot`);
+});
+
+await section("explore: zoom, pan, box zoom, reset, autoscale and keyboard on the plots", async () => {
+  await open("?bike=preset:benchmark");
+  const box = await plotBox("eigen-plot");
+  const full = await xTicks("eigen-plot");
+  await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
+  await page.mouse.wheel(0, -400);
+  await page.waitForTimeout(300);
+  const zoomed = await xTicks("eigen-plot");
+  check(zoomed !== full, `the wheel zooms: ticks "${full.slice(0, 40)}" → "${zoomed.slice(0, 40)}"`);
+  await page.getByTestId("plot-tooltip").waitFor({ state: "visible" });
+  check(/v = /.test(await text("plot-tooltip")), "the read-out works in the zoomed view");
+  await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width * 0.3, box.y + box.height * 0.5, { steps: 5 });
+  await page.mouse.up();
+  await page.waitForTimeout(200);
+  const panned = await xTicks("eigen-plot");
+  check(panned !== zoomed, "dragging pans");
+  await page.mouse.dblclick(box.x + box.width * 0.5, box.y + box.height * 0.5);
+  await page.waitForTimeout(200);
+  check((await xTicks("eigen-plot")) === full, "a double-click resets the view");
+  await page.keyboard.down("Shift");
+  await page.mouse.move(box.x + box.width * 0.4, box.y + box.height * 0.3);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width * 0.6, box.y + box.height * 0.6, { steps: 5 });
+  await page.mouse.up();
+  await page.keyboard.up("Shift");
+  await page.waitForTimeout(400);
+  check((await xTicks("eigen-plot")) !== full, "shift-drag zooms to the box");
+  await page.getByTestId("zoom-auto").first().click();
+  await page.waitForTimeout(200);
+  await page.getByTestId("zoom-reset").first().click();
+  await page.waitForTimeout(200);
+  check((await xTicks("eigen-plot")) === full, "Autoscale and Reset buttons work");
+  await page.mouse.move(1, 1);
+  await page.getByTestId("eigen-plot").focus();
+  await page.keyboard.press("ArrowRight");
+  await page.keyboard.press("ArrowRight");
+  const keyed = await text("plot-tooltip");
+  const live = await page.$eval("[data-testid=eigen-plot] [aria-live]", (e) => e.textContent);
+  check(/v = /.test(keyed) && /weave/.test(live), `the keyboard reads values out (announced): "${keyed.slice(0, 50)}…"`);
+  // The root locus, coloured by speed, with its read-out.
+  await page.getByTestId("tab-locus").click();
+  await page.waitForSelector("[data-testid=locus-curve]", { state: "attached" });
+  check((await page.locator("[data-testid=locus-curve]").count()) > 20, "the root locus is drawn in colour bands of speed");
+  await page.getByTestId("locus-plot").focus();
+  await page.keyboard.press("ArrowRight");
+  check(/v = /.test(await text("locus-plot-tooltip")), "and reads out the speed and eigenvalues");
+  // The simulation's time plot zooms too.
+  await page.getByTestId("tab-sim").click();
+  await page.fill("#sim-speed", "4.6");
+  await page.fill("#sim-duration", "3");
+  await page.click("[data-testid=sim-run]");
+  await ran((t) => t.startsWith("completed"));
+  const tb = await plotBox("sim-time-plot");
+  const t0 = await xTicks("sim-time-plot");
+  await page.mouse.move(tb.x + tb.width * 0.5, tb.y + tb.height * 0.6);
+  await page.mouse.wheel(0, -400);
+  await page.waitForTimeout(300);
+  check((await xTicks("sim-time-plot")) !== t0, "the time plot zooms");
+  const gb = await plotBox("sim-track");
+  const g0 = await xTicks("sim-track");
+  await page.mouse.move(gb.x + gb.width * 0.5, gb.y + gb.height * 0.6);
+  await page.mouse.wheel(0, -400);
+  await page.waitForTimeout(300);
+  check((await xTicks("sim-track")) !== g0, "the ground track zooms");
+});
+
+await section("compare: three designs at once", async () => {
+  await open("?bike=preset:schwinn-crown");
+  await page.getByTestId("compare-select").selectOption("preset:benchmark");
+  await waitForText("compare-capsize-speed", (t) => t.startsWith("6.0243"));
+  await page.getByTestId("compare-select").selectOption("preset:browser-jason");
+  await waitForText("compare2-capsize-speed", (t) => /\d/.test(t));
+  check((await page.locator("[data-testid=eigen-plot] [data-testid=compare-curve]").count()) === 8, "two compared designs draw four eigenvalue tracks each");
+  const csv = await downloadOf(() => page.click("#eigen-csv"));
+  check(/schwinn-crown/.test(csv.name) && /compared: .*Benchmark.*Browser/.test(csv.text.split("\n")[0]), `the CSV is named after the bike (${csv.name}) and names the compared designs`);
+  check(/re1_weave/.test(csv.text.split("\n")[1]) && /castering/.test(csv.text.split("\n")[1]), `its header has the mode names: ${csv.text.split("\n")[1].slice(0, 70)}…`);
+});
+
+await section("a link reproduces the state; back and forward work", async () => {
+  await open("?bike=preset:schwinn-crown");
+  await pick("preset:benchmark");
+  await waitForText("capsize-speed", (t) => t.startsWith("6.0243"));
+  await page.getByTestId("param-c").fill("0.07");
+  await waitForText("capsize-speed", (t) => !t.startsWith("6.0243"));
+  const vc = await text("capsize-speed");
+  await page.getByTestId("compare-select").selectOption("preset:two-mass-skate");
+  await waitForText("compare-capsize-speed", (t) => /\d|none/.test(t));
+  await page.fill("#v-stop", "8");
+  await page.press("#v-stop", "Enter");
+  await page.getByTestId("tab-locus").click();
+  await page.waitForTimeout(500);
+  const link = page.url();
+  const other = await context.newPage();
+  await other.goto(link);
+  await other.waitForSelector("body[data-ready=true]");
+  await other.waitForFunction((v) => document.querySelector("[data-testid=capsize-speed]")?.textContent.trim() === v, vc, { timeout: 10_000 });
+  const seen = await other.evaluate(() => ({
+    bike: document.querySelector("#bike-select").value,
+    c: document.querySelector("[data-testid=param-c]").value,
+    stop: document.querySelector("#v-stop").value,
+    tab: document.querySelector(".tab[data-view][aria-selected=true]").dataset.view,
+    compare: document.querySelector("[data-testid=compare-capsize-speed]")?.textContent ?? null,
+  }));
+  await other.close();
+  check(seen.bike === "preset:benchmark" && seen.c === "0.07" && seen.stop === "8" && seen.tab === "locus" && seen.compare !== null, `the link opens the same state elsewhere: ${JSON.stringify(seen)}`);
+  await page.goBack();
+  await page.waitForTimeout(600);
+  check((await page.$eval(".tab[data-view][aria-selected=true]", (e) => e.dataset.view)) === "eigen", "back returns to the previous tab");
+  await page.goBack();
+  await page.waitForTimeout(600);
+  check((await page.inputValue("#v-stop")) === "10", "back again, the previous speed range");
+  await page.goForward();
+  await page.goForward();
+  await page.waitForTimeout(800);
+  check((await page.$eval(".tab[data-view][aria-selected=true]", (e) => e.dataset.view)) === "locus" && (await page.inputValue("#v-stop")) === "8", "forward redoes both");
+});
+
+await section("modes: in words, animated, and played in 3-D", async () => {
+  await open("?bike=preset:benchmark");
+  await page.getByTestId("tab-modes").click();
+  await page.fill("[data-testid=mode-speed]", "5");
+  await page.click("[data-testid=mode-run]");
+  await waitForText("mode-meta", (t) => t.includes("at 5 m/s"));
+  const weave = await waitForText("mode-words-weave", (t) => t.length > 0);
+  // Meijaard et al. 2007, Table 2: at 5 m/s the weave is −0.775341882195 ± 4.46486771378823i.
+  const period = (2 * Math.PI) / 4.46486771378823, half = Math.LN2 / 0.775341882195;
+  // Shown to two digits: "oscillates every 1.4 s, decays by half in 0.89 s".
+  check(weave === `weave: oscillates every ${Number(period.toPrecision(2))} s, decays by half in ${Number(half.toPrecision(2))} s`, `"${weave}" (Meijaard 2007: period ${period.toFixed(3)} s, half-life ${half.toFixed(3)} s)`);
+  check(/capsize: does not oscillate, decays by half in/.test(await text("mode-words-capsize")), `"${await text("mode-words-capsize")}"`);
+  await page.getByTestId("mode-weave").click();
+  await page.getByTestId("mode-anim").waitFor({ state: "visible" });
+  const t1 = await page.getByTestId("mode-anim").getAttribute("data-t");
+  await page.waitForTimeout(400);
+  const t2 = await page.getByTestId("mode-anim").getAttribute("data-t");
+  const r = await text("mode-anim-readout");
+  check(t1 !== t2 && /φ/.test(r), `the weave is animated beside the side view: ${r}`);
+  await page.getByTestId("mode-3d-weave").click();
+  await ran((t) => t.startsWith("completed"));
+  check(await page.locator("#panel-sim").isVisible() && (await page.inputValue("#sim-speed")) === "5", "Play in 3-D runs the simulation from the weave's shape");
+  await page.waitForSelector("[data-testid=sim-canvas]", { timeout: 15_000 });
+  check(true, "in the 3-D view");
+});
+
+await section("simulation: overlay, linear prediction, CSV, time axis ending where the run ended", async () => {
+  await open("?bike=preset:benchmark");
+  await page.getByTestId("tab-sim").click();
+  await page.fill("#sim-speed", "4.6");
+  await page.fill("#sim-duration", "4");
+  await page.click("[data-testid=sim-run]");
+  await ran((t) => t.startsWith("completed"));
+  check((await page.locator("[data-testid=sim-linear-curve]").count()) === 1, "the linear model's prediction is drawn");
+  const csv = await downloadOf(() => page.click("[data-testid=sim-csv]"));
+  const head = csv.text.split("\n");
+  check(/benchmark/.test(csv.name) && head[0].includes("benchmark") && head[2].startsWith("t,lean_deg,steer_deg") && head[2].includes("linear_lean_deg"), `CSV ${csv.name}: ${head[2]}`);
+  check(head.filter((l) => /^\d/.test(l)).length === 241, "one row per frame (4 s at 60 frames/s, both ends)");
+  await page.fill("#sim-speed", "3");
+  await page.fill("#sim-duration", "10");
+  await page.click("[data-testid=sim-run]");
+  const fell = await ran((t) => /t = \d/.test(t));
+  check((await page.locator("[data-testid=sim-overlay-curve]").count()) === 1, "the earlier run stays overlaid");
+  const end = Number(fell.match(/t = ([\d.]+)/)[1]);
+  const ticks = (await xTicks("sim-time-plot")).split(" ").map(Number).filter(Number.isFinite);
+  const last = Math.max(...ticks.filter((t) => t <= 12));
+  check(last <= Math.max(end, 4) + 1, `the time axis ends near the longest run shown (ticks to ${last} s; this run ended at ${end} s, the earlier at 4 s)`);
+});
+
+await section("degrees, precision, display names", async () => {
+  await open("?bike=preset:schwinn-crown");
+  const options = await page.$$eval("#bike-select option", (os) => os.map((o) => o.textContent));
+  check(options.includes("Schwinn Crown (JBike6 default)") && options.some((o) => /Meijaard/.test(o)), `presets under display names: ${options.slice(0, 4).join(" | ")}`);
+  const head = await page.inputValue("[data-testid=param-head_angle]");
+  check(Math.abs(Number(head) - 70.977782) < 1e-5 && head.length <= 10, `the head angle is typed in degrees: ${head}`);
+  await page.getByTestId("param-head_angle").fill("1.23879599");
+  const hint = await waitForText("hint-head_angle", (t) => t.length > 0);
+  check(/did you mean 70\.98°\?/.test(hint), `a value in radians: "${hint}"`);
+  await page.getByTestId("accept-head_angle").click();
+  await waitForText("capsize-speed", (t) => t.startsWith("7.98"));
+  check((await page.inputValue("[data-testid=param-head_angle]")) === "70.98", "accepted, the capsize speed is the Crown's again");
+  const long = await page.evaluate(() => {
+    const texts = [...document.querySelectorAll("input")].map((i) => i.value).concat(document.body.innerText.split(/\s+/));
+    return texts.filter((t) => /\d\.\d{9,}/.test(t));
+  });
+  check(long.length === 0, `no number shown with round-off digits (${long.slice(0, 3).join(", ")})`);
+  await page.click("#tab-benchmark");
+  await page.waitForTimeout(300);
+  const shown = await page.$$eval("#editor-body input", (is) => is.map((i) => i.value).filter((v) => v.replace(/[-.]/g, "").length > 13));
+  check(shown.length === 0, `the converted benchmark form shows sensible digits (${shown.slice(0, 3).join(", ")})`);
+});
+
+await section("accessibility: axe-core finds nothing; headings", async () => {
+  await open("?bike=preset:schwinn-crown");
+  await page.evaluate(axeSource());
+  const run = async (what) => {
+    const result = await page.evaluate(async () => {
+      // eslint-disable-next-line no-undef
+      const r = await axe.run(document, { runOnly: { type: "tag", values: ["wcag2a", "wcag2aa", "best-practice"] } });
+      return r.violations.map((v) => `${v.id} (${v.nodes.length}: ${v.nodes.slice(0, 2).map((n) => n.target.join(" ")).join("; ")})`);
+    });
+    check(result.length === 0, `axe-core on the ${what}: ${result.join(", ") || "no violations"}`);
+  };
+  await run("eigenvalue tab");
+  check((await page.locator("h1").count()) === 1 && (await page.locator("h2").count()) >= 4, "one h1 and a heading per panel");
+  await page.getByTestId("tab-sim").click();
+  await page.waitForTimeout(500);
+  await run("simulation tab");
+  await page.getByTestId("tab-modes").click();
+  await page.waitForTimeout(800);
+  await run("modes tab");
+});
+
+if (errors.length) failures.push(`page errors: ${errors.join("; ")}`);
+await close();
+clearTimeout(watchdog);
+console.log(`e2e page: navigation to plot ${timings.navigationToPlotMs ?? "?"} ms; initial page ${timings.initialTransferred ?? "?"} bytes sent (${timings.initialUncompressed ?? "?"} unpacked)`);
+if (failures.length) {
+  console.error(`e2e page: FAILED ${failures.length} section(s):\n  ${failures.join("\n  ")}`);
+  process.exitCode = 1;
+} else {
+  console.log(`e2e page: ok (${checks} checks)`);
+}
