@@ -128,7 +128,7 @@ pub fn design_map(data: &MapData) -> Result<Figure> {
         lo = *finite.select_nth_unstable_by(a, f64::total_cmp).1;
         hi = *finite.select_nth_unstable_by(b, f64::total_cmp).1;
     }
-    if !(lo <= hi) {
+    if lo.is_nan() || hi.is_nan() || lo > hi {
         (lo, hi) = (0.0, 1.0);
     } else if lo == hi {
         (lo, hi) = (lo - 0.5, hi + 0.5);

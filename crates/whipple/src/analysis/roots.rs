@@ -810,13 +810,11 @@ mod tests {
         let r = [1.0, 1.0 + 1e-6, 1e4, -3.0];
         let mut c = [0.0f64; 5];
         c[0] = 1.0;
-        let mut deg = 0;
-        for &root in &r {
+        for (deg, &root) in r.iter().enumerate() {
             for k in (0..=deg).rev() {
                 c[k + 1] += c[k];
                 c[k] *= -root;
             }
-            deg += 1;
         }
         let roots = real_roots(&BoundedPolynomial::exact(c), "test")?;
         let found = simple(&roots);

@@ -708,7 +708,7 @@ fn double_root(
         }
         let enc = enclosure(g, sqrt_g);
         if g.unresolved() {
-            if !(g.kinds & ZERO != 0 && !g.beyond) {
+            if g.kinds & ZERO == 0 || g.beyond {
                 unresolved.push((enc.0.max(lo), enc.1.min(hi)));
             }
             return;

@@ -465,7 +465,7 @@ impl SpeedPolynomials {
     pub fn new(canonical: &Canonical) -> Result<Self> {
         let (e, sqrt_g, exponent) = entries(canonical)?;
         let co = coefficients(&e);
-        if !(co.a4.v > co.a4.bound()) {
+        if co.a4.v.partial_cmp(&co.a4.bound()) != Some(std::cmp::Ordering::Greater) {
             // Unscaled for the message: det M scales with the square of the entries.
             let unscale = 2f64.powi(2 * exponent);
             return Err(accuracy_lost(format!(
