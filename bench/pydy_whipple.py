@@ -87,8 +87,13 @@ TABLE2_V5 = {
 }
 
 
-def derive():
-    """Kane's equations of the Whipple bicycle; returns what the rest of the script needs."""
+def derive(with_torques=False):
+    """Kane's equations of the Whipple bicycle; returns what the rest of the script needs.
+
+    With `with_torques`, the rider's lean torque T4 (on the rear frame C about A.x, the
+    horizontal line of the heading) and steer torque T7 (on the front frame E about the steer
+    axis C.z, its reaction on C) are added as PyDy specifieds, and a seventh value, [T4, T7],
+    is returned."""
     q1, q2, q3, q4, q5, q6, q7, q8 = me.dynamicsymbols("q1:9")
     u3, u4, u5, u6, u7, u8 = me.dynamicsymbols("u3:9")
     (d1, d2, d3, rR, rF, l1, l2, l3, l4, g, mc, md, me_, mf,
@@ -145,6 +150,11 @@ def derive():
         me.RigidBody("F", fo, F, mf, (me.inertia(F, if11, if22, if11), fo)),
     ]
     loads = [(co, mc * g * A.z), (do, md * g * A.z), (eo, me_ * g * A.z), (fo, mf * g * A.z)]
+    inputs = []
+    if with_torques:
+        T4, T7 = me.dynamicsymbols("T4 T7")
+        inputs = [T4, T7]
+        loads += [(C, T4 * A.x - T7 * C.z), (E, T7 * C.z)]
 
     kane = me.KanesMethod(
         N,
@@ -177,7 +187,12 @@ def derive():
         "Bd": sm.lambdify(args, Bd, cse=True),
         "Bi": sm.lambdify(args, Bi, cse=True),
         "speed": sm.lambdify((coordinates, speeds, constants), speed, cse=True),
+        # Front contact relative to the rear contact, along N.x and N.y.
+        "front_contact": sm.lambdify(
+            args, [fn.pos_from(dn).dot(N.x), fn.pos_from(dn).dot(N.y)], cse=True),
     }
+    if with_torques:
+        return kane, coordinates, speeds, qdot, constants, helpers, inputs
     return kane, coordinates, speeds, qdot, constants, helpers
 
 

@@ -5,8 +5,8 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use whipple::analysis::validation::{
-    full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix, StudyParams,
+use whipple::analysis::comparison::{
+    full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix, StudySettings,
 };
 use whipple::nonlinear::Model;
 use whipple::BenchmarkParameters;
@@ -20,7 +20,7 @@ fn linearize(c: &mut Criterion) {
     c.bench_function("exact full-state Jacobian (48x48, dual numbers)", |b| {
         b.iter(|| full_state_jacobian(black_box(&model), black_box(4.6)))
     });
-    let study = StudyParams::default();
+    let study = StudySettings::default();
     c.bench_function("study finite-difference Jacobian (48x48)", |b| {
         b.iter(|| full_state_jacobian_fd(black_box(&model), black_box(4.6), &study))
     });

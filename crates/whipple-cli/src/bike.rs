@@ -1,75 +1,160 @@
-//! `--bike`: a preset name or a parameter file path.
+//! `--bike`: a preset name or a parameter file path; `--format` and `--strict` (global options).
 
 use std::path::Path;
+use std::sync::OnceLock;
 
 use anyhow::{anyhow, bail, Context, Result};
 use whipple::parameters::io::{parse, Format};
 use whipple::parameters::presets;
+use whipple::parameters::Notice;
 use whipple::{BenchmarkParameters, Bicycle, Error};
 
-/// A loaded bicycle, validated, with a label for titles and messages.
+/// The global reading options, set once from the command line.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ReadOptions {
+    /// `--format`: the file format, overriding extension and content.
+    pub format: Option<Format>,
+    /// `--strict`: warnings are errors.
+    pub strict: bool,
+}
+
+static OPTIONS: OnceLock<ReadOptions> = OnceLock::new();
+
+/// Sets the reading options (once, from `main`).
+pub fn set_options(options: ReadOptions) {
+    let _ = OPTIONS.set(options);
+}
+
+fn options() -> ReadOptions {
+    OPTIONS.get().copied().unwrap_or_default()
+}
+
+/// A loaded bicycle, checked, with a label for titles and messages and its warnings and notes
+/// (already printed to standard error).
 pub struct LoadedBike {
     pub label: String,
     pub bicycle: Bicycle,
     pub benchmark: BenchmarkParameters,
+    pub notices: Vec<Notice>,
 }
 
-/// Reads `--bike`: a file when the argument names an existing file or ends in .toml, .json or
-/// .m; otherwise a preset.
+impl LoadedBike {
+    /// The notices as a JSON list (the `warnings` field of JSON outputs).
+    pub fn warnings_json(&self) -> serde_json::Value {
+        serde_json::to_value(&self.notices).unwrap_or(serde_json::Value::Null)
+    }
+}
+
+/// Reads `--bike`: a preset when the argument names one (a file of the same name in the
+/// working directory gets a note saying which was taken), otherwise a file whose format
+/// follows from `--format`, its extension or its content. Warnings and notes go to standard
+/// error; with `--strict` a warning is an error.
 pub fn load(arg: &str) -> Result<LoadedBike> {
     let path = Path::new(arg);
-    let extension = path.extension().and_then(|e| e.to_str());
-    let looks_like_file = path.is_file() || extension.and_then(Format::from_extension).is_some();
-    let (label, bicycle) = if looks_like_file {
-        let Some(format) = extension.and_then(Format::from_extension) else {
-            bail!(
-                "cannot tell the format of {}: use a .toml, .json or .m (JBike6) file",
-                path.display()
-            );
-        };
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("reading parameters from {}", path.display()))?;
-        let mut bicycle = parse(&text, format).map_err(|e| located(e, path, &text))?;
-        if bicycle.name.is_none() {
-            bicycle.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+    let opts = options();
+    let preset = presets::find(arg).ok();
+    let (label, bicycle) = match preset {
+        Some(preset) if opts.format.is_none() || !path.is_file() => {
+            if path.is_file() {
+                eprintln!(
+                    "note: `{arg}` names both a preset and a file in this directory; using the \
+                     preset (write ./{arg} for the file)"
+                );
+            }
+            (preset.name.to_string(), preset.bicycle())
         }
-        let label = bicycle.name.clone().unwrap_or_else(|| arg.to_string());
-        (label, bicycle)
-    } else {
-        let preset = presets::find(arg).map_err(|e| {
-            anyhow!("{e}\n(--bike takes a preset name or a .toml, .json or .m parameter file)")
-        })?;
-        (preset.name.to_string(), preset.bicycle())
+        _ => {
+            let extension = path.extension().and_then(|e| e.to_str());
+            let looks_like_file = path.is_file()
+                || opts.format.is_some()
+                || extension.is_some_and(|e| {
+                    Format::from_extension(e).is_some() || e.eq_ignore_ascii_case("txt")
+                });
+            if !looks_like_file {
+                let known = presets::names();
+                bail!(
+                    "unknown preset `{arg}` (known presets: {known}), and no parameter file of \
+                     that name (--bike takes a preset name or a .toml, .json, .m, .txt or .yml file)"
+                );
+            }
+            let bytes = std::fs::read(path)
+                .with_context(|| format!("reading parameters from {}", path.display()))?;
+            let text = String::from_utf8(bytes)
+                .map_err(|_| anyhow!("{}: the file is not UTF-8 text", path.display()))?;
+            let name = path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            let format = match opts.format {
+                Some(f) => f,
+                None => Format::detect(&name, &text).map_err(|e| located(e, path, &text))?,
+            };
+            let mut bicycle = parse(&text, format).map_err(|e| located(e, path, &text))?;
+            if bicycle.name.is_none() {
+                bicycle.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+            }
+            let label = bicycle.name.clone().unwrap_or_else(|| arg.to_string());
+            (label, bicycle)
+        }
     };
-    let benchmark = bicycle
-        .benchmark()
+    let checked = bicycle
+        .check()
         .with_context(|| format!("checking the parameters of {label}"))?;
+    for notice in &checked.notices {
+        eprintln!("{notice}");
+    }
+    let checked = if opts.strict {
+        checked
+            .strict()
+            .with_context(|| format!("checking the parameters of {label} (--strict)"))?
+    } else {
+        checked
+    };
     Ok(LoadedBike {
         label,
         bicycle,
-        benchmark,
+        benchmark: checked.benchmark,
+        notices: checked.notices,
     })
+}
+
+/// At most this many characters of a line are shown around an error's column.
+const WINDOW: usize = 60;
+
+/// The part of a (possibly huge) line around a column, and the caret's position in it.
+fn window(line: &str, column: usize) -> (String, usize) {
+    let chars: Vec<char> = line.chars().collect();
+    let col = column.saturating_sub(1).min(chars.len());
+    let start = col.saturating_sub(WINDOW / 2);
+    let end = (start + WINDOW).min(chars.len());
+    let mut shown: String = chars[start..end].iter().collect();
+    let mut caret = col - start;
+    if start > 0 {
+        shown = format!("…{shown}");
+        caret += 1;
+    }
+    if end < chars.len() {
+        shown.push('…');
+    }
+    (shown, caret)
 }
 
 /// A parse error with the file name and, where known, the offending line with a caret.
 fn located(error: Error, path: &Path, text: &str) -> anyhow::Error {
     match &error {
-        Error::Parse {
-            format,
-            line,
-            column,
-            message,
-        } if *line > 0 => {
-            let source_line = text.lines().nth(line - 1).unwrap_or("");
-            let caret = format!("{}^", " ".repeat(column.saturating_sub(1)));
+        Error::Parse { line, column, .. } if *line > 0 => {
+            let source_line = text
+                .trim_start_matches('\u{feff}')
+                .lines()
+                .nth(line - 1)
+                .unwrap_or("");
+            let (shown, caret) = window(source_line, *column);
             anyhow!(
-                "{}:{line}:{column}: {format} error: {message}\n  |\n  | {source_line}\n  | {caret}",
-                path.display()
+                "{}:{line}:{column}: {error}\n  |\n  | {shown}\n  | {}^",
+                path.display(),
+                " ".repeat(caret)
             )
         }
-        Error::Parse {
-            format, message, ..
-        } => anyhow!("{}: {format} error: {message}", path.display()),
         _ => anyhow!("{}: {error}", path.display()),
     }
 }

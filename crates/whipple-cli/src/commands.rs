@@ -6,10 +6,12 @@ use std::path::Path;
 use anyhow::{bail, Context, Result};
 use nalgebra::Matrix2;
 use serde_json::json;
+use whipple::analysis::sensitivity;
 use whipple::analysis::{stability, sweep};
 use whipple::linear::Canonical;
-use whipple::parameters::io::{benchmark_key_doc, write, Format};
+use whipple::parameters::io::{write, Format};
 use whipple::parameters::presets::PRESETS;
+use whipple::parameters::table::key_doc;
 use whipple::{Bicycle, Description};
 
 use crate::bike::{load, LoadedBike};
@@ -47,20 +49,37 @@ pub fn show(arg: &str) -> Result<()> {
     if let Some(j) = bike.bicycle.jbike6() {
         writeln!(text, "\nJBike6 form (x forward, y up; SI units, radians):")?;
         for (name, value) in j.fields() {
-            writeln!(text, "  {name:<18} {:>22}", number(value)?)?;
+            let sigma = match bike.bicycle.sigma.get(&name) {
+                Some(s) => format!(" ± {}", number(*s)?),
+                None => String::new(),
+            };
+            writeln!(
+                text,
+                "  {name:<18} {:>22}{sigma}  {}",
+                number(value)?,
+                key_doc(&name).unwrap_or_default()
+            )?;
         }
     }
     writeln!(
         text,
         "\nBenchmark form (Meijaard et al. 2007; x forward, y right, z down):"
     )?;
+    let own = bike.bicycle.jbike6().is_none();
     for (key, value) in bike.benchmark.fields() {
+        let sigma = match bike.bicycle.sigma.get(key) {
+            Some(s) if own => format!(" ± {}", number(*s)?),
+            _ => String::new(),
+        };
         writeln!(
             text,
-            "  {key:<5} {:>22}  {}",
+            "  {key:<5} {:>22}{sigma}  {}",
             number(value)?,
-            benchmark_key_doc(key)
+            key_doc(key).unwrap_or_default()
         )?;
+    }
+    for e in &bike.bicycle.extras {
+        writeln!(text, "  (not used) {} = {}: {}", e.key, e.text, e.meaning)?;
     }
     writeln!(
         text,
@@ -76,16 +95,25 @@ pub fn convert(arg: &str, to: FileFormat, keep_form: bool, out: Option<&Path>) -
     let bicycle = if keep_form {
         bike.bicycle.clone()
     } else {
+        let sigma = if bike.bicycle.jbike6().is_none() {
+            bike.bicycle.sigma.clone()
+        } else {
+            // The sigmas of the JBike6 form do not carry over to the combined bodies.
+            Default::default()
+        };
         Bicycle {
-            name: bike.bicycle.name.clone(),
-            source: bike.bicycle.source.clone(),
             description: Description::Benchmark(bike.benchmark),
+            sigma,
+            ..bike.bicycle.clone()
         }
     };
     let format = match to {
         FileFormat::Toml => Format::Toml,
         FileFormat::Json => Format::Json,
         FileFormat::M => Format::Jbike6M,
+        FileFormat::BpTxt => Format::BicycleParametersTxt,
+        FileFormat::HcTxt => Format::HumanControlTxt,
+        FileFormat::Yaml => Format::Yaml,
     };
     let text = write(&bicycle, format).with_context(|| {
         if format == Format::Jbike6M && !keep_form {
@@ -164,6 +192,7 @@ pub fn eig(
     format: TableFormat,
     out: Option<&Path>,
     plot: Option<&Path>,
+    sigma_bands: bool,
 ) -> Result<()> {
     let bike = load(arg)?;
     let (start, stop, step) = parse_triple(speeds, "--speeds")?;
@@ -172,7 +201,15 @@ pub fn eig(
     let s = sweep::eigen_sweep(&c, &grid)?;
     if let Some(path) = plot {
         let critical = stability::critical_speeds(&c, start.min(stop), stop.max(start + step))?;
-        crate::figures::eigen_plot(&bike, &s, &critical, path)?;
+        let bands = if sigma_bands {
+            if !bike.bicycle.has_uncertainty() {
+                bail!("--sigma-bands: {} gives no standard deviations (+/-sigma or {{ value, sigma }})", bike.label);
+            }
+            Some(eigen_sigma_bands(&bike, &s)?)
+        } else {
+            None
+        };
+        crate::figures::eigen_plot(&bike, &s, &critical, bands.as_deref(), path)?;
     }
     let text = match format {
         TableFormat::Csv => whipple_report::eigen_csv(&s),
@@ -192,6 +229,7 @@ pub fn eig(
                 "bike": bike.label,
                 "modes": s.modes.map(|m| m.name()),
                 "rows": rows,
+                "warnings": bike.warnings_json(),
             });
             format!("{}\n", serde_json::to_string_pretty(&doc)?)
         }
@@ -312,6 +350,206 @@ pub fn modes(arg: &str, speed: f64, format: TextFormat) -> Result<()> {
         }
     };
     emit(&text, None)
+}
+
+pub(crate) fn optional(x: Option<f64>) -> Result<serde_json::Value> {
+    match x {
+        Some(v) => {
+            number(v)?;
+            Ok(json!(v))
+        }
+        None => Ok(serde_json::Value::Null),
+    }
+}
+
+/// `value ± sigma unit` when a sigma is known, else `value unit`.
+pub(crate) fn with_sigma(v: f64, sigma: Option<f64>, unit: &str) -> Result<String> {
+    Ok(match sigma {
+        Some(s) if s > 0.0 => format!("{} ± {} {unit}", round_to_sigma(v, s), round_sigma(s)),
+        _ => format!("{} {unit}", number(v)?),
+    })
+}
+
+/// A standard deviation to three significant digits.
+pub(crate) fn round_sigma(s: f64) -> String {
+    let digits = (2 - s.abs().log10().floor() as i32).max(0) as usize;
+    format!("{s:.digits$}")
+}
+
+/// A value to the decimals of its three-digit standard deviation.
+pub(crate) fn round_to_sigma(v: f64, s: f64) -> String {
+    let digits = (2 - s.abs().log10().floor() as i32).max(0) as usize;
+    format!("{v:.digits$}")
+}
+
+/// Each tracked eigenvalue's real part ± σ at every speed of the sweep.
+fn eigen_sigma_bands(bike: &LoadedBike, s: &sweep::EigenSweep) -> Result<Vec<[(f64, f64); 4]>> {
+    let d = sensitivity::Derivatives::new(&bike.bicycle)?;
+    let mut bands = Vec::with_capacity(s.speeds.len());
+    for (v, row) in s.speeds.iter().zip(&s.eigenvalues) {
+        let sig = sensitivity::eigenvalue_sigmas(&d, *v)?;
+        let mut out = [(f64::NAN, f64::NAN); 4];
+        for (k, l) in row.iter().enumerate() {
+            let nearest = sig.iter().min_by(|a, b| {
+                let da = (a.re - l.re).hypot(a.im - l.im);
+                let db = (b.re - l.re).hypot(b.im - l.im);
+                da.total_cmp(&db)
+            });
+            if let Some(e) = nearest {
+                if let Some(sr) = e.re_sigma {
+                    out[k] = (l.re - sr, l.re + sr);
+                }
+            }
+        }
+        bands.push(out);
+    }
+    Ok(bands)
+}
+
+pub fn sensitivity(
+    arg: &str,
+    speed: Option<f64>,
+    range: &str,
+    format: TableFormat,
+    out: Option<&Path>,
+    plot: Option<&Path>,
+) -> Result<()> {
+    let bike = load(arg)?;
+    let (lo, hi) = crate::speeds::parse_range(range, "--range")?;
+    if lo >= hi {
+        bail!("--range: LO ({lo}) must be less than HI ({hi})");
+    }
+    if let Some(v) = speed {
+        if !v.is_finite() || v < 0.0 {
+            bail!("--speed must be a finite speed ≥ 0, got {v}");
+        }
+    }
+    if let Some(path) = plot {
+        whipple_report::Format::from_path(path)
+            .with_context(|| format!("--plot {}", path.display()))?;
+    }
+    let s = sensitivity::sensitivities(&bike.bicycle, lo, hi, speed)
+        .with_context(|| format!("the sensitivities of {}", bike.label))?;
+    if let Some(path) = plot {
+        crate::figures::tornado(&bike, &s, path)?;
+    }
+    let opt = |x: Option<f64>| -> Result<String> {
+        Ok(match x {
+            Some(v) => number(v)?,
+            None => String::new(),
+        })
+    };
+    let text = match format {
+        TableFormat::Json => {
+            let mut doc = serde_json::to_value(&s)?;
+            doc["bike"] = json!(bike.label);
+            doc["warnings"] = bike.warnings_json();
+            for p in &s.parameters {
+                for x in [
+                    p.weave_speed,
+                    p.capsize_speed,
+                    p.stable_width,
+                    p.weave_real,
+                    p.capsize_real,
+                ]
+                .into_iter()
+                .flatten()
+                {
+                    number(x)?;
+                }
+            }
+            format!("{}\n", serde_json::to_string_pretty(&doc)?)
+        }
+        TableFormat::Csv => {
+            let mut t = String::from("key,unit,value,d_weave_speed,d_capsize_speed,d_stable_width,e_weave_speed,e_capsize_speed,e_stable_width,d_weave_real,d_capsize_real\n");
+            for p in &s.parameters {
+                writeln!(
+                    t,
+                    "{},{},{},{},{},{},{},{},{},{},{}",
+                    p.key,
+                    p.unit,
+                    number(p.value)?,
+                    opt(p.weave_speed)?,
+                    opt(p.capsize_speed)?,
+                    opt(p.stable_width)?,
+                    opt(p.weave_speed_elasticity)?,
+                    opt(p.capsize_speed_elasticity)?,
+                    opt(p.stable_width_elasticity)?,
+                    opt(p.weave_real)?,
+                    opt(p.capsize_real)?
+                )?;
+            }
+            t
+        }
+        TableFormat::Table => {
+            let c = &s.critical;
+            let mut t = format!(
+                "{}: exact sensitivities (dual numbers) to each parameter of its {} form\n",
+                bike.label,
+                match s.form {
+                    whipple::parameters::Form::Benchmark => "benchmark",
+                    whipple::parameters::Form::Jbike6 => "JBike6",
+                }
+            );
+            let show = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.6}"));
+            writeln!(
+                t,
+                "  base: v_w = {} m/s, v_c = {} m/s, stable width = {} m/s",
+                show(c.weave_speed),
+                show(c.capsize_speed),
+                show(s.stable_range.map(|(a, b)| b - a))
+            )?;
+            writeln!(
+                t,
+                "  d/dp: derivative per unit of p; e: elasticity d ln(.)/d ln p (dimensionless)"
+            )?;
+            let g = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.4e}"));
+            let e = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:+.4}"));
+            write!(
+                t,
+                "  {:<16} {:>8} {:>14} {:>12} {:>9} {:>12} {:>9} {:>12} {:>9}",
+                "parameter",
+                "unit",
+                "value",
+                "dv_w/dp",
+                "e(v_w)",
+                "dv_c/dp",
+                "e(v_c)",
+                "dwidth/dp",
+                "e(width)"
+            )?;
+            if let Some(v) = speed {
+                write!(
+                    t,
+                    " {:>12} {:>12}",
+                    format!("dRe_w/dp@{v}"),
+                    format!("dRe_c/dp@{v}")
+                )?;
+            }
+            writeln!(t)?;
+            for p in &s.parameters {
+                write!(
+                    t,
+                    "  {:<16} {:>8} {:>14} {:>12} {:>9} {:>12} {:>9} {:>12} {:>9}",
+                    p.key,
+                    p.unit,
+                    number(p.value)?,
+                    g(p.weave_speed),
+                    e(p.weave_speed_elasticity),
+                    g(p.capsize_speed),
+                    e(p.capsize_speed_elasticity),
+                    g(p.stable_width),
+                    e(p.stable_width_elasticity)
+                )?;
+                if speed.is_some() {
+                    write!(t, " {:>12} {:>12}", g(p.weave_real), g(p.capsize_real))?;
+                }
+                writeln!(t)?;
+            }
+            t
+        }
+    };
+    emit(&text, out)
 }
 
 pub fn draw(arg: &str, out: &Path) -> Result<()> {

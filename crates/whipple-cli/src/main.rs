@@ -21,6 +21,27 @@ use clap::{Parser, Subcommand, ValueEnum};
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Format of the --bike file: toml, json, m, bp-txt (BicycleParameters <Name>Benchmark.txt),
+    /// hc-txt (HumanControl <Name>Par.txt), yaml; by default from the extension and content.
+    #[arg(long = "bike-format", global = true, value_parser = parse_format)]
+    format_in: Option<whipple::parameters::io::Format>,
+    /// Treat the bicycle's warnings (a triangle inequality broken by a measured tensor, ...) as
+    /// errors.
+    #[arg(long, global = true)]
+    strict: bool,
+}
+
+fn parse_format(name: &str) -> Result<whipple::parameters::io::Format, String> {
+    whipple::parameters::io::Format::from_name(name).ok_or_else(|| {
+        format!(
+            "unknown format `{name}` (formats: {})",
+            whipple::parameters::io::FORMATS
+                .iter()
+                .map(|(_, n, _)| *n)
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    })
 }
 
 /// Output formats for tables.
@@ -52,6 +73,12 @@ pub enum FileFormat {
     Json,
     /// JBike6's MATLAB assignments (JBike6-form bicycles only).
     M,
+    /// BicycleParameters' <Name>Benchmark.txt (`key = value+/-sigma`).
+    BpTxt,
+    /// HumanControl's <Name>Par.txt (`key = value`).
+    HcTxt,
+    /// BicycleParameters' YAML parameter set.
+    Yaml,
 }
 
 #[derive(Subcommand)]
@@ -108,6 +135,10 @@ enum Command {
         /// Also draw the eigenvalues against speed to this .svg or .png file.
         #[arg(long)]
         plot: Option<std::path::PathBuf>,
+        /// In the plot, shade each eigenvalue's real part ± its standard deviation (from the
+        /// parameters' sigmas).
+        #[arg(long)]
+        sigma_bands: bool,
     },
     /// Eigenvalues and mode shapes (eigenvectors) at one speed.
     Modes {
@@ -213,6 +244,29 @@ enum Command {
         #[arg(long, value_enum, default_value = "stable-width")]
         quantity: design::Quantity,
     },
+    /// Exact sensitivities of the weave and capsize speeds and the stable range's width to every
+    /// parameter of the bicycle's own form (and, at --speed, of the weave's and capsize's real
+    /// parts): derivatives and elasticities.
+    Sensitivity {
+        /// A preset name or a parameter file.
+        #[arg(long)]
+        bike: String,
+        /// Also the derivatives of the weave's and capsize's real parts at this speed [m/s].
+        #[arg(long)]
+        speed: Option<f64>,
+        /// Speed range LO:HI searched for the critical speeds, in m/s.
+        #[arg(long, default_value = "0:20", allow_hyphen_values = true)]
+        range: String,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TableFormat,
+        /// Write the table to this file instead of standard output.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Also draw a tornado plot of the elasticities of v_w to this .svg or .png file.
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+    },
     /// Simulate the fully non-linear bicycle from a few initial numbers.
     Simulate(simulate::SimulateArgs),
     /// Serve JBike6's window in the browser: a local page and JSON API (Ctrl-C to stop).
@@ -259,6 +313,10 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    bike::set_options(bike::ReadOptions {
+        format: cli.format_in,
+        strict: cli.strict,
+    });
     let result = match cli.command {
         Command::Presets => commands::presets(),
         Command::Show { bike } => commands::show(&bike),
@@ -279,7 +337,30 @@ fn main() -> ExitCode {
             format,
             out,
             plot,
-        } => commands::eig(&bike, &speeds, format, out.as_deref(), plot.as_deref()),
+            sigma_bands,
+        } => commands::eig(
+            &bike,
+            &speeds,
+            format,
+            out.as_deref(),
+            plot.as_deref(),
+            sigma_bands,
+        ),
+        Command::Sensitivity {
+            bike,
+            speed,
+            range,
+            format,
+            out,
+            plot,
+        } => commands::sensitivity(
+            &bike,
+            speed,
+            &range,
+            format,
+            out.as_deref(),
+            plot.as_deref(),
+        ),
         Command::Modes {
             bike,
             speed,

@@ -9,10 +9,9 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use serde_json::json;
-use whipple::integrate::dopri5::Dopri5Params;
 use whipple::nonlinear::{
-    simulate, InitialConditions, Integrator, Model, Outcome, Sample, Simulation,
-    SimulationSettings, TorqueExpression, TorqueFn, Wheel,
+    simulate, InitialConditions, IntegratorKind, Model, Outcome, Sample, Simulation,
+    SimulationRequest, SimulationSettings, TorqueInput,
 };
 
 use crate::bike::{load, LoadedBike};
@@ -87,149 +86,60 @@ pub struct SimulateArgs {
     pub plot: Option<PathBuf>,
 }
 
-/// Compiles a torque expression (the library's [`TorqueExpression`]), naming the option in its
-/// error.
-fn torque(option: &str, text: &str) -> Result<TorqueFn> {
-    match TorqueExpression::parse(text) {
-        Ok(expression) => Ok(expression.into_torque()),
-        Err(whipple::Error::InvalidArgument { rule, .. }) => bail!("{option}: {rule}"),
-        Err(other) => Err(anyhow::Error::new(other).context(option.to_string())),
-    }
-}
-
-fn check_finite(option: &str, x: f64) -> Result<()> {
-    if !x.is_finite() {
-        bail!("{option} must be a finite number, got {x}");
-    }
-    Ok(())
-}
-
-fn settings(args: &SimulateArgs) -> Result<SimulationSettings> {
-    for (option, x) in [
-        ("--speed", args.speed),
-        ("--lean", args.lean),
-        ("--steer", args.steer),
-        ("--lean-rate", args.lean_rate),
-        ("--steer-rate", args.steer_rate),
-        ("--duration", args.duration),
-        ("--fall-angle", args.fall_angle),
-    ] {
-        check_finite(option, x)?;
-    }
-    if args.lean.abs() >= 90.0 {
-        bail!(
-            "--lean must be below 90 degrees in size (the bicycle would lie on the ground), got {}",
-            args.lean
-        );
-    }
-    if !(args.fall_angle > 0.0 && args.fall_angle < 90.0) {
-        bail!(
-            "--fall-angle must lie between 0 and 90 degrees, got {}",
-            args.fall_angle
-        );
-    }
-    if args.duration <= 0.0 {
-        bail!("--duration must be positive, got {}", args.duration);
-    }
-    let integrator = match args.integrator {
-        IntegratorChoice::Rk4 => {
-            if args.rtol.is_some() {
-                bail!("--rtol applies to --integrator adaptive; RK4 takes --dt");
-            }
-            let dt = args.dt.unwrap_or(1e-3);
-            check_finite("--dt", dt)?;
-            if dt <= 0.0 || dt > args.duration {
-                bail!(
-                    "--dt must be positive and at most the duration ({} s), got {dt}",
-                    args.duration
-                );
-            }
-            let steps = args.duration / dt;
-            if steps > 1e8 {
-                bail!("--duration / --dt asks for {steps:.0} steps, more than the limit of 1e8");
-            }
-            Integrator::Rk4 { dt }
-        }
-        IntegratorChoice::Adaptive => {
-            if args.dt.is_some() {
-                bail!("--dt applies to --integrator rk4; the adaptive integrator takes --rtol");
-            }
-            let rtol = args.rtol.unwrap_or(1e-8);
-            check_finite("--rtol", rtol)?;
-            if !(rtol > 0.0 && rtol < 1.0) {
-                bail!("--rtol must lie between 0 and 1, got {rtol}");
-            }
-            Integrator::Dopri5(Dopri5Params {
-                rtol,
-                atol: rtol * 1e-2,
-                ..Dopri5Params::default()
-            })
-        }
-    };
-    Ok(SimulationSettings {
-        integrator,
+/// The library's request from the command line's options (degrees as typed).
+fn request(args: &SimulateArgs) -> SimulationRequest {
+    SimulationRequest {
+        speed: args.speed,
+        lean_deg: args.lean,
+        steer_deg: args.steer,
+        lean_rate: args.lean_rate,
+        steer_rate: args.steer_rate,
         duration: args.duration,
-        fall_angle: args.fall_angle.to_radians(),
+        integrator: match args.integrator {
+            IntegratorChoice::Rk4 => IntegratorKind::Rk4,
+            IntegratorChoice::Adaptive => IntegratorKind::Adaptive,
+        },
+        dt: args.dt,
+        rtol: args.rtol,
+        steer_torque: torque(&args.steer_torque),
+        lean_torque: torque(&args.lean_torque),
+        fall_angle_deg: args.fall_angle,
         stop_on_lift_off: !args.ignore_lift_off,
-        steer_torque: args
-            .steer_torque
-            .as_deref()
-            .map(|e| torque("--steer-torque", e))
-            .transpose()?,
-        lean_torque: args
-            .lean_torque
-            .as_deref()
-            .map(|e| torque("--lean-torque", e))
-            .transpose()?,
-        ..SimulationSettings::default()
+        max_steps: None,
+    }
+}
+
+fn torque(expression: &Option<String>) -> TorqueInput {
+    expression
+        .clone()
+        .map_or_else(TorqueInput::default, TorqueInput::Expression)
+}
+
+/// The option that sets a field of the library's request.
+fn option(field: &str) -> String {
+    match field {
+        "lean_deg" => "--lean".into(),
+        "steer_deg" => "--steer".into(),
+        "fall_angle_deg" => "--fall-angle".into(),
+        other => format!("--{}", other.replace('_', "-")),
+    }
+}
+
+/// The library's rules applied to the options; an error names the option.
+fn settings(args: &SimulateArgs) -> Result<(InitialConditions, SimulationSettings)> {
+    request(args).validate().map_err(|error| match error {
+        whipple::Error::InvalidArgument { what, rule }
+        | whipple::Error::LimitExceeded { what, rule } => {
+            // "--dt must be positive …", "--steer-torque: unknown name …".
+            let joint = if rule.starts_with("must ") || rule.starts_with("applies ") {
+                " "
+            } else {
+                ": "
+            };
+            anyhow::anyhow!("{}{joint}{rule}", option(what))
+        }
+        other => anyhow::Error::new(other),
     })
-}
-
-fn wheel_name(wheel: Wheel) -> &'static str {
-    match wheel {
-        Wheel::Rear => "rear",
-        Wheel::Front => "front",
-    }
-}
-
-/// How the run ended, in words, and whether that is a failure of the computation (rather than
-/// something the bicycle did).
-fn describe(run: &Simulation) -> (String, bool) {
-    let final_lean = run.samples.last().map_or(0.0, |s| s.lean);
-    match &run.outcome {
-        Outcome::Completed => ("completed".into(), false),
-        Outcome::Fell { t, lean } => (
-            format!("fell: |lean| passed the fall angle at t = {t:.4} s (lean {:.2} deg)", lean.to_degrees()),
-            false,
-        ),
-        Outcome::WheelLifted { t, wheel } => (
-            format!(
-                "the {} wheel's normal force turned negative at t = {t:.4} s: it would lift off (lean {:.1} deg{})",
-                wheel_name(*wheel),
-                final_lean.to_degrees(),
-                if final_lean.abs() > 20f64.to_radians() { ", falling" } else { "" }
-            ),
-            false,
-        ),
-        Outcome::ProjectionFailed {
-            t,
-            iterations,
-            residual,
-        } => (
-            format!("stopped: the projection onto the constraints diverged at t = {t:.4} s ({iterations} iterations, residual {residual:e})"),
-            true,
-        ),
-        Outcome::NonFiniteState { t } => (
-            format!("stopped: the state became non-finite at t = {t:.4} s (check the torque expressions)"),
-            true,
-        ),
-        Outcome::StepSizeTooSmall { t } => (
-            format!("stopped: the adaptive step size became too small at t = {t:.4} s"),
-            true,
-        ),
-        Outcome::Stopped { t } => (format!("stopped on request at t = {t:.4} s"), true),
-        Outcome::Failed { t, error } => (format!("stopped at t = {t:.4} s: {error}"), true),
-    }
 }
 
 const CSV_HEADER: &str = "t,lean,steer,lean_rate,steer_rate,yaw,x,y,speed,energy,position_residual,velocity_residual,rear_normal,rear_longitudinal,rear_lateral,front_normal,front_longitudinal,front_lateral,front_x,front_y";
@@ -261,9 +171,7 @@ fn sample_values(s: &Sample) -> [f64; 20] {
 
 /// The samples that are finite (a run that went non-finite keeps what came before).
 fn finite_samples(run: &Simulation) -> impl Iterator<Item = &Sample> {
-    run.samples
-        .iter()
-        .filter(|s| sample_values(s).iter().all(|x| x.is_finite()))
+    run.samples.iter().filter(|s| s.is_finite())
 }
 
 fn csv(run: &Simulation) -> Result<String> {
@@ -306,7 +214,7 @@ fn json_doc(
         "outcome": outcome,
         "steps": run.steps,
         "rejected_steps": run.rejected_steps,
-        "pulled_down_from_start": run.pulled_down_from_start.iter().map(|w| wheel_name(*w)).collect::<Vec<_>>(),
+        "pulled_down_from_start": run.pulled_down_from_start.iter().map(|w| w.name()).collect::<Vec<_>>(),
         "samples": samples,
     });
     Ok(format!("{}\n", serde_json::to_string_pretty(&doc)?))
@@ -358,8 +266,7 @@ fn table(
     for w in &run.pulled_down_from_start {
         writeln!(
             t,
-            "  note: the {} contact pulls its wheel down from the start (the masses sit beyond the other contact); contacts are bilateral, as in the linearized model",
-            wheel_name(*w)
+            "  note: the {w} contact pulls its wheel down from the start (the masses sit beyond the other contact); contacts are bilateral, as in the linearized model"
         )?;
     }
     writeln!(
@@ -412,31 +319,12 @@ fn table(
     Ok(t)
 }
 
-/// A short line for the plot's caption.
-fn short_outcome(run: &Simulation) -> String {
-    let lean = run.samples.last().map_or(0.0, |s| s.lean).to_degrees();
-    match &run.outcome {
-        Outcome::Completed => "completed".into(),
-        Outcome::Fell { t, .. } => format!("fell at t = {t:.3} s"),
-        Outcome::WheelLifted { t, wheel } => format!(
-            "{} wheel lifts off at t = {t:.3} s (lean {lean:.1}°)",
-            wheel_name(*wheel)
-        ),
-        _ => format!(
-            "stopped at t = {:.3} s",
-            run.samples.last().map_or(0.0, |s| s.t)
-        ),
-    }
-}
-
 fn plot(bike: &LoadedBike, args: &SimulateArgs, run: &Simulation, path: &Path) -> Result<()> {
     let samples: Vec<&Sample> = finite_samples(run).collect();
     let mut events = Vec::new();
     match run.outcome {
         Outcome::Fell { t, .. } => events.push((t, "fell".to_string())),
-        Outcome::WheelLifted { t, wheel } => {
-            events.push((t, format!("{} wheel lifts", wheel_name(wheel))))
-        }
+        Outcome::WheelLifted { t, wheel, .. } => events.push((t, format!("{wheel} wheel lifts"))),
         _ => {}
     }
     let series = whipple_report::SimulationSeries {
@@ -451,7 +339,7 @@ fn plot(bike: &LoadedBike, args: &SimulateArgs, run: &Simulation, path: &Path) -
         rear_contact: samples.iter().map(|s| (s.x, s.y)).collect(),
         front_contact: samples.iter().map(|s| (s.front_x, s.front_y)).collect(),
         events,
-        outcome: Some(short_outcome(run)),
+        outcome: Some(run.caption()),
     };
     let figure = whipple_report::time_series_plot(&series)?;
     let bytes = figure
@@ -461,7 +349,7 @@ fn plot(bike: &LoadedBike, args: &SimulateArgs, run: &Simulation, path: &Path) -
 }
 
 pub fn run(args: &SimulateArgs) -> Result<()> {
-    let settings_without_progress = settings(args)?;
+    let (initial, settings_without_progress) = settings(args)?;
     if let Some(path) = &args.plot {
         whipple_report::Format::from_path(path)
             .with_context(|| format!("--plot {}", path.display()))?;
@@ -470,14 +358,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     let model = Model::new(&bike.benchmark)
         .with_context(|| format!("building the non-linear model of {}", bike.label))?;
     let start = model
-        .initial_state(&InitialConditions {
-            speed: args.speed,
-            lean: args.lean.to_radians(),
-            steer: args.steer.to_radians(),
-            lean_rate: args.lean_rate,
-            steer_rate: args.steer_rate,
-            ..InitialConditions::upright(args.speed)
-        })
+        .initial_state(&initial)
         .context("placing the bicycle in its initial state")?;
 
     // A progress bar on a terminal, shown once the run has taken a second.
@@ -505,7 +386,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     let run = simulate(&model, start, &settings).context("simulating")?;
     bar.finish_and_clear();
 
-    let (outcome, failed) = describe(&run);
+    let (outcome, failed) = (run.outcome.to_string(), run.outcome.is_failure());
     if let Some(path) = &args.plot {
         plot(&bike, args, &run, path)?;
     }

@@ -4,10 +4,13 @@
 use std::fmt::Write as _;
 
 use anyhow::{bail, Context, Result};
-use whipple::analysis::stability::{self, CriticalSpeeds};
+use serde_json::json;
+use whipple::analysis::sensitivity;
+use whipple::analysis::sensitivity::CriticalSpeedsSigma;
+use whipple::analysis::stability::CriticalSpeeds;
 
 use crate::bike::load;
-use crate::commands::{canonical, emit};
+use crate::commands::{emit, optional, with_sigma};
 use crate::output::number;
 use crate::TextFormat;
 
@@ -84,7 +87,13 @@ fn stable_words(s: &CriticalSpeeds, a: f64, b: f64) -> Result<String> {
 }
 
 /// The text table of critical speeds.
-pub fn table(label: &str, s: &CriticalSpeeds) -> Result<String> {
+/// The table of `whipple speeds`; with `sigma`, each speed as `value ± σ` (one standard
+/// deviation, first order, parameters independent).
+pub fn table(
+    label: &str,
+    s: &CriticalSpeeds,
+    sigma: Option<&CriticalSpeedsSigma>,
+) -> Result<String> {
     let (lo, hi) = s.range;
     let where_ = range_words(lo, hi)?;
     let none = if lo == 0.0 && hi == f64::INFINITY {
@@ -92,25 +101,45 @@ pub fn table(label: &str, s: &CriticalSpeeds) -> Result<String> {
     } else {
         format!("none in {where_}")
     };
-    let show = |x: Option<f64>| -> Result<String> {
+    let show = |x: Option<f64>, sd: Option<f64>| -> Result<String> {
         Ok(match x {
+            Some(v) if sigma.is_some() => with_sigma(v, sd, "m/s")?,
             Some(v) => format!("{} m/s", number(v)?),
             None => none.clone(),
         })
     };
-    let mut t = format!("{label}: critical speeds for {where_} (certified)\n");
+    let mut t = format!("{label}: critical speeds for {where_} (certified)");
+    if sigma.is_some() {
+        t.push_str(" (± one standard deviation, first order, parameters independent)");
+    }
+    t.push('\n');
     match &s.double_root_unavailable {
         Some(why) => write!(t, "  double root speed v_d  not given: {why}")?,
-        None => write!(t, "  double root speed v_d  {}", show(s.double_root_speed)?)?,
+        None => write!(
+            t,
+            "  double root speed v_d  {}",
+            show(
+                s.double_root_speed,
+                sigma.and_then(|u| u.double_root_speed_sigma)
+            )?
+        )?,
     }
     if let Some(l) = s.double_root_eigenvalue {
         write!(t, "  (double eigenvalue {} 1/s)", number(l)?)?;
     }
-    write!(t, "\n  weave speed v_w        {}", show(s.weave_speed)?)?;
+    write!(
+        t,
+        "\n  weave speed v_w        {}",
+        show(s.weave_speed, sigma.and_then(|u| u.weave_speed_sigma))?
+    )?;
     if let Some(w) = s.weave_frequency {
         write!(t, "  (weave frequency {} rad/s)", number(w)?)?;
     }
-    writeln!(t, "\n  capsize speed v_c      {}", show(s.capsize_speed)?)?;
+    writeln!(
+        t,
+        "\n  capsize speed v_c      {}",
+        show(s.capsize_speed, sigma.and_then(|u| u.capsize_speed_sigma))?
+    )?;
     if s.stable_speed_ranges.is_empty() {
         writeln!(t, "  self-stable            nowhere in {where_}")?;
     }
@@ -144,18 +173,39 @@ pub fn speeds(arg: &str, range: Option<&str>, format: TextFormat) -> Result<()> 
         Some(text) => parse_range(text, "--range")?,
         None => (0.0, f64::INFINITY),
     };
-    let c = canonical(&bike)?;
-    let s = stability::critical_speeds(&c, lo, hi)
+    // The certified speeds, with their first-order standard deviations where the file gives
+    // the parameters' (the speeds are the same as stability::critical_speeds gives).
+    let su = sensitivity::critical_speeds_sigma(&bike.bicycle, lo, hi)
         .with_context(|| format!("critical speeds of {}", bike.label))?;
+    let s = &su.speeds;
+    let uncertain = bike.bicycle.has_uncertainty();
     let text = match format {
         TextFormat::Json => {
-            let mut doc = serde_json::to_value(&s)?;
+            let mut doc = serde_json::to_value(s)?;
             if let Some(map) = doc.as_object_mut() {
-                map.insert("bike".into(), serde_json::json!(bike.label));
+                map.insert("bike".into(), json!(bike.label));
+                map.insert("warnings".into(), bike.warnings_json());
+                if uncertain {
+                    let ranges = su
+                        .stable_speed_ranges_sigma
+                        .iter()
+                        .map(|(a, b)| Ok(json!([optional(*a)?, optional(*b)?])))
+                        .collect::<Result<Vec<_>>>()?;
+                    map.insert(
+                        "double_root_speed_sigma".into(),
+                        optional(su.double_root_speed_sigma)?,
+                    );
+                    map.insert("weave_speed_sigma".into(), optional(su.weave_speed_sigma)?);
+                    map.insert(
+                        "capsize_speed_sigma".into(),
+                        optional(su.capsize_speed_sigma)?,
+                    );
+                    map.insert("stable_speed_ranges_sigma".into(), json!(ranges));
+                }
             }
             format!("{}\n", serde_json::to_string_pretty(&doc)?)
         }
-        TextFormat::Table => table(&bike.label, &s)?,
+        TextFormat::Table => table(&bike.label, s, uncertain.then_some(&su))?,
     };
     emit(&text, None)
 }

@@ -9,14 +9,12 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use clap::ValueEnum;
 use serde_json::json;
+use whipple::analysis::comparison::{
+    capsize_spike, compare_with_linear, double_root_conditioning, ComparisonSweep, Linearization,
+    LinearizationSweep, StudySettings,
+};
 use whipple::analysis::eigen::Complex64;
 use whipple::analysis::sweep;
-use whipple::analysis::validation::{
-    self, eigenvalue_condition, full_state_jacobian, full_state_jacobian_fd, general_eigenvalues,
-    lean_steer_matrix, pick, zero_cluster, Method, MethodSweep, StudyParams, ValidationSweep,
-};
-use whipple::linear::{Canonical, StateSpace};
-use whipple::nonlinear::Model;
 use whipple_report::{line_plot, xy_log_plot, Dash, Figure, Marker, Series, XyPlotOptions};
 
 use crate::bike::{load, LoadedBike};
@@ -42,11 +40,6 @@ pub enum ValidateFormat {
     Json,
 }
 
-/// Half-width of the interval about v_d where eigenvalues are ill-conditioned [m/s].
-const DOUBLE_ROOT_HALF_WIDTH: f64 = 0.02;
-/// Half-width of the interval about v_c called "near the capsize speed" [m/s].
-const CAPSIZE_HALF_WIDTH: f64 = 0.25;
-
 pub fn validate(
     arg: &str,
     speeds: &str,
@@ -57,26 +50,26 @@ pub fn validate(
     let bike = load(arg)?;
     let (start, stop, step) = parse_triple(speeds, "--speeds")?;
     let grid = sweep::speed_grid(start, stop, step).context("--speeds")?;
-    let methods: Vec<Method> = match choice {
-        MethodChoice::Fd => vec![Method::FiniteDifferences],
-        MethodChoice::Ad => vec![Method::Exact],
-        MethodChoice::Both => vec![Method::FiniteDifferences, Method::Exact],
+    let methods: Vec<Linearization> = match choice {
+        MethodChoice::Fd => vec![Linearization::FiniteDifferences],
+        MethodChoice::Ad => vec![Linearization::Exact],
+        MethodChoice::Both => vec![Linearization::FiniteDifferences, Linearization::Exact],
     };
     if let Some(dir) = report {
         std::fs::create_dir_all(dir)
             .with_context(|| format!("creating the report directory {}", dir.display()))?;
     }
-    let study = StudyParams::default();
+    let study = StudySettings::default();
     // One run per method, so that each is timed on its own.
     let mut timings = Vec::new();
-    let mut result: Option<ValidationSweep> = None;
+    let mut result: Option<ComparisonSweep> = None;
     let mut all = methods.clone();
     if report.is_some() {
-        all.push(Method::FullStateExact);
+        all.push(Linearization::FullStateExact);
     }
     for &method in &all {
         let t = Instant::now();
-        let one = validation::validate(&bike.benchmark, &grid, &[method], &study)
+        let one = compare_with_linear(&bike.benchmark, &grid, &[method], &study)
             .with_context(|| format!("validating {} by {}", bike.label, method.description()))?;
         timings.push((method, t.elapsed().as_secs_f64()));
         match &mut result {
@@ -87,7 +80,7 @@ pub fn validate(
     let Some(sweep) = result else {
         anyhow::bail!("no method to validate with");
     };
-    let shown: Vec<&MethodSweep> = sweep
+    let shown: Vec<&LinearizationSweep> = sweep
         .methods
         .iter()
         .filter(|m| methods.contains(&m.method))
@@ -104,7 +97,7 @@ pub fn validate(
     Ok(())
 }
 
-fn csv(sweep: &ValidationSweep, shown: &[&MethodSweep]) -> Result<String> {
+fn csv(sweep: &ComparisonSweep, shown: &[&LinearizationSweep]) -> Result<String> {
     let mut t = String::from("v");
     let columns = |t: &mut String, prefix: &str| {
         for k in 1..=4 {
@@ -136,7 +129,11 @@ fn csv(sweep: &ValidationSweep, shown: &[&MethodSweep]) -> Result<String> {
     Ok(t)
 }
 
-fn json_text(bike: &LoadedBike, sweep: &ValidationSweep, shown: &[&MethodSweep]) -> Result<String> {
+fn json_text(
+    bike: &LoadedBike,
+    sweep: &ComparisonSweep,
+    shown: &[&LinearizationSweep],
+) -> Result<String> {
     let pairs = |l: &[Complex64; 4]| -> Result<serde_json::Value> {
         let mut out = Vec::new();
         for z in l {
@@ -179,7 +176,7 @@ fn write_figure(figure: &Figure, path: &Path) -> Result<()> {
     write_atomically(path, &bytes)
 }
 
-fn markers(sweep: &ValidationSweep) -> Vec<Marker> {
+fn markers(sweep: &ComparisonSweep) -> Vec<Marker> {
     let c = &sweep.critical;
     [
         ("v_d", c.double_root_speed),
@@ -210,15 +207,15 @@ fn tracks(
     points
 }
 
-fn style(method: Method) -> (usize, Dash) {
+fn style(method: Linearization) -> (usize, Dash) {
     match method {
-        Method::Exact => (1, Dash::Dashed),
-        Method::FiniteDifferences => (2, Dash::Dotted),
-        Method::FullStateExact => (3, Dash::Solid),
+        Linearization::Exact => (1, Dash::Dashed),
+        Linearization::FiniteDifferences => (2, Dash::Dotted),
+        Linearization::FullStateExact => (3, Dash::Solid),
     }
 }
 
-fn difference_series(sweep: &ValidationSweep, m: &MethodSweep) -> Series {
+fn difference_series(sweep: &ComparisonSweep, m: &LinearizationSweep) -> Series {
     let (colour, _) = style(m.method);
     Series::new(
         format!("|λ_{} − λ_linear|", m.method.name()),
@@ -236,9 +233,9 @@ const LOG_RANGE: (f64, f64) = (1e-17, 1e-3);
 
 fn write_report(
     bike: &LoadedBike,
-    sweep: &ValidationSweep,
-    shown: &[&MethodSweep],
-    timings: &[(Method, f64)],
+    sweep: &ComparisonSweep,
+    shown: &[&LinearizationSweep],
+    timings: &[(Linearization, f64)],
     dir: &Path,
 ) -> Result<()> {
     write_atomically(&dir.join("validation.csv"), csv(sweep, shown)?.as_bytes())?;
@@ -363,44 +360,11 @@ fn sci(x: f64) -> String {
     format!("{x:.1e}")
 }
 
-/// The speed intervals of the summary table.
-fn intervals(sweep: &ValidationSweep) -> Vec<(String, f64, f64)> {
-    let lo = sweep.speeds.first().copied().unwrap_or(0.0);
-    let hi = sweep.speeds.last().copied().unwrap_or(0.0);
-    let mut out = vec![(format!("all speeds {lo}–{hi} m/s"), lo, hi)];
-    let d = DOUBLE_ROOT_HALF_WIDTH;
-    let c = CAPSIZE_HALF_WIDTH;
-    match (
-        sweep.critical.double_root_speed,
-        sweep.critical.capsize_speed,
-    ) {
-        (Some(vd), Some(vc)) if vd + d < vc - c => {
-            out.push((format!("below v_d − {d}"), lo, vd - d));
-            out.push((format!("v_d ± {d} (double root)"), vd - d, vd + d));
-            out.push((format!("v_d + {d} … v_c − {c}"), vd + d, vc - c));
-            out.push((format!("v_c ± {c} (capsize)"), vc - c, vc + c));
-            out.push((format!("above v_c + {c}"), vc + c, hi));
-        }
-        (Some(vd), _) => {
-            out.push((format!("below v_d − {d}"), lo, vd - d));
-            out.push((format!("v_d ± {d} (double root)"), vd - d, vd + d));
-            out.push((format!("above v_d + {d}"), vd + d, hi));
-        }
-        (None, Some(vc)) => {
-            out.push((format!("below v_c − {c}"), lo, vc - c));
-            out.push((format!("v_c ± {c} (capsize)"), vc - c, vc + c));
-            out.push((format!("above v_c + {c}"), vc + c, hi));
-        }
-        (None, None) => {}
-    }
-    out
-}
-
 fn summary(
     bike: &LoadedBike,
-    sweep: &ValidationSweep,
-    shown: &[&MethodSweep],
-    timings: &[(Method, f64)],
+    sweep: &ComparisonSweep,
+    shown: &[&LinearizationSweep],
+    timings: &[(Linearization, f64)],
     figures: &[(String, String)],
 ) -> Result<String> {
     let mut t = String::new();
@@ -434,10 +398,10 @@ fn summary(
         write!(t, "---|")?;
     }
     writeln!(t)?;
-    for (label, lo, hi) in intervals(sweep) {
-        write!(t, "| {label} |")?;
+    for interval in sweep.intervals() {
+        write!(t, "| {} |", interval.label)?;
         for m in &sweep.methods {
-            match m.max_diff_between(&sweep.speeds, lo, hi) {
+            match m.max_diff_between(&sweep.speeds, interval.lo, interval.hi) {
                 Some((d, v)) => write!(t, " {} (at {v:.2} m/s) |", sci(d))?,
                 None => write!(t, " – |")?,
             }
@@ -449,7 +413,7 @@ fn summary(
         "\nThe study (Dressel, JBike6 benchmark) reported a peak just under 1.5e-5 near the capsize \
          speed, just over 1e-7 near the double root, and below 6e-8 elsewhere.\n"
     )?;
-    if let Some(exact) = sweep.method(Method::Exact) {
+    if let Some(exact) = sweep.method(Linearization::Exact) {
         exact_section(&mut t, bike, sweep, exact)?;
     }
     if let Some(vc) = c.capsize_speed {
@@ -470,16 +434,11 @@ fn summary(
 fn exact_section(
     t: &mut String,
     bike: &LoadedBike,
-    sweep: &ValidationSweep,
-    exact: &MethodSweep,
+    sweep: &ComparisonSweep,
+    exact: &LinearizationSweep,
 ) -> Result<()> {
     writeln!(t, "## Exact method: A(v) entry by entry\n")?;
-    if let Some(a) = &exact.matrix_rel_diff {
-        let (worst, at) =
-            a.iter().zip(&sweep.speeds).fold(
-                (0.0f64, 0.0),
-                |b, (d, v)| if *d > b.0 { (*d, *v) } else { b },
-            );
+    if let Some((worst, at)) = exact.max_matrix_diff(&sweep.speeds) {
         writeln!(
             t,
             "max |A − A_linear| / max |A_linear| over all speeds: {} (at {at:.2} m/s); the \
@@ -487,34 +446,8 @@ fn exact_section(
             sci(worst)
         )?;
     }
-    if let Some(vd) = sweep.critical.double_root_speed {
-        let d = DOUBLE_ROOT_HALF_WIDTH;
-        let model = Model::new(&bike.benchmark)?;
-        let canonical = Canonical::new(&bike.benchmark)?;
-        let mut worst_diff = 0.0f64;
-        let mut worst_delta_a = 0.0f64;
-        let mut worst_kappa = 0.0f64;
-        let mut worst_ratio = 0.0f64;
-        for (i, v) in sweep.speeds.iter().enumerate() {
-            if (v - vd).abs() > d {
-                continue;
-            }
-            let a = lean_steer_matrix(&model, *v)?;
-            let linear = StateSpace::new(&canonical, *v)?.a;
-            let delta_a = (a - linear).amax();
-            let mut kappa = 0.0f64;
-            for l in &sweep.linear[i] {
-                kappa = kappa.max(eigenvalue_condition(&linear, *l)?.1);
-            }
-            worst_diff = worst_diff.max(exact.max_abs_diff[i]);
-            worst_delta_a = worst_delta_a.max(delta_a);
-            worst_kappa = worst_kappa.max(kappa);
-            // ‖ΔA‖₂ ≤ 4 max |ΔA_ij| for a 4×4 matrix; a double root adds the round-off of the
-            // eigen-solver itself, of order √ε |λ|.
-            if delta_a > 0.0 {
-                worst_ratio = worst_ratio.max(exact.max_abs_diff[i] / (kappa * 4.0 * delta_a));
-            }
-        }
+    if let Some(c) = double_root_conditioning(&bike.benchmark, sweep)? {
+        let d = c.half_width;
         writeln!(
             t,
             "Within v_d ± {d} m/s the eigenvalues are ill-conditioned by nature (two real \
@@ -523,80 +456,50 @@ fn exact_section(
              there (κ → ∞ at v_d), so first-order perturbation theory allows |Δλ| ≲ κ‖ΔA‖; the \
              observed |Δλ| / (κ · 4 max|ΔA_ij|) is at most {:.1e} (values above 1 are the \
              eigen-solvers' own round-off at a nearly double root, of order √ε).\n",
-            sci(worst_diff),
-            sci(worst_delta_a),
-            sci(worst_kappa),
-            worst_ratio
+            sci(c.max_diff),
+            sci(c.max_matrix_diff),
+            sci(c.max_condition),
+            c.max_ratio
         )?;
-        let away = sweep
-            .speeds
-            .iter()
-            .zip(&exact.max_abs_diff)
-            .filter(|(v, _)| (*v - vd).abs() > d)
-            .map(|(_, x)| *x)
-            .fold(0.0f64, f64::max);
         writeln!(
             t,
             "Away from v_d ± {d} m/s the largest eigenvalue difference is {} (target 1e-11).\n",
-            sci(away)
+            sci(c.max_diff_away)
         )?;
     }
     Ok(())
 }
 
 fn spike_section(t: &mut String, bike: &LoadedBike, vc: f64) -> Result<()> {
-    let model = Model::new(&bike.benchmark)?;
-    let canonical = Canonical::new(&bike.benchmark)?;
     writeln!(t, "## The spike at the capsize speed\n")?;
     writeln!(
         t,
-        "Besides the four lean and steer eigenvalues, the 48 × 48 full-state Jacobian has a \
-         cluster of zero eigenvalues: the ignorable coordinates (yaw, rear contact position, \
-         wheel rotations), the forward speed and the directions off the constraint manifold. \
-         Zero is defective there (Jordan chains: a yaw error makes the lateral position grow, a \
-         speed error the wheel angles, a velocity-constraint violation the position \
-         violation), so an error ε in the Jacobian spreads the cluster over a disc of radius \
-         about ε^(1/k) for Jordan blocks of size k. The capsize eigenvalue passes through zero \
-         at v_c: near v_c it lies inside or next to that disc, its own condition number grows, \
-         and picking it out by matching the linear eigenvalues can take a cluster member \
-         instead. The reduced 4 × 4 A(v) has no cluster, hence no spike.\n"
+        "The full-state methods show a spike near v_c and the reduced 4 × 4 A(v) does not: the \
+         48 × 48 Jacobian has a defective cluster of zero eigenvalues (Jordan chains), which \
+         the capsize eigenvalue enters as it passes through zero at v_c. The cause and the \
+         evidence are explained in docs/validation.md of the whipple repository (\"The capsize \
+         spike: cause and evidence\"); the table measures it for this bicycle.\n"
     )?;
     writeln!(
         t,
         "| v [m/s] | capsize λ (linear) | Jacobian | dim ker Jᵏ, k = 1…5 | cluster radius | κ of capsize λ | |Δλ| |"
     )?;
     writeln!(t, "|---|---|---|---|---|---|---|")?;
-    for v in [
-        vc - 0.5,
-        vc - 0.05,
-        vc - 0.01,
-        vc + 0.01,
-        vc + 0.05,
-        vc + 0.5,
-    ] {
-        let linear = whipple::analysis::eigen::eigenvalues(&canonical, v)?;
-        let capsize = linear
-            .iter()
-            .filter(|l| l.im == 0.0)
-            .min_by(|a, b| a.norm().total_cmp(&b.norm()))
-            .copied()
-            .unwrap_or_default();
-        let exact = full_state_jacobian(&model, v)?;
-        let fd = full_state_jacobian_fd(&model, v, &StudyParams::default())?.jacobian;
-        for (name, j) in [("exact, full state", exact), ("finite differences", fd)] {
-            let picked = pick(&linear, &general_eigenvalues(&j)?)?;
-            let cluster = zero_cluster(&j, &picked)?;
-            let (_, kappa) = eigenvalue_condition(&j, capsize)?;
-            writeln!(
-                t,
-                "| {v:.3} | {} | {name} | {:?} | {} | {} | {} |",
-                sci(capsize.re),
-                cluster.kernel_dims,
-                sci(cluster.radius),
-                sci(kappa),
-                sci(validation::max_abs_diff(&picked, &linear))
-            )?;
-        }
+    for row in capsize_spike(&bike.benchmark, vc)? {
+        let name = match row.jacobian {
+            Linearization::FiniteDifferences => "finite differences",
+            _ => "exact, full state",
+        };
+        writeln!(
+            t,
+            "| {:.3} | {} | {name} | {:?} | {} | {} | {} |",
+            row.speed,
+            sci(row.capsize.re),
+            row.cluster.kernel_dims,
+            sci(row.cluster.radius),
+            sci(row.condition),
+            sci(row.max_abs_diff)
+        )?;
     }
     writeln!(
         t,

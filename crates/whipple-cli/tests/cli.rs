@@ -94,6 +94,7 @@ fn speeds_json_has_the_documented_keys() {
             "range",
             "stable_speed_ranges",
             "unresolved",
+            "warnings",
             "weave_frequency",
             "weave_speed"
         ]

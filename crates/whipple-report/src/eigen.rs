@@ -33,6 +33,9 @@ pub struct EigenPlotOptions {
     pub title: Option<String>,
     /// Figure size [px] (default 1000 × 620).
     pub size: (u32, u32),
+    /// Bands to shade around the first bicycle's real parts: for each speed of its sweep and
+    /// each column, (Re λ − σ, Re λ + σ) (NaN where unknown); default none.
+    pub sigma_bands: Option<Vec<[(f64, f64); 4]>>,
 }
 
 impl Default for EigenPlotOptions {
@@ -43,6 +46,7 @@ impl Default for EigenPlotOptions {
             show_imaginary: true,
             title: None,
             size: (1000, 620),
+            sigma_bands: None,
         }
     }
 }
@@ -293,6 +297,43 @@ impl EigenFigure {
                     label.push_str(&format!(" ({name})"));
                 }
                 markers.push((v, label));
+            }
+        }
+
+        // ±σ bands of the first bicycle's real parts, under the curves.
+        if let (Some(bands), Some(b)) = (&self.options.sigma_bands, self.bikes.first()) {
+            let s = &b.sweep;
+            let n = s.speeds.len().min(bands.len());
+            // k indexes both the modes and each speed's bands.
+            #[allow(clippy::needless_range_loop)]
+            for k in 0..4 {
+                let col = colour(s.modes[k]);
+                let mut j = 0;
+                while j < n {
+                    // One polygon per run of speeds with a known band.
+                    let known = |j: usize| bands[j][k].0.is_finite() && bands[j][k].1.is_finite();
+                    if !known(j) {
+                        j += 1;
+                        continue;
+                    }
+                    let start = j;
+                    while j < n && known(j) {
+                        j += 1;
+                    }
+                    let clamp = |y: f64| y.clamp(y0, y1);
+                    let mut points: Vec<(f64, f64)> = (start..j)
+                        .map(|i| (s.speeds[i].clamp(x0, x1), clamp(bands[i][k].1)))
+                        .collect();
+                    points.extend(
+                        (start..j)
+                            .rev()
+                            .map(|i| (s.speeds[i].clamp(x0, x1), clamp(bands[i][k].0))),
+                    );
+                    if points.len() >= 4 {
+                        area.draw(&Polygon::new(points, col.mix(0.25).filled()))
+                            .or_draw(FIGURE)?;
+                    }
+                }
             }
         }
 

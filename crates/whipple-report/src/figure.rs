@@ -109,6 +109,7 @@ pub(crate) enum Content {
     Xy(Box<crate::xy::XyFigure>),
     Map(Box<crate::design::MapFigure>),
     Study(Box<crate::design::StudyFigure>),
+    Tornado(Box<crate::tornado::TornadoFigure>),
 }
 
 /// A figure ready to render: its size in pixels and what it shows. Built by
@@ -284,6 +285,7 @@ impl Figure {
             Content::Xy(_) => "line plot",
             Content::Map(_) => "design map",
             Content::Study(_) => "design study",
+            Content::Tornado(_) => "tornado plot",
         }
     }
 
@@ -296,6 +298,7 @@ impl Figure {
             Content::Xy(f) => f.draw(root),
             Content::Map(f) => f.draw(root),
             Content::Study(f) => f.draw(root),
+            Content::Tornado(f) => f.draw(root),
         }
     }
 }

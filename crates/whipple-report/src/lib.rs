@@ -31,6 +31,7 @@ mod figure;
 mod side_view;
 mod table;
 mod time_series;
+mod tornado;
 mod xy;
 
 pub use design::{design_map, design_study, MapData, StudyData};
@@ -41,4 +42,5 @@ pub use figure::{Figure, Format};
 pub use side_view::side_view;
 pub use table::{eigen_csv, eigen_table};
 pub use time_series::{time_series_plot, SimulationSeries};
+pub use tornado::{tornado_plot, Bar};
 pub use xy::{line_plot, xy_log_plot, Marker, Series, XyPlotOptions};

@@ -7,6 +7,7 @@
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use whipple::side_view::{Part, SideView};
 use whipple::{BenchmarkParameters, Jbike6Parameters};
 
 use crate::draw::{place, text, Placed, BLUE, DARK, GREY, VERMILLION};
@@ -31,7 +32,7 @@ struct CentreOfMass {
 #[derive(Debug, Clone)]
 pub(crate) struct SideViewFigure {
     name: String,
-    bike: BenchmarkParameters,
+    view: SideView,
     centres: Vec<CentreOfMass>,
     rider: bool,
 }
@@ -43,8 +44,9 @@ fn mass(m: f64) -> String {
     format!("{s} kg")
 }
 
-/// The side view of a bicycle (JBike6 style); with its JBike6 form, the individual bodies
-/// (rider, frame, rack, fork, basket) are shown instead of the combined B and H.
+/// The side view of a bicycle (JBike6 style), drawn from the library's geometry
+/// ([`whipple::side_view`]); with its JBike6 form, the individual bodies (rider, frame, rack,
+/// fork, basket) are shown instead of the combined B and H.
 ///
 /// ```
 /// use whipple::BenchmarkParameters;
@@ -58,61 +60,34 @@ pub fn side_view(
     jbike6: Option<&Jbike6Parameters>,
     name: &str,
 ) -> Figure {
-    let mut centres = vec![
-        CentreOfMass {
-            at: (0.0, bike.r_r),
-            label: format!("rear wheel {}", mass(bike.m_r)),
-            colour: &DARK,
-        },
-        CentreOfMass {
-            at: (bike.w, bike.r_f),
-            label: format!("front wheel {}", mass(bike.m_f)),
-            colour: &DARK,
-        },
-    ];
-    let rider;
-    match jbike6 {
-        Some(j) => {
-            rider = j.rider.m > RIDER_MASS;
-            let (s, c) = j.steer_axis_tilt().sin_cos();
-            let g = j.wheelbase + j.trail;
-            for (part, b) in [("rider", &j.rider), ("frame", &j.frame), ("rack", &j.rack)] {
-                if b.m > 0.0 {
-                    centres.push(CentreOfMass {
-                        at: (b.xcm, b.ycm),
-                        label: format!("{part} {}", mass(b.m)),
-                        colour: &VERMILLION,
-                    });
-                }
+    let view = whipple::side_view::side_view(bike, jbike6);
+    let rider = jbike6.map_or(bike.m_b, |j| j.rider.m) > RIDER_MASS;
+    let centres = view
+        .bodies
+        .iter()
+        .map(|body| {
+            let label = match body.part {
+                Part::RearFrame if rider => "B frame + rider",
+                Part::RearFrame => "B frame",
+                Part::FrontFrame => "H fork",
+                _ => body.name,
+            };
+            CentreOfMass {
+                at: (body.centre[0], body.centre[1]),
+                label: format!("{label} {}", mass(body.mass)),
+                colour: if body.part.is_wheel() {
+                    &DARK
+                } else if body.part.is_front() {
+                    &BLUE
+                } else {
+                    &VERMILLION
+                },
             }
-            for (part, b) in [("fork", &j.fork), ("basket", &j.basket)] {
-                if b.m > 0.0 {
-                    centres.push(CentreOfMass {
-                        at: (g + b.ucm * c - b.vcm * s, b.ucm * s + b.vcm * c),
-                        label: format!("{part} {}", mass(b.m)),
-                        colour: &BLUE,
-                    });
-                }
-            }
-        }
-        None => {
-            rider = bike.m_b > RIDER_MASS;
-            let what = if rider { "frame + rider" } else { "frame" };
-            centres.push(CentreOfMass {
-                at: (bike.x_b, -bike.z_b),
-                label: format!("B {what} {}", mass(bike.m_b)),
-                colour: &VERMILLION,
-            });
-            centres.push(CentreOfMass {
-                at: (bike.x_h, -bike.z_h),
-                label: format!("H fork {}", mass(bike.m_h)),
-                colour: &BLUE,
-            });
-        }
-    }
+        })
+        .collect();
     let figure = SideViewFigure {
         name: name.to_string(),
-        bike: *bike,
+        view,
         centres,
         rider,
     };
@@ -131,11 +106,11 @@ pub fn side_view(
 const MARGIN_W: f64 = 2.0 * 12.0 + 52.0;
 const MARGIN_H: f64 = 2.0 * 12.0 + 40.0 + 34.0;
 
+/// The library's geometry as the drawing's points.
 struct Geometry {
     rear_hub: P,
     front_hub: P,
     ground_point: P,
-    up: P,
     crown: P,
     head_top: P,
     bar: P,
@@ -143,6 +118,7 @@ struct Geometry {
     bottom_bracket: P,
     seat_cluster: P,
     saddle: P,
+    axis_ends: [P; 2],
 }
 
 fn add(a: P, b: P) -> P {
@@ -155,35 +131,20 @@ fn scale(a: P, k: f64) -> P {
 
 impl SideViewFigure {
     fn geometry(&self) -> Geometry {
-        let b = &self.bike;
-        let ground_point = (b.w + b.c, 0.0);
-        let up = (-b.lambda.sin(), b.lambda.cos());
-        let front_hub = (b.w, b.r_f);
-        let along = |s: f64| add(ground_point, scale(up, s));
-        let s_hub = (front_hub.0 - ground_point.0) * up.0 + (front_hub.1 - ground_point.1) * up.1;
-        let crown = along(s_hub.max(0.05) + 0.1);
-        let head_top = along(s_hub.max(0.05) + 0.3);
-        let bar = along(s_hub.max(0.05) + 0.4);
-        let grip = add(bar, (-0.1, 0.0));
-        let wheel = b.r_r.max(b.r_f).max(0.15);
-        let bottom_bracket = (0.4 * b.w, 0.8 * wheel);
-        let seat_angle = 17f64.to_radians();
-        let tube = (-seat_angle.sin(), seat_angle.cos());
-        let length = ((head_top.1 + 0.03 - bottom_bracket.1) / tube.1).max(0.2);
-        let seat_cluster = add(bottom_bracket, scale(tube, length));
-        let saddle = add(seat_cluster, scale(tube, 0.12));
+        let v = &self.view;
+        let p = |a: [f64; 2]| (a[0], a[1]);
         Geometry {
-            rear_hub: (0.0, b.r_r),
-            front_hub,
-            ground_point,
-            up,
-            crown,
-            head_top,
-            bar,
-            grip,
-            bottom_bracket,
-            seat_cluster,
-            saddle,
+            rear_hub: p(v.rear_hub),
+            front_hub: p(v.front_hub),
+            ground_point: p(v.ground_point),
+            crown: p(v.crown),
+            head_top: p(v.head_top),
+            bar: p(v.bar),
+            grip: p(v.grip),
+            bottom_bracket: p(v.bottom_bracket),
+            seat_cluster: p(v.seat_cluster),
+            saddle: p(v.saddle),
+            axis_ends: v.steer_axis.map(p),
         }
     }
 
@@ -199,10 +160,11 @@ impl SideViewFigure {
     /// (x0, x1, y0, y1) in metres.
     fn extent(&self) -> (f64, f64, f64, f64) {
         let g = self.geometry();
-        let b = &self.bike;
-        let mut x0 = (-b.r_r).min(-0.1);
-        let mut x1 = (b.w + b.r_f).max(g.ground_point.0) + 0.1;
-        let mut y1 = g.bar.1.max(b.r_r * 2.0).max(b.r_f * 2.0);
+        let v = &self.view;
+        let (r_r, r_f) = (v.rear_wheel_radius, v.front_wheel_radius);
+        let mut x0 = (-r_r).min(-0.1);
+        let mut x1 = (v.wheelbase + r_f).max(g.ground_point.0) + 0.1;
+        let mut y1 = g.bar.1.max(r_r * 2.0).max(r_f * 2.0);
         for c in &self.centres {
             x0 = x0.min(c.at.0);
             x1 = x1.max(c.at.0);
@@ -247,7 +209,8 @@ impl SideViewFigure {
             .or_draw(FIGURE)?;
         let area = chart.plotting_area();
         let px = |p: P| chart.backend_coord(&p);
-        let b = &self.bike;
+        let v = &self.view;
+        let (w, c, lambda) = (v.wheelbase, v.trail, v.steer_axis_tilt);
         let g = self.geometry();
         let line = |pts: Vec<P>, style: ShapeStyle| area.draw(&PathElement::new(pts, style));
 
@@ -279,7 +242,10 @@ impl SideViewFigure {
         }
 
         // Wheels (a skate where the radius is zero).
-        for (hub, r) in [(g.rear_hub, b.r_r), (g.front_hub, b.r_f)] {
+        for (hub, r) in [
+            (g.rear_hub, v.rear_wheel_radius),
+            (g.front_hub, v.front_wheel_radius),
+        ] {
             if r > 0.0 {
                 line(circle(hub, r), DARK.stroke_width(3)).or_draw(FIGURE)?;
                 line(circle(hub, 0.93 * r), GREY.stroke_width(1)).or_draw(FIGURE)?;
@@ -299,9 +265,9 @@ impl SideViewFigure {
         }
 
         // Steer axis, from below the ground to above the bars.
-        let axis_end = add(g.bar, scale(g.up, 0.12));
+        let [axis_start, axis_end] = g.axis_ends;
         area.draw(&plotters::element::DashedPathElement::new(
-            vec![add(g.ground_point, scale(g.up, -0.06)), axis_end],
+            vec![axis_start, axis_end],
             8,
             4,
             GREY.stroke_width(1),
@@ -338,8 +304,8 @@ impl SideViewFigure {
         // Dimensions: wheelbase and trail below the ground, head angle at the steer axis.
         let dim = DARK.stroke_width(1);
         let yw = -0.1;
-        line(vec![(0.0, yw), (b.w, yw)], dim).or_draw(FIGURE)?;
-        for x in [0.0, b.w] {
+        line(vec![(0.0, yw), (w, yw)], dim).or_draw(FIGURE)?;
+        for x in [0.0, w] {
             line(vec![(x, yw - 0.03), (x, 0.0)], dim).or_draw(FIGURE)?;
         }
         let label = text(14.0, &DARK);
@@ -349,19 +315,19 @@ impl SideViewFigure {
             let (cx, cy) = px(at);
             Ok((cx - tw as i32 / 2, cy - th as i32 / 2))
         };
-        let wl = format!("w = {:.3} m", b.w);
-        let pos = centred(&wl, (0.5 * b.w, yw - 0.045))?;
+        let wl = format!("w = {w:.3} m");
+        let pos = centred(&wl, (0.5 * w, yw - 0.045))?;
         root.draw_text(&wl, &label, pos).or_draw(FIGURE)?;
         let yc = -0.045;
-        line(vec![(b.w, yc), (b.w + b.c, yc)], dim).or_draw(FIGURE)?;
-        line(vec![(b.w + b.c, yc - 0.02), (b.w + b.c, 0.0)], dim).or_draw(FIGURE)?;
-        let cl = format!("c = {:.3} m", b.c);
-        let (cx, cy) = px((b.w.max(b.w + b.c) + 0.03, yc));
+        line(vec![(w, yc), (w + c, yc)], dim).or_draw(FIGURE)?;
+        line(vec![(w + c, yc - 0.02), (w + c, 0.0)], dim).or_draw(FIGURE)?;
+        let cl = format!("c = {c:.3} m");
+        let (cx, cy) = px((w.max(w + c) + 0.03, yc));
         root.draw_text(&cl, &label, (cx, cy - 8)).or_draw(FIGURE)?;
         let head = format!(
             "head angle {:.1}°  (λ = {:.1}°)",
-            90.0 - b.lambda.to_degrees(),
-            b.lambda.to_degrees()
+            90.0 - lambda.to_degrees(),
+            lambda.to_degrees()
         );
         let (hx, hy) = px(add(axis_end, (0.03, 0.0)));
         root.draw_text(&head, &label, (hx, hy - 8))

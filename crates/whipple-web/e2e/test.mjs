@@ -25,7 +25,7 @@ function check(condition, what) {
 
 const { context, close } = await launch();
 const page = context.pages()[0] ?? (await context.newPage());
-page.setDefaultTimeout(15_000);
+page.setDefaultTimeout(30_000); // generous: CI's machine is shared and SwiftShader is slow
 const errors = [];
 page.on("pageerror", (e) => errors.push(e.message));
 // Every request must stay on the server under test.
@@ -70,9 +70,15 @@ try {
   check((await page.locator("[data-testid=stable-range]").count()) === 1, "one self-stable range is shaded");
   check((await page.locator("[data-testid=side-view] svg circle").count()) > 4, "the side view is drawn");
 
-  // Hovering reads values out.
-  const box = await page.getByTestId("plot-overlay").boundingBox();
-  await page.mouse.move(box.x + box.width * 0.6, box.y + box.height / 2);
+  // Hovering reads values out. The plot redraws itself when its container is resized (on a
+  // cold start the layout may still settle after the speeds are shown), replacing the overlay:
+  // hover through the locator, which waits for a stable, attached element and retries if it
+  // is replaced, rather than through a bounding box taken once (null when detached).
+  const overlay = page.getByTestId("plot-overlay");
+  const size = await overlay.evaluate((e) => ({ w: e.getBBox().width, h: e.getBBox().height }));
+  // `force`: Playwright's hit-target check has been seen to time out on a loaded machine's
+  // first start with the plot's own frame reported on top; the tooltip appearing is the check.
+  await overlay.hover({ position: { x: size.w * 0.6, y: size.h / 2 }, force: true });
   await page.getByTestId("plot-tooltip").waitFor({ state: "visible" });
   check((await text("plot-tooltip")).includes("weave"), "hovering the plot shows the eigenvalues");
   await page.mouse.move(1, 1);
@@ -82,9 +88,12 @@ try {
   const sideBefore = await page.$eval("[data-testid=side-view]", (e) => e.innerHTML);
   await page.getByTestId("param-trail").fill("0.05");
   await waitForText("capsize-speed", (t) => !t.startsWith("7.9807"));
+  await waitForText("capsize-speed", (t) => Number.isFinite(number(t)));
   const capsize2 = number(await text("capsize-speed"));
-  check(Number.isFinite(capsize2) ? capsize2 !== capsize : true, `with a 50 mm trail the capsize speed reads ${await text("capsize-speed")}`);
-  check(number(await text("weave-speed")) !== weave, `and the weave speed ${await text("weave-speed")}`);
+  // whipple speeds on the Crown with trail = 0.05: v_c 6.15224 m/s, v_w 4.52487 m/s.
+  check(Math.abs(capsize2 - 6.15224) < 5e-4, `with a 50 mm trail the capsize speed reads ${await text("capsize-speed")} (6.1522 m/s)`);
+  const weave2 = number(await text("weave-speed"));
+  check(Math.abs(weave2 - 4.52487) < 5e-4, `and the weave speed ${await text("weave-speed")} (4.5249 m/s)`);
   check((await plotPaths()) !== before, "the eigenvalue plot is redrawn");
   check((await page.$eval("[data-testid=side-view]", (e) => e.innerHTML)) !== sideBefore, "the side view is redrawn");
 
@@ -221,18 +230,41 @@ try {
   const shot2 = await pixels();
   check(shot2 && shot2.hash !== shot1.hash, "and redraws the 3-D view");
   await page.selectOption("[data-testid=sim-rate]", "2");
-  // At 2x, simulated time runs twice as fast as the page's clock (measured in the page).
-  const rate = await page.evaluate(async () => {
-    const t = () => Number(document.getElementById("sim-t").textContent.replace("−", "-"));
-    document.getElementById("sim-play").click();
-    await new Promise((r) => setTimeout(r, 300));
-    const [t0, w0] = [t(), performance.now()];
-    await new Promise((r) => setTimeout(r, 1200));
-    const [t1, w1] = [t(), performance.now()];
-    document.getElementById("sim-play").click();
-    return (t1 - t0) / ((w1 - w0) / 1000);
+  // Measure from early in the run: from 7.5 s at 2x the 10 s run ends within the 1.5 s the
+  // measurement takes (and a slow first frame made it read 0).
+  await page.$eval("#sim-scrub", (e) => {
+    e.value = "1";
+    e.dispatchEvent(new Event("input", { bubbles: true }));
   });
-  check(rate > 1.5 && rate < 2.5, `at 2x the simulated time runs ${rate.toFixed(2)} times as fast as the clock`);
+  await waitForText("sim-t", (t) => t === "1.00");
+  // At 2x, simulated time runs twice as fast as the page's clock (measured in the page).
+  // SwiftShader under load may take a second per frame, and the page advances at most 1 s of
+  // wall time per frame (so as not to jump): time the displayed clock at the moments it
+  // changes (polled every 20 ms) over at least 1.5 s, and note the slowest frame.
+  const { rate, slowest } = await page.evaluate(async () => {
+    const t = () => Number(document.getElementById("sim-t").textContent.replace("−", "-"));
+    const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+    let slowest = 0;
+    let seen = performance.now();
+    const change = async (from, until) => {
+      while (performance.now() < until) {
+        await sleep(20);
+        if (t() !== from) {
+          slowest = Math.max(slowest, performance.now() - seen);
+          seen = performance.now();
+          return [t(), seen];
+        }
+      }
+      return [from, performance.now()];
+    };
+    document.getElementById("sim-play").click();
+    const [t0, w0] = await change(t(), performance.now() + 10_000);
+    let [t1, w1] = [t0, w0];
+    while (w1 - w0 < 1500) [t1, w1] = await change(t1, performance.now() + 10_000);
+    document.getElementById("sim-play").click();
+    return { rate: (t1 - t0) / ((w1 - w0) / 1000), slowest };
+  });
+  check(slowest > 900 ? rate > 0.5 : rate > 1.5 && rate < 2.5, `at 2x the simulated time runs ${rate.toFixed(2)} times as fast as the clock (slowest frame ${slowest.toFixed(0)} ms${slowest > 900 ? ": the page caps a frame's step at 1 s, so only the advance is checked" : ""})`);
 
   // A fall at 3 m/s, below the weave speed.
   await page.fill("#sim-speed", "3");
@@ -240,7 +272,8 @@ try {
   await waitForText("sim-outcome", (t) => !t.startsWith("completed") && !t.startsWith("simulating"));
   const fell = await text("sim-outcome");
   const kind = await page.getByTestId("sim-outcome").getAttribute("data-kind");
-  check((kind === "fell" || kind === "wheel_lifted") && /t = \d/.test(fell), `at 3 m/s the outcome is shown: "${fell}"`);
+  // The rear wheel would lift off at t = 1.6036 s (41° of lean), before the lean reaches 60°.
+  check(kind === "wheel_lifted" && fell.includes("rear wheel") && fell.includes("t = 1.60 s"), `at 3 m/s the rear wheel lifts off at 1.60 s: "${fell}" (${kind})`);
   // A rider's steer torque as an expression: one with an unknown name is refused at the field;
   // steering into the lean holds the bicycle up at the same 3 m/s.
   await page.fill("#sim-steer-torque", "2*foo");

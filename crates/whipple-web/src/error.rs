@@ -89,10 +89,11 @@ impl From<Error> for ApiError {
                 line,
                 column,
                 message: what,
+                field,
                 ..
             } => {
                 let mut e = ApiError::new(unprocessable, "parse", message);
-                e.body.field = quoted_field(&what);
+                e.body.field = field.or_else(|| quoted_field(&what));
                 e.body.rule = Some(what);
                 e.body.line = (line > 0).then_some(line);
                 e.body.column = (column > 0).then_some(column);
@@ -106,9 +107,17 @@ impl From<Error> for ApiError {
                 ApiError::new(unprocessable, "invalid_argument", message).at(what, rule)
             }
             Error::AccuracyLost { .. } => ApiError::new(unprocessable, "accuracy_lost", message),
-            Error::NoConvergence { .. } | Error::NonFinite { .. } => {
-                ApiError::new(unprocessable, "numerical", message)
+            Error::LimitExceeded { what, rule } => {
+                ApiError::new(unprocessable, "limit_exceeded", message).at(what, rule)
             }
+            Error::Strict { field, .. } => ApiError::new(unprocessable, "strict", message)
+                .at(field, "a warning, with strict set"),
+            // A user's numbers can drive any numerical failure: 422 naming it, never a 500.
+            Error::NoConvergence { .. }
+            | Error::NonFinite { .. }
+            | Error::ProjectionDiverged { .. }
+            | Error::NonFiniteState { .. }
+            | Error::SingularDynamics { .. } => ApiError::new(unprocessable, "numerical", message),
             _ => ApiError::internal(message),
         }
     }

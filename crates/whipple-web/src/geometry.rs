@@ -1,15 +1,13 @@
-//! JBike6's stylized side view, as geometry for the page to draw: wheels, steer axis, fork,
-//! a stylized frame, and each body's centre of mass with its inertia ellipse.
+//! JBike6's stylized side view, as geometry for the page to draw: the library's
+//! [`whipple::side_view`] (wheels, steer axis, fork, frame tubes, each body's centre of mass
+//! with its inertia ellipse) in the shape the page reads.
 //!
 //! Coordinates: metres, x forward from the rear wheel's contact, y up (JBike6's side view;
-//! the benchmark's z points down, so y = −z). Only the wheels, the steer axis, the trail and
-//! the bodies come from the parameters; the frame tubes are a drawing aid placed from them.
+//! the benchmark's z points down, so y = −z).
 
 use serde::Serialize;
-use whipple::{BenchmarkParameters, Bicycle, Description, Jbike6Parameters};
-
-/// A point (x forward, y up) [m].
-pub type Point = [f64; 2];
+pub use whipple::side_view::{Ellipse, Point};
+use whipple::{BenchmarkParameters, Bicycle};
 
 /// A wheel: a circle standing on the ground.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -22,19 +20,10 @@ pub struct Wheel {
     pub radius: f64,
 }
 
-/// The uniform solid ellipsoid with a body's mass and inertia, cut by the side-view plane.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Ellipse {
-    /// Semi-axes [m], the first along `angle`.
-    pub semi_axes: [f64; 2],
-    /// Angle of the first semi-axis from x, counter-clockwise (toward up) [rad].
-    pub angle: f64,
-}
-
 /// A massive body: where its mass is and how it is spread.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Body {
-    /// Short name (`rider`, `frame`, `B`, `H`, `rear wheel`, ...).
+    /// Short name (`rider`, `frame`, `rear frame B`, `front frame H`, `rear wheel`, ...).
     pub name: String,
     /// Mass [kg].
     pub mass: f64,
@@ -55,15 +44,16 @@ pub struct SideView {
     pub steer_axis_tilt: f64,
     /// The two wheels.
     pub wheels: Vec<Wheel>,
-    /// The steer axis, from the ground to above the head tube.
+    /// The steer axis, from the ground to above the handlebar.
     pub steer_axis: [Point; 2],
-    /// The fork, from the front hub to the bottom of the head tube.
+    /// The fork, from the front hub to the crown.
     pub fork: [Point; 2],
-    /// The head tube on the steer axis.
+    /// The head tube and stem on the steer axis, from the crown to the handlebar.
     pub head_tube: [Point; 2],
-    /// Stylized rear-frame tubes as segments (a drawing aid, not parameters).
+    /// Stylized rear-frame tubes as segments (a drawing aid, not parameters): chain stay, seat
+    /// tube, seat stay, top tube, down tube, seat post.
     pub frame: Vec<[Point; 2]>,
-    /// The handlebar, from the top of the head tube back toward the rider.
+    /// The handlebar, from the top of the stem back toward the rider.
     pub handlebar: [Point; 2],
     /// The bodies with mass, wheels included.
     pub bodies: Vec<Body>,
@@ -73,176 +63,51 @@ pub struct SideView {
     pub centre_of_mass: Point,
 }
 
-/// Semi-axes of the uniform ellipsoid with in-plane principal moments `i1` (about the first
-/// axis) and `i2`, and lateral moment `i3`: a_k² = 5 (I_j + I_3 − I_k) / (2m).
-fn ellipse(mass: f64, i1: f64, i2: f64, i3: f64, angle: f64) -> Option<Ellipse> {
-    if mass <= 0.0 {
-        return None;
-    }
-    let k = 5.0 / (2.0 * mass);
-    let a1 = (k * (i2 + i3 - i1)).max(0.0).sqrt();
-    let a2 = (k * (i1 + i3 - i2)).max(0.0).sqrt();
-    (a1 > 0.0 || a2 > 0.0).then_some(Ellipse {
-        semi_axes: [a1, a2],
-        angle,
-    })
-}
-
-/// A benchmark body's ellipse from I_xx, I_yy (lateral), I_zz, I_xz (z down).
-fn benchmark_ellipse(mass: f64, ixx: f64, iyy: f64, izz: f64, ixz: f64) -> Option<Ellipse> {
-    let mean = 0.5 * (ixx + izz);
-    let radius = (0.25 * (ixx - izz).powi(2) + ixz * ixz).sqrt();
-    // The larger principal moment's axis lies at θ from x toward +z (down), so at −θ with y up.
-    let theta = 0.5 * (2.0 * ixz).atan2(ixx - izz);
-    ellipse(mass, mean + radius, mean - radius, iyy, -theta)
-}
-
 /// The side view of a bicycle whose benchmark parameters are `p` (already validated), with
 /// JBike6's separate bodies when it was described in that form.
 pub fn side_view(bike: &Bicycle, p: &BenchmarkParameters) -> SideView {
-    let (w, c, lambda) = (p.w, p.c, p.lambda);
-    let (s, co) = lambda.sin_cos();
-    let up = [-s, co];
-    let ground = [w + c, 0.0];
-    let on_axis = |t: f64| [ground[0] + t * up[0], ground[1] + t * up[1]];
-    let rear_hub = [0.0, p.r_r];
-    let front_hub = [w, p.r_f];
-    // A length scale for the drawing aids, sensible for skates (zero radii) too.
-    let scale = w.max(0.2);
-    let height_at = |h: f64| if co > 1e-3 { h / co } else { h };
-    let head_bottom_t = height_at((2.0 * p.r_f).max(0.55 * scale) + 0.06 * scale);
-    let head_top_t = head_bottom_t + 0.17 * scale;
-    let head_bottom = on_axis(head_bottom_t);
-    let head_top = on_axis(head_top_t);
-    let bracket = [0.4 * w, (0.85 * p.r_r).max(0.05 * scale) + 0.02 * scale];
-    let seat_angle = 73f64.to_radians();
-    let seat_length = ((head_top[1] - bracket[1]) / seat_angle.sin()).max(0.1 * scale);
-    let seat = [
-        bracket[0] - seat_length * seat_angle.cos(),
-        bracket[1] + seat_length * seat_angle.sin(),
-    ];
-    let frame = vec![
-        [rear_hub, bracket],
-        [rear_hub, seat],
-        [bracket, seat],
-        [bracket, head_bottom],
-        [seat, head_top],
-    ];
-    let handlebar = [
-        head_top,
-        [head_top[0] - 0.12 * scale, head_top[1] + 0.03 * scale],
-    ];
-
-    let mut bodies = Vec::new();
-    let mut wheel_body = |name: &str, m: f64, centre: Point| {
-        if m > 0.0 {
-            bodies.push(Body {
-                name: name.to_string(),
-                mass: m,
-                centre,
-                ellipse: None,
-            });
-        }
-    };
-    wheel_body("rear wheel", p.m_r, rear_hub);
-    wheel_body("front wheel", p.m_f, front_hub);
-    match &bike.description {
-        Description::Jbike6(j) => jbike6_bodies(j, &mut bodies),
-        Description::Benchmark(_) => {
-            for (name, m, x, z, ixx, iyy, izz, ixz) in [
-                (
-                    "rear frame B",
-                    p.m_b,
-                    p.x_b,
-                    p.z_b,
-                    p.i_bxx,
-                    p.i_byy,
-                    p.i_bzz,
-                    p.i_bxz,
-                ),
-                (
-                    "front frame H",
-                    p.m_h,
-                    p.x_h,
-                    p.z_h,
-                    p.i_hxx,
-                    p.i_hyy,
-                    p.i_hzz,
-                    p.i_hxz,
-                ),
-            ] {
-                if m > 0.0 {
-                    bodies.push(Body {
-                        name: name.to_string(),
-                        mass: m,
-                        centre: [x, -z],
-                        ellipse: benchmark_ellipse(m, ixx, iyy, izz, ixz),
-                    });
-                }
-            }
-        }
-    }
-    let total_mass: f64 = bodies.iter().map(|b| b.mass).sum();
-    let centre_of_mass = if total_mass > 0.0 {
-        [
-            bodies.iter().map(|b| b.mass * b.centre[0]).sum::<f64>() / total_mass,
-            bodies.iter().map(|b| b.mass * b.centre[1]).sum::<f64>() / total_mass,
-        ]
-    } else {
-        [0.0, 0.0]
-    };
+    let v = whipple::side_view::side_view(p, bike.jbike6());
     SideView {
-        wheelbase: w,
-        trail: c,
-        steer_axis_tilt: lambda,
+        wheelbase: v.wheelbase,
+        trail: v.trail,
+        steer_axis_tilt: v.steer_axis_tilt,
         wheels: vec![
             Wheel {
                 name: "rear",
-                centre: rear_hub,
-                radius: p.r_r,
+                centre: v.rear_hub,
+                radius: v.rear_wheel_radius,
             },
             Wheel {
                 name: "front",
-                centre: front_hub,
-                radius: p.r_f,
+                centre: v.front_hub,
+                radius: v.front_wheel_radius,
             },
         ],
-        steer_axis: [ground, on_axis(head_top_t + 0.12 * scale)],
-        fork: [front_hub, head_bottom],
-        head_tube: [head_bottom, head_top],
-        frame,
-        handlebar,
-        bodies,
-        total_mass,
-        centre_of_mass,
-    }
-}
-
-/// JBike6's five bodies, placed as [`Jbike6Parameters::to_benchmark`] places them.
-fn jbike6_bodies(j: &Jbike6Parameters, bodies: &mut Vec<Body>) {
-    for (name, b) in [("rider", &j.rider), ("frame", &j.frame), ("rack", &j.rack)] {
-        if b.m > 0.0 {
-            let [i1, i2, i3] = b.inertia;
-            bodies.push(Body {
-                name: name.to_string(),
-                mass: b.m,
-                centre: [b.xcm, b.ycm],
-                ellipse: ellipse(b.m, i1, i2, i3, b.alpha),
-            });
-        }
-    }
-    let (s, c) = j.steer_axis_tilt().sin_cos();
-    let front_point = j.wheelbase + j.trail;
-    for (name, b) in [("fork", &j.fork), ("basket", &j.basket)] {
-        if b.m > 0.0 {
-            let [i1, i2, i3] = b.inertia;
-            bodies.push(Body {
-                name: name.to_string(),
-                mass: b.m,
-                centre: [front_point + b.ucm * c - b.vcm * s, b.ucm * s + b.vcm * c],
-                ellipse: ellipse(b.m, i1, i2, i3, b.alpha),
-            });
-        }
+        steer_axis: v.steer_axis,
+        fork: [v.front_hub, v.crown],
+        head_tube: [v.crown, v.bar],
+        frame: vec![
+            [v.rear_hub, v.bottom_bracket],
+            [v.bottom_bracket, v.seat_cluster],
+            [v.seat_cluster, v.rear_hub],
+            [v.seat_cluster, v.head_top],
+            [v.bottom_bracket, v.crown],
+            [v.seat_cluster, v.saddle],
+        ],
+        handlebar: [v.bar, v.grip],
+        bodies: v
+            .bodies
+            .iter()
+            .filter(|b| b.mass > 0.0)
+            .map(|b| Body {
+                name: b.name.to_string(),
+                mass: b.mass,
+                centre: b.centre,
+                ellipse: b.ellipse,
+            })
+            .collect(),
+        total_mass: v.total_mass,
+        centre_of_mass: v.centre_of_mass,
     }
 }
 
@@ -268,25 +133,18 @@ mod tests {
         Ok(())
     }
 
-    /// A uniform ellipsoid's moments give back its semi-axes.
+    /// The page and the report draw the same bicycle: every point the page gets is one of the
+    /// library's.
     #[test]
-    fn ellipse_of_a_uniform_ellipsoid() {
-        let (m, a, b, c) = (3.0, 0.5, 0.2, 0.1);
-        let i1 = m * (b * b + c * c) / 5.0;
-        let i2 = m * (a * a + c * c) / 5.0;
-        let i3 = m * (a * a + b * b) / 5.0;
-        let e = ellipse(m, i1, i2, i3, 0.3).expect("positive mass");
-        assert!((e.semi_axes[0] - a).abs() < 1e-12 && (e.semi_axes[1] - b).abs() < 1e-12);
-        // Rotated into the benchmark's axes (z down) by θ: the same ellipse comes back.
-        let theta: f64 = 0.3;
-        let (s, co) = theta.sin_cos();
-        // Tensor in (x, z) with the first principal axis at −θ from x toward +z.
-        let ixx = i1 * co * co + i2 * s * s;
-        let izz = i1 * s * s + i2 * co * co;
-        let ixz = -(i1 - i2) * s * co;
-        let e = benchmark_ellipse(m, ixx, i3, izz, ixz).expect("positive mass");
-        let [p, q] = e.semi_axes;
-        // The larger moment belongs to the shorter semi-axis along the first direction.
-        assert!((p.max(q) - a).abs() < 1e-12 && (p.min(q) - b).abs() < 1e-12);
+    fn the_page_draws_the_library_geometry() -> Result<(), whipple::Error> {
+        let bike = presets::find("schwinn-crown")?.bicycle();
+        let p = bike.benchmark()?;
+        let v = whipple::side_view::side_view(&p, bike.jbike6());
+        let page = side_view(&bike, &p);
+        assert_eq!(page.fork, [v.front_hub, v.crown]);
+        assert_eq!(page.steer_axis, v.steer_axis);
+        assert!(page.frame.iter().any(|s| s.contains(&v.bottom_bracket)));
+        assert_eq!(page.bodies.len(), v.bodies.len());
+        Ok(())
     }
 }

@@ -11,11 +11,9 @@ use std::sync::Arc;
 use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use whipple::integrate::dopri5::Dopri5Params;
-use whipple::integrate::rk4;
 use whipple::nonlinear::{
-    simulate, ContactForce, InitialConditions, Integrator, Model, Outcome, Sample, Simulation,
-    SimulationSettings, StateView, TorqueExpression, TorqueFn, Wheel,
+    simulate, ContactForce, InitialConditions, IntegratorKind, Model, Outcome, Sample,
+    SimulationRequest, SimulationSettings, TorqueInput,
 };
 use whipple::BenchmarkParameters;
 
@@ -25,21 +23,9 @@ use crate::Limits;
 /// Frames per simulated second sent back (the page plays them at 1x, 0.5x or 2x).
 pub const FRAME_RATE: f64 = 60.0;
 
-/// The RK4 step when the request names none \[s\] (the library's and the CLI's default).
-const DEFAULT_DT: f64 = 1e-3;
-/// The adaptive integrator's relative tolerance when the request names none.
-const DEFAULT_RTOL: f64 = 1e-8;
-
-/// The integrator asked for.
-#[derive(Deserialize, Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-pub enum IntegratorChoice {
-    /// Classical Runge–Kutta, fixed step `dt`.
-    #[default]
-    Rk4,
-    /// Dormand–Prince 5(4) with error control, tolerance `rtol`.
-    Adaptive,
-}
+/// The request's fields that make the initial state (with the bicycle): named by an error in
+/// placing the bicycle there or in its first evaluation.
+const INITIAL_FIELDS: &str = "speed, lean_deg, steer_deg, lean_rate, steer_rate";
 
 /// The body of `POST /api/simulate`. Degrees for the initial angles (as in the CLI), radians
 /// per second for the rates, SI elsewhere.
@@ -66,7 +52,7 @@ pub struct SimulateRequest {
     pub duration: f64,
     /// The integrator (default RK4).
     #[serde(default)]
-    pub integrator: IntegratorChoice,
+    pub integrator: IntegratorKind,
     /// RK4 step [s] (default 0.001); only with RK4.
     pub dt: Option<f64>,
     /// Relative tolerance of the adaptive integrator (default 1e-8); only with it.
@@ -80,65 +66,11 @@ pub struct SimulateRequest {
     pub lean_torque: TorqueInput,
 }
 
-/// A rider torque as the request gives it: a constant, or an expression (the CLI's language,
-/// [`TorqueExpression`]).
-#[derive(Deserialize, Debug, Clone, PartialEq)]
-#[serde(untagged)]
-pub enum TorqueInput {
-    /// A constant torque [N m].
-    Constant(f64),
-    /// An expression of time and the state [N m].
-    Expression(String),
-}
-
-impl Default for TorqueInput {
-    fn default() -> Self {
-        TorqueInput::Constant(0.0)
-    }
-}
-
-/// A checked rider torque.
-#[derive(Debug, Clone)]
-enum Torque {
-    None,
-    Constant(f64),
-    Expression(Box<TorqueExpression>),
-}
-
-impl Torque {
-    fn check(field: &str, input: &TorqueInput) -> Result<Self, ApiError> {
-        match input {
-            TorqueInput::Constant(x) if !x.is_finite() => Err(invalid(
-                field,
-                format!("must be a finite number or an expression, got {x}"),
-            )),
-            TorqueInput::Constant(x) if *x == 0.0 => Ok(Torque::None),
-            TorqueInput::Constant(x) => Ok(Torque::Constant(*x)),
-            TorqueInput::Expression(text) => match TorqueExpression::parse(text) {
-                Ok(expression) => Ok(Torque::Expression(Box::new(expression))),
-                Err(whipple::Error::InvalidArgument { rule, .. }) => Err(invalid(field, rule)),
-                Err(other) => Err(invalid(field, other.to_string())),
-            },
-        }
-    }
-
-    fn into_fn(self) -> Option<TorqueFn> {
-        match self {
-            Torque::None => None,
-            Torque::Constant(x) => Some(Box::new(move |_: f64, _: &StateView| x)),
-            Torque::Expression(expression) => Some((*expression).into_torque()),
-        }
-    }
-}
-
 /// A checked request: everything [`run`] needs.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct Plan {
     initial: InitialConditions,
-    integrator: Integrator,
-    duration: f64,
-    steer_torque: Torque,
-    lean_torque: Torque,
+    settings: SimulationSettings,
 }
 
 fn unprocessable(kind: &'static str, field: &str, rule: String, message: String) -> ApiError {
@@ -150,37 +82,10 @@ fn invalid(field: &str, rule: String) -> ApiError {
     unprocessable("invalid_argument", field, rule, message)
 }
 
-/// Checks a request against the rules and the server's limits, before any computation.
+/// Checks a request against the server's limit on simulated time, then against the library's
+/// rules (with the server's limit on steps), before any computation.
 pub fn check(request: &SimulateRequest, limits: &Limits) -> Result<Plan, ApiError> {
-    for (field, x) in [
-        ("speed", request.speed),
-        ("lean_deg", request.lean_deg),
-        ("steer_deg", request.steer_deg),
-        ("lean_rate", request.lean_rate),
-        ("steer_rate", request.steer_rate),
-        ("duration", request.duration),
-    ] {
-        if !x.is_finite() {
-            return Err(invalid(field, format!("must be a finite number, got {x}")));
-        }
-    }
-    if request.lean_deg.abs() >= 90.0 {
-        return Err(invalid(
-            "lean_deg",
-            format!(
-                "must be below 90 degrees in size (the bicycle would lie on the ground), got {}",
-                request.lean_deg
-            ),
-        ));
-    }
-    let duration = request.duration;
-    if duration <= 0.0 {
-        return Err(invalid(
-            "duration",
-            format!("must be positive, got {duration} s"),
-        ));
-    }
-    let max_duration = limits.max_sim_duration;
+    let (duration, max_duration) = (request.duration, limits.max_sim_duration);
     if duration > max_duration {
         return Err(unprocessable(
             "limit_exceeded",
@@ -191,75 +96,29 @@ pub fn check(request: &SimulateRequest, limits: &Limits) -> Result<Plan, ApiErro
             ),
         ));
     }
-    let max_steps = limits.max_sim_steps;
-    let integrator = match request.integrator {
-        IntegratorChoice::Rk4 => {
-            if request.rtol.is_some() {
-                return Err(invalid(
-                    "rtol",
-                    "applies to the adaptive integrator; RK4 takes `dt`".into(),
-                ));
-            }
-            let dt = request.dt.unwrap_or(DEFAULT_DT);
-            if !(dt.is_finite() && dt > 0.0 && dt <= duration) {
-                return Err(invalid(
-                    "dt",
-                    format!("must be positive and at most the duration ({duration} s), got {dt}"),
-                ));
-            }
-            // Counted as the integrator counts (a last step within 1e-9 of a whole one is not
-            // another step).
-            let steps = rk4::step_count(duration, dt);
-            if steps > max_steps {
-                return Err(unprocessable(
-                    "limit_exceeded",
-                    "dt",
-                    format!("at most {max_steps} integration steps per request"),
-                    format!(
-                        "{duration} s in steps of {dt} s takes {steps} integration steps, more than this server's limit of {max_steps}; use a larger dt or a shorter duration"
-                    ),
-                ));
-            }
-            Integrator::Rk4 { dt }
-        }
-        IntegratorChoice::Adaptive => {
-            if request.dt.is_some() {
-                return Err(invalid(
-                    "dt",
-                    "applies to RK4; the adaptive integrator takes `rtol`".into(),
-                ));
-            }
-            let rtol = request.rtol.unwrap_or(DEFAULT_RTOL);
-            if !(rtol.is_finite() && rtol > 0.0 && rtol < 1.0) {
-                return Err(invalid(
-                    "rtol",
-                    format!("must lie strictly between 0 and 1, got {rtol}"),
-                ));
-            }
-            // Step attempts are bounded by the same limit; reaching it ends the run early,
-            // reported as the outcome.
-            Integrator::Dopri5(Dopri5Params {
-                rtol,
-                atol: rtol * 1e-2,
-                max_steps,
-                ..Dopri5Params::default()
-            })
-        }
-    };
-    Ok(Plan {
-        initial: InitialConditions {
-            speed: request.speed,
-            lean: request.lean_deg.to_radians(),
-            steer: request.steer_deg.to_radians(),
-            lean_rate: request.lean_rate,
-            steer_rate: request.steer_rate,
-            ..InitialConditions::upright(request.speed)
-        },
-        integrator,
+    let library = SimulationRequest {
+        speed: request.speed,
+        lean_deg: request.lean_deg,
+        steer_deg: request.steer_deg,
+        lean_rate: request.lean_rate,
+        steer_rate: request.steer_rate,
         duration,
-        steer_torque: Torque::check("steer_torque", &request.steer_torque)?,
-        lean_torque: Torque::check("lean_torque", &request.lean_torque)?,
-    })
+        integrator: request.integrator,
+        dt: request.dt,
+        rtol: request.rtol,
+        steer_torque: request.steer_torque.clone(),
+        lean_torque: request.lean_torque.clone(),
+        max_steps: Some(limits.max_sim_steps),
+        ..SimulationRequest::new(request.speed, duration)
+    };
+    let (initial, settings) = library.validate().map_err(|error| match error {
+        whipple::Error::InvalidArgument { what, rule } => invalid(what, rule),
+        whipple::Error::LimitExceeded { what, rule } => {
+            unprocessable("limit_exceeded", what, rule.clone(), rule)
+        }
+        other => ApiError::from(other),
+    })?;
+    Ok(Plan { initial, settings })
 }
 
 /// How a run ended: a machine-readable kind, the time, and a sentence for people.
@@ -382,97 +241,28 @@ pub struct SimulateResponse {
     pub frames: Vec<Frame>,
 }
 
-fn wheel_name(wheel: Wheel) -> &'static str {
-    match wheel {
-        Wheel::Rear => "rear",
-        Wheel::Front => "front",
-    }
-}
-
-fn describe(run: &Simulation, duration: f64, max_steps: usize) -> OutcomeJson {
-    let plain = |kind, t, message| OutcomeJson {
-        kind,
-        t,
-        wheel: None,
-        message,
+/// The library's outcome, with what this server adds (its step limit, why it stopped a run).
+fn describe(outcome: &Outcome, duration: f64, max_steps: usize) -> OutcomeJson {
+    // Times to the hundredth of a second, as the page shows them.
+    let message = match outcome {
+        Outcome::Completed => format!("{outcome}: {duration} s without falling"),
+        Outcome::StepSizeTooSmall { .. } => format!(
+            "{outcome:.2} (or it reached this server's limit of {max_steps} steps); loosen rtol or simulate a shorter time"
+        ),
+        Outcome::Stopped { .. } => format!(
+            "{outcome:.2}: nobody waits for the result any more (time up or client gone)"
+        ),
+        _ => format!("{outcome:.2}"),
     };
-    match &run.outcome {
-        Outcome::Completed => plain(
-            "completed",
-            duration,
-            format!("completed: {duration} s without falling"),
-        ),
-        Outcome::Fell { t, lean } => plain(
-            "fell",
-            *t,
-            format!(
-                "fell: |lean| passed 60° at t = {t:.2} s (lean {:.1}°)",
-                lean.to_degrees()
-            ),
-        ),
-        Outcome::WheelLifted { t, wheel } => {
-            let lean = run.samples.last().map_or(0.0, |s| s.lean).to_degrees();
-            OutcomeJson {
-                kind: "wheel_lifted",
-                t: *t,
-                wheel: Some(wheel_name(*wheel)),
-                message: format!(
-                    "the {} wheel lifts off at t = {t:.2} s (normal force below zero; lean {lean:.1}°{})",
-                    wheel_name(*wheel),
-                    if lean.abs() > 20.0 { ", falling" } else { "" }
-                ),
-            }
-        }
-        Outcome::ProjectionFailed {
-            t,
-            iterations,
-            residual,
-        } => plain(
-            "projection_failed",
-            *t,
-            format!("stopped at t = {t:.2} s: the projection onto the constraints diverged ({iterations} iterations, residual {residual:e})"),
-        ),
-        Outcome::NonFiniteState { t } => plain(
-            "non_finite_state",
-            *t,
-            format!("stopped at t = {t:.2} s: the state became non-finite"),
-        ),
-        Outcome::StepSizeTooSmall { t } => plain(
-            "step_limit",
-            *t,
-            format!("stopped at t = {t:.2} s: the adaptive integrator's step became too small or it reached this server's limit of {max_steps} steps; loosen rtol or simulate a shorter time"),
-        ),
-        Outcome::Stopped { t } => plain(
-            "stopped",
-            *t,
-            format!("stopped at t = {t:.2} s: nobody waits for the result any more (time up or client gone)"),
-        ),
-        Outcome::Failed { t, error } => plain(
-            "failed",
-            *t,
-            format!("stopped at t = {t:.2} s: {error}"),
-        ),
+    OutcomeJson {
+        kind: outcome.kind(),
+        t: outcome.t().unwrap_or(duration),
+        wheel: match outcome {
+            Outcome::WheelLifted { wheel, .. } => Some(wheel.name()),
+            _ => None,
+        },
+        message,
     }
-}
-
-fn finite(s: &Sample) -> bool {
-    [
-        s.t,
-        s.lean,
-        s.steer,
-        s.lean_rate,
-        s.steer_rate,
-        s.yaw,
-        s.pitch,
-        s.x,
-        s.y,
-        s.front_x,
-        s.front_y,
-        s.speed,
-        s.energy,
-    ]
-    .iter()
-    .all(|x| x.is_finite())
 }
 
 fn frame(model: &Model, s: &Sample) -> Frame {
@@ -517,7 +307,7 @@ fn frame(model: &Model, s: &Sample) -> Frame {
 fn thin(samples: &[Sample]) -> Vec<&Sample> {
     let mut frames: Vec<&Sample> = Vec::new();
     let mut next = 0.0;
-    let good: Vec<&Sample> = samples.iter().filter(|s| finite(s)).collect();
+    let good: Vec<&Sample> = samples.iter().filter(|s| s.is_finite()).collect();
     for (i, s) in good.iter().enumerate() {
         if s.t >= next - 1e-9 || i + 1 == good.len() {
             frames.push(s);
@@ -537,26 +327,28 @@ pub fn run(
     stop: Arc<AtomicBool>,
 ) -> Result<SimulateResponse, ApiError> {
     let model = Model::new(parameters)?;
-    let start = model.initial_state(&plan.initial)?;
-    let settings = SimulationSettings {
-        integrator: plan.integrator,
-        duration: plan.duration,
-        steer_torque: plan.steer_torque.into_fn(),
-        lean_torque: plan.lean_torque.into_fn(),
-        stop: Some(stop),
-        ..SimulationSettings::default()
+    let at_start = |error: whipple::Error| {
+        // The initial state comes from the request's numbers and the bicycle.
+        let rule = error.to_string();
+        ApiError::from(error).at(INITIAL_FIELDS, rule)
     };
-    let simulation = simulate(&model, start, &settings)?;
-    let g = &model.bodies.geometry;
+    let start = model.initial_state(&plan.initial).map_err(at_start)?;
+    let settings = SimulationSettings {
+        stop: Some(stop),
+        ..plan.settings
+    };
+    let duration = settings.duration;
+    let simulation = simulate(&model, start, &settings).map_err(at_start)?;
+    let g = &model.bodies().geometry;
     let geometry = DrawingGeometry {
-        rear_wheel_radius: g.r_r,
-        front_wheel_radius: g.r_f,
+        rear_wheel_radius: model.parameters().r_r,
+        front_wheel_radius: model.parameters().r_f,
         rear_hub_in_rear_frame: g.rear_hub_in_b.into(),
         steer_point_in_rear_frame: g.steer_point_in_b.into(),
         steer_point_in_front_frame: g.steer_point_in_h.into(),
         front_hub_in_front_frame: g.front_hub_in_h.into(),
         steer_axis: g.steer_axis.into(),
-        masses: model.bodies.body.map(|b| b.mass),
+        masses: model.bodies().body.map(|b| b.mass),
     };
     let frames = thin(&simulation.samples)
         .into_iter()
@@ -564,14 +356,14 @@ pub fn run(
         .collect();
     Ok(SimulateResponse {
         name,
-        outcome: describe(&simulation, plan.duration, max_steps),
-        duration: plan.duration,
+        outcome: describe(&simulation.outcome, duration, max_steps),
+        duration,
         steps: simulation.steps,
         frame_rate: FRAME_RATE,
         pulled_down_from_start: simulation
             .pulled_down_from_start
             .iter()
-            .map(|w| wheel_name(*w))
+            .map(|w| w.name())
             .collect(),
         geometry,
         frames,

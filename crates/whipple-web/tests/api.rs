@@ -411,7 +411,7 @@ async fn malformed_requests() -> TestResult {
     let (status, body) = post(
         &app,
         "/api/bike/parse",
-        &json!({"text": "", "format": "yaml"}),
+        &json!({"text": "", "format": "pdf"}),
     )
     .await?;
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
@@ -577,7 +577,9 @@ async fn simulation_runs_and_sends_frames() -> TestResult {
     Ok(())
 }
 
-/// At 3 m/s, below the weave speed, the benchmark bicycle falls over.
+/// At 3 m/s, below the weave speed, the benchmark bicycle falls over: the rear wheel would lift
+/// off first (at t = 1.6036 s, 41° of lean), in step 1604 of RK4 at 1 ms, and the last frame is
+/// that step.
 #[tokio::test]
 async fn simulation_reports_a_fall() -> TestResult {
     let app = app(Limits::default());
@@ -588,20 +590,99 @@ async fn simulation_reports_a_fall() -> TestResult {
     )
     .await?;
     assert_eq!(status, StatusCode::OK, "{body}");
-    let kind = body["outcome"]["kind"].as_str().ok_or("kind")?;
-    assert!(
-        kind == "fell" || kind == "wheel_lifted",
+    assert_eq!(
+        body["outcome"]["kind"], "wheel_lifted",
         "{}",
         body["outcome"]
     );
+    assert_eq!(body["outcome"]["wheel"], "rear");
     let t = body["outcome"]["t"].as_f64().ok_or("t")?;
-    assert!(t > 0.5 && t < 10.0, "{t}");
+    assert!((t - 1.60357).abs() < 1e-4, "{t}");
+    assert_eq!(body["steps"], 1604);
     let message = body["outcome"]["message"].as_str().ok_or("message")?;
-    assert!(message.contains(&format!("t = {t:.2} s")), "{message}");
+    assert!(
+        message.contains("rear wheel") && message.contains("at t = 1.60 s"),
+        "{message}"
+    );
+    assert!(
+        message.contains("lean -41.1") && message.contains("falling"),
+        "{message}"
+    );
     let frames = body["frames"].as_array().ok_or("frames")?;
     let last = frames.last().ok_or("no frames")?;
-    assert!(approx(&last["t"], t, 2e-3), "the last frame is the event");
-    assert!(last["lean"].as_f64().is_some_and(|l| l.abs() > 0.3));
+    assert!(
+        approx(&last["t"], 1.604, 1e-9),
+        "the last frame is the event's step"
+    );
+    assert!(last["rear_force"]["normal"]
+        .as_f64()
+        .is_some_and(|n| n < 0.0));
+    Ok(())
+}
+
+/// Every way a run can fail comes back as its outcome with the frames so far (200): a
+/// diverging projection, a non-finite state, the step limit; and a start that cannot be
+/// computed is a 422 `numerical` error, never a 500.
+#[tokio::test]
+async fn simulation_failures_are_reported() -> TestResult {
+    let app = app(Limits::default());
+    let cases = [
+        (
+            json!({"speed": 5.0, "lean_rate": 0.0, "steer_torque": 5000.0, "dt": 0.05}),
+            "projection_failed",
+            0.05,
+            "the projection onto the constraints diverged",
+        ),
+        (
+            json!({"speed": 5.0, "lean_rate": 0.0, "steer_torque": "1/(t-0.5)", "dt": 0.01}),
+            "non_finite_state",
+            0.5,
+            "the state became non-finite",
+        ),
+    ];
+    for (fields, kind, t, words) in cases {
+        let (status, body) = post(&app, "/api/simulate", &simulation(fields.clone())?).await?;
+        assert_eq!(status, StatusCode::OK, "{fields}: {body}");
+        assert_eq!(
+            body["outcome"]["kind"], kind,
+            "{fields}: {}",
+            body["outcome"]
+        );
+        assert!(
+            approx(&body["outcome"]["t"], t, 1e-12),
+            "{}",
+            body["outcome"]
+        );
+        let message = body["outcome"]["message"].as_str().unwrap_or("");
+        assert!(message.contains(words), "{message}");
+        assert!(body["frames"].as_array().is_some_and(|f| !f.is_empty()));
+    }
+    let limited = whipple_web::app(Limits {
+        max_sim_steps: 30,
+        ..Limits::default()
+    });
+    let request = simulation(json!({"integrator": "adaptive", "rtol": 1e-12, "duration": 2.0}))?;
+    let (status, body) = post(&limited, "/api/simulate", &request).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert_eq!(body["outcome"]["kind"], "step_limit", "{}", body["outcome"]);
+    let t = body["outcome"]["t"].as_f64().ok_or("t")?;
+    assert!(t > 0.0 && t < 2.0, "{t}");
+    assert!(body["outcome"]["message"]
+        .as_str()
+        .is_some_and(|m| m.contains("limit of 30 steps")));
+    // A lean a hair's breadth from 90 degrees: the start cannot be projected onto the
+    // constraints.
+    let (status, body) = post(
+        &app,
+        "/api/simulate",
+        &simulation(json!({"lean_deg": 89.999999}))?,
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    assert_eq!(body["error"]["kind"], "numerical");
+    assert!(body["error"]["message"]
+        .as_str()
+        .is_some_and(|m| m.contains("projection diverged")));
     Ok(())
 }
 
@@ -631,7 +712,7 @@ async fn simulation_takes_rider_torques_as_expressions() -> TestResult {
         .fold(0.0_f64, |m, x| m.max(x.abs()));
     assert!(late < 0.01, "the controlled lean dies out: {late}");
     let mut last = Vec::new();
-    for torque in [json!(0.3), json!("0.3 + 0*t")] {
+    for torque in [json!(0.3), json!("0.3 + 0*t"), json!(0.0), json!(-0.3)] {
         let (status, body) = post(
             &app,
             "/api/simulate",
@@ -647,6 +728,12 @@ async fn simulation_takes_rider_torques_as_expressions() -> TestResult {
         );
     }
     assert!((last[0] - last[1]).abs() < 1e-12, "{last:?}");
+    // And the torque acts: a lean torque to the right leans the bicycle further right than none,
+    // one to the left less (its sign is the benchmark's, lean right positive).
+    assert!(
+        last[0] > last[2] + 1e-3 && last[3] < last[2] - 1e-3,
+        "{last:?}"
+    );
     Ok(())
 }
 
@@ -806,5 +893,193 @@ async fn simulation_refuses_bad_inputs_and_limits() -> TestResult {
     assert!(body["error"]["message"]
         .as_str()
         .is_some_and(|m| m.contains("shorter time")));
+    Ok(())
+}
+
+/// Issue 9: the parameter table is served whole, and the OpenAPI document's benchmark keys are
+/// the table's.
+#[tokio::test]
+async fn the_parameter_table_is_served_and_matches_openapi(
+) -> Result<(), Box<dyn std::error::Error>> {
+    let app = app(Limits::default());
+    let (status, body) = get(&app, "/api/parameters").await?;
+    assert_eq!(status, StatusCode::OK);
+    let benchmark = body["benchmark"].as_array().ok_or("benchmark")?;
+    assert_eq!(benchmark.len(), 26);
+    assert_eq!(body["jbike6"].as_array().map(Vec::len), Some(51));
+    assert_eq!(benchmark[2]["key"], "lam");
+    assert_eq!(benchmark[12]["linear"], false); // IByy
+    let (_, doc) = get(&app, "/api/openapi.json").await?;
+    let required = doc["components"]["schemas"]["BenchmarkParameters"]["required"]
+        .as_array()
+        .ok_or("required")?;
+    let keys: Vec<&Value> = benchmark.iter().map(|p| &p["key"]).collect();
+    assert_eq!(required.iter().collect::<Vec<_>>(), keys);
+    Ok(())
+}
+
+/// Issue 11: sensitivities and sigmas over the API; warnings in validate; NaN refused by parse.
+#[tokio::test]
+async fn sensitivity_warnings_and_nan() -> Result<(), Box<dyn std::error::Error>> {
+    let app = app(Limits::default());
+    let mut bike = preset_json("benchmark")?;
+    bike["benchmark"]["c"] = json!({"value": 0.08, "sigma": 0.001});
+    let (status, body) = post(
+        &app,
+        "/api/sensitivity",
+        &json!({"bike": bike, "range": {"lo": 0, "hi": 10}, "speed": 5}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    let trail = body["parameters"]
+        .as_array()
+        .ok_or("parameters")?
+        .iter()
+        .find(|p| p["key"] == "c")
+        .ok_or("c")?;
+    assert!(approx(&trail["weave_speed"], 11.48, 0.01), "{trail}");
+    assert!(body["weave_speed_sigma"].as_f64().unwrap_or(0.0) > 0.011);
+    let mut odd = preset_json("benchmark")?;
+    odd["benchmark"]["IByy"] = json!(13.0);
+    let (status, body) = post(&app, "/api/bike/validate", &json!({"bike": odd})).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert_eq!(body["warnings"][0]["field"], "IByy");
+    assert_eq!(body["warnings"][0]["severity"], "warning");
+    let text =
+        write(&presets::find("benchmark")?.bicycle(), Format::Toml)?.replacen("0.08", "nan", 1);
+    let (status, body) = post(
+        &app,
+        "/api/bike/parse",
+        &json!({"text": text, "format": "toml"}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    assert_eq!(body["error"]["field"], "c");
+    let (status, body) = post(
+        &app,
+        "/api/bike/parse",
+        &json!({"text": "w=1.02\nlam=pi/10\n", "format": "auto", "file_name": "BenchmarkPar.txt"}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    assert_eq!(body["error"]["kind"], "parse");
+    Ok(())
+}
+
+/// The OpenAPI document against the router itself: the routes declared in `app()` (read from
+/// its source) are exactly the documented paths and methods, every documented operation is
+/// answered by a handler (not the JSON 404 or 405 fallbacks), and every other method on a
+/// documented path is refused with 405.
+#[tokio::test]
+async fn openapi_describes_exactly_the_routes_the_router_serves() -> TestResult {
+    let app = app(Limits::default());
+    let (_, doc) = get(&app, "/api/openapi.json").await?;
+    let mut documented: Vec<(String, String)> = Vec::new();
+    for (path, item) in doc["paths"].as_object().ok_or("paths")? {
+        for method in item.as_object().ok_or("an operation")?.keys() {
+            documented.push((path.clone(), method.to_uppercase()));
+        }
+    }
+    documented.sort();
+    // `.route("/api/...", get(handler))` and `post(...)` in app().
+    let source = include_str!("../src/api.rs");
+    let mut routed: Vec<(String, String)> = Vec::new();
+    for line in source.lines() {
+        let Some(rest) = line.trim().strip_prefix(".route(\"") else {
+            continue;
+        };
+        let Some((path, handlers)) = rest.split_once('"') else {
+            continue;
+        };
+        if !path.starts_with("/api/") {
+            continue;
+        }
+        for (verb, method) in [
+            ("get(", "GET"),
+            ("post(", "POST"),
+            ("put(", "PUT"),
+            ("delete(", "DELETE"),
+        ] {
+            if handlers.contains(verb) {
+                routed.push((path.to_string(), method.to_string()));
+            }
+        }
+    }
+    routed.sort();
+    assert_eq!(routed, documented, "router vs openapi.json");
+    for (path, method) in &documented {
+        let concrete = path.replace("{name}", "benchmark");
+        let method = Method::from_bytes(method.as_bytes())?;
+        let body = (method == Method::POST).then(|| "{}".to_string());
+        let (status, _, text) = send(&app, method.clone(), &concrete, body).await?;
+        assert_ne!(
+            status,
+            StatusCode::METHOD_NOT_ALLOWED,
+            "{method} {path}: {text}"
+        );
+        let kind = serde_json::from_str::<Value>(&text)
+            .ok()
+            .and_then(|v| v["error"]["kind"].as_str().map(str::to_string));
+        assert_ne!(
+            kind.as_deref(),
+            Some("not_found"),
+            "{method} {path}: {text}"
+        );
+        for other in [Method::GET, Method::POST, Method::PUT, Method::DELETE] {
+            let listed = documented
+                .iter()
+                .any(|(p, m)| p == path && *m == other.as_str());
+            if !listed {
+                let (status, _, _) = send(&app, other.clone(), &concrete, None).await?;
+                assert_eq!(status, StatusCode::METHOD_NOT_ALLOWED, "{other} {path}");
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The security headers `whipple serve` sends: `nosniff` on every answer, API and page alike;
+/// the page and its assets with a content security policy that allows scripts only from the
+/// server itself and forbids framing.
+#[tokio::test]
+async fn security_headers_are_sent() -> TestResult {
+    let app = app(Limits::default());
+    // The assets under the content-hashed names the page gives them.
+    let (_, _, html) = send(&app, Method::GET, "/", None).await?;
+    let named = |ext: &str| {
+        html.split('"')
+            .find(|s| s.starts_with("/assets/app-") && s.ends_with(ext))
+            .map(str::to_string)
+            .ok_or(format!("the page names no /assets/app-*{ext}"))
+    };
+    let (script, style) = (named(".js")?, named(".css")?);
+    for path in ["/", &script, &style, "/api/health", "/api/nothing"] {
+        let request = Request::builder().uri(path).body(Body::empty())?;
+        let response = app.clone().oneshot(request).await?;
+        let headers = response.headers();
+        assert_eq!(
+            headers
+                .get(header::X_CONTENT_TYPE_OPTIONS)
+                .and_then(|v| v.to_str().ok()),
+            Some("nosniff"),
+            "{path}"
+        );
+        if !path.starts_with("/api/") {
+            let csp = headers
+                .get(header::CONTENT_SECURITY_POLICY)
+                .and_then(|v| v.to_str().ok())
+                .unwrap_or_default();
+            for rule in [
+                "default-src 'self'",
+                "script-src 'self'",
+                "object-src 'none'",
+                "frame-ancestors 'none'",
+                "base-uri 'none'",
+            ] {
+                assert!(csp.contains(rule), "{path}: {csp}");
+            }
+            assert!(!csp.contains("unsafe-eval"), "{path}: {csp}");
+        }
+    }
     Ok(())
 }

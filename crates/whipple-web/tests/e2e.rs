@@ -1,78 +1,117 @@
 //! The page in real headless Chromium (Debian's `chromium`), driven by Playwright
-//! (`e2e/test.mjs` and `e2e/page.mjs`, issue 14's checks; playwright-core and axe-core from the
-//! crate's pinned npm packages), each against its own server on an ephemeral loopback port.
+//! (`e2e/*.mjs`, playwright-core and axe-core from the crate's pinned npm packages), against a server on an
+//! ephemeral loopback port.
 //!
-//! Skipped, loudly, when Chromium is absent, unless `WHIPPLE_E2E_REQUIRED=1` or `CI` is set, in
-//! which case its absence fails the test. `CHROMIUM` overrides the browser's path.
+//! A harness of its own (libtest-mimic, `harness = false`) so that a run without Chromium is
+//! visible: each script is reported **ignored**, with the reason printed, and counted in the
+//! summary, rather than passing silently. With `WHIPPLE_E2E_REQUIRED=1` (which `.ci/run`
+//! exports) a missing Chromium fails instead. `CHROMIUM` overrides the browser's path.
+//!
+//! Each browser script is one trial in [`SCRIPTS`]: add a new `e2e/NAME.mjs` there.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+use libtest_mimic::{Arguments, Failed, Trial};
 use whipple_web::{ServeOptions, Server};
 
-/// The whole browser run must end within this.
+/// The browser scripts, each a test: (test name, script under `e2e/`).
+/// `page.mjs`: issue 14's checks (plots, links, modes, weight, accessibility, layouts; prints
+/// the navigation-to-plot time and the page's weight).
+const SCRIPTS: &[(&str, &str)] = &[
+    ("page_in_headless_chromium", "test.mjs"),
+    ("page_issue_14_in_headless_chromium", "page.mjs"),
+];
+
+/// One browser run must end within this.
 const LIMIT: Duration = Duration::from_secs(300);
 
-type TestResult = Result<(), Box<dyn std::error::Error + Send + Sync>>;
-
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn page_in_headless_chromium() -> TestResult {
-    run_script("e2e/test.mjs").await
-}
-
-/// Issue 14: every numbered bug, exploring the plots, links, modes, weight, accessibility and
-/// layouts (prints the navigation-to-plot time and the page's weight).
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn page_issue_14_in_headless_chromium() -> TestResult {
-    run_script("e2e/page.mjs").await
-}
-
 /// One browser at a time: two SwiftShader-drawn pages on CI's two cores would slow each other
-/// past their timeouts.
-static ONE_BROWSER: tokio::sync::Mutex<()> = tokio::sync::Mutex::const_new(());
+/// past their timeouts (the harness runs trials in parallel).
+static ONE_BROWSER: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
-async fn run_script(name: &'static str) -> TestResult {
-    let _turn = ONE_BROWSER.lock().await;
-    let chromium = std::env::var("CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into());
-    if !Path::new(&chromium).exists() {
-        // Required in CI (which sets CI=true and installs Chromium) or when asked for.
-        let required = std::env::var("WHIPPLE_E2E_REQUIRED").is_ok_and(|v| v == "1")
-            || std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false");
-        let message = format!(
-            "\n\n*** whipple-web e2e test SKIPPED: no Chromium at {chromium}. ***\n\
+fn chromium() -> String {
+    std::env::var("CHROMIUM").unwrap_or_else(|_| "/usr/bin/chromium".into())
+}
+
+fn required() -> bool {
+    std::env::var("WHIPPLE_E2E_REQUIRED").is_ok_and(|v| v == "1")
+}
+
+fn main() {
+    let args = Arguments::from_args();
+    let browser = chromium();
+    let present = Path::new(&browser).exists();
+    if !present {
+        let reason = if required() {
+            "it is required here (WHIPPLE_E2E_REQUIRED=1): the tests fail"
+        } else {
+            "the tests are IGNORED (set WHIPPLE_E2E_REQUIRED=1 to make that an error)"
+        };
+        eprintln!(
+            "\n*** whipple-web e2e: no Chromium at {browser}; {reason}. ***\n\
              *** Install it with `apt-get install -y chromium` (or set CHROMIUM). ***\n"
         );
-        if required {
-            return Err(format!(
-                "the e2e test is required here (CI or WHIPPLE_E2E_REQUIRED=1) but there is no Chromium at {chromium}: \
-                 `apt-get install -y chromium` (or set CHROMIUM)"
-            )
-            .into());
-        }
-        eprintln!("{message}");
-        return Ok(());
     }
-    let server = Server::bind(&ServeOptions {
-        port: 0,
-        ..ServeOptions::default()
-    })
-    .await?;
-    let url = server.url();
-    let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
-    let serving = tokio::spawn(server.serve_until(async {
-        let _ = stopped.await;
-    }));
-
-    let script = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(name);
-    let outcome = tokio::task::spawn_blocking(move || run_node(&script, &url, &chromium)).await?;
-    let _ = stop.send(());
-    serving.await??;
-    outcome
+    let trials = SCRIPTS
+        .iter()
+        .map(|&(name, script)| {
+            let browser = browser.clone();
+            Trial::test(name, move || run_script(script, &browser))
+                .with_ignored_flag(!present && !required())
+        })
+        .collect();
+    libtest_mimic::run(&args, trials).exit();
 }
 
-/// Runs `node test.mjs URL`, killing it past [`LIMIT`].
-fn run_node(script: &Path, url: &str, chromium: &str) -> TestResult {
+/// Serves the page on an ephemeral loopback port and runs one script against it.
+fn run_script(script: &str, browser: &str) -> Result<(), Failed> {
+    if !Path::new(browser).exists() {
+        return Err(format!(
+            "the e2e tests are required here (WHIPPLE_E2E_REQUIRED=1) but there is no Chromium at \
+             {browser}: `apt-get install -y chromium` (or set CHROMIUM)"
+        )
+        .into());
+    }
+    let _turn = ONE_BROWSER
+        .lock()
+        .unwrap_or_else(|poisoned| poisoned.into_inner());
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+        .map_err(|e| format!("tokio runtime: {e}"))?;
+    runtime.block_on(async {
+        let server = Server::bind(&ServeOptions {
+            port: 0,
+            ..ServeOptions::default()
+        })
+        .await
+        .map_err(|e| format!("cannot start the server: {e}"))?;
+        let url = server.url();
+        let (stop, stopped) = tokio::sync::oneshot::channel::<()>();
+        let serving = tokio::spawn(server.serve_until(async {
+            let _ = stopped.await;
+        }));
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("e2e")
+            .join(script);
+        let browser = browser.to_string();
+        let outcome = tokio::task::spawn_blocking(move || run_node(&path, &url, &browser))
+            .await
+            .map_err(|e| format!("the browser run panicked: {e}"))?;
+        let _ = stop.send(());
+        serving
+            .await
+            .map_err(|e| format!("the server task: {e}"))?
+            .map_err(|e| format!("the server: {e}"))?;
+        outcome
+    })
+}
+
+/// Runs `node SCRIPT URL`, killing it past [`LIMIT`].
+fn run_node(script: &Path, url: &str, chromium: &str) -> Result<(), Failed> {
     let mut child = Command::new("node")
         .arg(script)
         .arg(url)
@@ -84,8 +123,12 @@ fn run_node(script: &Path, url: &str, chromium: &str) -> TestResult {
         .map_err(|e| format!("cannot start node: {e}"))?;
     let started = Instant::now();
     loop {
-        if let Some(status) = child.try_wait()? {
-            println!("e2e: {:.1} s", started.elapsed().as_secs_f64());
+        if let Some(status) = child.try_wait().map_err(|e| e.to_string())? {
+            println!(
+                "e2e {}: {:.1} s",
+                script.display(),
+                started.elapsed().as_secs_f64()
+            );
             return if status.success() {
                 Ok(())
             } else {

@@ -8,7 +8,7 @@ use thiserror::Error;
 #[non_exhaustive]
 pub enum Error {
     /// A parameter breaks a rule of the model (non-finite, out of range, inconsistent).
-    #[error("invalid parameter `{field}` = {value}: {rule}")]
+    #[error("invalid parameter `{field}` = {}: {rule}", short_number(*.value))]
     InvalidParameter {
         /// The parameter's name as it is written in files (for example `mB`, `rider.m`).
         field: String,
@@ -27,10 +27,12 @@ pub enum Error {
         rule: String,
     },
     /// A parameter file could not be read: syntax, unknown or missing keys, wrong types.
-    #[error("{format} syntax error at line {line}, column {column}: {message}")]
+    #[error("{}", parse_message(format, *.line, *.column, .field.as_deref(), message))]
     Parse {
-        /// `TOML`, `JSON` or `JBike6 .m`.
+        /// `TOML`, `JSON`, `JBike6 .m`, `BicycleParameters .txt`, `HumanControl .txt`, `YAML`.
         format: &'static str,
+        /// The key at fault as written in the file (`IBxx`, `rider.m`, `mrider`), when one is.
+        field: Option<String>,
         /// 1-based line of the error (0 when unknown).
         line: usize,
         /// 1-based column of the error (0 when unknown).
@@ -52,6 +54,15 @@ pub enum Error {
         /// The argument's name (for example `speeds`, `range`).
         what: &'static str,
         /// What is wrong with it.
+        rule: String,
+    },
+    /// A request asks for more work than a bound allows (for example more integration steps
+    /// than a simulation may take).
+    #[error("{what}: {rule}")]
+    LimitExceeded {
+        /// The argument's name (for example `dt`).
+        what: &'static str,
+        /// The bound and how far the request is past it.
         rule: String,
     },
     /// A numerical method did not reach its tolerance within its iteration bound.
@@ -87,6 +98,16 @@ pub enum Error {
         /// Simulation time \[s\].
         t: f64,
     },
+    /// `--strict` was asked for and the bicycle has warnings.
+    #[error("{count} warning(s) with --strict: {message}")]
+    Strict {
+        /// The first field warned about.
+        field: String,
+        /// How many warnings.
+        count: usize,
+        /// Every warning, in words.
+        message: String,
+    },
     /// The constrained equations of motion could not be solved: the saddle-point matrix
     /// [M Dᵀ; D 0] is singular at this state (for example a lean of ±90°, where the
     /// orientation angles are singular, or a bicycle without inertia in some direction).
@@ -106,6 +127,42 @@ pub enum Error {
         /// Why, with the numbers that show it.
         reason: String,
     },
+}
+
+/// A number for a message: shortest round-trip text, in exponent form when very large or small,
+/// so that a 1e300 never prints as 301 digits.
+pub fn short_number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// A piece of a user's input for a message, cut to at most `max` characters (`…` marks the cut).
+pub fn shorten(text: &str, max: usize) -> String {
+    if text.chars().count() <= max {
+        text.to_string()
+    } else {
+        let head: String = text.chars().take(max.saturating_sub(1)).collect();
+        format!("{head}…")
+    }
+}
+
+fn parse_message(
+    format: &str,
+    line: usize,
+    column: usize,
+    field: Option<&str>,
+    message: &str,
+) -> String {
+    let at = match (line, field) {
+        (0, Some(field)) => format!("{format} file, `{field}`"),
+        (0, None) => format!("{format} file"),
+        (_, Some(field)) => format!("{format} file, line {line}, column {column}, `{field}`"),
+        (_, None) => format!("{format} syntax error at line {line}, column {column}"),
+    };
+    format!("{at}: {message}")
 }
 
 /// Shorthand used throughout the crate.

@@ -4,9 +4,9 @@
 //! field against time derivatives of the full state; the zero cluster behind the capsize spike.
 
 use nalgebra::{DMatrix, Vector4};
-use whipple::analysis::validation::{
+use whipple::analysis::comparison::{
     full_state_jacobian, full_state_jacobian_fd, general_eigenvalues, lean_steer_eigenvalues,
-    lean_steer_matrix, max_abs_diff, pick, zero_cluster, StudyParams,
+    lean_steer_matrix, max_abs_diff, pick, zero_cluster, StudySettings,
 };
 use whipple::analysis::{eigen, stability};
 use whipple::linear::{Canonical, StateSpace};
@@ -103,7 +103,7 @@ fn finite_differences_stay_within_their_measured_bound() -> Result<()> {
             (vc - 0.01, 3e-6),
             (vc + 0.01, 3e-6),
         ] {
-            let fd = full_state_jacobian_fd(&model, v, &StudyParams::default())?;
+            let fd = full_state_jacobian_fd(&model, v, &StudySettings::default())?;
             let reference = eigen::eigenvalues(&canonical, v)?;
             let picked = pick(&reference, &general_eigenvalues(&fd.jacobian)?)?;
             let d = max_abs_diff(&picked, &reference);
@@ -198,9 +198,9 @@ fn full_state_jacobian_contains_the_linear_eigenvalues() -> Result<()> {
     let canonical = Canonical::new(&bike)?;
     for v in [1.0, 4.6] {
         let exact = full_state_jacobian(&model, v)?;
-        let no_projection = StudyParams {
+        let no_projection = StudySettings {
             projection: None,
-            ..StudyParams::default()
+            ..StudySettings::default()
         };
         let fd = full_state_jacobian_fd(&model, v, &no_projection)?.jacobian;
         assert!((fd - exact).amax() < 1e-7 * exact.amax());

@@ -117,7 +117,7 @@ export class ModesPanel {
       if (mine !== this.sequence) return;
       $("mode-message").hidden = true;
       this.modes = describe(answer.modes);
-      this.render();
+      this.render(v);
       const keep = this.modes.findIndex((m) => m.mode === (this.chosen?.mode ?? "weave"));
       this.choose(this.modes[keep >= 0 ? keep : 0]);
     } catch (e) {
@@ -126,10 +126,10 @@ export class ModesPanel {
     }
   }
 
-  render() {
+  /** Lists the modes computed at speed `v` (the request's, not the field's, which may be edited since). */
+  render(v) {
     const list = $("mode-list");
     list.replaceChildren();
-    const v = this.speed();
     for (const m of this.modes) {
       const [re, im] = m.eigenvalue;
       const lambda = im !== 0 ? `λ = ${num(re)} ± ${num(Math.abs(im))}i 1/s` : `λ = ${num(re)} 1/s`;

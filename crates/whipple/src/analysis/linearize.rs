@@ -8,7 +8,7 @@
 //!
 //! ```
 //! use nalgebra::{RealField, SVector, Vector2};
-//! use whipple::analysis::linearize::{central_differences, jacobian, FdParams, VectorField};
+//! use whipple::analysis::linearize::{central_differences, jacobian, FdSettings, VectorField};
 //!
 //! /// The pendulum θ̈ = −sin θ in first-order form.
 //! struct Pendulum;
@@ -20,7 +20,7 @@
 //! let x0 = Vector2::new(0.5, 0.0);
 //! let exact = jacobian(&Pendulum, &x0)?;
 //! assert_eq!(exact[(1, 0)], -(0.5f64).cos());
-//! let fd = central_differences(|x| Pendulum.eval(x), &x0, &FdParams::default())?;
+//! let fd = central_differences(|x| Pendulum.eval(x), &x0, &FdSettings::default())?;
 //! assert!((fd.jacobian - exact).amax() < 1e-9);
 //! # Ok::<(), whipple::Error>(())
 //! ```
@@ -70,7 +70,7 @@ pub fn jacobian<const N: usize>(
 /// has taken over from truncation), at most `max_decimations` times. The candidate that
 /// changed least from its predecessor is kept.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FdParams {
+pub struct FdSettings {
     /// First step, absolute (state variables in SI units). Default 1e-2.
     pub initial_step: f64,
     /// Factor by which the step shrinks at each decimation. Default 10 (the study's).
@@ -81,9 +81,9 @@ pub struct FdParams {
     pub tolerance: f64,
 }
 
-impl Default for FdParams {
+impl Default for FdSettings {
     fn default() -> Self {
-        FdParams {
+        FdSettings {
             initial_step: 1e-2,
             decimation: 10.0,
             max_decimations: 12,
@@ -107,12 +107,12 @@ pub struct FdJacobian<const N: usize> {
 }
 
 /// The Jacobian at `x0` by central differences `(f(x0 + h eⱼ) − f(x0 − h eⱼ)) / 2h`, with h
-/// chosen per column by decimation (see [`FdParams`]). `f` may do more than evaluate the vector
+/// chosen per column by decimation (see [`FdSettings`]). `f` may do more than evaluate the vector
 /// field (the study projected each perturbed state onto the constraints first).
 pub fn central_differences<const N: usize>(
     mut f: impl FnMut(&SVector<f64, N>) -> Result<SVector<f64, N>>,
     x0: &SVector<f64, N>,
-    params: &FdParams,
+    params: &FdSettings,
 ) -> Result<FdJacobian<N>> {
     if !(params.initial_step > 0.0
         && params.initial_step.is_finite()

@@ -7,19 +7,8 @@ use nalgebra::SVector;
 use super::OdeSystem;
 use crate::error::Result;
 
-/// One step of size h from (t, y).
-pub fn step<S: OdeSystem<N>, const N: usize>(
-    system: &S,
-    t: f64,
-    y: &SVector<f64, N>,
-    h: f64,
-) -> Result<SVector<f64, N>> {
-    let k1 = system.rhs(t, y)?;
-    step_with_slope(system, t, y, &k1, h)
-}
-
 /// One step when k₁ = f(t, y) is already known (it is, after the caller evaluated the state).
-pub fn step_with_slope<S: OdeSystem<N>, const N: usize>(
+pub(crate) fn step_with_slope<S: OdeSystem<N>, const N: usize>(
     system: &S,
     t: f64,
     y: &SVector<f64, N>,
@@ -35,7 +24,7 @@ pub fn step_with_slope<S: OdeSystem<N>, const N: usize>(
 
 /// Number of steps of at most `dt` covering `span` (the last may be shorter; a remainder
 /// below 1e-9 dt is absorbed).
-pub fn step_count(span: f64, dt: f64) -> usize {
+pub(crate) fn step_count(span: f64, dt: f64) -> usize {
     if span <= 0.0 {
         return 0;
     }

@@ -8,20 +8,8 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use super::topology::{BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
 use crate::parameters::BenchmarkParameters;
-
-/// Index of the rear wheel R among the bodies.
-pub const REAR_WHEEL: usize = 0;
-/// Index of the rear frame B (frame and rider).
-pub const REAR_FRAME: usize = 1;
-/// Index of the front frame H (fork and handlebar).
-pub const FRONT_FRAME: usize = 2;
-/// Index of the front wheel F.
-pub const FRONT_WHEEL: usize = 3;
-/// Number of bodies.
-pub const BODIES: usize = 4;
-/// Body names in index order.
-pub const BODY_NAMES: [&str; BODIES] = ["rear wheel", "rear frame", "front frame", "front wheel"];
 
 /// One rigid body: mass and inertia tensor about its origin (its centre of mass), in body axes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,7 +22,8 @@ pub struct RigidBody {
     pub reference_position: Vector3<f64>,
 }
 
-/// Where the joints and contacts attach, in body axes relative to the body origins.
+/// Where the joints attach, in body axes relative to the body origins (the wheel radii and
+/// gravity are the parameters' own, [`super::Model::parameters`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Geometry {
     /// Rear hub seen from the rear frame B's origin \[m\].
@@ -48,12 +37,6 @@ pub struct Geometry {
     /// Unit steer axis, pointing down (positive steer rotation turns the front right); the same
     /// vector in B and H axes, since both are parallel in the reference configuration.
     pub steer_axis: Vector3<f64>,
-    /// Rear wheel radius r_R \[m\].
-    pub r_r: f64,
-    /// Front wheel radius r_F \[m\].
-    pub r_f: f64,
-    /// Gravity g [m/s²], along +z (down).
-    pub g: f64,
 }
 
 /// The four bodies in index order ([`REAR_WHEEL`], [`REAR_FRAME`], [`FRONT_FRAME`],
@@ -103,9 +86,6 @@ impl Bodies {
             steer_point_in_h: steer_point - h,
             front_hub_in_h: front_hub - h,
             steer_axis,
-            r_r: p.r_r,
-            r_f: p.r_f,
-            g: p.g,
         };
         Bodies { body, geometry }
     }

@@ -16,7 +16,14 @@
 
 use nalgebra::{RealField, SMatrix, SVector, Vector3};
 
-use super::forward::Poses;
+use super::poses::Poses;
+
+/// Row of the longitudinal rolling row (a skate's spin lock) among a contact's three rows.
+pub(crate) const LONGITUDINAL: usize = 0;
+/// Row of the lateral rolling row.
+pub(crate) const LATERAL: usize = 1;
+/// Row of the normal row (the time derivative of the contact height).
+pub(crate) const NORMAL: usize = 2;
 
 /// The knife-edge contact of one wheel.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -156,8 +163,10 @@ impl KnifeEdge {
         let mut wheel = SMatrix::<T, 3, 6>::zeros();
         let mut frame = SMatrix::<T, 3, 6>::zeros();
         let mut gamma = SVector::<T, 3>::zeros();
-        let directions = [k.f, k.n, ez];
-        let rates = [k.f_dot, k.n_dot, Vector3::zeros()];
+        let mut directions = [ez; 3];
+        let mut rates = [Vector3::zeros(); 3];
+        (directions[LONGITUDINAL], rates[LONGITUDINAL]) = (k.f, k.f_dot);
+        (directions[LATERAL], rates[LATERAL]) = (k.n, k.n_dot);
         let spin_of_offset = k.omega.cross(&k.rho_dot);
         for row in 0..3 {
             let e = directions[row];
@@ -171,14 +180,16 @@ impl KnifeEdge {
         if self.is_skate() {
             let rf = &poses.rot[self.frame];
             let w_frame = rf * omega_frame;
-            wheel.fixed_view_mut::<1, 3>(0, 0).fill(T::zero());
             wheel
-                .fixed_view_mut::<1, 3>(0, 3)
+                .fixed_view_mut::<1, 3>(LONGITUDINAL, 0)
+                .fill(T::zero());
+            wheel
+                .fixed_view_mut::<1, 3>(LONGITUDINAL, 3)
                 .copy_from(&(rw.transpose() * k.axle).transpose());
             frame
-                .fixed_view_mut::<1, 3>(0, 3)
+                .fixed_view_mut::<1, 3>(LONGITUDINAL, 3)
                 .copy_from(&(-(rf.transpose() * k.axle).transpose()));
-            gamma[0] = -(k.omega - w_frame).dot(&k.axle_dot);
+            gamma[LONGITUDINAL] = -(k.omega - w_frame).dot(&k.axle_dot);
         }
         ContactRows {
             wheel,

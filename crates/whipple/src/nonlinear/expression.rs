@@ -13,11 +13,11 @@
 
 use exmex::prelude::*;
 
-use super::simulate::TorqueFn;
+use super::settings::TorqueFn;
 use super::state::StateView;
 use crate::error::{Error, Result};
 
-/// The names an expression may use: time t [s], the lean, steer and yaw angles [rad], their
+/// The names an expression may use: time t \[s\], the lean, steer and yaw angles \[rad\], their
 /// rates [rad/s] and the forward speed [m/s].
 pub const VARIABLES: [&str; 7] = [
     "lean",
@@ -100,7 +100,7 @@ impl TorqueExpression {
         &self.text
     }
 
-    /// The torque at time t [s] in state s [N m]; NaN when the expression cannot be evaluated
+    /// The torque at time t \[s\] in state s [N m]; NaN when the expression cannot be evaluated
     /// there (a simulation then stops with a non-finite state).
     pub fn eval(&self, t: f64, s: &StateView) -> f64 {
         let mut values = [0.0; VARIABLES.len()];

@@ -13,7 +13,7 @@
 
 use nalgebra::{Matrix3, RealField, SMatrix, SVector, Vector3};
 
-use super::forward::Poses;
+use super::poses::Poses;
 use super::rotation::skew;
 
 /// A revolute joint between two bodies.

@@ -7,7 +7,7 @@
 //! factored by Cholesky.
 //!
 //! Velocities: `u ← u − Dᵀ (D Dᵀ)⁻¹ D u`, the orthogonal projection of u onto the null space of
-//! all 21 velocity rows. It is computed in the nine tree speeds of [`super::forward`]: with
+//! all 21 velocity rows. It is computed in the nine tree speeds of [`super::tree`]: with
 //! `u = T w` the joint rows hold identically, so the projection is
 //! `min |T w − u|²` subject to `G w = 0`, a 15 × 15 saddle-point system; for a rolling rear wheel
 //! its rows are solved for the hub velocity first (as in [`Model::forward`]), which leaves six
@@ -16,10 +16,16 @@
 use nalgebra::{Matrix3, SMatrix, SVector};
 use num_dual::Dual64;
 
-use super::forward::{symmetrize, Poses, Reduced, HOLONOMIC_ROWS};
-use super::rotation;
+use super::assembly::{symmetrize, Reduced};
+use super::poses::Poses;
+use super::saddle;
 use super::state::{State, COORDINATES, LEAN, PITCH, SPEEDS, YAW};
-use super::{saddle, Model, BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
+use super::topology::{
+    row_bodies, BODIES, FRONT_CONTACT, FRONT_FRAME, FRONT_WHEEL, HOLONOMIC_ROWS, REAR_CONTACT,
+    REAR_FRAME, REAR_WHEEL,
+};
+use super::tree::speeds_of;
+use super::Model;
 use crate::error::{Error, Result};
 
 /// How positions are brought back onto the holonomic constraints.
@@ -37,7 +43,7 @@ pub enum ProjectionMethod {
 
 /// Settings of the position projection.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ProjectionParams {
+pub struct ProjectionSettings {
     /// The method. Default [`ProjectionMethod::Coordinates`].
     pub method: ProjectionMethod,
     /// Largest absolute holonomic residual accepted \[m\]. Default 1e-13.
@@ -49,9 +55,9 @@ pub struct ProjectionParams {
     pub max_iterations: usize,
 }
 
-impl Default for ProjectionParams {
+impl Default for ProjectionSettings {
     fn default() -> Self {
-        ProjectionParams {
+        ProjectionSettings {
             method: ProjectionMethod::Coordinates,
             tolerance: 1e-13,
             min_iterations: 1,
@@ -67,18 +73,6 @@ pub struct ProjectionReport {
     pub iterations: usize,
     /// Largest absolute holonomic residual after projection.
     pub residual: f64,
-}
-
-/// Bodies each holonomic row touches: rear hub joint (R, B), steer joint (B, H), front hub
-/// joint (H, F), rear contact height (R), front contact height (F).
-fn row_bodies(row: usize) -> [usize; 2] {
-    match row {
-        0..=4 => [REAR_WHEEL, REAR_FRAME],
-        5..=9 => [REAR_FRAME, FRONT_FRAME],
-        10..=14 => [FRONT_FRAME, FRONT_WHEEL],
-        15 => [REAR_WHEEL, REAR_WHEEL],
-        _ => [FRONT_WHEEL, FRONT_WHEEL],
-    }
 }
 
 /// J Jᵀ using the block sparsity of J: rows share columns only through a common body.
@@ -108,30 +102,11 @@ fn gram(
 }
 
 impl Model {
-    /// ∂r/∂q of the 17 holonomic residuals.
-    pub fn holonomic_jacobian(
-        &self,
-        q: &SVector<f64, COORDINATES>,
-    ) -> SMatrix<f64, HOLONOMIC_ROWS, COORDINATES> {
-        let state = State {
-            q: *q,
-            u: SVector::zeros(),
-        };
-        let (d, _) = self.velocity_rows(&state);
-        let mut j = d.fixed_rows::<HOLONOMIC_ROWS>(0).into_owned();
-        for k in 0..BODIES {
-            let w = rotation::rates_to_body(q[6 * k + 4], q[6 * k + 5]);
-            let cols = j.fixed_columns::<3>(6 * k + 3) * w;
-            j.fixed_columns_mut::<3>(6 * k + 3).copy_from(&cols);
-        }
-        j
-    }
-
     /// Moves q onto the holonomic constraints by Newton iteration (see [`ProjectionMethod`]).
     pub fn project_positions(
         &self,
         q: &mut SVector<f64, COORDINATES>,
-        params: &ProjectionParams,
+        params: &ProjectionSettings,
     ) -> Result<ProjectionReport> {
         self.project_positions_posed(q, params)
             .map(|(report, _)| report)
@@ -141,7 +116,7 @@ impl Model {
     fn project_positions_posed(
         &self,
         q: &mut SVector<f64, COORDINATES>,
-        params: &ProjectionParams,
+        params: &ProjectionSettings,
     ) -> Result<(ProjectionReport, Poses<f64>)> {
         match params.method {
             ProjectionMethod::LeastNorm => {
@@ -156,7 +131,7 @@ impl Model {
     fn project_coordinates(
         &self,
         q: &mut SVector<f64, COORDINATES>,
-        params: &ProjectionParams,
+        params: &ProjectionSettings,
     ) -> Result<(ProjectionReport, Poses<f64>)> {
         let b = 6 * REAR_FRAME;
         let (yaw, lean, mut pitch) = (q[b + YAW], q[b + LEAN], q[b + PITCH]);
@@ -166,7 +141,7 @@ impl Model {
             q[6 * REAR_WHEEL + PITCH] - pitch,
             q[6 * FRONT_WHEEL + PITCH] - q[6 * FRONT_FRAME + PITCH],
         ];
-        let contact = self.contacts[0].point(&poses);
+        let contact = self.contacts[REAR_CONTACT].point(&poses);
         let c = Dual64::from_re;
         let mut iterations = 0;
         loop {
@@ -221,7 +196,7 @@ impl Model {
     fn project_least_norm(
         &self,
         q: &mut SVector<f64, COORDINATES>,
-        params: &ProjectionParams,
+        params: &ProjectionSettings,
     ) -> Result<ProjectionReport> {
         let mut r = self.holonomic_residual(q);
         let mut iterations = 0;
@@ -268,14 +243,16 @@ impl Model {
     /// rear wheel the rear contact rows are solved for the hub velocity first
     /// ([`Model::roll_on_rear_wheel`]), which leaves six tree speeds and the three front rows.
     fn project_velocities_at(&self, poses: &Poses<f64>, state: &mut State<f64>) -> Result<()> {
-        state.u = if self.contacts[0].is_skate() {
-            let (jac, g) = self.contact_tree_rows(poses);
+        let (tree, _) = self.tree(poses, &SVector::zeros());
+        state.u = if self.contacts[REAR_CONTACT].is_skate() {
+            let jac = tree.jacobians();
+            let (g, _) = self.contact_rows(poses, &tree, &jac, &tree.bias);
             least_norm_speeds(&jac, &g, &state.u)?
         } else {
-            let (mut tree, _) = self.tree(poses, &SVector::zeros());
-            self.roll_on_rear_wheel(poses, &mut tree);
-            let (g, _, _) = self.contact_rows_in(1, poses, &tree, &tree.rest, &tree.bias);
-            least_norm_speeds(&tree.rest, &g, &state.u)?
+            let rolling = self.roll_on_rear_wheel(poses, &tree);
+            let (g, _, _) =
+                self.contact_rows_in(FRONT_CONTACT, poses, &tree, &rolling.jac, &rolling.bias);
+            least_norm_speeds(&rolling.jac, &g, &state.u)?
         };
         Ok(())
     }
@@ -284,7 +261,7 @@ impl Model {
     pub fn project(
         &self,
         state: &mut State<f64>,
-        params: &ProjectionParams,
+        params: &ProjectionSettings,
     ) -> Result<ProjectionReport> {
         self.project_posed(state, params).map(|(report, _)| report)
     }
@@ -294,7 +271,7 @@ impl Model {
     pub(crate) fn project_posed(
         &self,
         state: &mut State<f64>,
-        params: &ProjectionParams,
+        params: &ProjectionSettings,
     ) -> Result<(ProjectionReport, Poses<f64>)> {
         let (report, poses) = self.project_positions_posed(&mut state.q, params)?;
         self.project_velocities_at(&poses, state)?;
@@ -329,9 +306,5 @@ fn least_norm_speeds<const N: usize, const M: usize>(
             context: "velocity projection: singular constraint rows".into(),
         }
     })?;
-    let mut out = SVector::<f64, SPEEDS>::zeros();
-    for (k, jac) in jac.iter().enumerate() {
-        out.fixed_rows_mut::<6>(6 * k).copy_from(&(jac * w));
-    }
-    Ok(out)
+    Ok(speeds_of(jac, &w))
 }

@@ -6,7 +6,7 @@
 //! over the scalar, so that dual numbers carry exact derivatives through it.
 //! [`Model::lean_steer_field`] is then ẋ = f(x) = [φ̇, δ̇, φ̈, δ̈] of the full non-linear
 //! dynamics restricted to the constraint manifold; its Jacobian at x = 0 is the non-linear
-//! model's own A(v) (see [`crate::analysis::validation::lean_steer_matrix`]).
+//! model's own A(v) (see [`crate::analysis::comparison::lean_steer_matrix`]).
 //!
 //! The coordinates left out — yaw, rear contact position, wheel rotations — are ignorable: the
 //! dynamics do not depend on them (the bicycle is the same wherever it is and however far its
@@ -18,10 +18,14 @@
 use nalgebra::{Matrix3, RealField, SMatrix, SVector, Vector3, Vector4};
 use num_dual::Dual64;
 
-use super::forward::{Derivatives, Inputs, Poses, TREE};
+use super::forward::{Derivatives, Inputs};
+use super::initial::solve_tree_speeds;
+use super::poses::Poses;
 use super::rotation;
-use super::state::{State, COORDINATES, SPEEDS, STATE_LEN};
-use super::{Model, BODIES, FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
+use super::state::{State, COORDINATES, PITCH, STATE_LEN};
+use super::topology::{FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL, TREE};
+use super::tree::speeds_of;
+use super::Model;
 use crate::analysis::linearize::VectorField;
 use crate::error::{Error, Result};
 
@@ -89,42 +93,28 @@ impl Model {
         );
         let poses = Poses::new(&q);
         let (tree, _) = self.tree(&poses, &SVector::zeros());
-        // Nine equations in the nine tree speeds: six contact rows and the three given speeds.
-        let mut a = SMatrix::<T, TREE, TREE>::zeros();
-        let mut b = SVector::<T, TREE>::zeros();
+        // The six contact rows in the nine tree speeds.
+        let mut g = SMatrix::<T, 6, TREE>::zeros();
         let zero3 = Vector3::<T>::zeros();
         for (i, contact) in self.contacts.iter().enumerate() {
             let rows = contact.rows(&poses, &zero3, &zero3, &zero3);
-            a.fixed_view_mut::<3, TREE>(3 * i, 0).copy_from(
+            g.fixed_rows_mut::<3>(3 * i).copy_from(
                 &(rows.wheel * tree.jac(contact.wheel) + rows.frame * tree.jac(contact.frame)),
             );
         }
         // Forward speed: the rear hub velocity ν (rear frame axes) along the heading (+x).
         let heading = poses.rot[REAR_FRAME].transpose() * Vector3::x();
-        a.fixed_view_mut::<1, 3>(6, 0)
-            .copy_from(&heading.transpose());
-        b[6] = speed;
-        // Lean rate of the yaw–lean–pitch angles: cos θ ω_x + sin θ ω_z.
-        let (sp, cp) = pitch.sin_cos();
-        a[(7, 3)] = cp;
-        a[(7, 5)] = sp;
-        b[7] = lean_rate;
-        a[(8, 6)] = T::one();
-        b[8] = steer_rate;
-        let w = a
-            .lu()
-            .solve(&b)
-            .filter(|w| w.iter().all(|x| x.is_finite()))
-            .ok_or_else(|| Error::SingularDynamics {
+        let w = solve_tree_speeds(&g, &heading, pitch, [speed, lean_rate, steer_rate]).ok_or_else(
+            || Error::SingularDynamics {
                 context: "speed, lean rate and steer rate do not determine the motion of the \
                           reduced state (singular velocity constraints)"
                     .into(),
-            })?;
-        let mut u = SVector::<T, SPEEDS>::zeros();
-        for k in 0..BODIES {
-            u.fixed_rows_mut::<6>(6 * k).copy_from(&(tree.jac(k) * w));
-        }
-        Ok(State { q, u })
+            },
+        )?;
+        Ok(State {
+            q,
+            u: speeds_of(&tree.jacobians(), &w),
+        })
     }
 
     /// ẋ = f(x) = [φ̇, δ̇, φ̈, δ̈] of the non-linear dynamics at the reduced state of
@@ -151,8 +141,8 @@ impl Model {
         let state = self.reduced_state(x, c(speed))?;
         let d = self.forward(&state, &Inputs::default())?;
         let b = 6 * REAR_FRAME;
-        let pitch = state.q[b + 5];
-        let pitch_rate = d.q_dot[b + 5];
+        let pitch = state.q[b + PITCH];
+        let pitch_rate = d.q_dot[b + PITCH];
         let (sp, cp) = pitch.sin_cos();
         let w_b = state.angular_velocity(REAR_FRAME);
         let w_h = state.angular_velocity(FRONT_FRAME);
@@ -191,7 +181,7 @@ impl VectorField<4> for LeanSteerField<'_> {
 /// The non-linear model's full first-order form, 48 states, ẏ = F(y) from [`Model::forward`],
 /// unforced: y = [q; ũ], where ũ is the model's speeds u except that each wheel's angular
 /// velocity is expressed in axes that follow the wheel's yaw and lean but not its spin,
-/// ω̃ = R_y(θ) ω (θ: the wheel's third Euler angle; see [`spin_free_vector`]).
+/// ω̃ = R_y(θ) ω (θ: the wheel's third Euler angle; see `spin_free_vector`).
 ///
 /// Why: the model's own speeds give a wheel's angular velocity in its body axes, which spin
 /// with the wheel. In them the Jacobian of [q̇; u̇] at one instant of steady running is only
@@ -222,7 +212,7 @@ const WHEELS: [usize; 2] = [REAR_WHEEL, FRONT_WHEEL];
 
 /// R_y(θ) of wheel k: from its body axes to its spin-free axes.
 fn unspin<T: RealField + Copy>(q: &SVector<T, COORDINATES>, k: usize) -> Matrix3<T> {
-    rotation::matrix(T::zero(), T::zero(), q[6 * k + 5])
+    rotation::matrix(T::zero(), T::zero(), q[6 * k + PITCH])
 }
 
 /// y = [q; ũ] of a state: the wheels' angular velocities turned from body axes into
@@ -257,7 +247,7 @@ pub fn spin_free_derivative<T: RealField + Copy>(
         let r = unspin(&state.q, k);
         let w = r * state.angular_velocity(k);
         let dw = d.u_dot.fixed_rows::<3>(6 * k + 3).into_owned();
-        let spin_rate = d.q_dot[6 * k + 5];
+        let spin_rate = d.q_dot[6 * k + PITCH];
         let rate = r * dw + Vector3::y().cross(&w) * spin_rate;
         out.fixed_rows_mut::<3>(COORDINATES + 6 * k + 3)
             .copy_from(&rate);

@@ -3,96 +3,95 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, Result};
+use super::check::{percent, Notice};
+use super::table::{Form, ParameterInfo};
+use crate::error::{short_number, Error, Result};
 
-/// Benchmark parameters of the Whipple bicycle (Meijaard, Papadopoulos, Ruina & Schwab 2007,
-/// Proc. R. Soc. A 463:1955–1982, Table 1). SI units, radians.
-///
-/// Axes: x forward, y to the right, z down, origin at the rear wheel's ground contact in the
-/// upright reference configuration; so `z_b < 0` puts the rear body's centre of mass above the
-/// ground. Four bodies: rear wheel R, rear frame with rider B, front frame (fork and handlebar)
-/// H, front wheel F. The file keys (serde names) are those of the paper and of
-/// BicycleParameters: `w`, `c`, `lam`, `g`, `rR`, `mR`, `IRxx`, …
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct BenchmarkParameters {
-    /// w: wheelbase, the distance between the wheel contacts [m].
-    pub w: f64,
-    /// c: trail, the horizontal distance from the front contact to the point where the steer
-    /// axis meets the ground, positive when the contact is behind that point [m].
-    pub c: f64,
-    /// λ: steer axis tilt from the vertical (π/2 − head angle) [rad].
-    #[serde(rename = "lam")]
-    pub lambda: f64,
-    /// g: gravitational acceleration [m/s²].
-    pub g: f64,
-    /// r_R: rear wheel radius [m] (0 for a skate).
-    #[serde(rename = "rR")]
-    pub r_r: f64,
-    /// m_R: rear wheel mass [kg].
-    #[serde(rename = "mR")]
-    pub m_r: f64,
-    /// I_Rxx: rear wheel moment of inertia about a diameter (= I_Rzz) [kg m²].
-    #[serde(rename = "IRxx")]
-    pub i_rxx: f64,
-    /// I_Ryy: rear wheel moment of inertia about its axle (polar, spin) [kg m²].
-    #[serde(rename = "IRyy")]
-    pub i_ryy: f64,
-    /// x_B: rear body centre of mass, forward of the rear contact [m].
-    #[serde(rename = "xB")]
-    pub x_b: f64,
-    /// z_B: rear body centre of mass, below the ground (negative: above) [m].
-    #[serde(rename = "zB")]
-    pub z_b: f64,
-    /// m_B: rear body (frame and rider) mass [kg].
-    #[serde(rename = "mB")]
-    pub m_b: f64,
-    /// I_Bxx: rear body moment of inertia about x through its centre of mass [kg m²].
-    #[serde(rename = "IBxx")]
-    pub i_bxx: f64,
-    /// I_Byy: rear body moment of inertia about y (pitch) [kg m²]. Not seen by the linear model.
-    #[serde(rename = "IByy")]
-    pub i_byy: f64,
-    /// I_Bzz: rear body moment of inertia about z (yaw) [kg m²].
-    #[serde(rename = "IBzz")]
-    pub i_bzz: f64,
-    /// I_Bxz: rear body product of inertia, the x-z entry of its inertia tensor
-    /// (I_Bxz = −∫ x z dm) [kg m²].
-    #[serde(rename = "IBxz")]
-    pub i_bxz: f64,
-    /// x_H: front frame centre of mass, forward of the rear contact [m].
-    #[serde(rename = "xH")]
-    pub x_h: f64,
-    /// z_H: front frame centre of mass, below the ground (negative: above) [m].
-    #[serde(rename = "zH")]
-    pub z_h: f64,
-    /// m_H: front frame (fork and handlebar) mass [kg].
-    #[serde(rename = "mH")]
-    pub m_h: f64,
-    /// I_Hxx: front frame moment of inertia about x [kg m²].
-    #[serde(rename = "IHxx")]
-    pub i_hxx: f64,
-    /// I_Hyy: front frame moment of inertia about y [kg m²]. Not seen by the linear model.
-    #[serde(rename = "IHyy")]
-    pub i_hyy: f64,
-    /// I_Hzz: front frame moment of inertia about z [kg m²].
-    #[serde(rename = "IHzz")]
-    pub i_hzz: f64,
-    /// I_Hxz: front frame product of inertia [kg m²].
-    #[serde(rename = "IHxz")]
-    pub i_hxz: f64,
-    /// r_F: front wheel radius [m] (0 for a skate).
-    #[serde(rename = "rF")]
-    pub r_f: f64,
-    /// m_F: front wheel mass [kg].
-    #[serde(rename = "mF")]
-    pub m_f: f64,
-    /// I_Fxx: front wheel moment of inertia about a diameter (= I_Fzz) [kg m²].
-    #[serde(rename = "IFxx")]
-    pub i_fxx: f64,
-    /// I_Fyy: front wheel moment of inertia about its axle (polar, spin) [kg m²].
-    #[serde(rename = "IFyy")]
-    pub i_fyy: f64,
+/// The benchmark form's parameters, one row each: field, file key, symbol, unit, whether the
+/// linear model sees it, description. The struct, its serde names, its field list and
+/// [`BENCHMARK_TABLE`] are all generated from these rows.
+macro_rules! benchmark_parameters {
+    ($( $field:ident, $key:literal, $symbol:literal, $unit:literal, $linear:literal, $doc:literal; )*) => {
+        /// Benchmark parameters of the Whipple bicycle (Meijaard, Papadopoulos, Ruina & Schwab
+        /// 2007, Proc. R. Soc. A 463:1955–1982, Table 1). SI units, radians.
+        ///
+        /// Axes: x forward, y to the right, z down, origin at the rear wheel's ground contact in
+        /// the upright reference configuration; so `z_b < 0` puts the rear body's centre of mass
+        /// above the ground. Four bodies: rear wheel R, rear frame with rider B, front frame
+        /// (fork and handlebar) H, front wheel F. The file keys (serde names) are those of the
+        /// paper and of BicycleParameters: `w`, `c`, `lam`, `g`, `rR`, `mR`, `IRxx`, … (see
+        /// [`BENCHMARK_TABLE`]).
+        ///
+        /// Generic over the scalar so that dual numbers run through the same conversion and
+        /// linear model as `f64` (exact derivatives); `BenchmarkParameters` alone is the `f64` one.
+        #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub struct BenchmarkParameters<T = f64> {
+            $(
+                #[doc = concat!($symbol, ": ", $doc, " [", $unit, "].")]
+                #[serde(rename = $key)]
+                pub $field: T,
+            )*
+        }
+
+        /// Every benchmark parameter in the order of Meijaard 2007 Table 1.
+        pub const BENCHMARK_TABLE: [ParameterInfo; 26] = [
+            $(
+                ParameterInfo {
+                    name: stringify!($field),
+                    key: $key,
+                    path: $key,
+                    symbol: $symbol,
+                    unit: $unit,
+                    description: $doc,
+                    form: Form::Benchmark,
+                    linear: $linear,
+                },
+            )*
+        ];
+
+        impl<T: Copy> BenchmarkParameters<T> {
+            /// The values in the order of [`BENCHMARK_TABLE`].
+            pub fn to_array(&self) -> [T; 26] {
+                [$(self.$field,)*]
+            }
+
+            /// The parameters from values in the order of [`BENCHMARK_TABLE`].
+            pub fn from_array(values: [T; 26]) -> Self {
+                let [$($field,)*] = values;
+                BenchmarkParameters { $($field,)* }
+            }
+        }
+    };
+}
+
+benchmark_parameters! {
+    w, "w", "w", "m", true, "wheelbase, the distance between the wheel contacts";
+    c, "c", "c", "m", true, "trail, from the front contact back to where the steer axis meets the ground (positive: contact behind it)";
+    lambda, "lam", "λ", "rad", true, "steer axis tilt from the vertical (π/2 − head angle)";
+    g, "g", "g", "m/s^2", true, "gravitational acceleration";
+    r_r, "rR", "r_R", "m", true, "rear wheel radius (0 for a skate)";
+    m_r, "mR", "m_R", "kg", true, "rear wheel mass";
+    i_rxx, "IRxx", "I_Rxx", "kg m^2", true, "rear wheel moment of inertia about a diameter (= I_Rzz)";
+    i_ryy, "IRyy", "I_Ryy", "kg m^2", true, "rear wheel moment of inertia about its axle (spin)";
+    x_b, "xB", "x_B", "m", true, "rear body centre of mass, forward of the rear contact";
+    z_b, "zB", "z_B", "m", true, "rear body centre of mass, below the ground (negative: above)";
+    m_b, "mB", "m_B", "kg", true, "rear body (frame and rider) mass";
+    i_bxx, "IBxx", "I_Bxx", "kg m^2", true, "rear body moment of inertia about x through its centre of mass";
+    i_byy, "IByy", "I_Byy", "kg m^2", false, "rear body moment of inertia about y (pitch; not seen by the linear model)";
+    i_bzz, "IBzz", "I_Bzz", "kg m^2", true, "rear body moment of inertia about z (yaw)";
+    i_bxz, "IBxz", "I_Bxz", "kg m^2", true, "rear body product of inertia, the x-z entry of its tensor (−∫ x z dm)";
+    x_h, "xH", "x_H", "m", true, "front frame centre of mass, forward of the rear contact";
+    z_h, "zH", "z_H", "m", true, "front frame centre of mass, below the ground (negative: above)";
+    m_h, "mH", "m_H", "kg", true, "front frame (fork and handlebar) mass";
+    i_hxx, "IHxx", "I_Hxx", "kg m^2", true, "front frame moment of inertia about x";
+    i_hyy, "IHyy", "I_Hyy", "kg m^2", false, "front frame moment of inertia about y (not seen by the linear model)";
+    i_hzz, "IHzz", "I_Hzz", "kg m^2", true, "front frame moment of inertia about z";
+    i_hxz, "IHxz", "I_Hxz", "kg m^2", true, "front frame product of inertia, the x-z entry of its tensor";
+    r_f, "rF", "r_F", "m", true, "front wheel radius (0 for a skate)";
+    m_f, "mF", "m_F", "kg", true, "front wheel mass";
+    i_fxx, "IFxx", "I_Fxx", "kg m^2", true, "front wheel moment of inertia about a diameter (= I_Fzz)";
+    i_fyy, "IFyy", "I_Fyy", "kg m^2", true, "front wheel moment of inertia about its axle (spin)";
 }
 
 /// Relative allowance for round-off when checking the triangle inequality of principal moments
@@ -102,42 +101,30 @@ const TRIANGLE_ROUND_OFF: f64 = 1e-9;
 impl BenchmarkParameters {
     /// The parameters as (file key, value) pairs in the order of Meijaard 2007 Table 1.
     pub fn fields(&self) -> [(&'static str, f64); 26] {
-        [
-            ("w", self.w),
-            ("c", self.c),
-            ("lam", self.lambda),
-            ("g", self.g),
-            ("rR", self.r_r),
-            ("mR", self.m_r),
-            ("IRxx", self.i_rxx),
-            ("IRyy", self.i_ryy),
-            ("xB", self.x_b),
-            ("zB", self.z_b),
-            ("mB", self.m_b),
-            ("IBxx", self.i_bxx),
-            ("IByy", self.i_byy),
-            ("IBzz", self.i_bzz),
-            ("IBxz", self.i_bxz),
-            ("xH", self.x_h),
-            ("zH", self.z_h),
-            ("mH", self.m_h),
-            ("IHxx", self.i_hxx),
-            ("IHyy", self.i_hyy),
-            ("IHzz", self.i_hzz),
-            ("IHxz", self.i_hxz),
-            ("rF", self.r_f),
-            ("mF", self.m_f),
-            ("IFxx", self.i_fxx),
-            ("IFyy", self.i_fyy),
-        ]
+        let values = self.to_array();
+        std::array::from_fn(|i| (BENCHMARK_TABLE[i].key, values[i]))
     }
 
-    /// Checks every rule a bicycle must satisfy before any computation:
-    /// all numbers finite; g > 0; w > 0; wheel radii ≥ 0; λ strictly inside (−π/2, π/2);
-    /// masses ≥ 0 with the rear (R + B) and front (H + F) assemblies of positive mass; every
-    /// inertia tensor positive semi-definite with principal moments obeying the triangle
-    /// inequality; a wheel of zero radius has no spin inertia; the mass matrix M of the
-    /// linearized model positive definite.
+    /// The value of the parameter with this file key (`IBxx`).
+    pub fn get(&self, key: &str) -> Option<f64> {
+        super::table::index_of(Form::Benchmark, key).map(|i| self.to_array()[i])
+    }
+
+    /// Sets the parameter with this file key; `false` for an unknown key.
+    pub fn set(&mut self, key: &str, value: f64) -> bool {
+        match super::table::index_of(Form::Benchmark, key) {
+            Some(i) => {
+                let mut values = self.to_array();
+                values[i] = value;
+                *self = Self::from_array(values);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Checks every rule a bicycle must satisfy before any computation (see
+    /// [`BenchmarkParameters::check`]); warnings do not fail it.
     ///
     /// ```
     /// use whipple::BenchmarkParameters;
@@ -148,6 +135,19 @@ impl BenchmarkParameters {
     /// assert!(message.contains("mB"));
     /// ```
     pub fn validate(&self) -> Result<()> {
+        self.check().map(|_| ())
+    }
+
+    /// Checks the bicycle and returns its warnings. Refused (errors): a number that is not
+    /// finite; g ≤ 0; w ≤ 0; a negative wheel radius; λ outside (−π/2, π/2); a negative mass; a
+    /// massless rear (R + B) or front (H + F) assembly; a body of zero mass with inertia; an
+    /// inertia tensor that is not positive semi-definite; a spinning skate (zero radius with
+    /// spin inertia); a mass matrix M of the linearized model that is not positive definite or
+    /// overflows. Warned about (the equations stay well defined): principal moments that break
+    /// the triangle inequality (as measured bicycles' do within their measurement error), a
+    /// centre of mass below the ground.
+    pub fn check(&self) -> Result<Vec<Notice>> {
+        let mut notices = Vec::new();
         for (field, value) in self.fields() {
             if !value.is_finite() {
                 return Err(invalid(field, value, "must be a finite number"));
@@ -186,27 +186,108 @@ impl BenchmarkParameters {
                     .into(),
             });
         }
-        wheel_inertia("R", self.r_r, self.i_rxx, self.i_ryy)?;
-        wheel_inertia("F", self.r_f, self.i_fxx, self.i_fyy)?;
-        frame_inertia("B", self.i_bxx, self.i_byy, self.i_bzz, self.i_bxz)?;
-        frame_inertia("H", self.i_hxx, self.i_hyy, self.i_hzz, self.i_hxz)?;
+        for (body, mass_key, mass, inertia) in [
+            (
+                "the rear wheel R",
+                "mR",
+                self.m_r,
+                vec![("IRxx", self.i_rxx), ("IRyy", self.i_ryy)],
+            ),
+            (
+                "the rear body B",
+                "mB",
+                self.m_b,
+                vec![
+                    ("IBxx", self.i_bxx),
+                    ("IByy", self.i_byy),
+                    ("IBzz", self.i_bzz),
+                    ("IBxz", self.i_bxz),
+                ],
+            ),
+            (
+                "the front frame H",
+                "mH",
+                self.m_h,
+                vec![
+                    ("IHxx", self.i_hxx),
+                    ("IHyy", self.i_hyy),
+                    ("IHzz", self.i_hzz),
+                    ("IHxz", self.i_hxz),
+                ],
+            ),
+            (
+                "the front wheel F",
+                "mF",
+                self.m_f,
+                vec![("IFxx", self.i_fxx), ("IFyy", self.i_fyy)],
+            ),
+        ] {
+            zero_mass_inertia(body, mass_key, mass, &inertia)?;
+        }
+        wheel_inertia("R", self.r_r, self.i_rxx, self.i_ryy, &mut notices)?;
+        wheel_inertia("F", self.r_f, self.i_fxx, self.i_fyy, &mut notices)?;
+        frame_inertia(
+            "B",
+            self.i_bxx,
+            self.i_byy,
+            self.i_bzz,
+            self.i_bxz,
+            &mut notices,
+        )?;
+        frame_inertia(
+            "H",
+            self.i_hxx,
+            self.i_hyy,
+            self.i_hzz,
+            self.i_hxz,
+            &mut notices,
+        )?;
+        for (key, z, body) in [
+            ("zB", self.z_b, "rear body B"),
+            ("zH", self.z_h, "front frame H"),
+        ] {
+            if z > 0.0 {
+                notices.push(Notice::warning(
+                    key,
+                    format!(
+                        "the centre of mass of the {body} lies {} m below the ground (z points down)",
+                        short_number(z)
+                    ),
+                    None,
+                    "every analysis (the equations stay well defined)",
+                ));
+            }
+        }
 
         let m = crate::linear::Canonical::from_unchecked(self).m;
         let det = m[(0, 0)] * m[(1, 1)] - m[(0, 1)] * m[(1, 0)];
+        if m.iter().any(|x| !x.is_finite()) || !det.is_finite() {
+            // Overflow: name the largest number, the likely culprit.
+            let (field, value) = self
+                .fields()
+                .into_iter()
+                .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+                .unwrap_or(("w", self.w));
+            return Err(invalid(
+                field,
+                value,
+                "is too large: the mass matrix M of the linearized model overflows double precision",
+            ));
+        }
         if !(m[(0, 0)] > 0.0 && det > 0.0) {
             return Err(Error::InvalidBicycle {
                 fields: "all masses, inertias and geometry".into(),
                 rule: format!(
                     "the mass matrix M of the linearized model must be positive definite, \
                      but M = [[{}, {}], [{}, {}]] (det {det:e})",
-                    m[(0, 0)],
-                    m[(0, 1)],
-                    m[(1, 0)],
-                    m[(1, 1)]
+                    short_number(m[(0, 0)]),
+                    short_number(m[(0, 1)]),
+                    short_number(m[(1, 0)]),
+                    short_number(m[(1, 1)])
                 ),
             });
         }
-        Ok(())
+        Ok(notices)
     }
 }
 
@@ -234,8 +315,37 @@ fn non_negative(field: &str, value: f64) -> Result<()> {
     }
 }
 
-/// Checks principal moments (a, b, c) of one body: each ≥ 0 and each ≤ the sum of the others.
-pub(crate) fn principal_moments(fields: [&str; 3], moments: [f64; 3]) -> Result<()> {
+/// A body of zero mass cannot have inertia: it names the body and the first non-zero moment.
+pub(crate) fn zero_mass_inertia(
+    body: &str,
+    mass_key: &str,
+    mass: f64,
+    inertia: &[(&str, f64)],
+) -> Result<()> {
+    if mass == 0.0 {
+        if let Some((key, value)) = inertia.iter().find(|(_, v)| *v != 0.0) {
+            return Err(Error::InvalidBicycle {
+                fields: format!("{mass_key}, {key}"),
+                rule: format!(
+                    "{body} has zero mass ({mass_key} = 0) but a moment of inertia \
+                     ({key} = {}): a body without mass has no inertia; give its mass or set its \
+                     inertia to zero",
+                    short_number(*value)
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Checks principal moments (a, b, c) of one body: each ≥ 0 (an error otherwise) and each ≤ the
+/// sum of the others (a warning otherwise, with the size of the violation in percent).
+pub(crate) fn principal_moments(
+    fields: [&str; 3],
+    moments: [f64; 3],
+    affects: &str,
+    notices: &mut Vec<Notice>,
+) -> Result<()> {
     let scale = moments.iter().map(|m| m.abs()).sum::<f64>();
     for (i, (&field, &value)) in fields.iter().zip(moments.iter()).enumerate() {
         if value < -TRIANGLE_ROUND_OFF * scale {
@@ -247,25 +357,46 @@ pub(crate) fn principal_moments(fields: [&str; 3], moments: [f64; 3]) -> Result<
         }
         let others = moments[(i + 1) % 3] + moments[(i + 2) % 3];
         if value > others + TRIANGLE_ROUND_OFF * scale {
-            return Err(Error::InvalidBicycle {
-                fields: fields.join(", "),
-                rule: format!(
-                    "principal moments of inertia ({}, {}, {}) break the triangle inequality: \
-                     {field} = {value} exceeds the sum of the other two, {others}",
-                    moments[0], moments[1], moments[2]
+            let pct = percent(value - others, others);
+            notices.push(Notice::warning(
+                field,
+                format!(
+                    "the principal moments of inertia ({}, {}, {}) break the triangle inequality: \
+                     {field} = {} exceeds the sum of the other two, {}, by {:.3} % (no rigid body \
+                     has such a tensor; measured ones may, within their error)",
+                    short_number(moments[0]),
+                    short_number(moments[1]),
+                    short_number(moments[2]),
+                    short_number(value),
+                    short_number(others),
+                    pct
                 ),
-            });
+                Some(pct),
+                affects,
+            ));
+            break;
         }
     }
     Ok(())
 }
 
-fn wheel_inertia(wheel: &str, radius: f64, i_xx: f64, i_yy: f64) -> Result<()> {
+fn wheel_inertia(
+    wheel: &str,
+    radius: f64,
+    i_xx: f64,
+    i_yy: f64,
+    notices: &mut Vec<Notice>,
+) -> Result<()> {
     let xx = format!("I{wheel}xx");
     let yy = format!("I{wheel}yy");
     non_negative(&xx, i_xx)?;
     non_negative(&yy, i_yy)?;
-    principal_moments([&xx, &yy, &xx], [i_xx, i_yy, i_xx])?;
+    principal_moments(
+        [&xx, &yy, &xx],
+        [i_xx, i_yy, i_xx],
+        "the linear model (through the wheel's gyroscopic term) and the non-linear model; both stay well defined",
+        notices,
+    )?;
     if radius == 0.0 && i_yy != 0.0 {
         return Err(invalid(
             &yy,
@@ -276,7 +407,14 @@ fn wheel_inertia(wheel: &str, radius: f64, i_xx: f64, i_yy: f64) -> Result<()> {
     Ok(())
 }
 
-fn frame_inertia(body: &str, i_xx: f64, i_yy: f64, i_zz: f64, i_xz: f64) -> Result<()> {
+fn frame_inertia(
+    body: &str,
+    i_xx: f64,
+    i_yy: f64,
+    i_zz: f64,
+    i_xz: f64,
+    notices: &mut Vec<Notice>,
+) -> Result<()> {
     let xx = format!("I{body}xx");
     let yy = format!("I{body}yy");
     let zz = format!("I{body}zz");
@@ -293,17 +431,22 @@ fn frame_inertia(body: &str, i_xx: f64, i_yy: f64, i_zz: f64, i_xz: f64) -> Resu
             fields: format!("{xx}, {zz}, I{body}xz"),
             rule: format!(
                 "the inertia tensor is not positive semi-definite: I{body}xz² = {} exceeds {xx}·{zz} = {}",
-                i_xz * i_xz,
-                i_xx * i_zz
+                short_number(i_xz * i_xz),
+                short_number(i_xx * i_zz)
             ),
         });
     }
     principal_moments(
         [
-            &format!("I{body} (first principal moment in the x-z plane)"),
+            &format!("I{body}xx, I{body}zz, I{body}xz (first principal moment in the x-z plane)"),
             &yy,
-            &format!("I{body} (second principal moment in the x-z plane)"),
+            &format!("I{body}xx, I{body}zz, I{body}xz (second principal moment in the x-z plane)"),
         ],
         [i1, i_yy, i3],
+        &format!(
+            "only the non-linear model (simulate, validate), which still runs; the linear model \
+             (matrices, eig, modes, speeds, sensitivity) never sees I{body}yy"
+        ),
+        notices,
     )
 }

@@ -5,11 +5,18 @@
 //! (z = x × y). Every body is symmetric about the x-y plane. Its in-plane inertia is given by
 //! principal moments `I = [I11, I22, Izz]` about the body's centre of mass, axis 1 at angle
 //! `alpha` from x (counter-clockwise, from forward toward up), and Izz about the lateral axis.
+//!
+//! The types are generic over the scalar (default `f64`), so that the conversion runs on dual
+//! numbers too: exact derivatives of anything computed from a JBike6-form bicycle with respect
+//! to its own parameters.
 
+use nalgebra::RealField;
 use serde::{Deserialize, Serialize};
 
-use super::benchmark::{principal_moments, BenchmarkParameters};
-use crate::error::{Error, Result};
+use super::benchmark::{principal_moments, zero_mass_inertia, BenchmarkParameters};
+use super::check::Notice;
+use super::table::{Form, ParameterInfo};
+use crate::error::{short_number, Error, Result};
 
 /// JBike6's default gravitational acceleration [m/s²] (standard gravity).
 pub const JBIKE6_GRAVITY: f64 = 9.80665;
@@ -18,35 +25,35 @@ pub const JBIKE6_GRAVITY: f64 = 9.80665;
 /// contact point.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Jbike6Wheel {
+pub struct Jbike6Wheel<T = f64> {
     /// D: diameter [m] (0 for a skate).
     #[serde(rename = "D")]
-    pub diameter: f64,
+    pub diameter: T,
     /// m: mass [kg].
-    pub m: f64,
+    pub m: T,
     /// I = [I11, I22, Izz]: I11 = I22 the diametral moments, Izz the polar (spin) moment [kg m²].
     #[serde(rename = "I")]
-    pub inertia: [f64; 3],
+    pub inertia: [T; 3],
     /// alpha: angle of principal axis 1 from x [rad] (irrelevant for an axisymmetric wheel).
-    pub alpha: f64,
+    pub alpha: T,
 }
 
 /// A body rigidly joined to the rear frame (rider, frame, rack), placed by its centre of mass
 /// (x, y) from the rear contact, y up.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Jbike6RearBody {
+pub struct Jbike6RearBody<T = f64> {
     /// m: mass [kg].
-    pub m: f64,
+    pub m: T,
     /// xcm: centre of mass forward of the rear contact [m].
-    pub xcm: f64,
+    pub xcm: T,
     /// ycm: centre of mass above the ground [m].
-    pub ycm: f64,
+    pub ycm: T,
     /// I = [I11, I22, Izz]: principal moments about the centre of mass [kg m²].
     #[serde(rename = "I")]
-    pub inertia: [f64; 3],
+    pub inertia: [T; 3],
     /// alpha: angle of principal axis 1 from x, counter-clockwise [rad].
-    pub alpha: f64,
+    pub alpha: T,
 }
 
 /// A body rigidly joined to the front frame (fork, basket), placed by its centre of mass in a
@@ -54,71 +61,669 @@ pub struct Jbike6RearBody {
 /// up).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Jbike6FrontBody {
+pub struct Jbike6FrontBody<T = f64> {
     /// m: mass [kg].
-    pub m: f64,
+    pub m: T,
     /// ucm: centre of mass perpendicular to the steer axis, forward and up [m].
-    pub ucm: f64,
+    pub ucm: T,
     /// vcm: centre of mass along the steer axis, up from the ground [m].
-    pub vcm: f64,
+    pub vcm: T,
     /// I = [I11, I22, Izz]: principal moments about the centre of mass [kg m²].
     #[serde(rename = "I")]
-    pub inertia: [f64; 3],
+    pub inertia: [T; 3],
     /// alpha: angle of principal axis 1 from x (not from u), counter-clockwise [rad].
-    pub alpha: f64,
+    pub alpha: T,
 }
 
-fn default_gravity() -> f64 {
-    JBIKE6_GRAVITY
+fn default_gravity<T: From<f64>>() -> T {
+    T::from(JBIKE6_GRAVITY)
 }
 
 /// A bicycle in JBike6's form: geometry and seven bodies. A body of zero mass and zero inertia
 /// is absent.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Jbike6Parameters {
+#[serde(bound(deserialize = "T: Deserialize<'de> + From<f64>"))]
+pub struct Jbike6Parameters<T = f64> {
     /// Horizontal distance between the wheel contacts [m] (benchmark w).
-    pub wheelbase: f64,
+    pub wheelbase: T,
     /// Angle of the steer axis from the horizontal [rad]; the steer axis tilt is
     /// λ = π/2 − head_angle.
-    pub head_angle: f64,
+    pub head_angle: T,
     /// Horizontal distance from the front contact to the steer axis' ground point, positive when
     /// the contact is behind it [m] (benchmark c).
-    pub trail: f64,
+    pub trail: T,
     /// Gravitational acceleration [m/s²]; JBike6's default, 9.80665, when left out.
     #[serde(default = "default_gravity")]
-    pub gravity: f64,
+    pub gravity: T,
     /// The rear wheel.
-    pub rear_wheel: Jbike6Wheel,
+    pub rear_wheel: Jbike6Wheel<T>,
     /// The front wheel.
-    pub front_wheel: Jbike6Wheel,
+    pub front_wheel: Jbike6Wheel<T>,
     /// The rider, rigidly joined to the rear frame.
-    pub rider: Jbike6RearBody,
+    pub rider: Jbike6RearBody<T>,
     /// The rear frame.
-    pub frame: Jbike6RearBody,
+    pub frame: Jbike6RearBody<T>,
     /// A rear rack (with its load), rigidly joined to the rear frame.
-    pub rack: Jbike6RearBody,
+    pub rack: Jbike6RearBody<T>,
     /// The front fork (with the handlebar).
-    pub fork: Jbike6FrontBody,
+    pub fork: Jbike6FrontBody<T>,
     /// A front basket (with its load), rigidly joined to the fork.
-    pub basket: Jbike6FrontBody,
+    pub basket: Jbike6FrontBody<T>,
+}
+
+/// Every JBike6 parameter in the order of the original study's listing.
+pub const JBIKE6_TABLE: [ParameterInfo; 51] = [
+    ParameterInfo {
+        name: "wheelbase",
+        key: "wheelbase",
+        path: "wheelbase",
+        symbol: "w",
+        unit: "m",
+        description: "horizontal distance between the wheel contacts (benchmark w)",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "head_angle",
+        key: "head_angle",
+        path: "head_angle",
+        symbol: "π/2 − λ",
+        unit: "rad",
+        description: "steer axis angle from the horizontal; the steer axis tilt is λ = π/2 − head_angle",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "trail",
+        key: "trail",
+        path: "trail",
+        symbol: "c",
+        unit: "m",
+        description: "front contact behind the steer axis' ground point (benchmark c)",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "gravity",
+        key: "gravity",
+        path: "gravity",
+        symbol: "g",
+        unit: "m/s^2",
+        description: "gravitational acceleration (JBike6's default 9.80665 when left out)",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rear_wheel.diameter",
+        key: "Drearwheel",
+        path: "rear_wheel.D",
+        symbol: "D",
+        unit: "m",
+        description: "rear wheel diameter (0 for a skate)",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rear_wheel.m",
+        key: "mrearwheel",
+        path: "rear_wheel.m",
+        symbol: "m",
+        unit: "kg",
+        description: "rear wheel mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rear_wheel.inertia[0]",
+        key: "Irearwheel(1)",
+        path: "rear_wheel.I[1]",
+        symbol: "I11",
+        unit: "kg m^2",
+        description: "rear wheel diametral moment of inertia I11",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rear_wheel.inertia[1]",
+        key: "Irearwheel(2)",
+        path: "rear_wheel.I[2]",
+        symbol: "I22",
+        unit: "kg m^2",
+        description: "rear wheel diametral moment of inertia I22 (= I11)",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rear_wheel.inertia[2]",
+        key: "Irearwheel(3)",
+        path: "rear_wheel.I[3]",
+        symbol: "Izz",
+        unit: "kg m^2",
+        description: "rear wheel spin (polar) moment of inertia Izz",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rear_wheel.alpha",
+        key: "alphaIrearwheel",
+        path: "rear_wheel.alpha",
+        symbol: "α",
+        unit: "rad",
+        description: "rear wheel principal axis angle (irrelevant for an axisymmetric wheel)",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "front_wheel.diameter",
+        key: "Dfrontwheel",
+        path: "front_wheel.D",
+        symbol: "D",
+        unit: "m",
+        description: "front wheel diameter (0 for a skate)",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "front_wheel.m",
+        key: "mfrontwheel",
+        path: "front_wheel.m",
+        symbol: "m",
+        unit: "kg",
+        description: "front wheel mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "front_wheel.inertia[0]",
+        key: "Ifrontwheel(1)",
+        path: "front_wheel.I[1]",
+        symbol: "I11",
+        unit: "kg m^2",
+        description: "front wheel diametral moment of inertia I11",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "front_wheel.inertia[1]",
+        key: "Ifrontwheel(2)",
+        path: "front_wheel.I[2]",
+        symbol: "I22",
+        unit: "kg m^2",
+        description: "front wheel diametral moment of inertia I22 (= I11)",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "front_wheel.inertia[2]",
+        key: "Ifrontwheel(3)",
+        path: "front_wheel.I[3]",
+        symbol: "Izz",
+        unit: "kg m^2",
+        description: "front wheel spin (polar) moment of inertia Izz",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "front_wheel.alpha",
+        key: "alphaIfrontwheel",
+        path: "front_wheel.alpha",
+        symbol: "α",
+        unit: "rad",
+        description: "front wheel principal axis angle (irrelevant for an axisymmetric wheel)",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rider.m",
+        key: "mrider",
+        path: "rider.m",
+        symbol: "m",
+        unit: "kg",
+        description: "rider mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rider.xcm",
+        key: "xcmrider",
+        path: "rider.xcm",
+        symbol: "x",
+        unit: "m",
+        description: "rider centre of mass, forward of the rear contact",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rider.ycm",
+        key: "ycmrider",
+        path: "rider.ycm",
+        symbol: "y",
+        unit: "m",
+        description: "rider centre of mass, above the ground",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rider.inertia[0]",
+        key: "Irider(1)",
+        path: "rider.I[1]",
+        symbol: "I11",
+        unit: "kg m^2",
+        description: "rider first in-plane principal moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rider.inertia[1]",
+        key: "Irider(2)",
+        path: "rider.I[2]",
+        symbol: "I22",
+        unit: "kg m^2",
+        description: "rider second in-plane principal moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rider.inertia[2]",
+        key: "Irider(3)",
+        path: "rider.I[3]",
+        symbol: "Izz",
+        unit: "kg m^2",
+        description: "rider lateral moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rider.alpha",
+        key: "alphaIrider",
+        path: "rider.alpha",
+        symbol: "α",
+        unit: "rad",
+        description: "rider angle of principal axis 1 from x, counter-clockwise",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "frame.m",
+        key: "mframe",
+        path: "frame.m",
+        symbol: "m",
+        unit: "kg",
+        description: "rear frame mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "frame.xcm",
+        key: "xcmframe",
+        path: "frame.xcm",
+        symbol: "x",
+        unit: "m",
+        description: "rear frame centre of mass, forward of the rear contact",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "frame.ycm",
+        key: "ycmframe",
+        path: "frame.ycm",
+        symbol: "y",
+        unit: "m",
+        description: "rear frame centre of mass, above the ground",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "frame.inertia[0]",
+        key: "Iframe(1)",
+        path: "frame.I[1]",
+        symbol: "I11",
+        unit: "kg m^2",
+        description: "rear frame first in-plane principal moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "frame.inertia[1]",
+        key: "Iframe(2)",
+        path: "frame.I[2]",
+        symbol: "I22",
+        unit: "kg m^2",
+        description: "rear frame second in-plane principal moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "frame.inertia[2]",
+        key: "Iframe(3)",
+        path: "frame.I[3]",
+        symbol: "Izz",
+        unit: "kg m^2",
+        description: "rear frame lateral moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "frame.alpha",
+        key: "alphaIframe",
+        path: "frame.alpha",
+        symbol: "α",
+        unit: "rad",
+        description: "rear frame angle of principal axis 1 from x, counter-clockwise",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rack.m",
+        key: "mrack",
+        path: "rack.m",
+        symbol: "m",
+        unit: "kg",
+        description: "rear rack with its load mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rack.xcm",
+        key: "xcmrack",
+        path: "rack.xcm",
+        symbol: "x",
+        unit: "m",
+        description: "rear rack with its load centre of mass, forward of the rear contact",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rack.ycm",
+        key: "ycmrack",
+        path: "rack.ycm",
+        symbol: "y",
+        unit: "m",
+        description: "rear rack with its load centre of mass, above the ground",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rack.inertia[0]",
+        key: "Irack(1)",
+        path: "rack.I[1]",
+        symbol: "I11",
+        unit: "kg m^2",
+        description: "rear rack with its load first in-plane principal moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rack.inertia[1]",
+        key: "Irack(2)",
+        path: "rack.I[2]",
+        symbol: "I22",
+        unit: "kg m^2",
+        description: "rear rack with its load second in-plane principal moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rack.inertia[2]",
+        key: "Irack(3)",
+        path: "rack.I[3]",
+        symbol: "Izz",
+        unit: "kg m^2",
+        description: "rear rack with its load lateral moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "rack.alpha",
+        key: "alphaIrack",
+        path: "rack.alpha",
+        symbol: "α",
+        unit: "rad",
+        description: "rear rack with its load angle of principal axis 1 from x, counter-clockwise",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "fork.m",
+        key: "mfork",
+        path: "fork.m",
+        symbol: "m",
+        unit: "kg",
+        description: "front fork with the handlebar mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "fork.ucm",
+        key: "ucmfork",
+        path: "fork.ucm",
+        symbol: "u",
+        unit: "m",
+        description: "front fork with the handlebar centre of mass, perpendicular to the steer axis (forward and up)",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "fork.vcm",
+        key: "vcmfork",
+        path: "fork.vcm",
+        symbol: "v",
+        unit: "m",
+        description: "front fork with the handlebar centre of mass, along the steer axis up from the ground",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "fork.inertia[0]",
+        key: "Ifork(1)",
+        path: "fork.I[1]",
+        symbol: "I11",
+        unit: "kg m^2",
+        description: "front fork with the handlebar first in-plane principal moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "fork.inertia[1]",
+        key: "Ifork(2)",
+        path: "fork.I[2]",
+        symbol: "I22",
+        unit: "kg m^2",
+        description: "front fork with the handlebar second in-plane principal moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "fork.inertia[2]",
+        key: "Ifork(3)",
+        path: "fork.I[3]",
+        symbol: "Izz",
+        unit: "kg m^2",
+        description: "front fork with the handlebar lateral moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "fork.alpha",
+        key: "alphaIfork",
+        path: "fork.alpha",
+        symbol: "α",
+        unit: "rad",
+        description: "front fork with the handlebar angle of principal axis 1 from x (not from u), counter-clockwise",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "basket.m",
+        key: "mbasket",
+        path: "basket.m",
+        symbol: "m",
+        unit: "kg",
+        description: "front basket with its load mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "basket.ucm",
+        key: "ucmbasket",
+        path: "basket.ucm",
+        symbol: "u",
+        unit: "m",
+        description: "front basket with its load centre of mass, perpendicular to the steer axis (forward and up)",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "basket.vcm",
+        key: "vcmbasket",
+        path: "basket.vcm",
+        symbol: "v",
+        unit: "m",
+        description: "front basket with its load centre of mass, along the steer axis up from the ground",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "basket.inertia[0]",
+        key: "Ibasket(1)",
+        path: "basket.I[1]",
+        symbol: "I11",
+        unit: "kg m^2",
+        description: "front basket with its load first in-plane principal moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "basket.inertia[1]",
+        key: "Ibasket(2)",
+        path: "basket.I[2]",
+        symbol: "I22",
+        unit: "kg m^2",
+        description: "front basket with its load second in-plane principal moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "basket.inertia[2]",
+        key: "Ibasket(3)",
+        path: "basket.I[3]",
+        symbol: "Izz",
+        unit: "kg m^2",
+        description: "front basket with its load lateral moment of inertia about its centre of mass",
+        form: Form::Jbike6,
+        linear: true,
+    },
+    ParameterInfo {
+        name: "basket.alpha",
+        key: "alphaIbasket",
+        path: "basket.alpha",
+        symbol: "α",
+        unit: "rad",
+        description: "front basket with its load angle of principal axis 1 from x (not from u), counter-clockwise",
+        form: Form::Jbike6,
+        linear: true,
+    },
+];
+
+/// Number of JBike6 parameters.
+pub const JBIKE6_COUNT: usize = 51;
+
+impl<T: Copy> Jbike6Parameters<T> {
+    /// The values in the order of [`JBIKE6_TABLE`].
+    pub fn to_array(&self) -> [T; JBIKE6_COUNT] {
+        let mut out = Vec::with_capacity(JBIKE6_COUNT);
+        out.extend([self.wheelbase, self.head_angle, self.trail, self.gravity]);
+        for w in [&self.rear_wheel, &self.front_wheel] {
+            out.extend([
+                w.diameter,
+                w.m,
+                w.inertia[0],
+                w.inertia[1],
+                w.inertia[2],
+                w.alpha,
+            ]);
+        }
+        for b in [&self.rider, &self.frame, &self.rack] {
+            out.extend([
+                b.m,
+                b.xcm,
+                b.ycm,
+                b.inertia[0],
+                b.inertia[1],
+                b.inertia[2],
+                b.alpha,
+            ]);
+        }
+        for b in [&self.fork, &self.basket] {
+            out.extend([
+                b.m,
+                b.ucm,
+                b.vcm,
+                b.inertia[0],
+                b.inertia[1],
+                b.inertia[2],
+                b.alpha,
+            ]);
+        }
+        let mut array = [self.wheelbase; JBIKE6_COUNT];
+        array.copy_from_slice(&out);
+        array
+    }
+
+    /// The parameters from values in the order of [`JBIKE6_TABLE`].
+    pub fn from_array(v: [T; JBIKE6_COUNT]) -> Self {
+        let wheel = |o: usize| Jbike6Wheel {
+            diameter: v[o],
+            m: v[o + 1],
+            inertia: [v[o + 2], v[o + 3], v[o + 4]],
+            alpha: v[o + 5],
+        };
+        let rear = |o: usize| Jbike6RearBody {
+            m: v[o],
+            xcm: v[o + 1],
+            ycm: v[o + 2],
+            inertia: [v[o + 3], v[o + 4], v[o + 5]],
+            alpha: v[o + 6],
+        };
+        let front = |o: usize| Jbike6FrontBody {
+            m: v[o],
+            ucm: v[o + 1],
+            vcm: v[o + 2],
+            inertia: [v[o + 3], v[o + 4], v[o + 5]],
+            alpha: v[o + 6],
+        };
+        Jbike6Parameters {
+            wheelbase: v[0],
+            head_angle: v[1],
+            trail: v[2],
+            gravity: v[3],
+            rear_wheel: wheel(4),
+            front_wheel: wheel(10),
+            rider: rear(16),
+            frame: rear(23),
+            rack: rear(30),
+            fork: front(37),
+            basket: front(44),
+        }
+    }
 }
 
 /// One planar body ready to be combined: mass, centre of mass (x, y up) and in-plane tensor
 /// (xx, yy, xy) plus the lateral moment zz, in JBike6's axes.
 #[derive(Debug, Clone, Copy)]
-struct PlanarBody {
-    m: f64,
-    x: f64,
-    y: f64,
-    t_xx: f64,
-    t_yy: f64,
-    t_xy: f64,
-    t_zz: f64,
+struct PlanarBody<T> {
+    m: T,
+    x: T,
+    y: T,
+    t_xx: T,
+    t_yy: T,
+    t_xy: T,
+    t_zz: T,
 }
 
-impl PlanarBody {
-    fn new(m: f64, x: f64, y: f64, inertia: [f64; 3], alpha: f64) -> Self {
+impl<T: RealField + Copy> PlanarBody<T> {
+    fn new(m: T, x: T, y: T, inertia: [T; 3], alpha: T) -> Self {
         let [i11, i22, izz] = inertia;
         let (s, c) = alpha.sin_cos();
         // R(alpha) diag(I11, I22) R(alpha)^T with R = [[c, -s], [s, c]].
@@ -135,24 +740,25 @@ impl PlanarBody {
 
     /// Combines bodies: masses added, centre of mass the mass-weighted mean, tensors moved to
     /// the combined centre of mass by the parallel-axis theorem.
-    fn combine(bodies: &[PlanarBody]) -> PlanarBody {
-        let m: f64 = bodies.iter().map(|b| b.m).sum();
-        let (x, y) = if m > 0.0 {
+    fn combine(bodies: &[PlanarBody<T>]) -> PlanarBody<T> {
+        let zero = T::zero();
+        let m = bodies.iter().fold(zero, |a, b| a + b.m);
+        let (x, y) = if m > zero {
             (
-                bodies.iter().map(|b| b.m * b.x).sum::<f64>() / m,
-                bodies.iter().map(|b| b.m * b.y).sum::<f64>() / m,
+                bodies.iter().fold(zero, |a, b| a + b.m * b.x) / m,
+                bodies.iter().fold(zero, |a, b| a + b.m * b.y) / m,
             )
         } else {
-            (0.0, 0.0)
+            (zero, zero)
         };
         let mut total = PlanarBody {
             m,
             x,
             y,
-            t_xx: 0.0,
-            t_yy: 0.0,
-            t_xy: 0.0,
-            t_zz: 0.0,
+            t_xx: zero,
+            t_yy: zero,
+            t_xy: zero,
+            t_zz: zero,
         };
         for b in bodies {
             let (dx, dy) = (b.x - x, b.y - y);
@@ -165,49 +771,155 @@ impl PlanarBody {
     }
 }
 
+impl<T: RealField + Copy> Jbike6Parameters<T> {
+    /// Where a front body's centre of mass is, (x forward from the rear contact, y up) [m]:
+    /// `ucm` perpendicular to the steer axis (forward and up) and `vcm` along it (up) from the
+    /// point where the axis meets the ground, w + c ahead of the rear contact.
+    pub fn front_body_centre(&self, b: &Jbike6FrontBody<T>) -> [T; 2] {
+        let (s, c) = (T::frac_pi_2() - self.head_angle).sin_cos();
+        let front_point = self.wheelbase + self.trail;
+        [front_point + b.ucm * c - b.vcm * s, b.ucm * s + b.vcm * c]
+    }
+
+    /// The benchmark parameters without any check, on any scalar (for dual numbers); see
+    /// [`Jbike6Parameters::to_benchmark`].
+    pub fn to_benchmark_unchecked(&self) -> BenchmarkParameters<T> {
+        let half: T = nalgebra::convert(0.5);
+        let lambda = T::frac_pi_2() - self.head_angle;
+        let rear = PlanarBody::combine(&[
+            rear_body(&self.rider),
+            rear_body(&self.frame),
+            rear_body(&self.rack),
+        ]);
+        let place = |b: &Jbike6FrontBody<T>| {
+            let [x, y] = self.front_body_centre(b);
+            PlanarBody::new(b.m, x, y, b.inertia, b.alpha)
+        };
+        let front = PlanarBody::combine(&[place(&self.fork), place(&self.basket)]);
+        BenchmarkParameters {
+            w: self.wheelbase,
+            c: self.trail,
+            lambda,
+            g: self.gravity,
+            r_r: half * self.rear_wheel.diameter,
+            m_r: self.rear_wheel.m,
+            i_rxx: self.rear_wheel.inertia[0],
+            i_ryy: self.rear_wheel.inertia[2],
+            x_b: rear.x,
+            z_b: -rear.y,
+            m_b: rear.m,
+            i_bxx: rear.t_xx,
+            i_byy: rear.t_zz,
+            i_bzz: rear.t_yy,
+            i_bxz: -rear.t_xy,
+            x_h: front.x,
+            z_h: -front.y,
+            m_h: front.m,
+            i_hxx: front.t_xx,
+            i_hyy: front.t_zz,
+            i_hzz: front.t_yy,
+            i_hxz: -front.t_xy,
+            r_f: half * self.front_wheel.diameter,
+            m_f: self.front_wheel.m,
+            i_fxx: self.front_wheel.inertia[0],
+            i_fyy: self.front_wheel.inertia[2],
+        }
+    }
+}
+
+fn rear_body<T: RealField + Copy>(b: &Jbike6RearBody<T>) -> PlanarBody<T> {
+    PlanarBody::new(b.m, b.xcm, b.ycm, b.inertia, b.alpha)
+}
+
+/// The JBike6 names behind a benchmark key, for messages about a converted bicycle.
+fn jbike6_names(benchmark_key: &str) -> &'static str {
+    match benchmark_key {
+        "w" => "wheelbase",
+        "c" => "trail",
+        "lam" => "head_angle",
+        "g" => "gravity",
+        "rR" => "Drearwheel",
+        "mR" => "mrearwheel",
+        "IRxx" => "Irearwheel(1)",
+        "IRyy" => "Irearwheel(3)",
+        "rF" => "Dfrontwheel",
+        "mF" => "mfrontwheel",
+        "IFxx" => "Ifrontwheel(1)",
+        "IFyy" => "Ifrontwheel(3)",
+        "mB" => "mrider, mframe, mrack",
+        "xB" => "xcmrider, xcmframe, xcmrack",
+        "zB" => "ycmrider, ycmframe, ycmrack",
+        "IBxx" | "IByy" | "IBzz" | "IBxz" => "Irider, Iframe, Irack (combined rear body)",
+        "mH" => "mfork, mbasket",
+        "xH" | "zH" => "ucmfork, vcmfork, ucmbasket, vcmbasket",
+        "IHxx" | "IHyy" | "IHzz" | "IHxz" => "Ifork, Ibasket (combined front frame)",
+        _ => "",
+    }
+}
+
+/// Renames a comma-separated list of benchmark keys to the JBike6 names they come from.
+fn rename_fields(fields: &str) -> String {
+    let mut out: Vec<&str> = Vec::new();
+    for key in fields.split(',').map(str::trim) {
+        let name = jbike6_names(key);
+        let name = if name.is_empty() { key } else { name };
+        if !out.contains(&name) {
+            out.push(name);
+        }
+    }
+    out.join(", ")
+}
+
+/// A benchmark-form error of a converted JBike6 bicycle, reported under the JBike6 names the
+/// user wrote.
+fn rename_error(error: Error) -> Error {
+    match error {
+        Error::InvalidParameter { field, value, rule } => {
+            let name = jbike6_names(&field);
+            if name.is_empty()
+                || name.contains(',')
+                || name.contains('(') && name.contains("combined")
+            {
+                Error::InvalidBicycle {
+                    fields: rename_fields(&field),
+                    rule: format!(
+                        "after combining the JBike6 bodies, the benchmark {field} = {} {rule}",
+                        short_number(value)
+                    ),
+                }
+            } else {
+                Error::InvalidParameter {
+                    field: name.to_string(),
+                    value,
+                    rule,
+                }
+            }
+        }
+        Error::InvalidBicycle { fields, rule } => Error::InvalidBicycle {
+            fields: rename_fields(&fields),
+            rule,
+        },
+        other => other,
+    }
+}
+
 impl Jbike6Parameters {
     /// Every number with its name as written in JBike6's `.m` files, for validation and display.
     pub fn fields(&self) -> Vec<(String, f64)> {
-        let mut out = vec![
-            ("wheelbase".to_string(), self.wheelbase),
-            ("head_angle".to_string(), self.head_angle),
-            ("trail".to_string(), self.trail),
-            ("gravity".to_string(), self.gravity),
-        ];
-        for (name, w) in [
-            ("rearwheel", &self.rear_wheel),
-            ("frontwheel", &self.front_wheel),
-        ] {
-            out.push((format!("D{name}"), w.diameter));
-            out.push((format!("m{name}"), w.m));
-            for (k, v) in w.inertia.iter().enumerate() {
-                out.push((format!("I{name}({})", k + 1), *v));
-            }
-            out.push((format!("alphaI{name}"), w.alpha));
-        }
-        for (name, b) in [
-            ("rider", &self.rider),
-            ("frame", &self.frame),
-            ("rack", &self.rack),
-        ] {
-            out.push((format!("m{name}"), b.m));
-            out.push((format!("xcm{name}"), b.xcm));
-            out.push((format!("ycm{name}"), b.ycm));
-            for (k, v) in b.inertia.iter().enumerate() {
-                out.push((format!("I{name}({})", k + 1), *v));
-            }
-            out.push((format!("alphaI{name}"), b.alpha));
-        }
-        for (name, b) in [("fork", &self.fork), ("basket", &self.basket)] {
-            out.push((format!("m{name}"), b.m));
-            out.push((format!("ucm{name}"), b.ucm));
-            out.push((format!("vcm{name}"), b.vcm));
-            for (k, v) in b.inertia.iter().enumerate() {
-                out.push((format!("I{name}({})", k + 1), *v));
-            }
-            out.push((format!("alphaI{name}"), b.alpha));
-        }
-        out
+        JBIKE6_TABLE
+            .iter()
+            .zip(self.to_array())
+            .map(|(p, v)| (p.key.to_string(), v))
+            .collect()
+    }
+
+    /// The value of the parameter with this `.m` key (`mrider`, `Irider(1)`) or TOML path
+    /// (`rider.m`).
+    pub fn get(&self, key: &str) -> Option<f64> {
+        JBIKE6_TABLE
+            .iter()
+            .position(|p| p.key == key || p.path == key)
+            .map(|i| self.to_array()[i])
     }
 
     /// Steer axis tilt λ = π/2 − head_angle [rad].
@@ -215,17 +927,34 @@ impl Jbike6Parameters {
         std::f64::consts::FRAC_PI_2 - self.head_angle
     }
 
-    /// Checks the rules that belong to this form (finite numbers, non-negative masses and
-    /// diameters, head angle strictly inside (0, π), positive semi-definite inertia with the
-    /// triangle inequality, axisymmetric wheels). The benchmark form's rules are checked again
-    /// after conversion by [`Jbike6Parameters::to_benchmark`].
+    /// Checks the rules that belong to this form (see [`Jbike6Parameters::check`]).
     pub fn validate(&self) -> Result<()> {
+        self.check().map(|_| ())
+    }
+
+    /// Checks this form's rules under JBike6's names and returns its warnings: finite numbers;
+    /// wheelbase and gravity positive; head angle strictly inside (0, π); non-negative masses
+    /// and diameters; a body of zero mass has no inertia; a skate (zero diameter) does not
+    /// spin; axisymmetric wheels; principal moments non-negative (a warning where they break
+    /// the triangle inequality). The benchmark form's rules are checked again after conversion
+    /// by [`Jbike6Parameters::to_benchmark`], and reported under the JBike6 names.
+    pub fn check(&self) -> Result<Vec<Notice>> {
+        let mut notices = Vec::new();
         for (field, value) in self.fields() {
             if !value.is_finite() {
                 return Err(Error::InvalidParameter {
                     field,
                     value,
                     rule: "must be a finite number".into(),
+                });
+            }
+        }
+        for (field, value) in [("wheelbase", self.wheelbase), ("gravity", self.gravity)] {
+            if value.is_nan() || value <= 0.0 {
+                return Err(Error::InvalidParameter {
+                    field: field.into(),
+                    value,
+                    rule: "must be greater than zero".into(),
                 });
             }
         }
@@ -248,9 +977,9 @@ impl Jbike6Parameters {
                 })
             }
         };
-        for (name, w) in [
-            ("rearwheel", &self.rear_wheel),
-            ("frontwheel", &self.front_wheel),
+        for (name, title, w) in [
+            ("rearwheel", "the rear wheel", &self.rear_wheel),
+            ("frontwheel", "the front wheel", &self.front_wheel),
         ] {
             check_mass(format!("m{name}"), w.m)?;
             if w.diameter < 0.0 {
@@ -260,13 +989,27 @@ impl Jbike6Parameters {
                     rule: "must not be negative".into(),
                 });
             }
+            inertia_of_massless(title, &format!("m{name}"), w.m, name, w.inertia)?;
+            if w.diameter == 0.0 && w.inertia[2] != 0.0 {
+                return Err(Error::InvalidParameter {
+                    field: format!("D{name}"),
+                    value: w.diameter,
+                    rule: format!(
+                        "a wheel of zero diameter (a skate) cannot have a spin moment of inertia \
+                         (I{name}(3) = {}): its spin rate would be infinite",
+                        short_number(w.inertia[2])
+                    ),
+                });
+            }
             let [i11, i22, _] = w.inertia;
             let scale = w.inertia.iter().map(|v| v.abs()).sum::<f64>();
             if (i11 - i22).abs() > 1e-9 * scale {
                 return Err(Error::InvalidBicycle {
                     fields: format!("I{name}"),
                     rule: format!(
-                        "a wheel must be axisymmetric: its in-plane moments I11 = {i11} and I22 = {i22} must be equal"
+                        "a wheel must be axisymmetric: its in-plane moments I11 = {} and I22 = {} must be equal",
+                        short_number(i11),
+                        short_number(i22)
                     ),
                 });
             }
@@ -277,16 +1020,19 @@ impl Jbike6Parameters {
                     &format!("I{name}(3)"),
                 ],
                 w.inertia,
+                "the linear and the non-linear model, which both stay well defined",
+                &mut notices,
             )?;
         }
-        for (name, m, inertia) in [
-            ("rider", self.rider.m, self.rider.inertia),
-            ("frame", self.frame.m, self.frame.inertia),
-            ("rack", self.rack.m, self.rack.inertia),
-            ("fork", self.fork.m, self.fork.inertia),
-            ("basket", self.basket.m, self.basket.inertia),
+        for (name, title, m, inertia) in [
+            ("rider", "the rider", self.rider.m, self.rider.inertia),
+            ("frame", "the rear frame", self.frame.m, self.frame.inertia),
+            ("rack", "the rear rack", self.rack.m, self.rack.inertia),
+            ("fork", "the fork", self.fork.m, self.fork.inertia),
+            ("basket", "the basket", self.basket.m, self.basket.inertia),
         ] {
             check_mass(format!("m{name}"), m)?;
+            inertia_of_massless(title, &format!("m{name}"), m, name, inertia)?;
             principal_moments(
                 [
                     &format!("I{name}(1)"),
@@ -294,15 +1040,17 @@ impl Jbike6Parameters {
                     &format!("I{name}(3)"),
                 ],
                 inertia,
+                "the linear and the non-linear model (through the combined bodies), which both stay well defined",
+                &mut notices,
             )?;
         }
-        Ok(())
+        Ok(notices)
     }
 
     /// Converts to the 25 benchmark parameters (plus g): B = rider + frame + rack, H = fork +
     /// basket, combined with the parallel-axis theorem; with T a combined tensor in JBike6's
     /// axes, x_B = x, z_B = −y, I_Bxx = T_xx, I_Bzz = T_yy, I_Byy = T_zz, I_Bxz = −T_xy.
-    /// Validates both this form and the result.
+    /// Validates both this form and the result, naming JBike6's variables in errors.
     ///
     /// ```
     /// use whipple::parameters::presets;
@@ -313,58 +1061,36 @@ impl Jbike6Parameters {
     /// # Ok::<(), whipple::Error>(())
     /// ```
     pub fn to_benchmark(&self) -> Result<BenchmarkParameters> {
-        self.validate()?;
-        let lambda = self.steer_axis_tilt();
-        let (s, c) = lambda.sin_cos();
-        let rear = PlanarBody::combine(&[
-            rear_body(&self.rider),
-            rear_body(&self.frame),
-            rear_body(&self.rack),
-        ]);
-        let front_point = self.wheelbase + self.trail;
-        let place = |b: &Jbike6FrontBody| {
-            PlanarBody::new(
-                b.m,
-                front_point + b.ucm * c - b.vcm * s,
-                b.ucm * s + b.vcm * c,
-                b.inertia,
-                b.alpha,
-            )
-        };
-        let front = PlanarBody::combine(&[place(&self.fork), place(&self.basket)]);
-        let bike = BenchmarkParameters {
-            w: self.wheelbase,
-            c: self.trail,
-            lambda,
-            g: self.gravity,
-            r_r: 0.5 * self.rear_wheel.diameter,
-            m_r: self.rear_wheel.m,
-            i_rxx: self.rear_wheel.inertia[0],
-            i_ryy: self.rear_wheel.inertia[2],
-            x_b: rear.x,
-            z_b: -rear.y,
-            m_b: rear.m,
-            i_bxx: rear.t_xx,
-            i_byy: rear.t_zz,
-            i_bzz: rear.t_yy,
-            i_bxz: -rear.t_xy,
-            x_h: front.x,
-            z_h: -front.y,
-            m_h: front.m,
-            i_hxx: front.t_xx,
-            i_hyy: front.t_zz,
-            i_hzz: front.t_yy,
-            i_hxz: -front.t_xy,
-            r_f: 0.5 * self.front_wheel.diameter,
-            m_f: self.front_wheel.m,
-            i_fxx: self.front_wheel.inertia[0],
-            i_fyy: self.front_wheel.inertia[2],
-        };
-        bike.validate()?;
-        Ok(bike)
+        self.to_benchmark_checked().map(|(bike, _)| bike)
+    }
+
+    /// [`Jbike6Parameters::to_benchmark`] with the warnings of both forms.
+    pub fn to_benchmark_checked(&self) -> Result<(BenchmarkParameters, Vec<Notice>)> {
+        let mut notices = self.check()?;
+        let bike = self.to_benchmark_unchecked();
+        let more = bike.check().map_err(rename_error)?;
+        for mut n in more {
+            if !n.field.starts_with('I') {
+                n.field = rename_fields(&n.field);
+                notices.push(n);
+            }
+        }
+        Ok((bike, notices))
     }
 }
 
-fn rear_body(b: &Jbike6RearBody) -> PlanarBody {
-    PlanarBody::new(b.m, b.xcm, b.ycm, b.inertia, b.alpha)
+fn inertia_of_massless(
+    title: &str,
+    mass_key: &str,
+    m: f64,
+    name: &str,
+    inertia: [f64; 3],
+) -> Result<()> {
+    let keys = [
+        format!("I{name}(1)"),
+        format!("I{name}(2)"),
+        format!("I{name}(3)"),
+    ];
+    let pairs: Vec<(&str, f64)> = keys.iter().map(String::as_str).zip(inertia).collect();
+    zero_mass_inertia(title, mass_key, m, &pairs)
 }

@@ -26,6 +26,7 @@ impl Preset {
             name: Some(self.name.to_string()),
             source: Some(self.source.to_string()),
             description: (self.description)(),
+            ..Bicycle::default()
         }
     }
 }

@@ -1,0 +1,129 @@
+//! The field's files through the real binary: uncertainty printed, warnings on stderr and in
+//! JSON, --strict, sensitivities, conversions.
+
+mod common;
+
+use common::{scratch, stderr_of_failure, stdout, whipple};
+
+fn data(path: &str) -> String {
+    format!(
+        "{}/../whipple/tests/data/{path}",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+#[test]
+fn speeds_print_the_uncertainty_of_a_measured_bicycle() {
+    let out = stdout(&whipple(&[
+        "speeds",
+        "--bike",
+        &data("bicycleparameters/FisherBenchmark.txt"),
+    ]));
+    assert!(
+        out.contains("weave speed v_w        3.7981 ± 0.0764 m/s"),
+        "{out}"
+    );
+    let json: serde_json::Value = serde_json::from_str(&stdout(&whipple(&[
+        "speeds",
+        "--bike",
+        &data("bicycleparameters/FisherBenchmark.txt"),
+        "--format",
+        "json",
+    ])))
+    .expect("JSON");
+    assert!((json["weave_speed_sigma"].as_f64().unwrap_or(0.0) - 0.0764).abs() < 1e-3);
+}
+
+#[test]
+fn warnings_go_to_stderr_and_json_and_strict_refuses() {
+    let bike = data("bicycleparameters/BrowserBenchmark.txt");
+    let output = whipple(&["speeds", "--bike", &bike, "--format", "json"]);
+    assert!(output.status.success());
+    let err = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        err.contains("warning: `IByy`") && err.contains("2.332 %"),
+        "{err}"
+    );
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    assert_eq!(json["warnings"][0]["field"], "IByy");
+    let err = stderr_of_failure(&whipple(&["speeds", "--bike", &bike, "--strict"]));
+    assert!(err.contains("--strict"), "{err}");
+}
+
+#[test]
+fn sensitivity_table_csv_json_and_tornado() {
+    let csv = stdout(&whipple(&[
+        "sensitivity",
+        "--bike",
+        "benchmark",
+        "--format",
+        "csv",
+    ]));
+    assert!(csv.starts_with("key,unit,value,d_weave_speed"), "{csv}");
+    assert_eq!(csv.lines().count(), 27);
+    let dir = scratch("tornado");
+    let png = dir.join("tornado.png");
+    stdout(&whipple(&[
+        "sensitivity",
+        "--bike",
+        "schwinn-crown",
+        "--speed",
+        "5",
+        "--plot",
+        &png.to_string_lossy(),
+    ]));
+    assert!(std::fs::metadata(&png)
+        .map(|m| m.len() > 1000)
+        .unwrap_or(false));
+}
+
+#[test]
+fn field_formats_convert_and_read_back() {
+    let dir = scratch("field-convert");
+    for (to, name) in [
+        ("bp-txt", "BrowserBenchmark.txt"),
+        ("yaml", "browser.yml"),
+        ("hc-txt", "BrowserPar.txt"),
+    ] {
+        let path = dir.join(name);
+        stdout(&whipple(&[
+            "convert",
+            "--bike",
+            &data("humancontrol/BrowserPar.txt"),
+            "--to",
+            to,
+            "--out",
+            &path.to_string_lossy(),
+        ]));
+        let a = stdout(&whipple(&[
+            "speeds",
+            "--bike",
+            &path.to_string_lossy(),
+            "--format",
+            "json",
+        ]));
+        let b = stdout(&whipple(&[
+            "speeds",
+            "--bike",
+            &data("humancontrol/BrowserPar.txt"),
+            "--format",
+            "json",
+        ]));
+        let (a, b): (serde_json::Value, serde_json::Value) = (
+            serde_json::from_str(&a).expect("JSON"),
+            serde_json::from_str(&b).expect("JSON"),
+        );
+        assert_eq!(a["weave_speed"], b["weave_speed"], "{to}");
+    }
+    let ambiguous = dir.join("bike.txt");
+    std::fs::write(&ambiguous, "# nothing\n").expect("write");
+    let err = stderr_of_failure(&whipple(&[
+        "speeds",
+        "--bike",
+        &ambiguous.to_string_lossy(),
+    ]));
+    assert!(
+        err.contains("--bike-format") && err.contains("hc-txt"),
+        "{err}"
+    );
+}

@@ -1,0 +1,731 @@
+//! BicycleParameters' `<Name>Benchmark.txt` and HumanControl's `<Name>Par.txt`: one
+//! `key = value` a line (HumanControl's older files also `key,value`), `+/-sigma` optional, `#`
+//! comments whole-line or trailing; HumanControl's values may be simple expressions (`pi/10`).
+//! Several comma-separated measurements on one line are averaged, as BicycleParameters does.
+//!
+//! The keys besides the benchmark ones, with their meaning from the owning projects'
+//! documentation (BicycleParameters `docs/data.rst`, HumanControl `parameters/README.rst`,
+//! Moore 2012):
+//! - `yB`, `yH`, `IBxy`, `IByz`, `IHxy`, `IHyz`: lateral offsets and products of inertia; the
+//!   model is left-right symmetric, so they must be zero.
+//! - `IRzz`, `IFzz`: the wheels' second diametral moments; wheels are axisymmetric, so they
+//!   must equal `IRxx`, `IFxx`.
+//! - `v`: the forward speed the owner evaluated the model at (an operating point, not a
+//!   parameter).
+//! - `d1`, `d3`: Moore's rear and front offsets of the wheel centres from the steer axis,
+//!   redundant with the benchmark geometry: d1 = cos λ (c + w − r_R tan λ),
+//!   d3 = −cos λ (c − r_F tan λ); checked against it.
+//! - `xcl`, `zcl`: where the lateral force of Moore's lateral-force input acts; `ds1`, `ds3`:
+//!   where an accelerometer sits. Not used by the Whipple model.
+//! - `mG`, `xG`, `zG`, `IGxx`, `IGyy`, `IGzz`, `IGxz` and the same for `S`: the handlebar (G) and
+//!   fork (S) measured apart; together they are the front frame H, which is built from them
+//!   when absent and checked against them when given.
+
+use super::{error_at, parse_number, rounding_allowance, Format};
+use crate::error::{shorten, Result};
+use crate::parameters::check::{percent, Notice};
+use crate::parameters::table::{index_of, Form};
+use crate::parameters::{BenchmarkParameters, Bicycle, Description, Extra, BENCHMARK_TABLE};
+
+/// One value read from a file.
+#[derive(Debug, Clone)]
+pub(crate) struct Entry {
+    pub key: String,
+    pub value: f64,
+    pub sigma: Option<f64>,
+    pub text: String,
+    pub line: usize,
+    pub column: usize,
+    pub allowance: f64,
+}
+
+pub(crate) fn parse(text: &str, format: Format) -> Result<Bicycle> {
+    let mut entries = Vec::new();
+    let mut name = None;
+    for (index, raw) in text.lines().enumerate() {
+        let line_no = index + 1;
+        let trimmed = raw.trim();
+        if trimmed.is_empty() {
+            continue;
+        }
+        if let Some(comment) = trimmed.strip_prefix('#') {
+            if name.is_none() && index == 0 {
+                if let Some(n) = comment.trim().strip_prefix("name:") {
+                    name = Some(n.trim().to_string());
+                }
+            }
+            continue;
+        }
+        let code = match raw.find('#') {
+            Some(p) => &raw[..p],
+            None => raw,
+        };
+        if code.trim().is_empty() {
+            continue;
+        }
+        let (key, rhs, rhs_offset) = match code.find('=') {
+            Some(eq) => (&code[..eq], &code[eq + 1..], eq + 1),
+            None => match code.find(',') {
+                Some(comma) if format == Format::HumanControlTxt => {
+                    (&code[..comma], &code[comma + 1..], comma + 1)
+                }
+                _ => {
+                    return Err(error_at(
+                        format,
+                        line_no,
+                        code.len() - code.trim_start().len() + 1,
+                        None,
+                        format!(
+                            "expected `key = value`, found `{}`",
+                            shorten(code.trim(), 60)
+                        ),
+                    ))
+                }
+            },
+        };
+        let key = key.trim();
+        let key_column = code.len() - code.trim_start().len() + 1;
+        if key.is_empty() || !key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+            return Err(error_at(
+                format,
+                line_no,
+                key_column,
+                None,
+                format!("`{}` is not a parameter name", shorten(key, 40)),
+            ));
+        }
+        let column = rhs_offset + rhs.len() - rhs.trim_start().len() + 1;
+        let measurements: Vec<&str> = if format == Format::HumanControlTxt && !code.contains('=') {
+            vec![rhs]
+        } else {
+            rhs.split(',').collect()
+        };
+        let mut values = Vec::new();
+        for m in &measurements {
+            let (value_text, sigma_text) = match m.split_once("+/-").or_else(|| m.split_once('±'))
+            {
+                Some((v, s)) => (v.trim(), Some(s.trim())),
+                None => (m.trim(), None),
+            };
+            let at = |message: String| error_at(format, line_no, column, Some(key), message);
+            let value = match parse_number(value_text) {
+                Ok(v) => v,
+                Err(plain) => {
+                    if value_text.parse::<f64>().is_err()
+                        && !value_text.to_ascii_lowercase().contains("inf")
+                        && !value_text.to_ascii_lowercase().contains("nan")
+                    {
+                        evaluate(value_text).map_err(|e| {
+                            at(format!(
+                                "`{}` is neither a number nor an expression whipple can evaluate ({e})",
+                                shorten(value_text, 40)
+                            ))
+                        })?
+                    } else {
+                        return Err(at(plain));
+                    }
+                }
+            };
+            let sigma = match sigma_text {
+                Some(s) => {
+                    let sigma =
+                        parse_number(s).map_err(|e| at(format!("standard deviation: {e}")))?;
+                    if sigma < 0.0 {
+                        return Err(at(format!(
+                            "a standard deviation cannot be negative (`+/-{}`)",
+                            shorten(s, 40)
+                        )));
+                    }
+                    Some(sigma)
+                }
+                None => None,
+            };
+            values.push((value, sigma, value_text));
+        }
+        let n = values.len() as f64;
+        let value = values.iter().map(|v| v.0).sum::<f64>() / n;
+        let sigma = if values.len() == 1 {
+            values[0].1
+        } else if values.iter().any(|v| v.1.is_some()) {
+            Some(
+                values
+                    .iter()
+                    .map(|v| v.1.unwrap_or(0.0).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+                    / n,
+            )
+        } else {
+            None
+        };
+        let allowance = values
+            .iter()
+            .map(|v| rounding_allowance(v.2))
+            .fold(0.0, f64::max);
+        if !value.is_finite() {
+            return Err(error_at(
+                format,
+                line_no,
+                column,
+                Some(key),
+                "the value is not a finite number",
+            ));
+        }
+        entries.push(Entry {
+            key: key.to_string(),
+            value,
+            sigma,
+            text: rhs.trim().to_string(),
+            line: line_no,
+            column,
+            allowance,
+        });
+    }
+    let mut bike = assemble(entries, format)?;
+    if bike.name.is_none() {
+        bike.name = name;
+    }
+    Ok(bike)
+}
+
+/// Keys that must be zero in a left-right symmetric model.
+const SYMMETRIC_ZERO: [&str; 6] = ["yB", "yH", "IBxy", "IByz", "IHxy", "IHyz"];
+
+/// The handlebar (G) and fork (S) keys, measured apart.
+const SPLIT_FORK: [&str; 14] = [
+    "mG", "xG", "zG", "IGxx", "IGyy", "IGzz", "IGxz", "mS", "xS", "zS", "ISxx", "ISyy", "ISzz",
+    "ISxz",
+];
+
+/// Keys of BicycleParameters' raw measurements (`<Name>Measured.txt`).
+fn is_raw_measurement(key: &str) -> bool {
+    let body = |rest: &str| {
+        rest.starts_with(['B', 'H', 'F', 'R', 'P', 'S', 'G'])
+            && rest[1..].chars().all(|c| c.is_ascii_digit())
+    };
+    key.strip_prefix("Tc").is_some_and(body)
+        || key.strip_prefix("Tt").is_some_and(body)
+        || key.strip_prefix("alpha").is_some_and(body)
+        || (key.starts_with('a') && key.len() <= 3 && key[1..].starts_with(['B', 'H', 'S', 'G']))
+        || matches!(
+            key,
+            "f" | "gamma"
+                | "lF"
+                | "lP"
+                | "lR"
+                | "dF"
+                | "dR"
+                | "dP"
+                | "nF"
+                | "nR"
+                | "mP"
+                | "h1"
+                | "h2"
+                | "h3"
+                | "h4"
+                | "h5"
+                | "d"
+                | "d2"
+                | "d4"
+        )
+}
+
+/// The meaning of a key that is not a benchmark parameter, for notes and for writing it back.
+pub(crate) fn extra_meaning(key: &str) -> Option<&'static str> {
+    Some(match key {
+        "v" => "forward speed the file's owner evaluated the model at [m/s]; whipple takes speeds as arguments (--speed, --speeds, --range)",
+        "d1" => "Moore 2012's rear offset: rear wheel centre to the steer axis [m], redundant with w, c, lam, rR",
+        "d3" => "Moore 2012's fork offset: front wheel centre to the steer axis [m], redundant with c, lam, rF",
+        "xcl" | "zcl" => "location of the point where Moore 2012's lateral-force input acts, in benchmark axes [m]; not used by the Whipple model",
+        "ds1" | "ds3" => "location of an accelerometer from the steer axis [m] (BicycleParameters); not used by the Whipple model",
+        "yB" | "yH" => "lateral offset of a centre of mass [m]; zero in the left-right symmetric model",
+        "IBxy" | "IByz" | "IHxy" | "IHyz" => "product of inertia with the lateral axis [kg m^2]; zero in the left-right symmetric model",
+        "IRzz" => "rear wheel's second diametral moment [kg m^2]; equals IRxx for an axisymmetric wheel",
+        "IFzz" => "front wheel's second diametral moment [kg m^2]; equals IFxx for an axisymmetric wheel",
+        k if SPLIT_FORK.contains(&k) && k.contains('G') => "handlebar G measured apart from the fork (BicycleParameters); with the fork S it makes the front frame H",
+        k if SPLIT_FORK.contains(&k) => "fork S measured apart from the handlebar (BicycleParameters); with the handlebar G it makes the front frame H",
+        "parameterization" | "parameters" | "rider" | "description" => "YAML metadata of a BicycleParameters parameter set",
+        _ => return None,
+    })
+}
+
+/// Builds a benchmark-form bicycle from the entries of a BicycleParameters, HumanControl or
+/// YAML file: every key is a benchmark parameter, a documented key of another model (kept and
+/// noted), or an error.
+pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
+    let mut values: [Option<&Entry>; 26] = [None; 26];
+    let mut extras: Vec<&Entry> = Vec::new();
+    let mut notices = Vec::new();
+    for (i, e) in entries.iter().enumerate() {
+        if let Some(first) = entries[..i].iter().find(|f| f.key == e.key) {
+            return Err(error_at(
+                format,
+                e.line,
+                e.column,
+                Some(&e.key),
+                format!("`{}` is given twice (first on line {})", e.key, first.line),
+            ));
+        }
+        if let Some(k) = index_of(Form::Benchmark, &e.key) {
+            values[k] = Some(e);
+        } else if extra_meaning(&e.key).is_some() {
+            extras.push(e);
+        } else if is_raw_measurement(&e.key) {
+            return Err(error_at(
+                format,
+                e.line,
+                e.column,
+                Some(&e.key),
+                format!(
+                    "`{}` is a raw measurement: this looks like BicycleParameters' \
+                     <Name>Measured.txt (pendulum periods and distances). whipple reads the \
+                     benchmark parameters BicycleParameters computes from it \
+                     (Bicycle(name).save_parameters() writes <Name>Benchmark.txt)",
+                    e.key
+                ),
+            ));
+        } else {
+            return Err(error_at(
+                format,
+                e.line,
+                e.column,
+                Some(&e.key),
+                format!(
+                    "unknown key `{}`: neither a benchmark parameter (w, c, lam, g, rR, mR, IRxx, \
+                     ...) nor a key of BicycleParameters or HumanControl that whipple knows",
+                    shorten(&e.key, 40)
+                ),
+            ));
+        }
+    }
+    let get = |key: &str| extras.iter().find(|e| e.key == key).copied();
+    // Missing keys: IByy and IHyy BicycleParameters takes as zero; the rest are required.
+    let missing: Vec<&str> = BENCHMARK_TABLE
+        .iter()
+        .enumerate()
+        .filter(|(i, p)| {
+            values[*i].is_none()
+                && !matches!(
+                    p.key,
+                    "IByy" | "IHyy" | "mH" | "xH" | "zH" | "IHxx" | "IHzz" | "IHxz"
+                )
+        })
+        .map(|(_, p)| p.key)
+        .collect();
+    let present_b = entries
+        .iter()
+        .all(|e| e.key.ends_with('B') || e.key.starts_with("IB"));
+    if !missing.is_empty() && present_b && !entries.is_empty() {
+        return Err(error_at(
+            format,
+            0,
+            0,
+            Some(missing[0]),
+            "this holds only a rear body B (mB, xB, zB, IB..): it looks like a rider's file \
+             (BicycleParameters' riders/<Rider>/Parameters/<Rider><Bicycle>Benchmark.txt), not a \
+             bicycle. BicycleParameters adds the rider to a bicycle (Bicycle.add_rider) and \
+             saves the combination, which whipple reads",
+        ));
+    }
+    if !missing.is_empty() {
+        return Err(error_at(
+            format,
+            0,
+            0,
+            Some(missing[0]),
+            format!("missing keys: {}", missing.join(", ")),
+        ));
+    }
+    // The front frame H: given, or built from the handlebar G and fork S.
+    let split: Vec<Option<&Entry>> = SPLIT_FORK.iter().map(|k| get(k)).collect();
+    let split_values: Option<Vec<f64>> = split.iter().map(|e| e.map(|e| e.value)).collect();
+    let h_keys = ["mH", "xH", "zH", "IHxx", "IHyy", "IHzz", "IHxz"];
+    let combined = split_values.as_ref().map(|v| combine_fork(v));
+    let mut filled: [f64; 26] = [0.0; 26];
+    let mut sigma = std::collections::BTreeMap::new();
+    for (i, p) in BENCHMARK_TABLE.iter().enumerate() {
+        match values[i] {
+            Some(e) => {
+                filled[i] = e.value;
+                if let Some(s) = e.sigma {
+                    if s > 0.0 {
+                        sigma.insert(p.key.to_string(), s);
+                    }
+                }
+            }
+            None => {
+                if let Some(pos) = h_keys.iter().position(|k| *k == p.key) {
+                    let Some(c) = combined else {
+                        return Err(error_at(
+                            format,
+                            0,
+                            0,
+                            Some(p.key),
+                            format!(
+                                "missing key `{}`: give the front frame H (mH, xH, zH, IHxx, \
+                                 IHyy, IHzz, IHxz) or its handlebar G and fork S measured apart",
+                                p.key
+                            ),
+                        ));
+                    };
+                    filled[i] = c[pos];
+                    if pos == 0 {
+                        notices.push(Notice::note(
+                            "mH, xH, zH, IHxx, IHyy, IHzz, IHxz",
+                            "the front frame H is not given: built from the handlebar G and the \
+                             fork S (masses added, parallel-axis theorem); their standard \
+                             deviations are not carried over",
+                        ));
+                    }
+                } else {
+                    // IByy or IHyy, which BicycleParameters takes as zero when absent.
+                    notices.push(Notice::warning(
+                        p.key,
+                        format!(
+                            "`{}` is not given: taken as 0, as BicycleParameters does; the linear \
+                             model never uses it, the non-linear model does",
+                            p.key
+                        ),
+                        None,
+                        "only the non-linear model (simulate, validate)",
+                    ));
+                }
+            }
+        }
+    }
+    let bike = BenchmarkParameters::from_array(filled);
+    for e in &extras {
+        check_extra(
+            e,
+            &bike,
+            combined.as_ref().map(|c| &c[..]),
+            values[index_of(Form::Benchmark, "mH").unwrap_or(17)].is_some(),
+            format,
+            &mut notices,
+        )?;
+    }
+    Ok(Bicycle {
+        description: Description::Benchmark(bike),
+        sigma,
+        extras: extras
+            .iter()
+            .map(|e| Extra {
+                key: e.key.clone(),
+                text: e.text.clone(),
+                value: Some(e.value),
+                sigma: e.sigma,
+                meaning: extra_meaning(&e.key).unwrap_or("").to_string(),
+            })
+            .collect(),
+        notices,
+        ..Bicycle::default()
+    })
+}
+
+/// Checks one extra key against the benchmark parameters and says what it is.
+fn check_extra(
+    e: &Entry,
+    bike: &BenchmarkParameters,
+    combined: Option<&[f64]>,
+    h_given: bool,
+    format: Format,
+    notices: &mut Vec<Notice>,
+) -> Result<()> {
+    let key = e.key.as_str();
+    let meaning = extra_meaning(key).unwrap_or("");
+    let agree = |given: f64, implied: f64, allowance: f64| {
+        (given - implied).abs() <= allowance + 1e-9 * implied.abs().max(given.abs())
+    };
+    if SYMMETRIC_ZERO.contains(&key) {
+        if e.value != 0.0 {
+            return Err(error_at(
+                format,
+                e.line,
+                e.column,
+                Some(key),
+                format!(
+                    "`{key}` = {}: the Whipple model is left-right symmetric (as the benchmark \
+                     is), so {meaning}; a bicycle with a non-zero {key} cannot be described here",
+                    shorten(&e.text, 40)
+                ),
+            ));
+        }
+        notices.push(Notice::note(key, format!("`{key}` = 0: {meaning}")));
+        return Ok(());
+    }
+    if key == "IRzz" || key == "IFzz" {
+        let (xx_key, xx) = if key == "IRzz" {
+            ("IRxx", bike.i_rxx)
+        } else {
+            ("IFxx", bike.i_fxx)
+        };
+        if !agree(e.value, xx, e.allowance) {
+            return Err(error_at(
+                format,
+                e.line,
+                e.column,
+                Some(key),
+                format!(
+                    "`{key}` = {} differs from `{xx_key}` = {}: the wheels are axisymmetric, \
+                     so a wheel's two diametral moments must be equal",
+                    shorten(&e.text, 40),
+                    xx
+                ),
+            ));
+        }
+        notices.push(Notice::note(
+            key,
+            format!("`{key}` equals `{xx_key}`: {meaning}"),
+        ));
+        return Ok(());
+    }
+    if key == "d1" || key == "d3" {
+        let (s, c) = bike.lambda.sin_cos();
+        let implied = if key == "d1" {
+            c * (bike.c + bike.w - bike.r_r * s / c)
+        } else {
+            -c * (bike.c - bike.r_f * s / c)
+        };
+        if agree(e.value, implied, e.allowance) {
+            notices.push(Notice::note(
+                key,
+                format!(
+                    "`{key}` = {} agrees with the benchmark geometry ({meaning})",
+                    e.text
+                ),
+            ));
+        } else {
+            let pct = percent((e.value - implied).abs(), implied);
+            notices.push(Notice::warning(
+                key,
+                format!(
+                    "`{key}` = {} disagrees with the {} m that the benchmark geometry (w, c, lam, \
+                     rR, rF) implies, by {pct:.2} %, more than the digits written allow; whipple \
+                     uses the benchmark geometry ({meaning})",
+                    e.text,
+                    crate::error::short_number(implied)
+                ),
+                Some(pct),
+                "none directly: the benchmark geometry is used; one of the two descriptions of the geometry is off",
+            ));
+        }
+        return Ok(());
+    }
+    if SPLIT_FORK.contains(&key) {
+        if key == "mG" {
+            if let (Some(c), true) = (combined, h_given) {
+                let h = [
+                    bike.m_h, bike.x_h, bike.z_h, bike.i_hxx, bike.i_hyy, bike.i_hzz, bike.i_hxz,
+                ];
+                let names = ["mH", "xH", "zH", "IHxx", "IHyy", "IHzz", "IHxz"];
+                let mut worst: Option<(usize, f64)> = None;
+                for k in 0..7 {
+                    let scale = h[k]
+                        .abs()
+                        .max(c[k].abs())
+                        .max(if k < 3 { 1e-3 } else { 1e-6 });
+                    let rel = (h[k] - c[k]).abs() / scale;
+                    if rel > 1e-3 && worst.is_none_or(|(_, w)| rel > w) {
+                        worst = Some((k, rel));
+                    }
+                }
+                match worst {
+                    None => notices.push(Notice::note(
+                        "mG, mS, ...",
+                        "the handlebar G and fork S measured apart combine to the front frame H \
+                         as given (to 0.1 %); whipple uses H",
+                    )),
+                    Some((k, rel)) => notices.push(Notice::warning(
+                        names[k],
+                        format!(
+                            "the handlebar G and fork S measured apart combine to {} = {}, but \
+                             the file gives {} = {}: they differ by {:.2} %; whipple uses H as given",
+                            names[k],
+                            crate::error::short_number(c[k]),
+                            names[k],
+                            crate::error::short_number(h[k]),
+                            100.0 * rel
+                        ),
+                        Some(100.0 * rel),
+                        "none directly (H is used); the file's two descriptions of the front frame disagree",
+                    )),
+                }
+            }
+        }
+        if combined.is_none() && key == "mG" {
+            notices.push(Notice::note(
+                key,
+                "the handlebar G and fork S are only partly given; whipple uses the front frame H",
+            ));
+        }
+        return Ok(());
+    }
+    if matches!(
+        key,
+        "parameterization" | "parameters" | "rider" | "description"
+    ) {
+        return Ok(());
+    }
+    notices.push(Notice::note(
+        key,
+        format!("`{key}` = {}: {meaning}", shorten(&e.text, 40)),
+    ));
+    Ok(())
+}
+
+/// The front frame H from the handlebar G and fork S ([mG, xG, zG, IGxx, IGyy, IGzz, IGxz, mS,
+/// ...]): masses added, mass-weighted centre, tensors moved by the parallel-axis theorem (x-z
+/// plane, z down, products of inertia as in the benchmark: I_xz = −∫ x z dm).
+fn combine_fork(v: &[f64]) -> [f64; 7] {
+    let (mg, xg, zg) = (v[0], v[1], v[2]);
+    let (ms, xs, zs) = (v[7], v[8], v[9]);
+    let m = mg + ms;
+    let (x, z) = if m > 0.0 {
+        ((mg * xg + ms * xs) / m, (mg * zg + ms * zs) / m)
+    } else {
+        (0.0, 0.0)
+    };
+    let shift = |mass: f64, bx: f64, bz: f64, ixx: f64, iyy: f64, izz: f64, ixz: f64| {
+        let (dx, dz) = (bx - x, bz - z);
+        [
+            ixx + mass * dz * dz,
+            iyy + mass * (dx * dx + dz * dz),
+            izz + mass * dx * dx,
+            ixz - mass * dx * dz,
+        ]
+    };
+    let g = shift(mg, xg, zg, v[3], v[4], v[5], v[6]);
+    let s = shift(ms, xs, zs, v[10], v[11], v[12], v[13]);
+    [m, x, z, g[0] + s[0], g[1] + s[1], g[2] + s[2], g[3] + s[3]]
+}
+
+/// Evaluates a HumanControl value: numbers, `pi`, `+ - * / ^`, parentheses and `sqrt`, `sin`,
+/// `cos`, `tan`, `deg2rad`, `abs` (what MATLAB's `str2num` of such files evaluates). Bounded
+/// depth; never panics.
+pub(crate) fn evaluate(text: &str) -> std::result::Result<f64, String> {
+    let tokens: Vec<char> = text.chars().filter(|c| !c.is_whitespace()).collect();
+    let mut p = Parser { t: &tokens, i: 0 };
+    let v = p.sum(0)?;
+    if p.i != tokens.len() {
+        return Err(format!("unexpected `{}`", tokens[p.i]));
+    }
+    if !v.is_finite() {
+        return Err("the result is not a finite number".into());
+    }
+    Ok(v)
+}
+
+struct Parser<'a> {
+    t: &'a [char],
+    i: usize,
+}
+
+const MAX_DEPTH: usize = 32;
+
+impl Parser<'_> {
+    fn peek(&self) -> Option<char> {
+        self.t.get(self.i).copied()
+    }
+
+    fn sum(&mut self, depth: usize) -> std::result::Result<f64, String> {
+        let mut v = self.product(depth)?;
+        while let Some(c @ ('+' | '-')) = self.peek() {
+            self.i += 1;
+            let r = self.product(depth)?;
+            v = if c == '+' { v + r } else { v - r };
+        }
+        Ok(v)
+    }
+
+    fn product(&mut self, depth: usize) -> std::result::Result<f64, String> {
+        let mut v = self.power(depth)?;
+        while let Some(c @ ('*' | '/')) = self.peek() {
+            self.i += 1;
+            let r = self.power(depth)?;
+            v = if c == '*' { v * r } else { v / r };
+        }
+        Ok(v)
+    }
+
+    fn power(&mut self, depth: usize) -> std::result::Result<f64, String> {
+        let base = self.unary(depth)?;
+        if self.peek() == Some('^') {
+            self.i += 1;
+            let exponent = self.unary(depth)?;
+            return Ok(base.powf(exponent));
+        }
+        Ok(base)
+    }
+
+    fn unary(&mut self, depth: usize) -> std::result::Result<f64, String> {
+        if depth > MAX_DEPTH {
+            return Err("nested too deeply".into());
+        }
+        match self.peek() {
+            Some('-') => {
+                self.i += 1;
+                Ok(-self.unary(depth + 1)?)
+            }
+            Some('+') => {
+                self.i += 1;
+                self.unary(depth + 1)
+            }
+            Some('(') => {
+                self.i += 1;
+                let v = self.sum(depth + 1)?;
+                if self.peek() != Some(')') {
+                    return Err("missing `)`".into());
+                }
+                self.i += 1;
+                Ok(v)
+            }
+            Some(c) if c.is_ascii_digit() || c == '.' => {
+                let start = self.i;
+                while let Some(c) = self.peek() {
+                    let exponent_sign = (c == '+' || c == '-')
+                        && self.i > start
+                        && matches!(self.t[self.i - 1], 'e' | 'E');
+                    if c.is_ascii_digit() || c == '.' || c == 'e' || c == 'E' || exponent_sign {
+                        self.i += 1;
+                    } else {
+                        break;
+                    }
+                }
+                let s: String = self.t[start..self.i].iter().collect();
+                s.parse::<f64>()
+                    .map_err(|_| format!("`{}` is not a number", shorten(&s, 40)))
+            }
+            Some(c) if c.is_ascii_alphabetic() => {
+                let start = self.i;
+                while self.peek().is_some_and(|c| c.is_ascii_alphanumeric()) {
+                    self.i += 1;
+                }
+                let name: String = self.t[start..self.i].iter().collect();
+                if name == "pi" {
+                    return Ok(std::f64::consts::PI);
+                }
+                let f: fn(f64) -> f64 = match name.as_str() {
+                    "sqrt" => f64::sqrt,
+                    "sin" => f64::sin,
+                    "cos" => f64::cos,
+                    "tan" => f64::tan,
+                    "abs" => f64::abs,
+                    "deg2rad" => f64::to_radians,
+                    _ => return Err(format!("unknown name `{}`", shorten(&name, 40))),
+                };
+                if self.peek() != Some('(') {
+                    return Err(format!("`{name}` needs an argument in parentheses"));
+                }
+                self.i += 1;
+                let v = self.sum(depth + 1)?;
+                if self.peek() != Some(')') {
+                    return Err("missing `)`".into());
+                }
+                self.i += 1;
+                Ok(f(v))
+            }
+            Some(c) => Err(format!("unexpected `{c}`")),
+            None => Err("the expression ends early".into()),
+        }
+    }
+}

@@ -1,0 +1,354 @@
+//! Messages that name the right thing (issue 10) and parsers that never panic (property tests):
+//! every reader's error names a field, a line or the format; the writers keep every digit and
+//! cannot be broken by a name.
+
+use proptest::prelude::*;
+use whipple::parameters::io::{parse, write, Format, FORMATS};
+use whipple::parameters::{presets, Bicycle, Description};
+use whipple::{BenchmarkParameters, Error};
+
+fn message<T: std::fmt::Debug>(r: Result<T, Error>) -> String {
+    match r {
+        Ok(v) => panic!("expected an error, got {v:?}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn crown_toml() -> String {
+    write(
+        &presets::find("schwinn-crown")
+            .map(|p| p.bicycle())
+            .unwrap_or_default(),
+        Format::Toml,
+    )
+    .unwrap_or_default()
+}
+
+fn crown_m() -> String {
+    write(
+        &presets::find("schwinn-crown")
+            .map(|p| p.bicycle())
+            .unwrap_or_default(),
+        Format::Jbike6M,
+    )
+    .unwrap_or_default()
+}
+
+/// Issue 10: JBike6-form inputs are reported under the names the user wrote.
+#[test]
+fn issue_10_jbike6_errors_name_what_the_user_wrote() {
+    for (from, to, name) in [
+        ("wheelbase = ", "wheelbase = 0.0 #", "wheelbase"),
+        ("gravity = ", "gravity = 0.0 #", "gravity"),
+        ("head_angle = ", "head_angle = 0.0 #", "head_angle"),
+    ] {
+        let text: String = crown_toml()
+            .lines()
+            .map(|l| {
+                if l.starts_with(from) {
+                    to.to_string() + l
+                } else {
+                    l.to_string()
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("\n");
+        let bike = parse(&text, Format::Toml).unwrap_or_default();
+        let m = message(bike.check());
+        assert!(m.contains(&format!("`{name}`")), "{m}");
+    }
+    let text = crown_m().replace("Drearwheel = 0.6858;", "Drearwheel = 0.0;");
+    let m = message(
+        parse(&text, Format::Jbike6M)
+            .map(|b| b.check())
+            .and_then(|r| r),
+    );
+    assert!(m.contains("Drearwheel"), "{m}");
+    assert!(!m.contains("IRyy"), "{m}");
+}
+
+/// Issue 10: a zero mass with non-zero inertia is refused, naming the body.
+#[test]
+fn issue_10_zero_mass_with_inertia_is_refused_naming_the_body() {
+    let mut bike = BenchmarkParameters::meijaard2007();
+    bike.m_r = 0.0;
+    let m = message(bike.validate());
+    assert!(
+        m.contains("rear wheel R") && m.contains("mR") && m.contains("IR"),
+        "{m}"
+    );
+    let text = crown_m().replace("mrack = 2.0;", "mrack = 0.0;");
+    let m = message(
+        parse(&text, Format::Jbike6M)
+            .map(|b| b.check())
+            .and_then(|r| r),
+    );
+    assert!(m.contains("rear rack") && m.contains("mrack"), "{m}");
+}
+
+/// Issue 10: overflow names the field; long numbers are cut in messages.
+#[test]
+fn issue_10_overflow_names_the_field_and_numbers_are_short() {
+    let mut bike = BenchmarkParameters::meijaard2007();
+    bike.m_b = 1e300;
+    let m = message(bike.validate());
+    assert!(m.contains("mB") && m.len() < 300, "{m}");
+    let long = "1".repeat(1425);
+    let text = format!("w = {long}\n");
+    let m = message(parse(&text, Format::BicycleParametersTxt));
+    assert!(m.len() < 400, "{} characters", m.len());
+}
+
+/// Issue 10: semantic errors are not "syntax error at line 0, column 0"; `[[benchmark]]` gets
+/// a clear message; extra elements of an inertia array are refused.
+#[test]
+fn issue_10_semantic_errors_are_labelled_as_such() {
+    let m = message(parse("name = \"x\"\n", Format::Toml));
+    assert!(!m.contains("line 0") && m.contains("benchmark"), "{m}");
+    let m = message(parse("[[benchmark]]\nw = 1.0\n", Format::Toml));
+    assert!(
+        m.contains("[[benchmark]]") && m.contains("one table"),
+        "{m}"
+    );
+    let text = crown_toml().replacen("\nI = [", "\nI = [1.0, ", 1);
+    let m = message(parse(&text, Format::Toml));
+    assert!(
+        m.contains("exactly three") && m.contains("rear_wheel.I"),
+        "{m}"
+    );
+}
+
+/// Issue 10: `.m` column vectors read, matrices refused by name, `...` continuations joined.
+#[test]
+fn issue_10_matlab_columns_matrices_and_continuations() -> Result<(), Error> {
+    let text = crown_m();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("Irider ="))
+        .unwrap_or_default()
+        .to_string();
+    let inner = line
+        .trim_start_matches("Irider = [")
+        .trim_end_matches("];")
+        .to_string();
+    let numbers: Vec<&str> = inner.split(' ').collect();
+    let column = text.replace(
+        &line,
+        &format!("Irider = [{}; {}; {}];", numbers[0], numbers[1], numbers[2]),
+    );
+    assert_eq!(
+        parse(&column, Format::Jbike6M)?.description,
+        parse(&text, Format::Jbike6M)?.description
+    );
+    let continued = text.replace(
+        &line,
+        &format!(
+            "Irider = [{} ...\n  {} {}];",
+            numbers[0], numbers[1], numbers[2]
+        ),
+    );
+    assert_eq!(
+        parse(&continued, Format::Jbike6M)?.description,
+        parse(&text, Format::Jbike6M)?.description
+    );
+    let matrix = text.replace(&line, "Irider = [1 2; 3 4];");
+    let m = message(parse(&matrix, Format::Jbike6M));
+    assert!(m.contains("matrix") && m.contains("Irider"), "{m}");
+    Ok(())
+}
+
+/// Issue 10 and 11: a UTF-8 byte-order mark, CRLF line endings and no final newline are read in
+/// every format.
+#[test]
+fn issue_11_files_as_their_owners_wrote_them() -> Result<(), Error> {
+    let bike = presets::find("benchmark")?.bicycle();
+    let crown = presets::find("schwinn-crown")?.bicycle();
+    for (format, _, _) in FORMATS {
+        let source = if format == Format::Jbike6M {
+            &crown
+        } else {
+            &bike
+        };
+        let text = write(source, format)?;
+        let owner = format!("\u{feff}{}", text.replace('\n', "\r\n").trim_end());
+        let back = parse(&owner, format).map_err(|e| {
+            eprintln!("{format:?}: {e}");
+            e
+        })?;
+        assert_eq!(back.description, source.description, "{format:?}");
+    }
+    Ok(())
+}
+
+/// Issue 10: writers keep every digit and a name cannot inject lines or break TOML.
+#[test]
+fn issue_10_writers_keep_every_digit_and_escape_names() -> Result<(), Error> {
+    let mut crown = presets::find("schwinn-crown")?.bicycle();
+    if let Description::Jbike6(p) = &mut crown.description {
+        p.trail = 0.0909681234567;
+        p.rack.inertia = [1e-12, 1e-12, 1e-12];
+    }
+    crown.name = Some("evil\nwheelbase = 5;\u{7f}\"".into());
+    for format in [Format::Toml, Format::Json, Format::Jbike6M] {
+        let text = write(&crown, format)?;
+        let back = parse(&text, format)?;
+        assert_eq!(back.description, crown.description, "{format:?}");
+        if format != Format::Jbike6M {
+            assert_eq!(back.name, crown.name, "{format:?}");
+        }
+    }
+    Ok(())
+}
+
+/// Issue 10: a NaN or an infinity is refused by every reader (the web API's parse no longer
+/// answers it as `null`).
+#[test]
+fn issue_10_non_finite_numbers_are_refused_by_every_reader() {
+    let bike = presets::find("benchmark")
+        .map(|p| p.bicycle())
+        .unwrap_or_default();
+    for format in [
+        Format::Toml,
+        Format::BicycleParametersTxt,
+        Format::HumanControlTxt,
+        Format::Yaml,
+    ] {
+        let text = write(&bike, format).unwrap_or_default();
+        let bad = text.replacen("0.08", "nan", 1);
+        let m = message(parse(&bad, format));
+        assert!(m.contains("`c`") || m.contains("finite"), "{format:?}: {m}");
+    }
+}
+
+/// Issue 11: keys of other models are never dropped silently; left-right asymmetry refused.
+#[test]
+fn issue_11_other_keys_are_reported_or_refused() -> Result<(), Error> {
+    let base = write(
+        &presets::find("benchmark")?.bicycle(),
+        Format::HumanControlTxt,
+    )?;
+    let bike = parse(
+        &format!("{base}xcl = 1.2\nzcl = -0.4\nv = 5\n"),
+        Format::HumanControlTxt,
+    )?;
+    for key in ["xcl", "zcl", "v"] {
+        assert!(bike.notices.iter().any(|n| n.field == key), "{key}");
+        assert!(bike.extras.iter().any(|e| e.key == key), "{key}");
+    }
+    let m = message(parse(
+        &format!("{base}yB = 0.01\n"),
+        Format::HumanControlTxt,
+    ));
+    assert!(
+        m.contains("left-right symmetric") && m.contains("yB"),
+        "{m}"
+    );
+    let m = message(parse(
+        &format!("{base}IRzz = 0.07\n"),
+        Format::HumanControlTxt,
+    ));
+    assert!(m.contains("axisymmetric"), "{m}");
+    let m = message(parse(&format!("{base}foo = 1\n"), Format::HumanControlTxt));
+    assert!(m.contains("unknown key `foo`"), "{m}");
+    let m = message(parse("TcB1 = 1.2\n", Format::BicycleParametersTxt));
+    assert!(m.contains("Measured.txt"), "{m}");
+    let bike = parse(
+        &base.replace("lam = 0.3141592653589793", "lam = pi/10"),
+        Format::HumanControlTxt,
+    )?;
+    assert_eq!(
+        bike.description,
+        parse(&base, Format::HumanControlTxt)?.description
+    );
+    Ok(())
+}
+
+/// An ambiguous `.txt` gets a message listing the formats and how to choose one.
+#[test]
+fn ambiguous_text_files_list_the_formats() {
+    let m = message(Format::detect("bike.txt", "# only a comment\n"));
+    for name in ["bp-txt", "hc-txt", "yaml", "--bike-format"] {
+        assert!(m.contains(name), "{m}");
+    }
+}
+
+/// Errors name a field, a line or the format: the condition every random file must meet.
+fn names_something(e: &Error) -> bool {
+    match e {
+        Error::Parse { line, field, .. } => *line > 0 || field.is_some(),
+        Error::InvalidParameter { field, .. } => !field.is_empty(),
+        Error::InvalidBicycle { fields, .. } => !fields.is_empty(),
+        Error::InvalidArgument { .. } => true,
+        _ => false,
+    }
+}
+
+fn formats() -> impl Strategy<Value = Format> {
+    prop_oneof![
+        Just(Format::Toml),
+        Just(Format::Json),
+        Just(Format::Jbike6M),
+        Just(Format::BicycleParametersTxt),
+        Just(Format::HumanControlTxt),
+        Just(Format::Yaml),
+    ]
+}
+
+fn valid_text(format: Format) -> String {
+    let name = if format == Format::Jbike6M {
+        "schwinn-crown"
+    } else {
+        "benchmark"
+    };
+    let bike: Bicycle = presets::find(name).map(|p| p.bicycle()).unwrap_or_default();
+    write(&bike, format).unwrap_or_default()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+    /// Random text never panics any reader, and every error names a field, a line or the format.
+    #[test]
+    fn random_text_never_panics(format in formats(), text in "\\PC{0,200}") {
+        if let Err(e) = parse(&text, format) {
+            prop_assert!(names_something(&e) || matches!(e, Error::Parse { .. }), "{e}");
+        }
+    }
+
+    /// A valid file with one byte changed, a line cut or a value replaced never panics, and the
+    /// error (or the check of what it read) names a field or a line.
+    #[test]
+    fn mutated_files_never_panic(format in formats(), at in 0usize..2000, replacement in "[-0-9a-zA-Z\\[\\]{}=:;,.+/# \n]{0,6}") {
+        let text = valid_text(format);
+        let mut at = at % text.len().max(1);
+        while !text.is_char_boundary(at) { at -= 1; }
+        let end = (at + 3).min(text.len());
+        let end = (end..=text.len()).find(|e| text.is_char_boundary(*e)).unwrap_or(text.len());
+        let mutated = format!("{}{}{}", &text[..at], replacement, &text[end..]);
+        match parse(&mutated, format) {
+            Err(e) => prop_assert!(names_something(&e), "{e}"),
+            Ok(bike) => {
+                if let Err(e) = bike.check() {
+                    prop_assert!(names_something(&e), "{e}");
+                }
+            }
+        }
+    }
+
+    /// Random benchmark bicycles round-trip through every benchmark-form writer bit for bit.
+    #[test]
+    fn random_bicycles_round_trip(values in proptest::collection::vec(-1e6f64..1e6, 26), sigma in 0.0f64..1.0) {
+        let mut array = [0.0; 26];
+        array.copy_from_slice(&values);
+        let mut bike = Bicycle::new(Description::Benchmark(BenchmarkParameters::from_array(array)));
+        bike.sigma.insert("IBxx".into(), sigma);
+        if sigma == 0.0 { bike.sigma.clear(); }
+        bike.name = Some("a \"name\"\twith\u{7f}".into());
+        for format in [Format::Toml, Format::Json, Format::BicycleParametersTxt, Format::HumanControlTxt, Format::Yaml] {
+            let text = write(&bike, format).map_err(|e| TestCaseError::fail(e.to_string()))?;
+            let back = parse(&text, format).map_err(|e| TestCaseError::fail(format!("{format:?}: {e}\n{text}")))?;
+            prop_assert_eq!(&back.description, &bike.description);
+            prop_assert_eq!(&back.sigma, &bike.sigma);
+        }
+    }
+}
