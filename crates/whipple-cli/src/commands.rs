@@ -15,11 +15,11 @@ use whipple::parameters::table::key_doc;
 use whipple::{Bicycle, Description};
 
 use crate::bike::{load, LoadedBike};
-use crate::output::{self, number, parse_pair, parse_triple, print_stdout, Sink, Target};
+use crate::output::{self, number, parse_triple, print_stdout, Sink, Target};
 use crate::{FileFormat, TableFormat, TextFormat};
 
 /// Prints `text` to standard output or writes it whole to `out` (checked before the work).
-fn emit(text: &str, out: Option<&Target>) -> Result<()> {
+pub fn emit(text: &str, out: Option<&Target>) -> Result<()> {
     match out {
         Some(target) => target.write_whole(text.as_bytes()),
         None => print_stdout(text),
@@ -135,7 +135,7 @@ pub fn convert(arg: &str, to: FileFormat, keep_form: bool, out: Option<&Path>) -
     emit(&text, out.as_ref())
 }
 
-fn canonical(bike: &LoadedBike) -> Result<Canonical> {
+pub fn canonical(bike: &LoadedBike) -> Result<Canonical> {
     Canonical::new(&bike.benchmark).with_context(|| format!("building the model of {}", bike.label))
 }
 
@@ -440,7 +440,7 @@ pub fn modes(arg: &str, speed: f64, format: TextFormat) -> Result<()> {
     emit(&text, None)
 }
 
-fn optional(x: Option<f64>) -> Result<serde_json::Value> {
+pub(crate) fn optional(x: Option<f64>) -> Result<serde_json::Value> {
     match x {
         Some(v) => {
             number(v)?;
@@ -451,7 +451,7 @@ fn optional(x: Option<f64>) -> Result<serde_json::Value> {
 }
 
 /// `value ± sigma unit` when a sigma is known, else `value unit`.
-fn with_sigma(v: f64, sigma: Option<f64>, unit: &str) -> Result<String> {
+pub(crate) fn with_sigma(v: f64, sigma: Option<f64>, unit: &str) -> Result<String> {
     Ok(match sigma {
         Some(s) if s > 0.0 => format!("{} ± {} {unit}", round_to_sigma(v, s), round_sigma(s)),
         _ => format!("{} {unit}", number(v)?),
@@ -459,121 +459,15 @@ fn with_sigma(v: f64, sigma: Option<f64>, unit: &str) -> Result<String> {
 }
 
 /// A standard deviation to three significant digits.
-fn round_sigma(s: f64) -> String {
+pub(crate) fn round_sigma(s: f64) -> String {
     let digits = (2 - s.abs().log10().floor() as i32).max(0) as usize;
     format!("{s:.digits$}")
 }
 
 /// A value to the decimals of its three-digit standard deviation.
-fn round_to_sigma(v: f64, s: f64) -> String {
+pub(crate) fn round_to_sigma(v: f64, s: f64) -> String {
     let digits = (2 - s.abs().log10().floor() as i32).max(0) as usize;
     format!("{v:.digits$}")
-}
-
-pub fn speeds(arg: &str, range: &str, format: TextFormat) -> Result<()> {
-    let bike = load(arg)?;
-    let (lo, hi) = parse_pair(range, "--range")?;
-    if lo >= hi {
-        bail!("--range: LO ({lo}) must be less than HI ({hi})");
-    }
-    let su = sensitivity::critical_speeds_sigma(&bike.bicycle, lo, hi)
-        .with_context(|| format!("the critical speeds of {}", bike.label))?;
-    let s = &su.speeds;
-    let uncertain = bike.bicycle.has_uncertainty();
-    let text = match format {
-        TextFormat::Json => {
-            let mut ranges = Vec::new();
-            let mut range_sigmas = Vec::new();
-            for ((a, b), (sa, sb)) in s
-                .stable_speed_ranges
-                .iter()
-                .zip(&su.stable_speed_ranges_sigma)
-            {
-                ranges.push(json!([a, b]));
-                range_sigmas.push(json!([optional(*sa)?, optional(*sb)?]));
-            }
-            let mut doc = json!({
-                "double_root_speed": optional(s.double_root_speed)?,
-                "weave_speed": optional(s.weave_speed)?,
-                "capsize_speed": optional(s.capsize_speed)?,
-                "stable_speed_ranges": ranges,
-                "warnings": bike.warnings_json(),
-            });
-            if uncertain {
-                doc["double_root_speed_sigma"] = optional(su.double_root_speed_sigma)?;
-                doc["weave_speed_sigma"] = optional(su.weave_speed_sigma)?;
-                doc["capsize_speed_sigma"] = optional(su.capsize_speed_sigma)?;
-                doc["stable_speed_ranges_sigma"] = json!(range_sigmas);
-            }
-            format!("{}\n", serde_json::to_string_pretty(&doc)?)
-        }
-        TextFormat::Table => {
-            let none = format!("none in {lo}..{hi} m/s");
-            let show = |x: Option<f64>, sigma: Option<f64>| -> Result<String> {
-                Ok(match x {
-                    Some(v) if uncertain => with_sigma(v, sigma, "m/s")?,
-                    Some(v) => format!("{} m/s", number(v)?),
-                    None => none.clone(),
-                })
-            };
-            let mut t = format!("{}: critical speeds in {lo}..{hi} m/s", bike.label);
-            if uncertain {
-                t.push_str(" (± one standard deviation, first order, parameters independent)");
-            }
-            t.push('\n');
-            write!(
-                t,
-                "  double root speed v_d  {}",
-                show(s.double_root_speed, su.double_root_speed_sigma)?
-            )?;
-            if let Some(l) = s.double_root_eigenvalue {
-                write!(t, "  (double eigenvalue {} 1/s)", number(l)?)?;
-            }
-            write!(
-                t,
-                "\n  weave speed v_w        {}",
-                show(s.weave_speed, su.weave_speed_sigma)?
-            )?;
-            if let Some(w) = s.weave_frequency {
-                write!(t, "  (weave frequency {} rad/s)", number(w)?)?;
-            }
-            writeln!(
-                t,
-                "\n  capsize speed v_c      {}",
-                show(s.capsize_speed, su.capsize_speed_sigma)?
-            )?;
-            if s.stable_speed_ranges.is_empty() {
-                writeln!(t, "  self-stable            nowhere in {lo}..{hi} m/s")?;
-            }
-            for ((a, b), (sa, sb)) in s
-                .stable_speed_ranges
-                .iter()
-                .zip(&su.stable_speed_ranges_sigma)
-            {
-                let open_end = if *b == hi {
-                    " (up to the end of the range)"
-                } else {
-                    ""
-                };
-                let end = |v: f64, sg: Option<f64>| -> Result<String> {
-                    Ok(match sg {
-                        Some(sg) if uncertain && sg > 0.0 => {
-                            format!("{} ± {}", round_to_sigma(v, sg), round_sigma(sg))
-                        }
-                        _ => number(v)?,
-                    })
-                };
-                writeln!(
-                    t,
-                    "  self-stable            {} .. {} m/s{open_end}",
-                    end(*a, *sa)?,
-                    end(*b, *sb)?
-                )?;
-            }
-            t
-        }
-    };
-    emit(&text, None)
 }
 
 /// Each tracked eigenvalue's real part ± σ at every speed of the sweep.
@@ -620,7 +514,7 @@ pub fn sensitivity(
         output::distinct(a, b)?;
     }
     let bike = load(arg)?;
-    let (lo, hi) = parse_pair(range, "--range")?;
+    let (lo, hi) = crate::speeds::parse_range(range, "--range")?;
     if lo >= hi {
         bail!("--range: LO ({lo}) must be less than HI ({hi})");
     }

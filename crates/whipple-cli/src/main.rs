@@ -3,9 +3,11 @@
 
 mod bike;
 mod commands;
+mod design;
 mod figures;
 mod output;
 mod simulate;
+mod speeds;
 mod validate;
 
 use std::process::ExitCode;
@@ -155,12 +157,92 @@ enum Command {
         /// A preset name or a parameter file (.toml, .json, .m).
         #[arg(long)]
         bike: String,
-        /// Speed range LO:HI searched, in m/s.
-        #[arg(long, default_value = "0:20", allow_hyphen_values = true)]
-        range: String,
+        /// Speed range LO:HI in m/s; HI may be `inf` (default: every speed v >= 0).
+        #[arg(long, allow_hyphen_values = true)]
+        range: Option<String>,
         /// Output format.
         #[arg(long, value_enum, default_value = "table")]
         format: TextFormat,
+    },
+    /// A map of one quantity over two parameters of a bicycle (a design study).
+    Map {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// The x axis: NAME=START:STOP:COUNT (for example trail=0:0.2:401; `_deg` for degrees).
+        #[arg(long, allow_hyphen_values = true)]
+        x: String,
+        /// The y axis: NAME=START:STOP:COUNT (for example head_angle_deg=60:80:401, or speed=0:10:101).
+        #[arg(long, allow_hyphen_values = true)]
+        y: String,
+        /// The quantity the plot shows (every quantity is in the CSV/JSON).
+        #[arg(long, value_enum, default_value = "stable-width")]
+        quantity: design::Quantity,
+        /// The speed [m/s] at which max_real (largest real part) is read.
+        #[arg(long, allow_hyphen_values = true)]
+        speed: Option<f64>,
+        /// Speed range LO:HI [m/s] for the critical speeds (default: every speed v >= 0).
+        #[arg(long, allow_hyphen_values = true)]
+        range: Option<String>,
+        /// Also compute the double-root speed v_d (about twice the time).
+        #[arg(long)]
+        double_root: bool,
+        /// Output format of the rows.
+        #[arg(long, value_enum, default_value = "csv")]
+        format: design::DesignFormat,
+        /// Write the rows to this file instead of standard output.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Also draw the heat map to this .svg or .png file.
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+        /// Compute only part I of N (0-based, I/N) for a job array; `whipple merge` joins them.
+        #[arg(long)]
+        shard: Option<String>,
+    },
+    /// The classic one-parameter study: critical speeds against one parameter.
+    Study {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// The parameter: NAME=START:STOP:COUNT (for example trail=-0.1:0.3:401).
+        #[arg(long, allow_hyphen_values = true)]
+        vary: String,
+        /// The speed [m/s] at which max_real (largest real part) is read.
+        #[arg(long, allow_hyphen_values = true)]
+        speed: Option<f64>,
+        /// Speed range LO:HI [m/s] for the critical speeds (default: every speed v >= 0).
+        #[arg(long, allow_hyphen_values = true)]
+        range: Option<String>,
+        /// Also compute the double-root speed v_d.
+        #[arg(long)]
+        double_root: bool,
+        /// Output format of the rows.
+        #[arg(long, value_enum, default_value = "csv")]
+        format: design::DesignFormat,
+        /// Write the rows to this file instead of standard output.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Also draw v_w and v_c against the parameter, the self-stable band shaded (.svg, .png).
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+        /// Compute only part I of N (0-based, I/N); `whipple merge` joins them.
+        #[arg(long)]
+        shard: Option<String>,
+    },
+    /// Join the CSV shards of a map or study (`--shard I/N`) into the one-machine file.
+    Merge {
+        /// The shards' CSV files, in any order.
+        files: Vec<std::path::PathBuf>,
+        /// Write the merged CSV here instead of standard output.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Also draw the merged map to this .svg or .png file.
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+        /// The quantity the plot shows.
+        #[arg(long, value_enum, default_value = "stable-width")]
+        quantity: design::Quantity,
     },
     /// Exact sensitivities of the weave and capsize speeds and the stable range's width to every
     /// parameter of the bicycle's own form (and, at --speed, of the weave's and capsize's real
@@ -288,8 +370,62 @@ fn main() -> ExitCode {
             bike,
             range,
             format,
-        } => commands::speeds(&bike, &range, format),
+        } => speeds::speeds(&bike, range.as_deref(), format),
         Command::Draw { bike, out } => commands::draw(&bike, &out),
+        Command::Map {
+            bike,
+            x,
+            y,
+            quantity,
+            speed,
+            range,
+            double_root,
+            format,
+            out,
+            plot,
+            shard,
+        } => design::run(&design::DesignArgs {
+            bike: &bike,
+            x: &x,
+            y: Some(&y),
+            quantity,
+            speed,
+            range: range.as_deref(),
+            double_root,
+            format,
+            out: out.as_deref(),
+            plot: plot.as_deref(),
+            shard: shard.as_deref(),
+        }),
+        Command::Study {
+            bike,
+            vary,
+            speed,
+            range,
+            double_root,
+            format,
+            out,
+            plot,
+            shard,
+        } => design::run(&design::DesignArgs {
+            bike: &bike,
+            x: &vary,
+            y: None,
+            quantity: design::Quantity::StableWidth,
+            speed,
+            range: range.as_deref(),
+            double_root,
+            format,
+            out: out.as_deref(),
+            plot: plot.as_deref(),
+            shard: shard.as_deref(),
+        }),
+        Command::Merge {
+            files,
+            out,
+            plot,
+            quantity,
+        } => design::merge(&files, out.as_deref(), plot.as_deref(), quantity),
         Command::Simulate(args) => simulate::run(&args),
         Command::Serve {
             port,

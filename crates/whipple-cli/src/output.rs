@@ -572,18 +572,11 @@ pub fn number(x: f64) -> Result<String> {
         bail!("a computed result is not a finite number ({x})");
     }
     // Print negative zero as 0: it carries no meaning in a table of results.
-    Ok(format!("{}", if x == 0.0 { 0.0 } else { x }))
-}
-
-/// Parses `A:B` into two finite numbers.
-pub fn parse_pair(text: &str, option: &str) -> Result<(f64, f64)> {
-    let parts: Vec<&str> = text.split(':').collect();
-    if parts.len() != 2 {
-        bail!("{option} expects LO:HI, got `{text}`");
+    // Very large and very small magnitudes in exponent form (also shortest round-trip).
+    if x != 0.0 && (x.abs() >= 1e16 || x.abs() < 1e-5) {
+        return Ok(format!("{x:e}"));
     }
-    let lo = parse_finite(parts[0], option)?;
-    let hi = parse_finite(parts[1], option)?;
-    Ok((lo, hi))
+    Ok(format!("{}", if x == 0.0 { 0.0 } else { x }))
 }
 
 /// Parses `START:STOP:STEP` into three finite numbers.

@@ -86,10 +86,16 @@ fn speeds_json_has_the_documented_keys() {
     assert_eq!(
         keys,
         [
+            "bike",
             "capsize_speed",
+            "crossings",
+            "double_root_eigenvalue",
             "double_root_speed",
+            "range",
             "stable_speed_ranges",
+            "unresolved",
             "warnings",
+            "weave_frequency",
             "weave_speed"
         ]
     );

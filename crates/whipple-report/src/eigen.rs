@@ -442,10 +442,12 @@ impl EigenFigure {
                 entries.push((Swatch::Note, "no self-stable speed in range".to_string()));
             }
             for &(lo, hi) in ranges {
-                entries.push((
-                    Swatch::Note,
-                    format!("{} – {} m/s", fixed(lo, 3), fixed(hi, 3)),
-                ));
+                let words = if hi.is_finite() {
+                    format!("{} – {} m/s", fixed(lo, 3), fixed(hi, 3))
+                } else {
+                    format!("above {} m/s", fixed(lo, 3))
+                };
+                entries.push((Swatch::Note, words));
             }
         }
         entries.push((Swatch::Heading, "critical speeds".to_string()));

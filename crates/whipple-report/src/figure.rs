@@ -107,6 +107,8 @@ pub(crate) enum Content {
     SideView(Box<crate::side_view::SideViewFigure>),
     TimeSeries(Box<crate::time_series::TimeSeriesFigure>),
     Xy(Box<crate::xy::XyFigure>),
+    Map(Box<crate::design::MapFigure>),
+    Study(Box<crate::design::StudyFigure>),
     Tornado(Box<crate::tornado::TornadoFigure>),
 }
 
@@ -187,6 +189,29 @@ impl Figure {
 
     /// Renders to SVG text.
     pub fn to_svg(&self) -> Result<String> {
+        let text = self.plotters_svg()?;
+        if let Content::Map(map) = &self.content {
+            // The cells as an embedded PNG under the axes (one pixel per cell, not smoothed).
+            let png = map.raster()?.encode_png().map_err(|e| Error::Encode {
+                message: e.to_string(),
+            })?;
+            let (x0, y0, x1, y1) = map.area.get();
+            let image = format!(
+                "<image x=\"{x0}\" y=\"{y0}\" width=\"{}\" height=\"{}\" \
+                 preserveAspectRatio=\"none\" style=\"image-rendering:pixelated\" \
+                 href=\"data:image/png;base64,{}\"/>",
+                x1 - x0,
+                y1 - y0,
+                crate::design::base64(&png)
+            );
+            let at = background_end(&text);
+            return Ok(format!("{}{image}{}", &text[..at], &text[at..]));
+        }
+        Ok(text)
+    }
+
+    /// The SVG as plotters draws it.
+    fn plotters_svg(&self) -> Result<String> {
         ensure_fonts()?;
         let mut text = String::new();
         {
@@ -202,7 +227,16 @@ impl Figure {
     pub fn to_png(&self) -> Result<Vec<u8>> {
         // Rendered from the SVG by resvg: the same picture as the SVG, with properly spaced,
         // anti-aliased text (plotters' own bitmap text drops the glyphs' side bearings).
-        let svg = self.to_svg()?;
+        let svg = match &self.content {
+            // The cells are painted first; the axes go over them without the background.
+            Content::Map(_) => {
+                let svg = self.plotters_svg()?;
+                let at = background_end(&svg);
+                let start = svg[..at].rfind("<rect").unwrap_or(at);
+                format!("{}{}", &svg[..start], &svg[at..])
+            }
+            _ => self.to_svg()?,
+        };
         let tree = resvg::usvg::Tree::from_str(&svg, png_options()).map_err(|e| Error::Encode {
             message: format!("reading the {} back as SVG: {e}", self.name()),
         })?;
@@ -214,6 +248,25 @@ impl Figure {
                 ),
             })?;
         pixmap.fill(resvg::tiny_skia::Color::WHITE);
+        if let Content::Map(map) = &self.content {
+            let cells = map.raster()?;
+            let (x0, y0, x1, y1) = map.area.get();
+            let sx = f64::from(x1 - x0) / f64::from(cells.width());
+            let sy = f64::from(y1 - y0) / f64::from(cells.height());
+            pixmap.draw_pixmap(
+                0,
+                0,
+                cells.as_ref(),
+                &resvg::tiny_skia::PixmapPaint {
+                    quality: resvg::tiny_skia::FilterQuality::Nearest,
+                    ..Default::default()
+                },
+                resvg::tiny_skia::Transform::from_row(
+                    sx as f32, 0.0, 0.0, sy as f32, x0 as f32, y0 as f32,
+                ),
+                None,
+            );
+        }
         resvg::render(
             &tree,
             resvg::tiny_skia::Transform::identity(),
@@ -230,6 +283,8 @@ impl Figure {
             Content::SideView(_) => "side view",
             Content::TimeSeries(_) => "time series plot",
             Content::Xy(_) => "line plot",
+            Content::Map(_) => "design map",
+            Content::Study(_) => "design study",
             Content::Tornado(_) => "tornado plot",
         }
     }
@@ -241,7 +296,16 @@ impl Figure {
             Content::SideView(f) => f.draw(root),
             Content::TimeSeries(f) => f.draw(root),
             Content::Xy(f) => f.draw(root),
+            Content::Map(f) => f.draw(root),
+            Content::Study(f) => f.draw(root),
             Content::Tornado(f) => f.draw(root),
         }
     }
+}
+
+/// The byte offset just after the figure's background rectangle (the first `<rect .../>`).
+fn background_end(svg: &str) -> usize {
+    svg.find("<rect")
+        .and_then(|start| svg[start..].find("/>").map(|end| start + end + 2))
+        .unwrap_or_else(|| svg.find('>').map_or(0, |k| k + 1))
 }

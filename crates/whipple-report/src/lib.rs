@@ -23,6 +23,7 @@
 #![warn(missing_docs)]
 
 mod clip;
+mod design;
 mod draw;
 mod eigen;
 mod error;
@@ -33,6 +34,7 @@ mod time_series;
 mod tornado;
 mod xy;
 
+pub use design::{design_map, design_study, MapData, StudyData};
 pub use draw::Dash;
 pub use eigen::{eigen_comparison_plot, eigen_plot, mode_colour, BikeEigen, EigenPlotOptions};
 pub use error::{Error, Result};

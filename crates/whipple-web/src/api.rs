@@ -39,8 +39,8 @@ use crate::{assets, Limits};
 pub const OPENAPI: &str = include_str!("openapi.json");
 
 #[derive(Clone)]
-struct AppState {
-    limits: Limits,
+pub(crate) struct AppState {
+    pub(crate) limits: Limits,
     computing: Arc<Semaphore>,
 }
 
@@ -68,6 +68,8 @@ pub fn app(limits: Limits) -> Router {
         .route("/api/simulate", post(simulate))
         .route("/api/modes", post(modes))
         .route("/api/linear/response", post(linear_response))
+        .route("/api/map", post(crate::design::map))
+        .route("/api/study", post(crate::design::study))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .layer(DefaultBodyLimit::max(limits.max_body_bytes))
@@ -141,7 +143,9 @@ fn body_bytes(body: Result<Bytes, BytesRejection>) -> Result<Bytes, ApiError> {
 
 /// Reads a JSON body: 413 past the size limit, 400 when it is not JSON, 422 when it is JSON of
 /// the wrong shape.
-fn json_body<T: DeserializeOwned>(body: Result<Bytes, BytesRejection>) -> Result<T, ApiError> {
+pub(crate) fn json_body<T: DeserializeOwned>(
+    body: Result<Bytes, BytesRejection>,
+) -> Result<T, ApiError> {
     let bytes = body_bytes(body)?;
     serde_json::from_slice(&bytes).map_err(|e| {
         use serde_json::error::Category;
@@ -174,7 +178,7 @@ fn strip_position(message: &str) -> String {
 }
 
 /// Reads a bicycle in the files' JSON layout through the library's reader.
-fn bicycle(value: &Value) -> Result<Bicycle, ApiError> {
+pub(crate) fn bicycle(value: &Value) -> Result<Bicycle, ApiError> {
     let text = serde_json::to_string(value).map_err(|e| ApiError::internal(e.to_string()))?;
     io::parse(&text, Format::Json).map_err(|e| {
         let mut error = ApiError::from(e);
@@ -205,7 +209,7 @@ impl Drop for StopOnDrop {
 /// `advice` ends the timeout's message (what to ask for instead). The work gets a stop flag,
 /// set once nobody waits for its result any more (time up, client gone): work that can stop
 /// early (a simulation) should, to give its computing slot back.
-async fn compute<T: Send + 'static>(
+pub(crate) async fn compute<T: Send + 'static>(
     state: &AppState,
     advice: &str,
     work: impl FnOnce(Arc<AtomicBool>) -> Result<T, ApiError> + Send + 'static,
@@ -467,7 +471,8 @@ async fn parameter_table() -> Json<ParameterTable> {
 #[serde(deny_unknown_fields)]
 struct SensitivityRequest {
     bike: Value,
-    range: SpeedRange,
+    #[serde(default)]
+    range: Option<SpeedRange>,
     #[serde(default)]
     speed: Option<f64>,
 }
@@ -490,12 +495,12 @@ async fn sensitivity(
 ) -> Result<Json<SensitivityResponse>, ApiError> {
     let request: SensitivityRequest = json_body(body)?;
     let bike = bicycle(&request.bike)?;
-    let range = request.range;
+    let (lo, hi) = SpeedRange::bounds(request.range);
     let speed = request.speed;
     let result = compute(&state, "ask for a narrower range", move |_| {
         let checked = bike.check()?;
-        let s = sensitivity::sensitivities(&bike, range.lo, range.hi, speed)?;
-        let u = sensitivity::critical_speeds_sigma(&bike, range.lo, range.hi)?;
+        let s = sensitivity::sensitivities(&bike, lo, hi, speed)?;
+        let u = sensitivity::critical_speeds_sigma(&bike, lo, hi)?;
         Ok(SensitivityResponse {
             name: bike.name.clone(),
             sensitivities: s,
@@ -602,18 +607,29 @@ async fn eigen(
     Ok(Json(response))
 }
 
+/// A speed range; `hi` null or left out for no upper end.
 #[derive(Deserialize, Clone, Copy)]
 #[serde(deny_unknown_fields)]
-struct SpeedRange {
-    lo: f64,
-    hi: f64,
+pub(crate) struct SpeedRange {
+    pub(crate) lo: f64,
+    #[serde(default)]
+    pub(crate) hi: Option<f64>,
+}
+
+impl SpeedRange {
+    pub(crate) fn bounds(range: Option<SpeedRange>) -> (f64, f64) {
+        range.map_or((0.0, f64::INFINITY), |r| {
+            (r.lo, r.hi.unwrap_or(f64::INFINITY))
+        })
+    }
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SpeedsRequest {
     bike: Value,
-    range: SpeedRange,
+    #[serde(default)]
+    range: Option<SpeedRange>,
 }
 
 async fn speeds(
@@ -622,10 +638,10 @@ async fn speeds(
 ) -> Result<Json<CriticalSpeeds>, ApiError> {
     let request: SpeedsRequest = json_body(body)?;
     let bike = bicycle(&request.bike)?;
-    let range = request.range;
+    let (lo, hi) = SpeedRange::bounds(request.range);
     let result = compute(&state, "ask for a narrower range", move |_| {
         let canonical = Canonical::new(&bike.benchmark()?)?;
-        Ok(critical_speeds(&canonical, range.lo, range.hi)?)
+        Ok(critical_speeds(&canonical, lo, hi)?)
     })
     .await?;
     Ok(Json(result))

@@ -106,6 +106,7 @@ impl From<Error> for ApiError {
             Error::InvalidArgument { what, rule } => {
                 ApiError::new(unprocessable, "invalid_argument", message).at(what, rule)
             }
+            Error::AccuracyLost { .. } => ApiError::new(unprocessable, "accuracy_lost", message),
             Error::LimitExceeded { what, rule } => {
                 ApiError::new(unprocessable, "limit_exceeded", message).at(what, rule)
             }

@@ -19,6 +19,7 @@
 mod api;
 mod assets;
 mod connection;
+mod design;
 mod error;
 pub mod geometry;
 pub mod modes;
@@ -62,6 +63,9 @@ pub struct Limits {
     /// Connections served at once (default 256); further ones wait in the kernel's backlog
     /// until one closes.
     pub max_connections: usize,
+    /// Most designs in one `/api/map` or `/api/study` request (default 250,000: a 500 × 500
+    /// map, about 0.3 s on two cores); more get 422.
+    pub max_designs: usize,
 }
 
 impl Default for Limits {
@@ -80,6 +84,7 @@ impl Default for Limits {
             header_timeout: Duration::from_secs(10),
             idle_timeout: Duration::from_secs(60),
             max_connections: 256,
+            max_designs: 250_000,
         }
     }
 }

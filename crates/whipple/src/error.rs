@@ -116,6 +116,17 @@ pub enum Error {
         /// Where and why.
         context: String,
     },
+    /// Double precision cannot give this answer to the accuracy that is printed: an overflow, an
+    /// underflow or a cancellation (for example a mass matrix whose determinant is lost to
+    /// round-off, or a leading coefficient whose sign round-off cannot decide). Nothing is computed
+    /// into a number that cannot be stood behind.
+    #[error("accuracy lost in {quantity}: {reason}")]
+    AccuracyLost {
+        /// What was being computed (for example `critical speeds`, `eigenvalues at 5 m/s`).
+        quantity: String,
+        /// Why, with the numbers that show it.
+        reason: String,
+    },
 }
 
 /// A number for a message: shortest round-trip text, in exponent form when very large or small,

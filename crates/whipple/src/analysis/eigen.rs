@@ -258,6 +258,8 @@ fn tidy(mut z: [Complex64; 4]) -> [Complex64; 4] {
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub fn eigenvalues(canonical: &Canonical, speed: f64) -> Result<[Complex64; 4]> {
+    // Refuses matrices whose characteristic polynomial double precision cannot form.
+    crate::linear::SpeedPolynomials::new(canonical)?;
     quartic_roots(&CharacteristicPolynomial::new(canonical).at_speed(speed))
 }
 

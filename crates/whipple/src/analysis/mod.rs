@@ -2,6 +2,7 @@
 //! linearization of the non-linear model and its validation against the linear one.
 
 pub mod comparison;
+pub mod design;
 pub mod eigen;
 pub mod linearize;
 pub mod modes;

@@ -134,6 +134,12 @@ fn vote(values: &[Complex64; 4]) -> Option<[Mode; 4]> {
     Some(labels)
 }
 
+/// The labels at one speed where the spectrum shows the benchmark's pattern (one complex pair:
+/// weave; two real eigenvalues: the larger capsize, the smaller castering), else `None`.
+pub fn pattern_labels(values: &[Complex64; 4]) -> Option<[Mode; 4]> {
+    vote(values)
+}
+
 /// The labels' votes, gathered one tracked speed at a time ([`classify`] over a slice is the
 /// same).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

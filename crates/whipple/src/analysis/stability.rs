@@ -1,25 +1,53 @@
-//! Critical speeds and self-stable speed ranges, found on the characteristic polynomial's
-//! coefficients (smooth polynomials in v) rather than on tracked eigenvalues, so that each is
-//! located to round-off.
+//! Critical speeds and self-stable speed ranges, certified on any range of speeds, including the
+//! whole line.
 //!
-//! With p(λ) = a₄λ⁴ + a₃λ³ + a₂λ² + a₁λ + a₀ and a₄ = det M > 0, all four eigenvalues have
-//! negative real parts exactly when a₀, a₁, a₃ and the Hurwitz determinant
-//! Δ₃ = a₃a₂a₁ − a₄a₁² − a₀a₃² are positive (Routh–Hurwitz). A real eigenvalue crosses zero where
-//! a₀ = 0 (capsize), a complex pair crosses the imaginary axis where Δ₃ = 0 (weave), and two real
-//! eigenvalues meet where the discriminant vanishes (the double root where the weave is born).
+//! With p(λ) = a₄λ⁴ + a₃λ³ + a₂λ² + a₁λ + a₀ and a₄ = det M > 0, the number of eigenvalues with
+//! positive real part is the number of sign changes in Routh's first column
+//! (a₄, a₃, Δ₂/a₃, Δ₃/Δ₂, a₀), Δ₂ = a₃a₂ − a₄a₁ and Δ₃ = a₃a₂a₁ − a₄a₁² − a₀a₃² the Hurwitz
+//! determinants; all four have negative real parts exactly when every entry is positive. In
+//! the scaled speed ν = v/√g and u = ν² (see [`SpeedPolynomials`]) these entries are, up to
+//! powers of ν, the polynomials α (degree 0), E(u) (1), D(u) (2) and a₀(u) (2). An eigenvalue
+//! crosses the imaginary axis only where a₀ = 0 (a real one through zero: capsize-like) or
+//! Δ₃ = 0 (a pair λ, −λ: a complex pair through the imaginary axis, weave-like, when the count
+//! changes there; Orlando's formula Δ₃ = a₄³ Π(λᵢ + λⱼ)).
+//!
+//! So the method is: certify every real root of a₀, D and E (closed forms, then the inclusion
+//! discs of [`super::roots`]: no root can be missed and each comes with an enclosure); between
+//! consecutive enclosures every polynomial has a sign that follows from its roots alone, so the
+//! number of unstable eigenvalues on each interval of speed is *exact*, not sampled; a
+//! critical speed is a root at which that number changes. The double-root speed v_d comes the
+//! same way from the discriminant in λ (degree 6 in u) with the quartic's P and D₄, whose signs
+//! give the number of real eigenvalues.
+//!
+//! What is certified: for the linear model given by the stored f64 matrices M, C₁, K₀, K₂ and g,
+//! every critical speed lies in its reported enclosure, and the stability verdict is exact on
+//! every interval between enclosures. Where round-off cannot separate two roots (a
+//! near-tangency: a self-stable range that is about to open or close, or a double root) the
+//! speeds concerned are listed as `unresolved` instead of being guessed. Not covered: the
+//! round-off in forming M, C₁, K₀, K₂ from the parameters (about 1e-16 relative per entry).
 
-use serde::Serialize;
+use serde::ser::SerializeSeq;
+use serde::{Serialize, Serializer};
 
-use super::eigen::{quartic_roots, Complex64};
-use super::roots::all_roots;
+use super::eigen::quartic_roots;
+use super::roots::{real_roots, RealRoot, RealRoots, UNIT_ROUNDOFF};
 use crate::error::{Error, Result};
-use crate::linear::{discriminant, hurwitz_delta3, Canonical, CharacteristicPolynomial};
+use crate::linear::{Canonical, SpeedPolynomials};
+
+/// A reported speed is refused ([`Error::AccuracyLost`]) when its certified enclosure is wider
+/// than this, relative to the speed (ordinary bicycles give about 1e-15).
+pub const MAX_RELATIVE_ENCLOSURE: f64 = 1e-8;
 
 /// The critical speeds of a bicycle within a speed range. `None` where no such speed lies in the
 /// range.
+///
+/// JSON: speeds are numbers in m/s or `null`; a range is `[lo, hi]` with `hi = null` when it
+/// has no upper end (for example `"stable_speed_ranges": [[2.841, null]]`: self-stable at every
+/// speed above 2.841 m/s), and likewise `lo = null` for no lower end.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CriticalSpeeds {
-    /// The range searched [m/s].
+    /// The range searched [m/s]; either end may be infinite.
+    #[serde(serialize_with = "serialize_range")]
     pub range: (f64, f64),
     /// v_d: the lowest speed where two real eigenvalues meet and leave as a complex (weave) pair
     /// [m/s].
@@ -35,212 +63,715 @@ pub struct CriticalSpeeds {
     /// positive as speed rises [m/s].
     pub capsize_speed: Option<f64>,
     /// Every interval of speeds in the range where all eigenvalues have negative real parts,
-    /// [lo, hi] in increasing order; empty when there is none.
+    /// [lo, hi] in increasing order (hi = +∞ when it has no upper end); empty when there is none.
+    #[serde(serialize_with = "serialize_ranges")]
     pub stable_speed_ranges: Vec<(f64, f64)>,
+    /// Every speed in the range where an eigenvalue crosses the imaginary axis, in increasing
+    /// order.
+    pub crossings: Vec<Crossing>,
+    /// Speed intervals that round-off could not classify (near-double roots, or speeds beyond
+    /// which a coefficient's sign is lost), in increasing order; normally empty.
+    #[serde(serialize_with = "serialize_ranges")]
+    pub unresolved: Vec<(f64, f64)>,
+    /// Why v_d could not be given, where round-off in the discriminant (degree 12 in v) does not
+    /// allow it; the other speeds are unaffected. `None` normally.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub double_root_unavailable: Option<String>,
 }
 
-/// How finely the range is scanned for sign changes before Brent refines each one.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SearchParams {
-    /// Number of grid intervals over the range (default 4000).
-    pub intervals: usize,
+/// Where an eigenvalue crosses the imaginary axis.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Crossing {
+    /// The speed [m/s] (polished to round-off).
+    pub speed: f64,
+    /// Its certified enclosure [m/s].
+    pub enclosure: (f64, f64),
+    /// Which kind of eigenvalue crosses.
+    pub kind: CrossingKind,
+    /// Eigenvalues with positive real part just below the speed.
+    pub unstable_below: u8,
+    /// Eigenvalues with positive real part just above the speed.
+    pub unstable_above: u8,
+    /// |Im λ| of a crossing pair [rad/s] (None for a real crossing).
+    pub frequency: Option<f64>,
 }
 
-impl Default for SearchParams {
-    fn default() -> Self {
-        SearchParams { intervals: 4000 }
+/// The kind of eigenvalue that crosses the imaginary axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CrossingKind {
+    /// A real eigenvalue through zero (a₀ = 0): capsize-like.
+    Real,
+    /// A complex pair through the imaginary axis (Δ₃ = 0): weave-like.
+    Pair,
+}
+
+fn json_end(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+fn serialize_range<S: Serializer>(r: &(f64, f64), s: S) -> Result<S::Ok, S::Error> {
+    (json_end(r.0), json_end(r.1)).serialize(s)
+}
+
+fn serialize_ranges<S: Serializer>(ranges: &[(f64, f64)], s: S) -> Result<S::Ok, S::Error> {
+    let mut seq = s.serialize_seq(Some(ranges.len()))?;
+    for r in ranges {
+        seq.serialize_element(&(json_end(r.0), json_end(r.1)))?;
     }
+    seq.end()
 }
 
-fn check_range(lo: f64, hi: f64) -> Result<()> {
-    if !(lo.is_finite() && hi.is_finite()) || lo >= hi {
+/// Checks a speed range: not NaN, LO < HI; LO may be −∞ and HI +∞.
+pub fn check_range(lo: f64, hi: f64) -> Result<()> {
+    if lo.is_nan() || hi.is_nan() || lo >= hi || lo == f64::INFINITY || hi == f64::NEG_INFINITY {
         return Err(Error::InvalidArgument {
             what: "range",
-            rule: format!("needs finite LO < HI, got {lo}:{hi}"),
+            rule: format!("needs LO < HI (HI may be unbounded), got {lo}:{hi}"),
         });
     }
     Ok(())
 }
 
-/// Number of eigenvalues with positive real part, on either side of v.
-fn unstable_count(poly: &CharacteristicPolynomial, v: f64) -> Result<usize> {
-    Ok(quartic_roots(&poly.at_speed(v))?
-        .iter()
-        .filter(|l| l.re > 0.0)
-        .count())
+const A0: u8 = 1;
+const PAIR: u8 = 2;
+const AUX: u8 = 4;
+const ZERO: u8 = 8;
+const CROSSING: u8 = A0 | PAIR;
+
+/// Most breakpoints on the speed line: each of three polynomials of degree ≤ 6 in u gives at
+/// most two speeds per root and two horizon groups, plus v = 0.
+const MAX_BREAKS: usize = 3 * 2 * 7 + 1;
+
+/// A root's enclosure on the scaled-speed line ν, or a group of overlapping ones.
+#[derive(Debug, Clone, Copy, Default)]
+struct Group {
+    lo: f64,
+    hi: f64,
+    value: f64,
+    kinds: u8,
+    crossing_members: u8,
+    cluster: bool,
+    /// Beyond a polynomial's certified horizon (see [`RealRoots::horizon`]).
+    beyond: bool,
 }
 
-fn real_count(roots: &[Complex64; 4]) -> usize {
-    roots.iter().filter(|l| l.im == 0.0).count()
+impl Group {
+    fn point(value: f64, kinds: u8) -> Self {
+        Group {
+            lo: value,
+            hi: value,
+            value,
+            kinds,
+            ..Group::default()
+        }
+    }
+
+    fn unresolved(&self) -> bool {
+        let near_zero = self.kinds & ZERO != 0 && self.crossing_members > 0 && self.hi > self.lo;
+        (self.cluster && self.kinds & CROSSING != 0)
+            || self.crossing_members > 1
+            || near_zero
+            || self.beyond
+    }
 }
 
-/// A small step in speed for looking either side of a crossing.
-fn side_step(v: f64) -> f64 {
-    1e-6 * v.abs().max(1.0)
+/// The speed line cut at every root enclosure, with a count on every gap between them.
+#[derive(Debug, Clone, Copy)]
+struct Line {
+    groups: [Group; MAX_BREAKS],
+    n: usize,
+    /// counts[i] holds the gap left of group i; counts[n] the gap right of the last.
+    counts: [Option<u8>; MAX_BREAKS + 1],
 }
 
-/// The critical speeds of a bicycle in [lo, hi] (m/s), with default search settings.
+impl Line {
+    fn new() -> Self {
+        let mut line = Line {
+            groups: [Group::default(); MAX_BREAKS],
+            n: 0,
+            counts: [None; MAX_BREAKS + 1],
+        };
+        line.push(Group::point(0.0, ZERO));
+        line
+    }
+
+    fn push(&mut self, g: Group) {
+        if self.n < MAX_BREAKS {
+            self.groups[self.n] = g;
+            self.n += 1;
+        }
+    }
+
+    /// Adds the speeds ν = ±√u of every root in u of one polynomial.
+    fn add_roots(&mut self, roots: &RealRoots, kind: u8) {
+        let crossing = u8::from(kind & CROSSING != 0);
+        if roots.zero_multiplicity > 0 {
+            self.push(Group::point(0.0, kind));
+        }
+        for root in roots.as_slice() {
+            let (ul, uh) = root.enclosure();
+            if uh < 0.0 {
+                continue;
+            }
+            let cluster = matches!(root, RealRoot::Cluster { .. });
+            if ul > 0.0 {
+                let lo = ul.sqrt() * (1.0 - 2.0 * UNIT_ROUNDOFF);
+                let hi = uh.sqrt() * (1.0 + 2.0 * UNIT_ROUNDOFF);
+                let value = root.value().max(0.0).sqrt().clamp(lo, hi);
+                for (a, b, v) in [(lo, hi, value), (-hi, -lo, -value)] {
+                    self.push(Group {
+                        lo: a,
+                        hi: b,
+                        value: v,
+                        kinds: kind,
+                        crossing_members: crossing,
+                        cluster,
+                        beyond: false,
+                    });
+                }
+            } else {
+                // Straddles u = 0: a root at a speed too small to tell from rest.
+                let h = uh.sqrt() * (1.0 + 2.0 * UNIT_ROUNDOFF);
+                self.push(Group {
+                    lo: -h,
+                    hi: h,
+                    value: 0.0,
+                    kinds: kind | ZERO,
+                    crossing_members: crossing,
+                    cluster: true,
+                    beyond: false,
+                });
+            }
+        }
+        if roots.horizon.is_finite() {
+            let h = roots.horizon.sqrt() * (1.0 - 2.0 * UNIT_ROUNDOFF);
+            for (lo, hi, value) in [(h, f64::INFINITY, h), (f64::NEG_INFINITY, -h, -h)] {
+                self.push(Group {
+                    lo,
+                    hi,
+                    value,
+                    kinds: kind,
+                    crossing_members: crossing,
+                    cluster: true,
+                    beyond: true,
+                });
+            }
+        }
+    }
+
+    /// Sorts and merges overlapping enclosures, then counts on every gap.
+    fn finish(&mut self, count: impl Fn(f64) -> Option<u8>) {
+        let groups = &mut self.groups[..self.n];
+        groups.sort_by(|a, b| a.lo.total_cmp(&b.lo));
+        let mut merged = 0;
+        for i in 0..self.n {
+            let g = self.groups[i];
+            if merged > 0 && g.lo <= self.groups[merged - 1].hi {
+                let last = &mut self.groups[merged - 1];
+                if last.kinds & ZERO != 0 || g.kinds & ZERO != 0 {
+                    last.value = 0.0;
+                } else if g.beyond {
+                    last.value = last.value.min(g.value);
+                } else if g.kinds & CROSSING != 0 && last.kinds & CROSSING == 0 {
+                    last.value = g.value;
+                }
+                last.hi = last.hi.max(g.hi);
+                last.crossing_members += g.crossing_members;
+                last.cluster |= g.cluster;
+                last.beyond |= g.beyond;
+                last.kinds |= g.kinds;
+            } else {
+                self.groups[merged] = g;
+                merged += 1;
+            }
+        }
+        self.n = merged;
+        for i in 0..=self.n {
+            let left = if i == 0 {
+                f64::NEG_INFINITY
+            } else {
+                self.groups[i - 1].hi
+            };
+            let right = if i == self.n {
+                f64::INFINITY
+            } else {
+                self.groups[i].lo
+            };
+            let x = if left == f64::NEG_INFINITY {
+                2.0 * right - 1.0
+            } else if right == f64::INFINITY {
+                2.0 * left + 1.0
+            } else {
+                0.5 * (left + right)
+            };
+            self.counts[i] = if x > left && x < right && x != 0.0 {
+                count(x)
+            } else {
+                None
+            };
+        }
+    }
+}
+
+/// Sign changes in a sequence of signs (±1).
+fn sign_changes(s: &[f64]) -> u8 {
+    s.windows(2).filter(|w| w[0] != w[1]).count() as u8
+}
+
+/// The certified stability structure of one bicycle on the whole speed line.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Structure {
+    line: Line,
+    sqrt_g: f64,
+}
+
+/// One step of a walk along the speed line.
+enum Event<'a> {
+    /// A gap [a, b] (m/s) and its count.
+    Gap(f64, f64, Option<u8>),
+    /// A group at speed v with the counts left and right of it.
+    Group(&'a Group, f64, Option<u8>, Option<u8>),
+}
+
+impl Structure {
+    /// Unstable-eigenvalue counts on the speed line from the Routh signs of α, E, D, a₀.
+    pub(crate) fn stability(sp: &SpeedPolynomials) -> Result<Self> {
+        let alpha = sp.alpha.coefficients[0];
+        if alpha != 0.0 && alpha.abs() <= sp.alpha.bounds[0] {
+            return Err(Error::AccuracyLost {
+                quantity: "critical speeds".into(),
+                reason: format!(
+                    "the coefficient of λ³ per unit speed, {alpha:e}, is within its round-off \
+                     bound {:e}",
+                    sp.alpha.bounds[0]
+                ),
+            });
+        }
+        let a0 = real_roots(&sp.a0, "critical speeds (the coefficient a0)")?;
+        let d = real_roots(&sp.d, "critical speeds (the Hurwitz determinant)")?;
+        let e = real_roots(&sp.e, "critical speeds (the Hurwitz determinant Δ2)")?;
+        let mut line = Line::new();
+        line.add_roots(&a0, A0);
+        line.add_roots(&d, PAIR);
+        line.add_roots(&e, AUX);
+        let s_alpha = alpha.signum();
+        line.finish(|nu| {
+            if alpha == 0.0 {
+                return None;
+            }
+            let u = nu * nu;
+            let (se, sd, s0) = (e.sign_at(u)?, d.sign_at(u)?, a0.sign_at(u)?);
+            let sv = nu.signum();
+            Some(sign_changes(&[
+                1.0,
+                sv * s_alpha,
+                s_alpha * se,
+                sv * sd * se,
+                s0,
+            ]))
+        });
+        Ok(Structure {
+            line,
+            sqrt_g: sp.sqrt_g,
+        })
+    }
+
+    /// Real-eigenvalue counts on the speed line from the signs of the discriminant, P and D₄.
+    pub(crate) fn real_count(canonical: &Canonical, sqrt_g: f64) -> Result<Self> {
+        let (disc, p, d4) = SpeedPolynomials::discriminant(canonical)?;
+        let disc = real_roots(&disc, "the double-root speed (the discriminant)")?;
+        let p = real_roots(&p, "the double-root speed")?;
+        let d4 = real_roots(&d4, "the double-root speed")?;
+        let mut line = Line::new();
+        // The discriminant's roots are the candidates; P and D₄ only cut the gaps.
+        line.add_roots(&disc, A0);
+        line.add_roots(&p, AUX);
+        line.add_roots(&d4, AUX);
+        line.finish(|nu| {
+            let u = nu * nu;
+            let sd = disc.sign_at(u)?;
+            if sd < 0.0 {
+                return Some(2);
+            }
+            let (sp, s4) = (p.sign_at(u)?, d4.sign_at(u)?);
+            Some(if sp < 0.0 && s4 < 0.0 { 4 } else { 0 })
+        });
+        Ok(Structure { line, sqrt_g })
+    }
+
+    /// The gaps and groups inside [lo, hi] (m/s), in increasing speed.
+    fn walk(&self, lo: f64, hi: f64, mut visit: impl FnMut(Event<'_>)) {
+        let s = self.sqrt_g;
+        let to_v = |nu: f64| nu * s;
+        let line = &self.line;
+        for i in 0..=line.n {
+            let left = if i == 0 {
+                f64::NEG_INFINITY
+            } else {
+                to_v(line.groups[i - 1].value)
+            };
+            let right = if i == line.n {
+                f64::INFINITY
+            } else {
+                to_v(line.groups[i].value)
+            };
+            let (a, b) = (left.max(lo), right.min(hi));
+            if a < b {
+                visit(Event::Gap(a, b, line.counts[i]));
+            }
+            if i < line.n {
+                let g = &line.groups[i];
+                let v = to_v(g.value);
+                if v >= lo && v <= hi {
+                    visit(Event::Group(g, v, line.counts[i], line.counts[i + 1]));
+                }
+            }
+        }
+    }
+}
+
+/// The speed enclosure of a group [m/s].
+fn enclosure(g: &Group, sqrt_g: f64) -> (f64, f64) {
+    let widen = |x: f64, up: bool| {
+        let y = x * sqrt_g;
+        if !y.is_finite() {
+            return y;
+        }
+        let pad = 4.0 * UNIT_ROUNDOFF * y.abs();
+        if up {
+            y + pad
+        } else {
+            y - pad
+        }
+    };
+    (widen(g.lo, false), widen(g.hi, true))
+}
+
+/// What a design study reads of one bicycle, computed without allocating.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StabilitySummary {
+    /// v_w [m/s], as in [`CriticalSpeeds::weave_speed`].
+    pub weave_speed: Option<f64>,
+    /// The weave's angular frequency at v_w [rad/s].
+    pub weave_frequency: Option<f64>,
+    /// v_c [m/s], as in [`CriticalSpeeds::capsize_speed`].
+    pub capsize_speed: Option<f64>,
+    /// The lowest self-stable speed in the range [m/s].
+    pub stable_from: Option<f64>,
+    /// The upper end of the first self-stable range [m/s] (+∞ when it has none).
+    pub stable_to: Option<f64>,
+    /// Total width of the self-stable ranges inside the range [m/s] (+∞ when unbounded, 0 when
+    /// there is none).
+    pub stable_width: f64,
+    /// Number of separate self-stable ranges.
+    pub stable_ranges: u32,
+    /// Whether some speeds in the range could not be classified (see
+    /// [`CriticalSpeeds::unresolved`]).
+    pub unresolved: bool,
+}
+
+fn check_enclosure(name: &str, v: f64, enc: (f64, f64)) -> Result<()> {
+    if enc.1 - enc.0 > MAX_RELATIVE_ENCLOSURE * v.abs().max(f64::MIN_POSITIVE) {
+        return Err(Error::AccuracyLost {
+            quantity: name.to_string(),
+            reason: format!("it is certified only to lie in [{}, {}] m/s", enc.0, enc.1),
+        });
+    }
+    Ok(())
+}
+
+/// The weave frequency at a pair crossing at scaled speed ν: ω² = a₁/a₃ = β(u)/α.
+fn pair_frequency(sp: &SpeedPolynomials, nu: f64) -> Option<f64> {
+    let w2 = sp.beta.eval(nu * nu) / sp.alpha.coefficients[0];
+    (w2 > 0.0).then(|| sp.sqrt_g * w2.sqrt())
+}
+
+/// Accumulates stable gaps into ranges.
+#[derive(Default)]
+struct Ranges {
+    open: Option<(f64, f64)>,
+}
+
+impl Ranges {
+    fn gap(&mut self, a: f64, b: f64, count: Option<u8>, done: &mut impl FnMut(f64, f64)) {
+        if count == Some(0) {
+            self.open = Some(match self.open {
+                Some((start, _)) => (start, b),
+                None => (a, b),
+            });
+        } else {
+            self.close(done);
+        }
+    }
+    fn close(&mut self, done: &mut impl FnMut(f64, f64)) {
+        if let Some((a, b)) = self.open.take() {
+            done(a, b);
+        }
+    }
+}
+
+/// The stability summary of a bicycle on [lo, hi] (m/s; hi may be +∞), as a design study
+/// needs it: no allocation, no eigenvalue computation.
+///
+/// ```
+/// use whipple::{BenchmarkParameters, linear::{Canonical, SpeedPolynomials}};
+/// use whipple::analysis::stability::summary;
+/// let sp = SpeedPolynomials::new(&Canonical::new(&BenchmarkParameters::meijaard2007())?)?;
+/// let s = summary(&sp, 0.0, f64::INFINITY)?;
+/// assert!((s.stable_width - (6.02426201538837 - 4.29238253634111)).abs() < 1e-12);
+/// # Ok::<(), whipple::Error>(())
+/// ```
+pub fn summary(sp: &SpeedPolynomials, lo: f64, hi: f64) -> Result<StabilitySummary> {
+    check_range(lo, hi)?;
+    let structure = Structure::stability(sp)?;
+    let mut out = StabilitySummary {
+        weave_speed: None,
+        weave_frequency: None,
+        capsize_speed: None,
+        stable_from: None,
+        stable_to: None,
+        stable_width: 0.0,
+        stable_ranges: 0,
+        unresolved: false,
+    };
+    let mut ranges = Ranges::default();
+    let mut weave_nu = f64::NAN;
+    let mut failure: Option<Error> = None;
+    let s = structure.sqrt_g;
+    let mut done = |a: f64, b: f64| {
+        out.stable_width += b - a;
+        out.stable_ranges += 1;
+        if out.stable_from.is_none() {
+            out.stable_from = Some(a);
+            out.stable_to = Some(b);
+        }
+    };
+    let mut weave = None;
+    let mut capsize = None;
+    let mut unresolved = false;
+    structure.walk(lo, hi, |event| match event {
+        Event::Gap(a, b, count) => ranges.gap(a, b, count, &mut done),
+        Event::Group(g, v, left, right) => {
+            if g.unresolved() {
+                unresolved = true;
+                ranges.close(&mut done);
+                return;
+            }
+            let (Some(l), Some(r)) = (left, right) else {
+                return;
+            };
+            if g.kinds & ZERO != 0 {
+                return;
+            }
+            if g.kinds & PAIR != 0 && l > r && weave.is_none() {
+                if failure.is_none() {
+                    failure = check_enclosure("the weave speed", v, enclosure(g, s)).err();
+                }
+                weave = Some(v);
+                weave_nu = g.value;
+            }
+            if g.kinds & A0 != 0 && r > l && capsize.is_none() {
+                if failure.is_none() {
+                    failure = check_enclosure("the capsize speed", v, enclosure(g, s)).err();
+                }
+                capsize = Some(v);
+            }
+        }
+    });
+    ranges.close(&mut done);
+    if let Some(e) = failure {
+        return Err(e);
+    }
+    out.unresolved = unresolved;
+    out.weave_speed = weave;
+    out.capsize_speed = capsize;
+    if weave.is_some() {
+        out.weave_frequency = pair_frequency(sp, weave_nu);
+    }
+    Ok(out)
+}
+
+/// The critical speeds of a bicycle in [lo, hi] (m/s); `hi` may be `f64::INFINITY` (and `lo`
+/// `f64::NEG_INFINITY`): the answer is certified on the whole range, however large.
 ///
 /// ```
 /// use whipple::{BenchmarkParameters, linear::Canonical, analysis::stability};
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
-/// let speeds = stability::critical_speeds(&canonical, 0.0, 10.0)?;
+/// let speeds = stability::critical_speeds(&canonical, 0.0, f64::INFINITY)?;
 /// assert!((speeds.weave_speed.unwrap() - 4.29238253634111).abs() < 1e-12);
 /// assert!((speeds.capsize_speed.unwrap() - 6.02426201538837).abs() < 1e-12);
+/// assert_eq!(speeds.stable_speed_ranges.len(), 1);
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub fn critical_speeds(canonical: &Canonical, lo: f64, hi: f64) -> Result<CriticalSpeeds> {
-    critical_speeds_with(canonical, lo, hi, SearchParams::default())
-}
-
-/// [`critical_speeds`] with explicit search settings.
-pub fn critical_speeds_with(
-    canonical: &Canonical,
-    lo: f64,
-    hi: f64,
-    params: SearchParams,
-) -> Result<CriticalSpeeds> {
     check_range(lo, hi)?;
-    let poly = CharacteristicPolynomial::new(canonical);
-    let n = params.intervals.max(16);
-    let a0 = |v: f64| poly.at_speed(v)[0];
-    let a1 = |v: f64| poly.at_speed(v)[1];
-    let a3 = |v: f64| poly.at_speed(v)[3];
-    let d3 = |v: f64| poly.hurwitz_delta3(v);
-    let disc = |v: f64| discriminant(&poly.at_speed(v));
-
-    let a0_roots = all_roots(a0, lo, hi, n)?;
-    let d3_roots = all_roots(d3, lo, hi, n)?;
-
-    // Stable ranges: between consecutive boundary candidates, test the midpoint.
-    let mut cuts = vec![lo, hi];
-    cuts.extend(&a0_roots);
-    cuts.extend(&d3_roots);
-    cuts.extend(all_roots(a1, lo, hi, n)?);
-    cuts.extend(all_roots(a3, lo, hi, n)?);
-    cuts.sort_by(f64::total_cmp);
-    cuts.dedup();
-    let stable_at = |v: f64| {
-        let a = poly.at_speed(v);
-        a[0] > 0.0 && a[1] > 0.0 && a[3] > 0.0 && hurwitz_delta3(&a) > 0.0
-    };
-    let mut stable_speed_ranges: Vec<(f64, f64)> = Vec::new();
-    for w in cuts.windows(2) {
-        let (u0, u1) = (w[0], w[1]);
-        if u1 > u0 && stable_at(0.5 * (u0 + u1)) {
-            match stable_speed_ranges.last_mut() {
-                Some(last) if last.1 == u0 => last.1 = u1,
-                _ => stable_speed_ranges.push((u0, u1)),
+    let sp = SpeedPolynomials::new(canonical)?;
+    let structure = Structure::stability(&sp)?;
+    let s = structure.sqrt_g;
+    let mut stable: Vec<(f64, f64)> = Vec::new();
+    let mut crossings = Vec::new();
+    let mut unresolved = Vec::new();
+    let mut failure: Option<Error> = None;
+    let mut ranges = Ranges::default();
+    let mut done = |a: f64, b: f64| stable.push((a, b));
+    structure.walk(lo, hi, |event| match event {
+        Event::Gap(a, b, count) => ranges.gap(a, b, count, &mut done),
+        Event::Group(g, v, left, right) => {
+            let enc = enclosure(g, s);
+            if g.unresolved() {
+                unresolved.push((enc.0.max(lo), enc.1.min(hi)));
+                ranges.close(&mut done);
+                return;
             }
+            let (Some(l), Some(r)) = (left, right) else {
+                return;
+            };
+            if l == r || g.kinds & CROSSING == 0 || g.kinds & ZERO != 0 {
+                return;
+            }
+            let kind = if g.kinds & PAIR != 0 {
+                CrossingKind::Pair
+            } else {
+                CrossingKind::Real
+            };
+            if failure.is_none() {
+                failure = check_enclosure("a critical speed", v, enc).err();
+            }
+            crossings.push(Crossing {
+                speed: v,
+                enclosure: enc,
+                kind,
+                unstable_below: l,
+                unstable_above: r,
+                frequency: match kind {
+                    CrossingKind::Pair => pair_frequency(&sp, g.value),
+                    CrossingKind::Real => None,
+                },
+            });
         }
+    });
+    ranges.close(&mut done);
+    if let Some(e) = failure {
+        return Err(e);
     }
-
-    // Weave speed: a root of Δ₃ where a complex pair sits on the imaginary axis and the number
-    // of unstable eigenvalues drops as speed rises.
-    let mut weave_speed = None;
-    let mut weave_frequency = None;
-    for &v in &d3_roots {
-        let roots = quartic_roots(&poly.at_speed(v))?;
-        let scale = roots.iter().fold(1.0f64, |m, l| m.max(l.norm()));
-        let Some(pair) = roots
-            .iter()
-            .filter(|l| l.im > 0.0 && l.re.abs() <= 1e-6 * scale)
-            .min_by(|x, y| x.re.abs().total_cmp(&y.re.abs()))
-        else {
-            continue;
+    let weave = crossings
+        .iter()
+        .find(|c| c.kind == CrossingKind::Pair && c.unstable_above < c.unstable_below);
+    let capsize = crossings
+        .iter()
+        .find(|c| c.kind == CrossingKind::Real && c.unstable_above > c.unstable_below);
+    let mut double_root_unavailable = None;
+    let (double_root_speed, double_root_eigenvalue) =
+        match double_root(canonical, &sp, lo, hi, &mut unresolved) {
+            Ok(found) => found,
+            Err(e @ Error::AccuracyLost { .. }) => {
+                double_root_unavailable = Some(e.to_string());
+                (None, None)
+            }
+            Err(e) => return Err(e),
         };
-        let h = side_step(v);
-        if unstable_count(&poly, v - h)? > unstable_count(&poly, v + h)? {
-            weave_speed = Some(v);
-            weave_frequency = Some(pair.im);
-            break;
-        }
-    }
-
-    // Capsize speed: a root of a₀ (an eigenvalue at zero) where the count of unstable
-    // eigenvalues rises with speed.
-    let mut capsize_speed = None;
-    for &v in &a0_roots {
-        let h = side_step(v);
-        if unstable_count(&poly, v + h)? > unstable_count(&poly, v - h)? {
-            capsize_speed = Some(v);
-            break;
-        }
-    }
-
-    // Double root: the discriminant changes sign while two real roots become a complex pair.
-    let mut double_root_speed = None;
-    let mut double_root_eigenvalue = None;
-    for v in all_roots(disc, lo, hi, n)? {
-        let h = side_step(v);
-        let before = real_count(&quartic_roots(&poly.at_speed(v - h))?);
-        let after = real_count(&quartic_roots(&poly.at_speed(v + h))?);
-        if before >= after + 2 {
-            let reals: Vec<f64> = quartic_roots(&poly.at_speed(v - h))?
-                .iter()
-                .filter(|l| l.im == 0.0)
-                .map(|l| l.re)
-                .collect();
-            // The two real roots closest together are the ones meeting.
-            let mut guess = reals.first().copied().unwrap_or(0.0);
-            let mut gap = f64::INFINITY;
-            for i in 0..reals.len() {
-                for j in 0..i {
-                    if (reals[i] - reals[j]).abs() < gap {
-                        gap = (reals[i] - reals[j]).abs();
-                        guess = 0.5 * (reals[i] + reals[j]);
-                    }
-                }
-            }
-            let (vd, ld) = refine_double_root(&poly, v, guess);
-            double_root_speed = Some(vd);
-            double_root_eigenvalue = Some(ld);
-            break;
-        }
-    }
-
+    unresolved.sort_by(|a, b| a.0.total_cmp(&b.0));
     Ok(CriticalSpeeds {
         range: (lo, hi),
         double_root_speed,
         double_root_eigenvalue,
-        weave_speed,
-        weave_frequency,
-        capsize_speed,
-        stable_speed_ranges,
+        weave_speed: weave.map(|c| c.speed),
+        weave_frequency: weave.and_then(|c| c.frequency),
+        capsize_speed: capsize.map(|c| c.speed),
+        stable_speed_ranges: stable,
+        crossings,
+        unresolved,
+        double_root_unavailable,
     })
 }
 
-/// Newton's method on p(λ, v) = 0, ∂p/∂λ(λ, v) = 0 from a bracketed first guess; falls back to
-/// the guess when the iteration does not improve it (bounded at 50 steps).
-fn refine_double_root(poly: &CharacteristicPolynomial, v0: f64, lambda0: f64) -> (f64, f64) {
-    let residual = |v: f64, l: f64| {
-        let a = poly.at_speed(v);
-        let da = poly.d_dv(v);
-        let p = (((a[4] * l + a[3]) * l + a[2]) * l + a[1]) * l + a[0];
-        let pl = ((4.0 * a[4] * l + 3.0 * a[3]) * l + 2.0 * a[2]) * l + a[1];
-        let pll = (12.0 * a[4] * l + 6.0 * a[3]) * l + 2.0 * a[2];
-        let pv = (((da[4] * l + da[3]) * l + da[2]) * l + da[1]) * l + da[0];
-        let plv = ((4.0 * da[4] * l + 3.0 * da[3]) * l + 2.0 * da[2]) * l + da[1];
-        (p, pl, pll, pv, plv)
+/// v_d and the double eigenvalue: the lowest root of the discriminant in [lo, hi] where the
+/// number of real eigenvalues drops by two or more as speed rises.
+fn double_root(
+    canonical: &Canonical,
+    sp: &SpeedPolynomials,
+    lo: f64,
+    hi: f64,
+    unresolved: &mut Vec<(f64, f64)>,
+) -> Result<(Option<f64>, Option<f64>)> {
+    let sqrt_g = sp.sqrt_g;
+    let structure = Structure::real_count(canonical, sqrt_g)?;
+    let mut found: Option<(f64, f64)> = None;
+    let mut failure = None;
+    structure.walk(lo, hi, |event| {
+        let Event::Group(g, v, left, right) = event else {
+            return;
+        };
+        if found.is_some() || g.kinds & A0 == 0 {
+            return;
+        }
+        let enc = enclosure(g, sqrt_g);
+        if g.unresolved() {
+            if g.kinds & ZERO == 0 || g.beyond {
+                unresolved.push((enc.0.max(lo), enc.1.min(hi)));
+            }
+            return;
+        }
+        if g.kinds & ZERO != 0 {
+            return;
+        }
+        if let (Some(l), Some(r)) = (left, right) {
+            if l >= r + 2 {
+                failure = check_enclosure("the double-root speed", v, enc).err();
+                found = Some((v, g.value));
+            }
+        }
+    });
+    if let Some(e) = failure {
+        return Err(e);
+    }
+    let Some((vd, nu)) = found else {
+        return Ok((None, None));
     };
-    let (mut v, mut l) = (v0, lambda0);
-    for _ in 0..50 {
-        let (p, pl, pll, pv, plv) = residual(v, l);
-        // J [dl, dv] = -[p, pl] with J = [[pl, pv], [pll, plv]].
-        let det = pl * plv - pv * pll;
-        if det == 0.0 || !det.is_finite() {
+    Ok((Some(vd), double_eigenvalue(sp, nu)?.map(|mu| mu * sqrt_g)))
+}
+
+/// The double eigenvalue at v_d, scaled (μ = λ/√g, at ν = v_d/√g): the root of ∂p/∂μ between
+/// the two closest real (or nearly real) eigenvalues, by bounded Newton steps on the cubic.
+fn double_eigenvalue(sp: &SpeedPolynomials, nu: f64) -> Result<Option<f64>> {
+    let u = nu * nu;
+    let a = [
+        sp.a0.eval(u),
+        nu * sp.beta.eval(u),
+        sp.a2.eval(u),
+        nu * sp.alpha.coefficients[0],
+        sp.a4.coefficients[0],
+    ];
+    let roots = quartic_roots(&a)?;
+    let mut best = None;
+    let mut gap = f64::INFINITY;
+    for i in 0..4 {
+        for j in 0..i {
+            let d = (roots[i] - roots[j]).norm();
+            if d < gap {
+                gap = d;
+                best = Some(0.5 * (roots[i].re + roots[j].re));
+            }
+        }
+    }
+    let Some(mut l) = best else {
+        return Ok(None);
+    };
+    for _ in 0..20 {
+        let dp = ((4.0 * a[4] * l + 3.0 * a[3]) * l + 2.0 * a[2]) * l + a[1];
+        let ddp = (12.0 * a[4] * l + 6.0 * a[3]) * l + 2.0 * a[2];
+        if ddp == 0.0 {
             break;
         }
-        let dl = -(p * plv - pv * pl) / det;
-        let dv = -(pl * pl - p * pll) / det;
-        if !(dl.is_finite() && dv.is_finite()) || dv.abs() > 0.1 * v0.abs().max(1.0) {
-            return (v0, lambda0);
+        let step = dp / ddp;
+        if !step.is_finite() || step.abs() > gap.max(1e-3 * l.abs()) {
+            break;
         }
-        l += dl;
-        v += dv;
-        if dv.abs() <= 2.0 * f64::EPSILON * v.abs() && dl.abs() <= 2.0 * f64::EPSILON * l.abs() {
+        l -= step;
+        if step.abs() <= 2.0 * f64::EPSILON * l.abs() {
             break;
         }
     }
-    (v, l)
+    Ok(Some(l))
 }

@@ -266,6 +266,9 @@ impl<I: Iterator<Item = f64> + Clone> SweepPlan<I> {
         } else {
             1.0
         };
+        // Refuses matrices whose characteristic polynomial double precision cannot form
+        // (overflow, a determinant of M lost to cancellation) instead of sweeping garbage.
+        crate::linear::SpeedPolynomials::new(canonical)?;
         let poly = CharacteristicPolynomial::new(canonical);
         let mut votes = Votes::default();
         let mut first: Option<[Complex64; 4]> = None;

@@ -1,0 +1,686 @@
+//! `whipple map`, `whipple study` and `whipple merge`: design studies over one or two
+//! parameters, streamed to CSV or JSON, sharded across machines and merged back bit for bit.
+
+use std::fmt::Write as _;
+use std::io::{BufRead, IsTerminal};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Instant;
+
+use anyhow::{anyhow, bail, Context, Result};
+use whipple::analysis::design::{
+    Axis, DesignRow, DesignStatus, Parameter, Shard, Study, StudyOptions,
+};
+use whipple_report::{design_map, design_study, MapData, StudyData};
+
+use crate::bike::load;
+use crate::output;
+use crate::speeds::parse_range;
+
+/// Output formats of a design study.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum DesignFormat {
+    /// Comma-separated values, one row per design (mergeable).
+    Csv,
+    /// One JSON document: the study and its rows.
+    Json,
+}
+
+/// The quantities a map can show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Quantity {
+    /// Total width of the self-stable speed ranges [m/s].
+    StableWidth,
+    /// The weave speed v_w [m/s].
+    WeaveSpeed,
+    /// The capsize speed v_c [m/s].
+    CapsizeSpeed,
+    /// The double-root speed v_d [m/s].
+    DoubleRootSpeed,
+    /// The weave frequency at v_w [rad/s].
+    WeaveFrequency,
+    /// The largest real part of the eigenvalues at --speed [1/s].
+    MaxReal,
+}
+
+impl Quantity {
+    fn column(self) -> &'static str {
+        match self {
+            Quantity::StableWidth => "stable_width",
+            Quantity::WeaveSpeed => "v_w",
+            Quantity::CapsizeSpeed => "v_c",
+            Quantity::DoubleRootSpeed => "v_d",
+            Quantity::WeaveFrequency => "weave_frequency",
+            Quantity::MaxReal => "max_real",
+        }
+    }
+    fn label(self) -> &'static str {
+        match self {
+            Quantity::StableWidth => "width of the self-stable speed range [m/s]",
+            Quantity::WeaveSpeed => "weave speed v_w [m/s]",
+            Quantity::CapsizeSpeed => "capsize speed v_c [m/s]",
+            Quantity::DoubleRootSpeed => "double-root speed v_d [m/s]",
+            Quantity::WeaveFrequency => "weave frequency at v_w [rad/s]",
+            Quantity::MaxReal => "largest real part of the eigenvalues [1/s]",
+        }
+    }
+    fn from_column(name: &str) -> Option<Quantity> {
+        [
+            Quantity::StableWidth,
+            Quantity::WeaveSpeed,
+            Quantity::CapsizeSpeed,
+            Quantity::DoubleRootSpeed,
+            Quantity::WeaveFrequency,
+            Quantity::MaxReal,
+        ]
+        .into_iter()
+        .find(|q| q.column() == name)
+    }
+    fn of(self, row: &DesignRow) -> Option<f64> {
+        let q = &row.quantities;
+        if row.status != DesignStatus::Ok {
+            return None;
+        }
+        match self {
+            Quantity::StableWidth => Some(q.stable_width),
+            Quantity::WeaveSpeed => q.weave_speed,
+            Quantity::CapsizeSpeed => q.capsize_speed,
+            Quantity::DoubleRootSpeed => q.double_root_speed,
+            Quantity::WeaveFrequency => q.weave_frequency,
+            Quantity::MaxReal => q.max_real,
+        }
+    }
+}
+
+/// Arguments shared by `map` and `study`.
+pub struct DesignArgs<'a> {
+    pub bike: &'a str,
+    pub x: &'a str,
+    pub y: Option<&'a str>,
+    pub quantity: Quantity,
+    pub speed: Option<f64>,
+    pub range: Option<&'a str>,
+    pub double_root: bool,
+    pub format: DesignFormat,
+    pub out: Option<&'a Path>,
+    pub plot: Option<&'a Path>,
+    pub shard: Option<&'a str>,
+}
+
+/// The most cells a plot holds in memory (a 5000 × 5000 map: 200 MB).
+const MAX_PLOT_CELLS: u64 = 25_000_000;
+
+const COLUMNS: &str = "v_d,v_w,v_c,weave_frequency,stable,stable_width,stable_from,stable_to,\
+max_real,max_real_mode,unresolved,status,reason";
+
+fn num(x: Option<f64>) -> String {
+    match x {
+        Some(v) if v == f64::INFINITY => "inf".into(),
+        Some(v) if v.is_finite() => format!("{v}"),
+        _ => String::new(),
+    }
+}
+
+fn csv_text(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\"").replace(['\n', '\r'], " "))
+    } else {
+        s.to_string()
+    }
+}
+
+fn csv_row(out: &mut String, r: &DesignRow, two: bool) {
+    let q = &r.quantities;
+    let _ = write!(out, "{},{},", r.index, r.ix);
+    if two {
+        let _ = write!(out, "{},", r.iy);
+    }
+    let _ = write!(out, "{},", r.x);
+    if two {
+        let _ = write!(out, "{},", r.y);
+    }
+    let ok = r.status == DesignStatus::Ok;
+    let _ = writeln!(
+        out,
+        "{},{},{},{},{},{},{},{},{},{},{},{},{}",
+        num(q.double_root_speed),
+        num(q.weave_speed),
+        num(q.capsize_speed),
+        num(q.weave_frequency),
+        if ok {
+            u8::from(q.stable).to_string()
+        } else {
+            String::new()
+        },
+        if ok {
+            num(Some(q.stable_width))
+        } else {
+            String::new()
+        },
+        num(q.stable_from),
+        num(q.stable_to),
+        num(q.max_real),
+        q.max_real_mode.map_or("", |m| m.name()),
+        if ok {
+            u8::from(q.unresolved).to_string()
+        } else {
+            String::new()
+        },
+        match r.status {
+            DesignStatus::Ok => "ok",
+            DesignStatus::Invalid => "invalid",
+            DesignStatus::AccuracyLost => "accuracy_lost",
+        },
+        csv_text(r.reason.as_deref().unwrap_or("")),
+    );
+}
+
+/// The study's description line (a JSON object), identical in every shard.
+fn study_line(label: &str, study: &Study) -> Result<String> {
+    let doc = serde_json::json!({
+        "bike": label,
+        "x": study.x,
+        "y": study.y,
+        "range": [finite(study.options.range.0), finite(study.options.range.1)],
+        "speed": study.options.speed,
+        "double_root": study.options.double_root,
+        "designs": study.len(),
+    });
+    Ok(serde_json::to_string(&doc)?)
+}
+
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+fn header(study: &Study) -> String {
+    let mut h = String::from("index,ix,");
+    if let Some(y) = &study.y {
+        let _ = write!(h, "iy,{},{},", csv_text(&study.x.name), csv_text(&y.name));
+    } else {
+        let _ = write!(h, "{},", csv_text(&study.x.name));
+    }
+    h.push_str(COLUMNS);
+    h.push('\n');
+    h
+}
+
+/// Where the rows go: `--out` through [`crate::output`] (checked before the work, written to a
+/// temporary file beside it, renamed into place by `finish`, through symbolic links, devices
+/// in place), or standard output (a reader that goes away ends the run quietly).
+struct Sink(output::Sink);
+
+impl Sink {
+    fn open(out: Option<&Path>) -> Result<Sink> {
+        Ok(Sink(match out {
+            None => output::Sink::stdout(),
+            Some(path) => output::Target::check("--out", path)?.open()?,
+        }))
+    }
+
+    fn write(&mut self, text: &str) -> Result<()> {
+        self.0.text(text)
+    }
+
+    /// Puts the rows in place. Dropped unfinished (an error, Ctrl-C), the temporary file goes.
+    fn finish(self) -> Result<()> {
+        output::commit(vec![self.0.finish()?])
+    }
+}
+
+fn interrupt_flag() -> Arc<AtomicBool> {
+    static FLAG: std::sync::OnceLock<Arc<AtomicBool>> = std::sync::OnceLock::new();
+    FLAG.get_or_init(|| {
+        let flag = Arc::new(AtomicBool::new(false));
+        let f = flag.clone();
+        // Without a handler Ctrl-C kills the process, which leaves only a temporary file.
+        ctrlc::set_handler(move || f.store(true, Ordering::Relaxed)).ok();
+        flag
+    })
+    .clone()
+}
+
+fn progress(total: u64) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::hidden();
+    bar.set_length(total);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "designs {bar:40} {percent:>3}% {human_pos}/{human_len} {per_sec} eta {eta}",
+        )
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    bar
+}
+
+/// Runs `map` (two axes) or `study` (one).
+pub fn run(args: &DesignArgs<'_>) -> Result<()> {
+    let bike = load(args.bike)?;
+    let x = Axis::parse(args.x, &bike.bicycle).context(if args.y.is_some() {
+        "--x"
+    } else {
+        "--vary"
+    })?;
+    let y = match args.y {
+        Some(spec) => Some(Axis::parse(spec, &bike.bicycle).context("--y")?),
+        None => None,
+    };
+    let (lo, hi) = match args.range {
+        Some(text) => parse_range(text, "--range")?,
+        None => (0.0, f64::INFINITY),
+    };
+    let speed_axis = matches!(x.parameter, Parameter::Speed)
+        || y.as_ref()
+            .is_some_and(|a| matches!(a.parameter, Parameter::Speed));
+    if args.quantity == Quantity::MaxReal && args.speed.is_none() && !speed_axis {
+        bail!("--quantity max-real needs --speed V (or an axis named speed)");
+    }
+    let options = StudyOptions {
+        range: (lo, hi),
+        speed: args.speed,
+        double_root: args.double_root || args.quantity == Quantity::DoubleRootSpeed,
+    };
+    let study = Study::new(bike.bicycle.clone(), x, y, options)
+        .with_context(|| format!("the study of {}", bike.label))?;
+    let shard = match args.shard {
+        Some(text) => Shard::parse(text).context("--shard")?,
+        None => Shard::WHOLE,
+    };
+    if args.plot.is_some() && shard != Shard::WHOLE {
+        bail!("--plot draws a whole study: plot after `whipple merge` (merge --plot)");
+    }
+    if args.plot.is_some() && study.len() > MAX_PLOT_CELLS {
+        bail!(
+            "--plot holds every design in memory: at most {MAX_PLOT_CELLS} designs, the study has {}",
+            study.len()
+        );
+    }
+    if let Some(p) = args.plot {
+        whipple_report::Format::from_path(p)?;
+        let dir = p
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        if !dir.is_dir() {
+            bail!(
+                "cannot write {}: the directory {} does not exist",
+                p.display(),
+                dir.display()
+            );
+        }
+    }
+    let label = bike.label.clone();
+    let two = study.y.is_some();
+    let mut sink = Sink::open(args.out)?;
+    let (first, end) = shard.indices(study.len());
+    let mut head = String::new();
+    match args.format {
+        DesignFormat::Csv => {
+            writeln!(
+                head,
+                "# whipple design study: {}",
+                study_line(&label, &study)?
+            )?;
+            if shard != Shard::WHOLE {
+                writeln!(
+                    head,
+                    "# shard {}/{}: designs {first}..{end}",
+                    shard.index, shard.count
+                )?;
+            }
+            head.push_str(&header(&study));
+        }
+        DesignFormat::Json => {
+            write!(
+                head,
+                "{{\"study\": {},\n\"shard\": [{}, {}],\n\"rows\": [\n",
+                study_line(&label, &study)?,
+                shard.index,
+                shard.count
+            )?;
+        }
+    }
+    sink.write(&head)?;
+    let keep = args.plot.is_some();
+    let mut values: Vec<f64> = Vec::new();
+    let mut stable: Vec<bool> = Vec::new();
+    let mut study_rows: Vec<DesignRow> = Vec::new();
+    let stop = interrupt_flag();
+    let bar = progress(end - first);
+    let started = Instant::now();
+    let on_terminal = std::io::stderr().is_terminal();
+    let mut shown = false;
+    let mut written = 0u64;
+    let mut text = String::new();
+    let result = study.run(shard, &stop, |rows| {
+        text.clear();
+        for r in rows {
+            match args.format {
+                DesignFormat::Csv => csv_row(&mut text, r, two),
+                DesignFormat::Json => {
+                    if written > 0 {
+                        text.push_str(",\n");
+                    }
+                    text.push_str(&serde_json::to_string(&JsonRow(r)).map_err(|e| {
+                        whipple::Error::NonFinite {
+                            context: e.to_string(),
+                        }
+                    })?);
+                }
+            }
+            written += 1;
+            if keep {
+                if two {
+                    values.push(args.quantity.of(r).unwrap_or(f64::NAN));
+                    stable.push(r.quantities.stable);
+                } else {
+                    study_rows.push(r.clone());
+                }
+            }
+        }
+        sink.write(&text)
+            .map_err(|e| whipple::Error::InvalidArgument {
+                what: "output",
+                rule: format!("{e:#}"),
+            })?;
+        bar.inc(rows.len() as u64);
+        if on_terminal && !shown && started.elapsed().as_secs_f64() > 1.0 {
+            bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
+            shown = true;
+        }
+        Ok(())
+    });
+    bar.finish_and_clear();
+    if let Err(e) = result {
+        // The sink's temporary file is removed when it is dropped: nothing half-written.
+        if stop.load(Ordering::Relaxed) {
+            bail!(
+                "stopped by Ctrl-C after {written} designs; nothing was written to the output file"
+            );
+        }
+        return Err(anyhow!(e)).context(format!("the study of {label}"));
+    }
+    if args.format == DesignFormat::Json {
+        sink.write("\n]}\n")?;
+    }
+    sink.finish()?;
+    if let Some(path) = args.plot {
+        let figure = if let Some(y) = &study.y {
+            let (bx, by) = study.base_point();
+            design_map(&MapData {
+                title: format!("{label}: {}", args.quantity.label()),
+                x_label: axis_label(&study.x),
+                y_label: axis_label(y),
+                x: (study.x.start, study.x.stop, study.x.count),
+                y: (y.start, y.stop, y.count),
+                values,
+                stable,
+                quantity: args.quantity.label().to_string(),
+                base: bx.zip(by),
+            })?
+        } else {
+            let (bx, _) = study.base_point();
+            study_figure(&label, &study.x, &study_rows, bx)?
+        };
+        let bytes = figure.render_for_path(path)?;
+        output::Target::check("--plot", path)?.write_whole(&bytes)?;
+    }
+    Ok(())
+}
+
+fn axis_label(a: &Axis) -> String {
+    format!("{} [{}]", a.name, a.unit())
+}
+
+fn study_figure(
+    label: &str,
+    x: &Axis,
+    rows: &[DesignRow],
+    base: Option<f64>,
+) -> Result<whipple_report::Figure> {
+    let mut data = StudyData {
+        title: format!("{label}: critical speeds against {}", x.name),
+        x_label: axis_label(x),
+        x: Vec::with_capacity(rows.len()),
+        weave: Vec::with_capacity(rows.len()),
+        capsize: Vec::with_capacity(rows.len()),
+        stable_from: Vec::with_capacity(rows.len()),
+        stable_to: Vec::with_capacity(rows.len()),
+        base,
+    };
+    for r in rows {
+        let q = &r.quantities;
+        let ok = r.status == DesignStatus::Ok;
+        data.x.push(r.x);
+        data.weave.push(if ok { q.weave_speed } else { None });
+        data.capsize.push(if ok { q.capsize_speed } else { None });
+        data.stable_from.push(if ok { q.stable_from } else { None });
+        data.stable_to.push(if ok { q.stable_to } else { None });
+    }
+    Ok(design_study(&data)?)
+}
+
+/// A row as JSON, with unbounded values as null and the quantities flattened.
+struct JsonRow<'a>(&'a DesignRow);
+
+impl serde::Serialize for JsonRow<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let r = self.0;
+        let q = &r.quantities;
+        let f = |x: Option<f64>| x.filter(|v| v.is_finite());
+        let mut m = s.serialize_map(None)?;
+        m.serialize_entry("index", &r.index)?;
+        m.serialize_entry("ix", &r.ix)?;
+        m.serialize_entry("iy", &r.iy)?;
+        m.serialize_entry("x", &r.x)?;
+        m.serialize_entry("y", &r.y)?;
+        m.serialize_entry("status", &r.status)?;
+        if let Some(reason) = &r.reason {
+            m.serialize_entry("reason", reason)?;
+        }
+        if r.status == DesignStatus::Ok {
+            m.serialize_entry("v_d", &f(q.double_root_speed))?;
+            m.serialize_entry("v_w", &f(q.weave_speed))?;
+            m.serialize_entry("v_c", &f(q.capsize_speed))?;
+            m.serialize_entry("weave_frequency", &f(q.weave_frequency))?;
+            m.serialize_entry("stable", &q.stable)?;
+            m.serialize_entry("stable_width", &f(Some(q.stable_width)))?;
+            m.serialize_entry("stable_unbounded", &(q.stable_width == f64::INFINITY))?;
+            m.serialize_entry("stable_from", &f(q.stable_from))?;
+            m.serialize_entry("stable_to", &f(q.stable_to))?;
+            m.serialize_entry("max_real", &f(q.max_real))?;
+            m.serialize_entry("max_real_mode", &q.max_real_mode)?;
+            m.serialize_entry("unresolved", &q.unresolved)?;
+        }
+        m.end()
+    }
+}
+
+/// `whipple merge`: shards' CSV files back into the one-machine file, bit for bit.
+pub fn merge(
+    files: &[PathBuf],
+    out: Option<&Path>,
+    plot: Option<&Path>,
+    quantity: Quantity,
+) -> Result<()> {
+    if files.is_empty() {
+        bail!("merge needs the shards' CSV files");
+    }
+    struct Part {
+        path: PathBuf,
+        index: u64,
+        count: u64,
+        first: u64,
+        end: u64,
+    }
+    let mut study: Option<(String, String)> = None;
+    let mut parts = Vec::new();
+    for path in files {
+        let file =
+            std::fs::File::open(path).with_context(|| format!("reading {}", path.display()))?;
+        let mut lines = std::io::BufReader::new(file).lines();
+        let line = |l: Option<std::io::Result<String>>| -> Result<String> {
+            Ok(l.transpose()?.unwrap_or_default())
+        };
+        let first_line = line(lines.next())?;
+        let shard_line = line(lines.next())?;
+        let header_line = line(lines.next())?;
+        let Some(description) = first_line.strip_prefix("# whipple design study: ") else {
+            bail!(
+                "{} is not a CSV file written by `whipple map` or `whipple study`",
+                path.display()
+            );
+        };
+        let Some(rest) = shard_line.strip_prefix("# shard ") else {
+            bail!(
+                "{} is not a shard (no `# shard I/N` line): it is a whole study already",
+                path.display()
+            );
+        };
+        let parse = || -> Option<(u64, u64, u64, u64)> {
+            let (ik, range) = rest.split_once(": designs ")?;
+            let (i, n) = ik.split_once('/')?;
+            let (a, b) = range.split_once("..")?;
+            Some((
+                i.parse().ok()?,
+                n.parse().ok()?,
+                a.parse().ok()?,
+                b.parse().ok()?,
+            ))
+        };
+        let (index, count, first, end) = parse()
+            .ok_or_else(|| anyhow!("{}: unreadable shard line `{shard_line}`", path.display()))?;
+        match &study {
+            None => study = Some((description.to_string(), header_line.clone())),
+            Some((d, h)) => {
+                if d != description || *h != header_line {
+                    bail!(
+                        "{} belongs to another study than {}",
+                        path.display(),
+                        files[0].display()
+                    );
+                }
+            }
+        }
+        parts.push(Part {
+            path: path.clone(),
+            index,
+            count,
+            first,
+            end,
+        });
+    }
+    parts.sort_by_key(|p| p.index);
+    let count = parts[0].count;
+    let designs: u64 = serde_json::from_str::<serde_json::Value>(
+        &study.as_ref().map(|s| s.0.clone()).unwrap_or_default(),
+    )
+    .ok()
+    .and_then(|d| d["designs"].as_u64())
+    .ok_or_else(|| anyhow!("unreadable study line"))?;
+    for (k, p) in parts.iter().enumerate() {
+        if p.count != count || p.index != k as u64 {
+            bail!(
+                "the shards do not make a whole: expected shard {k}/{count}, found {}/{} ({})",
+                p.index,
+                p.count,
+                p.path.display()
+            );
+        }
+        let want = Shard {
+            index: p.index,
+            count,
+        }
+        .indices(designs);
+        if (p.first, p.end) != want {
+            bail!(
+                "{}: its design range does not match its shard",
+                p.path.display()
+            );
+        }
+    }
+    if parts.len() as u64 != count {
+        bail!(
+            "{} of {count} shards given: missing {}",
+            parts.len(),
+            (parts.len() as u64..count)
+                .map(|k| format!("{k}/{count}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    let (description, header_line) = study.unwrap_or_default();
+    let mut sink = Sink::open(out)?;
+    sink.write(&format!(
+        "# whipple design study: {description}\n{header_line}\n"
+    ))?;
+    let columns: Vec<&str> = header_line.split(',').collect();
+    let col = columns.iter().position(|c| *c == quantity.column());
+    let stable_col = columns.iter().position(|c| *c == "stable");
+    let mut values = Vec::new();
+    let mut stable = Vec::new();
+    for p in &parts {
+        let file = std::fs::File::open(&p.path)?;
+        let mut rows = 0u64;
+        for (n, l) in std::io::BufReader::new(file).lines().enumerate() {
+            let l = l.with_context(|| format!("reading {}", p.path.display()))?;
+            if n < 3 {
+                continue;
+            }
+            rows += 1;
+            if plot.is_some() {
+                let fields: Vec<&str> = l.split(',').collect();
+                let get = |c: Option<usize>| c.and_then(|c| fields.get(c)).copied().unwrap_or("");
+                values.push(match get(col) {
+                    "inf" => f64::INFINITY,
+                    t => t.parse().unwrap_or(f64::NAN),
+                });
+                stable.push(get(stable_col) == "1");
+            }
+            sink.write(&l)?;
+            sink.write("\n")?;
+        }
+        if rows != p.end - p.first {
+            bail!(
+                "{} holds {rows} rows, its shard {} (was it cut short?)",
+                p.path.display(),
+                p.end - p.first
+            );
+        }
+    }
+    sink.finish()?;
+    if let Some(path) = plot {
+        let d: serde_json::Value = serde_json::from_str(&description)?;
+        let axis = |a: &serde_json::Value| -> Option<(String, f64, f64, usize, bool)> {
+            Some((
+                a["name"].as_str()?.to_string(),
+                a["start"].as_f64()?,
+                a["stop"].as_f64()?,
+                a["count"].as_u64()? as usize,
+                a["degrees"].as_bool()?,
+            ))
+        };
+        let x = axis(&d["x"]).ok_or_else(|| anyhow!("unreadable x axis"))?;
+        let Some(y) = axis(&d["y"]) else {
+            bail!("merge --plot draws maps; for a one-parameter study plot the whole study");
+        };
+        let unit = |(name, _, _, _, deg): &(String, f64, f64, usize, bool)| {
+            format!("{name} [{}]", if *deg { "deg" } else { "SI" })
+        };
+        let figure = design_map(&MapData {
+            title: format!("{}: {}", d["bike"].as_str().unwrap_or(""), quantity.label()),
+            x_label: unit(&x),
+            y_label: unit(&y),
+            x: (x.1, x.2, x.3),
+            y: (y.1, y.2, y.3),
+            values,
+            stable,
+            quantity: quantity.label().to_string(),
+            base: None,
+        })?;
+        output::Target::check("--plot", path)?.write_whole(&figure.render_for_path(path)?)?;
+    }
+    let _ = Quantity::from_column;
+    Ok(())
+}

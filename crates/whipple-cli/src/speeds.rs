@@ -1,0 +1,211 @@
+//! `whipple speeds`: the certified critical speeds and self-stable ranges, on the whole
+//! half-line of forward speeds unless `--range` narrows it.
+
+use std::fmt::Write as _;
+
+use anyhow::{bail, Context, Result};
+use serde_json::json;
+use whipple::analysis::sensitivity;
+use whipple::analysis::sensitivity::CriticalSpeedsSigma;
+use whipple::analysis::stability::CriticalSpeeds;
+
+use crate::bike::load;
+use crate::commands::{emit, optional, with_sigma};
+use crate::output::number;
+use crate::TextFormat;
+
+/// Parses `LO:HI` where either end may be `inf` (or left empty: `4:` is every speed from 4 m/s
+/// up, `:10` every speed up to 10 m/s).
+pub fn parse_range(text: &str, option: &str) -> Result<(f64, f64)> {
+    let parts: Vec<&str> = text.split(':').collect();
+    if parts.len() != 2 {
+        bail!("{option} expects LO:HI (HI may be `inf`), got `{text}`");
+    }
+    let end = |t: &str, missing: f64| -> Result<f64> {
+        let t = t.trim();
+        if t.is_empty() {
+            return Ok(missing);
+        }
+        match t.to_ascii_lowercase().as_str() {
+            "inf" | "+inf" | "infinity" => return Ok(f64::INFINITY),
+            "-inf" | "-infinity" => return Ok(f64::NEG_INFINITY),
+            _ => {}
+        }
+        let x: f64 = t
+            .parse()
+            .with_context(|| format!("{option}: `{t}` is not a number"))?;
+        if !x.is_finite() {
+            bail!("{option}: `{t}` is not a finite number (write `inf` for no bound)");
+        }
+        Ok(x)
+    };
+    let lo = end(parts[0], f64::NEG_INFINITY)?;
+    let hi = end(parts[1], f64::INFINITY)?;
+    if lo >= hi {
+        bail!("{option}: LO ({lo}) must be less than HI ({hi})");
+    }
+    Ok((lo, hi))
+}
+
+/// `lo..hi` in words: "every speed v ≥ 0 m/s", "0..20 m/s".
+pub fn range_words(lo: f64, hi: f64) -> Result<String> {
+    Ok(match (lo.is_finite(), hi.is_finite()) {
+        (true, true) => format!("{}..{} m/s", number(lo)?, number(hi)?),
+        (true, false) => format!("every speed v >= {} m/s", number(lo)?),
+        (false, true) => format!("every speed v <= {} m/s", number(hi)?),
+        (false, false) => "every speed".to_string(),
+    })
+}
+
+fn stable_words(s: &CriticalSpeeds, a: f64, b: f64) -> Result<String> {
+    let (lo, hi) = s.range;
+    Ok(if b == f64::INFINITY {
+        format!("above {} m/s (at every higher speed)", number(a)?)
+    } else if let Some(open) = s
+        .unresolved
+        .iter()
+        .find(|u| u.0 <= b && u.1 == f64::INFINITY)
+    {
+        format!(
+            "above {} m/s (certified up to {} m/s; above that, round-off in the matrices \
+             leaves it open)",
+            number(a)?,
+            number(open.0)?
+        )
+    } else if a == f64::NEG_INFINITY {
+        format!("below {} m/s", number(b)?)
+    } else {
+        let open_end = if b == hi && hi.is_finite() {
+            " (up to the end of the range)"
+        } else if a == lo && lo.is_finite() && lo != 0.0 {
+            " (from the start of the range)"
+        } else {
+            ""
+        };
+        format!("{} .. {} m/s{open_end}", number(a)?, number(b)?)
+    })
+}
+
+/// The text table of critical speeds.
+/// The table of `whipple speeds`; with `sigma`, each speed as `value ± σ` (one standard
+/// deviation, first order, parameters independent).
+pub fn table(
+    label: &str,
+    s: &CriticalSpeeds,
+    sigma: Option<&CriticalSpeedsSigma>,
+) -> Result<String> {
+    let (lo, hi) = s.range;
+    let where_ = range_words(lo, hi)?;
+    let none = if lo == 0.0 && hi == f64::INFINITY {
+        "none at any speed".to_string()
+    } else {
+        format!("none in {where_}")
+    };
+    let show = |x: Option<f64>, sd: Option<f64>| -> Result<String> {
+        Ok(match x {
+            Some(v) if sigma.is_some() => with_sigma(v, sd, "m/s")?,
+            Some(v) => format!("{} m/s", number(v)?),
+            None => none.clone(),
+        })
+    };
+    let mut t = format!("{label}: critical speeds for {where_} (certified)");
+    if sigma.is_some() {
+        t.push_str(" (± one standard deviation, first order, parameters independent)");
+    }
+    t.push('\n');
+    match &s.double_root_unavailable {
+        Some(why) => write!(t, "  double root speed v_d  not given: {why}")?,
+        None => write!(
+            t,
+            "  double root speed v_d  {}",
+            show(
+                s.double_root_speed,
+                sigma.and_then(|u| u.double_root_speed_sigma)
+            )?
+        )?,
+    }
+    if let Some(l) = s.double_root_eigenvalue {
+        write!(t, "  (double eigenvalue {} 1/s)", number(l)?)?;
+    }
+    write!(
+        t,
+        "\n  weave speed v_w        {}",
+        show(s.weave_speed, sigma.and_then(|u| u.weave_speed_sigma))?
+    )?;
+    if let Some(w) = s.weave_frequency {
+        write!(t, "  (weave frequency {} rad/s)", number(w)?)?;
+    }
+    writeln!(
+        t,
+        "\n  capsize speed v_c      {}",
+        show(s.capsize_speed, sigma.and_then(|u| u.capsize_speed_sigma))?
+    )?;
+    if s.stable_speed_ranges.is_empty() {
+        writeln!(t, "  self-stable            nowhere in {where_}")?;
+    }
+    for &(a, b) in &s.stable_speed_ranges {
+        writeln!(t, "  self-stable            {}", stable_words(s, a, b)?)?;
+    }
+    for &(a, b) in &s.unresolved {
+        if b == f64::INFINITY {
+            writeln!(
+                t,
+                "  not decided            above {} m/s: a coefficient's sign is lost to round-off \
+                 in the stored matrices there",
+                number(a)?
+            )?;
+        } else {
+            writeln!(
+                t,
+                "  not decided            {} .. {} m/s: roots closer than round-off (a \
+                 near-tangency); the stability there cannot be told in double precision",
+                number(a)?,
+                number(b)?
+            )?;
+        }
+    }
+    Ok(t)
+}
+
+pub fn speeds(arg: &str, range: Option<&str>, format: TextFormat) -> Result<()> {
+    let bike = load(arg)?;
+    let (lo, hi) = match range {
+        Some(text) => parse_range(text, "--range")?,
+        None => (0.0, f64::INFINITY),
+    };
+    // The certified speeds, with their first-order standard deviations where the file gives
+    // the parameters' (the speeds are the same as stability::critical_speeds gives).
+    let su = sensitivity::critical_speeds_sigma(&bike.bicycle, lo, hi)
+        .with_context(|| format!("critical speeds of {}", bike.label))?;
+    let s = &su.speeds;
+    let uncertain = bike.bicycle.has_uncertainty();
+    let text = match format {
+        TextFormat::Json => {
+            let mut doc = serde_json::to_value(s)?;
+            if let Some(map) = doc.as_object_mut() {
+                map.insert("bike".into(), json!(bike.label));
+                map.insert("warnings".into(), bike.warnings_json());
+                if uncertain {
+                    let ranges = su
+                        .stable_speed_ranges_sigma
+                        .iter()
+                        .map(|(a, b)| Ok(json!([optional(*a)?, optional(*b)?])))
+                        .collect::<Result<Vec<_>>>()?;
+                    map.insert(
+                        "double_root_speed_sigma".into(),
+                        optional(su.double_root_speed_sigma)?,
+                    );
+                    map.insert("weave_speed_sigma".into(), optional(su.weave_speed_sigma)?);
+                    map.insert(
+                        "capsize_speed_sigma".into(),
+                        optional(su.capsize_speed_sigma)?,
+                    );
+                    map.insert("stable_speed_ranges_sigma".into(), json!(ranges));
+                }
+            }
+            format!("{}\n", serde_json::to_string_pretty(&doc)?)
+        }
+        TextFormat::Table => table(&bike.label, s, uncertain.then_some(&su))?,
+    };
+    emit(&text, None)
+}

@@ -1,0 +1,170 @@
+//! `/api/map` and `/api/study`: design studies computed by `whipple::analysis::design` within
+//! the server's limits, answered as columns (one array per quantity, row-major).
+
+use axum::body::Bytes;
+use axum::extract::rejection::BytesRejection;
+use axum::extract::State;
+use axum::http::StatusCode;
+use axum::Json;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use whipple::analysis::design::{Axis, DesignStatus, Shard, Study, StudyOptions};
+use whipple::analysis::modes::Mode;
+
+use crate::api::{bicycle, compute, json_body, AppState, SpeedRange};
+use crate::error::ApiError;
+
+/// A map or study request: axes as `NAME=START:STOP:COUNT`, as in the CLI.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct DesignRequest {
+    bike: Value,
+    x: String,
+    #[serde(default)]
+    y: Option<String>,
+    #[serde(default)]
+    speed: Option<f64>,
+    #[serde(default)]
+    range: Option<SpeedRange>,
+    #[serde(default)]
+    double_root: bool,
+}
+
+/// The answer: the axes and one array per quantity (null where absent or not computed).
+#[derive(Serialize)]
+pub(crate) struct DesignResponse {
+    x: Axis,
+    y: Option<Axis>,
+    /// The base design's coordinates (user units), where the axes vary bicycle parameters.
+    base: (Option<f64>, Option<f64>),
+    nx: usize,
+    ny: usize,
+    status: Vec<DesignStatus>,
+    /// The reason of every design that was not computed, by row-major index.
+    reasons: Vec<(u64, String)>,
+    v_d: Vec<Option<f64>>,
+    v_w: Vec<Option<f64>>,
+    v_c: Vec<Option<f64>>,
+    weave_frequency: Vec<Option<f64>>,
+    stable: Vec<bool>,
+    /// Null where the range is unbounded (see `stable_unbounded`) or not computed.
+    stable_width: Vec<Option<f64>>,
+    stable_unbounded: Vec<bool>,
+    stable_from: Vec<Option<f64>>,
+    /// Null where unbounded.
+    stable_to: Vec<Option<f64>>,
+    max_real: Vec<Option<f64>>,
+    max_real_mode: Vec<Option<Mode>>,
+}
+
+async fn run(
+    state: AppState,
+    body: Result<Bytes, BytesRejection>,
+    two: bool,
+) -> Result<Json<DesignResponse>, ApiError> {
+    let request: DesignRequest = json_body(body)?;
+    let bike = bicycle(&request.bike)?;
+    if two != request.y.is_some() {
+        return Err(ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "invalid_argument",
+            if two {
+                "a map needs two axes, `x` and `y`"
+            } else {
+                "a study varies one parameter: `x` only (use /api/map for two)"
+            },
+        )
+        .at("y", "NAME=START:STOP:COUNT"));
+    }
+    let x = Axis::parse(&request.x, &bike)?;
+    let y = match &request.y {
+        Some(spec) => Some(Axis::parse(spec, &bike)?),
+        None => None,
+    };
+    let (lo, hi) = SpeedRange::bounds(request.range);
+    let options = StudyOptions {
+        range: (lo, hi),
+        speed: request.speed,
+        double_root: request.double_root,
+    };
+    let study = Study::new(bike, x, y, options)?;
+    let limit = state.limits.max_designs as u64;
+    if study.len() > limit {
+        return Err(ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "limit_exceeded",
+            format!(
+                "{} designs is more than this server's limit of {limit} per request; use fewer points",
+                study.len()
+            ),
+        )
+        .at("x", format!("at most {limit} designs per request")));
+    }
+    let response = compute(&state, "ask for fewer designs", move |stop| {
+        let n = study.len() as usize;
+        let mut r = DesignResponse {
+            x: study.x.clone(),
+            y: study.y.clone(),
+            base: study.base_point(),
+            nx: study.x.count,
+            ny: study.y.as_ref().map_or(1, |a| a.count),
+            status: Vec::with_capacity(n),
+            reasons: Vec::new(),
+            v_d: Vec::with_capacity(n),
+            v_w: Vec::with_capacity(n),
+            v_c: Vec::with_capacity(n),
+            weave_frequency: Vec::with_capacity(n),
+            stable: Vec::with_capacity(n),
+            stable_width: Vec::with_capacity(n),
+            stable_unbounded: Vec::with_capacity(n),
+            stable_from: Vec::with_capacity(n),
+            stable_to: Vec::with_capacity(n),
+            max_real: Vec::with_capacity(n),
+            max_real_mode: Vec::with_capacity(n),
+        };
+        let finite = |x: Option<f64>| x.filter(|v| v.is_finite());
+        study.run(Shard::WHOLE, &stop, |rows| {
+            for row in rows {
+                let q = &row.quantities;
+                let ok = row.status == DesignStatus::Ok;
+                r.status.push(row.status);
+                if let Some(reason) = &row.reason {
+                    r.reasons.push((row.index, reason.clone()));
+                }
+                r.v_d.push(finite(q.double_root_speed));
+                r.v_w.push(finite(q.weave_speed));
+                r.v_c.push(finite(q.capsize_speed));
+                r.weave_frequency.push(finite(q.weave_frequency));
+                r.stable.push(q.stable);
+                r.stable_width.push(if ok {
+                    finite(Some(q.stable_width))
+                } else {
+                    None
+                });
+                r.stable_unbounded.push(q.stable_width == f64::INFINITY);
+                r.stable_from.push(finite(q.stable_from));
+                r.stable_to.push(finite(q.stable_to));
+                r.max_real.push(finite(q.max_real));
+                r.max_real_mode.push(q.max_real_mode);
+            }
+            Ok(())
+        })?;
+        Ok(r)
+    })
+    .await?;
+    Ok(Json(response))
+}
+
+pub(crate) async fn map(
+    State(state): State<AppState>,
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Json<DesignResponse>, ApiError> {
+    run(state, body, true).await
+}
+
+pub(crate) async fn study(
+    State(state): State<AppState>,
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Json<DesignResponse>, ApiError> {
+    run(state, body, false).await
+}

@@ -1,0 +1,751 @@
+//! Design studies: one or two parameters of a base bicycle varied over grids, and for every
+//! design the quantities a designer reads (critical speeds, whether and how widely it is
+//! self-stable, the weave frequency, the largest real part at a given speed).
+//!
+//! A study is plain data ([`Study`]); its designs are numbered row-major (`index = iy · nx +
+//! ix`) and computed in order, in parallel chunks, and handed to the caller as [`DesignRow`]s
+//! chunk by chunk ([`Study::run`]), so memory stays bounded however large the grid. A
+//! [`Shard`] selects a contiguous block of indices: `n` machines running shards `0/n … n−1/n`
+//! produce exactly the rows, bit for bit, of one machine running the whole study.
+//!
+//! Every design is computed by the certified critical speeds of [`super::stability`]: a design
+//! whose parameters break a rule is marked [`DesignStatus::Invalid`] with the rule, one whose
+//! answer round-off cannot give is marked [`DesignStatus::AccuracyLost`]; neither stops the
+//! study.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::eigen::quartic_roots;
+use super::modes::Mode;
+use super::stability::{self, summary};
+use crate::error::{Error, Result};
+use crate::linear::{Canonical, CharacteristicPolynomial, SpeedPolynomials};
+use crate::parameters::{BenchmarkParameters, Bicycle, Description, Jbike6Parameters};
+
+/// The most designs one study may hold (a 100,000 × 100,000 map).
+pub const MAX_DESIGNS: u64 = 10_000_000_000;
+
+/// The most points on one axis.
+pub const MAX_AXIS_POINTS: usize = 10_000_000;
+
+/// What an axis varies.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "kind", content = "name")]
+pub enum Parameter {
+    /// A benchmark parameter by its file key (`w`, `c`, `lam`, `g`, `rR`, `mB`, `IBxx`, …), or
+    /// `head_angle` (π/2 − λ) or `wheel_radius` (rR and rF together).
+    Benchmark(String),
+    /// A JBike6 parameter by its `.m` name (`wheelbase`, `head_angle`, `trail`, `gravity`,
+    /// `mrider`, `xcmrider`, `ycmrider`, `Irider(1)`, `alphaIrider`, `Drearwheel`, …), or
+    /// `wheel_diameter` (both wheels).
+    Jbike6(String),
+    /// The forward speed v [m/s] at which the speed-dependent quantities are read.
+    Speed,
+}
+
+/// One axis of a study: a parameter over `count` evenly spaced values from `start` to `stop`
+/// (both included), in the user's units (degrees where the name ends in `_deg`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Axis {
+    /// The name as the user wrote it (`trail`, `head_angle_deg`, `mrider`, `speed`).
+    pub name: String,
+    /// What it varies.
+    pub parameter: Parameter,
+    /// First value, user units.
+    pub start: f64,
+    /// Last value, user units.
+    pub stop: f64,
+    /// Number of values (≥ 1; with 1 the axis holds `start` only).
+    pub count: usize,
+    /// Whether the user's units are degrees (the name ends in `_deg`).
+    pub degrees: bool,
+}
+
+const BENCHMARK_ANGLES: [&str; 2] = ["lam", "head_angle"];
+
+/// Benchmark-form names the user may write for the keys (aliases of the paper's symbols).
+fn benchmark_alias(name: &str) -> &str {
+    match name {
+        "wheelbase" => "w",
+        "trail" => "c",
+        "steer_axis_tilt" => "lam",
+        "gravity" => "g",
+        other => other,
+    }
+}
+
+fn unknown(name: &str, known: String) -> Error {
+    Error::InvalidArgument {
+        what: "axis",
+        rule: format!("`{name}` is not a parameter of this bicycle (known: {known})"),
+    }
+}
+
+impl Axis {
+    /// Parses `NAME=START:STOP:COUNT` for a base bicycle (the name must exist in its form).
+    ///
+    /// ```
+    /// use whipple::analysis::design::Axis;
+    /// use whipple::parameters::presets;
+    /// let crown = presets::find("schwinn-crown")?.bicycle();
+    /// let axis = Axis::parse("head_angle_deg=60:80:401", &crown)?;
+    /// assert!(axis.degrees && axis.count == 401 && (axis.value(200) - 70.0).abs() < 1e-12);
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn parse(spec: &str, base: &Bicycle) -> Result<Axis> {
+        let bad = |rule: String| Error::InvalidArgument { what: "axis", rule };
+        let Some((name, grid)) = spec.split_once('=') else {
+            return Err(bad(format!(
+                "expects NAME=START:STOP:COUNT (for example trail=0:0.2:401), got `{spec}`"
+            )));
+        };
+        let name = name.trim();
+        let parts: Vec<&str> = grid.split(':').collect();
+        if parts.len() != 3 {
+            return Err(bad(format!(
+                "`{spec}`: expects START:STOP:COUNT after `{name}=`"
+            )));
+        }
+        let number = |t: &str| -> Result<f64> {
+            let x: f64 = t
+                .trim()
+                .parse()
+                .map_err(|_| bad(format!("`{spec}`: `{t}` is not a number")))?;
+            if x.is_finite() {
+                Ok(x)
+            } else {
+                Err(bad(format!("`{spec}`: `{t}` is not a finite number")))
+            }
+        };
+        let (start, stop) = (number(parts[0])?, number(parts[1])?);
+        let count: usize = parts[2].trim().parse().map_err(|_| {
+            bad(format!(
+                "`{spec}`: COUNT `{}` must be a whole number ≥ 1",
+                parts[2]
+            ))
+        })?;
+        if count == 0 || count > MAX_AXIS_POINTS {
+            return Err(bad(format!(
+                "`{spec}`: COUNT must lie in 1..={MAX_AXIS_POINTS}, got {count}"
+            )));
+        }
+        let (stem, degrees) = match name.strip_suffix("_deg") {
+            Some(stem) => (stem, true),
+            None => (name, false),
+        };
+        let parameter = if stem == "speed" || stem == "v" {
+            if degrees {
+                return Err(bad("speed has no `_deg` form".into()));
+            }
+            Parameter::Speed
+        } else {
+            match &base.description {
+                Description::Benchmark(b) => {
+                    let key = benchmark_alias(stem);
+                    let known = b.fields().iter().any(|(k, _)| *k == key)
+                        || key == "head_angle"
+                        || key == "wheel_radius";
+                    if !known {
+                        return Err(unknown(
+                            name,
+                            "the benchmark keys w, c, lam, g, rR, mR, IRxx, IRyy, xB, zB, mB, \
+                             IBxx, IByy, IBzz, IBxz, xH, zH, mH, IHxx, IHyy, IHzz, IHxz, rF, mF, \
+                             IFxx, IFyy; wheelbase, trail, steer_axis_tilt, head_angle, gravity, \
+                             wheel_radius; speed; _deg after an angle"
+                                .into(),
+                        ));
+                    }
+                    if degrees && !BENCHMARK_ANGLES.contains(&key) {
+                        return Err(bad(format!("`{name}`: `{stem}` is not an angle")));
+                    }
+                    Parameter::Benchmark(key.to_string())
+                }
+                Description::Jbike6(j) => {
+                    let mut probe = *j;
+                    if set_jbike6(&mut probe, stem, 0.125).is_err() {
+                        let names: Vec<String> = j.fields().into_iter().map(|(n, _)| n).collect();
+                        return Err(unknown(
+                            name,
+                            format!(
+                                "{}, wheel_diameter; speed; _deg after an angle",
+                                names.join(", ")
+                            ),
+                        ));
+                    }
+                    let is_angle = stem == "head_angle" || stem.starts_with("alphaI");
+                    if degrees && !is_angle {
+                        return Err(bad(format!("`{name}`: `{stem}` is not an angle")));
+                    }
+                    Parameter::Jbike6(stem.to_string())
+                }
+            }
+        };
+        Ok(Axis {
+            name: name.to_string(),
+            parameter,
+            start,
+            stop,
+            count,
+            degrees,
+        })
+    }
+
+    /// The i-th value in the user's units.
+    #[inline]
+    pub fn value(&self, i: usize) -> f64 {
+        if self.count <= 1 {
+            return self.start;
+        }
+        if i + 1 == self.count {
+            return self.stop;
+        }
+        self.start + (self.stop - self.start) * (i as f64 / (self.count - 1) as f64)
+    }
+
+    /// The i-th value in SI units (radians for an angle).
+    #[inline]
+    pub fn si_value(&self, i: usize) -> f64 {
+        let x = self.value(i);
+        if self.degrees {
+            x.to_radians()
+        } else {
+            x
+        }
+    }
+
+    /// The unit of the user's values, for axis labels.
+    pub fn unit(&self) -> &'static str {
+        if self.degrees {
+            return "deg";
+        }
+        let stem = match &self.parameter {
+            Parameter::Speed => return "m/s",
+            Parameter::Benchmark(k) | Parameter::Jbike6(k) => k.as_str(),
+        };
+        if stem == "lam" || stem == "head_angle" || stem.starts_with("alphaI") {
+            "rad"
+        } else if stem == "g" || stem == "gravity" {
+            "m/s²"
+        } else if stem.starts_with('I') {
+            "kg m²"
+        } else if stem.starts_with('m') {
+            "kg"
+        } else {
+            "m"
+        }
+    }
+}
+
+/// Sets a JBike6 parameter by its `.m` name; the names are those of
+/// [`Jbike6Parameters::fields`].
+fn set_jbike6(j: &mut Jbike6Parameters, name: &str, x: f64) -> Result<()> {
+    let miss = || Error::InvalidArgument {
+        what: "axis",
+        rule: format!("`{name}` is not a JBike6 parameter"),
+    };
+    match name {
+        "wheelbase" => j.wheelbase = x,
+        "head_angle" => j.head_angle = x,
+        "trail" => j.trail = x,
+        "gravity" => j.gravity = x,
+        "wheel_diameter" => {
+            j.rear_wheel.diameter = x;
+            j.front_wheel.diameter = x;
+        }
+        _ => {
+            let wheels = [("rearwheel", 0usize), ("frontwheel", 1)];
+            for (w, k) in wheels {
+                let wheel = if k == 0 {
+                    &mut j.rear_wheel
+                } else {
+                    &mut j.front_wheel
+                };
+                if let Some(field) = name.strip_suffix(w) {
+                    match field {
+                        "D" => wheel.diameter = x,
+                        "m" => wheel.m = x,
+                        "alphaI" => wheel.alpha = x,
+                        _ => return Err(miss()),
+                    }
+                    return Ok(());
+                }
+                if let Some(rest) = name.strip_prefix(&format!("I{w}(")) {
+                    let idx = inertia_index(rest).ok_or_else(miss)?;
+                    wheel.inertia[idx] = x;
+                    return Ok(());
+                }
+            }
+            for body in ["rider", "frame", "rack"] {
+                let b = match body {
+                    "rider" => &mut j.rider,
+                    "frame" => &mut j.frame,
+                    _ => &mut j.rack,
+                };
+                if let Some(field) = name.strip_suffix(body) {
+                    match field {
+                        "m" => b.m = x,
+                        "xcm" => b.xcm = x,
+                        "ycm" => b.ycm = x,
+                        "alphaI" => b.alpha = x,
+                        _ => return Err(miss()),
+                    }
+                    return Ok(());
+                }
+                if let Some(rest) = name.strip_prefix(&format!("I{body}(")) {
+                    b.inertia[inertia_index(rest).ok_or_else(miss)?] = x;
+                    return Ok(());
+                }
+            }
+            for body in ["fork", "basket"] {
+                let b = if body == "fork" {
+                    &mut j.fork
+                } else {
+                    &mut j.basket
+                };
+                if let Some(field) = name.strip_suffix(body) {
+                    match field {
+                        "m" => b.m = x,
+                        "ucm" => b.ucm = x,
+                        "vcm" => b.vcm = x,
+                        "alphaI" => b.alpha = x,
+                        _ => return Err(miss()),
+                    }
+                    return Ok(());
+                }
+                if let Some(rest) = name.strip_prefix(&format!("I{body}(")) {
+                    b.inertia[inertia_index(rest).ok_or_else(miss)?] = x;
+                    return Ok(());
+                }
+            }
+            return Err(miss());
+        }
+    }
+    Ok(())
+}
+
+fn inertia_index(rest: &str) -> Option<usize> {
+    match rest {
+        "1)" => Some(0),
+        "2)" => Some(1),
+        "3)" => Some(2),
+        _ => None,
+    }
+}
+
+fn set_benchmark(b: &mut BenchmarkParameters, key: &str, x: f64) {
+    match key {
+        "w" => b.w = x,
+        "c" => b.c = x,
+        "lam" => b.lambda = x,
+        "head_angle" => b.lambda = std::f64::consts::FRAC_PI_2 - x,
+        "g" => b.g = x,
+        "rR" => b.r_r = x,
+        "mR" => b.m_r = x,
+        "IRxx" => b.i_rxx = x,
+        "IRyy" => b.i_ryy = x,
+        "xB" => b.x_b = x,
+        "zB" => b.z_b = x,
+        "mB" => b.m_b = x,
+        "IBxx" => b.i_bxx = x,
+        "IByy" => b.i_byy = x,
+        "IBzz" => b.i_bzz = x,
+        "IBxz" => b.i_bxz = x,
+        "xH" => b.x_h = x,
+        "zH" => b.z_h = x,
+        "mH" => b.m_h = x,
+        "IHxx" => b.i_hxx = x,
+        "IHyy" => b.i_hyy = x,
+        "IHzz" => b.i_hzz = x,
+        "IHxz" => b.i_hxz = x,
+        "rF" => b.r_f = x,
+        "mF" => b.m_f = x,
+        "IFxx" => b.i_fxx = x,
+        "IFyy" => b.i_fyy = x,
+        "wheel_radius" => {
+            b.r_r = x;
+            b.r_f = x;
+        }
+        _ => {}
+    }
+}
+
+/// A contiguous part `index` of `count` equal parts of a study (0-based: `0/4 … 3/4`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Shard {
+    /// Which part, 0 ≤ index < count.
+    pub index: u64,
+    /// How many parts.
+    pub count: u64,
+}
+
+impl Shard {
+    /// The whole study.
+    pub const WHOLE: Shard = Shard { index: 0, count: 1 };
+
+    /// Parses `I/N`.
+    pub fn parse(text: &str) -> Result<Shard> {
+        let bad = || Error::InvalidArgument {
+            what: "shard",
+            rule: format!("expects I/N with 0 <= I < N (for example 3/16), got `{text}`"),
+        };
+        let (i, n) = text.split_once('/').ok_or_else(bad)?;
+        let index: u64 = i.trim().parse().map_err(|_| bad())?;
+        let count: u64 = n.trim().parse().map_err(|_| bad())?;
+        if count == 0 || index >= count {
+            return Err(bad());
+        }
+        Ok(Shard { index, count })
+    }
+
+    /// The design indices [first, end) of this shard of `total` designs.
+    pub fn indices(&self, total: u64) -> (u64, u64) {
+        let part = |k: u64| ((k as u128 * total as u128) / self.count as u128) as u64;
+        (part(self.index), part(self.index + 1))
+    }
+}
+
+/// Why a design has no numbers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DesignStatus {
+    /// Computed.
+    Ok,
+    /// Its parameters break a rule of the model (see the row's `reason`).
+    Invalid,
+    /// Double precision cannot give its answer (see the row's `reason`).
+    AccuracyLost,
+}
+
+/// The quantities of one design. Speeds in m/s, frequencies in rad/s, real parts in 1/s;
+/// `None` where the quantity does not exist (no weave speed in the range) or was not asked for.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DesignQuantities {
+    /// v_d (only when [`StudyOptions::double_root`] is set).
+    pub double_root_speed: Option<f64>,
+    /// v_w.
+    pub weave_speed: Option<f64>,
+    /// v_c.
+    pub capsize_speed: Option<f64>,
+    /// |Im λ| of the weave at v_w.
+    pub weave_frequency: Option<f64>,
+    /// Whether a self-stable speed exists in the range.
+    pub stable: bool,
+    /// Total width of the self-stable ranges in the range (+∞ when unbounded; 0 when none).
+    pub stable_width: f64,
+    /// Lowest self-stable speed.
+    pub stable_from: Option<f64>,
+    /// Upper end of the first self-stable range (+∞ when unbounded).
+    pub stable_to: Option<f64>,
+    /// At the study's speed: the largest real part of the eigenvalues.
+    pub max_real: Option<f64>,
+    /// The mode that largest real part belongs to (weave: a complex pair; capsize or castering:
+    /// the larger or smaller real eigenvalue where the spectrum has one complex pair and two real
+    /// eigenvalues; unclassified otherwise).
+    pub max_real_mode: Option<Mode>,
+    /// Whether some speeds in the range could not be classified (near-tangency).
+    pub unresolved: bool,
+}
+
+impl DesignQuantities {
+    const NONE: DesignQuantities = DesignQuantities {
+        double_root_speed: None,
+        weave_speed: None,
+        capsize_speed: None,
+        weave_frequency: None,
+        stable: false,
+        stable_width: 0.0,
+        stable_from: None,
+        stable_to: None,
+        max_real: None,
+        max_real_mode: None,
+        unresolved: false,
+    };
+}
+
+/// One design of a study.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DesignRow {
+    /// Row-major index, iy · nx + ix.
+    pub index: u64,
+    /// Index along x.
+    pub ix: usize,
+    /// Index along y (0 for a one-parameter study).
+    pub iy: usize,
+    /// x in the user's units.
+    pub x: f64,
+    /// y in the user's units (NaN-free: 0 for a one-parameter study).
+    pub y: f64,
+    /// Computed, invalid, or accuracy lost.
+    pub status: DesignStatus,
+    /// The rule broken or the accuracy lost, in words (`None` when computed).
+    pub reason: Option<String>,
+    /// The quantities (all `None`/false when not computed).
+    pub quantities: DesignQuantities,
+}
+
+/// What to compute for every design.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StudyOptions {
+    /// The speed range the critical speeds and stable ranges are read on [m/s] (default
+    /// [0, +∞)).
+    pub range: (f64, f64),
+    /// The speed at which `max_real` is read [m/s] (an axis named `speed` overrides it).
+    pub speed: Option<f64>,
+    /// Also compute v_d (costs about as much again as the rest).
+    pub double_root: bool,
+}
+
+impl Default for StudyOptions {
+    fn default() -> Self {
+        StudyOptions {
+            range: (0.0, f64::INFINITY),
+            speed: None,
+            double_root: false,
+        }
+    }
+}
+
+/// A parameter study over a base bicycle: one axis (`y` = None) or two.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Study {
+    /// The base design.
+    #[serde(skip)]
+    pub base: Bicycle,
+    /// The first axis.
+    pub x: Axis,
+    /// The second axis, for a map.
+    pub y: Option<Axis>,
+    /// What to compute.
+    pub options: StudyOptions,
+}
+
+/// Designs computed per parallel chunk (bounds memory: a few MB of rows).
+pub const CHUNK: u64 = 1 << 15;
+
+impl Study {
+    /// A study; checks the sizes and the options.
+    ///
+    /// ```
+    /// use whipple::analysis::design::{Axis, Study, StudyOptions, Shard};
+    /// use whipple::parameters::presets;
+    /// let bike = presets::find("benchmark")?.bicycle();
+    /// let x = Axis::parse("trail=0:0.2:5", &bike)?;
+    /// let study = Study::new(bike, x, None, StudyOptions::default())?;
+    /// let mut rows = Vec::new();
+    /// study.run(Shard::WHOLE, &Default::default(), |chunk| { rows.extend_from_slice(chunk); Ok(()) })?;
+    /// assert_eq!(rows.len(), 5);
+    /// assert!((rows[2].quantities.weave_speed.unwrap() - 4.6).abs() < 1.0); // c = 0.1 m
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn new(base: Bicycle, x: Axis, y: Option<Axis>, options: StudyOptions) -> Result<Study> {
+        stability::check_range(options.range.0, options.range.1)?;
+        if let Some(v) = options.speed {
+            if !v.is_finite() {
+                return Err(Error::InvalidArgument {
+                    what: "speed",
+                    rule: format!("must be a finite number, got {v}"),
+                });
+            }
+        }
+        if let Some(y) = &y {
+            if y.name == x.name {
+                return Err(Error::InvalidArgument {
+                    what: "axis",
+                    rule: format!("x and y both vary `{}`", x.name),
+                });
+            }
+        }
+        let total = x.count as u128 * y.as_ref().map_or(1, |a| a.count) as u128;
+        if total > MAX_DESIGNS as u128 {
+            return Err(Error::InvalidArgument {
+                what: "axis",
+                rule: format!("{total} designs is more than the limit of {MAX_DESIGNS}"),
+            });
+        }
+        // The base itself must be a valid bicycle.
+        base.benchmark()?;
+        Ok(Study {
+            base,
+            x,
+            y,
+            options,
+        })
+    }
+
+    /// Number of designs.
+    pub fn len(&self) -> u64 {
+        self.x.count as u64 * self.y.as_ref().map_or(1, |a| a.count) as u64
+    }
+
+    /// Whether the study holds no design (never: every axis has at least one point).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The base design's coordinates on the axes (user units), where the axis varies a
+    /// parameter of the bicycle (speed axes give `None`).
+    pub fn base_point(&self) -> (Option<f64>, Option<f64>) {
+        let at = |a: &Axis| -> Option<f64> {
+            let si = match (&a.parameter, &self.base.description) {
+                (Parameter::Speed, _) => return None,
+                (Parameter::Benchmark(k), Description::Benchmark(b)) => match k.as_str() {
+                    "head_angle" => std::f64::consts::FRAC_PI_2 - b.lambda,
+                    "wheel_radius" => b.r_r,
+                    key => b.fields().iter().find(|(n, _)| *n == key)?.1,
+                },
+                (Parameter::Jbike6(n), Description::Jbike6(j)) => match n.as_str() {
+                    "wheel_diameter" => j.rear_wheel.diameter,
+                    name => j.fields().into_iter().find(|(f, _)| f == name)?.1,
+                },
+                _ => return None,
+            };
+            Some(if a.degrees { si.to_degrees() } else { si })
+        };
+        (at(&self.x), self.y.as_ref().and_then(at))
+    }
+
+    /// Computes one design.
+    pub fn design(&self, index: u64) -> DesignRow {
+        let nx = self.x.count as u64;
+        let ix = (index % nx) as usize;
+        let iy = (index / nx) as usize;
+        let mut speed = self.options.speed;
+        let mut description = self.base.description;
+        let mut apply = |axis: &Axis, i: usize| {
+            let v = axis.si_value(i);
+            match (&axis.parameter, &mut description) {
+                (Parameter::Speed, _) => speed = Some(v),
+                (Parameter::Benchmark(k), Description::Benchmark(b)) => set_benchmark(b, k, v),
+                (Parameter::Jbike6(n), Description::Jbike6(j)) => {
+                    // The name was checked when the axis was parsed.
+                    let _ = set_jbike6(j, n, v);
+                }
+                _ => {}
+            }
+        };
+        apply(&self.x, ix);
+        if let Some(y) = &self.y {
+            apply(y, iy);
+        }
+        let (status, reason, quantities) = match analyse(&description, speed, &self.options) {
+            Ok(q) => (DesignStatus::Ok, None, q),
+            Err(e @ Error::AccuracyLost { .. }) => (
+                DesignStatus::AccuracyLost,
+                Some(e.to_string()),
+                DesignQuantities::NONE,
+            ),
+            Err(e) => (
+                DesignStatus::Invalid,
+                Some(e.to_string()),
+                DesignQuantities::NONE,
+            ),
+        };
+        DesignRow {
+            index,
+            ix,
+            iy,
+            x: self.x.value(ix),
+            y: self.y.as_ref().map_or(0.0, |a| a.value(iy)),
+            status,
+            reason,
+            quantities,
+        }
+    }
+
+    /// Computes the shard's designs in order, in parallel chunks of [`CHUNK`] on rayon's pool,
+    /// handing each chunk to `sink` in index order; stops early (with
+    /// [`Error::InvalidArgument`] `what: "stopped"`) when `stop` is set, and with the sink's
+    /// error when it fails. Memory: one chunk of rows at a time.
+    pub fn run(
+        &self,
+        shard: Shard,
+        stop: &AtomicBool,
+        mut sink: impl FnMut(&[DesignRow]) -> Result<()>,
+    ) -> Result<()> {
+        let (first, end) = shard.indices(self.len());
+        let mut start = first;
+        let mut rows: Vec<DesignRow> = Vec::new();
+        while start < end {
+            if stop.load(Ordering::Relaxed) {
+                return Err(stopped());
+            }
+            let stop_at = (start + CHUNK).min(end);
+            rows.clear();
+            (0..(stop_at - start) as usize)
+                .into_par_iter()
+                .map(|k| self.design(start + k as u64))
+                .collect_into_vec(&mut rows);
+            if stop.load(Ordering::Relaxed) {
+                return Err(stopped());
+            }
+            sink(&rows)?;
+            start = stop_at;
+        }
+        Ok(())
+    }
+}
+
+fn stopped() -> Error {
+    Error::InvalidArgument {
+        what: "stopped",
+        rule: "the study was stopped before it finished".into(),
+    }
+}
+
+/// The benchmark parameters of a described bicycle, validated.
+fn benchmark_of(d: &Description) -> Result<BenchmarkParameters> {
+    match d {
+        Description::Benchmark(b) => {
+            b.validate()?;
+            Ok(*b)
+        }
+        Description::Jbike6(j) => j.to_benchmark(),
+    }
+}
+
+/// The quantities of one described bicycle.
+pub fn analyse(
+    description: &Description,
+    speed: Option<f64>,
+    options: &StudyOptions,
+) -> Result<DesignQuantities> {
+    let bike = benchmark_of(description)?;
+    let canonical = Canonical::from_unchecked(&bike);
+    let sp = SpeedPolynomials::new(&canonical)?;
+    let (lo, hi) = options.range;
+    let s = summary(&sp, lo, hi)?;
+    let mut q = DesignQuantities {
+        double_root_speed: None,
+        weave_speed: s.weave_speed,
+        capsize_speed: s.capsize_speed,
+        weave_frequency: s.weave_frequency,
+        stable: s.stable_ranges > 0,
+        stable_width: s.stable_width,
+        stable_from: s.stable_from,
+        stable_to: s.stable_to,
+        max_real: None,
+        max_real_mode: None,
+        unresolved: s.unresolved,
+    };
+    if options.double_root {
+        let c = stability::critical_speeds(&canonical, lo, hi)?;
+        if let Some(why) = c.double_root_unavailable {
+            return Err(Error::AccuracyLost {
+                quantity: "the double-root speed".into(),
+                reason: why,
+            });
+        }
+        q.double_root_speed = c.double_root_speed;
+    }
+    if let Some(v) = speed {
+        let roots = quartic_roots(&CharacteristicPolynomial::new(&canonical).at_speed(v))?;
+        let labels = super::modes::pattern_labels(&roots);
+        // Sorted by decreasing real part: the first is the largest.
+        q.max_real = Some(roots[0].re);
+        q.max_real_mode = Some(labels.map_or(Mode::Unclassified, |l| l[0]));
+    }
+    Ok(q)
+}
