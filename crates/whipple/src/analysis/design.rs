@@ -23,7 +23,7 @@ use super::modes::Mode;
 use super::stability::{self, summary};
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, CharacteristicPolynomial, SpeedPolynomials};
-use crate::parameters::{BenchmarkParameters, Bicycle, Description, Jbike6Parameters};
+use crate::parameters::{BenchmarkParameters, Bicycle, Description};
 
 /// The most designs one study may hold (a 100,000 × 100,000 map).
 pub const MAX_DESIGNS: u64 = 10_000_000_000;
@@ -164,8 +164,7 @@ impl Axis {
                     Parameter::Benchmark(key.to_string())
                 }
                 Description::Jbike6(j) => {
-                    let mut probe = *j;
-                    if set_jbike6(&mut probe, stem, 0.125).is_err() {
+                    if j.get(stem).is_none() && stem != "wheel_diameter" {
                         let names: Vec<String> = j.fields().into_iter().map(|(n, _)| n).collect();
                         return Err(unknown(
                             name,
@@ -239,135 +238,31 @@ impl Axis {
     }
 }
 
-/// Sets a JBike6 parameter by its `.m` name; the names are those of
-/// [`Jbike6Parameters::fields`].
-fn set_jbike6(j: &mut Jbike6Parameters, name: &str, x: f64) -> Result<()> {
-    let miss = || Error::InvalidArgument {
-        what: "axis",
-        rule: format!("`{name}` is not a JBike6 parameter"),
-    };
-    match name {
-        "wheelbase" => j.wheelbase = x,
-        "head_angle" => j.head_angle = x,
-        "trail" => j.trail = x,
-        "gravity" => j.gravity = x,
-        "wheel_diameter" => {
-            j.rear_wheel.diameter = x;
-            j.front_wheel.diameter = x;
-        }
-        _ => {
-            let wheels = [("rearwheel", 0usize), ("frontwheel", 1)];
-            for (w, k) in wheels {
-                let wheel = if k == 0 {
-                    &mut j.rear_wheel
-                } else {
-                    &mut j.front_wheel
-                };
-                if let Some(field) = name.strip_suffix(w) {
-                    match field {
-                        "D" => wheel.diameter = x,
-                        "m" => wheel.m = x,
-                        "alphaI" => wheel.alpha = x,
-                        _ => return Err(miss()),
-                    }
-                    return Ok(());
-                }
-                if let Some(rest) = name.strip_prefix(&format!("I{w}(")) {
-                    let idx = inertia_index(rest).ok_or_else(miss)?;
-                    wheel.inertia[idx] = x;
-                    return Ok(());
-                }
+/// Puts an axis's value `x` (SI units) into a description: by the parameter table's key
+/// ([`BenchmarkParameters::set`], [`crate::parameters::Jbike6Parameters::set`]), or an alias that sets two
+/// parameters (`wheel_radius`, `wheel_diameter`) or a derived one (`head_angle` of the benchmark
+/// form). The name was checked when the axis was parsed.
+fn set_parameter(description: &mut Description, parameter: &Parameter, x: f64) {
+    match (parameter, description) {
+        (Parameter::Benchmark(key), Description::Benchmark(b)) => match key.as_str() {
+            "head_angle" => b.lambda = std::f64::consts::FRAC_PI_2 - x,
+            "wheel_radius" => {
+                b.r_r = x;
+                b.r_f = x;
             }
-            for body in ["rider", "frame", "rack"] {
-                let b = match body {
-                    "rider" => &mut j.rider,
-                    "frame" => &mut j.frame,
-                    _ => &mut j.rack,
-                };
-                if let Some(field) = name.strip_suffix(body) {
-                    match field {
-                        "m" => b.m = x,
-                        "xcm" => b.xcm = x,
-                        "ycm" => b.ycm = x,
-                        "alphaI" => b.alpha = x,
-                        _ => return Err(miss()),
-                    }
-                    return Ok(());
-                }
-                if let Some(rest) = name.strip_prefix(&format!("I{body}(")) {
-                    b.inertia[inertia_index(rest).ok_or_else(miss)?] = x;
-                    return Ok(());
-                }
+            key => {
+                b.set(key, x);
             }
-            for body in ["fork", "basket"] {
-                let b = if body == "fork" {
-                    &mut j.fork
-                } else {
-                    &mut j.basket
-                };
-                if let Some(field) = name.strip_suffix(body) {
-                    match field {
-                        "m" => b.m = x,
-                        "ucm" => b.ucm = x,
-                        "vcm" => b.vcm = x,
-                        "alphaI" => b.alpha = x,
-                        _ => return Err(miss()),
-                    }
-                    return Ok(());
-                }
-                if let Some(rest) = name.strip_prefix(&format!("I{body}(")) {
-                    b.inertia[inertia_index(rest).ok_or_else(miss)?] = x;
-                    return Ok(());
-                }
+        },
+        (Parameter::Jbike6(name), Description::Jbike6(j)) => match name.as_str() {
+            "wheel_diameter" => {
+                j.rear_wheel.diameter = x;
+                j.front_wheel.diameter = x;
             }
-            return Err(miss());
-        }
-    }
-    Ok(())
-}
-
-fn inertia_index(rest: &str) -> Option<usize> {
-    match rest {
-        "1)" => Some(0),
-        "2)" => Some(1),
-        "3)" => Some(2),
-        _ => None,
-    }
-}
-
-fn set_benchmark(b: &mut BenchmarkParameters, key: &str, x: f64) {
-    match key {
-        "w" => b.w = x,
-        "c" => b.c = x,
-        "lam" => b.lambda = x,
-        "head_angle" => b.lambda = std::f64::consts::FRAC_PI_2 - x,
-        "g" => b.g = x,
-        "rR" => b.r_r = x,
-        "mR" => b.m_r = x,
-        "IRxx" => b.i_rxx = x,
-        "IRyy" => b.i_ryy = x,
-        "xB" => b.x_b = x,
-        "zB" => b.z_b = x,
-        "mB" => b.m_b = x,
-        "IBxx" => b.i_bxx = x,
-        "IByy" => b.i_byy = x,
-        "IBzz" => b.i_bzz = x,
-        "IBxz" => b.i_bxz = x,
-        "xH" => b.x_h = x,
-        "zH" => b.z_h = x,
-        "mH" => b.m_h = x,
-        "IHxx" => b.i_hxx = x,
-        "IHyy" => b.i_hyy = x,
-        "IHzz" => b.i_hzz = x,
-        "IHxz" => b.i_hxz = x,
-        "rF" => b.r_f = x,
-        "mF" => b.m_f = x,
-        "IFxx" => b.i_fxx = x,
-        "IFyy" => b.i_fyy = x,
-        "wheel_radius" => {
-            b.r_r = x;
-            b.r_f = x;
-        }
+            key => {
+                j.set(key, x);
+            }
+        },
         _ => {}
     }
 }
@@ -594,11 +489,11 @@ impl Study {
                 (Parameter::Benchmark(k), Description::Benchmark(b)) => match k.as_str() {
                     "head_angle" => std::f64::consts::FRAC_PI_2 - b.lambda,
                     "wheel_radius" => b.r_r,
-                    key => b.fields().iter().find(|(n, _)| *n == key)?.1,
+                    key => b.get(key)?,
                 },
                 (Parameter::Jbike6(n), Description::Jbike6(j)) => match n.as_str() {
                     "wheel_diameter" => j.rear_wheel.diameter,
-                    name => j.fields().into_iter().find(|(f, _)| f == name)?.1,
+                    name => j.get(name)?,
                 },
                 _ => return None,
             };
@@ -616,14 +511,9 @@ impl Study {
         let mut description = self.base.description;
         let mut apply = |axis: &Axis, i: usize| {
             let v = axis.si_value(i);
-            match (&axis.parameter, &mut description) {
-                (Parameter::Speed, _) => speed = Some(v),
-                (Parameter::Benchmark(k), Description::Benchmark(b)) => set_benchmark(b, k, v),
-                (Parameter::Jbike6(n), Description::Jbike6(j)) => {
-                    // The name was checked when the axis was parsed.
-                    let _ = set_jbike6(j, n, v);
-                }
-                _ => {}
+            match &axis.parameter {
+                Parameter::Speed => speed = Some(v),
+                parameter => set_parameter(&mut description, parameter, v),
             }
         };
         apply(&self.x, ix);

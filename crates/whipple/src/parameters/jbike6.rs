@@ -922,6 +922,29 @@ impl Jbike6Parameters {
             .map(|i| self.to_array()[i])
     }
 
+    /// Sets the parameter with this `.m` key or TOML path; `false` for an unknown key.
+    ///
+    /// ```
+    /// let mut crown = whipple::parameters::presets::schwinn_crown_jbike6();
+    /// assert!(crown.set("mrider", 70.0) && crown.set("fork.ucm", 0.01));
+    /// assert_eq!((crown.rider.m, crown.fork.ucm), (70.0, 0.01));
+    /// assert!(!crown.set("mB", 1.0));
+    /// ```
+    pub fn set(&mut self, key: &str, value: f64) -> bool {
+        match JBIKE6_TABLE
+            .iter()
+            .position(|p| p.key == key || p.path == key)
+        {
+            Some(i) => {
+                let mut values = self.to_array();
+                values[i] = value;
+                *self = Self::from_array(values);
+                true
+            }
+            None => false,
+        }
+    }
+
     /// Steer axis tilt λ = π/2 − head_angle [rad].
     pub fn steer_axis_tilt(&self) -> f64 {
         std::f64::consts::FRAC_PI_2 - self.head_angle
