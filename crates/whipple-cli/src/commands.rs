@@ -204,18 +204,7 @@ pub fn eig(
     plot: Option<&Path>,
     sigma_bands: bool,
 ) -> Result<()> {
-    let out = out.map(|p| Target::check("--out", p)).transpose()?;
-    let plot = plot
-        .map(|p| {
-            // Fail on an unknown extension before any work is done.
-            whipple_report::Format::from_path(p)
-                .with_context(|| format!("--plot {}", p.display()))?;
-            Target::check("--plot", p)
-        })
-        .transpose()?;
-    if let (Some(a), Some(b)) = (&out, &plot) {
-        output::distinct(a, b)?;
-    }
+    let (out, plot) = output::table_and_plot(out, plot)?;
     let bike = load(arg)?;
     let (start, stop, step) = parse_triple(speeds, "--speeds")?;
     let grid = sweep::SpeedGrid::new(start, stop, step).context("--speeds")?;
@@ -502,17 +491,7 @@ pub fn sensitivity(
     out: Option<&Path>,
     plot: Option<&Path>,
 ) -> Result<()> {
-    let out = out.map(|p| Target::check("--out", p)).transpose()?;
-    let plot = plot
-        .map(|p| {
-            whipple_report::Format::from_path(p)
-                .with_context(|| format!("--plot {}", p.display()))?;
-            Target::check("--plot", p)
-        })
-        .transpose()?;
-    if let (Some(a), Some(b)) = (&out, &plot) {
-        output::distinct(a, b)?;
-    }
+    let (out, plot) = output::table_and_plot(out, plot)?;
     let bike = load(arg)?;
     let (lo, hi) = crate::speeds::parse_range(range, "--range")?;
     if lo >= hi {

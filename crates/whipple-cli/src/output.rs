@@ -464,6 +464,26 @@ pub fn commit(outputs: Vec<Finished>) -> Result<()> {
     Ok(())
 }
 
+/// The `--out` table and `--plot` figure of a command, checked before any work: the plot's
+/// extension names a figure format, each location can be written, and the two are distinct.
+pub fn table_and_plot(
+    out: Option<&Path>,
+    plot: Option<&Path>,
+) -> Result<(Option<Target>, Option<Target>)> {
+    let plot = plot
+        .map(|p| {
+            whipple_report::Format::from_path(p)
+                .with_context(|| format!("--plot {}", p.display()))?;
+            Target::check("--plot", p)
+        })
+        .transpose()?;
+    let out = out.map(|p| Target::check("--out", p)).transpose()?;
+    if let (Some(a), Some(b)) = (&out, &plot) {
+        distinct(a, b)?;
+    }
+    Ok((out, plot))
+}
+
 /// Refuses two outputs of one command that name the same file (`--out x.svg --plot x.svg`),
 /// which would silently keep only one of them.
 pub fn distinct(a: &Target, b: &Target) -> Result<()> {

@@ -15,7 +15,7 @@ use whipple::nonlinear::{
 };
 
 use crate::bike::{load, LoadedBike};
-use crate::output::{self, number, Sink, Target};
+use crate::output::{self, number, Sink};
 use crate::TableFormat;
 
 /// The integrators on offer.
@@ -351,23 +351,8 @@ fn plot(bike: &LoadedBike, args: &SimulateArgs, run: &Simulation, path: &Path) -
 pub fn run(args: &SimulateArgs) -> Result<()> {
     let (initial, settings_without_progress) = settings(args)?;
     // Every output is checked before the work, and none is put in place unless all are written.
-    let plot_target = args
-        .plot
-        .as_deref()
-        .map(|path| {
-            whipple_report::Format::from_path(path)
-                .with_context(|| format!("--plot {}", path.display()))?;
-            Target::check("--plot", path)
-        })
-        .transpose()?;
-    let out_target = args
-        .out
-        .as_deref()
-        .map(|path| Target::check("--out", path))
-        .transpose()?;
-    if let (Some(a), Some(b)) = (&out_target, &plot_target) {
-        output::distinct(a, b)?;
-    }
+    let (out_target, plot_target) =
+        output::table_and_plot(args.out.as_deref(), args.plot.as_deref())?;
     let bike = load(&args.bike)?;
     let model = Model::new(&bike.benchmark)
         .with_context(|| format!("building the non-linear model of {}", bike.label))?;
