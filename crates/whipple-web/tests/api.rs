@@ -577,6 +577,23 @@ async fn simulation_runs_and_sends_frames() -> TestResult {
     Ok(())
 }
 
+/// 30 s at 40 m/s ends 1.2 km from the start: the run completes (with an absolute position
+/// tolerance it failed there, where round-off of the coordinates exceeds 1e-13 m).
+#[tokio::test]
+async fn a_long_fast_simulation_completes() -> TestResult {
+    let app = app(Limits::default());
+    let request = simulation(json!({"speed": 40.0, "lean_rate": 0.0, "duration": 30.0}))?;
+    let (status, body) = post(&app, "/api/simulate", &request).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert_eq!(body["outcome"]["kind"], "completed", "{}", body["outcome"]);
+    let last = body["frames"]
+        .as_array()
+        .and_then(|f| f.last())
+        .ok_or("frames")?;
+    assert!(approx(&last["rear_contact"][0], 1200.0, 1e-6), "{last}");
+    Ok(())
+}
+
 /// At 3 m/s, below the weave speed, the benchmark bicycle falls over: the rear wheel would lift
 /// off first (at t = 1.6036 s, 41° of lean), in step 1604 of RK4 at 1 ms, and the last frame is
 /// that step.

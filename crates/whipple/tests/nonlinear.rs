@@ -554,6 +554,55 @@ fn energy_is_conserved_and_constraints_hold() -> Result<()> {
     Ok(())
 }
 
+/// Runs that go far: 300 s at 5 m/s (1.5 km from the start) and 30 s at 40 m/s (1.2 km, with
+/// the study's least-norm projection) complete. With an absolute position tolerance of 1e-13 m
+/// the first failed at 146 s, 750 m out, where one unit in the last place of a coordinate is
+/// already 1.1e-13 m; the residual accepted is now relative to the coordinates' scale.
+#[test]
+fn long_runs_far_from_the_origin_complete() -> Result<()> {
+    for (speed, lean_rate, duration, method) in [
+        (5.0, 0.5, 300.0, ProjectionMethod::Coordinates),
+        (40.0, 0.0, 30.0, ProjectionMethod::LeastNorm),
+    ] {
+        let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+        let start = model.initial_state(&InitialConditions {
+            lean_rate,
+            ..InitialConditions::upright(speed)
+        })?;
+        let settings = SimulationSettings {
+            projection: ProjectionSettings {
+                method,
+                ..Default::default()
+            },
+            ..weave_settings(Integrator::Rk4 { dt: 1e-3 }, duration)
+        };
+        let run = simulate(&model, start, &settings)?;
+        assert_eq!(run.outcome, Outcome::Completed, "{speed} m/s for {duration} s");
+        let last = run.samples.last().expect("samples");
+        let distance = last.x.hypot(last.y);
+        assert!(distance > 1000.0, "{speed} m/s: only {distance} m out");
+        let e0 = run.samples[0].energy;
+        let drift = run
+            .samples
+            .iter()
+            .map(|s| (s.energy - e0).abs())
+            .fold(0.0, f64::max);
+        assert!(drift < 1e-7 * e0.abs(), "{speed} m/s: energy drift {drift} J");
+        // Relative to the distance: a few units in the last place of the coordinates.
+        for s in &run.samples {
+            let scale = s.x.abs().max(s.y.abs()).max(1.0);
+            assert!(
+                s.position_residual < 1e-13 * scale + 1e-13 && s.velocity_residual < 1e-12,
+                "{speed} m/s at t = {}: residuals {} m, {} m/s",
+                s.t,
+                s.position_residual,
+                s.velocity_residual
+            );
+        }
+    }
+    Ok(())
+}
+
 /// The benchmark bicycle's weave decays at 4.6 m/s (self-stable range 4.29–6.02 m/s) as the
 /// linear model predicts, 10 000 steps without an event.
 #[test]

@@ -69,7 +69,7 @@ pub use forward::{ContactForce, Derivatives, Inputs};
 pub use initial::InitialConditions;
 pub use model::Model;
 pub use outcome::{Outcome, Progress, Sample, Simulation, Wheel};
-pub use projection::{ProjectionMethod, ProjectionReport, ProjectionSettings};
+pub use projection::{accepted_residual, ProjectionMethod, ProjectionReport, ProjectionSettings};
 pub use reduced::{FullStateField, LeanSteerField};
 pub use settings::{
     IntegratorKind, ProgressFn, SimulationRequest, SimulationSettings, TorqueFn, TorqueInput,

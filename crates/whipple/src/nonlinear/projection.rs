@@ -46,7 +46,10 @@ pub enum ProjectionMethod {
 pub struct ProjectionSettings {
     /// The method. Default [`ProjectionMethod::Coordinates`].
     pub method: ProjectionMethod,
-    /// Largest absolute holonomic residual accepted \[m\]. Default 1e-13.
+    /// Largest holonomic residual accepted near the origin \[m\]. Default 1e-13. The rows are
+    /// differences of positions, so their round-off grows with the distance from the origin:
+    /// the residual accepted is `tolerance · max(1, L / 1 m)`, with L the largest body position
+    /// coordinate, a tolerance relative to the coordinates' scale (see [`accepted_residual`]).
     pub tolerance: f64,
     /// Newton iterations always made, even when the residual is already below tolerance
     /// (the study found one necessary to keep the drift from building up). Default 1.
@@ -64,6 +67,18 @@ impl Default for ProjectionSettings {
             max_iterations: 10,
         }
     }
+}
+
+/// The largest holonomic residual accepted at q: `tolerance · max(1, L / 1 m)` with L the
+/// largest absolute body position coordinate. A residual row is a difference of positions, so
+/// its round-off is a few units in the last place of the positions' size: an absolute
+/// tolerance would fail any run that goes far enough (at 1 km, one ulp is 1.1e-13 m).
+pub fn accepted_residual(q: &SVector<f64, COORDINATES>, tolerance: f64) -> f64 {
+    let scale = (0..BODIES)
+        .flat_map(|k| (0..3).map(move |i| 6 * k + i))
+        .map(|i| q[i].abs())
+        .fold(1.0_f64, f64::max);
+    tolerance * scale
 }
 
 /// What a position projection did.
@@ -145,10 +160,13 @@ impl Model {
         let c = Dual64::from_re;
         let mut iterations = 0;
         loop {
+            // The front contact's height does not depend on where the bicycle is on the
+            // ground: compute it with the rear contact at the origin, free of the round-off of
+            // far-away positions.
             let h = self.front_height(
                 [c(yaw), c(lean), Dual64::new(pitch, 1.0)],
                 c(steer),
-                [c(contact.x), c(contact.y)],
+                [c(0.0), c(0.0)],
             );
             let residual = h.re.abs();
             if !(residual.is_finite() && h.eps.is_finite() && h.eps != 0.0) {
@@ -177,7 +195,7 @@ impl Model {
         );
         let poses = Poses::new(q);
         let residual = self.holonomic_residual_at(&poses).amax();
-        if residual.is_nan() || residual > params.tolerance {
+        if residual.is_nan() || residual > accepted_residual(q, params.tolerance) {
             return Err(Error::ProjectionDiverged {
                 iterations,
                 residual,
@@ -208,7 +226,9 @@ impl Model {
                     residual,
                 });
             }
-            if iterations >= params.min_iterations && residual <= params.tolerance {
+            if iterations >= params.min_iterations
+                && residual <= accepted_residual(q, params.tolerance)
+            {
                 return Ok(ProjectionReport {
                     iterations,
                     residual,
