@@ -224,8 +224,10 @@ pub fn eig(
     }
     let c = canonical(&bike)?;
     // Every output is opened (its temporary file created) before the work.
+    // Beside a plot, a table reader that goes away ends only the table.
     let mut sink = match &out {
         Some(target) => target.open()?,
+        None if plot.is_some() => Sink::stdout_beside_files(),
         None => Sink::stdout(),
     };
     let plot_sink = plot.as_ref().map(Target::open).transpose()?;
@@ -633,6 +635,7 @@ pub fn sensitivity(
     }
     let mut sink = match &out {
         Some(target) => target.open()?,
+        None if plot.is_some() => Sink::stdout_beside_files(),
         None => Sink::stdout(),
     };
     sink.text(&text)?;

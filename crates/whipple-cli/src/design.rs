@@ -208,12 +208,14 @@ fn header(study: &Study) -> String {
 
 /// Where the rows go: `--out` through [`crate::output`] (checked before the work, written to a
 /// temporary file beside it, renamed into place by `finish`, through symbolic links, devices
-/// in place), or standard output (a reader that goes away ends the run quietly).
+/// in place), or standard output (a reader that goes away ends the run quietly, or beside a
+/// plot only the rows: the plot is still drawn).
 struct Sink(output::Sink);
 
 impl Sink {
-    fn open(out: Option<&Path>) -> Result<Sink> {
+    fn open(out: Option<&Path>, beside_plot: bool) -> Result<Sink> {
         Ok(Sink(match out {
+            None if beside_plot => output::Sink::stdout_beside_files(),
             None => output::Sink::stdout(),
             Some(path) => output::Target::check("--out", path)?.open()?,
         }))
@@ -311,7 +313,7 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
     }
     let label = bike.label.clone();
     let two = study.y.is_some();
-    let mut sink = Sink::open(args.out)?;
+    let mut sink = Sink::open(args.out, args.plot.is_some())?;
     let (first, end) = shard.indices(study.len());
     let mut head = String::new();
     match args.format {
@@ -611,7 +613,7 @@ pub fn merge(
         );
     }
     let (description, header_line) = study.unwrap_or_default();
-    let mut sink = Sink::open(out)?;
+    let mut sink = Sink::open(out, plot.is_some())?;
     sink.write(&format!(
         "# whipple design study: {description}\n{header_line}\n"
     ))?;

@@ -16,7 +16,9 @@
 //! - Anything else — a device such as `/dev/null` or `/dev/full`, a named pipe, a terminal,
 //!   `/dev/stdout` — is written directly, in place, never replaced.
 //! - Standard output ([`Sink::stdout`]) is streamed; a reader that goes away
-//!   (`whipple eig ... | head`) ends the run quietly ([`is_closed_stdout`]).
+//!   (`whipple eig ... | head`) ends the run quietly ([`is_closed_stdout`]). Beside file
+//!   outputs ([`Sink::stdout_beside_files`]) it ends only the table: the files are still
+//!   written (`whipple eig ... --plot eig.png | head` puts the plot in place).
 //!
 //! ```text
 //! let table = Target::check("--out", path)?;     // before computing
@@ -274,6 +276,12 @@ impl Drop for Temporary {
 enum Writer {
     File(File),
     Stdout(io::Stdout),
+    /// Standard output beside file outputs: once its reader has gone, what follows is
+    /// dropped and the files are still written.
+    StdoutBeside {
+        out: io::Stdout,
+        closed: bool,
+    },
 }
 
 impl Write for Writer {
@@ -281,6 +289,15 @@ impl Write for Writer {
         match self {
             Writer::File(f) => f.write(bytes),
             Writer::Stdout(s) => s.write(bytes).map_err(mark_stdout),
+            Writer::StdoutBeside { out, closed } => {
+                if !*closed {
+                    match out.write(bytes) {
+                        Err(e) if e.kind() == io::ErrorKind::BrokenPipe => *closed = true,
+                        other => return other,
+                    }
+                }
+                Ok(bytes.len())
+            }
         }
     }
 
@@ -288,6 +305,15 @@ impl Write for Writer {
         match self {
             Writer::File(f) => f.flush(),
             Writer::Stdout(s) => s.flush().map_err(mark_stdout),
+            Writer::StdoutBeside { out, closed } => {
+                if !*closed {
+                    match out.flush() {
+                        Err(e) if e.kind() == io::ErrorKind::BrokenPipe => *closed = true,
+                        other => return other,
+                    }
+                }
+                Ok(())
+            }
         }
     }
 }
@@ -335,18 +361,30 @@ pub struct Sink {
 }
 
 impl Sink {
-    /// Standard output, streamed.
+    /// Standard output, streamed. A reader that goes away ends the command quietly
+    /// ([`is_closed_stdout`]).
     pub fn stdout() -> Sink {
+        Sink::stdout_with(Writer::Stdout(io::stdout()))
+    }
+
+    /// Standard output beside file outputs (`eig --plot eig.png | head`): a reader that goes
+    /// away ends only the table (the rest of it is dropped), and the files are still written
+    /// and put in place.
+    pub fn stdout_beside_files() -> Sink {
+        Sink::stdout_with(Writer::StdoutBeside {
+            out: io::stdout(),
+            closed: false,
+        })
+    }
+
+    fn stdout_with(writer: Writer) -> Sink {
         Sink {
             target: Target {
                 option: "standard output".into(),
                 shown: PathBuf::from("-"),
                 place: Place::Direct(PathBuf::from("-")),
             },
-            writer: Some(BufWriter::with_capacity(
-                1 << 16,
-                Writer::Stdout(io::stdout()),
-            )),
+            writer: Some(BufWriter::with_capacity(1 << 16, writer)),
             temp: None,
             mode: None,
         }
@@ -408,6 +446,10 @@ impl Sink {
                 .flush()
                 .map_err(mark_stdout)
                 .with_context(|| format!("writing {what}"))?,
+            Writer::StdoutBeside { out, closed } => {
+                let mut writer = Writer::StdoutBeside { out, closed };
+                writer.flush().with_context(|| format!("writing {what}"))?;
+            }
         }
         Ok(Finished {
             target: self.target.clone(),

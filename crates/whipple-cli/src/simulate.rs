@@ -75,6 +75,11 @@ pub struct SimulateArgs {
     /// wheel would lift off, which the model's bilateral contacts cannot show).
     #[arg(long)]
     pub ignore_lift_off: bool,
+    /// Keep one sample in N integration steps (the first and the last are always kept), for
+    /// long runs: the samples kept are bounded (1.5 million), the steps only by the work
+    /// (2·10⁷). The summary's extremes are taken over every step.
+    #[arg(long, value_name = "N", default_value_t = 1)]
+    pub every: usize,
     /// Output format.
     #[arg(long, value_enum, default_value = "table")]
     pub format: TableFormat,
@@ -106,6 +111,7 @@ fn request(args: &SimulateArgs) -> SimulationRequest {
         fall_angle_deg: args.fall_angle,
         stop_on_lift_off: !args.ignore_lift_off,
         max_steps: None,
+        sample_every: args.every,
     }
 }
 
@@ -121,6 +127,7 @@ fn option(field: &str) -> String {
         "lean_deg" => "--lean".into(),
         "steer_deg" => "--steer".into(),
         "fall_angle_deg" => "--fall-angle".into(),
+        "sample_every" => "--every".into(),
         other => format!("--{}", other.replace('_', "-")),
     }
 }
@@ -174,35 +181,34 @@ fn finite_samples(run: &Simulation) -> impl Iterator<Item = &Sample> {
     run.samples.iter().filter(|s| s.is_finite())
 }
 
-fn csv(run: &Simulation) -> Result<String> {
-    let mut t = format!("{CSV_HEADER}\n");
+/// The samples as CSV, row by row into `out`.
+fn write_csv(out: &mut Sink, run: &Simulation) -> Result<()> {
+    out.text(&format!("{CSV_HEADER}\n"))?;
+    let mut row = String::new();
     for s in finite_samples(run) {
-        let row = sample_values(s)
-            .iter()
-            .map(|x| number(*x))
-            .collect::<Result<Vec<_>>>()?;
-        t.push_str(&row.join(","));
-        t.push('\n');
+        row.clear();
+        for (i, x) in sample_values(s).iter().enumerate() {
+            if i > 0 {
+                row.push(',');
+            }
+            row.push_str(&number(*x)?);
+        }
+        row.push('\n');
+        out.text(&row)?;
     }
-    Ok(t)
+    Ok(())
 }
 
-fn json_doc(
+/// The run as JSON, the samples one object per line, written as they come (a run of a
+/// million samples never stands as one document in memory).
+fn write_json(
+    out: &mut Sink,
     bike: &LoadedBike,
     args: &SimulateArgs,
     run: &Simulation,
     outcome: &str,
-) -> Result<String> {
-    let columns: Vec<&str> = CSV_HEADER.split(',').collect();
-    let mut samples = Vec::new();
-    for s in finite_samples(run) {
-        let mut obj = serde_json::Map::new();
-        for (name, x) in columns.iter().zip(sample_values(s)) {
-            obj.insert(name.to_string(), json!(x));
-        }
-        samples.push(serde_json::Value::Object(obj));
-    }
-    let doc = json!({
+) -> Result<()> {
+    let head = json!({
         "bike": bike.label,
         "initial": {
             "speed": args.speed,
@@ -214,10 +220,24 @@ fn json_doc(
         "outcome": outcome,
         "steps": run.steps,
         "rejected_steps": run.rejected_steps,
+        "sample_every": args.every,
         "pulled_down_from_start": run.pulled_down_from_start.iter().map(|w| w.name()).collect::<Vec<_>>(),
-        "samples": samples,
     });
-    Ok(format!("{}\n", serde_json::to_string_pretty(&doc)?))
+    let head = serde_json::to_string_pretty(&head)?;
+    // The head's closing brace gives way to the samples.
+    let head = head.strip_suffix("\n}").unwrap_or(&head);
+    out.text(head)?;
+    out.text(",\n  \"samples\": [")?;
+    let columns: Vec<&str> = CSV_HEADER.split(',').collect();
+    for (k, s) in finite_samples(run).enumerate() {
+        let mut obj = serde_json::Map::new();
+        for (name, x) in columns.iter().zip(sample_values(s)) {
+            obj.insert(name.to_string(), json!(x));
+        }
+        let line = serde_json::to_string(&obj)?;
+        out.text(&format!("{}\n    {line}", if k == 0 { "" } else { "," }))?;
+    }
+    out.text("\n  ]\n}\n")
 }
 
 fn table(
@@ -228,34 +248,31 @@ fn table(
 ) -> Result<String> {
     let samples: Vec<&Sample> = finite_samples(run).collect();
     let mut t = format!("{}: non-linear simulation, {outcome}\n", bike.label);
-    if let (Some(first), Some(last)) = (samples.first(), samples.last()) {
-        let drift = samples
-            .iter()
-            .map(|s| (s.energy - first.energy).abs())
-            .fold(0.0, f64::max);
-        let pos = samples
-            .iter()
-            .map(|s| s.position_residual)
-            .fold(0.0, f64::max);
-        let vel = samples
-            .iter()
-            .map(|s| s.velocity_residual)
-            .fold(0.0, f64::max);
+    if let Some(last) = samples.last() {
+        let x = &run.extremes;
         writeln!(
             t,
-            "  {} steps to t = {} s; energy {} J, largest change {drift:.3e} J; largest constraint residuals {pos:.1e} m, {vel:.1e} m/s",
+            "  {} steps to t = {} s; energy {} J, largest change {:.3e} J; largest constraint residuals {:.1e} m, {:.1e} m/s",
             run.steps,
             number(last.t)?,
-            number(first.energy)?
+            number(x.initial_energy)?,
+            x.largest_energy_change,
+            x.largest_position_residual,
+            x.largest_velocity_residual
         )?;
-        let min_normal =
-            |f: fn(&Sample) -> f64| samples.iter().map(|s| f(s)).fold(f64::INFINITY, f64::min);
         writeln!(
             t,
             "  smallest normal forces: rear {:.2} N, front {:.2} N",
-            min_normal(|s| s.rear.normal),
-            min_normal(|s| s.front.normal)
+            x.smallest_normal_force[0], x.smallest_normal_force[1]
         )?;
+        if args.every > 1 {
+            writeln!(
+                t,
+                "  {} samples kept, one in {} steps (and the last); the extremes are over every step",
+                samples.len(),
+                args.every
+            )?;
+        }
     }
     if args.steer_torque.is_some() || args.lean_torque.is_some() {
         writeln!(
@@ -393,16 +410,18 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         sink.bytes(&bytes)?;
         finished.push(sink.finish()?);
     }
-    let text = match args.format {
-        TableFormat::Csv => csv(&run)?,
-        TableFormat::Json => json_doc(&bike, args, &run, &outcome)?,
-        TableFormat::Table => table(&bike, args, &run, &outcome)?,
-    };
+    // Beside a plot, a table reader that goes away ends only the table: the plot is still put
+    // in place.
     let mut sink = match &out_target {
         Some(target) => target.open()?,
+        None if plot_target.is_some() => Sink::stdout_beside_files(),
         None => Sink::stdout(),
     };
-    sink.text(&text)?;
+    match args.format {
+        TableFormat::Csv => write_csv(&mut sink, &run)?,
+        TableFormat::Json => write_json(&mut sink, &bike, args, &run, &outcome)?,
+        TableFormat::Table => sink.text(&table(&bike, args, &run, &outcome)?)?,
+    }
     finished.push(sink.finish()?);
     output::commit(finished)?;
     if args.format != TableFormat::Table || args.out.is_some() {

@@ -69,3 +69,49 @@ fn issue_10_validate_refuses_sweeps_past_its_time_bound() {
     ]));
     assert!(err.contains("--speeds") && err.contains("minutes"), "{err}");
 }
+
+/// A file named `benchmark` in the working directory does not silently replace the preset:
+/// the preset is taken with a note saying so and how to name the file (`./benchmark`), which
+/// then reads the file.
+#[test]
+fn issue_10_a_file_named_like_a_preset_does_not_hide_it() {
+    let dir = common::scratch("preset-and-file");
+    // The benchmark bicycle with a 0.5 m trail instead of 0.08 m: a different bicycle.
+    let preset = whipple(&["convert", "--bike", "benchmark", "--to", "toml"]);
+    assert!(preset.status.success());
+    let text = String::from_utf8_lossy(&preset.stdout).replace("c = 0.08", "c = 0.5");
+    assert!(text.contains("c = 0.5"), "{text}");
+    std::fs::write(dir.join("benchmark"), text).expect("written");
+    let show = |bike: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_whipple"))
+            .args(["show", "--bike", bike])
+            .current_dir(&dir)
+            .output()
+            .expect("runs")
+    };
+    let by_name = show("benchmark");
+    let (out, err) = (
+        String::from_utf8_lossy(&by_name.stdout),
+        String::from_utf8_lossy(&by_name.stderr),
+    );
+    assert!(by_name.status.success(), "{err}");
+    assert!(
+        err.contains("names both a preset and a file") && err.contains("./benchmark"),
+        "{err}"
+    );
+    let trail = |out: &str| {
+        out.lines()
+            .find_map(|l| l.trim_start().strip_prefix("c "))
+            .and_then(|rest| rest.split_whitespace().next())
+            .map(str::to_string)
+    };
+    assert_eq!(trail(&out).as_deref(), Some("0.08"), "{out}");
+    let by_path = show("./benchmark");
+    let (out, err) = (
+        String::from_utf8_lossy(&by_path.stdout),
+        String::from_utf8_lossy(&by_path.stderr),
+    );
+    assert!(by_path.status.success(), "{err}");
+    assert!(!err.contains("names both"), "{err}");
+    assert_eq!(trail(&out).as_deref(), Some("0.5"), "{out}");
+}

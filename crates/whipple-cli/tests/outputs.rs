@@ -190,9 +190,10 @@ fn issue_10_validate_report_into_a_missing_parent_is_refused_before_the_work() {
     assert!(!dir.join("a").exists());
 }
 
-/// `simulate --duration 1e-4 --dt 1e-12` was accepted (1e8 steps) and grew towards ~25 GB.
+/// `simulate --duration 1e-4 --dt 1e-12` was accepted (1e8 steps) and grew towards ~25 GB: now
+/// refused by the bound on the work, which the message states in minutes.
 #[test]
-fn issue_10_simulate_refuses_runs_past_the_memory_bound() {
+fn issue_10_simulate_refuses_runs_past_the_work_bound() {
     let err = stderr_of_failure(&whipple(&[
         "simulate",
         "--bike",
@@ -204,7 +205,136 @@ fn issue_10_simulate_refuses_runs_past_the_memory_bound() {
         "--dt",
         "1e-12",
     ]));
-    assert!(err.contains("--dt") && err.contains("GiB"), "{err}");
+    assert!(err.contains("--dt") && err.contains("minutes"), "{err}");
+}
+
+/// 2000 s at 1 ms keeps 2·10⁶ samples, past the memory bound: refused naming `--every` and
+/// the thinning that fits; with `--every 2` the same run is within it (checked, not run).
+#[test]
+fn issue_10_simulate_keeps_at_most_the_memory_bound_of_samples() {
+    let err = stderr_of_failure(&whipple(&[
+        "simulate",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "5",
+        "--duration",
+        "2000",
+    ]));
+    assert!(
+        err.contains("--every") && err.contains("GiB") && err.contains("one sample in 2 steps"),
+        "{err}"
+    );
+    let err = stderr_of_failure(&whipple(&[
+        "simulate",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "5",
+        "--duration",
+        "1",
+        "--every",
+        "0",
+    ]));
+    assert!(err.contains("--every must be at least 1"), "{err}");
+}
+
+/// `--every N` keeps the first sample, one in N steps and the last, in every format; the
+/// summary's extremes are over every step (the same as an unthinned run's).
+#[test]
+fn issue_10_simulate_every_thins_the_samples() {
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "simulate",
+            "--bike",
+            "benchmark",
+            "--speed",
+            "5",
+            "--lean-rate",
+            "0.5",
+            "--duration",
+            "2.0005",
+            "--dt",
+            "0.001",
+        ];
+        args.extend_from_slice(extra);
+        stdout(&whipple(&args))
+    };
+    let all = run(&["--format", "csv"]);
+    let thin = run(&["--format", "csv", "--every", "100"]);
+    let rows = |text: &str| -> Vec<String> { text.lines().skip(1).map(str::to_string).collect() };
+    let (all, thin) = (rows(&all), rows(&thin));
+    assert_eq!(all.len(), 2002, "2001 steps and the start");
+    // Steps 0, 100, …, 2000 and the last (2001).
+    assert_eq!(thin.len(), 22);
+    for (k, row) in thin.iter().take(21).enumerate() {
+        assert_eq!(row, &all[100 * k], "sample {k}");
+    }
+    assert_eq!(thin.last(), all.last());
+    let json = run(&["--format", "json", "--every", "100"]);
+    let doc: serde_json::Value = serde_json::from_str(&json).expect("valid JSON");
+    assert_eq!(doc["sample_every"], 100);
+    assert_eq!(doc["steps"], 2001);
+    assert_eq!(doc["samples"].as_array().map(Vec::len), Some(22));
+    let summary = |text: &str| text.lines().nth(1).unwrap_or_default().to_string();
+    let table_all = run(&[]);
+    let table_thin = run(&["--every", "100"]);
+    assert_eq!(summary(&table_all), summary(&table_thin));
+    assert!(
+        table_thin.contains("22 samples kept, one in 100 steps"),
+        "{table_thin}"
+    );
+}
+
+/// `whipple eig ... --plot eig.png | head -1` and the same for `simulate`: the table's reader
+/// going away ends only the table; the plot is still drawn and put in place.
+#[test]
+fn issue_10_a_closed_stdout_still_writes_the_plot() {
+    let dir = scratch("closed-stdout-plot");
+    for (name, args) in [
+        (
+            "eig.png",
+            vec!["eig", "--bike", "benchmark", "--speeds", "0:100:0.0005"],
+        ),
+        (
+            "simulate.png",
+            vec![
+                "simulate",
+                "--bike",
+                "benchmark",
+                "--speed",
+                "5",
+                "--duration",
+                "20",
+                "--format",
+                "csv",
+            ],
+        ),
+    ] {
+        let plot = dir.join(name);
+        let mut child = Command::new(env!("CARGO_BIN_EXE_whipple"))
+            .args(&args)
+            .arg("--plot")
+            .arg(&plot)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("runs");
+        {
+            let out = child.stdout.take().expect("stdout");
+            let mut first = String::new();
+            BufReader::new(out).read_line(&mut first).expect("a line");
+            assert!(!first.is_empty());
+        } // the pipe is closed here
+        let output = child.wait_with_output().expect("ends");
+        let err = String::from_utf8_lossy(&output.stderr);
+        assert!(output.status.success(), "{name}: {err}");
+        let bytes = fs::read(&plot).unwrap_or_default();
+        assert!(
+            bytes.starts_with(b"\x89PNG"),
+            "{name}: no plot written ({err})"
+        );
+    }
 }
 
 /// `simulate --out` and `--plot` are checked before the run and land together.

@@ -577,7 +577,11 @@ fn long_runs_far_from_the_origin_complete() -> Result<()> {
             ..weave_settings(Integrator::Rk4 { dt: 1e-3 }, duration)
         };
         let run = simulate(&model, start, &settings)?;
-        assert_eq!(run.outcome, Outcome::Completed, "{speed} m/s for {duration} s");
+        assert_eq!(
+            run.outcome,
+            Outcome::Completed,
+            "{speed} m/s for {duration} s"
+        );
         let last = run.samples.last().expect("samples");
         let distance = last.x.hypot(last.y);
         assert!(distance > 1000.0, "{speed} m/s: only {distance} m out");
@@ -587,7 +591,10 @@ fn long_runs_far_from_the_origin_complete() -> Result<()> {
             .iter()
             .map(|s| (s.energy - e0).abs())
             .fold(0.0, f64::max);
-        assert!(drift < 1e-7 * e0.abs(), "{speed} m/s: energy drift {drift} J");
+        assert!(
+            drift < 1e-7 * e0.abs(),
+            "{speed} m/s: energy drift {drift} J"
+        );
         // Relative to the distance: a few units in the last place of the coordinates.
         for s in &run.samples {
             let scale = s.x.abs().max(s.y.abs()).max(1.0);
@@ -600,6 +607,62 @@ fn long_runs_far_from_the_origin_complete() -> Result<()> {
             );
         }
     }
+    Ok(())
+}
+
+/// Thinning keeps the first sample, one in N steps and the last state reached (here a fall
+/// that ends at an arbitrary step), and leaves the run and its extremes as they were.
+#[test]
+fn sample_every_thins_the_samples_not_the_run() -> Result<()> {
+    let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+    let start = model.initial_state(&InitialConditions {
+        lean_rate: 0.5,
+        ..InitialConditions::upright(3.0)
+    })?;
+    let run_with = |every: usize| {
+        let settings = SimulationSettings {
+            sample_every: every,
+            stop_on_lift_off: false,
+            ..weave_settings(Integrator::Rk4 { dt: 1e-3 }, 10.0)
+        };
+        simulate(&model, start, &settings)
+    };
+    let all = run_with(1)?;
+    let thin = run_with(7)?;
+    assert!(
+        matches!(all.outcome, Outcome::Fell { .. }),
+        "{:?}",
+        all.outcome
+    );
+    assert_eq!(all.outcome, thin.outcome);
+    assert_eq!(all.steps, thin.steps);
+    assert_eq!(all.samples.len(), all.steps + 1);
+    assert_eq!(
+        thin.samples.len(),
+        all.steps / 7 + 1 + usize::from(all.steps % 7 != 0)
+    );
+    for (k, s) in thin.samples.iter().enumerate().take(thin.samples.len() - 1) {
+        assert_eq!(*s, all.samples[7 * k], "sample {k}");
+    }
+    assert_eq!(thin.samples.last(), all.samples.last());
+    assert_eq!(all.extremes, thin.extremes);
+    let smallest_rear = all
+        .samples
+        .iter()
+        .map(|s| s.rear.normal)
+        .fold(f64::INFINITY, f64::min);
+    assert_eq!(all.extremes.smallest_normal_force[0], smallest_rear);
+    let settings = SimulationSettings {
+        sample_every: 0,
+        ..SimulationSettings::default()
+    };
+    assert!(matches!(
+        simulate(&model, start, &settings),
+        Err(whipple::Error::InvalidArgument {
+            what: "sample_every",
+            ..
+        })
+    ));
     Ok(())
 }
 

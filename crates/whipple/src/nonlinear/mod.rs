@@ -68,12 +68,12 @@ pub use expression::{
 pub use forward::{ContactForce, Derivatives, Inputs};
 pub use initial::InitialConditions;
 pub use model::Model;
-pub use outcome::{Outcome, Progress, Sample, Simulation, Wheel};
+pub use outcome::{Outcome, Progress, RunExtremes, Sample, Simulation, Wheel};
 pub use projection::{accepted_residual, ProjectionMethod, ProjectionReport, ProjectionSettings};
 pub use reduced::{FullStateField, LeanSteerField};
 pub use settings::{
-    IntegratorKind, ProgressFn, SimulationRequest, SimulationSettings, TorqueFn, TorqueInput,
-    DEFAULT_FALL_ANGLE_DEG, MAX_STEPS,
+    samples_kept, IntegratorKind, ProgressFn, SimulationRequest, SimulationSettings, TorqueFn,
+    TorqueInput, DEFAULT_FALL_ANGLE_DEG, MAX_SAMPLES, MAX_STEPS,
 };
 pub use simulate::simulate;
 pub use state::{BodyPose, State, StateView, COORDINATES, LEAN, PITCH, SPEEDS, STATE_LEN, YAW};

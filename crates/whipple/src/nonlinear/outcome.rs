@@ -287,8 +287,11 @@ impl Sample {
 /// The result of [`super::simulate`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Simulation {
-    /// Samples after every accepted step, the initial state first.
+    /// Samples: the initial state, then one in [`super::SimulationSettings::sample_every`]
+    /// accepted steps (every step by default), and always the last state reached.
     pub samples: Vec<Sample>,
+    /// The extremes over every accepted step, thinned out of `samples` or not.
+    pub extremes: RunExtremes,
     /// How the run ended.
     pub outcome: Outcome,
     /// The last state reached (projected).
@@ -302,6 +305,53 @@ pub struct Simulation {
     /// contacts are bilateral constraints, as in the linearized model, so such a run goes on;
     /// lift-off is watched only for the wheels that started pressed onto the ground.
     pub pulled_down_from_start: Vec<Wheel>,
+}
+
+/// Extremes over every accepted step of a run (finite samples only), whether kept in
+/// [`Simulation::samples`] or thinned out: what a summary of the run says.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunExtremes {
+    /// Total energy at the start \[J\].
+    pub initial_energy: f64,
+    /// Largest |energy − initial energy| \[J\].
+    pub largest_energy_change: f64,
+    /// Largest holonomic residual \[m\].
+    pub largest_position_residual: f64,
+    /// Largest velocity-row residual [m/s].
+    pub largest_velocity_residual: f64,
+    /// Smallest normal force on the rear and on the front wheel \[N\].
+    pub smallest_normal_force: [f64; 2],
+}
+
+impl RunExtremes {
+    /// The extremes of a run that has only its first sample.
+    pub fn start(first: &Sample) -> Self {
+        RunExtremes {
+            initial_energy: first.energy,
+            largest_energy_change: 0.0,
+            largest_position_residual: first.position_residual,
+            largest_velocity_residual: first.velocity_residual,
+            smallest_normal_force: [first.rear.normal, first.front.normal],
+        }
+    }
+
+    /// Takes in one more sample (a non-finite one is left out).
+    pub fn observe(&mut self, s: &Sample) {
+        if !s.is_finite() {
+            return;
+        }
+        let change = (s.energy - self.initial_energy).abs();
+        self.largest_energy_change = self.largest_energy_change.max(change);
+        self.largest_position_residual = self.largest_position_residual.max(s.position_residual);
+        self.largest_velocity_residual = self.largest_velocity_residual.max(s.velocity_residual);
+        for (smallest, n) in self
+            .smallest_normal_force
+            .iter_mut()
+            .zip([s.rear.normal, s.front.normal])
+        {
+            *smallest = smallest.min(n);
+        }
+    }
 }
 
 impl Simulation {

@@ -27,11 +27,23 @@ pub type ProgressFn = Box<dyn Fn(super::Progress) + Send + Sync>;
 /// The fall angle when none is given \[deg\].
 pub const DEFAULT_FALL_ANGLE_DEG: f64 = 60.0;
 
-/// The most RK4 steps a request may ask for when it sets no bound of its own, and the adaptive
-/// integrator's cap then. Each step keeps one [`super::Sample`] (about 190 bytes) and a front
-/// end writes it as a row of text (about 400 bytes): 1.5 million steps keep a run within about
-/// 0.8 GiB (10^8 steps had grown towards 25 GB).
-pub const MAX_STEPS: usize = 1_500_000;
+/// The most integration steps a request may ask for when it sets no bound of its own (RK4's
+/// steps are known in advance and refused beyond it; the adaptive integrator stops there). It
+/// bounds the work: a step takes about 20 µs, so 2·10⁷ steps are about seven minutes of
+/// computing.
+pub const MAX_STEPS: usize = 20_000_000;
+
+/// The most samples a run keeps (see [`SimulationSettings::sample_every`]). It bounds the
+/// memory: a [`super::Sample`] is about 190 bytes and a front end writes it as a row of about
+/// 400 bytes of text, so 1.5 million samples stay within about 0.8 GiB (a run keeping all of
+/// 10⁸ steps had grown towards 25 GB).
+pub const MAX_SAMPLES: usize = 1_500_000;
+
+/// What keeping 1 sample in `every` steps of `steps` amounts to: the first, every `every`-th
+/// and the last.
+pub fn samples_kept(steps: usize, every: usize) -> usize {
+    steps / every.max(1) + 2
+}
 
 /// Everything a simulation needs besides the model and the initial state. Defaults: RK4 with
 /// dt = 1 ms, 10 s, fall at 60°, no rider torques, default projection, no progress hook.
@@ -50,6 +62,10 @@ pub struct SimulationSettings {
     pub projection: ProjectionSettings,
     /// Stop when a wheel's normal force becomes negative (it would lift off). Default true.
     pub stop_on_lift_off: bool,
+    /// Keep one sample in this many accepted steps (the first and the last are always kept);
+    /// at least 1, the default. The run's extremes ([`super::RunExtremes`]: energy change,
+    /// residuals, normal forces) are taken over every step all the same.
+    pub sample_every: usize,
     /// Called after each accepted step.
     pub progress: Option<ProgressFn>,
     /// Set it to true, from any thread, to end the run before its next step (outcome
@@ -68,6 +84,7 @@ impl Default for SimulationSettings {
             lean_torque: None,
             projection: ProjectionSettings::default(),
             stop_on_lift_off: true,
+            sample_every: 1,
             progress: None,
             stop: None,
         }
@@ -84,6 +101,7 @@ impl fmt::Debug for SimulationSettings {
             .field("lean_torque", &self.lean_torque.is_some())
             .field("projection", &self.projection)
             .field("stop_on_lift_off", &self.stop_on_lift_off)
+            .field("sample_every", &self.sample_every)
             .field("progress", &self.progress.is_some())
             .field("stop", &self.stop)
             .finish()
@@ -91,9 +109,15 @@ impl fmt::Debug for SimulationSettings {
 }
 
 impl SimulationSettings {
-    /// Checks the settings: a finite duration ≥ 0, a fall angle in (0, π/2), a usable
-    /// projection and integrator.
+    /// Checks the settings: a finite duration ≥ 0, a fall angle in (0, π/2), `sample_every` at
+    /// least 1, a usable projection and integrator.
     pub fn validate(&self) -> Result<()> {
+        if self.sample_every == 0 {
+            return Err(Error::InvalidArgument {
+                what: "sample_every",
+                rule: "must be at least 1 (keep every step: 1)".into(),
+            });
+        }
         let d = self.duration;
         if !(d.is_finite() && d >= 0.0) {
             return Err(Error::InvalidArgument {
@@ -222,9 +246,11 @@ pub struct SimulationRequest {
     pub stop_on_lift_off: bool,
     /// The most integration steps the run may take: an RK4 request needing more is refused
     /// ([`Error::LimitExceeded`]), the adaptive integrator stops there (outcome
-    /// [`super::Outcome::StepSizeTooSmall`]). `None`: [`MAX_STEPS`] for RK4, the adaptive
-    /// method's default bound on step attempts.
+    /// [`super::Outcome::StepSizeTooSmall`]). `None`: [`MAX_STEPS`].
     pub max_steps: Option<usize>,
+    /// Keep one sample in this many steps (default 1: every step); the samples kept are
+    /// bounded by [`MAX_SAMPLES`].
+    pub sample_every: usize,
 }
 
 impl SimulationRequest {
@@ -246,6 +272,7 @@ impl SimulationRequest {
             fall_angle_deg: DEFAULT_FALL_ANGLE_DEG,
             stop_on_lift_off: true,
             max_steps: None,
+            sample_every: 1,
         }
     }
 
@@ -290,6 +317,13 @@ impl SimulationRequest {
         if duration <= 0.0 {
             return invalid("duration", format!("must be positive, got {duration} s"));
         }
+        let every = self.sample_every;
+        if every == 0 {
+            return invalid(
+                "sample_every",
+                "must be at least 1 (keep every step: 1)".into(),
+            );
+        }
         let integrator = match self.integrator {
             IntegratorKind::Rk4 => {
                 if self.rtol.is_some() {
@@ -314,9 +348,20 @@ impl SimulationRequest {
                         return Err(Error::LimitExceeded {
                             what: "dt",
                             rule: format!(
-                                "{duration:?} s in steps of {dt:?} s takes {steps} integration steps, more than the limit of {limit} (each step keeps a sample of {} bytes, about {:.2} GiB with its text); use a larger dt or a shorter duration",
+                                "{duration:?} s in steps of {dt:?} s takes {steps} integration steps, more than the limit of {limit} (the work it bounds is about {:.0} minutes at 20 µs a step); use a larger dt or a shorter duration",
+                                limit as f64 * 20e-6 / 60.0
+                            ),
+                        });
+                    }
+                    let kept = samples_kept(steps, every);
+                    if kept > MAX_SAMPLES {
+                        let needed = steps.div_ceil(MAX_SAMPLES - 2).max(2);
+                        return Err(Error::LimitExceeded {
+                            what: "sample_every",
+                            rule: format!(
+                                "{steps} steps would keep {kept} samples, more than the limit of {MAX_SAMPLES} (a sample is {} bytes and about 400 as text: the limit keeps a run within about {:.1} GiB); keep one sample in {needed} steps or more, or use a larger dt or a shorter duration",
                                 std::mem::size_of::<super::Sample>(),
-                                (limit as f64) * (std::mem::size_of::<super::Sample>() + 400) as f64 / (1u64 << 30) as f64
+                                MAX_SAMPLES as f64 * (std::mem::size_of::<super::Sample>() + 400) as f64 / (1u64 << 30) as f64
                             ),
                         });
                     }
@@ -337,10 +382,14 @@ impl SimulationRequest {
                         format!("must lie strictly between 0 and 1, got {rtol}"),
                     );
                 }
-                // The same bound as RK4's: a run that needs more steps stops there.
+                // The same bounds as RK4's, on the work and on the samples kept: a run that
+                // needs more steps stops there.
                 match Integrator::adaptive(rtol) {
                     Integrator::Dopri5(mut settings) => {
-                        settings.max_steps = self.max_steps.unwrap_or(MAX_STEPS);
+                        settings.max_steps = self
+                            .max_steps
+                            .unwrap_or(MAX_STEPS)
+                            .min((MAX_SAMPLES - 2).saturating_mul(every));
                         Integrator::Dopri5(settings)
                     }
                     integrator => integrator,
@@ -354,6 +403,7 @@ impl SimulationRequest {
             steer_torque: self.steer_torque.torque("steer_torque")?,
             lean_torque: self.lean_torque.torque("lean_torque")?,
             stop_on_lift_off: self.stop_on_lift_off,
+            sample_every: every,
             ..SimulationSettings::default()
         };
         let initial = InitialConditions {

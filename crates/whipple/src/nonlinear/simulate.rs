@@ -18,7 +18,7 @@ use std::sync::atomic::Ordering;
 use nalgebra::SVector;
 
 use super::forward::{Derivatives, Inputs};
-use super::outcome::{Outcome, Progress, Sample, Simulation, Wheel};
+use super::outcome::{Outcome, Progress, RunExtremes, Sample, Simulation, Wheel};
 use super::poses::Poses;
 use super::settings::{SimulationSettings, TorqueFn};
 use super::state::{State, STATE_LEN};
@@ -88,7 +88,12 @@ pub fn simulate(
     };
     let mut run = Run::start(&ode, initial, settings)?;
     let outcome = run.until_done();
+    // The last state reached is always a sample, thinned or not.
+    if let Some(last) = run.pending.take() {
+        run.samples.push(last);
+    }
     Ok(Simulation {
+        extremes: run.extremes,
         outcome,
         final_state: run.state,
         steps: run.steps,
@@ -111,6 +116,9 @@ struct Run<'a> {
     state: State<f64>,
     derivatives: Derivatives<f64>,
     samples: Vec<Sample>,
+    /// The last accepted step's sample when it was thinned out.
+    pending: Option<Sample>,
+    extremes: RunExtremes,
     steps: usize,
     /// Lift-off is a normal force turning negative; a wheel pulled down from the start is not
     /// watched.
@@ -148,6 +156,8 @@ impl<'a> Run<'a> {
             state,
             derivatives,
             samples: vec![first],
+            pending: None,
+            extremes: RunExtremes::start(&first),
             steps: 0,
             watched: derivatives.contact.map(|c| c.normal >= 0.0),
         })
@@ -211,7 +221,13 @@ impl<'a> Run<'a> {
             .map_err(|error| failed(t_new, error))?;
         self.steps += 1;
         let recorded = sample(model, t_new, &next, &poses, &d_new, report.residual);
-        self.samples.push(recorded);
+        self.extremes.observe(&recorded);
+        if self.steps % self.settings.sample_every.max(1) == 0 {
+            self.samples.push(recorded);
+            self.pending = None;
+        } else {
+            self.pending = Some(recorded);
+        }
         if let Some(progress) = &self.settings.progress {
             progress(Progress {
                 t: t_new,
