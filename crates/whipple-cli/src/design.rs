@@ -93,7 +93,56 @@ impl Quantity {
     }
 }
 
-/// Arguments shared by `map` and `study`.
+/// The options `map` and `study` share.
+#[derive(clap::Args, Debug)]
+pub struct StudyArgs {
+    /// The speed [m/s] at which max_real (largest real part) is read.
+    #[arg(long, allow_hyphen_values = true)]
+    pub speed: Option<f64>,
+    /// Speed range LO:HI [m/s] for the critical speeds (default: every speed v >= 0).
+    #[arg(long, allow_hyphen_values = true)]
+    pub range: Option<String>,
+    /// Also compute the double-root speed v_d (about twice the time).
+    #[arg(long)]
+    pub double_root: bool,
+    /// Output format of the rows.
+    #[arg(long, value_enum, default_value = "csv")]
+    pub format: DesignFormat,
+    /// Write the rows to this file instead of standard output.
+    #[arg(long)]
+    pub out: Option<std::path::PathBuf>,
+    /// Compute only part I of N (0-based, I/N) for a job array; `whipple merge` joins them.
+    #[arg(long)]
+    pub shard: Option<String>,
+}
+
+impl StudyArgs {
+    /// The arguments of a map (`y` given) or a one-parameter study.
+    pub fn args<'a>(
+        &'a self,
+        bike: &'a str,
+        x: &'a str,
+        y: Option<&'a str>,
+        quantity: Quantity,
+        plot: Option<&'a Path>,
+    ) -> DesignArgs<'a> {
+        DesignArgs {
+            bike,
+            x,
+            y,
+            quantity,
+            speed: self.speed,
+            range: self.range.as_deref(),
+            double_root: self.double_root,
+            format: self.format,
+            out: self.out.as_deref(),
+            plot,
+            shard: self.shard.as_deref(),
+        }
+    }
+}
+
+/// What `map` and `study` run with.
 pub struct DesignArgs<'a> {
     pub bike: &'a str,
     pub x: &'a str,

@@ -178,27 +178,11 @@ enum Command {
         /// The quantity the plot shows (every quantity is in the CSV/JSON).
         #[arg(long, value_enum, default_value = "stable-width")]
         quantity: design::Quantity,
-        /// The speed [m/s] at which max_real (largest real part) is read.
-        #[arg(long, allow_hyphen_values = true)]
-        speed: Option<f64>,
-        /// Speed range LO:HI [m/s] for the critical speeds (default: every speed v >= 0).
-        #[arg(long, allow_hyphen_values = true)]
-        range: Option<String>,
-        /// Also compute the double-root speed v_d (about twice the time).
-        #[arg(long)]
-        double_root: bool,
-        /// Output format of the rows.
-        #[arg(long, value_enum, default_value = "csv")]
-        format: design::DesignFormat,
-        /// Write the rows to this file instead of standard output.
-        #[arg(long)]
-        out: Option<std::path::PathBuf>,
+        #[command(flatten)]
+        options: design::StudyArgs,
         /// Also draw the heat map to this .svg or .png file.
         #[arg(long)]
         plot: Option<std::path::PathBuf>,
-        /// Compute only part I of N (0-based, I/N) for a job array; `whipple merge` joins them.
-        #[arg(long)]
-        shard: Option<String>,
     },
     /// The classic one-parameter study: critical speeds against one parameter.
     Study {
@@ -208,27 +192,11 @@ enum Command {
         /// The parameter: NAME=START:STOP:COUNT (for example trail=-0.1:0.3:401).
         #[arg(long, allow_hyphen_values = true)]
         vary: String,
-        /// The speed [m/s] at which max_real (largest real part) is read.
-        #[arg(long, allow_hyphen_values = true)]
-        speed: Option<f64>,
-        /// Speed range LO:HI [m/s] for the critical speeds (default: every speed v >= 0).
-        #[arg(long, allow_hyphen_values = true)]
-        range: Option<String>,
-        /// Also compute the double-root speed v_d.
-        #[arg(long)]
-        double_root: bool,
-        /// Output format of the rows.
-        #[arg(long, value_enum, default_value = "csv")]
-        format: design::DesignFormat,
-        /// Write the rows to this file instead of standard output.
-        #[arg(long)]
-        out: Option<std::path::PathBuf>,
+        #[command(flatten)]
+        options: design::StudyArgs,
         /// Also draw v_w and v_c against the parameter, the self-stable band shaded (.svg, .png).
         #[arg(long)]
         plot: Option<std::path::PathBuf>,
-        /// Compute only part I of N (0-based, I/N); `whipple merge` joins them.
-        #[arg(long)]
-        shard: Option<String>,
     },
     /// Join the CSV shards of a map or study (`--shard I/N`) into the one-machine file.
     Merge {
@@ -377,49 +345,21 @@ fn main() -> ExitCode {
             x,
             y,
             quantity,
-            speed,
-            range,
-            double_root,
-            format,
-            out,
+            options,
             plot,
-            shard,
-        } => design::run(&design::DesignArgs {
-            bike: &bike,
-            x: &x,
-            y: Some(&y),
-            quantity,
-            speed,
-            range: range.as_deref(),
-            double_root,
-            format,
-            out: out.as_deref(),
-            plot: plot.as_deref(),
-            shard: shard.as_deref(),
-        }),
+        } => design::run(&options.args(&bike, &x, Some(&y), quantity, plot.as_deref())),
         Command::Study {
             bike,
             vary,
-            speed,
-            range,
-            double_root,
-            format,
-            out,
+            options,
             plot,
-            shard,
-        } => design::run(&design::DesignArgs {
-            bike: &bike,
-            x: &vary,
-            y: None,
-            quantity: design::Quantity::StableWidth,
-            speed,
-            range: range.as_deref(),
-            double_root,
-            format,
-            out: out.as_deref(),
-            plot: plot.as_deref(),
-            shard: shard.as_deref(),
-        }),
+        } => design::run(&options.args(
+            &bike,
+            &vary,
+            None,
+            design::Quantity::StableWidth,
+            plot.as_deref(),
+        )),
         Command::Merge {
             files,
             out,

@@ -116,7 +116,6 @@ struct Geometry {
     bar: P,
     grip: P,
     bottom_bracket: P,
-    seat_cluster: P,
     saddle: P,
     axis_ends: [P; 2],
 }
@@ -142,7 +141,6 @@ impl SideViewFigure {
             bar: p(v.bar),
             grip: p(v.grip),
             bottom_bracket: p(v.bottom_bracket),
-            seat_cluster: p(v.seat_cluster),
             saddle: p(v.saddle),
             axis_ends: v.steer_axis.map(p),
         }
@@ -276,13 +274,8 @@ impl SideViewFigure {
 
         // Frame tubes and fork.
         let frame = RGBColor(60, 80, 110).stroke_width(4);
-        for tube in [
-            vec![g.rear_hub, g.bottom_bracket, g.seat_cluster, g.rear_hub],
-            vec![g.seat_cluster, g.head_top],
-            vec![g.bottom_bracket, g.crown],
-            vec![g.seat_cluster, g.saddle],
-        ] {
-            line(tube, frame).or_draw(FIGURE)?;
+        for [a, b] in self.view.frame_tubes() {
+            line(vec![(a[0], a[1]), (b[0], b[1])], frame).or_draw(FIGURE)?;
         }
         line(
             vec![g.crown, g.head_top],

@@ -518,6 +518,13 @@ await section("degrees, precision, display names", async () => {
   check(options.includes("Schwinn Crown (JBike6 default)") && options.some((o) => /Meijaard/.test(o)), `presets under display names: ${options.slice(0, 4).join(" | ")}`);
   const head = await page.inputValue("[data-testid=param-head_angle]");
   check(Math.abs(Number(head) - 70.977782) < 1e-5 && head.length <= 10, `the head angle is typed in degrees: ${head}`);
+  // Units and meanings come from the library's parameter table (GET /api/parameters).
+  const table = await page.evaluate(async () => (await fetch("/api/parameters")).json());
+  const massInfo = table.jbike6.find((p) => p.key === "mrider");
+  const massTitle = await page.getByTestId("param-mrider").getAttribute("title");
+  check(massInfo && massTitle === massInfo.description, `the rider's mass is described as the library describes it: "${massTitle}"`);
+  const unit = await page.getByTestId("param-Irider(1)").evaluate((i) => i.closest(".row").querySelector(".unit").textContent);
+  check(unit === "kg m²", `the inertia's unit from the table, printed: "${unit}"`);
   await page.getByTestId("param-head_angle").fill("1.23879599");
   const hint = await waitForText("hint-head_angle", (t) => t.length > 0);
   check(/did you mean 70\.98°\?/.test(hint), `a value in radians: "${hint}"`);

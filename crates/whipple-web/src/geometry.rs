@@ -86,14 +86,7 @@ pub fn side_view(bike: &Bicycle, p: &BenchmarkParameters) -> SideView {
         steer_axis: v.steer_axis,
         fork: [v.front_hub, v.crown],
         head_tube: [v.crown, v.bar],
-        frame: vec![
-            [v.rear_hub, v.bottom_bracket],
-            [v.bottom_bracket, v.seat_cluster],
-            [v.seat_cluster, v.rear_hub],
-            [v.seat_cluster, v.head_top],
-            [v.bottom_bracket, v.crown],
-            [v.seat_cluster, v.saddle],
-        ],
+        frame: v.frame_tubes().to_vec(),
         handlebar: [v.bar, v.grip],
         bodies: v
             .bodies

@@ -130,6 +130,21 @@ pub struct SideView {
     pub centre_of_mass: Point,
 }
 
+impl SideView {
+    /// The stylized rear-frame tubes as segments (a drawing aid, not parameters): chain stay,
+    /// seat tube, seat stay, top tube, down tube and seat post.
+    pub fn frame_tubes(&self) -> [[Point; 2]; 6] {
+        [
+            [self.rear_hub, self.bottom_bracket],
+            [self.bottom_bracket, self.seat_cluster],
+            [self.seat_cluster, self.rear_hub],
+            [self.seat_cluster, self.head_top],
+            [self.bottom_bracket, self.crown],
+            [self.seat_cluster, self.saddle],
+        ]
+    }
+}
+
 /// Semi-axes of the uniform ellipsoid with in-plane principal moments `i1` (about the first
 /// axis) and `i2`, and lateral moment `i3`: a_k² = 5 (I_j + I_3 − I_k) / (2m).
 pub fn ellipse(mass: f64, i1: f64, i2: f64, i3: f64, angle: f64) -> Option<Ellipse> {

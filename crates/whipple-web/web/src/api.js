@@ -31,6 +31,8 @@ async function call(method, path, body) {
 
 export const api = {
   presets: () => call("GET", "/api/presets"),
+  /** The library's parameter table: {benchmark: [...], jbike6: [...]} with units and meanings. */
+  parameters: () => call("GET", "/api/parameters"),
   preset: (name) => call("GET", `/api/presets/${encodeURIComponent(name)}`),
   validate: (bike) => call("POST", "/api/bike/validate", { bike }),
   eigen: (bike, speeds) => call("POST", "/api/eigen", { bike, speeds }),

@@ -72,7 +72,9 @@ export class Editor {
       // A read-only (converted) value is shown to 6 digits; the file keeps them all.
       const shown = spec.angle ? Number((value * DEG).toPrecision(8)) : value;
       input.value = readOnly && Number.isFinite(shown) ? String(Number(shown.toPrecision(6))) : inputText(shown);
-      input.title = spec.triple ? `${cell.label}: ${spec.hint}` : spec.hint;
+      // The library's whole description as the tooltip (the row's hint is its first clause).
+      const description = cell.description ?? spec.hint;
+      input.title = spec.triple ? `${cell.label}: ${description}` : description;
       input.dataset.what = `${group} ${spec.label}${spec.triple ? ` ${cell.label}` : ""}`;
       input.dataset.last = input.value;
       if (!readOnly) {

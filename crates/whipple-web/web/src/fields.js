@@ -1,7 +1,9 @@
-// The parameter forms: every number of the JBike6 and benchmark layouts, with the name the
-// library uses in its messages (`lib`), a label, a unit and a one-line meaning. Angles are
-// stored in radians (the files' unit) and typed in degrees (`angle: true`); `plausible` is the
-// range in degrees where a value is expected, so that one typed in radians can be recognised.
+// The parameter forms' layout: every number of the JBike6 and benchmark layouts in the order and
+// groups the page shows them, with the name the library uses in its messages and files (`lib`)
+// and a short label. What each number means and its unit come from the library's parameter
+// table (GET /api/parameters, [applyParameterTable]), their one home. Angles are stored in
+// radians (the files' unit) and typed in degrees (`angle: true`); `plausible` is the range in
+// degrees where a value is expected, so that one typed in radians can be recognised.
 
 const I3 = ["I11", "I22", "Izz"];
 
@@ -9,10 +11,10 @@ function wheel(key, lib, title) {
   return {
     title,
     rows: [
-      { path: [key, "D"], lib: `D${lib}`, label: "D", unit: "m", hint: "diameter" },
-      { path: [key, "m"], lib: `m${lib}`, label: "m", unit: "kg", hint: "mass" },
-      { triple: [0, 1, 2].map((k) => ({ path: [key, "I", k], lib: `I${lib}(${k + 1})`, label: I3[k] })), label: "I", unit: "kg m²", hint: "principal moments: two diametral, then spin" },
-      { path: [key, "alpha"], lib: `alphaI${lib}`, label: "α", unit: "°", hint: "angle of axis 1 from x", angle: true },
+      { path: [key, "D"], lib: `D${lib}`, label: "D" },
+      { path: [key, "m"], lib: `m${lib}`, label: "m" },
+      { triple: [0, 1, 2].map((k) => ({ path: [key, "I", k], lib: `I${lib}(${k + 1})`, label: I3[k] })), label: "I" },
+      { path: [key, "alpha"], lib: `alphaI${lib}`, label: "α", angle: true },
     ],
   };
 }
@@ -21,11 +23,11 @@ function rearBody(key, title) {
   return {
     title,
     rows: [
-      { path: [key, "m"], lib: `m${key}`, label: "m", unit: "kg", hint: "mass" },
-      { path: [key, "xcm"], lib: `xcm${key}`, label: "x", unit: "m", hint: "centre of mass, forward of the rear contact" },
-      { path: [key, "ycm"], lib: `ycm${key}`, label: "y", unit: "m", hint: "centre of mass, above the ground" },
-      { triple: [0, 1, 2].map((k) => ({ path: [key, "I", k], lib: `I${key}(${k + 1})`, label: I3[k] })), label: "I", unit: "kg m²", hint: "principal moments about the centre of mass" },
-      { path: [key, "alpha"], lib: `alphaI${key}`, label: "α", unit: "°", hint: "angle of axis 1 from x, counter-clockwise", angle: true },
+      { path: [key, "m"], lib: `m${key}`, label: "m" },
+      { path: [key, "xcm"], lib: `xcm${key}`, label: "x" },
+      { path: [key, "ycm"], lib: `ycm${key}`, label: "y" },
+      { triple: [0, 1, 2].map((k) => ({ path: [key, "I", k], lib: `I${key}(${k + 1})`, label: I3[k] })), label: "I" },
+      { path: [key, "alpha"], lib: `alphaI${key}`, label: "α", angle: true },
     ],
   };
 }
@@ -34,11 +36,11 @@ function frontBody(key, title) {
   return {
     title,
     rows: [
-      { path: [key, "m"], lib: `m${key}`, label: "m", unit: "kg", hint: "mass" },
-      { path: [key, "ucm"], lib: `ucm${key}`, label: "u", unit: "m", hint: "centre of mass, perpendicular to the steer axis (forward)" },
-      { path: [key, "vcm"], lib: `vcm${key}`, label: "v", unit: "m", hint: "centre of mass, up the steer axis from the ground" },
-      { triple: [0, 1, 2].map((k) => ({ path: [key, "I", k], lib: `I${key}(${k + 1})`, label: I3[k] })), label: "I", unit: "kg m²", hint: "principal moments about the centre of mass" },
-      { path: [key, "alpha"], lib: `alphaI${key}`, label: "α", unit: "°", hint: "angle of axis 1 from x, counter-clockwise", angle: true },
+      { path: [key, "m"], lib: `m${key}`, label: "m" },
+      { path: [key, "ucm"], lib: `ucm${key}`, label: "u" },
+      { path: [key, "vcm"], lib: `vcm${key}`, label: "v" },
+      { triple: [0, 1, 2].map((k) => ({ path: [key, "I", k], lib: `I${key}(${k + 1})`, label: I3[k] })), label: "I" },
+      { path: [key, "alpha"], lib: `alphaI${key}`, label: "α", angle: true },
     ],
   };
 }
@@ -48,10 +50,10 @@ export const JBIKE6_GROUPS = [
   {
     title: "Geometry",
     rows: [
-      { path: ["wheelbase"], lib: "wheelbase", label: "wheelbase", unit: "m", hint: "horizontal distance between the wheel contacts" },
-      { path: ["head_angle"], lib: "head_angle", label: "head angle", unit: "°", hint: "steer axis angle from the horizontal", angle: true, plausible: [45, 90] },
-      { path: ["trail"], lib: "trail", label: "trail", unit: "m", hint: "front contact behind the steer axis' ground point" },
-      { path: ["gravity"], lib: "gravity", label: "gravity", unit: "m/s²", hint: "gravitational acceleration" },
+      { path: ["wheelbase"], lib: "wheelbase", label: "wheelbase" },
+      { path: ["head_angle"], lib: "head_angle", label: "head angle", angle: true, plausible: [45, 90] },
+      { path: ["trail"], lib: "trail", label: "trail" },
+      { path: ["gravity"], lib: "gravity", label: "gravity" },
     ],
   },
   wheel("rear_wheel", "rearwheel", "Rear wheel"),
@@ -63,8 +65,8 @@ export const JBIKE6_GROUPS = [
   frontBody("basket", "Front basket"),
 ];
 
-function b(key, label, unit, hint, extra = {}) {
-  return { path: [key], lib: key, label, unit, hint, ...extra };
+function b(key, label, extra = {}) {
+  return { path: [key], lib: key, label, ...extra };
 }
 
 /** Meijaard et al. 2007, Table 1: x forward, y right, z down from the rear contact. */
@@ -72,45 +74,83 @@ export const BENCHMARK_GROUPS = [
   {
     title: "Geometry",
     rows: [
-      b("w", "w", "m", "wheelbase"),
-      b("c", "c", "m", "trail"),
-      b("lam", "λ", "°", "steer axis tilt from the vertical", { angle: true, plausible: [0, 45] }),
-      b("g", "g", "m/s²", "gravitational acceleration"),
+      b("w", "w"),
+      b("c", "c"),
+      b("lam", "λ", { angle: true, plausible: [0, 45] }),
+      b("g", "g"),
     ],
   },
   {
     title: "Rear wheel R",
-    rows: [b("rR", "r_R", "m", "radius"), b("mR", "m_R", "kg", "mass"), b("IRxx", "I_Rxx", "kg m²", "diametral moment"), b("IRyy", "I_Ryy", "kg m²", "spin moment")],
+    rows: [b("rR", "r_R"), b("mR", "m_R"), b("IRxx", "I_Rxx"), b("IRyy", "I_Ryy")],
   },
   {
     title: "Rear body and frame B",
     rows: [
-      b("xB", "x_B", "m", "centre of mass, forward"),
-      b("zB", "z_B", "m", "centre of mass, down (negative: above the ground)"),
-      b("mB", "m_B", "kg", "mass"),
-      b("IBxx", "I_Bxx", "kg m²", "moment about x"),
-      b("IByy", "I_Byy", "kg m²", "moment about y (pitch)"),
-      b("IBzz", "I_Bzz", "kg m²", "moment about z (yaw)"),
-      b("IBxz", "I_Bxz", "kg m²", "product of inertia"),
+      b("xB", "x_B"),
+      b("zB", "z_B"),
+      b("mB", "m_B"),
+      b("IBxx", "I_Bxx"),
+      b("IByy", "I_Byy"),
+      b("IBzz", "I_Bzz"),
+      b("IBxz", "I_Bxz"),
     ],
   },
   {
     title: "Front frame H",
     rows: [
-      b("xH", "x_H", "m", "centre of mass, forward"),
-      b("zH", "z_H", "m", "centre of mass, down (negative: above the ground)"),
-      b("mH", "m_H", "kg", "mass"),
-      b("IHxx", "I_Hxx", "kg m²", "moment about x"),
-      b("IHyy", "I_Hyy", "kg m²", "moment about y"),
-      b("IHzz", "I_Hzz", "kg m²", "moment about z"),
-      b("IHxz", "I_Hxz", "kg m²", "product of inertia"),
+      b("xH", "x_H"),
+      b("zH", "z_H"),
+      b("mH", "m_H"),
+      b("IHxx", "I_Hxx"),
+      b("IHyy", "I_Hyy"),
+      b("IHzz", "I_Hzz"),
+      b("IHxz", "I_Hxz"),
     ],
   },
   {
     title: "Front wheel F",
-    rows: [b("rF", "r_F", "m", "radius"), b("mF", "m_F", "kg", "mass"), b("IFxx", "I_Fxx", "kg m²", "diametral moment"), b("IFyy", "I_Fyy", "kg m²", "spin moment")],
+    rows: [b("rF", "r_F"), b("mF", "m_F"), b("IFxx", "I_Fxx"), b("IFyy", "I_Fyy")],
   },
 ];
+
+/** A unit as the page prints it: `kg m^2` → `kg m²`. */
+function prettyUnit(unit) {
+  return unit.replace(/\^2/g, "²").replace(/\^3/g, "³");
+}
+
+/** A description's first clause without its asides: what a hint or a message calls it. */
+function shortDescription(text) {
+  return text.replace(/\s*\([^)]*\)/g, "").split(";")[0].trim();
+}
+
+/**
+ * Fills every row's `unit` and `hint` (and each cell's `description`) from the library's
+ * parameter table, the body of GET /api/parameters ({benchmark: [...], jbike6: [...]}, each entry
+ * {key, unit, description, ...}). Returns the `lib` names the table does not know (none, unless
+ * the page and the server disagree).
+ */
+export function applyParameterTable(table) {
+  const byKey = new Map([...(table.benchmark ?? []), ...(table.jbike6 ?? [])].map((p) => [p.key, p]));
+  const unknown = [];
+  for (const group of [...JBIKE6_GROUPS, ...BENCHMARK_GROUPS]) {
+    for (const row of group.rows) {
+      const cells = row.triple ?? [row];
+      const infos = cells.map((c) => byKey.get(c.lib));
+      cells.forEach((c, k) => {
+        if (infos[k]) c.description = infos[k].description;
+        else unknown.push(c.lib);
+      });
+      const first = infos.find(Boolean);
+      if (!first) continue;
+      row.unit = row.angle ? "°" : prettyUnit(first.unit);
+      row.hint = row.triple
+        ? infos.filter(Boolean).map((i) => shortDescription(i.description)).join("; ")
+        : shortDescription(first.description);
+    }
+  }
+  return unknown;
+}
 
 export function getPath(obj, path) {
   return path.reduce((o, k) => (o == null ? undefined : o[k]), obj);

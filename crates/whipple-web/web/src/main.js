@@ -8,7 +8,7 @@ import "./style.css";
 import { api } from "./api.js";
 import { listDesigns, saveDesign, deleteDesign, findDesign } from "./store.js";
 import { Editor, parseNumber } from "./editor.js";
-import { setPath, JBIKE6_SOURCES, JBIKE6_GROUPS, BENCHMARK_GROUPS, PRESET_TITLES } from "./fields.js";
+import { setPath, applyParameterTable, JBIKE6_SOURCES, JBIKE6_GROUPS, BENCHMARK_GROUPS, PRESET_TITLES } from "./fields.js";
 import { drawSideView } from "./sideview.js";
 import { EigenPlot, LocusPlot, COMPARE_COLOURS } from "./plot.js";
 import { drawCritical } from "./critical.js";
@@ -716,7 +716,10 @@ new ResizeObserver(() => {
 
 (async () => {
   try {
-    state.presets = await api.presets();
+    const [presets, table] = await Promise.all([api.presets(), api.parameters()]);
+    state.presets = presets;
+    const unknown = applyParameterTable(table);
+    if (unknown.length) console.warn(`the server's parameter table lacks ${unknown.join(", ")}`);
   } catch (e) {
     say(e.message, "error");
     return;

@@ -19,7 +19,9 @@ pub type Complex64 = Complex<f64>;
 /// linearly, where the accuracy is limited by the problem itself).
 const MAX_POLISH_ITERATIONS: usize = 60;
 
-fn horner(a: &[f64; 5], z: Complex64) -> (Complex64, Complex64) {
+/// p(z) and p'(z) of the quartic with coefficients `a` (lowest power first), by Horner's
+/// scheme.
+pub(crate) fn horner(a: &[f64; 5], z: Complex64) -> (Complex64, Complex64) {
     // p and p' together, highest power first.
     let mut p = Complex64::new(a[4], 0.0);
     let mut dp = Complex64::new(0.0, 0.0);

@@ -27,7 +27,7 @@ use nalgebra::Matrix2;
 use num_dual::Dual64;
 use serde::Serialize;
 
-use super::eigen::{eigenvalues, Complex64};
+use super::eigen::{eigenvalues, horner, Complex64};
 use super::modes::Mode;
 use super::stability::{critical_speeds, CriticalSpeeds};
 use super::sweep::{eigen_sweep, speed_grid};
@@ -77,17 +77,6 @@ fn benchmark_of(form: Form, values: &[Dual64]) -> Result<BenchmarkParameters<Dua
         Form::Jbike6 => Jbike6Parameters::from_array(values.try_into().map_err(|_| bad())?)
             .to_benchmark_unchecked(),
     })
-}
-
-/// p(λ) and p'(λ) at a complex point.
-fn horner(a: &[f64; 5], z: Complex64) -> (Complex64, Complex64) {
-    let mut p = Complex64::new(a[4], 0.0);
-    let mut dp = Complex64::new(0.0, 0.0);
-    for k in (0..4).rev() {
-        dp = dp * z + p;
-        p = p * z + a[k];
-    }
-    (p, dp)
 }
 
 /// Which polynomial in v a critical speed is a root of.
