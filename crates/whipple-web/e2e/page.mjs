@@ -542,6 +542,82 @@ await section("degrees, precision, display names", async () => {
   check(shown.length === 0, `the converted benchmark form shows sensible digits (${shown.slice(0, 3).join(", ")})`);
 });
 
+await section("a measured bicycle's warning beside its field (BicycleParameters' Browser)", async () => {
+  await open("?bike=preset:benchmark");
+  // BicycleParameters' measured Browser: its frame's principal moments break the triangle
+  // inequality by 2.3 %, which a measurement may do: accepted with a warning on I_Byy.
+  const data = fileURLToPath(new URL("../../whipple/tests/data/bicycleparameters/BrowserBenchmark.txt", import.meta.url));
+  await page.setInputFiles("#file-input", data);
+  const warning = await waitForText("warning-IByy", (t) => t.length > 0, 15_000);
+  check(/triangle inequality/.test(warning) && /2\.332 %/.test(warning), `the warning stands beside I_Byy: "${warning.slice(0, 120)}…"`);
+  const others = await page.$$eval(".row-warning", (ws) => ws.filter((w) => w.textContent).length);
+  check(others === 1, `and nowhere else (${others} field)`);
+  check(/\d/.test(await text("capsize-speed")), `the bicycle is computed all the same: v_c ${await text("capsize-speed")}`);
+});
+
+await section("sensitivity: exact elasticities as a tornado and a table", async () => {
+  await open("?bike=preset:benchmark&tab=sens");
+  await page.getByTestId("sens-tornado").waitFor({ timeout: 15_000 });
+  const bars = await page.$$eval("[data-testid=sens-tornado] rect[data-key]", (rs) => rs.map((r) => r.dataset.key));
+  // v_w scales as sqrt(g) (dimensional analysis): its elasticity to g is exactly 1/2, the largest.
+  const first = await page.$eval("[data-testid=sens-table] tbody tr", (r) => [r.dataset.key, r.cells[5].textContent]);
+  check(bars[0] === "g" && first[0] === "g" && first[1] === "0.5", `the weave speed moves most with g, elasticity 1/2: ${bars.slice(0, 3).join(", ")}; ${first.join(" ")}`);
+  const rows = await page.locator("[data-testid=sens-table] tbody tr").count();
+  check(rows === 26 && bars.length === 12, `every benchmark parameter in the table (${rows}), the twelve largest as bars (${bars.length})`);
+  const trail = await page.$eval("[data-testid=sens-table] tr[data-key=c]", (r) => r.cells[3].textContent);
+  check(trail === "11.48", `dv_w/dc = 11.48 as the CLI prints it: ${trail}`);
+  await page.selectOption("[data-testid=sens-quantity]", "capsize");
+  await waitFor("the capsize tornado", async () => (await page.$eval("[data-testid=sens-tornado]", (e) => e.getAttribute("aria-label"))).includes("capsize"));
+  check(page.url().includes("tab=sens"), `the tab is in the link: ${page.url()}`);
+  await page.getByTestId("param-c").fill("0.1");
+  const edited = await waitForText("sens-meta", (t) => /v_w \d/.test(t) && !/v_w 4\.292/.test(t));
+  check(/v_w 4\.507/.test(edited), `an edit (trail 0.1 m) is followed (4.507 m/s, as \`whipple speeds\` gives): ${edited}`);
+});
+
+await section("design map: a certified map over two parameters, read out under the cursor", async () => {
+  await open("?bike=preset:benchmark&tab=map");
+  const meta = await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
+  check(/51 × 51 designs \(2601 computed\)/.test(meta), `the default map: ${meta}`);
+  // The base design (trail 0.08 m, head angle 72°) sits on the grid: cell (26, 24).
+  const box = await page.getByTestId("map-canvas").boundingBox();
+  const area = JSON.parse(await page.getByTestId("map-canvas").getAttribute("data-area"));
+  const at = (ix, iy) => [box.x + area.x + ((ix + 0.5) / 51) * area.w, box.y + area.y + (1 - (iy + 0.5) / 51) * area.h];
+  await page.mouse.move(...at(26, 24));
+  const readout = await waitForText("map-readout", (t) => t.length > 0);
+  check(/trail = 0\.08, head_angle_deg = 72: 1\.732 m\/s/.test(readout), `the benchmark's own cell: its stable width 1.732 m/s (6.024 − 4.292): "${readout}"`);
+  await page.selectOption("[data-testid=map-quantity]", "v_w");
+  const [hx, hy] = at(26, 24);
+  await page.mouse.move(hx + 1, hy);
+  check(/4\.292 m\/s/.test(await waitForText("map-readout", (t) => /4\.29|none/.test(t))), `the same cell's weave speed: ${await text("map-readout")}`);
+  check(/map=/.test(page.url()) && /tab=map/.test(page.url()), `the map's inputs are in the link: ${page.url()}`);
+  // A click loads that cell's design into the editor: trail 0.1 m (ix 30), head angle 70° (iy 20).
+  await page.mouse.click(...at(30, 20));
+  await waitFor("the clicked design in the editor", async () => (await page.inputValue("[data-testid=param-c]")) === "0.1");
+  const lam = await page.inputValue("[data-testid=param-lam]");
+  check(Math.abs(Number(lam) - 20) < 1e-9, `the steer axis tilt follows the head angle: λ = ${lam}° (90° − 70°)`);
+  await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
+  await page.mouse.move(...at(30, 20));
+  const own = await waitForText("map-readout", (t) => /trail = 0\.1,/.test(t));
+  check(/v_w|m\/s/.test(own), `the map follows the loaded design: ${own}`);
+  await page.getByTestId("map-x").fill("trail=0:0.2");
+  await page.getByTestId("map-run").click();
+  const message = await waitForText("map-message", (t) => t.length > 0);
+  check(/x|trail/.test(message) && (await page.getByTestId("map-x").evaluate((i) => i.classList.contains("invalid"))), `a malformed axis is refused, naming it: "${message}"`);
+  // With y empty: the one-parameter study, v_w and v_c against trail.
+  await open("?bike=preset:benchmark&tab=map");
+  await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
+  await page.getByTestId("map-x").fill("trail=0:0.2:41");
+  await page.getByTestId("map-y").fill("");
+  await page.getByTestId("map-run").click();
+  const studyMeta = await waitForText("map-meta", (t) => /against trail, 41 designs/.test(t), 20_000);
+  check(/41 computed/.test(studyMeta), `the study: ${studyMeta}`);
+  const sbox = await page.getByTestId("map-canvas").boundingBox();
+  const sarea = JSON.parse(await page.getByTestId("map-canvas").getAttribute("data-area"));
+  await page.mouse.move(sbox.x + sarea.x + (16 / 40) * sarea.w, sbox.y + sarea.y + sarea.h / 2);
+  const studied = await waitForText("map-readout", (t) => /trail = 0\.08:/.test(t));
+  check(/v_w 4\.292 m\/s, v_c 6\.024 m\/s; self-stable from 4\.292 m\/s to 6\.024 m\/s/.test(studied), `the benchmark's own trail in the study: "${studied}"`);
+});
+
 await section("accessibility: axe-core finds nothing; headings", async () => {
   await open("?bike=preset:schwinn-crown");
   await page.evaluate(axeSource());
@@ -561,6 +637,12 @@ await section("accessibility: axe-core finds nothing; headings", async () => {
   await page.getByTestId("tab-modes").click();
   await page.waitForTimeout(800);
   await run("modes tab");
+  await page.getByTestId("tab-sens").click();
+  await page.getByTestId("sens-tornado").waitFor({ timeout: 15_000 });
+  await run("sensitivity tab");
+  await page.getByTestId("tab-map").click();
+  await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
+  await run("design map tab");
 });
 
 if (errors.length) failures.push(`page errors: ${errors.join("; ")}`);

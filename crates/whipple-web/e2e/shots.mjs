@@ -78,6 +78,16 @@ try {
     await page.getByTestId("param-trail").fill("-0.05");
     await page.waitForTimeout(900);
     await shot("12-negative-trail");
+    await ready("?bike=preset:browser-jason&tab=sens");
+    await page.getByTestId("sens-tornado").waitFor({ timeout: 15_000 });
+    await shot("13-sensitivity");
+    await ready("?bike=preset:schwinn-crown&tab=map");
+    await page.waitForFunction(() => /designs/.test(document.querySelector("[data-testid=map-meta]")?.textContent ?? ""), null, { timeout: 20_000 });
+    const mbox = await page.getByTestId("map-canvas").boundingBox();
+    await page.mouse.move(mbox.x + mbox.width * 0.6, mbox.y + mbox.height * 0.45);
+    await page.waitForTimeout(200);
+    await shot("14-design-map");
+    await page.mouse.move(1, 1);
   }
   writeFileSync(join(out, "done"), "");
 } finally {

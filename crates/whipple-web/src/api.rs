@@ -69,6 +69,7 @@ pub fn app(limits: Limits) -> Router {
         .route("/api/modes", post(modes))
         .route("/api/linear/response", post(linear_response))
         .route("/api/map", post(crate::design::map))
+        .route("/api/map/design", post(crate::design::design_at))
         .route("/api/study", post(crate::design::study))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
@@ -190,7 +191,7 @@ pub(crate) fn bicycle(value: &Value) -> Result<Bicycle, ApiError> {
 }
 
 /// A bicycle in the files' JSON layout.
-fn bicycle_json(bike: &Bicycle) -> Result<Value, ApiError> {
+pub(crate) fn bicycle_json(bike: &Bicycle) -> Result<Value, ApiError> {
     let text = io::write(bike, Format::Json)?;
     serde_json::from_str(&text).map_err(|e| ApiError::internal(e.to_string()))
 }

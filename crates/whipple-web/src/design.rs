@@ -11,7 +11,7 @@ use serde_json::Value;
 use whipple::analysis::design::{Axis, DesignStatus, Shard, Study, StudyOptions};
 use whipple::analysis::modes::Mode;
 
-use crate::api::{bicycle, compute, json_body, AppState, SpeedRange};
+use crate::api::{bicycle, bicycle_json, compute, json_body, AppState, SpeedRange};
 use crate::error::ApiError;
 
 /// A map or study request: axes as `NAME=START:STOP:COUNT`, as in the CLI.
@@ -57,6 +57,40 @@ pub(crate) struct DesignResponse {
     max_real_mode: Vec<Option<Mode>>,
 }
 
+/// An axis of the request, an error in it naming its field (`x` or `y`).
+fn axis(spec: &str, bike: &whipple::Bicycle, field: &str) -> Result<Axis, ApiError> {
+    Axis::parse(spec, bike).map_err(|e| ApiError::from(e).in_field(field))
+}
+
+/// The body of `POST /api/map/design`: a map's or study's axes and one design's row-major
+/// index (`iy · nx + ix`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct DesignAtRequest {
+    bike: Value,
+    x: String,
+    #[serde(default)]
+    y: Option<String>,
+    index: u64,
+}
+
+/// One design of a map or study as a bicycle, in the parameter files' JSON layout (what the
+/// page loads into its editor when a cell is clicked).
+pub(crate) async fn design_at(
+    body: Result<Bytes, BytesRejection>,
+) -> Result<Json<Value>, ApiError> {
+    let request: DesignAtRequest = json_body(body)?;
+    let bike = bicycle(&request.bike)?;
+    let x = axis(&request.x, &bike, "x")?;
+    let y = match &request.y {
+        Some(spec) => Some(axis(spec, &bike, "y")?),
+        None => None,
+    };
+    let study = Study::new(bike, x, y, StudyOptions::default())?;
+    let design = study.bicycle_at(request.index)?;
+    Ok(Json(serde_json::json!({ "bike": bicycle_json(&design)? })))
+}
+
 async fn run(
     state: AppState,
     body: Result<Bytes, BytesRejection>,
@@ -76,9 +110,9 @@ async fn run(
         )
         .at("y", "NAME=START:STOP:COUNT"));
     }
-    let x = Axis::parse(&request.x, &bike)?;
+    let x = axis(&request.x, &bike, "x")?;
     let y = match &request.y {
-        Some(spec) => Some(Axis::parse(spec, &bike)?),
+        Some(spec) => Some(axis(spec, &bike, "y")?),
         None => None,
     };
     let (lo, hi) = SpeedRange::bounds(request.range);

@@ -66,6 +66,12 @@ impl ApiError {
         self
     }
 
+    /// The same error, naming the request's field it came from (the rule kept).
+    pub(crate) fn in_field(mut self, field: impl Into<String>) -> Self {
+        self.body.field = Some(field.into());
+        self
+    }
+
     pub(crate) fn internal(message: impl Into<String>) -> Self {
         ApiError::new(StatusCode::INTERNAL_SERVER_ERROR, "internal", message)
     }

@@ -577,6 +577,32 @@ async fn simulation_runs_and_sends_frames() -> TestResult {
     Ok(())
 }
 
+/// A map's cell as a bicycle: the base with both axes' parameters set (what the page loads
+/// when a cell is clicked); an index past the map is refused naming `index`.
+#[tokio::test]
+async fn a_map_cell_is_a_bicycle() -> TestResult {
+    let app = app(Limits::default());
+    let request = |index: u64| -> Result<Value, Box<dyn std::error::Error>> {
+        Ok(json!({
+            "bike": preset_json("benchmark")?,
+            "x": "trail=-0.05:0.2:51",
+            "y": "head_angle_deg=60:85:51",
+            "index": index,
+        }))
+    };
+    // ix = 30 (trail 0.1 m), iy = 20 (head angle 70°).
+    let (status, body) = post(&app, "/api/map/design", &request(20 * 51 + 30)?).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    let b = &body["bike"]["benchmark"];
+    assert!(approx(&b["c"], 0.1, 1e-12), "{b}");
+    assert!(approx(&b["lam"], 20f64.to_radians(), 1e-12), "{b}");
+    assert!(approx(&b["w"], 1.02, 0.0), "the other parameters stay: {b}");
+    let (status, body) = post(&app, "/api/map/design", &request(51 * 51)?).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    assert_eq!(body["error"]["field"], "index", "{body}");
+    Ok(())
+}
+
 /// 30 s at 40 m/s ends 1.2 km from the start: the run completes (with an absolute position
 /// tolerance it failed there, where round-off of the coordinates exceeds 1e-13 m).
 #[tokio::test]

@@ -375,6 +375,34 @@ fn shards_reassemble_the_whole_study() -> Result<()> {
     Ok(())
 }
 
+/// A study's design as a bicycle (what the page loads when a map cell is clicked): the same
+/// numbers the study computed with, for a JBike6-form bicycle too; an index past the study is
+/// refused.
+#[test]
+fn a_designs_bicycle_is_the_one_computed() -> Result<()> {
+    let bike: Bicycle = presets::find("schwinn-crown")?.bicycle();
+    let x = Axis::parse("trail=0:0.2:23", &bike)?;
+    let y = Axis::parse("ycmrider=0.8:1.4:7", &bike)?;
+    let study = Study::new(bike, x, Some(y), StudyOptions::default())?;
+    let index = 5 * 23 + 9;
+    let design = study.bicycle_at(index)?;
+    let Description::Jbike6(j) = &design.description else {
+        panic!("the Crown stays in the JBike6 form");
+    };
+    assert_abs_diff_eq!(j.trail, 9.0 * 0.2 / 22.0, epsilon = 1e-15);
+    assert_abs_diff_eq!(j.rider.ycm, 0.8 + 5.0 * 0.1, epsilon = 1e-15);
+    assert_eq!(design.name.as_deref(), Some("schwinn-crown"));
+    let row = study.design(index);
+    let speeds =
+        stability::critical_speeds(&Canonical::new(&design.benchmark()?)?, 0.0, f64::INFINITY)?;
+    assert_eq!(row.quantities.weave_speed, speeds.weave_speed);
+    assert!(matches!(
+        study.bicycle_at(study.len()),
+        Err(Error::InvalidArgument { what: "index", .. })
+    ));
+    Ok(())
+}
+
 /// A design that breaks a rule is marked with the rule and never stops the study.
 #[test]
 fn invalid_designs_are_marked_not_computed() -> Result<()> {

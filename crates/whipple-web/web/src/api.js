@@ -40,6 +40,14 @@ export const api = {
   parse: (text, format) => call("POST", "/api/bike/parse", { text, format }),
   /** `request`: {bike, speed, lean_deg, steer_deg, lean_rate, steer_rate, duration, ...}. */
   simulate: (request) => call("POST", "/api/simulate", request),
+  /** A design map: `request` {bike, x, y, speed?} with axes NAME=START:STOP:COUNT. */
+  map: (request) => call("POST", "/api/map", request),
+  /** A one-parameter study: `request` {bike, x, speed?}, as /api/map without y. */
+  study: (request) => call("POST", "/api/study", request),
+  /** One design of a map, `request` {bike, x, y, index}: {bike} in the files' JSON layout. */
+  mapDesign: (request) => call("POST", "/api/map/design", request),
+  /** Exact sensitivities of v_w, v_c and the stable width to every parameter; σ of the speeds. */
+  sensitivity: (bike) => call("POST", "/api/sensitivity", { bike }),
   /** The eigenmodes at one speed: {modes: [{mode, eigenvalue: [re, im], eigenvector}]}. */
   modes: (bike, speed) => call("POST", "/api/modes", { bike, speed }),
   /** The linear model's free response: `request` as /api/simulate's initial numbers. */

@@ -53,6 +53,7 @@ export class Editor {
     const boxes = html("div", { class: "inputs" });
     const error = html("div", { class: "row-error", "data-testid": `error-${cells[0].lib}`, role: "status" });
     const hint = html("div", { class: "row-hint", "data-testid": `hint-${cells[0].lib}` });
+    const warning = html("div", { class: "row-warning", "data-testid": `warning-${cells[0].lib}`, role: "status" });
     for (const cell of cells) {
       const value = getPath(values, cell.path);
       const input = html("input", {
@@ -98,7 +99,7 @@ export class Editor {
     row.append(boxes);
     row.append(html("span", { class: "unit", text: spec.unit }));
     if (spec.angle) row.append(html("span", { class: "deg", text: Number.isFinite(getPath(values, spec.path)) ? `${num(getPath(values, spec.path), 5)} rad` : "" }));
-    row.append(error, hint);
+    row.append(error, hint, warning);
     return row;
   }
 
@@ -175,6 +176,29 @@ export class Editor {
     }
     const first = this.inputs.find((i) => i.classList.contains("server"));
     first?.closest("details")?.setAttribute("open", "");
+    return count;
+  }
+
+  /**
+   * Shows the library's warnings (notices {severity, field, message}: the bicycle is accepted)
+   * beside the fields they name, benchmark names translated through `sources` when the form
+   * shown is JBike6's; returns how many fields carry one.
+   */
+  warn(notices, { sources = null } = {}) {
+    for (const w of this.container.querySelectorAll(".row-warning")) w.textContent = "";
+    let count = 0;
+    for (const notice of notices ?? []) {
+      if (!notice?.field) continue;
+      let names = [notice.field];
+      const matches = (lib, n) => lib === n || (lib.startsWith(n) && /^[(xyz]/.test(lib.slice(n.length)));
+      if (sources && !this.inputs.some((i) => matches(i.dataset.lib, notice.field))) names = sources[notice.field] ?? [];
+      const rows = new Set(this.inputs.filter((i) => names.some((n) => matches(i.dataset.lib, n))).map((i) => i.closest(".row")));
+      for (const row of rows) {
+        const box = row.querySelector(".row-warning");
+        box.textContent = box.textContent ? `${box.textContent} ${notice.message}` : notice.message;
+        count += 1;
+      }
+    }
     return count;
   }
 

@@ -14,6 +14,8 @@ import { EigenPlot, LocusPlot, COMPARE_COLOURS } from "./plot.js";
 import { drawCritical } from "./critical.js";
 import { SimPanel } from "./sim.js";
 import { ModesPanel } from "./modes.js";
+import { SensitivityPanel } from "./sensitivity.js";
+import { MapPanel } from "./map.js";
 import { readUrl, writeUrl, diffEdits } from "./url.js";
 import { html, slug, download, svgText, svgPng, num } from "./format.js";
 
@@ -22,7 +24,7 @@ const clone = (x) => JSON.parse(JSON.stringify(x));
 const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
 const DEFAULT_PRESET = "schwinn-crown";
 const MAX_COMPARED = 5;
-const VIEWS = ["eigen", "locus", "modes", "sim"];
+const VIEWS = ["eigen", "locus", "modes", "sens", "map", "sim"];
 
 const state = {
   presets: [],
@@ -63,6 +65,22 @@ const modes = new ModesPanel({
     sim.setInputs({ speed: num(initial.speed, 6), lean_deg: num(initial.lean_deg, 4), steer_deg: num(initial.steer_deg, 4), lean_rate: num(initial.lean_rate, 4), steer_rate: num(initial.steer_rate, 4), duration: num(initial.duration, 3), steer_torque: "0", lean_torque: "0" });
     showView("sim");
     sim.run();
+  },
+});
+const sensitivity = new SensitivityPanel({ bike: () => clone(state.bike), label: () => currentLabel(), onChange: () => remember(true) });
+const designMap = new MapPanel({
+  bike: () => clone(state.bike),
+  label: () => currentLabel(),
+  onChange: () => remember(true),
+  // A clicked cell becomes the edited bicycle (unsaved edits of the one shown, kept in the link).
+  onLoad: (bike, where) => {
+    bike.name = state.bike.name;
+    state.bike = bike;
+    renderEditor();
+    updateModified();
+    schedule();
+    remember(true);
+    say(`Loaded the design at ${where} into the editor (not saved).`, "info");
   },
 });
 let sideSvg = null;
@@ -225,6 +243,12 @@ function renderEditor() {
     note.querySelector("button").addEventListener("click", convertToBenchmark);
     editor.render("benchmark", state.validated?.benchmark ?? {}, { readOnly: true, note });
   }
+  showWarnings();
+}
+
+/** The last validation's warnings beside their fields (a new rendering of the form keeps them). */
+function showWarnings() {
+  editor.warn(state.validated?.warnings?.filter((w) => w.severity === "warning"), { sources: state.form === "jbike6" ? JBIKE6_SOURCES : null });
 }
 
 function convertToBenchmark() {
@@ -334,6 +358,7 @@ async function recompute() {
     const error = validated.reason;
     state.valid = false;
     state.lastError = error;
+    editor.warn([]);
     const flagged = flagError(error);
     if (flagged.translated) {
       const names = flagged.names.map(describeField).join(", ");
@@ -350,6 +375,8 @@ async function recompute() {
   editor.clearServerFlags();
   state.validated = validated.value;
   if (state.form === "benchmark" && state.bike.jbike6) renderEditor();
+  // Warnings (a measured tensor breaking the triangle inequality, …) beside their fields.
+  showWarnings();
   if (eigen.status === "rejected") {
     const error = eigen.reason;
     if (error.field === "speeds" || error.field === "range") for (const id of ["v-start", "v-stop", "v-step"]) $(id).classList.add("invalid");
@@ -366,6 +393,10 @@ async function recompute() {
   modes.suggest(state.eigen.critical);
   drawAll();
   if (state.view === "modes") modes.compute();
+  if (state.view === "sens") sensitivity.compute();
+  // A map of another bicycle is never shown: computed now, or again when its tab opens.
+  if (state.view === "map") designMap.compute();
+  else designMap.invalidate();
   if (!window.whippleFirstPlot) {
     window.whippleFirstPlot = performance.now();
     performance.mark("whipple:first-plot");
@@ -451,6 +482,9 @@ function showView(view, { push = true } = {}) {
   if (view === "eigen" || view === "locus") drawAll();
   if (view === "modes") modes.compute();
   else modes.stop();
+  // Before the first bicycle is loaded there is nothing to compute: recompute() does it then.
+  if (view === "sens" && state.bike) sensitivity.compute();
+  if (view === "map" && state.bike && !designMap.answer) designMap.compute();
   // three.js is fetched when the Simulation tab first opens, not with the page.
   if (view === "sim") sim.ensureView();
   if (push) remember(true);
@@ -483,6 +517,8 @@ function snapshot() {
     view: state.view,
     mode: $("mode-speed").value,
     sim: sim.inputs(),
+    sens: sensitivity.quantity,
+    map: designMap.inputs(),
   };
   if (state.key.startsWith("preset:")) {
     const edits = diffEdits(state.base, state.bike);
@@ -519,6 +555,8 @@ async function applyUrl() {
       modes.speedEdited = true;
     }
     if (s.sim) sim.setInputs(s.sim);
+    if (s.sens) sensitivity.setQuantity(s.sens);
+    if (s.map) designMap.setInputs(s.map);
     state.compare = (s.compare ?? []).filter((k) => k.startsWith("preset:") || findDesign(k.slice(7))).slice(0, MAX_COMPARED).map((key) => ({ key, bike: null, eigen: null, validated: null, label: "" }));
     showView(s.view ?? "eigen", { push: false });
     let key = s.bike || `preset:${DEFAULT_PRESET}`;
@@ -646,7 +684,8 @@ $("file-input").addEventListener("change", async (e) => {
   e.target.value = "";
   if (!file) return;
   const ext = file.name.split(".").pop().toLowerCase();
-  const format = ext === "json" ? "json" : ext === "m" ? "m" : "toml";
+  // BicycleParameters' and HumanControl's .txt and YAML files are told apart by the server.
+  const format = ext === "json" ? "json" : ext === "m" ? "m" : ext === "toml" ? "toml" : "auto";
   try {
     const { bike } = await api.parse(await file.text(), format);
     bike.name = bike.name ?? file.name.replace(/\.[^.]*$/, "");

@@ -5,9 +5,11 @@
 //   def=BASE64URL                    a whole bicycle (a design, a file, a conversion), as JSON
 //   cmp=preset:benchmark,…           the designs compared
 //   v=0:10:0.01  y=10                speeds and the vertical axis' limit
-//   tab=eigen|locus|modes|sim        the bottom panel
+//   tab=eigen|locus|modes|sens|map|sim  the bottom panel
 //   mv=5                             the speed of the Modes tab
 //   sim=speed:4.6;lean_rate:0.5;…    the simulation's inputs, as typed
+//   sq=weave                         the quantity of the Sensitivity tab
+//   map=x:trail=0:0.2:61;y:…;…       the Design map's axes, quantity and speed, as typed
 
 function encodeJson(value) {
   const bytes = new TextEncoder().encode(JSON.stringify(value));
@@ -68,6 +70,8 @@ export function readUrl() {
     view: q.get("tab"),
     mode: q.get("mv"),
     sim: q.get("sim") ? pairs(q.get("sim")) : null,
+    sens: q.get("sq"),
+    map: q.get("map") ? pairs(q.get("map")) : null,
   };
 }
 
@@ -83,6 +87,8 @@ export function writeUrl(s, push) {
   if (s.view) q.set("tab", s.view);
   if (s.mode) q.set("mv", s.mode);
   if (s.sim) q.set("sim", joinPairs(s.sim));
+  if (s.sens) q.set("sq", s.sens);
+  if (s.map) q.set("map", joinPairs(s.map));
   const url = `${location.pathname}?${q.toString()}`;
   if (url === `${location.pathname}${location.search}`) return;
   if (push) history.pushState(null, "", url);

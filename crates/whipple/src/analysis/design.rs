@@ -502,11 +502,15 @@ impl Study {
         (at(&self.x), self.y.as_ref().and_then(at))
     }
 
-    /// Computes one design.
-    pub fn design(&self, index: u64) -> DesignRow {
+    /// The grid indices (ix, iy) of design `index` (row-major).
+    fn cell(&self, index: u64) -> (usize, usize) {
         let nx = self.x.count as u64;
-        let ix = (index % nx) as usize;
-        let iy = (index / nx) as usize;
+        ((index % nx) as usize, (index / nx) as usize)
+    }
+
+    /// The description and the speed (where an axis is the speed) of design `index`.
+    fn variant(&self, index: u64) -> (Description, Option<f64>) {
+        let (ix, iy) = self.cell(index);
         let mut speed = self.options.speed;
         let mut description = self.base.description;
         let mut apply = |axis: &Axis, i: usize| {
@@ -520,6 +524,33 @@ impl Study {
         if let Some(y) = &self.y {
             apply(y, iy);
         }
+        (description, speed)
+    }
+
+    /// The bicycle of design `index` (row-major, `iy · nx + ix`): the base bicycle with the
+    /// axes' parameters set (a speed axis changes no parameter), named after the base, its
+    /// uncertainties kept. An index outside the study is [`Error::InvalidArgument`].
+    pub fn bicycle_at(&self, index: u64) -> Result<Bicycle> {
+        if index >= self.len() {
+            return Err(Error::InvalidArgument {
+                what: "index",
+                rule: format!(
+                    "must be below the study's {} designs, got {index}",
+                    self.len()
+                ),
+            });
+        }
+        let (description, _) = self.variant(index);
+        Ok(Bicycle {
+            description,
+            ..self.base.clone()
+        })
+    }
+
+    /// Computes one design.
+    pub fn design(&self, index: u64) -> DesignRow {
+        let (ix, iy) = self.cell(index);
+        let (description, speed) = self.variant(index);
         let (status, reason, quantities) = match analyse(&description, speed, &self.options) {
             Ok(q) => (DesignStatus::Ok, None, q),
             Err(e @ Error::AccuracyLost { .. }) => (
