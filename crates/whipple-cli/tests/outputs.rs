@@ -312,21 +312,9 @@ fn issue_10_a_closed_stdout_still_writes_the_plot() {
         ),
     ] {
         let plot = dir.join(name);
-        let mut child = Command::new(env!("CARGO_BIN_EXE_whipple"))
-            .args(&args)
-            .arg("--plot")
-            .arg(&plot)
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("runs");
-        {
-            let out = child.stdout.take().expect("stdout");
-            let mut first = String::new();
-            BufReader::new(out).read_line(&mut first).expect("a line");
-            assert!(!first.is_empty());
-        } // the pipe is closed here
-        let output = child.wait_with_output().expect("ends");
+        let mut args: Vec<&str> = args;
+        args.extend(["--plot", plot.to_str().expect("utf-8")]);
+        let output = read_one_line_then_close(&args);
         let err = String::from_utf8_lossy(&output.stderr);
         assert!(output.status.success(), "{name}: {err}");
         let bytes = fs::read(&plot).unwrap_or_default();
@@ -359,11 +347,11 @@ fn issue_10_simulate_checks_its_outputs_before_the_run() {
     assert!(!out.exists());
 }
 
-/// `whipple eig ... | head -1`: the reader going away ends the run quietly, with success.
-#[test]
-fn issue_10_a_closed_stdout_ends_quietly() {
+/// Runs `whipple ARGS | head -1`: reads the first line of standard output, closes the pipe and
+/// waits for the end.
+fn read_one_line_then_close(args: &[&str]) -> std::process::Output {
     let mut child = Command::new(env!("CARGO_BIN_EXE_whipple"))
-        .args(["eig", "--bike", "benchmark", "--speeds", "0:1000:0.001"])
+        .args(args)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
@@ -374,7 +362,14 @@ fn issue_10_a_closed_stdout_ends_quietly() {
         BufReader::new(out).read_line(&mut first).expect("a line");
         assert!(!first.is_empty());
     } // the pipe is closed here
-    let output = child.wait_with_output().expect("ends");
+    child.wait_with_output().expect("ends")
+}
+
+/// `whipple eig ... | head -1`: the reader going away ends the run quietly, with success.
+#[test]
+fn issue_10_a_closed_stdout_ends_quietly() {
+    let output =
+        read_one_line_then_close(&["eig", "--bike", "benchmark", "--speeds", "0:1000:0.001"]);
     let err = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "{err}");
     assert!(err.is_empty(), "{err}");
