@@ -11,7 +11,7 @@ use std::cell::Cell;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::draw::{text, tick, BLUE, DARK, GREEN, LIGHT, VERMILLION};
+use crate::draw::{house_mesh, text, tick, BLUE, DARK, GREEN, LIGHT, VERMILLION};
 use crate::error::{Error, Result};
 use crate::figure::{Content, Figure, OrDraw};
 
@@ -302,15 +302,12 @@ impl MapFigure {
             .y_label_area_size(80)
             .build_cartesian_2d(ax0..ax1, ay0..ay1)
             .or_draw(FIGURE)?;
-        chart
-            .configure_mesh()
+        house_mesh(&mut chart, 14.0)
             .disable_mesh()
             .x_desc(&self.data.x_label)
             .y_desc(&self.data.y_label)
             .x_label_formatter(&tick)
             .y_label_formatter(&tick)
-            .label_style(text(14.0, &DARK))
-            .axis_desc_style(text(16.0, &DARK))
             .draw()
             .or_draw(FIGURE)?;
         let (px, py) = chart.plotting_area().get_pixel_range();
@@ -450,16 +447,11 @@ impl StudyFigure {
             .y_label_area_size(70)
             .build_cartesian_2d(xa..xb, 0.0..top)
             .or_draw(FIGURE)?;
-        chart
-            .configure_mesh()
-            .light_line_style(RGBColor(242, 242, 242))
-            .bold_line_style(LIGHT)
+        house_mesh(&mut chart, 14.0)
             .x_desc(&d.x_label)
             .y_desc("forward speed v [m/s]")
             .x_label_formatter(&tick)
             .y_label_formatter(&tick)
-            .label_style(text(14.0, &DARK))
-            .axis_desc_style(text(16.0, &DARK))
             .draw()
             .or_draw(FIGURE)?;
         // The self-stable band: one polygon per run of consecutive stable designs.

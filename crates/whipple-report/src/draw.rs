@@ -1,6 +1,8 @@
 //! Drawing helpers shared by the figures: palette, dashed and clipped lines, a legend panel,
 //! labels placed so they do not overlap.
 
+use plotters::chart::MeshStyle;
+use plotters::coord::ranged1d::ValueFormatter;
 use plotters::coord::{CoordTranslate, Shift};
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
@@ -51,6 +53,25 @@ impl Dash {
 /// A text style in the figures' font.
 pub(crate) fn text(size: f64, colour: &'static RGBColor) -> TextStyle<'static> {
     TextStyle::from((FONT, size).into_font()).color(colour)
+}
+
+/// The house style of a chart's grid and labels: a light grid, dark labels of `size` points
+/// and axis names two points larger. The caller adds its axis names and formatters and draws.
+pub(crate) fn house_mesh<'a, 'b, DB, XT, YT, X, Y>(
+    chart: &'b mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    size: f64,
+) -> MeshStyle<'a, 'b, X, Y, DB>
+where
+    DB: DrawingBackend,
+    X: Ranged<ValueType = XT> + ValueFormatter<XT>,
+    Y: Ranged<ValueType = YT> + ValueFormatter<YT>,
+{
+    let mut mesh = chart.configure_mesh();
+    mesh.light_line_style(RGBColor(242, 242, 242))
+        .bold_line_style(LIGHT)
+        .label_style(text(size, &DARK))
+        .axis_desc_style(text(size + 2.0, &DARK));
+    mesh
 }
 
 /// Draws one already-clipped run of points.

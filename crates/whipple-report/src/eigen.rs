@@ -11,8 +11,8 @@ use whipple::analysis::sweep::EigenSweep;
 
 use crate::clip::Rect;
 use crate::draw::{
-    draw_clipped, draw_legend, fixed, label_markers, text, tick, Dash, Swatch, BLUE, DARK, GREEN,
-    GREY, LIGHT, VERMILLION,
+    draw_clipped, draw_legend, fixed, house_mesh, label_markers, text, tick, Dash, Swatch, BLUE,
+    DARK, GREEN, GREY, VERMILLION,
 };
 use crate::error::{Error, Result};
 use crate::figure::{Content, Figure, OrDraw};
@@ -235,16 +235,11 @@ impl EigenFigure {
             builder.caption(title, text(20.0, &DARK));
         }
         let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1).or_draw(FIGURE)?;
-        chart
-            .configure_mesh()
-            .light_line_style(RGBColor(242, 242, 242))
-            .bold_line_style(LIGHT)
+        house_mesh(&mut chart, 14.0)
             .x_desc("forward speed v [m/s]")
             .y_desc("eigenvalue λ [1/s]")
             .x_label_formatter(&tick)
             .y_label_formatter(&tick)
-            .label_style(text(14.0, &DARK))
-            .axis_desc_style(text(16.0, &DARK))
             .draw()
             .or_draw(FIGURE)?;
         let area = chart.plotting_area();

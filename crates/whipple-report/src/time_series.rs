@@ -7,7 +7,7 @@ use plotters::prelude::*;
 
 use crate::clip::Rect;
 use crate::draw::{
-    draw_clipped, label_markers, text, tick, Dash, BLUE, DARK, GREEN, GREY, LIGHT, VERMILLION,
+    draw_clipped, house_mesh, label_markers, text, tick, Dash, BLUE, DARK, GREEN, GREY, VERMILLION,
 };
 use crate::error::{Error, Result};
 use crate::figure::{Content, Figure, OrDraw};
@@ -114,13 +114,11 @@ impl TimeSeriesFigure {
                 .build_cartesian_2d(t0..t1, y0..y1)
                 .or_draw(FIGURE)?
                 .set_secondary_coord(t0..t1, (y0 * deg)..(y1 * deg));
-            let mut mesh = chart.configure_mesh();
+            let mut mesh = house_mesh(&mut chart, 13.0);
             mesh.light_line_style(RGBColor(244, 244, 244))
-                .bold_line_style(LIGHT)
                 .y_desc(*label)
                 .x_label_formatter(&tick)
                 .y_label_formatter(&tick)
-                .label_style(text(13.0, &DARK))
                 .axis_desc_style(text(14.0, &DARK));
             if last {
                 mesh.x_desc("time t [s]");
@@ -208,15 +206,12 @@ impl TimeSeriesFigure {
             .y_label_area_size(60)
             .build_cartesian_2d(x0..x1, y0..y1)
             .or_draw(FIGURE)?;
-        chart
-            .configure_mesh()
+        house_mesh(&mut chart, 13.0)
             .light_line_style(RGBColor(244, 244, 244))
-            .bold_line_style(LIGHT)
             .x_desc("x [m]")
             .y_desc("y [m]")
             .x_label_formatter(&tick)
             .y_label_formatter(&tick)
-            .label_style(text(13.0, &DARK))
             .axis_desc_style(text(14.0, &DARK))
             .draw()
             .or_draw(FIGURE)?;

@@ -4,7 +4,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::draw::{text, tick, BLUE, DARK, LIGHT, VERMILLION};
+use crate::draw::{house_mesh, text, tick, BLUE, DARK, VERMILLION};
 use crate::error::{Error, Result};
 use crate::figure::{Content, Figure, OrDraw};
 
@@ -77,17 +77,12 @@ impl TornadoFigure {
                 String::new()
             }
         };
-        chart
-            .configure_mesh()
+        house_mesh(&mut chart, 14.0)
             .disable_y_mesh()
-            .bold_line_style(LIGHT)
-            .light_line_style(RGBColor(242, 242, 242))
             .y_labels(n)
             .y_label_formatter(&label_of)
             .x_label_formatter(&tick)
             .x_desc(&self.x_label)
-            .label_style(text(14.0, &DARK))
-            .axis_desc_style(text(16.0, &DARK))
             .draw()
             .or_draw(FIGURE)?;
         let area = chart.plotting_area();

@@ -7,7 +7,7 @@ use plotters::prelude::*;
 
 use crate::clip::{clip_polyline, Rect};
 use crate::draw::{
-    draw_clipped, draw_legend, draw_run, label_markers, text, Dash, Swatch, CYCLE, DARK, LIGHT,
+    draw_clipped, draw_legend, draw_run, house_mesh, label_markers, text, Dash, Swatch, CYCLE, DARK,
 };
 use crate::error::{Error, Result};
 use crate::figure::{Content, Figure, OrDraw};
@@ -232,15 +232,10 @@ impl XyFigure {
             let mut chart = builder
                 .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
                 .or_draw(FIGURE)?;
-            chart
-                .configure_mesh()
-                .light_line_style(RGBColor(242, 242, 242))
-                .bold_line_style(LIGHT)
+            house_mesh(&mut chart, 14.0)
                 .x_desc(self.options.x_label.as_str())
                 .y_desc(self.options.y_label.as_str())
                 .y_label_formatter(&|v: &f64| format!("{v:.0e}"))
-                .label_style(text(14.0, &DARK))
-                .axis_desc_style(text(16.0, &DARK))
                 .draw()
                 .or_draw(FIGURE)?;
             let area = chart.plotting_area();
@@ -270,14 +265,9 @@ impl XyFigure {
             pixel_range = area.get_pixel_range();
         } else {
             let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1).or_draw(FIGURE)?;
-            chart
-                .configure_mesh()
-                .light_line_style(RGBColor(242, 242, 242))
-                .bold_line_style(LIGHT)
+            house_mesh(&mut chart, 14.0)
                 .x_desc(self.options.x_label.as_str())
                 .y_desc(self.options.y_label.as_str())
-                .label_style(text(14.0, &DARK))
-                .axis_desc_style(text(16.0, &DARK))
                 .draw()
                 .or_draw(FIGURE)?;
             let area = chart.plotting_area();
