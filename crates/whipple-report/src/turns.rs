@@ -13,6 +13,11 @@ use crate::xy::span;
 
 const FIGURE: &str = "turn families";
 
+/// A curve's points and whether each is stable.
+type Curve = (Vec<(f64, f64)>, Vec<bool>);
+/// A panel's y label and the quantity it draws.
+type Quantity = (&'static str, fn(&TurnPoint) -> f64);
+
 /// One point of a family of steady turns, in the figure's units.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TurnPoint {
@@ -104,7 +109,7 @@ impl TurnsFigure {
         let panels = plots.split_evenly((2, 2));
         let d = &self.data;
         let speeds = span(d.families.iter().flatten().map(|p| p.speed));
-        let pick: [(&str, fn(&TurnPoint) -> f64); 3] = [
+        let pick: [Quantity; 3] = [
             ("lean φ [deg]", |p| p.lean_deg),
             ("steer δ [deg]", |p| p.steer_deg),
             ("rear contact radius [m]", |p| p.radius),
@@ -117,7 +122,7 @@ impl TurnsFigure {
                 let pad = 0.05 * (b - a);
                 (a - pad, b + pad)
             };
-            let curves: Vec<(Vec<(f64, f64)>, Vec<bool>)> = d
+            let curves: Vec<Curve> = d
                 .families
                 .iter()
                 .map(|fam| {
@@ -136,7 +141,7 @@ impl TurnsFigure {
                 &curves,
             )?;
         }
-        let held: Vec<(Vec<(f64, f64)>, Vec<bool>)> = d
+        let held: Vec<Curve> = d
             .held
             .iter()
             .map(|h| (h.points.clone(), h.stable.clone()))
@@ -185,7 +190,7 @@ fn panel<DB: DrawingBackend>(
     y_label: &str,
     (x0, x1): (f64, f64),
     (y0, y1): (f64, f64),
-    curves: &[(Vec<(f64, f64)>, Vec<bool>)],
+    curves: &[Curve],
 ) -> Result<()> {
     let mut chart = ChartBuilder::on(area)
         .margin(10)

@@ -251,7 +251,8 @@ fn evaluate<T: RealField + Copy>(
     let hub = unit.position(REAR_WHEEL);
     let contact_velocity = unit.velocity(REAR_WHEEL) + omega.cross(&(rear - hub));
     let per_hub = contact_velocity.x;
-    if !(re(per_hub) > 0.0) {
+    let per_hub_value = re(per_hub);
+    if per_hub_value.is_nan() || per_hub_value <= 0.0 {
         return Err(Error::NoSteadyTurn {
             given: format!("lean {:.4} rad, steer {:.4} rad", re(lean), re(steer)),
             reason: "the rear contact does not move forward in this configuration".into(),
@@ -1172,7 +1173,10 @@ pub fn hands_free_families(model: &Model, settings: &FamilySettings) -> Result<V
             let Some((_, v2)) = condition(lean, steer) else {
                 continue;
             };
-            if !(v2 >= 0.0) || v2.sqrt() > settings.max_speed || near_traced(&families, lean, steer)
+            if v2.is_nan()
+                || v2 < 0.0
+                || v2.sqrt() > settings.max_speed
+                || near_traced(&families, lean, steer)
             {
                 continue;
             }
