@@ -30,7 +30,7 @@ pub enum IntegratorChoice {
 }
 
 /// Arguments of `whipple simulate`.
-#[derive(Args, Debug)]
+#[derive(Args, Debug, Clone)]
 pub struct SimulateArgs {
     /// A preset name or a parameter file (.toml, .json, .m).
     #[arg(long)]
@@ -397,6 +397,12 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         None
     };
     let (initial, settings_without_progress) = settings(args, turn.as_ref())?;
+    // What the outputs say the run started from: the turn's steer, not the option's 0.
+    let shown = turn.as_ref().map(|t| SimulateArgs {
+        steer: t.steer.to_degrees(),
+        ..args.clone()
+    });
+    let args = shown.as_ref().unwrap_or(args);
     let start = model
         .initial_state(&initial)
         .context("placing the bicycle in its initial state")?;

@@ -124,3 +124,34 @@ fn turns_traces_families_and_draws_them() {
     let bytes = std::fs::read(&png).expect("the plot");
     assert_eq!(&bytes[1..4], b"PNG");
 }
+
+/// `simulate --from-turn` starts on the held turn and, with its torque, stays there.
+#[test]
+fn simulate_from_a_turn_stays_on_it() {
+    let out = stdout(&whipple(&[
+        "simulate",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "5",
+        "--lean",
+        "11.5",
+        "--from-turn",
+        "--duration",
+        "2",
+        "--integrator",
+        "adaptive",
+        "--rtol",
+        "1e-10",
+        "--format",
+        "json",
+    ]));
+    let doc: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+    let samples = doc["samples"].as_array().expect("samples");
+    let steer0 = doc["initial"]["steer"].as_f64().expect("steer");
+    assert!(steer0 > 0.08, "the turn's steer is reported, got {steer0}");
+    for s in samples {
+        let lean = s["lean"].as_f64().expect("lean");
+        assert!((lean - 11.5f64.to_radians()).abs() < 1e-7, "{lean}");
+    }
+}
