@@ -8,6 +8,7 @@ mod figures;
 mod output;
 mod simulate;
 mod speeds;
+mod turns;
 mod validate;
 
 use std::process::ExitCode;
@@ -237,6 +238,12 @@ enum Command {
     },
     /// Simulate the fully non-linear bicycle from a few initial numbers.
     Simulate(simulate::SimulateArgs),
+    /// One steady turn of the non-linear bicycle (held at a lean, steer or radius, or every
+    /// hands-free one at a speed): steer, radii, torque, contact forces and stability.
+    Turn(turns::TurnArgs),
+    /// The families of hands-free steady turns (pseudo-arclength continuation), with a figure of
+    /// lean, steer and radius against speed (stable parts bold).
+    Turns(turns::TurnsArgs),
     /// Serve JBike6's window in the browser: a local page and JSON API (Ctrl-C to stop).
     Serve {
         /// Port to listen on (0 picks a free one).
@@ -367,6 +374,8 @@ fn main() -> ExitCode {
             quantity,
         } => design::merge(&files, out.as_deref(), plot.as_deref(), quantity),
         Command::Simulate(args) => simulate::run(&args),
+        Command::Turn(args) => turns::turn(&args),
+        Command::Turns(args) => turns::turns(&args),
         Command::Serve {
             port,
             address,

@@ -14,6 +14,8 @@ use whipple::nonlinear::{
     SimulationRequest, SimulationSettings, TorqueInput,
 };
 
+use whipple::analysis::turns::{held_turn, Held, SteadyTurn, TurnSettings};
+
 use crate::bike::{load, LoadedBike};
 use crate::output::{self, number, Sink};
 use crate::TableFormat;
@@ -28,7 +30,7 @@ pub enum IntegratorChoice {
 }
 
 /// Arguments of `whipple simulate`.
-#[derive(Args, Debug)]
+#[derive(Args, Debug, Clone)]
 pub struct SimulateArgs {
     /// A preset name or a parameter file (.toml, .json, .m).
     #[arg(long)]
@@ -80,6 +82,11 @@ pub struct SimulateArgs {
     /// (2·10⁷). The summary's extremes are taken over every step.
     #[arg(long, value_name = "N", default_value_t = 1)]
     pub every: usize,
+    /// Start on the held steady turn at --speed (the rear contact's) and --lean (see
+    /// `whipple turn`): steer, pitch and every rate from the turn, the steer torque held at the
+    /// turn's unless --steer-torque is given; --lean-rate and --steer-rate perturb it.
+    #[arg(long, conflicts_with = "steer")]
+    pub from_turn: bool,
     /// Output format.
     #[arg(long, value_enum, default_value = "table")]
     pub format: TableFormat,
@@ -133,8 +140,20 @@ fn option(field: &str) -> String {
 }
 
 /// The library's rules applied to the options; an error names the option.
-fn settings(args: &SimulateArgs) -> Result<(InitialConditions, SimulationSettings)> {
-    request(args).validate().map_err(|error| match error {
+fn settings(
+    args: &SimulateArgs,
+    turn: Option<&SteadyTurn>,
+) -> Result<(InitialConditions, SimulationSettings)> {
+    let mut request = request(args);
+    if let Some(turn) = turn {
+        request.speed = turn.hub_speed;
+        request.lean_deg = turn.lean.to_degrees();
+        request.steer_deg = turn.steer.to_degrees();
+        if args.steer_torque.is_none() {
+            request.steer_torque = TorqueInput::Constant(turn.steer_torque);
+        }
+    }
+    request.validate().map_err(|error| match error {
         whipple::Error::InvalidArgument { what, rule }
         | whipple::Error::LimitExceeded { what, rule } => {
             // "--dt must be positive …", "--steer-torque: unknown name …".
@@ -366,13 +385,41 @@ fn plot(bike: &LoadedBike, args: &SimulateArgs, run: &Simulation, path: &Path) -
 }
 
 pub fn run(args: &SimulateArgs) -> Result<()> {
-    let (initial, settings_without_progress) = settings(args)?;
+    // The options' own rules first (before any file is read).
+    settings(args, None)?;
     // Every output is checked before the work, and none is put in place unless all are written.
     let (out_target, plot_target) =
         output::table_and_plot(args.out.as_deref(), args.plot.as_deref())?;
     let bike = load(&args.bike)?;
     let model = Model::new(&bike.benchmark)
         .with_context(|| format!("building the non-linear model of {}", bike.label))?;
+    let turn = if args.from_turn {
+        let turn = held_turn(
+            &model,
+            args.speed,
+            Held::Lean(args.lean.to_radians()),
+            &TurnSettings::default(),
+        )
+        .with_context(|| format!("the steady turn to start from ({})", bike.label))?;
+        eprintln!(
+            "starting on the held turn: steer {:.4} deg, steer torque {:.6} N m, rear contact \
+             radius {:.4} m, rear hub speed {:.6} m/s",
+            turn.steer.to_degrees(),
+            turn.steer_torque,
+            turn.rear_radius.unwrap_or(0.0),
+            turn.hub_speed
+        );
+        Some(turn)
+    } else {
+        None
+    };
+    let (initial, settings_without_progress) = settings(args, turn.as_ref())?;
+    // What the outputs say the run started from: the turn's steer, not the option's 0.
+    let shown = turn.as_ref().map(|t| SimulateArgs {
+        steer: t.steer.to_degrees(),
+        ..args.clone()
+    });
+    let args = shown.as_ref().unwrap_or(args);
     let start = model
         .initial_state(&initial)
         .context("placing the bicycle in its initial state")?;

@@ -106,6 +106,7 @@ pub(crate) enum Content {
     Eigen(Box<crate::eigen::EigenFigure>),
     SideView(Box<crate::side_view::SideViewFigure>),
     TimeSeries(Box<crate::time_series::TimeSeriesFigure>),
+    Turns(Box<crate::turns::TurnsFigure>),
     Xy(Box<crate::xy::XyFigure>),
     Map(Box<crate::design::MapFigure>),
     Study(Box<crate::design::StudyFigure>),
@@ -286,6 +287,7 @@ impl Figure {
             Content::Map(_) => "design map",
             Content::Study(_) => "design study",
             Content::Tornado(_) => "tornado plot",
+            Content::Turns(_) => "turn families",
         }
     }
 
@@ -299,6 +301,7 @@ impl Figure {
             Content::Map(f) => f.draw(root),
             Content::Study(f) => f.draw(root),
             Content::Tornado(f) => f.draw(root),
+            Content::Turns(f) => f.draw(root),
         }
     }
 }

@@ -32,6 +32,7 @@ mod side_view;
 mod table;
 mod time_series;
 mod tornado;
+mod turns;
 mod xy;
 
 pub use design::{design_map, design_study, MapData, StudyData};
@@ -45,4 +46,5 @@ pub use table::{
 };
 pub use time_series::{time_series_plot, SimulationSeries};
 pub use tornado::{tornado_plot, Bar};
+pub use turns::{turns_plot, HeldCurve, TurnPoint, TurnsData};
 pub use xy::{line_plot, xy_log_plot, Marker, Series, XyPlotOptions};

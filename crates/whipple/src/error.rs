@@ -116,6 +116,15 @@ pub enum Error {
         /// Where and why.
         context: String,
     },
+    /// No steady turn satisfies what was asked (or none could be reached from straight running):
+    /// never answered with a point that is not one.
+    #[error("no steady turn for {given}: {reason}")]
+    NoSteadyTurn {
+        /// What was given (speed, lean, steer or radius, in the user's units).
+        given: String,
+        /// Why not.
+        reason: String,
+    },
     /// Double precision cannot give this answer to the accuracy that is printed: an overflow, an
     /// underflow or a cancellation (for example a mass matrix whose determinant is lost to
     /// round-off, or a leading coefficient whose sign round-off cannot decide). Nothing is computed

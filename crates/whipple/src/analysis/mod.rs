@@ -10,3 +10,4 @@ pub mod roots;
 pub mod sensitivity;
 pub mod stability;
 pub mod sweep;
+pub mod turns;

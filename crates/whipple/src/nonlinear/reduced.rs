@@ -85,6 +85,54 @@ impl Model {
                 residual,
             });
         }
+        self.state_at_pitch(lean, steer, pitch, [speed, lean_rate, steer_rate])
+    }
+
+    /// The full consistent state at lean φ, steer δ, forward speed v, lean rate φ̇ and steer rate
+    /// δ̇ (with zero rates, a steady turn's state), for any lean and steer at which the front
+    /// wheel can touch the ground: the
+    /// pitch by Newton iteration in f64 ([`Model::pitch_for`], from upright's pitch), then one
+    /// Newton step in the scalar type with the exact slope there, which for dual numbers gives
+    /// the exact derivative of the pitch (implicit function theorem). Heading along +x from the
+    /// origin, wheel angles zero. Unlike [`Model::reduced_state`] (chord steps with upright's
+    /// slope, fast near upright) it converges with the front wheel turned far round.
+    pub(crate) fn manifold_state<T: RealField + Copy>(
+        &self,
+        lean: T,
+        steer: T,
+        speed_and_rates: [T; 3],
+    ) -> Result<State<T>> {
+        let re = |x: T| nalgebra::try_convert::<T, f64>(x).unwrap_or(f64::NAN);
+        let upright = self.pitch_for(0.0, 0.0, 0.0)?;
+        let p0 = self.pitch_for(re(lean), re(steer), upright)?;
+        let zero = Dual64::from_re(0.0);
+        let slope = self
+            .front_height(
+                [zero, Dual64::from_re(re(lean)), Dual64::new(p0, 1.0)],
+                Dual64::from_re(re(steer)),
+                [zero, zero],
+            )
+            .eps;
+        if !(slope.is_finite() && slope != 0.0) {
+            return Err(Error::SingularDynamics {
+                context: format!("the front contact height does not depend on pitch ({slope})"),
+            });
+        }
+        let h = self.front_height([T::zero(), lean, c(p0)], steer, [T::zero(), T::zero()]);
+        let pitch = c::<T>(p0) - h / c(slope);
+        self.state_at_pitch(lean, steer, pitch, speed_and_rates)
+    }
+
+    /// The consistent state at lean, steer and a pitch that puts the front wheel down: every
+    /// other coordinate from the joints, the nine tree speeds from the six contact rows and the
+    /// forward speed, lean rate and steer rate.
+    fn state_at_pitch<T: RealField + Copy>(
+        &self,
+        lean: T,
+        steer: T,
+        pitch: T,
+        [speed, lean_rate, steer_rate]: [T; 3],
+    ) -> Result<State<T>> {
         let q = self.configuration(
             [T::zero(), lean, pitch],
             steer,
@@ -140,6 +188,22 @@ impl Model {
     ) -> Result<Vector4<T>> {
         let state = self.reduced_state(x, c(speed))?;
         let d = self.forward(&state, &Inputs::default())?;
+        let [lean_acceleration, steer_acceleration] = self.lean_steer_accelerations(&state, &d);
+        Ok(Vector4::new(
+            state.lean_rate(),
+            self.steer_rate(&state),
+            lean_acceleration,
+            steer_acceleration,
+        ))
+    }
+
+    /// φ̈ and δ̈ of the rear frame's lean and of the steer angle, from the model's accelerations
+    /// at `state` (see [`Model::lean_steer_field`] for the formulas).
+    pub(crate) fn lean_steer_accelerations<T: RealField + Copy>(
+        &self,
+        state: &State<T>,
+        d: &Derivatives<T>,
+    ) -> [T; 2] {
         let b = 6 * REAR_FRAME;
         let pitch = state.q[b + PITCH];
         let pitch_rate = d.q_dot[b + PITCH];
@@ -153,12 +217,7 @@ impl Model {
         let a = poses.rot[FRONT_FRAME].transpose() * poses.rot[REAR_FRAME];
         let s: Vector3<T> = self.bodies.geometry.steer_axis.cast();
         let steer_acceleration = s.dot(&(dw_h - a * dw_b + w_h.cross(&(a * w_b))));
-        Ok(Vector4::new(
-            state.lean_rate(),
-            self.steer_rate(&state),
-            lean_acceleration,
-            steer_acceleration,
-        ))
+        [lean_acceleration, steer_acceleration]
     }
 }
 
