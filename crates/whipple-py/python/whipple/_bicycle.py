@@ -136,12 +136,14 @@ class Bicycle:
             name = getattr(obj, "bicycleName", None)
         elif isinstance(params, Mapping):
             parameterization = getattr(obj, "parameterization", "benchmark")
-            if str(parameterization).lower() != "benchmark":
+            # BicycleParameters calls the benchmark parameterization `Meijaard2007` in its
+            # ParameterSet classes and `benchmark` in its YAML files.
+            if str(parameterization).lower() not in ("benchmark", "meijaard2007"):
                 raise ParameterError(
                     f"a {parameterization!r} parameter set: only the benchmark parameterization "
                     "is read (convert it with BicycleParameters first)",
                     field="parameterization", value=parameterization,
-                    rule="must be 'benchmark'")
+                    rule="must be 'benchmark' (Meijaard2007)")
             name = getattr(obj, "bicycleName", None) or getattr(obj, "name", None)
         elif isinstance(obj, Mapping):
             params = obj
