@@ -109,7 +109,14 @@ class CriticalSpeeds:
         if not self.stable_ranges:
             rows.append(("self-stable", "at no speed in the range"))
         for k, (lo, hi) in enumerate(self.stable_ranges):
-            rows.append(("self-stable" if k == 0 else "", _range_text(lo, hi)))
+            text = _range_text(lo, hi)
+            if k < len(self.stable_ranges_sigma):
+                s_lo, s_hi = self.stable_ranges_sigma[k]
+                ends = [f"{name} ± {s:.3g} m/s" for name, s in (("lower end", s_lo), ("upper end", s_hi))
+                        if s is not None and s > 0]
+                if ends:
+                    text += " (" + ", ".join(ends) + ")"
+            rows.append(("self-stable" if k == 0 else "", text))
         for lo, hi in self.unresolved:
             rows.append(("unresolved by round-off", _range_text(lo, hi)))
         return rows
@@ -296,8 +303,8 @@ class Sensitivities:
                  f"  {'key':<12}{'dv_w/dp':>14}{'dv_c/dp':>14}{'elast. v_w':>12}{'elast. v_c':>12}"]
         for i, key in enumerate(self._data["key"]):
             lines.append(
-                f"  {key:<12}{self.d_v_w[i]:>14.5g}{self.d_v_c[i]:>14.5g}"
-                f"{self.elasticity_v_w[i]:>12.4g}{self.elasticity_v_c[i]:>12.4g}"
+                f"  {key:<12}{self.d_v_w[i] + 0.0:>14.5g}{self.d_v_c[i] + 0.0:>14.5g}"
+                f"{self.elasticity_v_w[i] + 0.0:>12.4g}{self.elasticity_v_c[i] + 0.0:>12.4g}"
             )
         return "\n".join(lines)
 
