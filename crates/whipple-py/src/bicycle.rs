@@ -11,6 +11,12 @@ use whipple::{io, Bicycle, Description, Error, Format};
 
 use crate::errors::IntoPy;
 
+/// An extra key as Python sees it: (key, text, value, sigma, meaning).
+type ExtraRow = (String, String, Option<f64>, Option<f64>, String);
+
+/// A row of the parameter table: (key, symbol, unit, description, linear).
+type TableRow = (&'static str, &'static str, &'static str, &'static str, bool);
+
 /// A checked bicycle (the native half of `whipple.Bicycle`).
 #[pyclass(name = "NativeBicycle", module = "whipple._whipple", frozen)]
 pub struct NativeBicycle {
@@ -192,7 +198,7 @@ impl NativeBicycle {
     }
 
     /// The keys of the file that are not Whipple parameters: (key, text, value, sigma, meaning).
-    fn extras(&self) -> Vec<(String, String, Option<f64>, Option<f64>, String)> {
+    fn extras(&self) -> Vec<ExtraRow> {
         self.bicycle
             .extras
             .iter()
@@ -287,9 +293,7 @@ pub fn formats() -> Vec<(&'static str, &'static str)> {
 /// linear).
 #[pyfunction]
 #[pyo3(signature = (form="benchmark"))]
-pub fn parameter_table(
-    form: &str,
-) -> PyResult<Vec<(&'static str, &'static str, &'static str, &'static str, bool)>> {
+pub fn parameter_table(form: &str) -> PyResult<Vec<TableRow>> {
     let form = match form {
         "benchmark" => Form::Benchmark,
         "jbike6" => Form::Jbike6,

@@ -7,9 +7,10 @@ use numpy::{Complex64 as NpComplex, PyArray1, PyArray2, PyArrayMethods, PyReadon
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
-use whipple::analysis::eigen::eigenpairs;
+use whipple::analysis::eigen::eigenpairs_with;
 use whipple::analysis::sensitivity::{self, critical_speeds_sigma};
 use whipple::analysis::stability::CrossingKind;
+use whipple::linear::{CharacteristicPolynomial, SpeedPolynomials};
 use whipple::{
     compare_with_linear, eigen_sweep, lean_steer_matrix, Canonical, Error, Linearization, Model,
     StateSpace, StudySettings,
@@ -66,6 +67,13 @@ fn par_map<T: Send>(
     })
     .py_err(py)
 }
+
+/// Eigenvalues, eigenvectors and the column labels.
+type EigResult<'py> = (
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    Option<Vec<&'static str>>,
+);
 
 fn option_pair(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)
@@ -124,15 +132,14 @@ impl NativeBicycle {
         speeds: PyReadonlyArray1<'py, f64>,
         tracked: bool,
         parallel: bool,
-    ) -> PyResult<(
-        Bound<'py, PyAny>,
-        Bound<'py, PyAny>,
-        Option<Vec<&'static str>>,
-    )> {
+    ) -> PyResult<EigResult<'py>> {
         let c = self.canonical_matrices(py)?;
         let speeds = speeds.as_slice()?.to_vec();
         let n = speeds.len();
-        let pairs = par_map(py, &speeds, parallel, |v| eigenpairs(&c, v))?;
+        // The precision check of the characteristic polynomial once, not per speed.
+        SpeedPolynomials::new(&c).py_err(py)?;
+        let poly = CharacteristicPolynomial::new(&c);
+        let pairs = par_map(py, &speeds, parallel, |v| eigenpairs_with(&c, &poly, v))?;
         // Column order: the tracked sweep's (over the speeds sorted), or the pairs' own.
         let (order, labels): (Vec<[usize; 4]>, Option<Vec<&'static str>>) = if tracked && n > 0 {
             let mut sorted: Vec<usize> = (0..n).collect();
