@@ -4,6 +4,7 @@
 //! (`python/whipple/`) wraps these functions in the documented classes.
 
 mod bicycle;
+mod design;
 mod errors;
 mod linear;
 mod simulate;

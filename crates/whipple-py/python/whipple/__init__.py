@@ -17,13 +17,14 @@ from ._bicycle import BENCHMARK_KEYS, Bicycle, formats, parameter_table, presets
 from ._errors import (AccuracyLostError, ArgumentError, LimitError, NumericalError,
                       ParameterError, ParameterWarning, ParseError, StrictError,
                       UnknownPresetError, WhippleError)
+from ._design import DesignMap, design_map_dask
 from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulation
 
 __version__ = _whipple.__version__
 
 __all__ = [
     "Bicycle", "CriticalSpeeds", "Eigen", "Simulation", "Sensitivities", "Comparison",
-    "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
+    "DesignMap", "design_map_dask", "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
     "WhippleError", "ParameterError", "StrictError", "ParseError", "UnknownPresetError",
     "ArgumentError", "LimitError", "NumericalError", "AccuracyLostError", "ParameterWarning",
 ]

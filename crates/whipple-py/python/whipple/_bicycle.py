@@ -6,13 +6,16 @@ import html
 import math
 import os
 import warnings
-from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
+from typing import TYPE_CHECKING, Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
 
 import numpy as np
 
 from . import _whipple
 from ._errors import ParameterError, ParameterWarning, ParseError
 from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulation
+
+if TYPE_CHECKING:
+    from ._design import DesignMap
 
 Torque = Union[None, float, str, Callable[[float, Dict[str, float]], float]]
 
@@ -276,6 +279,29 @@ class Bicycle:
         those of the weave's and capsize's real parts."""
         return Sensitivities(self._native.sensitivities(speed, float(lo), float(hi)))
 
+    def design_map(self, x: str, y: Optional[str] = None, *, lo: float = 0.0,
+                   hi: float = math.inf, speed: Optional[float] = None,
+                   double_root: bool = False, shard: Tuple[int, int] = (0, 1)) -> "DesignMap":
+        """The critical speeds over a grid of designs around this bicycle (the command line's
+        ``whipple map``): axes as ``'trail=-0.05:0.25:100'``, ``'head_angle_deg=60:85:100'``
+        (any parameter of the bicycle's form or a derived one, ``speed``), critical speeds read
+        on [lo, hi], ``max_real`` at ``speed``; ``double_root`` adds v_d. In parallel with the
+        GIL released. ``shard=(k, n)`` computes only part k of n and returns its columns (a
+        dict; ``whipple.DesignMap(parts)`` assembles them, :func:`whipple.design_map_dask`
+        does it on a Dask cluster)."""
+        from ._design import DesignMap
+
+        part = self._native.design(x, y, lo=float(lo), hi=float(hi), speed=speed,
+                                   double_root=double_root, shard_index=shard[0],
+                                   shard_count=shard[1])
+        if shard != (0, 1):
+            return part
+        return DesignMap([part])
+
+    def __reduce__(self):
+        # Pickled as its TOML text (every number round-trips): for multiprocessing and Dask.
+        return (_from_toml, (self.to_text("toml"),))
+
     # The non-linear model -----------------------------------------------------------------------
 
     def simulate(self, speed: float, duration: float = 10.0, *, lean: float = 0.0,
@@ -338,3 +364,7 @@ def parameter_table(form: str = "benchmark") -> List[Dict[str, Any]]:
     description, and whether the linear model depends on it."""
     return [dict(zip(("key", "symbol", "unit", "description", "linear"), p))
             for p in _whipple.parameter_table(form)]
+
+
+def _from_toml(text: str) -> Bicycle:
+    return Bicycle.from_text(text, "toml")
