@@ -277,7 +277,31 @@ pub struct EigenPair {
 
 /// Eigenvalues and eigenvectors of A(v), sorted by decreasing real part.
 pub fn eigenpairs(canonical: &Canonical, speed: f64) -> Result<[EigenPair; 4]> {
-    let values = eigenvalues(canonical, speed)?;
+    // Refuses matrices whose characteristic polynomial double precision cannot form.
+    crate::linear::SpeedPolynomials::new(canonical)?;
+    eigenpairs_with(canonical, &CharacteristicPolynomial::new(canonical), speed)
+}
+
+/// [`eigenpairs`] at many speeds: `poly` is `CharacteristicPolynomial::new(canonical)`, and the
+/// caller has checked `SpeedPolynomials::new(canonical)` once (as [`eigenpairs`] does on every
+/// call), so a batch pays for neither per speed. The same numbers, bit for bit.
+///
+/// ```
+/// use whipple::analysis::eigen::{eigenpairs, eigenpairs_with};
+/// use whipple::linear::{CharacteristicPolynomial, SpeedPolynomials};
+/// use whipple::{BenchmarkParameters, Canonical};
+/// let c = Canonical::new(&BenchmarkParameters::meijaard2007())?;
+/// SpeedPolynomials::new(&c)?;
+/// let poly = CharacteristicPolynomial::new(&c);
+/// assert_eq!(eigenpairs_with(&c, &poly, 5.0)?, eigenpairs(&c, 5.0)?);
+/// # Ok::<(), whipple::Error>(())
+/// ```
+pub fn eigenpairs_with(
+    canonical: &Canonical,
+    poly: &CharacteristicPolynomial,
+    speed: f64,
+) -> Result<[EigenPair; 4]> {
+    let values = quartic_roots(&poly.at_speed(speed))?;
     let k = canonical.k0 * canonical.g + canonical.k2 * (speed * speed);
     let c = canonical.c1 * speed;
     let pair = |value: Complex64| {

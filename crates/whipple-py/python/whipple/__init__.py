@@ -1,0 +1,30 @@
+"""whipple: dynamics of the Whipple bicycle, from Python.
+
+The benchmark bicycle of Meijaard, Papadopoulos, Ruina & Schwab 2007 (Proc. R. Soc. A
+463:1955–1982), the linearized model (M, C₁, K₀, K₂, A(v), eigenvalues, certified critical
+speeds, exact sensitivities and uncertainty) and the fully non-linear multibody bicycle
+(simulation, exact linearization), computed by the Rust library ``whipple``; results are numpy
+arrays. SI units and radians.
+
+>>> import whipple
+>>> bike = whipple.Bicycle.preset("benchmark")
+>>> round(bike.critical_speeds().v_w, 6)
+4.292383
+"""
+
+from . import _whipple
+from ._bicycle import BENCHMARK_KEYS, Bicycle, formats, parameter_table, presets
+from ._errors import (AccuracyLostError, ArgumentError, LimitError, NumericalError,
+                      ParameterError, ParameterWarning, ParseError, StrictError,
+                      UnknownPresetError, WhippleError)
+from ._design import DesignMap, design_map_dask
+from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulation
+
+__version__ = _whipple.__version__
+
+__all__ = [
+    "Bicycle", "CriticalSpeeds", "Eigen", "Simulation", "Sensitivities", "Comparison",
+    "DesignMap", "design_map_dask", "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
+    "WhippleError", "ParameterError", "StrictError", "ParseError", "UnknownPresetError",
+    "ArgumentError", "LimitError", "NumericalError", "AccuracyLostError", "ParameterWarning",
+]

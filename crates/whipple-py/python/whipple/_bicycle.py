@@ -1,0 +1,370 @@
+"""``whipple.Bicycle``: a checked bicycle and everything computed from it."""
+
+from __future__ import annotations
+
+import html
+import math
+import os
+import warnings
+from typing import TYPE_CHECKING, Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
+
+import numpy as np
+
+from . import _whipple
+from ._errors import ParameterError, ParameterWarning, ParseError
+from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulation
+
+if TYPE_CHECKING:
+    from ._design import DesignMap
+
+Torque = Union[None, float, str, Callable[[float, Dict[str, float]], float]]
+
+#: The 26 benchmark keys (Meijaard 2007 Table 1 plus g), in the paper's order, with their
+#: symbol, SI unit, meaning and whether the linear model depends on them.
+BENCHMARK_KEYS: Tuple[str, ...] = tuple(row[0] for row in _whipple.parameter_table("benchmark"))
+
+
+def _speeds(v: Any) -> Tuple[np.ndarray, bool]:
+    """Speeds as a contiguous 1-D float array, and whether a scalar was given."""
+    arr = np.asarray(v, dtype=np.float64)
+    scalar = arr.ndim == 0
+    return np.ascontiguousarray(arr.reshape(-1)), scalar
+
+
+def _split(value: Any) -> Tuple[float, float]:
+    """(value, sigma) of a float, an uncertainties ``ufloat``, a ``(value, sigma)`` pair or a
+    ``{'value': …, 'sigma': …}`` mapping."""
+    if hasattr(value, "nominal_value") and hasattr(value, "std_dev"):
+        return float(value.nominal_value), float(value.std_dev)
+    if isinstance(value, Mapping):
+        return float(value["value"]), float(value.get("sigma", 0.0))
+    if isinstance(value, (tuple, list)) and len(value) == 2:
+        return float(value[0]), float(value[1])
+    return float(value), 0.0
+
+
+class Bicycle:
+    """A bicycle of the Whipple model, checked: the 25 benchmark parameters of Meijaard et al.
+    2007 (Proc. R. Soc. A 463:1955–1982, Table 1) plus gravity g, or JBike6's seven-body form
+    converted to them. SI units and radians everywhere (``lam`` is the steer axis tilt λ in
+    radians).
+
+    Make one with :meth:`preset`, :meth:`from_file`, :meth:`from_dict` or
+    :meth:`from_bicycleparameters`; change one with :meth:`replace`. A bicycle is immutable.
+    Warnings about a measured bicycle's oddities (a tensor that breaks the triangle
+    inequality, …) are issued as :class:`whipple.ParameterWarning` and kept in
+    :attr:`notices`; ``strict=True`` refuses them.
+
+    The linear model: :meth:`canonical` (M, C₁, K₀, K₂), :meth:`state_space` (A, B),
+    :meth:`eig`, :meth:`critical_speeds`, :meth:`sensitivities`. The non-linear model:
+    :meth:`simulate`, :meth:`nonlinear_state_matrix`, :meth:`compare`.
+    """
+
+    __slots__ = ("_native",)
+
+    def __init__(self, native: "_whipple.NativeBicycle") -> None:
+        """Use the constructors (:meth:`preset`, :meth:`from_file`, :meth:`from_dict`)."""
+        if not isinstance(native, _whipple.NativeBicycle):
+            raise TypeError("use Bicycle.preset, Bicycle.from_file or Bicycle.from_dict")
+        self._native = native
+
+    @classmethod
+    def _wrap(cls, native: "_whipple.NativeBicycle") -> "Bicycle":
+        bike = cls(native)
+        for notice in native.notices():
+            if notice["severity"] == "warning":
+                warnings.warn(f"{bike.label}: {notice['message']}", ParameterWarning, stacklevel=3)
+        return bike
+
+    # Constructors ----------------------------------------------------------------------------
+
+    @classmethod
+    def preset(cls, name: str) -> "Bicycle":
+        """A named bicycle from the literature (``'benchmark'``: Meijaard 2007 Table 1;
+        ``whipple.presets()`` lists them all with their sources)."""
+        return cls._wrap(_whipple.NativeBicycle.preset(name))
+
+    @classmethod
+    def from_file(cls, path: Union[str, "os.PathLike[str]"], format: Optional[str] = None,
+                  strict: bool = False) -> "Bicycle":
+        """A bicycle from a parameter file, in every format the command line reads: TOML,
+        JSON, JBike6's ``.m``, BicycleParameters' ``<Name>Benchmark.txt`` and YAML parameter
+        sets, HumanControl's ``<Name>Par.txt``. The format follows from the extension and, for
+        ``.txt``, the content, unless ``format`` names it (``'toml'``, ``'json'``, ``'m'``,
+        ``'bp-txt'``, ``'hc-txt'``, ``'yaml'``)."""
+        path = os.fspath(path)
+        with open(path, "rb") as f:
+            data = f.read()
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError as error:
+            raise ParseError(f"{path}: the file is not UTF-8 text", field=None, value=None,
+                             rule="a parameter file is UTF-8 text", format="unknown",
+                             line=0, column=0) from error
+        return cls._wrap(_whipple.NativeBicycle.parse(text, os.path.basename(path), format, strict))
+
+    @classmethod
+    def from_text(cls, text: str, format: str, strict: bool = False) -> "Bicycle":
+        """A bicycle from the text of a parameter file in ``format`` (see :meth:`from_file`)."""
+        return cls._wrap(_whipple.NativeBicycle.parse(text, "", format, strict))
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any], name: Optional[str] = None,
+                  source: Optional[str] = None, strict: bool = False) -> "Bicycle":
+        """A benchmark-form bicycle from a mapping with BicycleParameters' keys (``'w'``,
+        ``'c'``, ``'lam'``, ``'g'``, ``'rR'``, ``'mR'``, ``'IRxx'``, …; every one of the 26 is
+        required, unknown keys are errors). A value is a float, an ``uncertainties`` ufloat, a
+        ``(value, sigma)`` pair or ``{'value': …, 'sigma': …}``: the σ is propagated to the
+        critical speeds. The same rules as a BicycleParameters ``.txt`` file apply (its optional
+        ``yB``, ``IBxy``, ``IRzz``, … keys included)."""
+        items = []
+        for key, value in d.items():
+            try:
+                v, s = _split(value)
+            except (TypeError, ValueError, KeyError) as error:
+                raise ParameterError(f"invalid parameter `{key}`: not a number ({value!r})",
+                                     field=str(key), value=value, rule="must be a number") from error
+            items.append((str(key), v, s))
+        return cls._wrap(_whipple.NativeBicycle.from_items(items, name, source, strict))
+
+    @classmethod
+    def from_bicycleparameters(cls, obj: Any, strict: bool = False) -> "Bicycle":
+        """A bicycle from a BicycleParameters ``Bicycle`` (its ``parameters['Benchmark']``) or a
+        ``ParameterSet`` of the benchmark parameterization (its ``parameters``), duck-typed:
+        BicycleParameters is not imported. Uncertain values keep their σ."""
+        name = None
+        params = getattr(obj, "parameters", None)
+        if isinstance(params, Mapping) and "Benchmark" in params:
+            params = params["Benchmark"]
+            name = getattr(obj, "bicycleName", None)
+        elif isinstance(params, Mapping):
+            parameterization = getattr(obj, "parameterization", "benchmark")
+            # BicycleParameters calls the benchmark parameterization `Meijaard2007` in its
+            # ParameterSet classes and `benchmark` in its YAML files.
+            if str(parameterization).lower() not in ("benchmark", "meijaard2007"):
+                raise ParameterError(
+                    f"a {parameterization!r} parameter set: only the benchmark parameterization "
+                    "is read (convert it with BicycleParameters first)",
+                    field="parameterization", value=parameterization,
+                    rule="must be 'benchmark' (Meijaard2007)")
+            name = getattr(obj, "bicycleName", None) or getattr(obj, "name", None)
+        elif isinstance(obj, Mapping):
+            params = obj
+        else:
+            raise TypeError("expected a BicycleParameters Bicycle or ParameterSet (an object with "
+                            "a `parameters` mapping)")
+        return cls.from_dict(dict(params), name=name if isinstance(name, str) else None,
+                             source="BicycleParameters", strict=strict)
+
+    # The description ---------------------------------------------------------------------------
+
+    @property
+    def name(self) -> Optional[str]:
+        """The bicycle's name (a preset's name, or the file's)."""
+        return self._native.name
+
+    @property
+    def source(self) -> Optional[str]:
+        """Where its numbers come from."""
+        return self._native.source
+
+    @property
+    def label(self) -> str:
+        return self.name or "bicycle"
+
+    @property
+    def form(self) -> str:
+        """``'benchmark'`` or ``'jbike6'``: the form it was described in."""
+        return self._native.form()
+
+    @property
+    def notices(self) -> List[Dict[str, Any]]:
+        """Warnings and notes from reading and checking it (dicts: severity, field, message,
+        violation_percent, affects)."""
+        return self._native.notices()
+
+    @property
+    def extras(self) -> List[Dict[str, Any]]:
+        """The file's keys that are not Whipple parameters (an operating speed ``v``, another
+        model's ``xcl``, …): key, text, value, sigma, meaning."""
+        return [dict(zip(("key", "text", "value", "sigma", "meaning"), e)) for e in self._native.extras()]
+
+    @property
+    def sigma(self) -> Dict[str, float]:
+        """Standard deviations by key of the bicycle's own form (only those given)."""
+        return self._native.sigma()
+
+    def to_dict(self) -> Dict[str, float]:
+        """The 26 benchmark parameters with BicycleParameters' keys, in the order of Meijaard 2007
+        Table 1 (JBike6 bodies combined): ``Bicycle.from_dict(b.to_dict())`` gives the same
+        numbers."""
+        return dict(self._native.benchmark())
+
+    def jbike6_dict(self) -> Optional[Dict[str, float]]:
+        """JBike6's own parameters (``.m`` names) where the bicycle was described that way."""
+        return dict(self._native.own_form()) if self.form == "jbike6" else None
+
+    def to_text(self, format: str = "toml") -> str:
+        """The bicycle as parameter-file text (``'toml'``, ``'json'``, ``'m'``, ``'bp-txt'``,
+        ``'hc-txt'``, ``'yaml'``); every number round-trips."""
+        return self._native.write(format)
+
+    def replace(self, **changes: float) -> "Bicycle":
+        """A copy with parameters of its own form changed: ``bike.replace(c=0.09, mB=90.0)``
+        (JBike6 keys such as ``wheelbase`` for a JBike6-form bicycle)."""
+        native = self._native.replace([(k, float(v)) for k, v in changes.items()])
+        return type(self)._wrap(native)
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Bicycle) and self._native == other._native
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def __repr__(self) -> str:
+        p = self.to_dict()
+        return (f"Bicycle({self.label!r}, {self.form} form: w={p['w']:g} m, c={p['c']:g} m, "
+                f"lam={p['lam']:g} rad, mB={p['mB']:g} kg)")
+
+    def _repr_html_(self) -> str:
+        sigma = self.sigma
+        rows = []
+        for key, symbol, unit, description, _linear in _whipple.parameter_table("benchmark"):
+            value = self.to_dict()[key]
+            s = sigma.get(key) if self.form == "benchmark" else None
+            shown = f"{value:.6g}" + (f" ± {s:.3g}" if s else "")
+            rows.append(f"<tr><td><code>{html.escape(key)}</code></td><td>{html.escape(symbol)}</td>"
+                        f"<td style='text-align:right'>{shown}</td><td>{html.escape(unit)}</td>"
+                        f"<td style='text-align:left'>{html.escape(description)}</td></tr>")
+        caption = html.escape(self.label + (f" — {self.source}" if self.source else ""))
+        return (f"<table><caption>{caption}</caption><tr><th>key</th><th>symbol</th><th>value</th>"
+                f"<th>unit</th><th>meaning</th></tr>{''.join(rows)}</table>")
+
+    # The linear model ---------------------------------------------------------------------------
+
+    def canonical(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(M, C₁, K₀, K₂), each (2, 2), of M q̈ + v C₁ q̇ + (g K₀ + v² K₂) q = f with q = [φ, δ]
+        (Meijaard 2007, eq. 1 and Appendix A): M [kg m²], C₁ [kg m], K₀ [kg m], K₂ [kg]."""
+        m, c1, k0, k2, _g = self._native.canonical()
+        return m, c1, k0, k2
+
+    def state_space(self, v: Any, parallel: bool = True) -> Tuple[np.ndarray, np.ndarray]:
+        """A(v), B(v) of ẋ = A x + B u, x = [φ, δ, φ̇, δ̇], u = [T_φ, T_δ]. A scalar speed [m/s]
+        gives A (4, 4) and B (4, 2); an array of n speeds gives (n, 4, 4) and (n, 4, 2), the
+        shapes BicycleParameters uses. Computed in parallel with the GIL released."""
+        speeds, scalar = _speeds(v)
+        a, b = self._native.state_space(speeds, parallel)
+        return (a[0], b[0]) if scalar else (a, b)
+
+    def eig(self, v: Any, tracked: bool = True, parallel: bool = True) -> Eigen:
+        """Eigenvalues [1/s] and eigenvectors of A(v) at speeds v [m/s]: ``values`` (n, 4)
+        complex, ``vectors`` (n, 4, 4) complex with ``vectors[i, :, k]`` belonging to
+        ``values[i, k]``. Tracked (the default): each column follows one mode over the speeds
+        (sorted internally), labelled in ``modes`` (weave, weave, capsize, castering for the
+        benchmark). Unpacks as ``values, vectors = bike.eig(v)``."""
+        speeds, scalar = _speeds(v)
+        values, vectors, modes = self._native.eig(speeds, tracked, parallel)
+        return Eigen(speeds, values, vectors, modes, scalar)
+
+    def critical_speeds(self, lo: float = 0.0, hi: float = math.inf) -> CriticalSpeeds:
+        """The double-root, weave and capsize speeds and every self-stable range in [lo, hi]
+        m/s (by default all forward speeds), certified: found from the characteristic
+        polynomial with root enclosures that cannot miss a root, polished to round-off. With
+        σ where the bicycle's parameters carry uncertainties."""
+        return CriticalSpeeds(self._native.critical_speeds(float(lo), float(hi)), self.label)
+
+    def sensitivities(self, speed: Optional[float] = None, lo: float = 0.0,
+                      hi: float = math.inf) -> Sensitivities:
+        """Exact derivatives of v_w, v_c and the stable range's width with respect to every
+        parameter of the bicycle's own form, with elasticities ∂ln v/∂ln p; at ``speed`` also
+        those of the weave's and capsize's real parts."""
+        return Sensitivities(self._native.sensitivities(speed, float(lo), float(hi)))
+
+    def design_map(self, x: str, y: Optional[str] = None, *, lo: float = 0.0,
+                   hi: float = math.inf, speed: Optional[float] = None,
+                   double_root: bool = False, shard: Tuple[int, int] = (0, 1)) -> "DesignMap":
+        """The critical speeds over a grid of designs around this bicycle (the command line's
+        ``whipple map``): axes as ``'trail=-0.05:0.25:100'``, ``'head_angle_deg=60:85:100'``
+        (any parameter of the bicycle's form or a derived one, ``speed``), critical speeds read
+        on [lo, hi], ``max_real`` at ``speed``; ``double_root`` adds v_d. In parallel with the
+        GIL released. ``shard=(k, n)`` computes only part k of n and returns its columns (a
+        dict; ``whipple.DesignMap(parts)`` assembles them, :func:`whipple.design_map_dask`
+        does it on a Dask cluster)."""
+        from ._design import DesignMap
+
+        part = self._native.design(x, y, lo=float(lo), hi=float(hi), speed=speed,
+                                   double_root=double_root, shard_index=shard[0],
+                                   shard_count=shard[1])
+        if shard != (0, 1):
+            return part
+        return DesignMap([part])
+
+    def __reduce__(self):
+        # Pickled as its TOML text (every number round-trips): for multiprocessing and Dask.
+        return (_from_toml, (self.to_text("toml"),))
+
+    # The non-linear model -----------------------------------------------------------------------
+
+    def simulate(self, speed: float, duration: float = 10.0, *, lean: float = 0.0,
+                 steer: float = 0.0, lean_rate: float = 0.0, steer_rate: float = 0.0,
+                 integrator: str = "rk4", dt: Optional[float] = None,
+                 rtol: Optional[float] = None, steer_torque: Torque = None,
+                 lean_torque: Torque = None, fall_angle_deg: float = 60.0,
+                 stop_on_lift_off: bool = True, max_steps: Optional[int] = None,
+                 poses: bool = False) -> Simulation:
+        """Simulates the non-linear multibody bicycle (four rigid bodies, knife-edge wheels,
+        projected onto the constraints after each step) from upright running at ``speed``
+        [m/s] with initial ``lean``, ``steer`` [rad], ``lean_rate``, ``steer_rate`` [rad/s],
+        for ``duration`` [s].
+
+        ``integrator``: ``'rk4'`` with step ``dt`` (default 1 ms) or ``'adaptive'``
+        (Dormand–Prince 5(4)) with relative tolerance ``rtol`` (default 1e-8). Rider torques
+        ``steer_torque`` T_δ and ``lean_torque`` T_φ [N m]: a number, an expression of ``t``,
+        ``lean``, ``steer``, ``lean_rate``, ``steer_rate``, ``yaw``, ``speed`` (``'10*lean +
+        20*lean_rate'``), or a callable ``f(t, state) -> float`` with ``state`` a dict of those
+        names (called with the GIL held only around the call; an exception it raises ends the
+        run and is raised here). The run stops when |lean| passes ``fall_angle_deg`` or a
+        wheel's normal force turns negative (unless ``stop_on_lift_off=False``); those are
+        outcomes, not errors."""
+        data = self._native.simulate(
+            float(speed), float(duration), lean=float(lean), steer=float(steer),
+            lean_rate=float(lean_rate), steer_rate=float(steer_rate), integrator=integrator,
+            dt=dt, rtol=rtol, steer_torque=steer_torque, lean_torque=lean_torque,
+            fall_angle_deg=float(fall_angle_deg), stop_on_lift_off=stop_on_lift_off,
+            max_steps=max_steps, poses=poses)
+        return Simulation(data, self.label)
+
+    def nonlinear_state_matrix(self, v: Any, parallel: bool = True) -> np.ndarray:
+        """The non-linear model's own A(v) about upright straight running, reduced to
+        x = [φ, δ, φ̇, δ̇] and exact (dual numbers): (4, 4) for a scalar speed, (n, 4, 4) for n
+        speeds. Equals :meth:`state_space`'s A to round-off: the benchmark check."""
+        speeds, scalar = _speeds(v)
+        a = self._native.nonlinear_state_matrix(speeds, parallel)
+        return a[0] if scalar else a
+
+    def compare(self, v: Any, methods: Tuple[str, ...] = ("ad", "fd")) -> Comparison:
+        """``whipple validate``'s comparison of the non-linear model with the linear one at
+        sorted speeds v [m/s], by the exact reduced linearization (``'ad'``), the study's
+        central differences (``'fd'``) and/or exact full-state derivatives (``'ad_full'``)."""
+        speeds, _ = _speeds(v)
+        return Comparison(self._native.compare(speeds, list(methods)))
+
+
+def presets() -> List[Dict[str, str]]:
+    """The named bicycles: name, summary, source."""
+    return [dict(zip(("name", "summary", "source"), p)) for p in _whipple.presets()]
+
+
+def formats() -> List[Dict[str, str]]:
+    """The parameter-file formats: name (as ``format=`` takes it) and description."""
+    return [dict(zip(("name", "description"), f)) for f in _whipple.formats()]
+
+
+def parameter_table(form: str = "benchmark") -> List[Dict[str, Any]]:
+    """Every parameter of a form (``'benchmark'`` or ``'jbike6'``): key, symbol, unit,
+    description, and whether the linear model depends on it."""
+    return [dict(zip(("key", "symbol", "unit", "description", "linear"), p))
+            for p in _whipple.parameter_table(form)]
+
+
+def _from_toml(text: str) -> Bicycle:
+    return Bicycle.from_text(text, "toml")

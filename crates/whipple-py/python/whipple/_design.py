@@ -1,0 +1,95 @@
+"""Design maps: the critical speeds of a bicycle over one or two parameters, as 2-D arrays
+(``xarray``-friendly: ``to_xarray()``), computed whole or shard by shard, and spread over a Dask
+cluster with :func:`design_map_dask`."""
+
+from __future__ import annotations
+
+from typing import Any, Dict, List, Optional, Sequence
+
+import numpy as np
+
+QUANTITIES = ("v_d", "v_w", "v_c", "weave_frequency", "stable_width", "stable_from",
+              "stable_to", "max_real", "stable", "unresolved")
+
+
+class DesignMap:
+    """A study of a base bicycle over axis ``x`` (and ``y``): for every design its v_d (when
+    asked for), v_w, v_c, weave frequency, stable width, stable_from/stable_to (the first
+    self-stable range), max Re λ at ``speed``, ``stable`` and ``unresolved`` flags, as arrays of
+    shape (ny, nx) (or (nx,) for one axis), NaN where a quantity does not exist or the design is
+    refused (``status`` says why: ``ok``, ``invalid``, ``accuracy_lost``; ``reason`` the words).
+    ``x``, ``y``: the axes' values in the user's units (``x_name``, ``x_unit``)."""
+
+    def __init__(self, parts: Sequence[Dict[str, Any]]) -> None:
+        first = parts[0]
+        self.x_name: str = first["x_axis"]["name"]
+        self.x_unit: str = first["x_axis"]["unit"]
+        self.x: np.ndarray = first["x_axis"]["values"]
+        y_axis = first["y_axis"]
+        self.y_name: Optional[str] = y_axis["name"] if y_axis else None
+        self.y_unit: Optional[str] = y_axis["unit"] if y_axis else None
+        self.y: Optional[np.ndarray] = y_axis["values"] if y_axis else None
+        shape = (len(self.y), len(self.x)) if y_axis else (len(self.x),)
+        seen = sum(len(p["index"]) for p in parts)
+        if seen != first["total"]:
+            raise ValueError(f"the parts hold {seen} designs of {first['total']}: a shard is missing")
+        ix = np.concatenate([p["ix"] for p in parts]).astype(np.intp)
+        iy = np.concatenate([p["iy"] for p in parts]).astype(np.intp)
+        where = (iy, ix) if y_axis else (ix,)
+        self.quantities: Dict[str, np.ndarray] = {}
+        for name in QUANTITIES:
+            values = np.concatenate([p[name] for p in parts])
+            grid = np.zeros(shape, dtype=values.dtype) if values.dtype == bool else np.full(shape, np.nan)
+            grid[where] = values
+            self.quantities[name] = grid
+        status = np.empty(shape, dtype=object)
+        status[where] = [s for p in parts for s in p["status"]]
+        reason = np.empty(shape, dtype=object)
+        reason[where] = [s for p in parts for s in p["reason"]]
+        self.status = status
+        self.reason = reason
+
+    def __getattr__(self, name: str) -> np.ndarray:
+        q = self.__dict__.get("quantities", {})
+        if name in q:
+            return q[name]
+        raise AttributeError(name)
+
+    def to_xarray(self):
+        """An ``xarray.Dataset`` with the axes as coordinates (needs xarray)."""
+        import xarray as xr
+
+        dims = (self.y_name, self.x_name) if self.y is not None else (self.x_name,)
+        coords = {self.x_name: self.x}
+        if self.y is not None:
+            coords[self.y_name] = self.y
+        data = {name: (dims, grid) for name, grid in self.quantities.items()}
+        data["status"] = (dims, self.status.astype(str))
+        return xr.Dataset(data, coords=coords)
+
+    def __repr__(self) -> str:
+        shape = self.quantities["v_w"].shape
+        axes = f"{self.x_name} [{self.x_unit}]" + (f" × {self.y_name} [{self.y_unit}]" if self.y_name else "")
+        ok = int(np.sum(self.status == "ok"))
+        return f"DesignMap({axes}, shape {shape}, {ok} designs computed)"
+
+
+def design_map_dask(bike: Any, x: str, y: Optional[str] = None, *, client: Any,
+                    shards: Optional[int] = None, **options: Any) -> DesignMap:
+    """The same map as ``bike.design_map(x, y, **options)``, its shards computed as tasks of a
+    ``dask.distributed`` ``client`` (one per shard; by default two per worker thread) and
+    assembled in order. Each task rebuilds the bicycle from its TOML text, so the workers need
+    only ``whipple`` installed; the numbers are those of the single-process map, bit for bit."""
+    if shards is None:
+        threads = sum(client.nthreads().values()) or 1
+        shards = 2 * threads
+    text = bike.to_text("toml")
+    futures = [client.submit(_shard, text, x, y, k, shards, options, pure=False)
+               for k in range(shards)]
+    return DesignMap(client.gather(futures))
+
+
+def _shard(text: str, x: str, y: Optional[str], k: int, n: int, options: Dict[str, Any]):
+    from ._bicycle import Bicycle
+
+    return Bicycle.from_text(text, "toml")._native.design(x, y, shard_index=k, shard_count=n, **options)

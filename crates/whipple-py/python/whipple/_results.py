@@ -1,0 +1,335 @@
+"""Result objects: critical speeds, eigenvalues over speed, simulations, sensitivities and the
+non-linear/linear comparison. Each holds numpy arrays and plain values, prints readably, shows a
+table in a notebook (``_repr_html_``) and, where it is a table, converts with ``to_pandas()``."""
+
+from __future__ import annotations
+
+import html
+import math
+from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+
+def _num(x: Optional[float], digits: int = 6) -> str:
+    if x is None:
+        return "none"
+    if math.isinf(x):
+        return "∞" if x > 0 else "−∞"
+    return f"{x:.{digits}g}"
+
+
+def _pm(x: Optional[float], s: Optional[float], unit: str = "m/s") -> str:
+    if x is None:
+        return "none in the range"
+    if s is not None and s > 0:
+        return f"{x:.6g} ± {s:.3g} {unit}"
+    return f"{x:.6g} {unit}"
+
+
+def _range_text(lo: float, hi: float) -> str:
+    if math.isinf(hi):
+        return f"above {lo:.6g} m/s (no upper end)"
+    if math.isinf(lo):
+        return f"below {hi:.6g} m/s (no lower end)"
+    return f"{lo:.6g} to {hi:.6g} m/s"
+
+
+def _html_table(rows: Sequence[Tuple[str, str]], caption: str = "") -> str:
+    body = "".join(
+        f"<tr><th style='text-align:left'>{html.escape(k)}</th><td style='text-align:left'>{html.escape(v)}</td></tr>"
+        for k, v in rows
+    )
+    cap = f"<caption>{html.escape(caption)}</caption>" if caption else ""
+    return f"<table>{cap}{body}</table>"
+
+
+def _pandas():
+    try:
+        import pandas
+    except ImportError as error:  # pragma: no cover - depends on the environment
+        raise ImportError("to_pandas() needs pandas: pip install pandas") from error
+    return pandas
+
+
+class CriticalSpeeds:
+    """The certified critical speeds of the linearized bicycle in a speed range.
+
+    Attributes (m/s unless said; ``None`` where no such speed lies in the range):
+
+    - ``v_d``: the double-root speed, where two real eigenvalues meet and leave as the weave pair;
+    - ``v_w``: the weave speed, where the weave pair crosses into the left half plane;
+    - ``v_c``: the capsize speed, where the capsize eigenvalue becomes positive;
+    - ``weave_frequency``: |Im λ| of the weave at v_w [rad/s];
+    - ``stable_ranges``: every self-stable interval ``(lo, hi)``; ``hi = math.inf`` for a
+      range without an upper end (it is written as such, never cut at the search's end);
+    - ``v_d_sigma``, ``v_w_sigma``, ``v_c_sigma``, ``stable_ranges_sigma``: first-order
+      standard deviations from the parameters' σ (exact derivatives), ``None`` for a bicycle
+      without uncertainties;
+    - ``crossings``: every speed where an eigenvalue crosses the imaginary axis (dicts);
+    - ``unresolved``: intervals round-off could not classify (normally empty);
+    - ``range``: the range searched.
+    """
+
+    def __init__(self, data: Dict[str, Any], label: str = "") -> None:
+        self._data = data
+        self.label = label
+        self.range: Tuple[float, float] = tuple(data["range"])  # type: ignore[assignment]
+        self.v_d: Optional[float] = data["v_d"]
+        self.double_root_eigenvalue: Optional[float] = data["double_root_eigenvalue"]
+        self.v_w: Optional[float] = data["v_w"]
+        self.weave_frequency: Optional[float] = data["weave_frequency"]
+        self.v_c: Optional[float] = data["v_c"]
+        self.stable_ranges: List[Tuple[float, float]] = [tuple(r) for r in data["stable_ranges"]]  # type: ignore[misc]
+        self.v_d_sigma: Optional[float] = data["v_d_sigma"]
+        self.v_w_sigma: Optional[float] = data["v_w_sigma"]
+        self.v_c_sigma: Optional[float] = data["v_c_sigma"]
+        self.stable_ranges_sigma: List[Tuple[Optional[float], Optional[float]]] = [
+            tuple(r) for r in data["stable_ranges_sigma"]  # type: ignore[misc]
+        ]
+        self.crossings: List[Dict[str, Any]] = data["crossings"]
+        self.unresolved: List[Tuple[float, float]] = [tuple(r) for r in data["unresolved"]]  # type: ignore[misc]
+        self.double_root_unavailable: Optional[str] = data["double_root_unavailable"]
+        self.uncertain: bool = data["uncertain"]
+
+    def is_stable(self, speed: float) -> bool:
+        """True when ``speed`` lies in a self-stable range."""
+        return any(lo < speed < hi for lo, hi in self.stable_ranges)
+
+    def to_dict(self) -> Dict[str, Any]:
+        """Everything as a plain dict (ranges as tuples, ∞ as ``math.inf``)."""
+        return dict(self._data)
+
+    def _rows(self) -> List[Tuple[str, str]]:
+        rows = [
+            ("v_d (double root)", self.double_root_unavailable or _pm(self.v_d, self.v_d_sigma)),
+            ("v_w (weave)", _pm(self.v_w, self.v_w_sigma)),
+            ("v_c (capsize)", _pm(self.v_c, self.v_c_sigma)),
+        ]
+        if not self.stable_ranges:
+            rows.append(("self-stable", "at no speed in the range"))
+        for k, (lo, hi) in enumerate(self.stable_ranges):
+            text = _range_text(lo, hi)
+            if k < len(self.stable_ranges_sigma):
+                s_lo, s_hi = self.stable_ranges_sigma[k]
+                ends = [f"{name} ± {s:.3g} m/s" for name, s in (("lower end", s_lo), ("upper end", s_hi))
+                        if s is not None and s > 0]
+                if ends:
+                    text += " (" + ", ".join(ends) + ")"
+            rows.append(("self-stable" if k == 0 else "", text))
+        for lo, hi in self.unresolved:
+            rows.append(("unresolved by round-off", _range_text(lo, hi)))
+        return rows
+
+    def __repr__(self) -> str:
+        head = f"CriticalSpeeds({self.label})" if self.label else "CriticalSpeeds"
+        lo, hi = self.range
+        head += f" on {_num(lo)} to {_num(hi)} m/s"
+        return head + "\n" + "\n".join(f"  {k:<24}{v}" for k, v in self._rows())
+
+    def _repr_html_(self) -> str:
+        return _html_table(self._rows(), f"critical speeds {self.label}".strip())
+
+
+class Eigen:
+    """Eigenvalues and eigenvectors of A(v) over speeds.
+
+    - ``speeds``: (n,) [m/s];
+    - ``values``: (n, 4) complex [1/s];
+    - ``vectors``: (n, 4, 4) complex, ``vectors[i, :, k]`` is the eigenvector of ``values[i, k]``
+      in the state x = [φ, δ, φ̇, δ̇] (unit length, largest component real and positive);
+    - ``modes``: the column labels (``'weave'``, ``'weave'``, ``'capsize'``, ``'castering'`` for
+      the benchmark bicycle), or ``None`` when the columns are not tracked.
+
+    Unpacks as BicycleParameters' ``calc_eigen`` result: ``values, vectors = bike.eig(v)``.
+    """
+
+    def __init__(self, speeds: np.ndarray, values: np.ndarray, vectors: np.ndarray,
+                 modes: Optional[List[str]], scalar: bool) -> None:
+        self.speeds = speeds
+        self.values = values
+        self.vectors = vectors
+        self.modes = modes
+        self._scalar = scalar
+        if scalar:
+            self.values = values[0]
+            self.vectors = vectors[0]
+            self.speeds = speeds[0]
+
+    def __iter__(self) -> Iterator[np.ndarray]:
+        return iter((self.values, self.vectors))
+
+    def __len__(self) -> int:
+        return 2
+
+    def to_pandas(self):
+        """A DataFrame indexed by speed with columns ``re1, im1, …, re4, im4`` (the command
+        line's ``eig`` CSV) and the modes in ``df.attrs['modes']``."""
+        pd = _pandas()
+        values = np.atleast_2d(self.values)
+        data = {}
+        for k in range(4):
+            data[f"re{k + 1}"] = values[:, k].real
+            data[f"im{k + 1}"] = values[:, k].imag
+        df = pd.DataFrame(data, index=pd.Index(np.atleast_1d(self.speeds), name="v"))
+        df.attrs["modes"] = self.modes
+        return df
+
+    def plot(self, ax=None, imaginary: bool = True):
+        """Real parts (solid) and |imaginary| parts (dashed) against speed, as the command
+        line's ``eig --plot``. Needs matplotlib (``pip install whipple[plot]``)."""
+        from ._plot import plot_eigen
+
+        return plot_eigen(self, ax=ax, imaginary=imaginary)
+
+    def __repr__(self) -> str:
+        shape = np.shape(self.values)
+        return f"Eigen(values {shape} complex, vectors {np.shape(self.vectors)} complex, modes={self.modes})"
+
+
+class Simulation:
+    """A simulation of the non-linear bicycle.
+
+    ``columns`` maps every column of the command line's ``simulate --format csv`` (``t``,
+    ``lean``, ``steer``, …, ``front_y``, in that order, ``csv_columns``) and the dependent
+    coordinates ``pitch``, ``rear_wheel_angle``, ``front_wheel_angle`` to numpy arrays; each is
+    also an attribute (``run.lean``). Radians, metres, seconds, newtons, joules.
+
+    ``outcome`` is how the run ended, in words; ``outcome_kind`` a machine name (``completed``,
+    ``fell``, ``wheel_lifted``, ``projection_failed``, ``non_finite_state``, ``step_limit``,
+    ``stopped``, ``failed``); ``failed`` is true when the computation (not the bicycle) failed.
+    With ``poses=True``: ``positions`` (n, 4, 3) and ``rotations`` (n, 4, 3, 3) of the bodies
+    named in ``body_names`` (world axes, x forward, y right, z down) for animation.
+    """
+
+    def __init__(self, data: Dict[str, Any], label: str = "") -> None:
+        self.label = label
+        self.columns: Dict[str, np.ndarray] = data["columns"]
+        self.csv_columns: List[str] = data["csv_columns"]
+        self.outcome: str = data["outcome"]
+        self.outcome_kind: str = data["outcome_kind"]
+        self.outcome_t: Optional[float] = data["outcome_t"]
+        self.failed: bool = data["failed"]
+        self.caption: str = data["caption"]
+        self.steps: int = data["steps"]
+        self.rejected_steps: int = data["rejected_steps"]
+        self.pulled_down_from_start: List[str] = data["pulled_down_from_start"]
+        self.body_names: List[str] = data["body_names"]
+        self.positions: Optional[np.ndarray] = data.get("positions")
+        self.rotations: Optional[np.ndarray] = data.get("rotations")
+
+    def __getattr__(self, name: str) -> np.ndarray:
+        columns = self.__dict__.get("columns", {})
+        if name in columns:
+            return columns[name]
+        raise AttributeError(name)
+
+    def __dir__(self) -> List[str]:
+        return sorted(set(super().__dir__()) | set(self.columns))
+
+    def __len__(self) -> int:
+        return len(self.columns["t"])
+
+    def to_pandas(self):
+        """The samples as a DataFrame (one column per array, ``t`` included), the outcome in
+        ``df.attrs['outcome']``."""
+        pd = _pandas()
+        df = pd.DataFrame(self.columns)
+        df.attrs["outcome"] = self.outcome
+        return df
+
+    def plot(self, ax=None):
+        """Lean, steer and speed against time and the ground track, as the command line's
+        ``simulate --plot``. Needs matplotlib."""
+        from ._plot import plot_simulation
+
+        return plot_simulation(self, ax=ax)
+
+    def _rows(self) -> List[Tuple[str, str]]:
+        t = self.columns["t"]
+        end = f"{t[-1]:.6g} s" if len(t) else "none"
+        return [
+            ("outcome", self.outcome),
+            ("samples", f"{len(t)} to t = {end}"),
+            ("steps", f"{self.steps} accepted, {self.rejected_steps} rejected"),
+        ]
+
+    def __repr__(self) -> str:
+        head = f"Simulation({self.label})" if self.label else "Simulation"
+        return head + "\n" + "\n".join(f"  {k:<10}{v}" for k, v in self._rows())
+
+    def _repr_html_(self) -> str:
+        return _html_table(self._rows(), f"simulation {self.label}".strip())
+
+
+class Sensitivities:
+    """Exact sensitivities (dual numbers) of the critical speeds to every parameter of the
+    bicycle's own form: columns ``key``, ``symbol``, ``unit``, ``value``, ``d_v_w``, ``d_v_c``,
+    ``d_width`` (∂/∂p in m/s per unit of p), ``elasticity_v_w``, ``elasticity_v_c``,
+    ``elasticity_width`` (∂ln v/∂ln p) and, at ``speed``, ``d_weave_real``, ``d_capsize_real``
+    (∂ Re λ/∂p). NaN where a quantity does not exist (no capsize speed in the range, say)."""
+
+    _COLUMNS = ["key", "symbol", "unit", "description", "value", "d_v_w", "d_v_c", "d_width",
+                "elasticity_v_w", "elasticity_v_c", "elasticity_width", "d_weave_real",
+                "d_capsize_real"]
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        self._data = data
+        for name in self._COLUMNS:
+            setattr(self, name, data[name])
+        self.form: str = data["form"]
+        self.v_w: Optional[float] = data["v_w"]
+        self.v_c: Optional[float] = data["v_c"]
+        self.stable_range = data["stable_range"]
+        self.speed: Optional[float] = data["speed"]
+        self.weave_real: Optional[float] = data["weave_real"]
+        self.capsize_real: Optional[float] = data["capsize_real"]
+
+    def __getitem__(self, key: str) -> Dict[str, Any]:
+        """The row of one parameter (``s['c']``)."""
+        keys = list(self._data["key"])
+        if key not in keys:
+            raise KeyError(key)
+        i = keys.index(key)
+        return {name: (self._data[name][i]) for name in self._COLUMNS}
+
+    def to_pandas(self):
+        """The table as a DataFrame indexed by parameter key."""
+        pd = _pandas()
+        return pd.DataFrame({n: self._data[n] for n in self._COLUMNS}).set_index("key")
+
+    def __repr__(self) -> str:
+        lines = [f"Sensitivities ({self.form} form; v_w = {_num(self.v_w)} m/s, v_c = {_num(self.v_c)} m/s)",
+                 f"  {'key':<12}{'dv_w/dp':>14}{'dv_c/dp':>14}{'elast. v_w':>12}{'elast. v_c':>12}"]
+        for i, key in enumerate(self._data["key"]):
+            lines.append(
+                f"  {key:<12}{self.d_v_w[i] + 0.0:>14.5g}{self.d_v_c[i] + 0.0:>14.5g}"
+                f"{self.elasticity_v_w[i] + 0.0:>12.4g}{self.elasticity_v_c[i] + 0.0:>12.4g}"
+            )
+        return "\n".join(lines)
+
+
+class Comparison:
+    """The non-linear model's linearizations against the linear model over speeds (what
+    ``whipple validate`` reports): ``speeds`` (n,), ``linear`` (n, 4) complex eigenvalues in the
+    columns ``modes``, and per method (``'ad'``: exact reduced A(v); ``'fd'``: the study's
+    central differences; ``'ad_full'``) a dict with ``eigenvalues`` (n, 4), ``max_abs_diff``
+    (n,) [1/s] and, for ``'ad'``, ``matrix_rel_diff`` (n,) = max|A − A_lin| / max|A_lin|."""
+
+    def __init__(self, data: Dict[str, Any]) -> None:
+        self.speeds: np.ndarray = data["speeds"]
+        self.linear: np.ndarray = data["linear"]
+        self.modes: List[str] = data["modes"]
+        self.methods: Dict[str, Dict[str, Any]] = {
+            k: v for k, v in data.items() if k not in ("speeds", "linear", "modes")
+        }
+
+    def __getitem__(self, method: str) -> Dict[str, Any]:
+        return self.methods[method]
+
+    def __repr__(self) -> str:
+        parts = [f"Comparison over {len(self.speeds)} speeds"]
+        for name, m in self.methods.items():
+            worst = float(np.max(m["max_abs_diff"])) if len(m["max_abs_diff"]) else float("nan")
+            parts.append(f"  {name}: largest |λ − λ_linear| = {worst:.3g} 1/s ({m['description']})")
+        return "\n".join(parts)

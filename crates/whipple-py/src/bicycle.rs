@@ -1,0 +1,310 @@
+//! Bicycles: presets, parameter-file text (every format the library reads), and dictionaries with
+//! BicycleParameters' keys. The parsing and every check are the library's.
+
+use std::collections::BTreeMap;
+
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use whipple::parameters::table::{self, Form};
+use whipple::parameters::{presets as library_presets, Checked, Severity};
+use whipple::{io, Bicycle, Description, Error, Format};
+
+use crate::errors::IntoPy;
+
+/// An extra key as Python sees it: (key, text, value, sigma, meaning).
+type ExtraRow = (String, String, Option<f64>, Option<f64>, String);
+
+/// A row of the parameter table: (key, symbol, unit, description, linear).
+type TableRow = (&'static str, &'static str, &'static str, &'static str, bool);
+
+/// A checked bicycle (the native half of `whipple.Bicycle`).
+#[pyclass(name = "NativeBicycle", module = "whipple._whipple", frozen)]
+pub struct NativeBicycle {
+    pub bicycle: Bicycle,
+    pub checked: Checked,
+}
+
+impl NativeBicycle {
+    fn new(py: Python<'_>, bicycle: Bicycle, strict: bool) -> PyResult<Self> {
+        let checked = bicycle.check().py_err(py)?;
+        let checked = if strict {
+            checked.strict().py_err(py)?
+        } else {
+            checked
+        };
+        Ok(NativeBicycle { bicycle, checked })
+    }
+}
+
+/// A number as BicycleParameters' text form reads it back exactly (shortest round trip).
+fn number(x: f64) -> String {
+    format!("{x:?}")
+}
+
+#[pymethods]
+impl NativeBicycle {
+    /// The preset of that name.
+    #[staticmethod]
+    fn preset(py: Python<'_>, name: &str) -> PyResult<Self> {
+        let preset = library_presets::find(name).py_err(py)?;
+        Self::new(py, preset.bicycle(), false)
+    }
+
+    /// A bicycle from the text of a parameter file. `format` is a `--format` name (`toml`,
+    /// `json`, `m`, `bp-txt`, `hc-txt`, `yaml`) or None to detect it from `file_name` and the
+    /// text, as the command line does.
+    #[staticmethod]
+    #[pyo3(signature = (text, file_name, format=None, strict=false))]
+    fn parse(
+        py: Python<'_>,
+        text: &str,
+        file_name: &str,
+        format: Option<&str>,
+        strict: bool,
+    ) -> PyResult<Self> {
+        let format = match format {
+            Some(name) => Format::from_name(name).ok_or_else(|| Error::InvalidArgument {
+                what: "format",
+                rule: format!(
+                    "unknown format `{name}` (known: {})",
+                    io::FORMATS.map(|(_, n, _)| n).join(", ")
+                ),
+            }),
+            None => Format::detect(file_name, text),
+        }
+        .py_err(py)?;
+        let mut bicycle = io::parse(text, format).py_err(py)?;
+        if bicycle.name.is_none() {
+            let stem = std::path::Path::new(file_name)
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned());
+            bicycle.name = stem.filter(|s| !s.is_empty());
+        }
+        Self::new(py, bicycle, strict)
+    }
+
+    /// A bicycle in the benchmark form from (key, value, sigma) triples with BicycleParameters'
+    /// keys (`w`, `c`, `lam`, `g`, `rR`, `mR`, `IRxx`, …; its optional `yB`, `IBxy`, `IRzz`, …
+    /// too): read by the library's BicycleParameters reader, so the same rules apply as to a
+    /// `<Name>Benchmark.txt` file.
+    #[staticmethod]
+    #[pyo3(signature = (items, name=None, source=None, strict=false))]
+    fn from_items(
+        py: Python<'_>,
+        items: Vec<(String, f64, f64)>,
+        name: Option<String>,
+        source: Option<String>,
+        strict: bool,
+    ) -> PyResult<Self> {
+        let mut text = String::new();
+        for (key, value, sigma) in &items {
+            if key.is_empty() || key.contains(['=', '#', '\n', '\r']) || key.trim() != key {
+                return Err(Error::InvalidParameter {
+                    field: key.clone(),
+                    value: *value,
+                    rule: "not a parameter name".into(),
+                })
+                .py_err(py);
+            }
+            text.push_str(key);
+            text.push_str(" = ");
+            text.push_str(&number(*value));
+            if *sigma != 0.0 {
+                text.push_str("+/-");
+                text.push_str(&number(*sigma));
+            }
+            text.push('\n');
+        }
+        let mut bicycle = io::parse(&text, Format::BicycleParametersTxt)
+            .map_err(|e| match e {
+                // A dictionary has no lines: the key and the rule are what matter.
+                Error::Parse { field, message, .. } => {
+                    let value = field
+                        .as_ref()
+                        .and_then(|f| items.iter().find(|(k, _, _)| k == f))
+                        .map_or(f64::NAN, |(_, v, _)| *v);
+                    Error::InvalidParameter {
+                        field: field.unwrap_or_default(),
+                        value,
+                        rule: message,
+                    }
+                }
+                other => other,
+            })
+            .py_err(py)?;
+        bicycle.name = name.or(bicycle.name);
+        bicycle.source = source.or(bicycle.source);
+        Self::new(py, bicycle, strict)
+    }
+
+    /// The benchmark parameters (JBike6 bodies combined) as (key, value) pairs in the order of
+    /// Meijaard 2007 Table 1.
+    fn benchmark(&self) -> Vec<(&'static str, f64)> {
+        self.checked.benchmark.fields().to_vec()
+    }
+
+    /// Standard deviations by key of the bicycle's own form (only those given).
+    fn sigma(&self) -> BTreeMap<String, f64> {
+        self.bicycle.sigma.clone()
+    }
+
+    /// `benchmark` or `jbike6`: the form the bicycle was described in.
+    fn form(&self) -> &'static str {
+        match self.bicycle.description.form() {
+            Form::Benchmark => "benchmark",
+            Form::Jbike6 => "jbike6",
+        }
+    }
+
+    /// The parameters of the bicycle's own form as (key, value) pairs (JBike6's `.m` names for
+    /// a JBike6-form bicycle).
+    fn own_form(&self) -> Vec<(&'static str, f64)> {
+        let form = self.bicycle.description.form();
+        table::parameters(form)
+            .iter()
+            .zip(self.bicycle.description.values())
+            .map(|(p, v)| (p.key, v))
+            .collect()
+    }
+
+    #[getter]
+    fn name(&self) -> Option<String> {
+        self.bicycle.name.clone()
+    }
+
+    #[getter]
+    fn source(&self) -> Option<String> {
+        self.bicycle.source.clone()
+    }
+
+    /// The file's notes and the checks' warnings as dicts (severity, field, message,
+    /// violation_percent, affects).
+    fn notices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let list = PyList::empty(py);
+        for n in &self.checked.notices {
+            let d = PyDict::new(py);
+            let severity = match n.severity {
+                Severity::Note => "note",
+                Severity::Warning => "warning",
+            };
+            d.set_item("severity", severity)?;
+            d.set_item("field", &n.field)?;
+            d.set_item("message", &n.message)?;
+            d.set_item("violation_percent", n.violation_percent)?;
+            d.set_item("affects", &n.affects)?;
+            list.append(d)?;
+        }
+        Ok(list)
+    }
+
+    /// The keys of the file that are not Whipple parameters: (key, text, value, sigma, meaning).
+    fn extras(&self) -> Vec<ExtraRow> {
+        self.bicycle
+            .extras
+            .iter()
+            .map(|e| {
+                (
+                    e.key.clone(),
+                    e.text.clone(),
+                    e.value,
+                    e.sigma,
+                    e.meaning.clone(),
+                )
+            })
+            .collect()
+    }
+
+    /// The bicycle as the text of a parameter file in `format` (a `--format` name).
+    fn write(&self, py: Python<'_>, format: &str) -> PyResult<String> {
+        let format = Format::from_name(format)
+            .ok_or_else(|| Error::InvalidArgument {
+                what: "format",
+                rule: format!(
+                    "unknown format `{format}` (known: {})",
+                    io::FORMATS.map(|(_, n, _)| n).join(", ")
+                ),
+            })
+            .py_err(py)?;
+        io::write(&self.bicycle, format).py_err(py)
+    }
+
+    /// The same bicycle with some parameters of its own form changed ((key, value) pairs), and
+    /// their standard deviations dropped.
+    fn replace(&self, py: Python<'_>, changes: Vec<(String, f64)>) -> PyResult<Self> {
+        let mut bicycle = self.bicycle.clone();
+        let form = bicycle.description.form();
+        let mut values = bicycle.description.values();
+        for (key, value) in &changes {
+            let Some(i) = table::index_of(form, key) else {
+                let known: Vec<&str> = table::parameters(form).iter().map(|p| p.key).collect();
+                return Err(Error::InvalidParameter {
+                    field: key.clone(),
+                    value: *value,
+                    rule: format!(
+                        "not a parameter of the {} form (known: {})",
+                        self.form(),
+                        known.join(", ")
+                    ),
+                })
+                .py_err(py);
+            };
+            values[i] = *value;
+            bicycle.sigma.remove(key);
+        }
+        bicycle.description =
+            match bicycle.description {
+                Description::Benchmark(_) => Description::Benchmark(
+                    whipple::BenchmarkParameters::from_array(values.try_into().map_err(|_| {
+                        pyo3::exceptions::PyRuntimeError::new_err("parameter count")
+                    })?),
+                ),
+                Description::Jbike6(_) => Description::Jbike6(
+                    whipple::Jbike6Parameters::from_array(values.try_into().map_err(|_| {
+                        pyo3::exceptions::PyRuntimeError::new_err("parameter count")
+                    })?),
+                ),
+            };
+        // Notes of the file (unused keys) stay; the checks' warnings are redone.
+        bicycle.notices.clear();
+        Self::new(py, bicycle, false)
+    }
+
+    fn __eq__(&self, other: &Self) -> bool {
+        self.bicycle == other.bicycle
+    }
+}
+
+/// The presets: (name, summary, source).
+#[pyfunction]
+pub fn presets() -> Vec<(&'static str, &'static str, &'static str)> {
+    library_presets::PRESETS
+        .iter()
+        .map(|p| (p.name, p.summary, p.source))
+        .collect()
+}
+
+/// The file formats: (`--format` name, description).
+#[pyfunction]
+pub fn formats() -> Vec<(&'static str, &'static str)> {
+    io::FORMATS.iter().map(|(_, n, d)| (*n, *d)).collect()
+}
+
+/// The parameter table of a form (`benchmark` or `jbike6`): (key, symbol, unit, description,
+/// linear).
+#[pyfunction]
+#[pyo3(signature = (form="benchmark"))]
+pub fn parameter_table(form: &str) -> PyResult<Vec<TableRow>> {
+    let form = match form {
+        "benchmark" => Form::Benchmark,
+        "jbike6" => Form::Jbike6,
+        other => {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "unknown form `{other}` (benchmark or jbike6)"
+            )))
+        }
+    };
+    Ok(table::parameters(form)
+        .iter()
+        .map(|p| (p.key, p.symbol, p.unit, p.description, p.linear))
+        .collect())
+}

@@ -1,0 +1,23 @@
+//! Python bindings of whipple: the native module `whipple._whipple`. A thin front end: it
+//! converts Python values to the library's types and the library's results to numpy arrays and
+//! plain Python values; every number is computed by the `whipple` crate. The Python package
+//! (`python/whipple/`) wraps these functions in the documented classes.
+
+mod bicycle;
+mod design;
+mod errors;
+mod linear;
+mod simulate;
+
+use pyo3::prelude::*;
+
+/// The native module.
+#[pymodule]
+fn _whipple(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<bicycle::NativeBicycle>()?;
+    m.add_function(wrap_pyfunction!(bicycle::presets, m)?)?;
+    m.add_function(wrap_pyfunction!(bicycle::formats, m)?)?;
+    m.add_function(wrap_pyfunction!(bicycle::parameter_table, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

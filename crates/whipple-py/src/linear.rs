@@ -1,0 +1,411 @@
+//! The linearized model from Python: M, C₁, K₀, K₂; A(v), B(v) and eigenpairs over arrays of
+//! speeds (rayon, the GIL released); critical speeds with σ; sensitivities; the non-linear
+//! model's exact A(v) and the comparison with the linear model.
+
+use nalgebra::{Matrix2, Matrix4};
+use numpy::{Complex64 as NpComplex, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use rayon::prelude::*;
+use whipple::analysis::eigen::eigenpairs_with;
+use whipple::analysis::sensitivity::{self, critical_speeds_sigma};
+use whipple::analysis::stability::CrossingKind;
+use whipple::linear::{CharacteristicPolynomial, SpeedPolynomials};
+use whipple::{
+    compare_with_linear, eigen_sweep, lean_steer_matrix, Canonical, Error, Linearization, Model,
+    StateSpace, StudySettings,
+};
+
+use crate::bicycle::NativeBicycle;
+use crate::errors::IntoPy;
+
+fn matrix2<'py>(py: Python<'py>, m: &Matrix2<f64>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let rows = vec![vec![m[(0, 0)], m[(0, 1)]], vec![m[(1, 0)], m[(1, 1)]]];
+    PyArray2::from_vec2(py, &rows)
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))
+}
+
+/// A flat row-major buffer as an array of shape `shape`.
+fn shaped<'py, T: numpy::Element>(
+    py: Python<'py>,
+    data: Vec<T>,
+    shape: &[usize],
+) -> PyResult<Bound<'py, PyAny>> {
+    Ok(PyArray1::from_vec(py, data).reshape(shape)?.into_any())
+}
+
+fn complex(z: whipple::Complex64) -> NpComplex {
+    NpComplex::new(z.re, z.im)
+}
+
+impl NativeBicycle {
+    fn canonical_matrices(&self, py: Python<'_>) -> PyResult<Canonical> {
+        Canonical::new(&self.checked.benchmark).py_err(py)
+    }
+}
+
+/// Runs `f` over the speeds in parallel with the GIL released; the first error (in speed
+/// order) is returned.
+fn par_map<T: Send>(
+    py: Python<'_>,
+    speeds: &[f64],
+    parallel: bool,
+    f: impl Fn(f64) -> Result<T, Error> + Sync + Send,
+) -> PyResult<Vec<T>> {
+    py.detach(|| {
+        if parallel {
+            speeds
+                .par_iter()
+                .map(|&v| f(v))
+                .collect::<Result<Vec<T>, Error>>()
+        } else {
+            speeds
+                .iter()
+                .map(|&v| f(v))
+                .collect::<Result<Vec<T>, Error>>()
+        }
+    })
+    .py_err(py)
+}
+
+/// Eigenvalues, eigenvectors and the column labels.
+type EigResult<'py> = (
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    Option<Vec<&'static str>>,
+);
+
+fn option_pair(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+#[pymethods]
+impl NativeBicycle {
+    /// (M, C1, K0, K2, g): the benchmark's canonical matrices (Meijaard 2007, eq. A…).
+    fn canonical<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let c = self.canonical_matrices(py)?;
+        let t = (
+            matrix2(py, &c.m)?,
+            matrix2(py, &c.c1)?,
+            matrix2(py, &c.k0)?,
+            matrix2(py, &c.k2)?,
+            c.g,
+        );
+        Ok(t.into_pyobject(py)?.into_any())
+    }
+
+    /// A (n, 4, 4) and B (n, 4, 2) at each speed.
+    #[pyo3(signature = (speeds, parallel=true))]
+    fn state_space<'py>(
+        &self,
+        py: Python<'py>,
+        speeds: PyReadonlyArray1<'py, f64>,
+        parallel: bool,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        let c = self.canonical_matrices(py)?;
+        let speeds = speeds.as_slice()?.to_vec();
+        let n = speeds.len();
+        let rows = par_map(py, &speeds, parallel, |v| StateSpace::new(&c, v))?;
+        let mut a = Vec::with_capacity(n * 16);
+        let mut b = Vec::with_capacity(n * 8);
+        for ss in &rows {
+            for i in 0..4 {
+                for j in 0..4 {
+                    a.push(ss.a[(i, j)]);
+                }
+                for j in 0..2 {
+                    b.push(ss.b[(i, j)]);
+                }
+            }
+        }
+        Ok((shaped(py, a, &[n, 4, 4])?, shaped(py, b, &[n, 4, 2])?))
+    }
+
+    /// Eigenvalues (n, 4) and eigenvectors (n, 4, 4) (columns as the eigenvalues) at each
+    /// speed, and the four column labels. `tracked`: columns follow the modes over the sorted
+    /// speeds (weave, weave, capsize, castering), as the command line's `eig`; otherwise each
+    /// speed's eigenvalues by decreasing real part and the labels `None`.
+    #[pyo3(signature = (speeds, tracked=true, parallel=true))]
+    fn eig<'py>(
+        &self,
+        py: Python<'py>,
+        speeds: PyReadonlyArray1<'py, f64>,
+        tracked: bool,
+        parallel: bool,
+    ) -> PyResult<EigResult<'py>> {
+        let c = self.canonical_matrices(py)?;
+        let speeds = speeds.as_slice()?.to_vec();
+        let n = speeds.len();
+        // The precision check of the characteristic polynomial once, not per speed.
+        SpeedPolynomials::new(&c).py_err(py)?;
+        let poly = CharacteristicPolynomial::new(&c);
+        let pairs = par_map(py, &speeds, parallel, |v| eigenpairs_with(&c, &poly, v))?;
+        // Column order: the tracked sweep's (over the speeds sorted), or the pairs' own.
+        let (order, labels): (Vec<[usize; 4]>, Option<Vec<&'static str>>) = if tracked && n > 0 {
+            let mut sorted: Vec<usize> = (0..n).collect();
+            sorted.sort_by(|&i, &j| speeds[i].total_cmp(&speeds[j]));
+            let grid: Vec<f64> = sorted.iter().map(|&i| speeds[i]).collect();
+            let sweep = py.detach(|| eigen_sweep(&c, &grid)).py_err(py)?;
+            let mut order = vec![[0, 1, 2, 3]; n];
+            for (k, &i) in sorted.iter().enumerate() {
+                let mut taken = [false; 4];
+                for (col, target) in sweep.eigenvalues[k].iter().enumerate() {
+                    let best = (0..4)
+                        .filter(|&p| !taken[p])
+                        .min_by(|&p, &q| {
+                            let dp = (pairs[i][p].value - target).norm();
+                            let dq = (pairs[i][q].value - target).norm();
+                            dp.total_cmp(&dq)
+                        })
+                        .unwrap_or(col);
+                    taken[best] = true;
+                    order[i][col] = best;
+                }
+            }
+            (order, Some(sweep.modes.iter().map(|m| m.name()).collect()))
+        } else {
+            (vec![[0, 1, 2, 3]; n], None)
+        };
+        let mut values = Vec::with_capacity(n * 4);
+        let mut vectors = Vec::with_capacity(n * 16);
+        for (i, p) in pairs.iter().enumerate() {
+            for &k in &order[i] {
+                values.push(complex(p[k].value));
+            }
+            for row in 0..4 {
+                for &k in &order[i] {
+                    vectors.push(complex(p[k].vector[row]));
+                }
+            }
+        }
+        Ok((
+            shaped(py, values, &[n, 4])?,
+            shaped(py, vectors, &[n, 4, 4])?,
+            labels,
+        ))
+    }
+
+    /// Critical speeds in [lo, hi] with first-order σ from the parameters' σ (a dict).
+    #[pyo3(signature = (lo=0.0, hi=f64::INFINITY))]
+    fn critical_speeds<'py>(
+        &self,
+        py: Python<'py>,
+        lo: f64,
+        hi: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let bicycle = self.bicycle.clone();
+        let s = py
+            .detach(|| critical_speeds_sigma(&bicycle, lo, hi))
+            .py_err(py)?;
+        let uncertain = self.bicycle.has_uncertainty();
+        let sig = |x: Option<f64>| if uncertain { x } else { None };
+        let c = &s.speeds;
+        let d = PyDict::new(py);
+        d.set_item("range", (c.range.0, c.range.1))?;
+        d.set_item("v_d", c.double_root_speed)?;
+        d.set_item("double_root_eigenvalue", c.double_root_eigenvalue)?;
+        d.set_item("v_w", c.weave_speed)?;
+        d.set_item("weave_frequency", c.weave_frequency)?;
+        d.set_item("v_c", c.capsize_speed)?;
+        d.set_item("stable_ranges", c.stable_speed_ranges.clone())?;
+        d.set_item("v_d_sigma", sig(s.double_root_speed_sigma))?;
+        d.set_item("v_w_sigma", sig(s.weave_speed_sigma))?;
+        d.set_item("v_c_sigma", sig(s.capsize_speed_sigma))?;
+        let ranges_sigma: Vec<(Option<f64>, Option<f64>)> = s
+            .stable_speed_ranges_sigma
+            .iter()
+            .map(|&(a, b)| (sig(a), sig(b)))
+            .collect();
+        d.set_item("stable_ranges_sigma", ranges_sigma)?;
+        let crossings = PyList::empty(py);
+        for x in &c.crossings {
+            let e = PyDict::new(py);
+            e.set_item("speed", x.speed)?;
+            e.set_item("enclosure", x.enclosure)?;
+            e.set_item(
+                "kind",
+                match x.kind {
+                    CrossingKind::Real => "real",
+                    CrossingKind::Pair => "pair",
+                },
+            )?;
+            e.set_item("unstable_below", x.unstable_below)?;
+            e.set_item("unstable_above", x.unstable_above)?;
+            e.set_item("frequency", x.frequency)?;
+            crossings.append(e)?;
+        }
+        d.set_item("crossings", crossings)?;
+        d.set_item("unresolved", c.unresolved.clone())?;
+        d.set_item("double_root_unavailable", c.double_root_unavailable.clone())?;
+        d.set_item("uncertain", uncertain)?;
+        Ok(d)
+    }
+
+    /// Exact sensitivities of v_w, v_c and the stable width to every parameter of the
+    /// bicycle's own form over [lo, hi], and of the weave's and capsize's real parts at
+    /// `speed`: a dict of columns.
+    #[pyo3(signature = (speed=None, lo=0.0, hi=f64::INFINITY))]
+    fn sensitivities<'py>(
+        &self,
+        py: Python<'py>,
+        speed: Option<f64>,
+        lo: f64,
+        hi: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let bicycle = self.bicycle.clone();
+        let s = py
+            .detach(|| sensitivity::sensitivities(&bicycle, lo, hi, speed))
+            .py_err(py)?;
+        let d = PyDict::new(py);
+        let p = &s.parameters;
+        let nan = |x: Option<f64>| x.unwrap_or(f64::NAN);
+        let column = |f: &dyn Fn(&sensitivity::ParameterSensitivity) -> Option<f64>| -> Vec<f64> {
+            p.iter().map(|q| nan(f(q))).collect()
+        };
+        d.set_item("key", p.iter().map(|q| q.key).collect::<Vec<_>>())?;
+        d.set_item("symbol", p.iter().map(|q| q.symbol).collect::<Vec<_>>())?;
+        d.set_item("unit", p.iter().map(|q| q.unit).collect::<Vec<_>>())?;
+        d.set_item(
+            "description",
+            p.iter().map(|q| q.description).collect::<Vec<_>>(),
+        )?;
+        d.set_item("value", PyArray1::from_vec(py, column(&|q| Some(q.value))))?;
+        d.set_item("d_v_w", PyArray1::from_vec(py, column(&|q| q.weave_speed)))?;
+        d.set_item(
+            "d_v_c",
+            PyArray1::from_vec(py, column(&|q| q.capsize_speed)),
+        )?;
+        d.set_item(
+            "d_width",
+            PyArray1::from_vec(py, column(&|q| q.stable_width)),
+        )?;
+        d.set_item(
+            "elasticity_v_w",
+            PyArray1::from_vec(py, column(&|q| q.weave_speed_elasticity)),
+        )?;
+        d.set_item(
+            "elasticity_v_c",
+            PyArray1::from_vec(py, column(&|q| q.capsize_speed_elasticity)),
+        )?;
+        d.set_item(
+            "elasticity_width",
+            PyArray1::from_vec(py, column(&|q| q.stable_width_elasticity)),
+        )?;
+        d.set_item(
+            "d_weave_real",
+            PyArray1::from_vec(py, column(&|q| q.weave_real)),
+        )?;
+        d.set_item(
+            "d_capsize_real",
+            PyArray1::from_vec(py, column(&|q| q.capsize_real)),
+        )?;
+        d.set_item("form", self.form_name())?;
+        d.set_item("v_w", s.critical.weave_speed)?;
+        d.set_item("v_c", s.critical.capsize_speed)?;
+        d.set_item(
+            "stable_range",
+            s.stable_range
+                .map(|(a, b)| (a, option_pair(b).unwrap_or(f64::INFINITY))),
+        )?;
+        d.set_item("speed", s.speed)?;
+        d.set_item("weave_real", s.weave_real)?;
+        d.set_item("capsize_real", s.capsize_real)?;
+        Ok(d)
+    }
+
+    /// The non-linear model's own A(v) about upright straight running, exact (dual numbers):
+    /// (n, 4, 4).
+    #[pyo3(signature = (speeds, parallel=true))]
+    fn nonlinear_state_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        speeds: PyReadonlyArray1<'py, f64>,
+        parallel: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let model = Model::new(&self.checked.benchmark).py_err(py)?;
+        let speeds = speeds.as_slice()?.to_vec();
+        let n = speeds.len();
+        let rows: Vec<Matrix4<f64>> =
+            par_map(py, &speeds, parallel, |v| lean_steer_matrix(&model, v))?;
+        let mut a = Vec::with_capacity(n * 16);
+        for m in &rows {
+            for i in 0..4 {
+                for j in 0..4 {
+                    a.push(m[(i, j)]);
+                }
+            }
+        }
+        shaped(py, a, &[n, 4, 4])
+    }
+
+    /// `whipple validate`'s comparison of the non-linear model with the linear one over sorted
+    /// speeds, by the methods named (`ad`, `fd`, `ad_full`): a dict of arrays.
+    #[pyo3(signature = (speeds, methods=vec!["ad".to_string(), "fd".to_string()]))]
+    fn compare<'py>(
+        &self,
+        py: Python<'py>,
+        speeds: PyReadonlyArray1<'py, f64>,
+        methods: Vec<String>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let speeds = speeds.as_slice()?.to_vec();
+        let all = [
+            Linearization::Exact,
+            Linearization::FiniteDifferences,
+            Linearization::FullStateExact,
+        ];
+        let mut chosen = Vec::new();
+        for name in &methods {
+            match all.iter().find(|m| m.name() == name) {
+                Some(m) => chosen.push(*m),
+                None => {
+                    return Err(Error::InvalidArgument {
+                        what: "methods",
+                        rule: format!("unknown method `{name}` (ad, fd, ad_full)"),
+                    })
+                    .py_err(py)
+                }
+            }
+        }
+        let bike = self.checked.benchmark;
+        let sweep = py
+            .detach(|| compare_with_linear(&bike, &speeds, &chosen, &StudySettings::default()))
+            .py_err(py)?;
+        let n = sweep.speeds.len();
+        let flat = |rows: &[[whipple::Complex64; 4]]| -> Vec<NpComplex> {
+            rows.iter()
+                .flat_map(|r| r.iter().map(|z| complex(*z)))
+                .collect()
+        };
+        let d = PyDict::new(py);
+        d.set_item("speeds", PyArray1::from_vec(py, sweep.speeds.clone()))?;
+        d.set_item("linear", shaped(py, flat(&sweep.linear), &[n, 4])?)?;
+        d.set_item(
+            "modes",
+            sweep.modes.iter().map(|m| m.name()).collect::<Vec<_>>(),
+        )?;
+        for m in &sweep.methods {
+            let e = PyDict::new(py);
+            e.set_item("eigenvalues", shaped(py, flat(&m.eigenvalues), &[n, 4])?)?;
+            e.set_item(
+                "max_abs_diff",
+                PyArray1::from_vec(py, m.max_abs_diff.clone()),
+            )?;
+            e.set_item(
+                "matrix_rel_diff",
+                m.matrix_rel_diff.clone().map(|v| PyArray1::from_vec(py, v)),
+            )?;
+            e.set_item("description", m.method.description())?;
+            d.set_item(m.method.name(), e)?;
+        }
+        Ok(d)
+    }
+}
+
+impl NativeBicycle {
+    fn form_name(&self) -> &'static str {
+        match self.bicycle.description.form() {
+            whipple::parameters::Form::Benchmark => "benchmark",
+            whipple::parameters::Form::Jbike6 => "jbike6",
+        }
+    }
+}

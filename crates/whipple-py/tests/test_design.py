@@ -1,0 +1,68 @@
+"""Design maps from Python: every cell as the single-bicycle critical speeds, shards that
+assemble to the whole, and the map spread over a local Dask cluster of processes."""
+
+import pickle
+
+import numpy as np
+import pytest
+
+import whipple
+from conftest import optional
+
+
+def test_map_cells_are_the_single_bicycle_speeds(benchmark):
+    m = benchmark.design_map("c=0.0:0.2:5", "w=0.9:1.2:4")
+    assert m.v_w.shape == (4, 5) and m.v_w.dtype == np.float64
+    assert np.allclose(m.x, np.linspace(0.0, 0.2, 5)) and np.allclose(m.y, np.linspace(0.9, 1.2, 4))
+    for iy, w in enumerate(m.y):
+        for ix, c in enumerate(m.x):
+            s = benchmark.replace(c=float(c), w=float(w)).critical_speeds()
+            for name, value in (("v_w", s.v_w), ("v_c", s.v_c)):
+                cell = getattr(m, name)[iy, ix]
+                if value is None:
+                    assert np.isnan(cell)
+                else:
+                    assert abs(cell - value) < 1e-10, (name, c, w)
+    assert set(m.status.ravel()) <= {"ok", "invalid", "accuracy_lost"}
+
+
+def test_refused_designs_say_why(benchmark):
+    m = benchmark.design_map("mB=-10:10:3")
+    assert m.status[0] == "invalid" and "mB" in m.reason[0] and np.isnan(m.v_w[0])
+    assert m.status[2] == "ok"
+
+
+def test_shards_assemble_to_the_whole(benchmark):
+    whole = benchmark.design_map("c=0.0:0.2:7", "w=0.9:1.2:5")
+    parts = [benchmark.design_map("c=0.0:0.2:7", "w=0.9:1.2:5", shard=(k, 3)) for k in range(3)]
+    again = whipple.DesignMap(parts)
+    for name in ("v_w", "v_c", "stable_width"):
+        assert np.array_equal(getattr(whole, name), getattr(again, name), equal_nan=True)
+    with pytest.raises(ValueError, match="missing"):
+        whipple.DesignMap(parts[:2])
+    with pytest.raises(whipple.ArgumentError):
+        benchmark.design_map("c=0.0:0.2:7", shard=(3, 3))
+
+
+def test_pickle(benchmark):
+    assert pickle.loads(pickle.dumps(benchmark)).to_dict() == benchmark.to_dict()
+    crown = whipple.Bicycle.preset("schwinn-crown")
+    assert pickle.loads(pickle.dumps(crown)).jbike6_dict() == crown.jbike6_dict()
+
+
+def test_to_xarray(benchmark):
+    optional("xarray")
+    ds = benchmark.design_map("c=0.0:0.2:5", "w=0.9:1.2:4").to_xarray()
+    assert ds["v_w"].dims == ("w", "c") and ds["v_w"].shape == (4, 5)
+
+
+def test_dask_local_cluster(benchmark):
+    optional("distributed")
+    from distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                      dashboard_address=None, host="127.0.0.1") as cluster, Client(cluster) as client:
+        spread = whipple.design_map_dask(benchmark, "c=0.0:0.2:11", "w=0.9:1.2:9", client=client)
+    whole = benchmark.design_map("c=0.0:0.2:11", "w=0.9:1.2:9")
+    for name in ("v_w", "v_c", "stable_width", "max_real"):
+        assert np.array_equal(getattr(whole, name), getattr(spread, name), equal_nan=True)
