@@ -191,7 +191,8 @@ impl NativeBicycle {
     /// `pulled_down_from_start`, `body_names`, `positions` (n, 4, 3), `rotations` (n, 4, 3, 3).
     #[pyo3(signature = (speed, duration, lean=0.0, steer=0.0, lean_rate=0.0, steer_rate=0.0,
                         integrator="rk4", dt=None, rtol=None, steer_torque=None, lean_torque=None,
-                        fall_angle_deg=60.0, stop_on_lift_off=true, max_steps=None, poses=false))]
+                        fall_angle_deg=60.0, stop_on_lift_off=true, max_steps=None, every=1,
+                        poses=false))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
         &self,
@@ -210,6 +211,7 @@ impl NativeBicycle {
         fall_angle_deg: f64,
         stop_on_lift_off: bool,
         max_steps: Option<usize>,
+        every: usize,
         poses: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let integrator = match integrator {
@@ -244,11 +246,26 @@ impl NativeBicycle {
             fall_angle_deg,
             stop_on_lift_off,
             max_steps,
+            sample_every: every,
         };
         let (initial, mut settings) = request
             .validate()
             .map_err(|e| match e {
                 // The request takes degrees; Python takes radians: name the Python argument.
+                Error::InvalidArgument {
+                    what: "sample_every",
+                    rule,
+                } => Error::InvalidArgument {
+                    what: "every",
+                    rule,
+                },
+                Error::LimitExceeded {
+                    what: "sample_every",
+                    rule,
+                } => Error::LimitExceeded {
+                    what: "every",
+                    rule,
+                },
                 Error::InvalidArgument {
                     what: "lean_deg",
                     rule,

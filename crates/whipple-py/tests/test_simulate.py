@@ -22,6 +22,18 @@ def test_columns_and_outcome(benchmark):
     assert run.position_residual.max() < 1e-10
 
 
+def test_every_thins_the_samples(benchmark):
+    full = benchmark.simulate(4.6, 2.0, lean_rate=0.5)
+    thin = benchmark.simulate(4.6, 2.0, lean_rate=0.5, every=100)
+    # Steps 0, 100, ..., 2000: the last step is one of them.
+    assert thin.t.shape == (21,)
+    assert np.array_equal(thin.lean, full.lean[::100])
+    assert thin.t[-1] == pytest.approx(2.0)
+    with pytest.raises(whipple.ArgumentError) as info:
+        benchmark.simulate(4.6, 1.0, every=0)
+    assert info.value.field == "every"
+
+
 def test_falls_below_the_weave_speed(benchmark):
     run = benchmark.simulate(2.0, 10.0, lean_rate=0.5)
     assert run.outcome_kind in ("fell", "wheel_lifted") and not run.failed

@@ -70,6 +70,7 @@ pub fn app(limits: Limits) -> Router {
         .route("/api/linear/response", post(linear_response))
         .route("/api/map", post(crate::design::map))
         .route("/api/map/design", post(crate::design::design_at))
+        .route("/api/turn", post(crate::turns::turn))
         .route("/api/study", post(crate::design::study))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)

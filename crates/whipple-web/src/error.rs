@@ -124,6 +124,8 @@ impl From<Error> for ApiError {
             | Error::ProjectionDiverged { .. }
             | Error::NonFiniteState { .. }
             | Error::SingularDynamics { .. } => ApiError::new(unprocessable, "numerical", message),
+            // The turn asked for does not exist (or is not reached from straight running).
+            Error::NoSteadyTurn { .. } => ApiError::new(unprocessable, "no_steady_turn", message),
             _ => ApiError::internal(message),
         }
     }

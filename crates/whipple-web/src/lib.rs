@@ -24,6 +24,7 @@ mod error;
 pub mod geometry;
 pub mod modes;
 pub mod simulation;
+mod turns;
 
 use std::future::Future;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};

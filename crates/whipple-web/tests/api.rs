@@ -603,6 +603,50 @@ async fn a_map_cell_is_a_bicycle() -> TestResult {
     Ok(())
 }
 
+/// The benchmark bicycle's held turn at 5 m/s and 11.5° of lean, as `whipple turn` prints it:
+/// steer 4.864°, a small counter-steering torque, rear radius 12.35 m, stable; the rear wheel
+/// turns at exactly v / r_R. A lean past 89° names `lean_deg`; two givens are refused.
+#[tokio::test]
+async fn a_held_steady_turn_and_its_stability() -> TestResult {
+    let app = app(Limits::default());
+    let turn = |fields: Value| -> Result<Value, Box<dyn std::error::Error>> {
+        let mut request = json!({"bike": preset_json("benchmark")?, "speed": 5.0});
+        if let (Some(request), Some(fields)) = (request.as_object_mut(), fields.as_object()) {
+            for (k, v) in fields {
+                request.insert(k.clone(), v.clone());
+            }
+        }
+        Ok(request)
+    };
+    let (status, body) = post(&app, "/api/turn", &turn(json!({"lean_deg": 11.5}))?).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert!(approx(&body["steer_deg"], 4.8639, 1e-4), "{body}");
+    assert!(
+        approx(&body["turn"]["steer_torque"], -0.141903, 1e-6),
+        "{body}"
+    );
+    assert!(
+        approx(&body["turn"]["rear_radius"], 12.3510, 1e-4),
+        "{body}"
+    );
+    assert!(
+        approx(&body["turn"]["wheel_rates"][0], -5.0 / 0.3, 1e-9),
+        "{body}"
+    );
+    assert_eq!(body["stability"]["stable"], true, "{body}");
+    let residual = body["turn"]["residuals"]["lean_acceleration"]
+        .as_f64()
+        .ok_or("residual")?;
+    assert!(residual.abs() < 1e-12, "{residual}");
+    let (status, body) = post(&app, "/api/turn", &turn(json!({"lean_deg": 89.5}))?).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    assert_eq!(body["error"]["field"], "lean_deg", "{body}");
+    let both = turn(json!({"lean_deg": 10.0, "radius": 20.0}))?;
+    let (status, body) = post(&app, "/api/turn", &both).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    Ok(())
+}
+
 /// 30 s at 40 m/s ends 1.2 km from the start: the run completes (with an absolute position
 /// tolerance it failed there, where round-off of the coordinates exceeds 1e-13 m).
 #[tokio::test]

@@ -310,7 +310,7 @@ class Bicycle:
                  rtol: Optional[float] = None, steer_torque: Torque = None,
                  lean_torque: Torque = None, fall_angle_deg: float = 60.0,
                  stop_on_lift_off: bool = True, max_steps: Optional[int] = None,
-                 poses: bool = False) -> Simulation:
+                 every: int = 1, poses: bool = False) -> Simulation:
         """Simulates the non-linear multibody bicycle (four rigid bodies, knife-edge wheels,
         projected onto the constraints after each step) from upright running at ``speed``
         [m/s] with initial ``lean``, ``steer`` [rad], ``lean_rate``, ``steer_rate`` [rad/s],
@@ -324,13 +324,14 @@ class Bicycle:
         names (called with the GIL held only around the call; an exception it raises ends the
         run and is raised here). The run stops when |lean| passes ``fall_angle_deg`` or a
         wheel's normal force turns negative (unless ``stop_on_lift_off=False``); those are
-        outcomes, not errors."""
+        outcomes, not errors. ``every=N`` keeps one sample in N steps (the first and the last
+        always), for long runs: at most 1.5 million samples are kept."""
         data = self._native.simulate(
             float(speed), float(duration), lean=float(lean), steer=float(steer),
             lean_rate=float(lean_rate), steer_rate=float(steer_rate), integrator=integrator,
             dt=dt, rtol=rtol, steer_torque=steer_torque, lean_torque=lean_torque,
             fall_angle_deg=float(fall_angle_deg), stop_on_lift_off=stop_on_lift_off,
-            max_steps=max_steps, poses=poses)
+            max_steps=max_steps, every=int(every), poses=poses)
         return Simulation(data, self.label)
 
     def nonlinear_state_matrix(self, v: Any, parallel: bool = True) -> np.ndarray:
