@@ -168,31 +168,15 @@ fn settings(
     })
 }
 
-const CSV_HEADER: &str = "t,lean,steer,lean_rate,steer_rate,yaw,x,y,speed,energy,position_residual,velocity_residual,rear_normal,rear_longitudinal,rear_lateral,front_normal,front_longitudinal,front_lateral,front_x,front_y";
+/// The CSV's columns: the library's sample columns up to [`Sample::CSV_COLUMNS`].
+fn csv_columns() -> &'static [&'static str] {
+    &Sample::COLUMNS[..Sample::CSV_COLUMNS]
+}
 
-fn sample_values(s: &Sample) -> [f64; 20] {
-    [
-        s.t,
-        s.lean,
-        s.steer,
-        s.lean_rate,
-        s.steer_rate,
-        s.yaw,
-        s.x,
-        s.y,
-        s.speed,
-        s.energy,
-        s.position_residual,
-        s.velocity_residual,
-        s.rear.normal,
-        s.rear.longitudinal,
-        s.rear.lateral,
-        s.front.normal,
-        s.front.longitudinal,
-        s.front.lateral,
-        s.front_x,
-        s.front_y,
-    ]
+/// A sample's numbers in the order of [`csv_columns`].
+fn sample_values(s: &Sample) -> [f64; Sample::CSV_COLUMNS] {
+    let all = s.values();
+    std::array::from_fn(|i| all[i])
 }
 
 /// The samples that are finite (a run that went non-finite keeps what came before).
@@ -202,7 +186,7 @@ fn finite_samples(run: &Simulation) -> impl Iterator<Item = &Sample> {
 
 /// The samples as CSV, row by row into `out`.
 fn write_csv(out: &mut Sink, run: &Simulation) -> Result<()> {
-    out.text(&format!("{CSV_HEADER}\n"))?;
+    out.text(&format!("{}\n", csv_columns().join(",")))?;
     let mut row = String::new();
     for s in finite_samples(run) {
         row.clear();
@@ -247,7 +231,7 @@ fn write_json(
     let head = head.strip_suffix("\n}").unwrap_or(&head);
     out.text(head)?;
     out.text(",\n  \"samples\": [")?;
-    let columns: Vec<&str> = CSV_HEADER.split(',').collect();
+    let columns = csv_columns();
     for (k, s) in finite_samples(run).enumerate() {
         let mut obj = serde_json::Map::new();
         for (name, x) in columns.iter().zip(sample_values(s)) {

@@ -17,65 +17,6 @@ use whipple::Error;
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
 
-/// The columns of a simulation's samples: the command line's CSV columns first (same names,
-/// same order), then the dependent coordinates it does not write.
-const COLUMNS: [&str; 23] = [
-    "t",
-    "lean",
-    "steer",
-    "lean_rate",
-    "steer_rate",
-    "yaw",
-    "x",
-    "y",
-    "speed",
-    "energy",
-    "position_residual",
-    "velocity_residual",
-    "rear_normal",
-    "rear_longitudinal",
-    "rear_lateral",
-    "front_normal",
-    "front_longitudinal",
-    "front_lateral",
-    "front_x",
-    "front_y",
-    "pitch",
-    "rear_wheel_angle",
-    "front_wheel_angle",
-];
-
-/// How many of [`COLUMNS`] the command line's CSV has.
-const CSV_COLUMNS: usize = 20;
-
-fn values(s: &Sample) -> [f64; 23] {
-    [
-        s.t,
-        s.lean,
-        s.steer,
-        s.lean_rate,
-        s.steer_rate,
-        s.yaw,
-        s.x,
-        s.y,
-        s.speed,
-        s.energy,
-        s.position_residual,
-        s.velocity_residual,
-        s.rear.normal,
-        s.rear.longitudinal,
-        s.rear.lateral,
-        s.front.normal,
-        s.front.longitudinal,
-        s.front.lateral,
-        s.front_x,
-        s.front_y,
-        s.pitch,
-        s.rear_wheel_angle,
-        s.front_wheel_angle,
-    ]
-}
-
 /// A torque argument: None, a number, an expression, or a callable.
 enum Torque {
     Input(TorqueInput),
@@ -319,12 +260,15 @@ impl NativeBicycle {
         let n = samples.len();
         let d = PyDict::new(py);
         let columns = PyDict::new(py);
-        for (k, name) in COLUMNS.iter().enumerate() {
-            let column: Vec<f64> = samples.iter().map(|s| values(s)[k]).collect();
+        for (k, name) in Sample::COLUMNS.iter().enumerate() {
+            let column: Vec<f64> = samples.iter().map(|s| s.values()[k]).collect();
             columns.set_item(*name, PyArray1::from_vec(py, column))?;
         }
         d.set_item("columns", columns)?;
-        d.set_item("csv_columns", COLUMNS[..CSV_COLUMNS].to_vec())?;
+        d.set_item(
+            "csv_columns",
+            Sample::COLUMNS[..Sample::CSV_COLUMNS].to_vec(),
+        )?;
         d.set_item("outcome", run.outcome.to_string())?;
         d.set_item("outcome_kind", run.outcome.kind())?;
         d.set_item("outcome_t", run.outcome.t())?;

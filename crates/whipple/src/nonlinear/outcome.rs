@@ -254,6 +254,66 @@ pub struct Sample {
 }
 
 impl Sample {
+    /// The names of [`Sample::values`]: the columns front ends write (`whipple simulate`'s CSV
+    /// has the first [`Sample::CSV_COLUMNS`]; the dependent coordinates follow).
+    pub const COLUMNS: [&'static str; 23] = [
+        "t",
+        "lean",
+        "steer",
+        "lean_rate",
+        "steer_rate",
+        "yaw",
+        "x",
+        "y",
+        "speed",
+        "energy",
+        "position_residual",
+        "velocity_residual",
+        "rear_normal",
+        "rear_longitudinal",
+        "rear_lateral",
+        "front_normal",
+        "front_longitudinal",
+        "front_lateral",
+        "front_x",
+        "front_y",
+        "pitch",
+        "rear_wheel_angle",
+        "front_wheel_angle",
+    ];
+
+    /// How many of [`Sample::COLUMNS`] the command line's CSV writes.
+    pub const CSV_COLUMNS: usize = 20;
+
+    /// The sample's numbers in the order of [`Sample::COLUMNS`].
+    pub fn values(&self) -> [f64; 23] {
+        [
+            self.t,
+            self.lean,
+            self.steer,
+            self.lean_rate,
+            self.steer_rate,
+            self.yaw,
+            self.x,
+            self.y,
+            self.speed,
+            self.energy,
+            self.position_residual,
+            self.velocity_residual,
+            self.rear.normal,
+            self.rear.longitudinal,
+            self.rear.lateral,
+            self.front.normal,
+            self.front.longitudinal,
+            self.front.lateral,
+            self.front_x,
+            self.front_y,
+            self.pitch,
+            self.rear_wheel_angle,
+            self.front_wheel_angle,
+        ]
+    }
+
     /// True when every number of the sample is finite.
     pub fn is_finite(&self) -> bool {
         let forces = [self.rear, self.front]
