@@ -17,6 +17,14 @@ cargo bench -q -p whipple-bench --bench sweep 2>&1 | grep -E "^linear|^critical|
 echo "== BicycleParameters: the same sweep"
 /tmp/bpvenv/bin/python bench/bicycleparameters_sweep.py
 
+echo "== whipple: design maps (criterion)"
+cargo bench -q -p whipple-bench --bench design 2>&1 | grep -E "^design_map|time:|thrpt:"
+cargo build -q --release -p whipple-bench --example design_rate
+target/release/examples/design_rate benchmark trail=0:0.2:1000 head_angle_deg=60:80:1000
+target/release/examples/design_rate schwinn-crown trail=-0.05:0.25:1000 head_angle_deg=60:85:1000
+echo "== BicycleParameters: a design map by eigenvalue scans"
+/tmp/bpvenv/bin/python bench/bicycleparameters_design_map.py
+
 echo "== whipple: non-linear model (criterion)"
 cargo bench -q -p whipple-bench --bench nonlinear 2>&1 | grep -E "^nonlinear|time:"
 if [ -f crates/whipple-bench/benches/linearize.rs ]; then

@@ -364,3 +364,75 @@ fn simulation_started_on_a_held_turn_stays_on_it() -> Result<()> {
     assert!((travelled / last.t - turn.speed).abs() < 1e-6 * turn.speed);
     Ok(())
 }
+
+/// A turn perturbed along one real eigenvector of its exact Jacobian leaves or returns to it at
+/// exactly that eigenvalue's rate: the non-linear simulation's lean deviation at time t is the
+/// initial one times e^{λt}. Checked on a stable turn (5 m/s, 11.5°: the slowest mode decays)
+/// and on an unstable one (7 m/s, 5°: above the capsize speed, a real eigenvalue grows).
+#[test]
+fn perturbations_grow_or_decay_at_the_eigenvalue_rate() -> Result<()> {
+    let model = benchmark();
+    for (speed, lean_deg, grows) in [(5.0, 11.5, false), (7.0, 5.0, true)] {
+        let turn = held(&model, speed, lean_deg)?;
+        let s = stability(&model, &turn)?;
+        let lambda = s.eigenvalues[0];
+        assert!(
+            lambda.im.abs() < 1e-9,
+            "the slowest mode should be real: {lambda:?}"
+        );
+        assert_eq!(
+            lambda.re > 0.0,
+            grows,
+            "{speed} m/s, {lean_deg} deg: {lambda:?}"
+        );
+        // The eigenvector: the right singular vector of J − λI for its smallest singular value.
+        let a = turn_jacobian(&model, &turn)?;
+        let shifted = a - nalgebra::SMatrix::<f64, 5, 5>::identity() * lambda.re;
+        let svd = shifted.svd(false, true);
+        let v_t = svd.v_t.expect("asked for V^T");
+        let k = svd.singular_values.imin();
+        let e: SVector<f64, 5> = v_t.row(k).transpose();
+        assert!((a * e - e * lambda.re).amax() < 1e-9 * a.amax());
+        let eps = 1e-5 / e[0].abs().max(1e-3);
+        let mut initial = turn.initial_conditions();
+        initial.lean += eps * e[0];
+        initial.steer += eps * e[1];
+        initial.lean_rate = eps * e[2];
+        initial.steer_rate = eps * e[3];
+        initial.speed += eps * e[4];
+        let start = model.initial_state(&initial)?;
+        let torque = turn.steer_torque;
+        let run = simulate(
+            &model,
+            start,
+            &SimulationSettings {
+                duration: 4.0,
+                integrator: Integrator::Dopri5(Dopri5Settings {
+                    rtol: 1e-12,
+                    atol: 1e-14,
+                    ..Dopri5Settings::default()
+                }),
+                steer_torque: Some(Box::new(move |_, _| torque)),
+                ..SimulationSettings::default()
+            },
+        )?;
+        let d0 = eps * e[0];
+        let mut checked = 0;
+        let mut worst = 0.0f64;
+        for sample in run.samples.iter().filter(|x| x.t >= 1.0) {
+            let predicted = d0 * (lambda.re * sample.t).exp();
+            let measured = sample.lean - turn.lean;
+            worst = worst.max((measured / predicted - 1.0).abs());
+            checked += 1;
+        }
+        println!(
+            "{speed} m/s, {lean_deg} deg: lambda = {:.6} 1/s, {checked} samples from 1 s to {} s, \
+             largest relative difference from e^(lambda t) {worst:.2e}",
+            lambda.re,
+            run.samples.last().map_or(0.0, |x| x.t)
+        );
+        assert!(checked > 10);
+        assert!(worst < 2e-4, "{worst:e}");
+    }
+    Ok(())
+}

@@ -23,7 +23,7 @@ use super::modes::Mode;
 use super::stability::{self, summary};
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, CharacteristicPolynomial, SpeedPolynomials};
-use crate::parameters::{BenchmarkParameters, Bicycle, Description};
+use crate::parameters::{Bicycle, Description};
 
 /// The most designs one study may hold (a 100,000 × 100,000 map).
 pub const MAX_DESIGNS: u64 = 10_000_000_000;
@@ -239,7 +239,7 @@ impl Axis {
 }
 
 /// Puts an axis's value `x` (SI units) into a description: by the parameter table's key
-/// ([`BenchmarkParameters::set`], [`crate::parameters::Jbike6Parameters::set`]), or an alias that sets two
+/// ([`crate::parameters::BenchmarkParameters::set`], [`crate::parameters::Jbike6Parameters::set`]), or an alias that sets two
 /// parameters (`wheel_radius`, `wheel_diameter`) or a derived one (`head_angle` of the benchmark
 /// form). The name was checked when the axis was parsed.
 fn set_parameter(description: &mut Description, parameter: &Parameter, x: f64) {
@@ -616,14 +616,12 @@ fn stopped() -> Error {
     }
 }
 
-/// The benchmark parameters of a described bicycle, validated.
-fn benchmark_of(d: &Description) -> Result<BenchmarkParameters> {
+/// The canonical matrices of a described bicycle, validated (formed once: validation needs
+/// them too).
+fn canonical_of(d: &Description) -> Result<Canonical> {
     match d {
-        Description::Benchmark(b) => {
-            b.validate()?;
-            Ok(*b)
-        }
-        Description::Jbike6(j) => j.to_benchmark(),
+        Description::Benchmark(b) => b.check_with_canonical().map(|(_, c)| c),
+        Description::Jbike6(j) => Ok(Canonical::from_unchecked(&j.to_benchmark()?)),
     }
 }
 
@@ -633,8 +631,7 @@ pub fn analyse(
     speed: Option<f64>,
     options: &StudyOptions,
 ) -> Result<DesignQuantities> {
-    let bike = benchmark_of(description)?;
-    let canonical = Canonical::from_unchecked(&bike);
+    let canonical = canonical_of(description)?;
     let sp = SpeedPolynomials::new(&canonical)?;
     let (lo, hi) = options.range;
     let s = summary(&sp, lo, hi)?;

@@ -147,6 +147,12 @@ impl BenchmarkParameters {
     /// the triangle inequality (as measured bicycles' do within their measurement error), a
     /// centre of mass below the ground.
     pub fn check(&self) -> Result<Vec<Notice>> {
+        self.check_with_canonical().map(|(notices, _)| notices)
+    }
+
+    /// [`BenchmarkParameters::check`] that also hands back the canonical matrices it formed to
+    /// test M (so that a design map forms them once per design).
+    pub(crate) fn check_with_canonical(&self) -> Result<(Vec<Notice>, crate::linear::Canonical)> {
         let mut notices = Vec::new();
         for (field, value) in self.fields() {
             if !value.is_finite() {
@@ -186,18 +192,20 @@ impl BenchmarkParameters {
                     .into(),
             });
         }
-        for (body, mass_key, mass, inertia) in [
+        // Slices, not vectors: a valid bicycle is checked without touching the heap (design
+        // maps check a million of them).
+        let bodies: [BodyInertia<'_>; 4] = [
             (
                 "the rear wheel R",
                 "mR",
                 self.m_r,
-                vec![("IRxx", self.i_rxx), ("IRyy", self.i_ryy)],
+                &[("IRxx", self.i_rxx), ("IRyy", self.i_ryy)],
             ),
             (
                 "the rear body B",
                 "mB",
                 self.m_b,
-                vec![
+                &[
                     ("IBxx", self.i_bxx),
                     ("IByy", self.i_byy),
                     ("IBzz", self.i_bzz),
@@ -208,7 +216,7 @@ impl BenchmarkParameters {
                 "the front frame H",
                 "mH",
                 self.m_h,
-                vec![
+                &[
                     ("IHxx", self.i_hxx),
                     ("IHyy", self.i_hyy),
                     ("IHzz", self.i_hzz),
@@ -219,15 +227,16 @@ impl BenchmarkParameters {
                 "the front wheel F",
                 "mF",
                 self.m_f,
-                vec![("IFxx", self.i_fxx), ("IFyy", self.i_fyy)],
+                &[("IFxx", self.i_fxx), ("IFyy", self.i_fyy)],
             ),
-        ] {
-            zero_mass_inertia(body, mass_key, mass, &inertia)?;
+        ];
+        for (body, mass_key, mass, inertia) in bodies {
+            zero_mass_inertia(body, mass_key, mass, inertia)?;
         }
-        wheel_inertia("R", self.r_r, self.i_rxx, self.i_ryy, &mut notices)?;
-        wheel_inertia("F", self.r_f, self.i_fxx, self.i_fyy, &mut notices)?;
+        wheel_inertia(&REAR_WHEEL, self.r_r, self.i_rxx, self.i_ryy, &mut notices)?;
+        wheel_inertia(&FRONT_WHEEL, self.r_f, self.i_fxx, self.i_fyy, &mut notices)?;
         frame_inertia(
-            "B",
+            &REAR_BODY,
             self.i_bxx,
             self.i_byy,
             self.i_bzz,
@@ -235,7 +244,7 @@ impl BenchmarkParameters {
             &mut notices,
         )?;
         frame_inertia(
-            "H",
+            &FRONT_FRAME,
             self.i_hxx,
             self.i_hyy,
             self.i_hzz,
@@ -259,7 +268,8 @@ impl BenchmarkParameters {
             }
         }
 
-        let m = crate::linear::Canonical::from_unchecked(self).m;
+        let canonical = crate::linear::Canonical::from_unchecked(self);
+        let m = canonical.m;
         let det = m[(0, 0)] * m[(1, 1)] - m[(0, 1)] * m[(1, 0)];
         if m.iter().any(|x| !x.is_finite()) || !det.is_finite() {
             // Overflow: name the largest number, the likely culprit.
@@ -287,9 +297,12 @@ impl BenchmarkParameters {
                 ),
             });
         }
-        Ok(notices)
+        Ok((notices, canonical))
     }
 }
+
+/// A body's words, mass key, mass and moments of inertia (key, value), for the zero-mass check.
+type BodyInertia<'a> = (&'a str, &'a str, f64, &'a [(&'a str, f64)]);
 
 fn invalid(field: &str, value: f64, rule: &str) -> Error {
     Error::InvalidParameter {
@@ -380,26 +393,89 @@ pub(crate) fn principal_moments(
     Ok(())
 }
 
+/// The file keys of a wheel's moments of inertia (static, so that checking allocates nothing).
+struct WheelKeys {
+    xx: &'static str,
+    yy: &'static str,
+}
+
+const REAR_WHEEL: WheelKeys = WheelKeys {
+    xx: "IRxx",
+    yy: "IRyy",
+};
+const FRONT_WHEEL: WheelKeys = WheelKeys {
+    xx: "IFxx",
+    yy: "IFyy",
+};
+
+/// The file keys of a frame's inertia tensor and the words its warnings use.
+struct FrameKeys {
+    xx: &'static str,
+    yy: &'static str,
+    zz: &'static str,
+    xz: &'static str,
+    first: &'static str,
+    second: &'static str,
+    affects: &'static str,
+}
+
+macro_rules! frame_keys {
+    ($b:literal) => {
+        FrameKeys {
+            xx: concat!("I", $b, "xx"),
+            yy: concat!("I", $b, "yy"),
+            zz: concat!("I", $b, "zz"),
+            xz: concat!("I", $b, "xz"),
+            first: concat!(
+                "I",
+                $b,
+                "xx, I",
+                $b,
+                "zz, I",
+                $b,
+                "xz (first principal moment in the x-z plane)"
+            ),
+            second: concat!(
+                "I",
+                $b,
+                "xx, I",
+                $b,
+                "zz, I",
+                $b,
+                "xz (second principal moment in the x-z plane)"
+            ),
+            affects: concat!(
+                "only the non-linear model (simulate, validate), which still runs; the linear \
+                 model (matrices, eig, modes, speeds, sensitivity) never sees I",
+                $b,
+                "yy"
+            ),
+        }
+    };
+}
+
+const REAR_BODY: FrameKeys = frame_keys!("B");
+const FRONT_FRAME: FrameKeys = frame_keys!("H");
+
 fn wheel_inertia(
-    wheel: &str,
+    keys: &WheelKeys,
     radius: f64,
     i_xx: f64,
     i_yy: f64,
     notices: &mut Vec<Notice>,
 ) -> Result<()> {
-    let xx = format!("I{wheel}xx");
-    let yy = format!("I{wheel}yy");
-    non_negative(&xx, i_xx)?;
-    non_negative(&yy, i_yy)?;
+    let (xx, yy) = (keys.xx, keys.yy);
+    non_negative(xx, i_xx)?;
+    non_negative(yy, i_yy)?;
     principal_moments(
-        [&xx, &yy, &xx],
+        [xx, yy, xx],
         [i_xx, i_yy, i_xx],
         "the linear model (through the wheel's gyroscopic term) and the non-linear model; both stay well defined",
         notices,
     )?;
     if radius == 0.0 && i_yy != 0.0 {
         return Err(invalid(
-            &yy,
+            yy,
             i_yy,
             "a wheel of zero radius (a skate) cannot have a spin moment of inertia: its spin rate would be infinite",
         ));
@@ -408,19 +484,17 @@ fn wheel_inertia(
 }
 
 fn frame_inertia(
-    body: &str,
+    keys: &FrameKeys,
     i_xx: f64,
     i_yy: f64,
     i_zz: f64,
     i_xz: f64,
     notices: &mut Vec<Notice>,
 ) -> Result<()> {
-    let xx = format!("I{body}xx");
-    let yy = format!("I{body}yy");
-    let zz = format!("I{body}zz");
-    non_negative(&xx, i_xx)?;
-    non_negative(&yy, i_yy)?;
-    non_negative(&zz, i_zz)?;
+    let (xx, yy, zz, xz) = (keys.xx, keys.yy, keys.zz, keys.xz);
+    non_negative(xx, i_xx)?;
+    non_negative(yy, i_yy)?;
+    non_negative(zz, i_zz)?;
     // Principal moments of the x-z block.
     let mean = 0.5 * (i_xx + i_zz);
     let radius = (0.25 * (i_xx - i_zz).powi(2) + i_xz * i_xz).sqrt();
@@ -428,25 +502,18 @@ fn frame_inertia(
     let scale = i_xx + i_yy + i_zz;
     if i3 < -TRIANGLE_ROUND_OFF * scale {
         return Err(Error::InvalidBicycle {
-            fields: format!("{xx}, {zz}, I{body}xz"),
+            fields: format!("{xx}, {zz}, {xz}"),
             rule: format!(
-                "the inertia tensor is not positive semi-definite: I{body}xz² = {} exceeds {xx}·{zz} = {}",
+                "the inertia tensor is not positive semi-definite: {xz}² = {} exceeds {xx}·{zz} = {}",
                 short_number(i_xz * i_xz),
                 short_number(i_xx * i_zz)
             ),
         });
     }
     principal_moments(
-        [
-            &format!("I{body}xx, I{body}zz, I{body}xz (first principal moment in the x-z plane)"),
-            &yy,
-            &format!("I{body}xx, I{body}zz, I{body}xz (second principal moment in the x-z plane)"),
-        ],
+        [keys.first, yy, keys.second],
         [i1, i_yy, i3],
-        &format!(
-            "only the non-linear model (simulate, validate), which still runs; the linear model \
-             (matrices, eig, modes, speeds, sensitivity) never sees I{body}yy"
-        ),
+        keys.affects,
         notices,
     )
 }

@@ -963,10 +963,11 @@ impl Jbike6Parameters {
     /// by [`Jbike6Parameters::to_benchmark`], and reported under the JBike6 names.
     pub fn check(&self) -> Result<Vec<Notice>> {
         let mut notices = Vec::new();
-        for (field, value) in self.fields() {
+        // The keys are formed only for an error: a design map checks a million bicycles.
+        for (p, value) in JBIKE6_TABLE.iter().zip(self.to_array()) {
             if !value.is_finite() {
                 return Err(Error::InvalidParameter {
-                    field,
+                    field: p.key.to_string(),
                     value,
                     rule: "must be a finite number".into(),
                 });
@@ -989,33 +990,34 @@ impl Jbike6Parameters {
                     .into(),
             });
         }
-        let check_mass = |field: String, m: f64| -> Result<()> {
+        let check_mass = |field: &str, m: f64| -> Result<()> {
             if m >= 0.0 {
                 Ok(())
             } else {
                 Err(Error::InvalidParameter {
-                    field,
+                    field: field.to_string(),
                     value: m,
                     rule: "must not be negative".into(),
                 })
             }
         };
-        for (name, title, w) in [
-            ("rearwheel", "the rear wheel", &self.rear_wheel),
-            ("frontwheel", "the front wheel", &self.front_wheel),
+        for (keys, title, w) in [
+            (&REAR_WHEEL_KEYS, "the rear wheel", &self.rear_wheel),
+            (&FRONT_WHEEL_KEYS, "the front wheel", &self.front_wheel),
         ] {
-            check_mass(format!("m{name}"), w.m)?;
+            let name = keys.name;
+            check_mass(keys.m, w.m)?;
             if w.diameter < 0.0 {
                 return Err(Error::InvalidParameter {
-                    field: format!("D{name}"),
+                    field: keys.d.to_string(),
                     value: w.diameter,
                     rule: "must not be negative".into(),
                 });
             }
-            inertia_of_massless(title, &format!("m{name}"), w.m, name, w.inertia)?;
+            inertia_of_massless(title, keys, w.m, w.inertia)?;
             if w.diameter == 0.0 && w.inertia[2] != 0.0 {
                 return Err(Error::InvalidParameter {
-                    field: format!("D{name}"),
+                    field: keys.d.to_string(),
                     value: w.diameter,
                     rule: format!(
                         "a wheel of zero diameter (a skate) cannot have a spin moment of inertia \
@@ -1037,31 +1039,33 @@ impl Jbike6Parameters {
                 });
             }
             principal_moments(
-                [
-                    &format!("I{name}(1)"),
-                    &format!("I{name}(2)"),
-                    &format!("I{name}(3)"),
-                ],
+                keys.inertia,
                 w.inertia,
                 "the linear and the non-linear model, which both stay well defined",
                 &mut notices,
             )?;
         }
-        for (name, title, m, inertia) in [
-            ("rider", "the rider", self.rider.m, self.rider.inertia),
-            ("frame", "the rear frame", self.frame.m, self.frame.inertia),
-            ("rack", "the rear rack", self.rack.m, self.rack.inertia),
-            ("fork", "the fork", self.fork.m, self.fork.inertia),
-            ("basket", "the basket", self.basket.m, self.basket.inertia),
+        for (keys, title, m, inertia) in [
+            (&RIDER_KEYS, "the rider", self.rider.m, self.rider.inertia),
+            (
+                &FRAME_KEYS,
+                "the rear frame",
+                self.frame.m,
+                self.frame.inertia,
+            ),
+            (&RACK_KEYS, "the rear rack", self.rack.m, self.rack.inertia),
+            (&FORK_KEYS, "the fork", self.fork.m, self.fork.inertia),
+            (
+                &BASKET_KEYS,
+                "the basket",
+                self.basket.m,
+                self.basket.inertia,
+            ),
         ] {
-            check_mass(format!("m{name}"), m)?;
-            inertia_of_massless(title, &format!("m{name}"), m, name, inertia)?;
+            check_mass(keys.m, m)?;
+            inertia_of_massless(title, keys, m, inertia)?;
             principal_moments(
-                [
-                    &format!("I{name}(1)"),
-                    &format!("I{name}(2)"),
-                    &format!("I{name}(3)"),
-                ],
+                keys.inertia,
                 inertia,
                 "the linear and the non-linear model (through the combined bodies), which both stay well defined",
                 &mut notices,
@@ -1102,18 +1106,44 @@ impl Jbike6Parameters {
     }
 }
 
-fn inertia_of_massless(
-    title: &str,
-    mass_key: &str,
-    m: f64,
-    name: &str,
-    inertia: [f64; 3],
-) -> Result<()> {
-    let keys = [
-        format!("I{name}(1)"),
-        format!("I{name}(2)"),
-        format!("I{name}(3)"),
-    ];
-    let pairs: Vec<(&str, f64)> = keys.iter().map(String::as_str).zip(inertia).collect();
-    zero_mass_inertia(title, mass_key, m, &pairs)
+/// The `.m` keys of one JBike6 body (static, so that checking a valid bicycle allocates
+/// nothing).
+struct BodyKeys {
+    name: &'static str,
+    m: &'static str,
+    d: &'static str,
+    inertia: [&'static str; 3],
+}
+
+macro_rules! body_keys {
+    ($name:literal) => {
+        BodyKeys {
+            name: $name,
+            m: concat!("m", $name),
+            d: concat!("D", $name),
+            inertia: [
+                concat!("I", $name, "(1)"),
+                concat!("I", $name, "(2)"),
+                concat!("I", $name, "(3)"),
+            ],
+        }
+    };
+}
+
+const REAR_WHEEL_KEYS: BodyKeys = body_keys!("rearwheel");
+const FRONT_WHEEL_KEYS: BodyKeys = body_keys!("frontwheel");
+const RIDER_KEYS: BodyKeys = body_keys!("rider");
+const FRAME_KEYS: BodyKeys = body_keys!("frame");
+const RACK_KEYS: BodyKeys = body_keys!("rack");
+const FORK_KEYS: BodyKeys = body_keys!("fork");
+const BASKET_KEYS: BodyKeys = body_keys!("basket");
+
+fn inertia_of_massless(title: &str, keys: &BodyKeys, m: f64, inertia: [f64; 3]) -> Result<()> {
+    let [a, b, c] = keys.inertia;
+    zero_mass_inertia(
+        title,
+        keys.m,
+        m,
+        &[(a, inertia[0]), (b, inertia[1]), (c, inertia[2])],
+    )
 }
