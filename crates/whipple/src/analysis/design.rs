@@ -481,18 +481,35 @@ impl Study {
     }
 
     /// The base design's coordinates on the axes (user units), where the axis varies a
-    /// parameter of the bicycle (speed axes give `None`).
+    /// parameter of the bicycle (speed axes give `None`, and so does an alias of two parameters
+    /// that the base gives two values: `wheel_radius` of a bicycle with wheels of two sizes).
+    ///
+    /// ```
+    /// use whipple::analysis::design::{Axis, Study, StudyOptions};
+    /// use whipple::parameters::presets;
+    /// let bike = presets::find("benchmark")?.bicycle(); // rR = 0.3 m, rF = 0.35 m
+    /// let trail = Axis::parse("trail=0:0.2:5", &bike)?;
+    /// let radius = Axis::parse("wheel_radius=0.2:0.5:4", &bike)?;
+    /// let study = Study::new(bike, trail, Some(radius), StudyOptions::default())?;
+    /// assert_eq!(study.base_point(), (Some(0.08), None));
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
     pub fn base_point(&self) -> (Option<f64>, Option<f64>) {
         let at = |a: &Axis| -> Option<f64> {
             let si = match (&a.parameter, &self.base.description) {
                 (Parameter::Speed, _) => return None,
                 (Parameter::Benchmark(k), Description::Benchmark(b)) => match k.as_str() {
                     "head_angle" => std::f64::consts::FRAC_PI_2 - b.lambda,
-                    "wheel_radius" => b.r_r,
+                    // The alias sets both radii: a base with two sizes is on no point of it.
+                    "wheel_radius" if b.r_r == b.r_f => b.r_r,
+                    "wheel_radius" => return None,
                     key => b.get(key)?,
                 },
                 (Parameter::Jbike6(n), Description::Jbike6(j)) => match n.as_str() {
-                    "wheel_diameter" => j.rear_wheel.diameter,
+                    "wheel_diameter" if j.rear_wheel.diameter == j.front_wheel.diameter => {
+                        j.rear_wheel.diameter
+                    }
+                    "wheel_diameter" => return None,
                     name => j.get(name)?,
                 },
                 _ => return None,
