@@ -348,10 +348,16 @@ fn plot(bike: &LoadedBike, args: &SimulateArgs, run: &Simulation, path: &Path) -
         Outcome::WheelLifted { t, wheel, .. } => events.push((t, format!("{wheel} wheel lifts"))),
         _ => {}
     }
+    // The user's numbers as typed; a held turn's steer (solved, all digits) to 0.1 millidegree.
+    let steer = if args.from_turn {
+        format!("{:.4} deg (the held turn's)", args.steer)
+    } else {
+        format!("{} deg", args.steer)
+    };
     let series = whipple_report::SimulationSeries {
         title: format!(
-            "{}: v = {} m/s, lean {} deg, steer {} deg, lean rate {} rad/s, steer rate {} rad/s",
-            bike.label, args.speed, args.lean, args.steer, args.lean_rate, args.steer_rate
+            "{}: v = {} m/s, lean {} deg, steer {steer}, lean rate {} rad/s, steer rate {} rad/s",
+            bike.label, args.speed, args.lean, args.lean_rate, args.steer_rate
         ),
         t: samples.iter().map(|s| s.t).collect(),
         lean: samples.iter().map(|s| s.lean).collect(),

@@ -6,7 +6,11 @@ user makes, arrays in and out.
 
     python crates/whipple-py/bench/eig_vs_bicycleparameters.py [N_WHIPPLE] [N_BP]
 
-Needs whipple installed (pip install ./crates/whipple-py) and bicycleparameters (PyPI)."""
+Needs whipple installed (pip install ./crates/whipple-py) and bicycleparameters (PyPI). Where
+PyDy, sympy, scipy and Cython are installed too, the 10 s simulation is also run with the PyDy
+model of bench/pydy_whipple.py (Kane's equations in sympy, compiled by PyDy's Cython generator,
+integrated by the same fixed-step RK4 in a Python loop, as a PyDy user would): that script's
+derivation and compilation take a minute or two and are not timed."""
 
 import os
 import shutil
@@ -71,6 +75,35 @@ def main():
                                           steer_torque=lambda t, s: 0.0), repeat=3)
     print(f"whipple simulate 10 s, RK4 dt = 1 ms (10,000 steps, non-linear)       {t_sim:8.3f} s")
     print(f"  the same with a Python callable steer torque (40,000 calls)          {t_sim_py:8.3f} s")
+    pydy_simulation(t_sim)
+
+
+def pydy_simulation(t_whipple):
+    """The same 10 s motion with PyDy's generated model, when PyDy is installed."""
+    import importlib.util
+
+    try:
+        import pydy  # noqa: F401
+    except ImportError:
+        print("PyDy is not installed: its 10 s simulation is skipped")
+        return
+    spec = importlib.util.spec_from_file_location("pydy_whipple", ROOT / "bench" / "pydy_whipple.py")
+    model = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(model)
+    from pydy.codegen.ode_function_generators import generate_ode_function
+
+    kane, coordinates, speeds, qdot, constants, helpers = model.derive()
+    rhs = generate_ode_function(
+        kane.forcing, coordinates, speeds, constants, mass_matrix=kane.mass_matrix,
+        coordinate_derivatives=qdot, generator="cython", linear_sys_solver="sympy",
+        constants_arg_type="array")
+    lay = model.Layout(coordinates, speeds)
+    par = model.parameter_values(model.BENCH)
+    x0 = model.consistent_state(helpers, lay, par, lean=0.0, steer=0.0, lean_rate=0.5,
+                                steer_rate=0.0, speed=4.6)
+    t_pydy = best(lambda: model.rk4(rhs, x0, par, 1e-3, 10_000), repeat=3)
+    print(f"PyDy (Cython RHS, RK4 in a Python loop, no projection) 10 s           {t_pydy:8.3f} s"
+          f"  whipple {t_pydy / t_whipple:.1f}x faster")
 
 
 if __name__ == "__main__":
