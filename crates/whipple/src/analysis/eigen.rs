@@ -323,18 +323,26 @@ pub fn eigenpairs_with(
             Vector2::new(-r1, r0)
         };
         let mut x = Vector4::new(q[0], q[1], value * q[0], value * q[1]);
-        let (imax, _) = x.iter().enumerate().fold((0, 0.0), |(bi, bn), (i, z)| {
-            if z.norm() > bn {
-                (i, z.norm())
-            } else {
-                (bi, bn)
-            }
-        });
-        let pivot = x[imax];
-        let norm = x.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
-        if norm > 0.0 {
-            let phase = pivot.conj() / pivot.norm();
-            x = x.map(|z| z * phase / norm);
+        // Squared moduli (no `hypot`: this runs for every speed of a sweep), rescaled first by
+        // the largest |component| so that they can neither overflow nor underflow.
+        let scale = x
+            .iter()
+            .map(|z| z.re.abs().max(z.im.abs()))
+            .fold(0.0, f64::max);
+        if scale > 0.0 && scale.is_finite() {
+            x = x.map(|z| z.unscale(scale));
+            let (imax, _) = x.iter().enumerate().fold((0, 0.0), |(bi, bn), (i, z)| {
+                let n = z.norm_sqr();
+                if n > bn {
+                    (i, n)
+                } else {
+                    (bi, bn)
+                }
+            });
+            let pivot = x[imax];
+            let norm = x.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+            let phase = pivot.conj() / (pivot.norm_sqr().sqrt() * norm);
+            x *= phase;
         }
         EigenPair { value, vector: x }
     };
