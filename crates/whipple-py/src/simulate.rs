@@ -8,11 +8,11 @@ use std::sync::{Arc, Mutex};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use whipple::analysis::turns::{held_turn, Held, TurnSettings};
 use whipple::nonlinear::{
     simulate, IntegratorKind, Model, Sample, SimulationRequest, StateView, TorqueFn, TorqueInput,
     BODY_NAMES,
 };
-use whipple::analysis::turns::{held_turn, Held, TurnSettings};
 use whipple::Error;
 
 use crate::bicycle::NativeBicycle;

@@ -7,7 +7,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use whipple::analysis::turns::{
     branch_from_straight, hands_free_families, hands_free_turn_near, hands_free_turns_at_speed,
-    held_turn, stability, Family, FamilySettings, Held, Stability, SteadyTurn, TurnSettings,
+    held_turn, stability, Family, FamilyPoint, FamilySettings, Held, Stability, SteadyTurn,
+    TurnSettings,
 };
 use whipple::nonlinear::Model;
 use whipple::Error;
@@ -75,14 +76,28 @@ fn turn_dict<'py>(
     Ok(d)
 }
 
-fn family_dict<'py>(py: Python<'py>, family: &Family) -> PyResult<Bound<'py, PyDict>> {
+/// A family's points up to `max_speed` (the tracing stops one step beyond it; the command line
+/// shows the points in its range, so does this) as a dict of arrays.
+fn family_dict<'py>(
+    py: Python<'py>,
+    family: &Family,
+    max_speed: f64,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
+    let points: Vec<&FamilyPoint> = family
+        .points
+        .iter()
+        .filter(|p| p.turn.speed >= 0.0 && p.turn.speed <= max_speed)
+        .collect();
     let column = |f: &dyn Fn(&SteadyTurn) -> f64| -> Vec<f64> {
-        family.points.iter().map(|p| f(&p.turn)).collect()
+        points.iter().map(|p| f(&p.turn)).collect()
     };
     let nan = |x: Option<f64>| x.unwrap_or(f64::NAN);
     d.set_item("speed", PyArray1::from_vec(py, column(&|t| t.speed)))?;
-    d.set_item("hub_speed", PyArray1::from_vec(py, column(&|t| t.hub_speed)))?;
+    d.set_item(
+        "hub_speed",
+        PyArray1::from_vec(py, column(&|t| t.hub_speed)),
+    )?;
     d.set_item("lean", PyArray1::from_vec(py, column(&|t| t.lean)))?;
     d.set_item("steer", PyArray1::from_vec(py, column(&|t| t.steer)))?;
     d.set_item("pitch", PyArray1::from_vec(py, column(&|t| t.pitch)))?;
@@ -99,14 +114,12 @@ fn family_dict<'py>(py: Python<'py>, family: &Family) -> PyResult<Bound<'py, PyD
         "lateral_acceleration",
         PyArray1::from_vec(py, column(&|t| t.lateral_acceleration)),
     )?;
-    let stable: Vec<bool> = family
-        .points
+    let stable: Vec<bool> = points
         .iter()
         .map(|p| p.stability.as_ref().is_some_and(|s| s.stable))
         .collect();
-    let decided: Vec<bool> = family.points.iter().map(|p| p.stability.is_some()).collect();
-    let max_real: Vec<f64> = family
-        .points
+    let decided: Vec<bool> = points.iter().map(|p| p.stability.is_some()).collect();
+    let max_real: Vec<f64> = points
         .iter()
         .map(|p| p.stability.as_ref().map_or(f64::NAN, |s| s.max_real))
         .collect();
@@ -187,7 +200,9 @@ impl NativeBicycle {
                 let mirrored = found
                     .iter()
                     .filter(|t| t.lean != 0.0)
-                    .map(|t| hands_free_turn_near(&model, [-t.lean, -t.steer, t.speed], 2, &settings))
+                    .map(|t| {
+                        hands_free_turn_near(&model, [-t.lean, -t.steer, t.speed], 2, &settings)
+                    })
                     .collect::<Result<Vec<_>, Error>>()?;
                 found.extend(mirrored);
                 Ok::<_, Error>(
@@ -235,7 +250,7 @@ impl NativeBicycle {
         let d = PyDict::new(py);
         let list = PyList::empty(py);
         for f in &families {
-            list.append(family_dict(py, f)?)?;
+            list.append(family_dict(py, f, max_speed)?)?;
         }
         d.set_item("families", list)?;
         match branch {

@@ -89,7 +89,7 @@ def test_design_map_plot(plt, benchmark, tmp_path):
     ax = m.plot(quantity="v_w")
     meshes = [c for c in ax.collections if c.__class__.__name__ == "QuadMesh"]
     assert len(meshes) == 1
-    assert meshes[0].get_array().shape[0] == 7 * 9
+    assert meshes[0].get_array().size == 7 * 9
     # The colour bar with the unit.
     bar = meshes[0].colorbar
     assert bar is not None and "[m/s]" in bar.ax.get_ylabel()
