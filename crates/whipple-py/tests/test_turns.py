@@ -124,18 +124,22 @@ def test_hands_free_turns_at_a_speed(benchmark, turns):
     assert len(rights) == len(lefts)
     for r in rights:
         assert any(abs(l.lean + r.lean) < 1e-9 and abs(l.steer + r.steer) < 1e-9 for l in lefts)
-    # Every crossing of 8 m/s by the family from straight running, interpolated between its
-    # points, is near one of the turns found (they are those crossings, polished).
+    # Every crossing of 8 m/s by a family traced as `turn(hands_free=True)` traces them (to
+    # 20 m/s), interpolated between its points, is near one of the turns found (they are those
+    # crossings, polished), and each turn found is near a crossing.
     crossings = 0
-    for f in turns.families[:1]:
+    near = set()
+    for f in benchmark.turns(max_speed=20.0).families:
         for a in range(len(f) - 1):
             va, vb = f.speed[a], f.speed[a + 1]
             if (va - 8.0) * (vb - 8.0) <= 0 and va != vb:
                 s = (8.0 - va) / (vb - va)
                 lean = f.lean[a] + s * (f.lean[a + 1] - f.lean[a])
                 crossings += 1
-                assert min(abs(t.lean - lean) for t in rights) < math.radians(1.0)
-    assert crossings >= 1
+                distances = [abs(t.lean - lean) for t in rights]
+                assert min(distances) < math.radians(1.0)
+                near.add(int(np.argmin(distances)))
+    assert crossings >= len(rights) and near == set(range(len(rights)))
 
 
 def test_impossible_turn_raises_typed_error(benchmark):

@@ -96,11 +96,12 @@ def _runs(mask):
 
 
 def _bold_where(ax, x, y, stable, colour, label=None):
-    """A curve drawn bold where ``stable``, thin elsewhere (``whipple turns --plot``)."""
+    """A curve drawn bold where ``stable``, thin elsewhere (``whipple turns --plot``); its
+    legend entry a line of middle width."""
     for a, b, s in _runs(stable):
-        ax.plot(x[a:b], y[a:b], color=colour, lw=3.2 if s else 1.0, solid_capstyle="butt",
-                label=label)
-        label = None
+        ax.plot(x[a:b], y[a:b], color=colour, lw=3.2 if s else 1.0, solid_capstyle="butt")
+    if label:
+        ax.plot([], [], color=colour, lw=2.0, label=label)
 
 
 def plot_turns(turns: Any, ax=None, held_speeds=(3.0, 5.0, 7.0), max_radius: float = 30.0):
@@ -209,7 +210,6 @@ def plot_side_view(view: Any, label: str = "", ax=None):
             label=f"centre of mass ({view['total_mass']:.4g} kg)")
     ax.plot(gx, gy, marker="+", ms=11, color=_DARK, mew=1.5, zorder=9)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlim(x0, x1)
     ax.set_xlabel("x [m] (forward from the rear contact)")
     ax.set_ylabel("y [m] (up)")
     ax.set_title(f"{label} — side view" if label else "side view")
