@@ -53,6 +53,7 @@ impl NativeBicycle {
         };
         let study = Study::new(base, x_axis.clone(), y_axis.clone(), options).py_err(py)?;
         let total = study.len();
+        let base_point = study.base_point();
         let rows = py
             .detach(|| {
                 let mut rows: Vec<DesignRow> = Vec::new();
@@ -68,6 +69,8 @@ impl NativeBicycle {
         let column = |f: &dyn Fn(&DesignRow) -> f64| -> Vec<f64> { rows.iter().map(f).collect() };
         let d = PyDict::new(py);
         d.set_item("total", total)?;
+        // The base design on the axes (user units; None for a speed axis).
+        d.set_item("base", (base_point.0, base_point.1))?;
         d.set_item("x_axis", axis_dict(py, &x_axis)?)?;
         d.set_item(
             "y_axis",

@@ -127,6 +127,17 @@ pub fn to_py(py: Python<'_>, error: Error) -> PyErr {
                 ("rule", obj(py, reason)),
             ],
         ),
+        Error::NoSteadyTurn { given, reason } => raise(
+            py,
+            "NoSteadyTurnError",
+            message,
+            &[
+                ("field", py.None()),
+                ("value", obj(py, given.clone())),
+                ("rule", obj(py, reason)),
+                ("given", obj(py, given)),
+            ],
+        ),
         Error::NoConvergence { method, .. } => raise(
             py,
             "NumericalError",

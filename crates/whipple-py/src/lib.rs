@@ -3,11 +3,14 @@
 //! plain Python values; every number is computed by the `whipple` crate. The Python package
 //! (`python/whipple/`) wraps these functions in the documented classes.
 
+mod accelerations;
 mod bicycle;
 mod design;
 mod errors;
 mod linear;
+mod side_view;
 mod simulate;
+mod turns;
 
 use pyo3::prelude::*;
 

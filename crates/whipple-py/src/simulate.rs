@@ -8,6 +8,7 @@ use std::sync::{Arc, Mutex};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use whipple::analysis::turns::{held_turn, Held, TurnSettings};
 use whipple::nonlinear::{
     simulate, IntegratorKind, Model, Sample, SimulationRequest, StateView, TorqueFn, TorqueInput,
     BODY_NAMES,
@@ -133,7 +134,7 @@ impl NativeBicycle {
     #[pyo3(signature = (speed, duration, lean=0.0, steer=0.0, lean_rate=0.0, steer_rate=0.0,
                         integrator="rk4", dt=None, rtol=None, steer_torque=None, lean_torque=None,
                         fall_angle_deg=60.0, stop_on_lift_off=true, max_steps=None, every=1,
-                        poses=false))]
+                        poses=false, from_turn=false))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
         &self,
@@ -154,6 +155,7 @@ impl NativeBicycle {
         max_steps: Option<usize>,
         every: usize,
         poses: bool,
+        from_turn: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let integrator = match integrator {
             "rk4" => IntegratorKind::Rk4,
@@ -166,13 +168,36 @@ impl NativeBicycle {
                 .py_err(py)
             }
         };
+        let steer_torque_given = steer_torque.is_some_and(|v| !v.is_none());
         let steer_torque = torque(py, steer_torque, "steer_torque")?;
         let lean_torque = torque(py, lean_torque, "lean_torque")?;
         let input = |t: &Torque| match t {
             Torque::Input(i) => i.clone(),
             Torque::Callable(_) => TorqueInput::default(),
         };
-        let request = SimulationRequest {
+        let model = Model::new(&self.checked.benchmark).py_err(py)?;
+        // `from_turn`: start on the held steady turn at this speed (the rear contact's) and
+        // lean, as `whipple simulate --from-turn` does: the turn's hub speed, steer and (unless
+        // one is given) its steer torque.
+        let turn = if from_turn {
+            if steer != 0.0 {
+                return Err(Error::InvalidArgument {
+                    what: "steer",
+                    rule: format!(
+                        "comes from the steady turn with from_turn=True, got steer = {steer} rad"
+                    ),
+                })
+                .py_err(py);
+            }
+            let settings = TurnSettings::default();
+            Some(
+                py.detach(|| held_turn(&model, speed, Held::Lean(lean), &settings))
+                    .py_err(py)?,
+            )
+        } else {
+            None
+        };
+        let mut request = SimulationRequest {
             speed,
             lean_deg: lean.to_degrees(),
             steer_deg: steer.to_degrees(),
@@ -189,6 +214,14 @@ impl NativeBicycle {
             max_steps,
             sample_every: every,
         };
+        if let Some(turn) = &turn {
+            request.speed = turn.hub_speed;
+            request.lean_deg = turn.lean.to_degrees();
+            request.steer_deg = turn.steer.to_degrees();
+            if !steer_torque_given {
+                request.steer_torque = TorqueInput::Constant(turn.steer_torque);
+            }
+        }
         let (initial, mut settings) = request
             .validate()
             .map_err(|e| match e {
@@ -247,7 +280,6 @@ impl NativeBicycle {
                 });
             }
         }));
-        let model = Model::new(&self.checked.benchmark).py_err(py)?;
         let start = model.initial_state(&initial).py_err(py)?;
         let run = py
             .detach(|| simulate(&model, start, &settings))

@@ -14,17 +14,20 @@ arrays. SI units and radians.
 
 from . import _whipple
 from ._bicycle import BENCHMARK_KEYS, Bicycle, formats, parameter_table, presets
-from ._errors import (AccuracyLostError, ArgumentError, LimitError, NumericalError,
-                      ParameterError, ParameterWarning, ParseError, StrictError,
+from ._errors import (AccuracyLostError, ArgumentError, LimitError, NoSteadyTurnError,
+                      NumericalError, ParameterError, ParameterWarning, ParseError, StrictError,
                       UnknownPresetError, WhippleError)
 from ._design import DesignMap, design_map_dask
 from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulation
+from ._turns import SteadyTurn, TurnFamily, Turns, WheelContact
 
 __version__ = _whipple.__version__
 
 __all__ = [
     "Bicycle", "CriticalSpeeds", "Eigen", "Simulation", "Sensitivities", "Comparison",
+    "SteadyTurn", "Turns", "TurnFamily", "WheelContact",
     "DesignMap", "design_map_dask", "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
     "WhippleError", "ParameterError", "StrictError", "ParseError", "UnknownPresetError",
-    "ArgumentError", "LimitError", "NumericalError", "AccuracyLostError", "ParameterWarning",
+    "ArgumentError", "LimitError", "NumericalError", "AccuracyLostError", "NoSteadyTurnError",
+    "ParameterWarning",
 ]

@@ -11,8 +11,9 @@ from typing import TYPE_CHECKING, Any, Callable, Dict, List, Mapping, Optional, 
 import numpy as np
 
 from . import _whipple
-from ._errors import ParameterError, ParameterWarning, ParseError
+from ._errors import ArgumentError, NoSteadyTurnError, ParameterError, ParameterWarning, ParseError
 from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulation
+from ._turns import SteadyTurn, Turns
 
 if TYPE_CHECKING:
     from ._design import DesignMap
@@ -57,7 +58,8 @@ class Bicycle:
 
     The linear model: :meth:`canonical` (M, C₁, K₀, K₂), :meth:`state_space` (A, B),
     :meth:`eig`, :meth:`critical_speeds`, :meth:`sensitivities`. The non-linear model:
-    :meth:`simulate`, :meth:`nonlinear_state_matrix`, :meth:`compare`.
+    :meth:`simulate`, :meth:`nonlinear_state_matrix`, :meth:`compare`, steady turns
+    (:meth:`turn`, :meth:`turns`), :meth:`accelerations`. Figures: :meth:`plot_side_view`.
     """
 
     __slots__ = ("_native",)
@@ -310,7 +312,7 @@ class Bicycle:
                  rtol: Optional[float] = None, steer_torque: Torque = None,
                  lean_torque: Torque = None, fall_angle_deg: float = 60.0,
                  stop_on_lift_off: bool = True, max_steps: Optional[int] = None,
-                 every: int = 1, poses: bool = False) -> Simulation:
+                 every: int = 1, poses: bool = False, from_turn: bool = False) -> Simulation:
         """Simulates the non-linear multibody bicycle (four rigid bodies, knife-edge wheels,
         projected onto the constraints after each step) from upright running at ``speed``
         [m/s] with initial ``lean``, ``steer`` [rad], ``lean_rate``, ``steer_rate`` [rad/s],
@@ -325,14 +327,105 @@ class Bicycle:
         run and is raised here). The run stops when |lean| passes ``fall_angle_deg`` or a
         wheel's normal force turns negative (unless ``stop_on_lift_off=False``); those are
         outcomes, not errors. ``every=N`` keeps one sample in N steps (the first and the last
-        always), for long runs: at most 1.5 million samples are kept."""
+        always), for long runs: at most 1.5 million samples are kept.
+
+        ``from_turn=True`` starts on the held steady turn at ``speed`` (the rear contact's) and
+        ``lean`` (:meth:`turn`), as ``whipple simulate --from-turn`` does: the turn's steer,
+        pitch and every rate, the model's speed the turn's rear hub speed, and the steer torque
+        held at the turn's unless ``steer_torque`` is given (``steer`` must stay 0);
+        ``lean_rate`` and ``steer_rate`` perturb it. :class:`whipple.NoSteadyTurnError` when
+        there is no such turn."""
         data = self._native.simulate(
             float(speed), float(duration), lean=float(lean), steer=float(steer),
             lean_rate=float(lean_rate), steer_rate=float(steer_rate), integrator=integrator,
             dt=dt, rtol=rtol, steer_torque=steer_torque, lean_torque=lean_torque,
             fall_angle_deg=float(fall_angle_deg), stop_on_lift_off=stop_on_lift_off,
-            max_steps=max_steps, every=int(every), poses=poses)
+            max_steps=max_steps, every=int(every), poses=poses, from_turn=bool(from_turn))
         return Simulation(data, self.label)
+
+    def turn(self, speed: float, *, lean: Optional[float] = None, steer: Optional[float] = None,
+             radius: Optional[float] = None,
+             hands_free: bool = False) -> Union[SteadyTurn, List[SteadyTurn]]:
+        """The steady turn of the non-linear bicycle at ``speed`` (the rear contact's, m/s) with
+        exactly one of ``lean`` or ``steer`` [rad, right positive] or ``radius`` [m, of the rear
+        contact's circle, positive right, negative left] given, and the steer torque that holds
+        it, with its stability (``whipple turn``). Found on the branch that grows out of
+        straight running. ``hands_free=True`` instead gives every hands-free turn (no steer
+        torque) at that speed on the families :meth:`turns` traces, both leans, as a list.
+
+        :class:`whipple.NoSteadyTurnError` (``field`` the argument given) when there is no such
+        turn; :class:`whipple.ArgumentError` for an unusable speed, lean, steer or radius."""
+        given = [name for name, x in (("lean", lean), ("steer", steer), ("radius", radius))
+                 if x is not None]
+        if hands_free:
+            if given:
+                raise ArgumentError(f"hands_free=True takes no {given[0]}: the turns' leans "
+                                    "follow from the speed", field=given[0], value=None,
+                                    rule="give one of lean, steer, radius or hands_free=True")
+            return [SteadyTurn(t, self.label) for t in self._native.hands_free_turns(float(speed))]
+        if len(given) != 1:
+            raise ArgumentError("give exactly one of lean, steer, radius (or hands_free=True)",
+                                field="lean" if not given else given[1], value=None,
+                                rule="exactly one of lean, steer, radius")
+        try:
+            data = self._native.held_turn(
+                float(speed), lean=None if lean is None else float(lean),
+                steer=None if steer is None else float(steer),
+                radius=None if radius is None else float(radius))
+        except NoSteadyTurnError as error:
+            error.field = given[0]
+            raise
+        return SteadyTurn(data, self.label)
+
+    def turns(self, max_speed: float = 20.0) -> Turns:
+        """The families of hands-free steady turns up to ``max_speed`` [m/s] (``whipple
+        turns``): the one that leaves straight running at the branch speed and those a grid
+        scan of lean and steer finds (a family that crosses no grid line is missed), traced by
+        pseudo-arclength continuation, each point with its stability. Leaning right; the left
+        ones are their mirror images. In the library, with the GIL released (seconds)."""
+        return Turns(self._native.turn_families(float(max_speed)), self, self.label)
+
+    def accelerations(self, *, yaw: float = 0.0, lean: float, pitch: float, steer: float,
+                      wheel_angles: Tuple[float, float] = (0.0, 0.0),
+                      rear_contact: Tuple[float, float] = (0.0, 0.0),
+                      hub_velocity: Tuple[float, float, float],
+                      yaw_rate: float, lean_rate: float, pitch_rate: float, steer_rate: float,
+                      wheel_rates: Tuple[float, float], lean_torque: float = 0.0,
+                      steer_torque: float = 0.0) -> Dict[str, Any]:
+        """The non-linear model's accelerations at one state, given by the rear frame's
+        ``yaw``, ``lean`` and ``pitch``, the ``steer``, the wheels' ``wheel_angles`` relative to
+        their frames [rad], the ``rear_contact`` point (x, y) [m], the rear hub's
+        ``hub_velocity`` (world axes: x forward, y right, z down) [m/s], the rates of yaw, lean,
+        pitch and steer and the wheels' ``wheel_rates`` relative to their frames [rad/s]; this
+        model's signs (lean, steer, yaw right; pitch nose up). For checks against published
+        equations of motion (Basu-Mandal et al. 2007, Table 1).
+
+        A dict: ``hub_acceleration`` (3,) [m/s²], ``angle_accelerations`` (yaw, lean, pitch)
+        (3,), ``steer_acceleration``, ``wheel_accelerations`` (2,) [rad/s²], ``hub_position``
+        (3,) [m], and ``holonomic_residual``, ``velocity_residual``: how far the state is from
+        the constraints (a pitch or velocity that does not fit them shows here, it is not
+        corrected)."""
+        return self._native.accelerations(
+            [float(yaw), float(lean), float(pitch)], float(steer),
+            [float(x) for x in wheel_angles], [float(x) for x in rear_contact],
+            [float(x) for x in hub_velocity],
+            [float(yaw_rate), float(lean_rate), float(pitch_rate)], float(steer_rate),
+            [float(x) for x in wheel_rates], float(lean_torque), float(steer_torque))
+
+    def side_view(self) -> Dict[str, Any]:
+        """The side view's geometry (the library's ``side_view``; x forward from the rear
+        contact, y up, metres): wheels, steer axis, trail, the stylized frame tubes
+        (``frame_tubes``, a drawing aid), each body's centre of mass and inertia ellipse."""
+        return self._native.side_view()
+
+    def plot_side_view(self, ax=None):
+        """The side view drawn to scale (the command line's side-view figure): ground, wheels,
+        fork and steer axis with the trail, frame tubes, saddle and handlebar, every body's
+        centre of mass with its inertia ellipse and the total centre of mass. Needs matplotlib;
+        returns the axis."""
+        from ._plot import plot_side_view
+
+        return plot_side_view(self.side_view(), self.label, ax=ax)
 
     def nonlinear_state_matrix(self, v: Any, parallel: bool = True) -> np.ndarray:
         """The non-linear model's own A(v) about upright straight running, reduced to

@@ -29,6 +29,10 @@ class DesignMap:
         self.y_name: Optional[str] = y_axis["name"] if y_axis else None
         self.y_unit: Optional[str] = y_axis["unit"] if y_axis else None
         self.y: Optional[np.ndarray] = y_axis["values"] if y_axis else None
+        base = first.get("base") or (None, None)
+        #: The base bicycle's point on the axes (user units; None for a speed axis).
+        self.base_x: Optional[float] = base[0]
+        self.base_y: Optional[float] = base[1] if y_axis else None
         shape = (len(self.y), len(self.x)) if y_axis else (len(self.x),)
         seen = sum(len(p["index"]) for p in parts)
         if seen != first["total"]:
@@ -66,6 +70,16 @@ class DesignMap:
         data = {name: (dims, grid) for name, grid in self.quantities.items()}
         data["status"] = (dims, self.status.astype(str))
         return xr.Dataset(data, coords=coords)
+
+    def plot(self, ax=None, quantity: str = "stable_width"):
+        """The command line's figures: over two axes a heat map of ``quantity`` (``'v_w'``,
+        ``'v_c'``, ``'v_d'``, ``'stable_width'``, ``'weave_frequency'``, ``'max_real'``) with
+        a colour bar and its unit, the boundary of the designs that have a self-stable range
+        and the base design marked; over one axis v_w and v_c against the parameter with the
+        self-stable band shaded. Needs matplotlib; returns the axis."""
+        from ._plot import plot_design_map
+
+        return plot_design_map(self, ax=ax, quantity=quantity)
 
     def __repr__(self) -> str:
         shape = self.quantities["v_w"].shape

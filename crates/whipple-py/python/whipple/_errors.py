@@ -61,6 +61,15 @@ class NumericalError(WhippleError, ArithmeticError):
     """A numerical method failed: no convergence, a non-finite result, singular equations."""
 
 
+class NoSteadyTurnError(WhippleError, ValueError):
+    """No steady turn with what was asked for (``given``, in words; ``rule`` says why): the
+    solver, started from straight running, could not reach one, or it leaves the region where
+    the model is defined. ``field`` names the argument held (``'lean'``, ``'steer'``,
+    ``'radius'``) when :meth:`whipple.Bicycle.turn` raises it."""
+
+    given: str
+
+
 class AccuracyLostError(NumericalError):
     """Double precision cannot give this answer to the accuracy it would be printed with
     (``field`` names the quantity, ``rule`` why)."""
@@ -73,5 +82,6 @@ class ParameterWarning(UserWarning):
 
 __all__ = [
     "WhippleError", "ParameterError", "StrictError", "ParseError", "UnknownPresetError",
-    "ArgumentError", "LimitError", "NumericalError", "AccuracyLostError", "ParameterWarning",
+    "ArgumentError", "LimitError", "NumericalError", "AccuracyLostError",
+    "NoSteadyTurnError", "ParameterWarning",
 ]

@@ -1,5 +1,6 @@
 """Figures with matplotlib (the optional extra ``whipple[plot]``), in the look of the command
-line's: eigenvalues against speed, and a simulation's lean, steer, speed and ground track."""
+line's: eigenvalues against speed, a simulation's lean, steer, speed and ground track, the
+steady-turn families, the side view, and design maps."""
 
 from __future__ import annotations
 
@@ -73,3 +74,214 @@ def plot_simulation(run: Any, ax=None):
     right.grid(True, color="0.9")
     right.legend(loc="best", fontsize="small")
     return left, right
+
+
+# The command line's colour cycle (whipple-report's Okabe–Ito palette).
+_CYCLE = ["#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9", "#282828"]
+_DARK = "#282828"
+_GREY = "#6e6e6e"
+
+
+def _runs(mask):
+    """(start, stop, value) of the runs of equal values of a boolean mask, each run extended
+    by one point into the next so the pieces join."""
+    out = []
+    start = 0
+    n = len(mask)
+    for i in range(1, n + 1):
+        if i == n or bool(mask[i]) != bool(mask[start]):
+            out.append((start, min(i + 1, n), bool(mask[start])))
+            start = i
+    return out
+
+
+def _bold_where(ax, x, y, stable, colour, label=None):
+    """A curve drawn bold where ``stable``, thin elsewhere (``whipple turns --plot``); its
+    legend entry a line of middle width."""
+    for a, b, s in _runs(stable):
+        ax.plot(x[a:b], y[a:b], color=colour, lw=3.2 if s else 1.0, solid_capstyle="butt")
+    if label:
+        ax.plot([], [], color=colour, lw=2.0, label=label)
+
+
+def plot_turns(turns: Any, ax=None, held_speeds=(3.0, 5.0, 7.0), max_radius: float = 30.0):
+    """Lean, steer and rear contact radius of the hands-free families against speed (stable
+    bold), and the held steer torque against lateral acceleration at ``held_speeds``; the four
+    axes."""
+    plt = _pyplot()
+    if ax is None:
+        fig, ax = plt.subplots(2, 2, figsize=(13, 9), constrained_layout=True)
+        fig.suptitle(f"{turns.label}: steady turns (bold: stable, thin: unstable)")
+    axes = list(np.ravel(ax))
+    panels = [("lean φ [deg]", lambda f: np.degrees(f.lean)),
+              ("steer δ [deg]", lambda f: np.degrees(f.steer)),
+              ("rear contact radius [m]", lambda f: np.abs(f.radius))]
+    for k, (label, quantity) in enumerate(panels):
+        a = axes[k]
+        for i, f in enumerate(turns.families):
+            _bold_where(a, f.speed, quantity(f), f.stable, _CYCLE[i % len(_CYCLE)],
+                        label=f"hands-free family {i + 1}")
+        if k == 2:
+            a.set_ylim(0.0, max_radius)
+        a.set_xlabel("speed of the rear contact v [m/s]")
+        a.set_ylabel(label)
+        a.grid(True, color="0.93")
+    if turns.branch_speed is not None:
+        for a in axes[:2]:
+            a.axvline(turns.branch_speed, color=_GREY, lw=0.8, ls=":")
+    axes[0].legend(loc="best", fontsize="small")
+    held = axes[3]
+    bike = turns._bicycle
+    if bike is not None and len(held_speeds):
+        leans = np.radians(np.arange(1, 61) * 0.5)
+        for i, v in enumerate(held_speeds):
+            points, stable = [], []
+            for lean in leans:
+                try:
+                    t = bike.turn(float(v), lean=float(lean))
+                except Exception:  # the curve ends where the turns do
+                    break
+                points.append((t.lateral_acceleration, t.steer_torque))
+                stable.append(bool(t.stable))
+            if points:
+                xy = np.array(points)
+                _bold_where(held, xy[:, 0], xy[:, 1], np.array(stable), _CYCLE[i % len(_CYCLE)],
+                            label=f"held, {v:g} m/s")
+        held.legend(loc="best", fontsize="small")
+    held.set_xlabel("lateral acceleration [m/s²]")
+    held.set_ylabel("held steer torque T_δ [N m]")
+    held.grid(True, color="0.93")
+    return ax
+
+
+def plot_side_view(view: Any, label: str = "", ax=None):
+    """The side view of the library's geometry (x forward, y up, metres, equal aspect): ground,
+    wheels, fork, steer axis and trail, frame tubes, handlebar, each body's centre of mass with
+    its inertia ellipse, and the whole bicycle's centre of mass; the axis."""
+    plt = _pyplot()
+    from matplotlib.patches import Circle, Ellipse
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(10, 6.5), constrained_layout=True)
+    rear, front = view["rear_hub"], view["front_hub"]
+    r_r, r_f = view["rear_wheel_radius"], view["front_wheel_radius"]
+    w, c = view["wheelbase"], view["trail"]
+    x0 = min(-r_r, view["grip"][0]) - 0.15
+    x1 = max(w + r_f, view["ground_point"][0]) + 0.15
+    ax.axhspan(-0.08, 0.0, color="#f4f1ea", zorder=0)
+    ax.plot([x0, x1], [0.0, 0.0], color=_GREY, lw=2, zorder=1)
+    for hub, r, name in ((rear, r_r, "rear wheel"), (front, r_f, "front wheel")):
+        if r > 0:
+            ax.add_patch(Circle(hub, r, fill=False, ec=_DARK, lw=2.5, zorder=2, label=None))
+            ax.add_patch(Circle(hub, 0.93 * r, fill=False, ec=_GREY, lw=0.8, zorder=2))
+        ax.plot(*hub, "o", color=_DARK, ms=4, zorder=5)
+    (ax0, ay0), (ax1, ay1) = view["steer_axis"]
+    ax.plot([ax0, ax1], [ay0, ay1], color=_GREY, lw=1, ls="--", zorder=2, label="steer axis")
+    for a, b in view["frame_tubes"]:
+        ax.plot([a[0], b[0]], [a[1], b[1]], color="#3c506e", lw=3.5, solid_capstyle="round",
+                zorder=3)
+    ax.plot([], [], color="#3c506e", lw=3.5, label="frame (drawing aid)")
+    fork = [front, view["crown"], view["head_top"], view["bar"], view["grip"]]
+    ax.plot([p[0] for p in fork], [p[1] for p in fork], color=_CYCLE[0], lw=3.5, zorder=3,
+            solid_capstyle="round", label="fork and handlebar")
+    saddle = view["saddle"]
+    ax.plot([saddle[0] - 0.09, saddle[0] + 0.06], [saddle[1], saddle[1]], color=_DARK, lw=5,
+            zorder=4)
+    # Wheelbase and trail dimensions below the ground.
+    yw = -0.05
+    ax.annotate("", xy=(w, yw), xytext=(0.0, yw),
+                arrowprops=dict(arrowstyle="<->", color=_DARK, lw=0.8))
+    ax.text(0.5 * w, yw - 0.005, f"w = {w:.3g} m", ha="center", va="top", fontsize=9,
+            color=_DARK)
+    ax.plot([w, view["ground_point"][0]], [0.0, 0.0], color=_CYCLE[1], lw=3, zorder=4,
+            label=f"trail c = {c:.3g} m")
+    for body in view["bodies"]:
+        colour = _GREY if body["is_wheel"] else (_CYCLE[0] if body["is_front"] else _CYCLE[1])
+        cx, cy = body["centre"]
+        if body["ellipse"] is not None:
+            (a, b), angle = body["ellipse"]
+            ax.add_patch(Ellipse((cx, cy), 2 * a, 2 * b, angle=np.degrees(angle), fill=True,
+                                 fc=colour, alpha=0.18, ec=colour, lw=1.2, zorder=4))
+        ax.plot(cx, cy, "o", color=colour, ms=6, mec="white", zorder=6)
+        ax.annotate(f"{body['name']} {body['mass']:.3g} kg", (cx, cy), xytext=(6, 6),
+                    textcoords="offset points", fontsize=8, color=colour, zorder=7)
+    gx, gy = view["centre_of_mass"]
+    ax.plot(gx, gy, marker="o", ms=11, mfc="white", mec=_DARK, mew=2, zorder=8,
+            label=f"centre of mass ({view['total_mass']:.4g} kg)")
+    ax.plot(gx, gy, marker="+", ms=11, color=_DARK, mew=1.5, zorder=9)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x [m] (forward from the rear contact)")
+    ax.set_ylabel("y [m] (up)")
+    ax.set_title(f"{label} — side view" if label else "side view")
+    ax.grid(True, color="0.95")
+    ax.legend(loc="upper right", fontsize="small")
+    return ax
+
+
+_QUANTITY_LABELS = {
+    "stable_width": "width of the self-stable speed range [m/s]",
+    "v_w": "weave speed v_w [m/s]",
+    "v_c": "capsize speed v_c [m/s]",
+    "v_d": "double-root speed v_d [m/s]",
+    "weave_frequency": "weave frequency at v_w [rad/s]",
+    "max_real": "largest real part of the eigenvalues [1/s]",
+}
+
+
+def plot_design_map(design: Any, ax=None, quantity: str = "stable_width"):
+    """A two-axis design map as a heat map (colour bar with unit, the boundary of the designs
+    with a self-stable range, the base design marked), or a one-axis study as v_w and v_c
+    against the parameter with the self-stable band shaded; the axis."""
+    plt = _pyplot()
+    if quantity not in _QUANTITY_LABELS:
+        from ._errors import ArgumentError
+
+        raise ArgumentError(f"unknown quantity {quantity!r} (known: {', '.join(_QUANTITY_LABELS)})",
+                            field="quantity", value=quantity,
+                            rule=f"one of {', '.join(_QUANTITY_LABELS)}")
+    if ax is None:
+        _, ax = plt.subplots(figsize=(9, 6.5), constrained_layout=True)
+    x_label = f"{design.x_name} [{design.x_unit}]"
+    if design.y is None:
+        x = design.x
+        stable_from, stable_to = design.stable_from, design.stable_to
+        top = np.nanmax(np.concatenate([design.v_w, design.v_c, stable_from,
+                                        np.where(np.isfinite(stable_to), stable_to, np.nan)]))
+        top = 1.15 * top if np.isfinite(top) and top > 0 else 10.0
+        band_hi = np.where(np.isinf(stable_to), top, stable_to)
+        ax.fill_between(x, stable_from, band_hi, where=np.isfinite(stable_from),
+                        color=_CYCLE[2], alpha=0.22, lw=0, label="self-stable")
+        ax.plot(x, design.v_w, color=_CYCLE[0], lw=2.2, label="weave speed v_w")
+        ax.plot(x, design.v_c, color=_CYCLE[1], lw=2.2, label="capsize speed v_c")
+        if design.base_x is not None:
+            ax.axvline(design.base_x, color=_DARK, lw=1, ls="--", label="base design")
+        ax.set_ylim(0.0, top)
+        ax.set_xlabel(x_label)
+        ax.set_ylabel("forward speed v [m/s]")
+        ax.grid(True, color="0.93")
+        ax.legend(loc="best", fontsize="small")
+        return ax
+    values = np.where(design.status == "ok", design.quantities[quantity], np.nan).astype(float)
+    finite = values[np.isfinite(values)]
+    # As the command line: the colour scale spans the 1st to 99th percentile.
+    vmin, vmax = (np.percentile(finite, [1, 99]) if finite.size else (0.0, 1.0))
+    if vmin == vmax:
+        vmin, vmax = vmin - 0.5, vmax + 0.5
+    mesh = ax.pcolormesh(design.x, design.y, values, shading="nearest", cmap="viridis",
+                         vmin=vmin, vmax=vmax)
+    bar = ax.figure.colorbar(mesh, ax=ax, extend="both")
+    bar.set_label(_QUANTITY_LABELS[quantity])
+    stable = design.stable.astype(float)
+    if stable.min() < 0.5 < stable.max():
+        ax.contour(design.x, design.y, stable, levels=[0.5], colors="white", linewidths=1.8)
+        ax.plot([], [], color="white", lw=1.8, label="boundary of a self-stable range")
+    if design.base_x is not None and design.base_y is not None:
+        ax.plot(design.base_x, design.base_y, marker="*", ms=16, color="white", mec=_DARK,
+                ls="none", label="base design")
+    ax.set_xlabel(x_label)
+    ax.set_ylabel(f"{design.y_name} [{design.y_unit}]")
+    ax.set_facecolor("0.85")
+    handles = ax.get_legend_handles_labels()[0]
+    if handles:
+        ax.legend(loc="upper right", fontsize="small", facecolor="0.6", framealpha=0.8)
+    return ax
