@@ -139,45 +139,74 @@ impl NativeBicycle {
         // The precision check of the characteristic polynomial once, not per speed.
         SpeedPolynomials::new(&c).py_err(py)?;
         let poly = CharacteristicPolynomial::new(&c);
-        let pairs = par_map(py, &speeds, parallel, |v| eigenpairs_with(&c, &poly, v))?;
-        // Column order: the tracked sweep's (over the speeds sorted), or the pairs' own.
-        let (order, labels): (Vec<[usize; 4]>, Option<Vec<&'static str>>) = if tracked && n > 0 {
+        // Tracked: the sweep over the speeds sorted gives each speed's eigenvalues in mode
+        // order; `rank[i]` is speed i's place in it.
+        let tracking = if tracked && n > 0 {
             let mut sorted: Vec<usize> = (0..n).collect();
             sorted.sort_by(|&i, &j| speeds[i].total_cmp(&speeds[j]));
             let grid: Vec<f64> = sorted.iter().map(|&i| speeds[i]).collect();
             let sweep = py.detach(|| eigen_sweep(&c, &grid)).py_err(py)?;
-            let mut order = vec![[0, 1, 2, 3]; n];
+            let mut rank = vec![0usize; n];
             for (k, &i) in sorted.iter().enumerate() {
+                rank[i] = k;
+            }
+            Some((sweep, rank))
+        } else {
+            None
+        };
+        // Each speed's eigenpairs written straight into the two output buffers (no array of
+        // pairs in between: at 10⁶ speeds that was 320 MB copied once more), in parallel.
+        let fill = |i: usize, values: &mut [NpComplex], vectors: &mut [NpComplex]| {
+            let pairs = eigenpairs_with(&c, &poly, speeds[i])?;
+            let mut order = [0, 1, 2, 3];
+            if let Some((sweep, rank)) = &tracking {
                 let mut taken = [false; 4];
-                for (col, target) in sweep.eigenvalues[k].iter().enumerate() {
+                for (col, target) in sweep.eigenvalues[rank[i]].iter().enumerate() {
                     let best = (0..4)
                         .filter(|&p| !taken[p])
                         .min_by(|&p, &q| {
-                            let dp = (pairs[i][p].value - target).norm();
-                            let dq = (pairs[i][q].value - target).norm();
+                            let dp = (pairs[p].value - target).norm_sqr();
+                            let dq = (pairs[q].value - target).norm_sqr();
                             dp.total_cmp(&dq)
                         })
                         .unwrap_or(col);
                     taken[best] = true;
-                    order[i][col] = best;
+                    order[col] = best;
                 }
             }
-            (order, Some(sweep.modes.iter().map(|m| m.name()).collect()))
-        } else {
-            (vec![[0, 1, 2, 3]; n], None)
+            for (col, &k) in order.iter().enumerate() {
+                values[col] = complex(pairs[k].value);
+                for row in 0..4 {
+                    vectors[4 * row + col] = complex(pairs[k].vector[row]);
+                }
+            }
+            Ok::<(), Error>(())
         };
-        let mut values = Vec::with_capacity(n * 4);
-        let mut vectors = Vec::with_capacity(n * 16);
-        for (i, p) in pairs.iter().enumerate() {
-            for &k in &order[i] {
-                values.push(complex(p[k].value));
-            }
-            for row in 0..4 {
-                for &k in &order[i] {
-                    vectors.push(complex(p[k].vector[row]));
+        let zero = NpComplex::new(0.0, 0.0);
+        let mut values = vec![zero; n * 4];
+        let mut vectors = vec![zero; n * 16];
+        py.detach(|| {
+            let failed = if parallel {
+                values
+                    .par_chunks_mut(4)
+                    .zip(vectors.par_chunks_mut(16))
+                    .enumerate()
+                    .try_for_each(|(i, (v, x))| fill(i, v, x))
+                    .is_err()
+            } else {
+                false
+            };
+            // Sequentially (and again after a parallel failure, to report the first error in
+            // speed order, as the serial path does).
+            if !parallel || failed {
+                for (i, (v, x)) in values.chunks_mut(4).zip(vectors.chunks_mut(16)).enumerate() {
+                    fill(i, v, x)?;
                 }
             }
-        }
+            Ok::<(), Error>(())
+        })
+        .py_err(py)?;
+        let labels = tracking.map(|(sweep, _)| sweep.modes.iter().map(|m| m.name()).collect());
         Ok((
             shaped(py, values, &[n, 4])?,
             shaped(py, vectors, &[n, 4, 4])?,
