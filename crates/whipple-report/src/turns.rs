@@ -139,6 +139,7 @@ impl TurnsFigure {
                 speeds,
                 (y0, y1),
                 &curves,
+                0,
             )?;
         }
         let held: Vec<Curve> = d
@@ -156,6 +157,7 @@ impl TurnsFigure {
             xs,
             (a - pad, b + pad),
             &held,
+            d.families.len(),
         )?;
         let mut entries: Vec<(Swatch, String)> = vec![(Swatch::Heading, d.title.clone())];
         for (i, _) in d.families.iter().enumerate() {
@@ -171,7 +173,8 @@ impl TurnsFigure {
         for (i, h) in d.held.iter().enumerate() {
             entries.push((
                 Swatch::Line {
-                    colour: CYCLE[i % CYCLE.len()],
+                    // After the families' colours: a held curve is not a family.
+                    colour: CYCLE[(d.families.len() + i) % CYCLE.len()],
                     width: 2,
                     dash: Dash::Solid,
                 },
@@ -191,6 +194,7 @@ fn panel<DB: DrawingBackend>(
     (x0, x1): (f64, f64),
     (y0, y1): (f64, f64),
     curves: &[Curve],
+    first_colour: usize,
 ) -> Result<()> {
     let mut chart = ChartBuilder::on(area)
         .margin(10)
@@ -211,7 +215,7 @@ fn panel<DB: DrawingBackend>(
     let plot = chart.plotting_area();
     let rect = Rect { x0, x1, y0, y1 };
     for (i, (points, stable)) in curves.iter().enumerate() {
-        let colour = CYCLE[i % CYCLE.len()];
+        let colour = CYCLE[(first_colour + i) % CYCLE.len()];
         for (a, b, s) in runs(stable) {
             let style = if s {
                 colour.stroke_width(5)

@@ -11,6 +11,7 @@ use std::sync::Arc;
 use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
+use whipple::analysis::turns::{held_turn, Held, SteadyTurn, TurnSettings};
 use whipple::nonlinear::{
     simulate, ContactForce, InitialConditions, IntegratorKind, Model, Outcome, Sample,
     SimulationRequest, SimulationSettings, TorqueInput,
@@ -58,12 +59,23 @@ pub struct SimulateRequest {
     /// Relative tolerance of the adaptive integrator (default 1e-8); only with it.
     pub rtol: Option<f64>,
     /// T_δ: steer torque [N m], a number or an expression of t, lean, steer, lean_rate,
-    /// steer_rate, yaw and speed (default 0, hands free).
-    #[serde(default)]
-    pub steer_torque: TorqueInput,
+    /// steer_rate, yaw and speed (default 0, hands free; with `from_turn`, the turn's).
+    #[serde(default, deserialize_with = "given")]
+    pub steer_torque: Option<TorqueInput>,
     /// T_φ: lean torque [N m], as `steer_torque` (default 0).
     #[serde(default)]
     pub lean_torque: TorqueInput,
+    /// Start on the held steady turn at `speed` (the rear contact's) and `lean_deg`, as
+    /// `whipple simulate --from-turn`: steer, pitch and rates from the library's
+    /// `SteadyTurn::initial_conditions`, the steer torque held at the turn's unless
+    /// `steer_torque` is given; `lean_rate` and `steer_rate` perturb it; no `steer_deg`.
+    #[serde(default)]
+    pub from_turn: bool,
+}
+
+/// A torque that was given (`null` is not one).
+fn given<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<TorqueInput>, D::Error> {
+    TorqueInput::deserialize(d).map(Some)
 }
 
 /// A checked request: everything [`run`] needs.
@@ -71,6 +83,29 @@ pub struct SimulateRequest {
 pub struct Plan {
     initial: InitialConditions,
     settings: SimulationSettings,
+    /// With `from_turn`: the library's request, to be made again from the turn in [`run`].
+    from_turn: Option<FromTurn>,
+}
+
+/// What [`run`] needs to start on a held turn.
+#[derive(Debug)]
+struct FromTurn {
+    request: SimulationRequest,
+    /// The rear contact's speed [m/s] and the held lean [rad].
+    speed: f64,
+    lean: f64,
+    /// Whether the request gave its own steer torque (else the turn's is held).
+    steer_torque_given: bool,
+}
+
+fn library_error(error: whipple::Error) -> ApiError {
+    match error {
+        whipple::Error::InvalidArgument { what, rule } => invalid(what, rule),
+        whipple::Error::LimitExceeded { what, rule } => {
+            unprocessable("limit_exceeded", what, rule.clone(), rule)
+        }
+        other => ApiError::from(other),
+    }
 }
 
 fn unprocessable(kind: &'static str, field: &str, rule: String, message: String) -> ApiError {
@@ -106,19 +141,29 @@ pub fn check(request: &SimulateRequest, limits: &Limits) -> Result<Plan, ApiErro
         integrator: request.integrator,
         dt: request.dt,
         rtol: request.rtol,
-        steer_torque: request.steer_torque.clone(),
+        steer_torque: request.steer_torque.clone().unwrap_or_default(),
         lean_torque: request.lean_torque.clone(),
         max_steps: Some(limits.max_sim_steps),
         ..SimulationRequest::new(request.speed, duration)
     };
-    let (initial, settings) = library.validate().map_err(|error| match error {
-        whipple::Error::InvalidArgument { what, rule } => invalid(what, rule),
-        whipple::Error::LimitExceeded { what, rule } => {
-            unprocessable("limit_exceeded", what, rule.clone(), rule)
-        }
-        other => ApiError::from(other),
-    })?;
-    Ok(Plan { initial, settings })
+    if request.from_turn && request.steer_deg != 0.0 {
+        return Err(invalid(
+            "steer_deg",
+            "must not be given with `from_turn` (the turn sets the steer)".into(),
+        ));
+    }
+    let (initial, settings) = library.validate().map_err(library_error)?;
+    let from_turn = request.from_turn.then(|| FromTurn {
+        speed: request.speed,
+        lean: request.lean_deg.to_radians(),
+        steer_torque_given: request.steer_torque.is_some(),
+        request: library,
+    });
+    Ok(Plan {
+        initial,
+        settings,
+        from_turn,
+    })
 }
 
 /// How a run ended: a machine-readable kind, the time, and a sentence for people.
@@ -239,6 +284,9 @@ pub struct SimulateResponse {
     pub geometry: DrawingGeometry,
     /// The frames, the first at t = 0 and the last at the end of the run.
     pub frames: Vec<Frame>,
+    /// With `from_turn`: the held turn the run started on.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub turn: Option<SteadyTurn>,
 }
 
 /// The library's outcome, with what this server adds (its step limit, why it stopped a run).
@@ -332,10 +380,39 @@ pub fn run(
         let rule = error.to_string();
         ApiError::from(error).at(INITIAL_FIELDS, rule)
     };
-    let start = model.initial_state(&plan.initial).map_err(at_start)?;
+    let (initial, settings, turn) = match plan.from_turn {
+        None => (plan.initial, plan.settings, None),
+        Some(from) => {
+            let turn = held_turn(
+                &model,
+                from.speed,
+                Held::Lean(from.lean),
+                &TurnSettings::default(),
+            )
+            .map_err(|error| match error {
+                whipple::Error::InvalidArgument { what, rule } => {
+                    invalid(if what == "lean" { "lean_deg" } else { what }, rule)
+                }
+                other => ApiError::from(other).in_field("speed, lean_deg".to_string()),
+            })?;
+            // The turn's own state, perturbed by the request's rates, and its torque held.
+            let mut request = from.request;
+            if !from.steer_torque_given {
+                request.steer_torque = TorqueInput::Constant(turn.steer_torque);
+            }
+            let (_, settings) = request.validate().map_err(library_error)?;
+            let initial = InitialConditions {
+                lean_rate: plan.initial.lean_rate,
+                steer_rate: plan.initial.steer_rate,
+                ..turn.initial_conditions()
+            };
+            (initial, settings, Some(turn))
+        }
+    };
+    let start = model.initial_state(&initial).map_err(at_start)?;
     let settings = SimulationSettings {
         stop: Some(stop),
-        ..plan.settings
+        ..settings
     };
     let duration = settings.duration;
     let simulation = simulate(&model, start, &settings).map_err(at_start)?;
@@ -367,5 +444,6 @@ pub fn run(
             .collect(),
         geometry,
         frames,
+        turn,
     })
 }
