@@ -284,6 +284,43 @@ await section("bug 6: a refused simulation says what the plots still show", asyn
   check(/refused/.test(pill) && /previous run/.test(pill), `the outcome says the run was refused and the plots are the previous run's: "${pill}"`);
 });
 
+await section("issue 15: the simulation starts on a held steady turn, with its torque and stability", async () => {
+  await open("?bike=preset:benchmark&tab=sim");
+  await page.getByTestId("tab-sim").click();
+  await page.getByTestId("sim-from-turn").check();
+  check(await page.locator("#sim-steer").isDisabled() && await page.locator("#sim-steer-torque").isDisabled(), "on a turn, the steer and its torque are the turn's: their inputs are off");
+  await page.fill("#sim-speed", "5");
+  await page.fill("#sim-lean", "11.5");
+  await page.fill("#sim-lean-rate", "0.05");
+  await page.fill("#sim-duration", "3");
+  await page.click("[data-testid=sim-run]");
+  const outcome = await ran((t) => t.length > 0 && !/not run/.test(t));
+  const api = await page.evaluate(async () => {
+    const bike = await (await fetch("/api/presets/benchmark")).json();
+    return (await fetch("/api/turn", { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ bike, speed: 5, lean_deg: 11.5 }) })).json();
+  });
+  const steer = await text("sim-turn-steer");
+  const torque = await text("sim-turn-torque");
+  check(/^completed/.test(outcome), `the run on the 5 m/s, 11.5° turn completes: "${outcome}"`);
+  check(Math.abs(parseFloat(steer.replace("−", "-")) - api.steer_deg) < 5e-5, `the turn's steer is the API's: ${steer} (API ${api.steer_deg})`);
+  check(Math.abs(parseFloat(torque.replace("−", "-")) - api.turn.steer_torque) < 5e-5, `the holding torque is the API's: ${torque} (API ${api.turn.steer_torque})`);
+  check((await text("sim-turn-verdict")) === "stable" && api.stability.stable, "it is said to be stable, as the API says");
+  check(/held turn/.test((await page.textContent("#sim-meta")) ?? ""), "the run is labelled as started on the held turn");
+  check(new URL(page.url()).searchParams.get("sim")?.includes("turn:held"), `the link keeps it: ${new URL(page.url()).searchParams.get("sim")}`);
+  await page.fill("#sim-speed", "3");
+  await page.fill("#sim-lean", "5");
+  await page.click("[data-testid=sim-run]");
+  await ran((t) => t.length > 0 && !/not run|simulating/.test(t));
+  const verdict = await waitForText("sim-turn-verdict", (t) => t !== "stable");
+  check(/^unstable/.test(verdict), `at 3 m/s the held turn is unstable: "${verdict}"`);
+  await page.fill("#sim-lean", "89");
+  await page.click("[data-testid=sim-run]");
+  const message = await waitForText("sim-message", (t) => t.length > 0);
+  check(/turn/i.test(message) && await page.locator("#sim-lean.invalid").count() === 1, `an impossible turn is refused beside the lean: "${message}"`);
+  await page.getByTestId("sim-from-turn").uncheck();
+  check(!(await page.locator("#sim-steer").isDisabled()) && !(await page.getByTestId("sim-turn").isVisible()), "unticked, the steer input is back and the turn's numbers are gone");
+});
+
 await section("bug 7: the speed hint follows the bicycle", async () => {
   await open("?bike=preset:schwinn-crown");
   await page.getByTestId("tab-sim").click();

@@ -88,6 +88,9 @@ try {
     await page.waitForTimeout(200);
     await shot("14-design-map");
     await page.mouse.move(1, 1);
+    await ready("?bike=preset:benchmark&tab=sim&sim=speed:5;lean_deg:11.5;lean_rate:0.05;turn:held");
+    await run(5, 4, 6);
+    await shot("15-sim-held-turn");
   }
   writeFileSync(join(out, "done"), "");
 } finally {

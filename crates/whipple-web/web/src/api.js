@@ -50,6 +50,9 @@ export const api = {
   sensitivity: (bike) => call("POST", "/api/sensitivity", { bike }),
   /** The eigenmodes at one speed: {modes: [{mode, eigenvalue: [re, im], eigenvector}]}. */
   modes: (bike, speed) => call("POST", "/api/modes", { bike, speed }),
+  /** A held steady turn of the non-linear bicycle, `request` {bike, speed, lean_deg | steer_deg |
+   * radius}: {turn, lean_deg, steer_deg, stability} (SI and radians, degrees beside). */
+  turn: (request) => call("POST", "/api/turn", request),
   /** The linear model's free response: `request` as /api/simulate's initial numbers. */
   linearResponse: (request) => call("POST", "/api/linear/response", request),
 };

@@ -47,6 +47,7 @@ function runLabel(r) {
   if (r.steer_rate) parts.push(`δ̇₀ ${num(r.steer_rate)}`);
   if (r.steer_torque && r.steer_torque !== 0) parts.push(`T_δ ${r.steer_torque}`);
   if (r.lean_torque && r.lean_torque !== 0) parts.push(`T_φ ${r.lean_torque}`);
+  if (r.from_turn) parts.push("held turn");
   return parts.join(", ");
 }
 
@@ -85,6 +86,7 @@ export class SimPanel {
       this.drawPlots();
     });
     $("sim-linear").addEventListener("change", () => this.drawPlots());
+    $("sim-from-turn").addEventListener("change", () => this.noteTurn());
     this.setEnabled(false);
   }
 
@@ -144,7 +146,36 @@ export class SimPanel {
   inputs() {
     const out = {};
     for (const [id, key] of [...INPUTS, ...TORQUES]) out[key] = $(id).value;
+    if ($("sim-from-turn").checked) out.turn = "held";
     return out;
+  }
+
+  /** On a held turn the turn sets the steer and its torque: those inputs are not used. */
+  noteTurn() {
+    const on = $("sim-from-turn").checked;
+    for (const id of ["sim-steer", "sim-steer-torque"]) $(id).disabled = on;
+    if (!on) $("sim-turn").hidden = true;
+  }
+
+  /** The held turn a run starts on: its numbers and its stability, in words. */
+  showTurn(answer) {
+    const box = $("sim-turn");
+    const t = answer.turn;
+    const s = answer.stability;
+    const radius = Number.isFinite(t.rear_radius) ? `${num(Math.abs(t.rear_radius), 4)} m` : "straight";
+    const friction = t.contact.map((c) => num(c.friction_ratio, 3)).join(" / ");
+    const eig = s ? s.eigenvalues.map((z) => (Math.abs(z.im) > 1e-9 ? `${num(z.re, 4)} ± ${num(Math.abs(z.im), 4)}i` : num(z.re, 4))) : [];
+    const unique = eig.filter((e, k) => eig.indexOf(e) === k);
+    const verdict = s ? (s.stable ? html("span", { class: "good", "data-testid": "sim-turn-verdict", text: "stable" }) : html("span", { class: "bad", "data-testid": "sim-turn-verdict", text: `unstable (largest Re λ ${num(s.max_real, 4)} 1/s)` })) : html("span", { class: "bad", "data-testid": "sim-turn-verdict", text: `stability not decided: ${answer.stability_error}` });
+    box.replaceChildren(
+      document.createTextNode("held turn: steer δ "),
+      html("b", { "data-testid": "sim-turn-steer", text: `${fixed(answer.steer_deg, 4)}°` }),
+      document.createTextNode(", torque T_δ "),
+      html("b", { "data-testid": "sim-turn-torque", text: `${num(t.steer_torque, 6)} N m` }),
+      document.createTextNode(`, rear radius ${radius}, lateral acceleration ${num(t.lateral_acceleration, 3)} m/s², friction ratio rear / front ${friction}; λ = ${unique.join(", ")} 1/s: `),
+      verdict,
+    );
+    box.hidden = false;
   }
 
   /** Fills the inputs (from the URL); a speed given counts as typed. */
@@ -153,6 +184,8 @@ export class SimPanel {
       if (values[key] !== undefined) $(id).value = values[key];
     }
     if (values.speed !== undefined) this.speedEdited = true;
+    $("sim-from-turn").checked = values.turn === "held";
+    this.noteTurn();
     this.noteSpeed();
   }
 
@@ -175,6 +208,12 @@ export class SimPanel {
       if (text === "") request[key] = 0;
       else request[key] = x === null ? text : x;
     }
+    if ($("sim-from-turn").checked) {
+      // The turn's steer and its holding torque (the server's), not the inputs'.
+      request.from_turn = true;
+      request.steer_deg = 0;
+      delete request.steer_torque;
+    }
     return request;
   }
 
@@ -196,6 +235,10 @@ export class SimPanel {
     $("sim-outcome").className = "sim-outcome running";
     $("sim-outcome").textContent = "simulating…";
     try {
+      if (request.from_turn) {
+        $("sim-turn").hidden = true;
+        this.showTurn(await api.turn({ bike: request.bike, speed: request.speed, lean_deg: request.lean_deg }));
+      }
       const result = await api.simulate(request);
       const run = { request, result, label: runLabel(request), linear: null };
       const handsFree = request.steer_torque === 0 && request.lean_torque === 0;
@@ -213,7 +256,9 @@ export class SimPanel {
       this.seek(0);
       this.play();
     } catch (e) {
-      const input = [...INPUTS, ...TORQUES].find(([, key]) => key === e.field);
+      // A turn that does not exist is the lean's to change (at that speed).
+      const field = e.kind === "no_steady_turn" && request.from_turn ? "lean_deg" : e.field;
+      const input = [...INPUTS, ...TORQUES].find(([, key]) => key === field);
       if (input) $(input[0]).classList.add("invalid");
       this.refused(e.message);
     } finally {

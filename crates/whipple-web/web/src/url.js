@@ -8,6 +8,7 @@
 //   tab=eigen|locus|modes|sens|map|sim  the bottom panel
 //   mv=5                             the speed of the Modes tab
 //   sim=speed:4.6;lean_rate:0.5;…    the simulation's inputs, as typed
+//                                    (turn:held: started on the held steady turn)
 //   sq=weave                         the quantity of the Sensitivity tab
 //   map=x:trail=0:0.2:61;y:…;…       the Design map's axes, quantity and speed, as typed
 
