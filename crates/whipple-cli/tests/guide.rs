@@ -108,7 +108,11 @@ fn examples(chapter: &str, text: &str) -> Vec<Example> {
 /// The field's parameter files the guide's examples read, copied into the scratch directory.
 fn copy_inputs(dir: &Path) {
     let data = root().join("crates/whipple/tests/data");
-    for sub in ["bicycleparameters", "humancontrol", "bicycleparameters-yaml"] {
+    for sub in [
+        "bicycleparameters",
+        "humancontrol",
+        "bicycleparameters-yaml",
+    ] {
         for entry in fs::read_dir(data.join(sub)).expect("test data") {
             let path = entry.expect("test data entry").path();
             let name = path.file_name().expect("a file name").to_string_lossy();
@@ -139,7 +143,11 @@ fn chapters() -> Vec<(String, String)> {
     files
         .into_iter()
         .map(|p| {
-            let name = p.file_stem().expect("a chapter name").to_string_lossy().into();
+            let name = p
+                .file_stem()
+                .expect("a chapter name")
+                .to_string_lossy()
+                .into();
             (name, fs::read_to_string(&p).expect("a chapter"))
         })
         .collect()
@@ -147,10 +155,18 @@ fn chapters() -> Vec<(String, String)> {
 
 #[test]
 fn the_splitter_quotes_and_comments() {
-    let (words, comment) = split(r#"whipple simulate --steer-torque "10*lean + 20" -x 'a b'  # note (fails)"#);
+    let (words, comment) =
+        split(r#"whipple simulate --steer-torque "10*lean + 20" -x 'a b'  # note (fails)"#);
     assert_eq!(
         words,
-        ["whipple", "simulate", "--steer-torque", "10*lean + 20", "-x", "a b"]
+        [
+            "whipple",
+            "simulate",
+            "--steer-torque",
+            "10*lean + 20",
+            "-x",
+            "a b"
+        ]
     );
     assert_eq!(comment, "note (fails)");
     let found = examples(
@@ -190,10 +206,19 @@ fn every_shell_example_of_the_guide_runs() {
                 .output()
                 .expect("the whipple binary runs");
             let stderr = String::from_utf8_lossy(&done.stderr);
-            let place = format!("docs/guide/{chapter}.md:{line}: whipple {}", words.join(" "));
+            let place = format!(
+                "docs/guide/{chapter}.md:{line}: whipple {}",
+                words.join(" ")
+            );
             if *fails {
-                assert!(!done.status.success(), "{place}: succeeded, the guide says it fails");
-                assert!(stderr.contains("error"), "{place}: failed without a message");
+                assert!(
+                    !done.status.success(),
+                    "{place}: succeeded, the guide says it fails"
+                );
+                assert!(
+                    stderr.contains("error"),
+                    "{place}: failed without a message"
+                );
             } else {
                 assert!(done.status.success(), "{place}: failed:\n{stderr}");
                 assert!(
@@ -209,10 +234,27 @@ fn every_shell_example_of_the_guide_runs() {
         }
     }
     // The guide shows the commands of every chapter: a parser that found few has broken.
-    assert!(count >= 30, "only {count} shell examples found in docs/guide");
+    assert!(
+        count >= 30,
+        "only {count} shell examples found in docs/guide"
+    );
     for command in [
-        "eig", "speeds", "modes", "matrices", "sensitivity", "simulate", "validate", "turn",
-        "turns", "map", "study", "merge", "convert", "show", "draw", "presets",
+        "eig",
+        "speeds",
+        "modes",
+        "matrices",
+        "sensitivity",
+        "simulate",
+        "validate",
+        "turn",
+        "turns",
+        "map",
+        "study",
+        "merge",
+        "convert",
+        "show",
+        "draw",
+        "presets",
     ] {
         assert!(
             commands_seen.contains(command),
