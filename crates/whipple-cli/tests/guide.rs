@@ -33,8 +33,7 @@ fn split(line: &str) -> (Vec<String>, String) {
     let mut word = String::new();
     let mut in_word = false;
     let mut quote: Option<char> = None;
-    let mut chars = line.char_indices();
-    while let Some((i, ch)) = chars.next() {
+    for (i, ch) in line.char_indices() {
         match quote {
             Some(q) if ch == q => quote = None,
             Some(_) => word.push(ch),
