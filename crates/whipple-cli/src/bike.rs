@@ -1,7 +1,7 @@
 //! `--bike`: a preset name or a parameter file path; `--format` and `--strict` (global options).
 
 use std::path::Path;
-use std::sync::OnceLock;
+use std::sync::{Mutex, PoisonError};
 
 use anyhow::{anyhow, bail, Context, Result};
 use whipple::parameters::io::{parse, Format};
@@ -9,7 +9,7 @@ use whipple::parameters::presets;
 use whipple::parameters::Notice;
 use whipple::{BenchmarkParameters, Bicycle, Error};
 
-/// The global reading options, set once from the command line.
+/// The global reading options, set from the command line by each run of the command.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ReadOptions {
     /// `--format`: the file format, overriding extension and content.
@@ -18,15 +18,20 @@ pub struct ReadOptions {
     pub strict: bool,
 }
 
-static OPTIONS: OnceLock<ReadOptions> = OnceLock::new();
+// A Mutex, not a OnceLock: the command may run more than once in one process (the Python
+// package calls `main_with_args` in the interpreter's process), each run with its own options.
+static OPTIONS: Mutex<ReadOptions> = Mutex::new(ReadOptions {
+    format: None,
+    strict: false,
+});
 
-/// Sets the reading options (once, from `main`).
+/// Sets the reading options (from `main_with_args`, before the command runs).
 pub fn set_options(options: ReadOptions) {
-    let _ = OPTIONS.set(options);
+    *OPTIONS.lock().unwrap_or_else(PoisonError::into_inner) = options;
 }
 
 fn options() -> ReadOptions {
-    OPTIONS.get().copied().unwrap_or_default()
+    *OPTIONS.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 /// A loaded bicycle, checked, with a label for titles and messages and its warnings and notes

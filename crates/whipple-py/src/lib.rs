@@ -5,6 +5,7 @@
 
 mod accelerations;
 mod bicycle;
+mod cli;
 mod design;
 mod errors;
 mod linear;
@@ -21,6 +22,7 @@ fn _whipple(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(bicycle::presets, m)?)?;
     m.add_function(wrap_pyfunction!(bicycle::formats, m)?)?;
     m.add_function(wrap_pyfunction!(bicycle::parameter_table, m)?)?;
+    m.add_function(wrap_pyfunction!(cli::cli_main, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -1,0 +1,420 @@
+//! `whipple`: bicycle dynamics from the command line. A thin layer: arguments → library →
+//! report; every error gets its context here.
+//!
+//! The command is this library's [`main_with_args`]: the `whipple` binary calls it with the
+//! process's arguments, and the Python package calls it for its own `whipple` script, so both
+//! are the same CLI.
+
+mod bike;
+mod commands;
+mod design;
+mod figures;
+mod output;
+mod simulate;
+mod speeds;
+mod turns;
+mod validate;
+
+use std::ffi::OsString;
+
+use clap::{Parser, Subcommand, ValueEnum};
+
+/// Dynamics of the Whipple bicycle: benchmark parameters, linearized stability, eigenvalues,
+/// critical speeds and drawings (the successor of JBike6).
+#[derive(Parser)]
+#[command(name = "whipple", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+    /// Format of the --bike file: toml, json, m, bp-txt (BicycleParameters <Name>Benchmark.txt),
+    /// hc-txt (HumanControl <Name>Par.txt), yaml; by default from the extension and content.
+    #[arg(long = "bike-format", global = true, value_parser = parse_format)]
+    format_in: Option<whipple::parameters::io::Format>,
+    /// Treat the bicycle's warnings (a triangle inequality broken by a measured tensor, ...) as
+    /// errors.
+    #[arg(long, global = true)]
+    strict: bool,
+}
+
+fn parse_format(name: &str) -> Result<whipple::parameters::io::Format, String> {
+    whipple::parameters::io::Format::from_name(name).ok_or_else(|| {
+        format!(
+            "unknown format `{name}` (formats: {})",
+            whipple::parameters::io::FORMATS
+                .iter()
+                .map(|(_, n, _)| *n)
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    })
+}
+
+/// Output formats for tables.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TableFormat {
+    /// Aligned text for reading.
+    Table,
+    /// Comma-separated values.
+    Csv,
+    /// JSON.
+    Json,
+}
+
+/// Output formats without CSV.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TextFormat {
+    /// Aligned text for reading.
+    Table,
+    /// JSON.
+    Json,
+}
+
+/// File formats a bicycle can be written in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FileFormat {
+    /// TOML (the hand-edited format).
+    Toml,
+    /// JSON.
+    Json,
+    /// JBike6's MATLAB assignments (JBike6-form bicycles only).
+    M,
+    /// BicycleParameters' <Name>Benchmark.txt (`key = value+/-sigma`).
+    BpTxt,
+    /// HumanControl's <Name>Par.txt (`key = value`).
+    HcTxt,
+    /// BicycleParameters' YAML parameter set.
+    Yaml,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List the named bicycles with their sources.
+    Presets,
+    /// Show a bicycle's parameters (JBike6 form where known, and the benchmark form).
+    Show {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+    },
+    /// Write a bicycle as a parameter file in the benchmark form (JBike6 bodies combined).
+    Convert {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// Output format.
+        #[arg(long, value_enum)]
+        to: FileFormat,
+        /// Keep JBike6's form instead of converting to the benchmark form.
+        #[arg(long)]
+        keep_form: bool,
+        /// Write to this file instead of standard output.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+    },
+    /// The linearized model's matrices M, C1, K0, K2.
+    Matrices {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// JBike6's convention: steer left positive, g inside K0.
+        #[arg(long)]
+        jbike6: bool,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TextFormat,
+    },
+    /// Eigenvalues against forward speed, modes tracked and labelled.
+    Eig {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// Speeds START:STOP:STEP in m/s, both ends included.
+        #[arg(long, default_value = "0:10:0.1", allow_hyphen_values = true)]
+        speeds: String,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TableFormat,
+        /// Write the table to this file instead of standard output.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Also draw the eigenvalues against speed to this .svg or .png file.
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+        /// In the plot, shade each eigenvalue's real part ± its standard deviation (from the
+        /// parameters' sigmas).
+        #[arg(long)]
+        sigma_bands: bool,
+    },
+    /// Eigenvalues and mode shapes (eigenvectors) at one speed.
+    Modes {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// Forward speed in m/s.
+        #[arg(long, allow_hyphen_values = true)]
+        speed: f64,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TextFormat,
+    },
+    /// Critical speeds (double root, weave, capsize) and the self-stable speed ranges.
+    Speeds {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// Speed range LO:HI in m/s; HI may be `inf` (default: every speed v >= 0).
+        #[arg(long, allow_hyphen_values = true)]
+        range: Option<String>,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TextFormat,
+    },
+    /// A map of one quantity over two parameters of a bicycle (a design study).
+    Map {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// The x axis: NAME=START:STOP:COUNT (for example trail=0:0.2:401; `_deg` for degrees).
+        #[arg(long, allow_hyphen_values = true)]
+        x: String,
+        /// The y axis: NAME=START:STOP:COUNT (for example head_angle_deg=60:80:401, or speed=0:10:101).
+        #[arg(long, allow_hyphen_values = true)]
+        y: String,
+        /// The quantity the plot shows (every quantity is in the CSV/JSON).
+        #[arg(long, value_enum, default_value = "stable-width")]
+        quantity: design::Quantity,
+        #[command(flatten)]
+        options: design::StudyArgs,
+        /// Also draw the heat map to this .svg or .png file.
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+    },
+    /// The classic one-parameter study: critical speeds against one parameter.
+    Study {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// The parameter: NAME=START:STOP:COUNT (for example trail=-0.1:0.3:401).
+        #[arg(long, allow_hyphen_values = true)]
+        vary: String,
+        #[command(flatten)]
+        options: design::StudyArgs,
+        /// Also draw v_w and v_c against the parameter, the self-stable band shaded (.svg, .png).
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+    },
+    /// Join the CSV shards of a map or study (`--shard I/N`) into the one-machine file.
+    Merge {
+        /// The shards' CSV files, in any order.
+        files: Vec<std::path::PathBuf>,
+        /// Write the merged CSV here instead of standard output.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Also draw the merged map to this .svg or .png file.
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+        /// The quantity the plot shows.
+        #[arg(long, value_enum, default_value = "stable-width")]
+        quantity: design::Quantity,
+    },
+    /// Exact sensitivities of the weave and capsize speeds and the stable range's width to every
+    /// parameter of the bicycle's own form (and, at --speed, of the weave's and capsize's real
+    /// parts): derivatives and elasticities.
+    Sensitivity {
+        /// A preset name or a parameter file.
+        #[arg(long)]
+        bike: String,
+        /// Also the derivatives of the weave's and capsize's real parts at this speed [m/s].
+        #[arg(long)]
+        speed: Option<f64>,
+        /// Speed range LO:HI searched for the critical speeds, in m/s.
+        #[arg(long, default_value = "0:20", allow_hyphen_values = true)]
+        range: String,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TableFormat,
+        /// Write the table to this file instead of standard output.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// Also draw a tornado plot of the elasticities of v_w to this .svg or .png file.
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+    },
+    /// Simulate the fully non-linear bicycle from a few initial numbers.
+    Simulate(simulate::SimulateArgs),
+    /// One steady turn of the non-linear bicycle (held at a lean, steer or radius, or every
+    /// hands-free one at a speed): steer, radii, torque, contact forces and stability.
+    Turn(turns::TurnArgs),
+    /// The families of hands-free steady turns (pseudo-arclength continuation), with a figure of
+    /// lean, steer and radius against speed (stable parts bold).
+    Turns(turns::TurnsArgs),
+    /// Serve JBike6's window in the browser: a local page and JSON API (Ctrl-C to stop).
+    Serve {
+        /// Port to listen on (0 picks a free one).
+        #[arg(long, default_value_t = 8080)]
+        port: u16,
+        /// Address to listen on; the default serves this machine only.
+        #[arg(long, default_value = "127.0.0.1")]
+        address: std::net::IpAddr,
+        /// Open the page in the system's browser.
+        #[arg(long)]
+        open: bool,
+    },
+    /// Linearize the non-linear model about upright straight running and compare its
+    /// eigenvalues with the linear model's, speed by speed (the JBike6 benchmark).
+    Validate {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// Speeds START:STOP:STEP in m/s, both ends included.
+        #[arg(long, default_value = "0:10:0.01", allow_hyphen_values = true)]
+        speeds: String,
+        /// Linearization: the study's finite differences, exact derivatives, or both.
+        #[arg(long, value_enum, default_value = "both")]
+        method: validate::MethodChoice,
+        /// Output format of the table on standard output.
+        #[arg(long, value_enum, default_value = "csv")]
+        format: validate::ValidateFormat,
+        /// Also write a report to this directory: the CSV, the figures, a summary.
+        #[arg(long)]
+        report: Option<std::path::PathBuf>,
+    },
+    /// JBike6's stylized side view of the bicycle.
+    Draw {
+        /// A preset name or a parameter file (.toml, .json, .m).
+        #[arg(long)]
+        bike: String,
+        /// The drawing, .svg or .png.
+        #[arg(long)]
+        out: std::path::PathBuf,
+    },
+}
+
+/// Runs the `whipple` command with `args` (the program name first, as in `std::env::args_os`)
+/// and returns its exit status: 0 on success, 1 when the command failed (its message is on
+/// standard error), 2 for a usage error (clap's message); `--help` and `--version` print and
+/// return 0.
+pub fn main_with_args<I, T>(args: I) -> i32
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(error) => {
+            // Help and version go to standard output, usage errors to standard error.
+            let _ = error.print();
+            return error.exit_code();
+        }
+    };
+    bike::set_options(bike::ReadOptions {
+        format: cli.format_in,
+        strict: cli.strict,
+    });
+    let result = match cli.command {
+        Command::Presets => commands::presets(),
+        Command::Show { bike } => commands::show(&bike),
+        Command::Convert {
+            bike,
+            to,
+            keep_form,
+            out,
+        } => commands::convert(&bike, to, keep_form, out.as_deref()),
+        Command::Matrices {
+            bike,
+            jbike6,
+            format,
+        } => commands::matrices(&bike, jbike6, format),
+        Command::Eig {
+            bike,
+            speeds,
+            format,
+            out,
+            plot,
+            sigma_bands,
+        } => commands::eig(
+            &bike,
+            &speeds,
+            format,
+            out.as_deref(),
+            plot.as_deref(),
+            sigma_bands,
+        ),
+        Command::Sensitivity {
+            bike,
+            speed,
+            range,
+            format,
+            out,
+            plot,
+        } => commands::sensitivity(
+            &bike,
+            speed,
+            &range,
+            format,
+            out.as_deref(),
+            plot.as_deref(),
+        ),
+        Command::Modes {
+            bike,
+            speed,
+            format,
+        } => commands::modes(&bike, speed, format),
+        Command::Speeds {
+            bike,
+            range,
+            format,
+        } => speeds::speeds(&bike, range.as_deref(), format),
+        Command::Draw { bike, out } => commands::draw(&bike, &out),
+        Command::Map {
+            bike,
+            x,
+            y,
+            quantity,
+            options,
+            plot,
+        } => design::run(&options.args(&bike, &x, Some(&y), quantity, plot.as_deref())),
+        Command::Study {
+            bike,
+            vary,
+            options,
+            plot,
+        } => design::run(&options.args(
+            &bike,
+            &vary,
+            None,
+            design::Quantity::StableWidth,
+            plot.as_deref(),
+        )),
+        Command::Merge {
+            files,
+            out,
+            plot,
+            quantity,
+        } => design::merge(&files, out.as_deref(), plot.as_deref(), quantity),
+        Command::Simulate(args) => simulate::run(&args),
+        Command::Turn(args) => turns::turn(&args),
+        Command::Turns(args) => turns::turns(&args),
+        Command::Serve {
+            port,
+            address,
+            open,
+        } => commands::serve(address, port, open),
+        Command::Validate {
+            bike,
+            speeds,
+            method,
+            format,
+            report,
+        } => validate::validate(&bike, &speeds, method, format, report.as_deref()),
+    };
+    match result {
+        Ok(()) => 0,
+        // A reader that went away (`whipple eig ... | head`) got what it wanted.
+        Err(error) if output::is_closed_stdout(&error) => 0,
+        Err(error) => {
+            eprintln!("error: {error:#}");
+            1
+        }
+    }
+}
