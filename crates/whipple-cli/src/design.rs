@@ -407,6 +407,8 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
     let mut stable: Vec<bool> = Vec::new();
     let mut study_rows: Vec<DesignRow> = Vec::new();
     let stop = interrupt_flag();
+    // One handler a process, one flag a run (the Python package runs the command in-process).
+    stop.store(false, Ordering::Relaxed);
     let bar = progress(end - first);
     let started = Instant::now();
     let on_terminal = std::io::stderr().is_terminal();

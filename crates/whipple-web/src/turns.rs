@@ -56,10 +56,10 @@ pub(crate) async fn turn(
 ) -> Result<Json<TurnResponse>, ApiError> {
     let request: TurnRequest = json_body(body)?;
     let bike = bicycle(&request.bike)?;
-    let given = match (request.lean_deg, request.steer_deg, request.radius) {
-        (Some(lean), None, None) => Held::Lean(lean.to_radians()),
-        (None, Some(steer), None) => Held::Steer(steer.to_radians()),
-        (None, None, Some(radius)) => Held::Radius(radius),
+    let (given, given_field) = match (request.lean_deg, request.steer_deg, request.radius) {
+        (Some(lean), None, None) => (Held::Lean(lean.to_radians()), "lean_deg"),
+        (None, Some(steer), None) => (Held::Steer(steer.to_radians()), "steer_deg"),
+        (None, None, Some(radius)) => (Held::Radius(radius), "radius"),
         _ => {
             return Err(ApiError::new(
                 StatusCode::UNPROCESSABLE_ENTITY,
@@ -75,6 +75,8 @@ pub(crate) async fn turn(
         let turn = held_turn(&model, speed, given, &TurnSettings::default()).map_err(|e| {
             let name = match &e {
                 whipple::Error::InvalidArgument { what, .. } => Some(field(what).to_string()),
+                // No turn at this speed with what was given: the given is the field to change.
+                whipple::Error::NoSteadyTurn { .. } => Some(given_field.to_string()),
                 _ => None,
             };
             let error = ApiError::from(e);

@@ -644,6 +644,16 @@ async fn a_held_steady_turn_and_its_stability() -> TestResult {
     let both = turn(json!({"lean_deg": 10.0, "radius": 20.0}))?;
     let (status, body) = post(&app, "/api/turn", &both).await?;
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    // A turn that is not reached names what was given (the page marks that field).
+    for (given, field) in [
+        (json!({"lean_deg": 89.0, "speed": 3.0}), "lean_deg"),
+        (json!({"radius": 0.05, "speed": 8.0}), "radius"),
+    ] {
+        let (status, body) = post(&app, "/api/turn", &turn(given)?).await?;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+        assert_eq!(body["error"]["kind"], "no_steady_turn", "{body}");
+        assert_eq!(body["error"]["field"], field, "{body}");
+    }
     Ok(())
 }
 

@@ -11,7 +11,9 @@ use whipple::analysis::turns::{
 };
 use whipple::integrate::{Dopri5Settings, Integrator};
 use whipple::linear::Canonical;
-use whipple::nonlinear::{simulate, Model, SimulationSettings, FRONT_WHEEL};
+use whipple::nonlinear::{
+    simulate, InitialConditions, Model, Simulation, SimulationSettings, FRONT_WHEEL,
+};
 use whipple::{BenchmarkParameters, Error, Result};
 
 fn benchmark() -> Model {
@@ -324,6 +326,31 @@ fn hands_free_families_are_found() -> Result<()> {
     Ok(())
 }
 
+/// A run from `initial` with the turn's steer torque held, adaptive (atol = rtol / 100).
+fn run_holding(
+    model: &Model,
+    turn: &SteadyTurn,
+    initial: &InitialConditions,
+    duration: f64,
+    rtol: f64,
+) -> Result<Simulation> {
+    let torque = turn.steer_torque;
+    simulate(
+        model,
+        model.initial_state(initial)?,
+        &SimulationSettings {
+            duration,
+            integrator: Integrator::Dopri5(Dopri5Settings {
+                rtol,
+                atol: rtol / 100.0,
+                ..Dopri5Settings::default()
+            }),
+            steer_torque: Some(Box::new(move |_, _| torque)),
+            ..SimulationSettings::default()
+        },
+    )
+}
+
 /// A simulation started exactly on a held turn stays on it, and its rear contact runs round the
 /// turn's circle at the turn's speed (an independent check of the speed and radius).
 #[test]
@@ -331,22 +358,7 @@ fn simulation_started_on_a_held_turn_stays_on_it() -> Result<()> {
     let model = benchmark();
     let turn = held(&model, 5.0, 11.5)?;
     println!("{:?}", stability(&model, &turn)?);
-    let start = model.initial_state(&turn.initial_conditions())?;
-    let torque = turn.steer_torque;
-    let run = simulate(
-        &model,
-        start,
-        &SimulationSettings {
-            duration: 3.0,
-            integrator: Integrator::Dopri5(Dopri5Settings {
-                rtol: 1e-11,
-                atol: 1e-13,
-                ..Dopri5Settings::default()
-            }),
-            steer_torque: Some(Box::new(move |_, _| torque)),
-            ..SimulationSettings::default()
-        },
-    )?;
+    let run = run_holding(&model, &turn, &turn.initial_conditions(), 3.0, 1e-11)?;
     let [cx, cy] = turn.centre.expect("turn");
     let radius = turn.rear_radius.expect("turn").abs();
     let mut worst = 0.0f64;
@@ -400,22 +412,7 @@ fn perturbations_grow_or_decay_at_the_eigenvalue_rate() -> Result<()> {
         initial.lean_rate = eps * e[2];
         initial.steer_rate = eps * e[3];
         initial.speed += eps * e[4];
-        let start = model.initial_state(&initial)?;
-        let torque = turn.steer_torque;
-        let run = simulate(
-            &model,
-            start,
-            &SimulationSettings {
-                duration: 4.0,
-                integrator: Integrator::Dopri5(Dopri5Settings {
-                    rtol: 1e-12,
-                    atol: 1e-14,
-                    ..Dopri5Settings::default()
-                }),
-                steer_torque: Some(Box::new(move |_, _| torque)),
-                ..SimulationSettings::default()
-            },
-        )?;
+        let run = run_holding(&model, &turn, &initial, 4.0, 1e-12)?;
         let d0 = eps * e[0];
         let mut checked = 0;
         let mut worst = 0.0f64;

@@ -256,9 +256,7 @@ export class SimPanel {
       this.seek(0);
       this.play();
     } catch (e) {
-      // A turn that does not exist is the lean's to change (at that speed).
-      const field = e.kind === "no_steady_turn" && request.from_turn ? "lean_deg" : e.field;
-      const input = [...INPUTS, ...TORQUES].find(([, key]) => key === field);
+      const input = [...INPUTS, ...TORQUES].find(([, key]) => key === e.field);
       if (input) $(input[0]).classList.add("invalid");
       this.refused(e.message);
     } finally {
