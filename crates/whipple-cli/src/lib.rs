@@ -78,9 +78,11 @@ pub enum FileFormat {
     Json,
     /// JBike6's MATLAB assignments (JBike6-form bicycles only).
     M,
-    /// BicycleParameters' <Name>Benchmark.txt (`key = value+/-sigma`).
+    /// BicycleParameters' `<Name>Benchmark.txt` (`key = value+/-sigma`).
+    #[value(help = "BicycleParameters' <Name>Benchmark.txt (`key = value+/-sigma`)")]
     BpTxt,
-    /// HumanControl's <Name>Par.txt (`key = value`).
+    /// HumanControl's `<Name>Par.txt` (`key = value`).
+    #[value(help = "HumanControl's <Name>Par.txt (`key = value`)")]
     HcTxt,
     /// BicycleParameters' YAML parameter set.
     Yaml,

@@ -31,7 +31,7 @@ pub struct EigenPlotOptions {
     pub show_imaginary: bool,
     /// A title above the plot (default none).
     pub title: Option<String>,
-    /// Figure size [px] (default 1000 × 620).
+    /// Figure size \[px\] (default 1000 × 620).
     pub size: (u32, u32),
     /// Bands to shade around the first bicycle's real parts: for each speed of its sweep and
     /// each column, (Re λ − σ, Re λ + σ) (NaN where unknown); default none.

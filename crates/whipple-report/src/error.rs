@@ -42,5 +42,5 @@ pub enum Error {
     },
 }
 
-/// `Result` with the report crate's [`Error`].
+/// `Result` with the report crate's [`enum@Error`].
 pub type Result<T> = std::result::Result<T, Error>;

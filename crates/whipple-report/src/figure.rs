@@ -143,12 +143,12 @@ const MIN_SIDE: u32 = 100;
 const MAX_SIDE: u32 = 10_000;
 
 impl Figure {
-    /// Width and height [px].
+    /// Width and height \[px\].
     pub fn size(&self) -> (u32, u32) {
         (self.width, self.height)
     }
 
-    /// The same figure at another size [px], each side within 100..=10000. Figures drawn to
+    /// The same figure at another size \[px\], each side within 100..=10000. Figures drawn to
     /// scale (the side view, the ground track) keep their aspect ratio inside the new size.
     pub fn with_size(mut self, width: u32, height: u32) -> Result<Figure> {
         for (what, side) in [("width", width), ("height", height)] {

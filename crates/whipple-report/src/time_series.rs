@@ -21,19 +21,19 @@ const FIGURE: &str = "time series plot";
 pub struct SimulationSeries {
     /// Title (bicycle, initial condition).
     pub title: String,
-    /// Time t [s].
+    /// Time t \[s\].
     pub t: Vec<f64>,
-    /// Lean φ [rad].
+    /// Lean φ \[rad\].
     pub lean: Vec<f64>,
-    /// Steer δ [rad].
+    /// Steer δ \[rad\].
     pub steer: Vec<f64>,
     /// Forward speed v [m/s].
     pub speed: Vec<f64>,
-    /// Rear wheel ground contact (x, y) [m] over time.
+    /// Rear wheel ground contact (x, y) \[m\] over time.
     pub rear_contact: Vec<(f64, f64)>,
-    /// Front wheel ground contact (x, y) [m] over time.
+    /// Front wheel ground contact (x, y) \[m\] over time.
     pub front_contact: Vec<(f64, f64)>,
-    /// Events at times [s] with a short label (for example "fell over").
+    /// Events at times \[s\] with a short label (for example "fell over").
     pub events: Vec<(f64, String)>,
     /// How the run ended, in words (shown under the ground track).
     pub outcome: Option<String>,

@@ -23,9 +23,9 @@ type Quantity = (&'static str, fn(&TurnPoint) -> f64);
 pub struct TurnPoint {
     /// Speed of the rear contact [m/s].
     pub speed: f64,
-    /// Lean [deg].
+    /// Lean \[deg\].
     pub lean_deg: f64,
-    /// Steer [deg].
+    /// Steer \[deg\].
     pub steer_deg: f64,
     /// Rear contact radius, absolute \[m\] (non-finite when straight: the line breaks).
     pub radius: f64,

@@ -76,7 +76,7 @@ pub struct XyPlotOptions {
     /// y axis range; `None` (default) spans the data (on a log axis: whole decades around the
     /// positive values). Lines are clipped at it.
     pub y_range: Option<(f64, f64)>,
-    /// Figure size [px] (default 1000 × 600).
+    /// Figure size \[px\] (default 1000 × 600).
     pub size: (u32, u32),
 }
 

@@ -14,9 +14,9 @@ use whipple::{BenchmarkParameters, Bicycle};
 pub struct Wheel {
     /// `rear` or `front`.
     pub name: &'static str,
-    /// The hub [m].
+    /// The hub \[m\].
     pub centre: Point,
-    /// The radius [m] (0 for a skate).
+    /// The radius \[m\] (0 for a skate).
     pub radius: f64,
 }
 
@@ -25,9 +25,9 @@ pub struct Wheel {
 pub struct Body {
     /// Short name (`rider`, `frame`, `rear frame B`, `front frame H`, `rear wheel`, ...).
     pub name: String,
-    /// Mass [kg].
+    /// Mass \[kg\].
     pub mass: f64,
-    /// Centre of mass [m].
+    /// Centre of mass \[m\].
     pub centre: Point,
     /// The inertia ellipse; null for wheels (drawn as wheels) and bodies without inertia.
     pub ellipse: Option<Ellipse>,
@@ -36,11 +36,11 @@ pub struct Body {
 /// Everything the side view draws.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SideView {
-    /// Wheelbase w [m]: the front contact is at (w, 0).
+    /// Wheelbase w \[m\]: the front contact is at (w, 0).
     pub wheelbase: f64,
-    /// Trail c [m]: the steer axis meets the ground at (w + c, 0).
+    /// Trail c \[m\]: the steer axis meets the ground at (w + c, 0).
     pub trail: f64,
-    /// Steer axis tilt λ from the vertical [rad].
+    /// Steer axis tilt λ from the vertical \[rad\].
     pub steer_axis_tilt: f64,
     /// The two wheels.
     pub wheels: Vec<Wheel>,
@@ -57,9 +57,9 @@ pub struct SideView {
     pub handlebar: [Point; 2],
     /// The bodies with mass, wheels included.
     pub bodies: Vec<Body>,
-    /// Total mass [kg].
+    /// Total mass \[kg\].
     pub total_mass: f64,
-    /// The whole bicycle's centre of mass [m].
+    /// The whole bicycle's centre of mass \[m\].
     pub centre_of_mass: Point,
 }
 

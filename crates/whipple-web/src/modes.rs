@@ -108,10 +108,10 @@ pub struct ResponseRequest {
     pub bike: Value,
     /// v: forward speed [m/s].
     pub speed: f64,
-    /// φ₀ [deg] (default 0).
+    /// φ₀ \[deg\] (default 0).
     #[serde(default)]
     pub lean_deg: f64,
-    /// δ₀ [deg] (default 0).
+    /// δ₀ \[deg\] (default 0).
     #[serde(default)]
     pub steer_deg: f64,
     /// φ̇₀ [rad/s] (default 0).
@@ -120,9 +120,9 @@ pub struct ResponseRequest {
     /// δ̇₀ [rad/s] (default 0).
     #[serde(default)]
     pub steer_rate: f64,
-    /// Time span [s], positive and at most the server's simulation limit.
+    /// Time span \[s\], positive and at most the server's simulation limit.
     pub duration: f64,
-    /// Sample interval [s] (default 1/60 s, the simulation's frame interval).
+    /// Sample interval \[s\] (default 1/60 s, the simulation's frame interval).
     pub dt: Option<f64>,
 }
 
@@ -135,7 +135,7 @@ pub struct ResponsePlan {
     steps: usize,
 }
 
-/// The answer of `POST /api/linear/response`: angles [rad] and rates [rad/s] at times `t` [s].
+/// The answer of `POST /api/linear/response`: angles \[rad\] and rates [rad/s] at times `t` \[s\].
 #[derive(Serialize, Debug)]
 pub struct ResponseJson {
     name: Option<String>,

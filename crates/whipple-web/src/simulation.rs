@@ -37,10 +37,10 @@ pub struct SimulateRequest {
     pub bike: Value,
     /// v: forward speed [m/s].
     pub speed: f64,
-    /// φ₀: initial lean [deg], below 90 in size (default 0).
+    /// φ₀: initial lean \[deg\], below 90 in size (default 0).
     #[serde(default)]
     pub lean_deg: f64,
-    /// δ₀: initial steer [deg] (default 0).
+    /// δ₀: initial steer \[deg\] (default 0).
     #[serde(default)]
     pub steer_deg: f64,
     /// φ̇₀: initial lean rate [rad/s] (default 0).
@@ -49,12 +49,12 @@ pub struct SimulateRequest {
     /// δ̇₀: initial steer rate [rad/s] (default 0).
     #[serde(default)]
     pub steer_rate: f64,
-    /// Simulated time [s], positive and at most `Limits::max_sim_duration`.
+    /// Simulated time \[s\], positive and at most `Limits::max_sim_duration`.
     pub duration: f64,
     /// The integrator (default RK4).
     #[serde(default)]
     pub integrator: IntegratorKind,
-    /// RK4 step [s] (default 0.001); only with RK4.
+    /// RK4 step \[s\] (default 0.001); only with RK4.
     pub dt: Option<f64>,
     /// Relative tolerance of the adaptive integrator (default 1e-8); only with it.
     pub rtol: Option<f64>,
@@ -172,7 +172,7 @@ pub struct OutcomeJson {
     /// `completed`, `fell`, `wheel_lifted`, `projection_failed`, `non_finite_state`,
     /// `step_limit`, `stopped` or `failed`.
     pub kind: &'static str,
-    /// When it happened [s] (the end time for `completed`).
+    /// When it happened \[s\] (the end time for `completed`).
     pub t: f64,
     /// Which wheel, for `wheel_lifted`.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -181,7 +181,7 @@ pub struct OutcomeJson {
     pub message: String,
 }
 
-/// Ground force on one wheel [N].
+/// Ground force on one wheel \[N\].
 #[derive(Serialize, Debug, Clone, Copy)]
 pub struct Force {
     /// Normal force, upward positive (negative: the wheel would lift off).
@@ -206,7 +206,7 @@ impl From<ContactForce<f64>> for Force {
 /// drawing, and half the JSON.
 #[derive(Serialize, Debug, Clone, Copy)]
 pub struct Pose {
-    /// The body's origin, its centre of mass [m].
+    /// The body's origin, its centre of mass \[m\].
     pub position: [f32; 3],
     /// Rotation matrix body → world, row by row.
     pub rotation: [f32; 9],
@@ -215,41 +215,41 @@ pub struct Pose {
 /// One animation frame (a recorded sample).
 #[derive(Serialize, Debug)]
 pub struct Frame {
-    /// t [s].
+    /// t \[s\].
     pub t: f64,
-    /// φ [rad].
+    /// φ \[rad\].
     pub lean: f64,
-    /// δ [rad].
+    /// δ \[rad\].
     pub steer: f64,
     /// φ̇ [rad/s].
     pub lean_rate: f64,
     /// δ̇ [rad/s].
     pub steer_rate: f64,
-    /// ψ [rad].
+    /// ψ \[rad\].
     pub yaw: f64,
     /// v [m/s].
     pub speed: f64,
-    /// Kinetic + potential energy [J].
+    /// Kinetic + potential energy \[J\].
     pub energy: f64,
-    /// Rear contact point (x, y) [m].
+    /// Rear contact point (x, y) \[m\].
     pub rear_contact: [f64; 2],
-    /// Front contact point (x, y) [m].
+    /// Front contact point (x, y) \[m\].
     pub front_contact: [f64; 2],
-    /// Ground force on the rear wheel [N].
+    /// Ground force on the rear wheel \[N\].
     pub rear_force: Force,
-    /// Ground force on the front wheel [N].
+    /// Ground force on the front wheel \[N\].
     pub front_force: Force,
     /// Rear wheel, rear frame (with the rider), front frame, front wheel.
     pub bodies: [Pose; 4],
 }
 
 /// Where the drawing's points sit in the bodies' own axes (x forward, y right, z down, parallel
-/// to the world's when upright) relative to each body's origin [m].
+/// to the world's when upright) relative to each body's origin \[m\].
 #[derive(Serialize, Debug)]
 pub struct DrawingGeometry {
-    /// r_R [m].
+    /// r_R \[m\].
     pub rear_wheel_radius: f64,
-    /// r_F [m].
+    /// r_F \[m\].
     pub front_wheel_radius: f64,
     /// Rear hub, in the rear frame's axes from its centre of mass.
     pub rear_hub_in_rear_frame: [f64; 3],
@@ -261,7 +261,7 @@ pub struct DrawingGeometry {
     pub front_hub_in_front_frame: [f64; 3],
     /// Unit steer axis, pointing down, in either frame's axes.
     pub steer_axis: [f64; 3],
-    /// Masses of the rear wheel, rear frame with rider, front frame, front wheel [kg].
+    /// Masses of the rear wheel, rear frame with rider, front frame, front wheel \[kg\].
     pub masses: [f64; 4],
 }
 
@@ -272,7 +272,7 @@ pub struct SimulateResponse {
     pub name: Option<String>,
     /// How the run ended.
     pub outcome: OutcomeJson,
-    /// Simulated time asked for [s].
+    /// Simulated time asked for \[s\].
     pub duration: f64,
     /// Accepted integration steps.
     pub steps: usize,

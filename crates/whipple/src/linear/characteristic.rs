@@ -312,7 +312,7 @@ const SMALLEST_RELATIVE_ENTRY: f64 = 1.3e-23; // 2⁻⁷⁶
 ///
 /// With λ = √g μ and v = √g ν, det(M λ² + v C₁ λ + g K₀ + v² K₂) = g² det(M μ² + ν C₁ μ + K₀ +
 /// ν² K₂), so g drops out: everything here is in the scaled speed ν = v / √g and the scaled
-/// eigenvalue μ = λ / √g, and u = ν² = v² / g [m]. The matrices are also scaled by a common power
+/// eigenvalue μ = λ / √g, and u = ν² = v² / g \[m\]. The matrices are also scaled by a common power
 /// of two (exact), so that no coefficient overflows for any physical magnitude.
 ///
 /// Parity: p(λ, −v) = p(−λ, v), so the coefficients of λ⁴, λ², λ⁰ are even in ν and those of λ³,

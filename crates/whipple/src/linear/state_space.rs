@@ -15,7 +15,7 @@ pub const LEAN_RATE: usize = 2;
 pub const STEER_RATE: usize = 3;
 
 /// ẋ = A x + B f for x = [φ, δ, φ̇, δ̇] and f = [T_φ, T_δ]:
-/// A = [[0, I], [−M⁻¹(g K₀ + v² K₂), −v M⁻¹ C₁]], B = [[0], [M⁻¹]].
+/// `A = [[0, I], [−M⁻¹(g K₀ + v² K₂), −v M⁻¹ C₁]]`, `B = [[0], [M⁻¹]]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StateSpace {
     /// The forward speed v [m/s] this was built for.

@@ -28,7 +28,7 @@ macro_rules! benchmark_parameters {
         #[serde(deny_unknown_fields)]
         pub struct BenchmarkParameters<T = f64> {
             $(
-                #[doc = concat!($symbol, ": ", $doc, " [", $unit, "].")]
+                #[doc = concat!($symbol, ": ", $doc, " \\[", $unit, "\\].")]
                 #[serde(rename = $key)]
                 pub $field: T,
             )*

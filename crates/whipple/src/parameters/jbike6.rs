@@ -26,15 +26,15 @@ pub const JBIKE6_GRAVITY: f64 = 9.80665;
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Jbike6Wheel<T = f64> {
-    /// D: diameter [m] (0 for a skate).
+    /// D: diameter \[m\] (0 for a skate).
     #[serde(rename = "D")]
     pub diameter: T,
-    /// m: mass [kg].
+    /// m: mass \[kg\].
     pub m: T,
     /// I = [I11, I22, Izz]: I11 = I22 the diametral moments, Izz the polar (spin) moment [kg m²].
     #[serde(rename = "I")]
     pub inertia: [T; 3],
-    /// alpha: angle of principal axis 1 from x [rad] (irrelevant for an axisymmetric wheel).
+    /// alpha: angle of principal axis 1 from x \[rad\] (irrelevant for an axisymmetric wheel).
     pub alpha: T,
 }
 
@@ -43,16 +43,16 @@ pub struct Jbike6Wheel<T = f64> {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Jbike6RearBody<T = f64> {
-    /// m: mass [kg].
+    /// m: mass \[kg\].
     pub m: T,
-    /// xcm: centre of mass forward of the rear contact [m].
+    /// xcm: centre of mass forward of the rear contact \[m\].
     pub xcm: T,
-    /// ycm: centre of mass above the ground [m].
+    /// ycm: centre of mass above the ground \[m\].
     pub ycm: T,
     /// I = [I11, I22, Izz]: principal moments about the centre of mass [kg m²].
     #[serde(rename = "I")]
     pub inertia: [T; 3],
-    /// alpha: angle of principal axis 1 from x, counter-clockwise [rad].
+    /// alpha: angle of principal axis 1 from x, counter-clockwise \[rad\].
     pub alpha: T,
 }
 
@@ -62,16 +62,16 @@ pub struct Jbike6RearBody<T = f64> {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Jbike6FrontBody<T = f64> {
-    /// m: mass [kg].
+    /// m: mass \[kg\].
     pub m: T,
-    /// ucm: centre of mass perpendicular to the steer axis, forward and up [m].
+    /// ucm: centre of mass perpendicular to the steer axis, forward and up \[m\].
     pub ucm: T,
-    /// vcm: centre of mass along the steer axis, up from the ground [m].
+    /// vcm: centre of mass along the steer axis, up from the ground \[m\].
     pub vcm: T,
     /// I = [I11, I22, Izz]: principal moments about the centre of mass [kg m²].
     #[serde(rename = "I")]
     pub inertia: [T; 3],
-    /// alpha: angle of principal axis 1 from x (not from u), counter-clockwise [rad].
+    /// alpha: angle of principal axis 1 from x (not from u), counter-clockwise \[rad\].
     pub alpha: T,
 }
 
@@ -85,13 +85,13 @@ fn default_gravity<T: From<f64>>() -> T {
 #[serde(deny_unknown_fields)]
 #[serde(bound(deserialize = "T: Deserialize<'de> + From<f64>"))]
 pub struct Jbike6Parameters<T = f64> {
-    /// Horizontal distance between the wheel contacts [m] (benchmark w).
+    /// Horizontal distance between the wheel contacts \[m\] (benchmark w).
     pub wheelbase: T,
-    /// Angle of the steer axis from the horizontal [rad]; the steer axis tilt is
+    /// Angle of the steer axis from the horizontal \[rad\]; the steer axis tilt is
     /// λ = π/2 − head_angle.
     pub head_angle: T,
     /// Horizontal distance from the front contact to the steer axis' ground point, positive when
-    /// the contact is behind it [m] (benchmark c).
+    /// the contact is behind it \[m\] (benchmark c).
     pub trail: T,
     /// Gravitational acceleration [m/s²]; JBike6's default, 9.80665, when left out.
     #[serde(default = "default_gravity")]
@@ -772,7 +772,7 @@ impl<T: RealField + Copy> PlanarBody<T> {
 }
 
 impl<T: RealField + Copy> Jbike6Parameters<T> {
-    /// Where a front body's centre of mass is, (x forward from the rear contact, y up) [m]:
+    /// Where a front body's centre of mass is, (x forward from the rear contact, y up) \[m\]:
     /// `ucm` perpendicular to the steer axis (forward and up) and `vcm` along it (up) from the
     /// point where the axis meets the ground, w + c ahead of the rear contact.
     pub fn front_body_centre(&self, b: &Jbike6FrontBody<T>) -> [T; 2] {
@@ -945,7 +945,7 @@ impl Jbike6Parameters {
         }
     }
 
-    /// Steer axis tilt λ = π/2 − head_angle [rad].
+    /// Steer axis tilt λ = π/2 − head_angle \[rad\].
     pub fn steer_axis_tilt(&self) -> f64 {
         std::f64::consts::FRAC_PI_2 - self.head_angle
     }
