@@ -26,9 +26,8 @@ for v, lam in zip(e.speeds, e.values):
 
 # %% Eigenvalues against speed (matplotlib)
 try:
-    import matplotlib
+    import matplotlib  # noqa: F401  (the figures need it; in Jupyter they also show inline)
 
-    matplotlib.use("Agg")
     sweep = bike.eig(np.linspace(0.0, 10.0, 1001))
     ax = sweep.plot()
     ax.set_ylim(-10, 10)

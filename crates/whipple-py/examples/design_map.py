@@ -27,13 +27,12 @@ print(f"self-stable at some speed for {np.sum(stable)} of {len(study.x)} trails,
 # %% Two parameters: trail and head angle (degrees at the edge, as the command line)
 grid = bike.design_map("c=-0.05:0.25:61", "head_angle_deg=60:85:51")
 print(grid)
-print("widest self-stable range:", np.nanmax(grid.stable_width), "m/s")
+print(f"widest self-stable range: {np.nanmax(grid.stable_width):.3f} m/s")
 
 # %% Figures (matplotlib)
 try:
-    import matplotlib
+    import matplotlib  # noqa: F401  (the figures need it; in Jupyter they also show inline)
 
-    matplotlib.use("Agg")
     ax = study.plot()
     ax.set_title("benchmark bicycle: critical speeds against the trail")
     ax.figure.savefig(os.path.join(out, "design-study.png"), dpi=110)

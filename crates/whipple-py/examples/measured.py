@@ -11,8 +11,13 @@ from pathlib import Path
 
 import whipple
 
+# The file is in the clone: found from this script's folder, or (in Jupyter, which has no
+# __file__) from the working directory, whether that is the examples folder or the clone's root.
 here = Path(__file__).resolve().parent if "__file__" in globals() else Path.cwd()
-path = here.parents[1] / "whipple" / "tests" / "data" / "bicycleparameters" / "FisherBenchmark.txt"
+data = Path("crates", "whipple", "tests", "data", "bicycleparameters", "FisherBenchmark.txt")
+path = next((d / data for d in (here, *here.parents) if (d / data).is_file()), None)
+if path is None:
+    raise SystemExit(f"{data} not found above {here}: run this example inside a whipple clone")
 fisher = whipple.Bicycle.from_file(path)
 print(fisher)
 print(fisher.critical_speeds())

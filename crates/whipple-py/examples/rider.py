@@ -29,9 +29,8 @@ print("with the rider:", held.outcome, f"(largest lean after 5 s: {np.degrees(np
 
 # %% Plot (matplotlib) and a table (pandas)
 try:
-    import matplotlib
+    import matplotlib  # noqa: F401  (the figures need it; in Jupyter they also show inline)
 
-    matplotlib.use("Agg")
     left, _ = held.plot()
     left.figure.savefig(os.path.join(out, "rider.png"), dpi=120)
     print("wrote", os.path.join(out, "rider.png"))

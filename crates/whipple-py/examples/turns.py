@@ -48,9 +48,8 @@ print("lean drift over 2 s:", float(np.max(np.abs(run.lean - turn.lean))), "rad"
 
 # %% Figures (matplotlib)
 try:
-    import matplotlib
+    import matplotlib  # noqa: F401  (the figures need it; in Jupyter they also show inline)
 
-    matplotlib.use("Agg")
     axes = turns.plot()
     axes[0][0].figure.savefig(os.path.join(out, "turns.png"), dpi=110)
     print("wrote", os.path.join(out, "turns.png"))

@@ -1,7 +1,7 @@
 """The user guide's Python examples run: every ```python block of docs/guide/*.md is run as a
 script against the installed package, in a scratch directory holding the field's parameter files
-the guide names. A block that only includes an example script (`--8<-- "…"`) is skipped here:
-test_examples.py runs those scripts themselves."""
+the guide names. A block that only includes a file (`--8<-- "…"`) is skipped here: the example
+scripts are run by test_examples.py (and executed as notebooks when the guide is built)."""
 
 import os
 import re
