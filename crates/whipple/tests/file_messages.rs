@@ -220,6 +220,59 @@ fn issue_10_non_finite_numbers_are_refused_by_every_reader() {
     }
 }
 
+/// Every missing key of a BicycleParameters file is named in one message, the front frame's
+/// among them (with the handlebar-and-fork alternative), not one group per attempt; a front
+/// frame given as handlebar G and fork S is not missing.
+#[test]
+fn missing_keys_are_all_named_at_once() -> Result<(), Error> {
+    let base = write(
+        &presets::find("benchmark")?.bicycle(),
+        Format::BicycleParametersTxt,
+    )?;
+    let without = |keys: &[&str]| -> String {
+        base.lines()
+            .filter(|l| {
+                !keys
+                    .iter()
+                    .any(|k| l.split('=').next().map(str::trim) == Some(*k))
+            })
+            .map(|l| format!("{l}\n"))
+            .collect()
+    };
+    let m = message(parse(
+        &without(&["w", "mH", "IHxz"]),
+        Format::BicycleParametersTxt,
+    ));
+    assert!(m.contains("missing keys: w, mH, IHxz"), "{m}");
+    assert!(m.contains("handlebar G and fork S"), "{m}");
+    let m = message(parse(&without(&["c"]), Format::BicycleParametersTxt));
+    assert!(
+        m.contains("missing key: `c`") && !m.contains("handlebar"),
+        "{m}"
+    );
+    // The benchmark's front frame split into a handlebar G (all of H) and a massless fork S.
+    let h = ["mH", "xH", "zH", "IHxx", "IHyy", "IHzz", "IHxz"];
+    let mut split = without(&h);
+    let bench = presets::find("benchmark")?.bicycle();
+    let text = write(&bench, Format::BicycleParametersTxt)?;
+    for (k, g) in h
+        .iter()
+        .zip(["mG", "xG", "zG", "IGxx", "IGyy", "IGzz", "IGxz"])
+    {
+        let line = text
+            .lines()
+            .find(|l| l.split('=').next().map(str::trim) == Some(*k))
+            .unwrap_or_default();
+        split.push_str(&line.replacen(k, g, 1));
+        split.push('\n');
+    }
+    split.push_str("mS = 0\nxS = 0.9\nzS = -0.7\nISxx = 0\nISyy = 0\nISzz = 0\nISxz = 0\n");
+    let bike = parse(&split, Format::BicycleParametersTxt)?;
+    assert_eq!(bike.description, bench.description);
+    assert!(bike.notices.iter().any(|n| n.field.contains("mH")));
+    Ok(())
+}
+
 /// Issue 11: keys of other models are never dropped silently; left-right asymmetry refused.
 #[test]
 fn issue_11_other_keys_are_reported_or_refused() -> Result<(), Error> {

@@ -299,16 +299,20 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
         }
     }
     let get = |key: &str| extras.iter().find(|e| e.key == key).copied();
-    // Missing keys: IByy and IHyy BicycleParameters takes as zero; the rest are required.
+    // The front frame H: given, or built from the handlebar G and fork S.
+    let h_keys = ["mH", "xH", "zH", "IHxx", "IHyy", "IHzz", "IHxz"];
+    let split: Vec<Option<&Entry>> = SPLIT_FORK.iter().map(|k| get(k)).collect();
+    let split_values: Option<Vec<f64>> = split.iter().map(|e| e.map(|e| e.value)).collect();
+    // Missing keys, all named in one message: IByy BicycleParameters takes as zero; the front
+    // frame's keys are not missing when its handlebar G and fork S are given; the rest are
+    // required.
     let missing: Vec<&str> = BENCHMARK_TABLE
         .iter()
         .enumerate()
         .filter(|(i, p)| {
             values[*i].is_none()
-                && !matches!(
-                    p.key,
-                    "IByy" | "IHyy" | "mH" | "xH" | "zH" | "IHxx" | "IHzz" | "IHxz"
-                )
+                && p.key != "IByy"
+                && !(split_values.is_some() && h_keys.contains(&p.key))
         })
         .map(|(_, p)| p.key)
         .collect();
@@ -328,18 +332,24 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
         ));
     }
     if !missing.is_empty() {
+        let front = if missing.iter().any(|k| h_keys.contains(k)) {
+            " (the front frame H may instead be given as its handlebar G and fork S measured \
+             apart: mG, xG, zG, IGxx, IGyy, IGzz, IGxz and mS, xS, zS, ISxx, ISyy, ISzz, ISxz)"
+        } else {
+            ""
+        };
+        let (noun, list) = match missing.as_slice() {
+            [one] => ("key", format!("`{one}`")),
+            many => ("keys", many.join(", ")),
+        };
         return Err(error_at(
             format,
             0,
             0,
             Some(missing[0]),
-            format!("missing keys: {}", missing.join(", ")),
+            format!("missing {noun}: {list}{front}"),
         ));
     }
-    // The front frame H: given, or built from the handlebar G and fork S.
-    let split: Vec<Option<&Entry>> = SPLIT_FORK.iter().map(|k| get(k)).collect();
-    let split_values: Option<Vec<f64>> = split.iter().map(|e| e.map(|e| e.value)).collect();
-    let h_keys = ["mH", "xH", "zH", "IHxx", "IHyy", "IHzz", "IHxz"];
     let combined = split_values.as_ref().map(|v| combine_fork(v));
     let mut filled: [f64; 26] = [0.0; 26];
     let mut sigma = std::collections::BTreeMap::new();
@@ -354,20 +364,9 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
                 }
             }
             None => {
-                if let Some(pos) = h_keys.iter().position(|k| *k == p.key) {
-                    let Some(c) = combined else {
-                        return Err(error_at(
-                            format,
-                            0,
-                            0,
-                            Some(p.key),
-                            format!(
-                                "missing key `{}`: give the front frame H (mH, xH, zH, IHxx, \
-                                 IHyy, IHzz, IHxz) or its handlebar G and fork S measured apart",
-                                p.key
-                            ),
-                        ));
-                    };
+                if let (Some(pos), Some(c)) =
+                    (h_keys.iter().position(|k| *k == p.key), combined.as_ref())
+                {
                     filled[i] = c[pos];
                     if pos == 0 {
                         notices.push(Notice::note(
@@ -378,7 +377,7 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
                         ));
                     }
                 } else {
-                    // IByy or IHyy, which BicycleParameters takes as zero when absent.
+                    // IByy, which BicycleParameters takes as zero when absent.
                     notices.push(Notice::warning(
                         p.key,
                         format!(
