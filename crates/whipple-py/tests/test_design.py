@@ -44,6 +44,16 @@ def test_shards_assemble_to_the_whole(benchmark):
         benchmark.design_map("c=0.0:0.2:7", shard=(3, 3))
 
 
+def test_jbike6_axes_by_toml_path():
+    crown = whipple.Bicycle.preset("schwinn-crown")
+    by_path = crown.design_map("rider.ycm=0.8:1.4:4")
+    by_key = crown.design_map("ycmrider=0.8:1.4:4")
+    assert np.array_equal(by_path.v_w, by_key.v_w, equal_nan=True)
+    assert not np.isnan(by_path.v_w).all()
+    with pytest.raises(whipple.ArgumentError, match="rider.height"):
+        crown.design_map("rider.height=1:2:3")
+
+
 def test_pickle(benchmark):
     assert pickle.loads(pickle.dumps(benchmark)).to_dict() == benchmark.to_dict()
     crown = whipple.Bicycle.preset("schwinn-crown")

@@ -403,6 +403,46 @@ fn a_designs_bicycle_is_the_one_computed() -> Result<()> {
     Ok(())
 }
 
+/// An axis of a JBike6-form bicycle may be named by its TOML path as well as its `.m` key:
+/// `rider.ycm` is `ycmrider`, `rider.I[1]` is `Irider(1)`, `rider.alpha_deg` is
+/// `alphaIrider_deg`; the study computes the same rows either way.
+#[test]
+fn jbike6_axes_take_toml_paths() -> Result<()> {
+    let bike: Bicycle = presets::find("schwinn-crown")?.bicycle();
+    for (path, key) in [
+        ("rider.ycm=0.8:1.4:7", "ycmrider=0.8:1.4:7"),
+        ("rider.I[1]=5:15:3", "Irider(1)=5:15:3"),
+        ("rider.alpha_deg=-20:20:5", "alphaIrider_deg=-20:20:5"),
+    ] {
+        let by_path = Axis::parse(path, &bike)?;
+        let by_key = Axis::parse(key, &bike)?;
+        assert_eq!(by_path.parameter, by_key.parameter, "{path}");
+        assert_eq!(by_path.degrees, by_key.degrees, "{path}");
+        let rows = |axis: Axis| -> Result<Vec<Option<f64>>> {
+            let study = Study::new(bike.clone(), axis, None, StudyOptions::default())?;
+            Ok((0..study.len())
+                .map(|i| study.design(i).quantities.weave_speed)
+                .collect())
+        };
+        let (a, b) = (rows(by_path)?, rows(by_key)?);
+        assert_eq!(a.len(), b.len());
+        assert_eq!(a, b, "{path}");
+        assert!(
+            a.iter().any(Option::is_some),
+            "{path}: no weave speed at all"
+        );
+    }
+    let m = Axis::parse("rider.height=1:2:3", &bike)
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(
+        m.contains("rider.height") && m.contains("TOML paths"),
+        "{m}"
+    );
+    Ok(())
+}
+
 /// A design that breaks a rule is marked with the rule and never stops the study.
 #[test]
 fn invalid_designs_are_marked_not_computed() -> Result<()> {

@@ -23,6 +23,7 @@ use super::modes::Mode;
 use super::stability::{self, summary};
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, CharacteristicPolynomial, SpeedPolynomials};
+use crate::parameters::table::{parameters, Form};
 use crate::parameters::{Bicycle, Description};
 
 /// The most designs one study may hold (a 100,000 × 100,000 map).
@@ -164,12 +165,19 @@ impl Axis {
                     Parameter::Benchmark(key.to_string())
                 }
                 Description::Jbike6(j) => {
+                    // A TOML path (`rider.ycm`, `rider.I[1]`) names the same parameter as its
+                    // `.m` key (`ycmrider`, `Irider(1)`).
+                    let stem = parameters(Form::Jbike6)
+                        .iter()
+                        .find(|p| p.path == stem)
+                        .map_or(stem, |p| p.key);
                     if j.get(stem).is_none() && stem != "wheel_diameter" {
                         let names: Vec<String> = j.fields().into_iter().map(|(n, _)| n).collect();
                         return Err(unknown(
                             name,
                             format!(
-                                "{}, wheel_diameter; speed; _deg after an angle",
+                                "{}, wheel_diameter (or their TOML paths: rider.m, rider.xcm, \
+                                 rider.I[1], ...); speed; _deg after an angle",
                                 names.join(", ")
                             ),
                         ));
