@@ -184,14 +184,15 @@ await section("bug 2: text in a number field is reflected everywhere, and nothin
   await open("?bike=preset:schwinn-crown");
   await page.getByTestId("param-mrider").fill("abc");
   await waitForText("error-mrider", (t) => t === "not a number");
-  await page.waitForTimeout(400);
+  // The message comes with the recompute the keystroke scheduled: waited for, not slept on.
+  await waitForText("message", (t) => /not a number/.test(t) && /rider/i.test(t)).catch(() => null);
   const message = await page.getByTestId("message").isVisible() ? await text("message") : "";
   check(/not a number/.test(message) && /rider/i.test(message), `the top message names the field: "${message}"`);
   check(await page.locator("[data-testid=eigen-plot] [data-testid=stale-veil]").count() === 1, "the plot is veiled: it is the last numbers' result");
   await page.getByTestId("param-mrider").fill("-5");
   await waitForText("message", (t) => t.includes("-5"));
   await page.getByTestId("param-mrider").fill("abc");
-  await page.waitForTimeout(400);
+  await waitForText("message", (t) => !t.includes("-5") && /not a number/.test(t)).catch(() => null);
   const m2 = await text("message");
   check(!m2.includes("-5") && /not a number/.test(m2), `-5 then abc: the message follows the field: "${m2}"`);
   const capsize = await text("capsize-speed");
@@ -221,6 +222,18 @@ await section("bug 3: saving with text in a field is refused", async () => {
   await page.click("#save-design");
   await page.waitForTimeout(300);
   check(await page.evaluate(() => (JSON.parse(localStorage.getItem("whipple.designs.v1") ?? "[]")).length === 0) && /not saved/i.test(await text("message")), "Save to my designs refuses too");
+  // Typed and clicked in one task, so the recompute the keystroke scheduled is still pending
+  // at the click: the refusal must not be replaced by it afterwards.
+  await page.evaluate(() => {
+    const input = document.querySelector("[data-testid=param-mrider]");
+    for (const typed of ["80", "xyz"]) {
+      input.value = typed;
+      input.dispatchEvent(new Event("input", { bubbles: true }));
+    }
+    document.getElementById("save-toml").click();
+  });
+  await page.waitForTimeout(500);
+  check(/not saved/i.test(await text("message")), `a Save clicked before the keystroke's recompute ran keeps its refusal: "${await text("message")}"`);
 });
 
 await section("bug 4: edits survive a switch (undo) and a reload; a deletion can be undone", async () => {

@@ -300,7 +300,18 @@ function yLimit() {
 let timer = 0;
 function schedule() {
   clearTimeout(timer);
-  timer = setTimeout(recompute, 120);
+  timer = setTimeout(() => {
+    timer = 0;
+    recompute();
+  }, 120);
+}
+
+/** Runs a scheduled recompute now, so that its message comes before, not after, the next. */
+function flushScheduled() {
+  if (!timer) return;
+  clearTimeout(timer);
+  timer = 0;
+  recompute();
 }
 
 /** Why the results shown do not match the form, or null when they do. */
@@ -617,6 +628,9 @@ $("y-limit").addEventListener("change", () => {
 function refuseSave(what) {
   const local = editor.localErrors();
   if (!local.length) return false;
+  // A recompute still pending from the last keystroke would say "Not recomputed" after this
+  // refusal and hide it: it runs first (with text in a field it asks nothing of the server).
+  flushScheduled();
   say(`Not saved: ${local.map((l) => l.what).join(", ")} ${local.length > 1 ? "are" : "is"} not a number. Mend ${local.length > 1 ? "them" : "it"} before saving ${what}.`, "error", "local");
   return true;
 }
