@@ -425,7 +425,6 @@ fn jbike6_axes_take_toml_paths() -> Result<()> {
                 .collect())
         };
         let (a, b) = (rows(by_path)?, rows(by_key)?);
-        assert_eq!(a.len(), b.len());
         assert_eq!(a, b, "{path}");
         assert!(
             a.iter().any(Option::is_some),

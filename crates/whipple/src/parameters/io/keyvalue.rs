@@ -192,6 +192,9 @@ pub(crate) fn parse(text: &str, format: Format) -> Result<Bicycle> {
 const SYMMETRIC_ZERO: [&str; 6] = ["yB", "yH", "IBxy", "IByz", "IHxy", "IHyz"];
 
 /// The handlebar (G) and fork (S) keys, measured apart.
+/// The front frame H's keys, in the order of [`combine_fork`]'s result.
+const FRONT_FRAME: [&str; 7] = ["mH", "xH", "zH", "IHxx", "IHyy", "IHzz", "IHxz"];
+
 const SPLIT_FORK: [&str; 14] = [
     "mG", "xG", "zG", "IGxx", "IGyy", "IGzz", "IGxz", "mS", "xS", "zS", "ISxx", "ISyy", "ISzz",
     "ISxz",
@@ -300,7 +303,6 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
     }
     let get = |key: &str| extras.iter().find(|e| e.key == key).copied();
     // The front frame H: given, or built from the handlebar G and fork S.
-    let h_keys = ["mH", "xH", "zH", "IHxx", "IHyy", "IHzz", "IHxz"];
     let split: Vec<Option<&Entry>> = SPLIT_FORK.iter().map(|k| get(k)).collect();
     let split_values: Option<Vec<f64>> = split.iter().map(|e| e.map(|e| e.value)).collect();
     // Missing keys, all named in one message: IByy BicycleParameters takes as zero; the front
@@ -312,7 +314,7 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
         .filter(|(i, p)| {
             values[*i].is_none()
                 && p.key != "IByy"
-                && !(split_values.is_some() && h_keys.contains(&p.key))
+                && !(split_values.is_some() && FRONT_FRAME.contains(&p.key))
         })
         .map(|(_, p)| p.key)
         .collect();
@@ -332,11 +334,14 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
         ));
     }
     if !missing.is_empty() {
-        let front = if missing.iter().any(|k| h_keys.contains(k)) {
-            " (the front frame H may instead be given as its handlebar G and fork S measured \
-             apart: mG, xG, zG, IGxx, IGyy, IGzz, IGxz and mS, xS, zS, ISxx, ISyy, ISzz, ISxz)"
+        let front = if missing.iter().any(|k| FRONT_FRAME.contains(k)) {
+            format!(
+                " (the front frame H may instead be given as its handlebar G and fork S \
+                 measured apart: {})",
+                SPLIT_FORK.join(", ")
+            )
         } else {
-            ""
+            String::new()
         };
         let (noun, list) = match missing.as_slice() {
             [one] => ("key", format!("`{one}`")),
@@ -364,13 +369,14 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
                 }
             }
             None => {
-                if let (Some(pos), Some(c)) =
-                    (h_keys.iter().position(|k| *k == p.key), combined.as_ref())
-                {
+                if let (Some(pos), Some(c)) = (
+                    FRONT_FRAME.iter().position(|k| *k == p.key),
+                    combined.as_ref(),
+                ) {
                     filled[i] = c[pos];
                     if pos == 0 {
                         notices.push(Notice::note(
-                            "mH, xH, zH, IHxx, IHyy, IHzz, IHxz",
+                            FRONT_FRAME.join(", "),
                             "the front frame H is not given: built from the handlebar G and the \
                              fork S (masses added, parallel-axis theorem); their standard \
                              deviations are not carried over",
@@ -516,7 +522,6 @@ fn check_extra(
                 let h = [
                     bike.m_h, bike.x_h, bike.z_h, bike.i_hxx, bike.i_hyy, bike.i_hzz, bike.i_hxz,
                 ];
-                let names = ["mH", "xH", "zH", "IHxx", "IHyy", "IHzz", "IHxz"];
                 let mut worst: Option<(usize, f64)> = None;
                 for k in 0..7 {
                     let scale = h[k]
@@ -535,13 +540,13 @@ fn check_extra(
                          as given (to 0.1 %); whipple uses H",
                     )),
                     Some((k, rel)) => notices.push(Notice::warning(
-                        names[k],
+                        FRONT_FRAME[k],
                         format!(
                             "the handlebar G and fork S measured apart combine to {} = {}, but \
                              the file gives {} = {}: they differ by {:.2} %; whipple uses H as given",
-                            names[k],
+                            FRONT_FRAME[k],
                             crate::error::short_number(c[k]),
-                            names[k],
+                            FRONT_FRAME[k],
                             crate::error::short_number(h[k]),
                             100.0 * rel
                         ),
