@@ -4,7 +4,7 @@ use std::path::Path;
 use std::sync::{Mutex, PoisonError};
 
 use anyhow::{anyhow, bail, Context, Result};
-use whipple::parameters::io::{parse, Format};
+use whipple::parameters::io::{parse, Format, MAX_FILE_BYTES};
 use whipple::parameters::presets;
 use whipple::parameters::Notice;
 use whipple::{BenchmarkParameters, Bicycle, Error};
@@ -82,8 +82,9 @@ pub fn load(arg: &str) -> Result<LoadedBike> {
                      that name (--bike takes a preset name or a .toml, .json, .m, .txt or .yml file)"
                 );
             }
-            let bytes = std::fs::read(path)
-                .with_context(|| format!("reading parameters from {}", path.display()))?;
+            let bytes = read_capped(path)?;
+            // No output of this run may be written onto the file it reads.
+            crate::output::register_input(path);
             let text = String::from_utf8(bytes)
                 .map_err(|_| anyhow!("{}: the file is not UTF-8 text", path.display()))?;
             let name = path
@@ -121,6 +122,27 @@ pub fn load(arg: &str) -> Result<LoadedBike> {
         benchmark: checked.benchmark,
         notices: checked.notices,
     })
+}
+
+/// Reads a parameter file, at most [`MAX_FILE_BYTES`] of it: a longer file (or a device that
+/// never ends, `/dev/zero`) is refused when the bound is passed, not read into memory.
+fn read_capped(path: &Path) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let context = || format!("reading parameters from {}", path.display());
+    let file = std::fs::File::open(path).with_context(context)?;
+    let mut bytes = Vec::new();
+    file.take(MAX_FILE_BYTES as u64 + 1)
+        .read_to_end(&mut bytes)
+        .with_context(context)?;
+    if bytes.len() > MAX_FILE_BYTES {
+        bail!(
+            "{}: longer than {} MiB, the most a parameter file may hold (the field's files are a \
+             few kilobytes): is it the right file?",
+            path.display(),
+            MAX_FILE_BYTES >> 20
+        );
+    }
+    Ok(bytes)
 }
 
 /// At most this many characters of a line are shown around an error's column.

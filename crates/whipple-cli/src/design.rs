@@ -4,8 +4,7 @@
 use std::fmt::Write as _;
 use std::io::{BufRead, IsTerminal};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::atomic::Ordering;
 use std::time::Instant;
 
 use anyhow::{anyhow, bail, Context, Result};
@@ -290,18 +289,6 @@ impl Sink {
     }
 }
 
-fn interrupt_flag() -> Arc<AtomicBool> {
-    static FLAG: std::sync::OnceLock<Arc<AtomicBool>> = std::sync::OnceLock::new();
-    FLAG.get_or_init(|| {
-        let flag = Arc::new(AtomicBool::new(false));
-        let f = flag.clone();
-        // Without a handler Ctrl-C kills the process, which leaves only a temporary file.
-        ctrlc::set_handler(move || f.store(true, Ordering::Relaxed)).ok();
-        flag
-    })
-    .clone()
-}
-
 fn progress(total: u64) -> indicatif::ProgressBar {
     let bar = indicatif::ProgressBar::hidden();
     bar.set_length(total);
@@ -406,16 +393,17 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
     let mut values: Vec<f64> = Vec::new();
     let mut stable: Vec<bool> = Vec::new();
     let mut study_rows: Vec<DesignRow> = Vec::new();
-    let stop = interrupt_flag();
-    // One handler a process, one flag a run (the Python package runs the command in-process).
-    stop.store(false, Ordering::Relaxed);
+    // Set by a signal (crate::interrupt), whose handler then ends the process; the study
+    // stops at its next piece meanwhile.
+    let stop = crate::interrupt::flag();
     let bar = progress(end - first);
     let started = Instant::now();
     let on_terminal = std::io::stderr().is_terminal();
     let mut shown = false;
     let mut written = 0u64;
     let mut text = String::new();
-    let result = study.run(shard, &stop, |rows| {
+    let mut closed = false;
+    let result = study.run(shard, stop, |rows| {
         text.clear();
         if args.format == DesignFormat::Csv {
             // Formatting the numbers costs as much as computing the designs: it runs on every
@@ -455,11 +443,14 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
                 }
             }
         }
-        sink.write(&text)
-            .map_err(|e| whipple::Error::InvalidArgument {
+        sink.write(&text).map_err(|e| {
+            // A reader that went away (`whipple map ... | head`) ends the run quietly.
+            closed = output::is_closed_stdout(&e);
+            whipple::Error::InvalidArgument {
                 what: "output",
                 rule: format!("{e:#}"),
-            })?;
+            }
+        })?;
         bar.inc(rows.len() as u64);
         if on_terminal && !shown && started.elapsed().as_secs_f64() > 1.0 {
             bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
@@ -469,6 +460,9 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
     });
     bar.finish_and_clear();
     if let Err(e) = result {
+        if closed {
+            return Ok(());
+        }
         // The sink's temporary file is removed when it is dropped: nothing half-written.
         if stop.load(Ordering::Relaxed) {
             bail!(

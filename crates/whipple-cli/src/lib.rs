@@ -9,6 +9,7 @@ mod bike;
 mod commands;
 mod design;
 mod figures;
+mod interrupt;
 mod output;
 mod simulate;
 mod speeds;
@@ -309,6 +310,12 @@ where
             return error.exit_code();
         }
     };
+    output::begin_run();
+    if !matches!(cli.command, Command::Serve { .. }) {
+        // Every catchable signal ends the run cleanly: no temporary file or half a report
+        // directory is left, and the message says what was not written.
+        interrupt::install();
+    }
     bike::set_options(bike::ReadOptions {
         format: cli.format_in,
         strict: cli.strict,

@@ -120,6 +120,13 @@ impl Target {
         let Some(resolved) = resolve_links(path).map_err(|e| fail(format!("{e:#}")))? else {
             return Ok(Target::direct(option, path));
         };
+        if let Some(input) = is_input(&resolved) {
+            return Err(fail(format!(
+                "is the parameter file this command reads ({}): writing the output there \
+                 would destroy it; give the output its own path",
+                input.display()
+            )));
+        }
         match fs::metadata(&resolved) {
             Ok(meta) if meta.is_dir() => Err(fail("is a directory".into())),
             Ok(meta) if meta.is_file() => {
@@ -196,8 +203,16 @@ impl Target {
     pub fn open(&self) -> Result<Sink> {
         match &self.place {
             Place::Replace { target, mode } => {
-                let (temp, file) = create_temporary(target)
-                    .with_context(|| format!("cannot write {}", self.describe()))?;
+                self.refuse_input()?;
+                let (temp, file) = {
+                    // Created and listed under one lock: a signal between the two cannot
+                    // leave the file behind.
+                    let mut guard = pending();
+                    let (temp, file) = create_temporary(target)
+                        .with_context(|| format!("cannot write {}", self.describe()))?;
+                    guard.temporaries.push((temp.clone(), self.describe()));
+                    (temp, file)
+                };
                 Ok(Sink {
                     target: self.clone(),
                     writer: Some(BufWriter::with_capacity(1 << 16, Writer::File(file))),
@@ -206,6 +221,7 @@ impl Target {
                 })
             }
             Place::Direct(path) => {
+                self.refuse_input()?;
                 // No truncation and no creation: a device or pipe is written as it is.
                 let file = OpenOptions::new()
                     .write(true)
@@ -219,6 +235,20 @@ impl Target {
                 })
             }
         }
+    }
+
+    /// Refuses an output that is a parameter file this run read (directly or through a
+    /// symbolic link or a hard link): writing it would destroy the input.
+    fn refuse_input(&self) -> Result<()> {
+        if let Some(input) = is_input(self.destination()) {
+            bail!(
+                "{} is the parameter file this command reads ({}): writing the output there \
+                 would destroy it; give the output its own path",
+                self.describe(),
+                input.display()
+            );
+        }
+        Ok(())
     }
 
     /// Writes `bytes` as the whole output now (open, write, finish, commit).
@@ -241,6 +271,90 @@ fn permission_bits(_meta: &fs::Metadata) -> u32 {
     0o644
 }
 
+/// What this process has under way on disk: temporary files not yet renamed into place (with
+/// the output each one is for), report directories it created and has not kept, and the
+/// parameter files read (never to be written over). A signal handler
+/// ([`abandon_and_exit`]) takes the same lock as [`commit`], so an output is either renamed
+/// into place whole or removed, never left half-done.
+#[derive(Default)]
+struct Pending {
+    temporaries: Vec<(PathBuf, String)>,
+    directories: Vec<PathBuf>,
+    inputs: Vec<PathBuf>,
+}
+
+static PENDING: std::sync::Mutex<Pending> = std::sync::Mutex::new(Pending {
+    temporaries: Vec::new(),
+    directories: Vec::new(),
+    inputs: Vec::new(),
+});
+
+fn pending() -> std::sync::MutexGuard<'static, Pending> {
+    PENDING
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// Forgets the inputs of an earlier run (the Python package runs the command in-process).
+pub fn begin_run() {
+    pending().inputs.clear();
+}
+
+/// Records a parameter file read by this run: no output may be written onto it.
+pub fn register_input(path: &Path) {
+    let resolved = fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    pending().inputs.push(resolved);
+}
+
+/// Whether `path` (an output's destination) is a file this run read.
+fn is_input(path: &Path) -> Option<PathBuf> {
+    let inputs = pending().inputs.clone();
+    inputs.into_iter().find(|input| same_file(input, path))
+}
+
+#[cfg(unix)]
+fn same_file(a: &Path, b: &Path) -> bool {
+    use std::os::unix::fs::MetadataExt;
+    match (fs::metadata(a), fs::metadata(b)) {
+        (Ok(x), Ok(y)) => x.dev() == y.dev() && x.ino() == y.ino(),
+        _ => false,
+    }
+}
+
+#[cfg(not(unix))]
+fn same_file(a: &Path, b: &Path) -> bool {
+    fs::canonicalize(a)
+        .ok()
+        .zip(fs::canonicalize(b).ok())
+        .is_some_and(|(x, y)| x == y)
+}
+
+/// Called on SIGINT, SIGTERM or SIGHUP (from the handler's own thread): removes every pending
+/// temporary file and every report directory this run created, says what was not written,
+/// and ends the process with 128 + `signal`. The lock is held to the end, so no output is
+/// renamed into place meanwhile.
+pub fn abandon_and_exit(signal: i32, name: &str) -> ! {
+    let guard = pending();
+    let mut lost = Vec::new();
+    for (temp, what) in &guard.temporaries {
+        fs::remove_file(temp).ok();
+        lost.push(what.clone());
+    }
+    for dir in guard.directories.iter().rev() {
+        fs::remove_dir(dir).ok();
+    }
+    let _ = io::stdout().flush();
+    if lost.is_empty() {
+        eprintln!("\nwhipple: stopped by {name}");
+    } else {
+        eprintln!(
+            "\nwhipple: stopped by {name}; not written (left as it was): {}",
+            lost.join(", ")
+        );
+    }
+    std::process::exit(128 + signal)
+}
+
 /// A new, uniquely named temporary file in the directory of `target`.
 fn create_temporary(target: &Path) -> io::Result<(PathBuf, File)> {
     static COUNTER: AtomicUsize = AtomicUsize::new(0);
@@ -260,14 +374,17 @@ fn create_temporary(target: &Path) -> io::Result<(PathBuf, File)> {
     }
 }
 
-/// A temporary file, removed when dropped unless it was renamed into place.
+/// A temporary file, removed when dropped unless it was renamed into place; listed in
+/// [`PENDING`] while it exists.
 #[derive(Debug)]
 struct Temporary(PathBuf);
 
 impl Drop for Temporary {
     fn drop(&mut self) {
         if !self.0.as_os_str().is_empty() {
+            let mut guard = pending();
             fs::remove_file(&self.0).ok();
+            guard.temporaries.retain(|(t, _)| t != &self.0);
         }
     }
 }
@@ -493,17 +610,40 @@ pub struct Finished {
 /// Puts every finished output into place: each temporary file renamed onto its target.
 /// Outputs written in place are complete already.
 pub fn commit(outputs: Vec<Finished>) -> Result<()> {
-    for mut output in outputs {
-        if let (Some(mut temp), Place::Replace { target, .. }) =
-            (output.temp.take(), &output.target.place)
+    for output in &outputs {
+        output.target.refuse_input()?;
+    }
+    let mut outputs = outputs;
+    let mut failure = None;
+    // Under the lock a signal handler takes: every output renamed, or (signal first) none.
+    let mut guard = pending();
+    for output in outputs.iter_mut() {
+        if let (Some(temp), Place::Replace { target, .. }) =
+            (output.temp.as_mut(), &output.target.place)
         {
-            fs::rename(&temp.0, target)
-                .with_context(|| format!("writing {}", output.target.describe()))?;
-            // Renamed: nothing left to remove.
-            temp.0 = PathBuf::new();
+            match fs::rename(&temp.0, target) {
+                Ok(()) => {
+                    // Renamed: nothing left to remove.
+                    guard.temporaries.retain(|(t, _)| t != &temp.0);
+                    temp.0 = PathBuf::new();
+                }
+                Err(e) => {
+                    failure = Some(
+                        anyhow::Error::new(e)
+                            .context(format!("writing {}", output.target.describe())),
+                    );
+                    break;
+                }
+            }
         }
     }
-    Ok(())
+    // The lock is released before the outputs not renamed remove their temporary files.
+    drop(guard);
+    drop(outputs);
+    match failure {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
 }
 
 /// The `--out` table and `--plot` figure of a command, checked before any work: the plot's
@@ -580,7 +720,12 @@ impl ReportDir {
                         )))
                     }
                 }
-                fs::create_dir(path).map_err(|e| fail(format!("cannot be created ({e})")))?;
+                {
+                    let mut guard = pending();
+                    fs::create_dir(path)
+                        .map_err(|e| fail(format!("cannot be created ({e})")))?;
+                    guard.directories.push(path.to_path_buf());
+                }
                 Ok(ReportDir {
                     option: option.into(),
                     path: path.into(),
@@ -610,9 +755,13 @@ impl ReportDir {
 
 impl Drop for ReportDir {
     fn drop(&mut self) {
-        if self.created && !self.kept {
-            // Only an empty directory goes: the temporary files inside are removed first.
-            fs::remove_dir(&self.path).ok();
+        if self.created {
+            let mut guard = pending();
+            if !self.kept {
+                // Only an empty directory goes: the temporary files inside are removed first.
+                fs::remove_dir(&self.path).ok();
+            }
+            guard.directories.retain(|d| d != &self.path);
         }
     }
 }

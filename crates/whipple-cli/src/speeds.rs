@@ -101,6 +101,24 @@ pub fn table(
     } else {
         format!("none in {where_}")
     };
+    // Where the certificate could not decide, "none" or "nowhere" would contradict it.
+    let undecided = s
+        .unresolved
+        .iter()
+        .map(|&(a, b)| {
+            Ok(if b == f64::INFINITY {
+                format!("above {} m/s", number(a)?)
+            } else {
+                format!("{} .. {} m/s", number(a)?, number(b)?)
+            })
+        })
+        .collect::<Result<Vec<_>>>()?
+        .join(", ");
+    let none = if undecided.is_empty() {
+        none
+    } else {
+        format!("none certified (undecided in {undecided})")
+    };
     let show = |x: Option<f64>, sd: Option<f64>| -> Result<String> {
         Ok(match x {
             Some(v) if sigma.is_some() => with_sigma(v, sd, "m/s")?,
@@ -141,7 +159,14 @@ pub fn table(
         show(s.capsize_speed, sigma.and_then(|u| u.capsize_speed_sigma))?
     )?;
     if s.stable_speed_ranges.is_empty() {
-        writeln!(t, "  self-stable            nowhere in {where_}")?;
+        if undecided.is_empty() {
+            writeln!(t, "  self-stable            nowhere in {where_}")?;
+        } else {
+            writeln!(
+                t,
+                "  self-stable            undecided in {undecided}; nowhere else in {where_}"
+            )?;
+        }
     }
     for &(a, b) in &s.stable_speed_ranges {
         writeln!(t, "  self-stable            {}", stable_words(s, a, b)?)?;

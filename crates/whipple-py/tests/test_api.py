@@ -237,3 +237,26 @@ def test_gil_is_released_for_batches(benchmark):
     for t in threads:
         t.join()
     assert np.array_equal(out[0], out[1])
+
+
+def test_from_file_reads_at_most_the_file_limit(tmp_path):
+    """A device that never ends (/dev/zero) or a huge file is refused at the bound, not read into
+    memory; the same bound as the command's --bike."""
+    limit = whipple._whipple.MAX_FILE_BYTES
+    assert limit == 4 << 20
+    with pytest.raises(whipple.LimitError, match="MiB"):
+        whipple.Bicycle.from_file("/dev/zero")
+    big = tmp_path / "big.toml"
+    big.write_bytes(b"# padding\n" * (limit // 10 + 1))
+    with pytest.raises(whipple.LimitError, match="is it the right file"):
+        whipple.Bicycle.from_file(big)
+    with pytest.raises(whipple.LimitError):
+        whipple.Bicycle.from_text("#" * (limit + 1), "toml")
+
+
+def test_a_decimal_comma_is_an_error_not_an_average():
+    """`w = 1,02` in a BicycleParameters file was averaged to 1.5; now it is refused with the
+    line, the column and the fix."""
+    with pytest.raises(whipple.ParseError, match=r"decimal comma.*`1\.02`") as info:
+        whipple.Bicycle.from_text("w = 1,02\n", "bp-txt")
+    assert info.value.line == 1 and info.value.column == 5

@@ -406,3 +406,99 @@ proptest! {
         }
     }
 }
+
+/// A value written with a decimal comma (`w = 1,02`) was read as two measurements and averaged
+/// to 1.5 without a word; it is refused, naming the line, the column and both readings. A list
+/// of measurements (a comma and a space, or a point in each value) is still averaged.
+#[test]
+fn a_decimal_comma_is_refused_not_averaged() {
+    let base = "w = 1.02\nc = 0.08\n";
+    for (format, text, line, column, shown) in [
+        (
+            Format::BicycleParametersTxt,
+            format!("{base}rR = 0,3\n"),
+            3,
+            6,
+            "0,3",
+        ),
+        (
+            Format::BicycleParametersTxt,
+            "c = 0.08\nw = 1,02 +/- 0.01\n".to_string(),
+            2,
+            5,
+            "1,02",
+        ),
+        (
+            Format::BicycleParametersTxt,
+            "w = 1.02 +/- 0,01\n".to_string(),
+            1,
+            14,
+            "0,01",
+        ),
+        (
+            Format::HumanControlTxt,
+            "w = 1,02\n".to_string(),
+            1,
+            5,
+            "1,02",
+        ),
+        (
+            Format::HumanControlTxt,
+            "c,0.08\nw,1,02\n".to_string(),
+            2,
+            3,
+            "1,02",
+        ),
+        (
+            Format::BicycleParametersTxt,
+            "w = -1,5\n".to_string(),
+            1,
+            5,
+            "-1,5",
+        ),
+    ] {
+        let m = message(parse(&text, format));
+        assert!(
+            m.contains(&format!("line {line}")) && m.contains(&format!("column {column}")),
+            "{format:?} {text:?}: {m}"
+        );
+        assert!(m.contains(&format!("`{shown}`")), "{text:?}: {m}");
+        assert!(m.contains("decimal comma"), "{m}");
+        assert!(m.contains(&shown.replacen(',', ".", 1)), "{m}");
+    }
+    // Lists of measurements, as BicycleParameters writes them, are still averaged.
+    let rigid = include_str!("data/bicycleparameters/RigidBenchmark.txt");
+    for list in ["1.0, 2.0", "1.0,2.0", "1, 2", "1.0 ,2", "1.0 +/- 0.1, 2 +/- 0.1"] {
+        let text: String = rigid
+            .lines()
+            .map(|l| {
+                if l.starts_with("w = ") {
+                    format!("w = {list}\n")
+                } else {
+                    format!("{l}\n")
+                }
+            })
+            .collect();
+        let w = parse(&text, Format::BicycleParametersTxt)
+            .and_then(|b| b.benchmark())
+            .map(|p| p.w);
+        assert_eq!(w.ok(), Some(1.5), "{list}");
+    }
+}
+
+/// A JSON bicycle naming a key twice was read with the last value winning; every other format
+/// refuses the repetition, and so does JSON now, naming the key, the line and the column.
+#[test]
+fn a_duplicate_json_key_is_refused() {
+    let json = write(&Bicycle::new(Description::Benchmark(BenchmarkParameters::meijaard2007())), Format::Json)
+        .unwrap_or_default();
+    assert!(parse(&json, Format::Json).is_ok());
+    // Repeat the first key of the benchmark table inside its object.
+    let at = json.find("\"w\"").expect("a `w` key");
+    let doubled = format!("{}\"w\": 2.0,\n    {}", &json[..at], &json[at..]);
+    let m = message(parse(&doubled, Format::Json));
+    assert!(m.contains("duplicate key `w`"), "{m}");
+    assert!(m.contains("line "), "{m}");
+    // The same key in two different objects is fine.
+    assert!(whipple::parameters::io::json_without_duplicates(r#"{"a": {"w": 1}, "b": {"w": 2}}"#).is_ok());
+}

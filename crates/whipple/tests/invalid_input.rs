@@ -334,3 +334,31 @@ fn no_panic_on_arbitrary_parameters() {
         }
     }
 }
+
+/// Wheels that overlap (a rear wheel of radius 2 m on a 1.02 m wheelbase) got certified
+/// numbers without a word; they are warned about, as a centre of mass below the ground is (the
+/// equations stay well defined, so it is not an error; `--strict` refuses it).
+#[test]
+fn overlapping_wheels_are_warned_about() {
+    let mut b = benchmark();
+    assert!(b.check().is_ok_and(|n| n.is_empty()));
+    b.r_r = 2.0;
+    let notices = b.check().unwrap_or_default();
+    let overlap: Vec<_> = notices
+        .iter()
+        .filter(|n| n.message.contains("wheels overlap"))
+        .collect();
+    assert_eq!(overlap.len(), 1, "{notices:?}");
+    assert_eq!(overlap[0].field, "w");
+    assert!(overlap[0].message.contains("1.67"), "{}", overlap[0].message);
+    // Exactly touching wheels (w = 2·√(rR·rF)) are not warned about; a hair closer is.
+    let mut touching = benchmark();
+    touching.r_r = 0.5;
+    touching.r_f = 0.5;
+    touching.w = 1.0;
+    assert!(touching.check().is_ok_and(|n| n.is_empty()));
+    touching.w = 0.999;
+    assert!(touching
+        .check()
+        .is_ok_and(|n| n.iter().any(|n| n.message.contains("wheels overlap"))));
+}

@@ -11,7 +11,8 @@ from typing import TYPE_CHECKING, Any, Callable, Dict, List, Mapping, Optional, 
 import numpy as np
 
 from . import _whipple
-from ._errors import ArgumentError, NoSteadyTurnError, ParameterError, ParameterWarning, ParseError
+from ._errors import (ArgumentError, LimitError, NoSteadyTurnError, ParameterError,
+                      ParameterWarning, ParseError)
 from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulation
 from ._turns import SteadyTurn, Turns
 
@@ -95,8 +96,15 @@ class Bicycle:
         ``.txt``, the content, unless ``format`` names it (``'toml'``, ``'json'``, ``'m'``,
         ``'bp-txt'``, ``'hc-txt'``, ``'yaml'``)."""
         path = os.fspath(path)
+        limit = _whipple.MAX_FILE_BYTES
         with open(path, "rb") as f:
-            data = f.read()
+            data = f.read(limit + 1)
+        if len(data) > limit:
+            # A file past the bound (or a device that never ends, /dev/zero) is not read whole.
+            raise LimitError(f"{path}: longer than {limit >> 20} MiB, the most a parameter file "
+                             "may hold (the field's files are a few kilobytes): is it the right "
+                             "file?", field="path", value=path,
+                             rule=f"a parameter file holds at most {limit} bytes")
         try:
             text = data.decode("utf-8")
         except UnicodeDecodeError as error:

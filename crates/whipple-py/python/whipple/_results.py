@@ -101,13 +101,22 @@ class CriticalSpeeds:
         return dict(self._data)
 
     def _rows(self) -> List[Tuple[str, str]]:
+        # Where the certificate could not decide, "none" or "at no speed" would contradict it.
+        undecided = ", ".join(_range_text(lo, hi) for lo, hi in self.unresolved)
+
+        def named(v: Optional[float], sigma: Optional[float]) -> str:
+            if v is None and undecided:
+                return f"none certified (undecided in {undecided})"
+            return _pm(v, sigma)
+
         rows = [
-            ("v_d (double root)", self.double_root_unavailable or _pm(self.v_d, self.v_d_sigma)),
-            ("v_w (weave)", _pm(self.v_w, self.v_w_sigma)),
-            ("v_c (capsize)", _pm(self.v_c, self.v_c_sigma)),
+            ("v_d (double root)", self.double_root_unavailable or named(self.v_d, self.v_d_sigma)),
+            ("v_w (weave)", named(self.v_w, self.v_w_sigma)),
+            ("v_c (capsize)", named(self.v_c, self.v_c_sigma)),
         ]
         if not self.stable_ranges:
-            rows.append(("self-stable", "at no speed in the range"))
+            rows.append(("self-stable", f"undecided in {undecided}; at no other speed in the range"
+                         if undecided else "at no speed in the range"))
         for k, (lo, hi) in enumerate(self.stable_ranges):
             text = _range_text(lo, hi)
             if k < len(self.stable_ranges_sigma):

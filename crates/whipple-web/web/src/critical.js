@@ -18,8 +18,18 @@ function throughout(eigen, mode) {
   return null;
 }
 
-function speed(v, eigen, mode, range) {
+/** The intervals the certificate could not decide, in words ("" when there are none). */
+function undecided(c) {
+  const u = c?.unresolved ?? [];
+  if (!u.length) return "";
+  return u.map(([a, b]) => (b === null || b >= 1e300 ? `above ${fixed(a, 3)}` : `${fixed(a, 3)} – ${fixed(b, 3)}`)).join(", ");
+}
+
+function speed(v, eigen, mode, range, c) {
   if (v !== null && v !== undefined) return fixed(v, 4);
+  // Where the certificate could not decide, "none" would contradict it.
+  const open = undecided(c);
+  if (open) return `none certified; undecided in ${open}`;
   const where = range ? ` ${fixed(range[0], 1)}–${fixed(range[1], 1)}` : "";
   const state = mode && throughout(eigen, mode);
   if (state === "unstable") return `none: unstable at every speed${where}`;
@@ -29,7 +39,8 @@ function speed(v, eigen, mode, range) {
 
 function ranges(c) {
   if (!c) return "–";
-  if (c.stable_speed_ranges.length === 0) return "nowhere";
+  const open = undecided(c);
+  if (c.stable_speed_ranges.length === 0) return open ? `undecided in ${open}; nowhere else` : "nowhere";
   return c.stable_speed_ranges
     .map(([a, b]) => `${fixed(a, 3)} – ${fixed(b, 3)}${b >= c.range[1] ? "+" : ""}`)
     .join(", ");
@@ -38,9 +49,9 @@ function ranges(c) {
 /** Fills `container` with the table for `designs` ([{label, eigen}], the first edited). */
 export function drawCritical(container, designs, { stale = false } = {}) {
   const rows = [
-    ["weave", "v_w", (c, e) => speed(c?.weave_speed, e, "weave", c?.range), "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
-    ["capsize", "v_c", (c, e) => speed(c?.capsize_speed, e, "capsize", c?.range), "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
-    ["double root", "v_d", (c) => speed(c?.double_root_speed, null, null, c?.range), "double-root-speed", "two real eigenvalues meet and become the weave pair", "#9ca3af"],
+    ["weave", "v_w", (c, e) => speed(c?.weave_speed, e, "weave", c?.range, c), "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
+    ["capsize", "v_c", (c, e) => speed(c?.capsize_speed, e, "capsize", c?.range, c), "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
+    ["double root", "v_d", (c) => speed(c?.double_root_speed, null, null, c?.range, c), "double-root-speed", "two real eigenvalues meet and become the weave pair", "#9ca3af"],
     ["ω at v_w", "rad/s", (c) => (c?.weave_frequency == null ? "–" : fixed(c.weave_frequency, 3)), "weave-frequency", "the weave's angular frequency |Im λ| at v_w", null],
     ["self-stable", "", (c) => ranges(c), "stable-ranges", "all eigenvalues have negative real parts", "#86efac"],
   ];

@@ -18,7 +18,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::eigen::quartic_roots;
+use super::eigen::certified_roots;
 use super::modes::Mode;
 use super::stability::{self, summary};
 use crate::error::{Error, Result};
@@ -684,7 +684,7 @@ pub fn analyse(
         q.double_root_speed = c.double_root_speed;
     }
     if let Some(v) = speed {
-        let roots = quartic_roots(&CharacteristicPolynomial::new(&canonical).at_speed(v))?;
+        let roots = certified_roots(&CharacteristicPolynomial::new(&canonical), v)?;
         let labels = super::modes::pattern_labels(&roots);
         // Sorted by decreasing real part: the first is the largest.
         q.max_real = Some(roots[0].re);

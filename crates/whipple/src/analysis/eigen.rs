@@ -15,6 +15,89 @@ use crate::linear::{Canonical, CharacteristicPolynomial};
 /// A complex number of f64.
 pub type Complex64 = Complex<f64>;
 
+fn complex_text(z: Complex64) -> String {
+    use crate::error::short_number;
+    if z.im == 0.0 {
+        short_number(z.re)
+    } else {
+        format!("{} {} {}i", short_number(z.re), if z.im < 0.0 { "-" } else { "+" }, short_number(z.im.abs()))
+    }
+}
+
+/// Refuses a speed that is not a finite number, naming it.
+pub(crate) fn check_speed(speed: f64) -> Result<()> {
+    if speed.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::InvalidArgument {
+            what: "speed",
+            rule: format!("a speed must be a finite number, got {speed}"),
+        })
+    }
+}
+
+/// How far a printed eigenvalue may be from the exact eigenvalue of the stored matrices,
+/// relative to its size; a root near zero may also be off by 1e-12 of the bicycle's rate scale
+/// at rest (max over k of |aₖ/a₄|^(1/(4−k)) at v = 0, a few 1/s for a real bicycle).
+pub const EIGENVALUE_TOLERANCE: f64 = 1e-6;
+
+/// The eigenvalues at `speed`, each certified: a bound on how far round-off (in forming the
+/// quartic's coefficients at this speed and in evaluating it) can have moved it is computed,
+/// and an eigenvalue whose bound exceeds [`EIGENVALUE_TOLERANCE`] of its size is refused with
+/// [`Error::AccuracyLost`] instead of printed. The coefficients grow as powers of v up to v⁴
+/// beside terms in g that do not, so at speeds far beyond any ridden one (about 1e16 m/s for the
+/// benchmark bicycle, 1e4 m/s for the two-mass skate) the small roots are decided by
+/// round-off; the critical speeds (`analysis::stability`) are certified at any speed and need
+/// no eigenvalue.
+///
+/// The bound, first order in the perturbation: a root z of the computed quartic p moves by at
+/// most (|p(z)| + Σₖ (eₖ + γ₈|aₖ|) |z|ᵏ) / |p′(z)|, eₖ bounding the error of aₖ
+/// ([`CharacteristicPolynomial::error_bounds`]) and γ₈|aₖ| that of Horner's scheme. At a double
+/// root (v_d) the computed pair is √ε apart and the bound stays near √ε, well inside the
+/// tolerance.
+pub(crate) fn certified_roots(poly: &CharacteristicPolynomial, speed: f64) -> Result<[Complex64; 4]> {
+    check_speed(speed)?;
+    let a = poly.at_speed(speed);
+    let roots = quartic_roots(&a)?;
+    let e = poly.error_bounds(speed);
+    const U: f64 = f64::EPSILON / 2.0;
+    let gamma8 = 8.0 * U / (1.0 - 8.0 * U);
+    // The bicycle's own rate scale at rest (a Cauchy-type bound of the quartic at v = 0: the
+    // rates of falling over, in 1/s), of which a millionth of a millionth is the absolute
+    // accuracy asked of a root near zero (the capsize root at v_c).
+    let rest = poly.at_speed(0.0);
+    let rate = (0..4)
+        .map(|k| (rest[k] / rest[4]).abs().powf(1.0 / (4 - k) as f64))
+        .fold(0.0f64, f64::max);
+    let floor = 1e-12 * rate;
+    for z in &roots {
+        let (p, dp) = horner(&a, *z);
+        let size = z.norm();
+        let mut slack = 0.0;
+        let mut power = 1.0;
+        for k in 0..5 {
+            slack += (e[k] + gamma8 * a[k].abs()) * power;
+            power *= size;
+        }
+        let radius = (p.norm() + slack) / dp.norm();
+        let allowed = EIGENVALUE_TOLERANCE * size + floor;
+        if !(radius <= allowed) {
+            return Err(Error::AccuracyLost {
+                quantity: format!("the eigenvalues at {} m/s", crate::error::short_number(speed)),
+                reason: format!(
+                    "round-off in the characteristic polynomial could move the eigenvalue {} by \
+                     up to {} 1/s, more than {EIGENVALUE_TOLERANCE:e} of its size: the roots' \
+                     scales are too far apart at this speed for double precision (the critical \
+                     speeds, `speeds`, hold at any speed)",
+                    complex_text(*z),
+                    crate::error::short_number(radius)
+                ),
+            });
+        }
+    }
+    Ok(roots)
+}
+
 /// Upper bound on the polishing iterations (each converges cubically; near a double root,
 /// linearly, where the accuracy is limited by the problem itself).
 const MAX_POLISH_ITERATIONS: usize = 60;
@@ -161,7 +244,33 @@ pub fn quartic_roots(a: &[f64; 5]) -> Result<[Complex64; 4]> {
             context: format!("roots of the characteristic polynomial {a:?}"),
         });
     }
-    Ok(tidy(z))
+    let mut z = tidy(z);
+    refine_real(a, &mut z);
+    Ok(z)
+}
+
+/// A few real Newton steps on the unscaled coefficients for each real root, each kept only
+/// where it lowers |p|: a root far smaller than the others (the capsize root at a speed of
+/// 1e16 m/s is 1e32 times smaller than the weave's) is left by the simultaneous iteration at
+/// the accuracy of the largest root, and one Newton step on its own gives it to round-off.
+fn refine_real(a: &[f64; 5], z: &mut [Complex64; 4]) {
+    for root in z.iter_mut().filter(|r| r.im == 0.0) {
+        let mut x = root.re;
+        let (mut p, mut dp) = horner(a, Complex64::new(x, 0.0));
+        for _ in 0..3 {
+            if dp.re == 0.0 || p.re == 0.0 {
+                break;
+            }
+            let next = x - p.re / dp.re;
+            let (q, dq) = horner(a, Complex64::new(next, 0.0));
+            if !(next.is_finite() && q.re.abs() < p.re.abs()) {
+                break;
+            }
+            (x, p, dp) = (next, q, dq);
+        }
+        root.re = x;
+    }
+    z.sort_by(|x, y| y.re.total_cmp(&x.re).then(y.im.total_cmp(&x.im)));
 }
 
 /// Aberth–Ehrlich iterations until the corrections reach round-off, a bounded number of times.
@@ -262,7 +371,7 @@ fn tidy(mut z: [Complex64; 4]) -> [Complex64; 4] {
 pub fn eigenvalues(canonical: &Canonical, speed: f64) -> Result<[Complex64; 4]> {
     // Refuses matrices whose characteristic polynomial double precision cannot form.
     crate::linear::SpeedPolynomials::new(canonical)?;
-    quartic_roots(&CharacteristicPolynomial::new(canonical).at_speed(speed))
+    certified_roots(&CharacteristicPolynomial::new(canonical), speed)
 }
 
 /// An eigenvalue of A(v) and its eigenvector x = [q; λ q] (unit length, largest component real
@@ -301,7 +410,7 @@ pub fn eigenpairs_with(
     poly: &CharacteristicPolynomial,
     speed: f64,
 ) -> Result<[EigenPair; 4]> {
-    let values = quartic_roots(&poly.at_speed(speed))?;
+    let values = certified_roots(poly, speed)?;
     let k = canonical.k0 * canonical.g + canonical.k2 * (speed * speed);
     let c = canonical.c1 * speed;
     let pair = |value: Complex64| {

@@ -12,8 +12,8 @@
 use serde::Serialize;
 
 use super::eigen::{eigenpairs, Complex64, EigenPair};
-use super::sweep::{eigen_sweep, speed_grid};
-use crate::error::Result;
+use super::sweep::{eigen_sweep, speed_grid, EigenSweep};
+use crate::error::{Error, Result};
 use crate::linear::Canonical;
 
 /// The name of an eigenmode.
@@ -217,11 +217,19 @@ pub struct ModeShape {
 /// ```
 pub fn mode_shapes(canonical: &Canonical, speed: f64) -> Result<[ModeShape; 4]> {
     let pairs = eigenpairs(canonical, speed)?;
-    let top = speed.abs().max(10.0) * 1.5;
-    let mut grid = speed_grid(0.0, top, top / 3000.0)?;
-    grid.push(speed.abs());
-    grid.sort_by(f64::total_cmp);
-    let sweep = eigen_sweep(canonical, &grid)?;
+    let labelling = |top: f64| -> Result<(Vec<f64>, EigenSweep)> {
+        let mut grid = speed_grid(0.0, top, top / 3000.0)?;
+        grid.push(speed.abs());
+        grid.sort_by(f64::total_cmp);
+        let sweep = eigen_sweep(canonical, &grid)?;
+        Ok((grid, sweep))
+    };
+    // Past |v| the sweep only adds evidence; where round-off forbids eigenvalues there (a
+    // speed far beyond any ridden one), the sweep stops at |v|.
+    let (grid, sweep) = match labelling(speed.abs().max(10.0) * 1.5) {
+        Err(Error::AccuracyLost { .. }) if speed.abs() > 10.0 => labelling(speed.abs())?,
+        other => other?,
+    };
     let at = grid
         .iter()
         .position(|v| *v == speed.abs())

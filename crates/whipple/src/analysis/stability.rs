@@ -49,18 +49,18 @@ pub struct CriticalSpeeds {
     /// The range searched [m/s]; either end may be infinite.
     #[serde(serialize_with = "serialize_range")]
     pub range: (f64, f64),
-    /// v_d: the lowest speed where two real eigenvalues meet and leave as a complex (weave) pair
-    /// [m/s].
+    /// v_d: the lowest forward speed (v ≥ 0) where two real eigenvalues meet and leave as a
+    /// complex (weave) pair [m/s].
     pub double_root_speed: Option<f64>,
     /// The double eigenvalue at v_d [1/s].
     pub double_root_eigenvalue: Option<f64>,
-    /// v_w: the lowest speed where a complex (weave) pair crosses into the left half plane as
-    /// speed rises [m/s].
+    /// v_w: the lowest forward speed (v ≥ 0) where a complex (weave) pair crosses into the left
+    /// half plane as speed rises [m/s].
     pub weave_speed: Option<f64>,
     /// The weave's angular frequency at v_w, |Im λ| [rad/s].
     pub weave_frequency: Option<f64>,
-    /// v_c: the lowest speed where a real (capsize) eigenvalue crosses from negative to
-    /// positive as speed rises [m/s].
+    /// v_c: the lowest forward speed (v ≥ 0) where a real (capsize) eigenvalue crosses from
+    /// negative to positive as speed rises [m/s].
     pub capsize_speed: Option<f64>,
     /// Every interval of speeds in the range where all eigenvalues have negative real parts,
     /// [lo, hi] in increasing order (hi = +∞ when it has no upper end); empty when there is none.
@@ -564,14 +564,14 @@ pub fn summary(sp: &SpeedPolynomials, lo: f64, hi: f64) -> Result<StabilitySumma
             if g.kinds & ZERO != 0 {
                 return;
             }
-            if g.kinds & PAIR != 0 && l > r && weave.is_none() {
+            if v >= 0.0 && g.kinds & PAIR != 0 && l > r && weave.is_none() {
                 if failure.is_none() {
                     failure = check_enclosure("the weave speed", v, enclosure(g, s)).err();
                 }
                 weave = Some(v);
                 weave_nu = g.value;
             }
-            if g.kinds & A0 != 0 && r > l && capsize.is_none() {
+            if v >= 0.0 && g.kinds & A0 != 0 && r > l && capsize.is_none() {
                 if failure.is_none() {
                     failure = check_enclosure("the capsize speed", v, enclosure(g, s)).err();
                 }
@@ -655,22 +655,27 @@ pub fn critical_speeds(canonical: &Canonical, lo: f64, hi: f64) -> Result<Critic
     if let Some(e) = failure {
         return Err(e);
     }
-    let weave = crossings
-        .iter()
-        .find(|c| c.kind == CrossingKind::Pair && c.unstable_above < c.unstable_below);
-    let capsize = crossings
-        .iter()
-        .find(|c| c.kind == CrossingKind::Real && c.unstable_above > c.unstable_below);
+    // v_d, v_w and v_c are speeds of forward riding: a range reaching below zero has their
+    // mirror images there (p(λ, −v) = p(−λ, v)), where nothing turns stable.
+    let weave = crossings.iter().find(|c| {
+        c.speed >= 0.0 && c.kind == CrossingKind::Pair && c.unstable_above < c.unstable_below
+    });
+    let capsize = crossings.iter().find(|c| {
+        c.speed >= 0.0 && c.kind == CrossingKind::Real && c.unstable_above > c.unstable_below
+    });
     let mut double_root_unavailable = None;
-    let (double_root_speed, double_root_eigenvalue) =
-        match double_root(canonical, &sp, lo, hi, &mut unresolved) {
+    let (double_root_speed, double_root_eigenvalue) = if hi < 0.0 {
+        (None, None)
+    } else {
+        match double_root(canonical, &sp, lo.max(0.0), hi, &mut unresolved) {
             Ok(found) => found,
             Err(e @ Error::AccuracyLost { .. }) => {
                 double_root_unavailable = Some(e.to_string());
                 (None, None)
             }
             Err(e) => return Err(e),
-        };
+        }
+    };
     unresolved.sort_by(|a, b| a.0.total_cmp(&b.0));
     Ok(CriticalSpeeds {
         range: (lo, hi),

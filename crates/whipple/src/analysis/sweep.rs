@@ -1,6 +1,6 @@
 //! Speed sweeps: eigenvalues at many speeds, modes tracked and labelled.
 
-use super::eigen::{quartic_roots, Complex64};
+use super::eigen::{certified_roots, quartic_roots, Complex64};
 use super::modes::{Mode, Tracker, Votes};
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, CharacteristicPolynomial};
@@ -236,7 +236,7 @@ where
                 each(None, &values)?;
             }
         }
-        let values = tracker.next(quartic_roots(&poly.at_speed(v))?);
+        let values = tracker.next(certified_roots(poly, v)?);
         each(Some(v), &values)?;
         previous = Some(v);
     }

@@ -18,6 +18,10 @@ const DEGREE: usize = 4;
 pub struct CharacteristicPolynomial {
     /// `coefficients[k][j]` multiplies λᵏ vʲ.
     pub coefficients: [[f64; DEGREE + 1]; DEGREE + 1],
+    /// The same expansion of the matrices' absolute values with every subtraction an addition:
+    /// what bounds the round-off in `coefficients` and in [`Self::at_speed`]
+    /// ([`Self::error_bounds`]).
+    magnitudes: [[f64; DEGREE + 1]; DEGREE + 1],
 }
 
 type Bivariate = [[f64; DEGREE + 1]; DEGREE + 1];
@@ -44,23 +48,48 @@ fn multiply(a: &Bivariate, b: &Bivariate) -> Bivariate {
 impl CharacteristicPolynomial {
     /// Expands det(M λ² + v C₁ λ + g K₀ + v² K₂).
     pub fn new(canonical: &Canonical) -> Self {
-        let entry = |i: usize, j: usize| {
+        let entry = |i: usize, j: usize, f: fn(f64) -> f64| {
             let mut e = [[0.0; DEGREE + 1]; DEGREE + 1];
-            e[2][0] = canonical.m[(i, j)];
-            e[1][1] = canonical.c1[(i, j)];
-            e[0][0] = canonical.g * canonical.k0[(i, j)];
-            e[0][2] = canonical.k2[(i, j)];
+            e[2][0] = f(canonical.m[(i, j)]);
+            e[1][1] = f(canonical.c1[(i, j)]);
+            e[0][0] = f(canonical.g * canonical.k0[(i, j)]);
+            e[0][2] = f(canonical.k2[(i, j)]);
             e
         };
-        let d = multiply(&entry(0, 0), &entry(1, 1));
-        let o = multiply(&entry(0, 1), &entry(1, 0));
+        let same = |x: f64| x;
+        let d = multiply(&entry(0, 0, same), &entry(1, 1, same));
+        let o = multiply(&entry(0, 1, same), &entry(1, 0, same));
+        let d_abs = multiply(&entry(0, 0, f64::abs), &entry(1, 1, f64::abs));
+        let o_abs = multiply(&entry(0, 1, f64::abs), &entry(1, 0, f64::abs));
         let mut coefficients = [[0.0; DEGREE + 1]; DEGREE + 1];
+        let mut magnitudes = [[0.0; DEGREE + 1]; DEGREE + 1];
         for k in 0..=DEGREE {
             for j in 0..=DEGREE {
                 coefficients[k][j] = d[k][j] - o[k][j];
+                magnitudes[k][j] = d_abs[k][j] + o_abs[k][j];
             }
         }
-        CharacteristicPolynomial { coefficients }
+        CharacteristicPolynomial {
+            coefficients,
+            magnitudes,
+        }
+    }
+
+    /// Bounds on the round-off in each coefficient of [`Self::at_speed`] (lowest power of λ
+    /// first): the expansion (products of two entries, each of which may hold a product with
+    /// g or a sum of at most three terms) and Horner's scheme in v are circuits of depth at
+    /// most 12 on the matrices as stored, so each computed aₖ lies within γ₁₂ Σⱼ |cₖⱼ| |v|ʲ of
+    /// the exact coefficient of those matrices (Higham 2002, §3.1; the |cₖⱼ| are the expansion
+    /// of the entries' absolute values).
+    pub fn error_bounds(&self, v: f64) -> [f64; DEGREE + 1] {
+        const U: f64 = f64::EPSILON / 2.0;
+        let gamma = 12.0 * U / (1.0 - 12.0 * U);
+        let mut e = [0.0; DEGREE + 1];
+        let av = v.abs();
+        for (k, row) in self.magnitudes.iter().enumerate() {
+            e[k] = gamma * row.iter().rev().fold(0.0, |acc, &c| acc * av + c);
+        }
+        e
     }
 
     /// The coefficients in λ at speed v, lowest power first: p(λ) = Σ aₖ λᵏ.

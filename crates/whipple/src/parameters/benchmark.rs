@@ -145,7 +145,7 @@ impl BenchmarkParameters {
     /// spin inertia); a mass matrix M of the linearized model that is not positive definite or
     /// overflows. Warned about (the equations stay well defined): principal moments that break
     /// the triangle inequality (as measured bicycles' do within their measurement error), a
-    /// centre of mass below the ground.
+    /// centre of mass below the ground, wheels that overlap (w < 2·√(rR·rF)).
     pub fn check(&self) -> Result<Vec<Notice>> {
         self.check_with_canonical().map(|(notices, _)| notices)
     }
@@ -266,6 +266,24 @@ impl BenchmarkParameters {
                     "every analysis (the equations stay well defined)",
                 ));
             }
+        }
+        // Wheel discs in the plane of the frame, centres at heights rR and rF a wheelbase
+        // apart: they overlap where (rR + rF)² > w² + (rR − rF)², that is w² < 4 rR rF.
+        if self.w * self.w < 4.0 * self.r_r * self.r_f {
+            notices.push(Notice::warning(
+                "w",
+                format!(
+                    "the wheels overlap: a wheelbase of {} m is shorter than {} m, the least \
+                     that keeps wheels of radii {} m and {} m apart (2·√(rR·rF)); no real \
+                     bicycle is built so",
+                    short_number(self.w),
+                    short_number(2.0 * (self.r_r * self.r_f).sqrt()),
+                    short_number(self.r_r),
+                    short_number(self.r_f)
+                ),
+                None,
+                "every analysis (the equations stay well defined)",
+            ));
         }
 
         let canonical = crate::linear::Canonical::from_unchecked(self);

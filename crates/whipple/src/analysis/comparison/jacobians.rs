@@ -5,7 +5,7 @@
 use nalgebra::{Matrix4, SMatrix, SVector, Vector4};
 
 use crate::analysis::linearize::{central_differences, jacobian, FdJacobian, FdSettings};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::nonlinear::reduced::{spin_free_derivative, spin_free_vector, state_from_spin_free};
 use crate::nonlinear::{
     FullStateField, InitialConditions, Inputs, LeanSteerField, Model, ProjectionMethod,
@@ -57,14 +57,14 @@ pub fn upright_state(model: &Model, speed: f64) -> Result<State<f64>> {
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub fn lean_steer_matrix(model: &Model, speed: f64) -> Result<Matrix4<f64>> {
-    check_speed(speed)?;
+    crate::analysis::eigen::check_speed(speed)?;
     jacobian(&LeanSteerField { model, speed }, &Vector4::zeros())
 }
 
 /// The full-state Jacobian ∂[q̇; u̇]/∂[q; u] about upright straight running at `speed`, exact
 /// (dual numbers, 48 passes of the model).
 pub fn full_state_jacobian(model: &Model, speed: f64) -> Result<FullJacobian> {
-    check_speed(speed)?;
+    crate::analysis::eigen::check_speed(speed)?;
     let y0 = spin_free_vector(&upright_state(model, speed)?);
     jacobian(&FullStateField { model }, &y0)
 }
@@ -76,7 +76,7 @@ pub fn full_state_jacobian_fd(
     speed: f64,
     params: &StudySettings,
 ) -> Result<FdJacobian<STATE_LEN>> {
-    check_speed(speed)?;
+    crate::analysis::eigen::check_speed(speed)?;
     let y0 = spin_free_vector(&upright_state(model, speed)?);
     let field = |y: &SVector<f64, STATE_LEN>| -> Result<SVector<f64, STATE_LEN>> {
         let mut state = state_from_spin_free(y);
@@ -89,13 +89,3 @@ pub fn full_state_jacobian_fd(
     central_differences(field, &y0, &params.fd)
 }
 
-fn check_speed(speed: f64) -> Result<()> {
-    if speed.is_finite() {
-        Ok(())
-    } else {
-        Err(Error::InvalidArgument {
-            what: "speed",
-            rule: format!("must be a finite number, got {speed}"),
-        })
-    }
-}

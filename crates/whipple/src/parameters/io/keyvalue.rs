@@ -100,6 +100,25 @@ pub(crate) fn parse(text: &str, format: Format) -> Result<Bicycle> {
         } else {
             rhs.split(',').collect()
         };
+        if let Some(at) = decimal_comma(rhs) {
+            let number: String = rhs[at..]
+                .chars()
+                .take_while(|c| c.is_ascii_digit() || *c == ',' || *c == '-' || *c == '+')
+                .collect();
+            return Err(error_at(
+                format,
+                line_no,
+                rhs_offset + at + 1,
+                Some(key),
+                format!(
+                    "`{number}` looks like a number with a decimal comma; write it with a point \
+                     (`{}`), or put a space after each comma of a list of measurements \
+                     (`{}`), which are averaged",
+                    number.replacen(',', ".", 1),
+                    number.replace(',', ", "),
+                ),
+            ));
+        }
         let mut values = Vec::new();
         for m in &measurements {
             let (value_text, sigma_text) = match m.split_once("+/-").or_else(|| m.split_once('±'))
@@ -186,6 +205,36 @@ pub(crate) fn parse(text: &str, format: Format) -> Result<Bicycle> {
         bike.name = name;
     }
     Ok(bike)
+}
+
+/// Where a value written with a decimal comma starts in `rhs` (`1,02`: digits, a comma, digits,
+/// no space between), if one does. A list of measurements separates its values with a comma
+/// and a space, or has a point in each (`0.72,0.73`); an integer list without spaces (`1,2`)
+/// is ambiguous and refused too, with both readings in the message.
+fn decimal_comma(rhs: &str) -> Option<usize> {
+    let bytes = rhs.as_bytes();
+    for (i, &b) in bytes.iter().enumerate() {
+        if b != b',' || i == 0 || i + 1 >= bytes.len() {
+            continue;
+        }
+        if !(bytes[i - 1].is_ascii_digit() && bytes[i + 1].is_ascii_digit()) {
+            continue;
+        }
+        // The integer part: digits back to a space, a sign, `=` or a separating comma.
+        let start = rhs[..i]
+            .rfind(|c: char| !c.is_ascii_digit())
+            .map_or(0, |p| p + 1);
+        let before = rhs[..start].trim_end();
+        let integer = before.is_empty()
+            || before.ends_with(['+', '-', ','])
+            || before.ends_with("+/-")
+            || before.ends_with('±');
+        if integer {
+            let sign = rhs[..start].ends_with(['+', '-']) && !before.ends_with("+/-");
+            return Some(if sign { start - 1 } else { start });
+        }
+    }
+    None
 }
 
 /// Keys that must be zero in a left-right symmetric model.

@@ -13,12 +13,14 @@
 //! the line and column where known. Files come as their owners wrote them: a UTF-8 byte-order
 //! mark, CRLF line endings and a missing final newline are all accepted.
 
+mod json;
 mod keyvalue;
 mod matlab;
 mod tree;
 mod write;
 mod yaml;
 
+pub use json::{json_slice_without_duplicates, json_without_duplicates};
 pub use matlab::parse_jbike6_m;
 
 use super::Bicycle;
@@ -206,6 +208,11 @@ impl Format {
     }
 }
 
+/// The largest parameter file read, in bytes (4 MiB): the field's files are a few kilobytes, and
+/// a reader of a file past this stops there (`--bike /dev/zero` would otherwise read until
+/// memory runs out). [`parse`] refuses longer text.
+pub const MAX_FILE_BYTES: usize = 4 << 20;
+
 /// The text without a leading UTF-8 byte-order mark.
 pub(crate) fn strip_bom(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
@@ -222,6 +229,17 @@ pub(crate) fn strip_bom(text: &str) -> &str {
 /// assert!(err.to_string().contains("missing"));
 /// ```
 pub fn parse(text: &str, format: Format) -> Result<Bicycle> {
+    if text.len() > MAX_FILE_BYTES {
+        return Err(crate::Error::LimitExceeded {
+            what: "parameter file",
+            rule: format!(
+                "{} bytes, more than the {} MiB a parameter file may hold (the field's files \
+                 are a few kilobytes): is it the right file?",
+                text.len(),
+                MAX_FILE_BYTES >> 20
+            ),
+        });
+    }
     let text = strip_bom(text);
     match format {
         Format::Toml => tree::parse_toml(text),

@@ -128,7 +128,7 @@ fn toml_value(text: &str, v: &toml::Spanned<toml::de::DeValue<'_>>) -> Node {
 
 pub(crate) fn parse_json(text: &str) -> Result<Bicycle> {
     let format = Format::Json;
-    let value: serde_json::Value = serde_json::from_str(text).map_err(|e| {
+    let value = super::json_without_duplicates(text).map_err(|e| {
         let message = e.to_string();
         let message = match message.rfind(" at line ") {
             Some(p) => message[..p].to_string(),
