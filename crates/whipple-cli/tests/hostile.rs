@@ -37,11 +37,14 @@ fn an_output_onto_the_input_file_is_refused() {
     std::os::unix::fs::symlink(&bike, &link).expect("symlink");
     let hard = dir.join("hard.csv");
     fs::hard_link(&bike, &hard).expect("hard link");
+    let figure = dir.join("link.svg");
+    std::os::unix::fs::symlink(&bike, &figure).expect("symlink");
+    let figure = figure.to_str().expect("utf-8");
     let b = bike.to_str().expect("utf-8");
     for out in [b, link.to_str().expect("utf-8"), hard.to_str().expect("utf-8")] {
         for args in [
             vec!["eig", "--bike", b, "--speeds", "0:10:1", "--out", out],
-            vec!["eig", "--bike", b, "--speeds", "0:10:1", "--plot", out],
+            vec!["eig", "--bike", b, "--speeds", "0:10:1", "--plot", figure],
             vec![
                 "simulate", "--bike", b, "--speed", "5", "--duration", "0.1", "--out", out,
             ],
@@ -155,7 +158,7 @@ fn a_signal_leaves_no_temporary_file_and_says_what_was_not_written() {
 fn a_signal_removes_the_report_directory_it_created() {
     let dir = scratch("signal-report");
     let report = dir.join("out");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_whipple"))
+    let child = Command::new(env!("CARGO_BIN_EXE_whipple"))
         .args([
             "validate",
             "--bike",
@@ -325,26 +328,28 @@ fn an_undecided_interval_is_never_contradicted() {
         }
     }
     let dir = scratch("undecided");
-    let mut seen_undecided = 0;
-    // The last designs on both sides of the closing: widths from 1e-9 m/s down to nothing.
-    let mut c = stable;
-    for k in 0..40 {
+    let mut undecided = 0;
+    // Twenty trails a few units in the last place on each side of where the range closes.
+    let ulps = |c: f64, k: i64| f64::from_bits((c.to_bits() as i64 + k) as u64);
+    for (k, c) in (-10..10)
+        .map(|k| ulps(stable, k))
+        .chain((-10..10).map(|k| ulps(closed, k)))
+        .enumerate()
+    {
         let mut b = BenchmarkParameters::meijaard2007();
-        b.c = if k % 2 == 0 { c } else { closed };
-        c = f64::from_bits(c.to_bits() + if c > 0.0 { 1 } else { 0 }).max(c);
+        b.c = c;
         let file = dir.join(format!("design{k}.toml"));
-        let text = write(&Bicycle::new(whipple::parameters::Description::Benchmark(b)), Format::Toml)
-            .expect("writes");
-        fs::write(&file, text).expect("write");
+        let bike = Bicycle::new(whipple::parameters::Description::Benchmark(b));
+        fs::write(&file, write(&bike, Format::Toml).expect("writes")).expect("write");
         let out = stdout(&whipple(&["speeds", "--bike", file.to_str().expect("utf-8")]));
         if out.contains("not decided") {
-            seen_undecided += 1;
+            undecided += 1;
+            assert!(out.contains("self-stable            undecided in"), "{out}");
             assert!(!out.contains("nowhere in"), "{out}");
             assert!(!out.contains("none at any speed"), "{out}");
         }
-        if out.contains("self-stable            nowhere") {
-            assert!(!out.contains("not decided"), "{out}");
-        }
     }
-    eprintln!("{seen_undecided} of 40 designs had an undecided interval");
+    // The closing is a near-tangency: some of these designs must be undecided, or the test
+    // checks nothing.
+    assert!(undecided > 0, "no design was undecided");
 }
