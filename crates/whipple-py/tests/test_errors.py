@@ -2,6 +2,8 @@
 
 import math
 
+import numpy as np
+
 import pytest
 
 import whipple
@@ -108,3 +110,25 @@ def test_non_finite_speed_is_refused(benchmark):
         benchmark.state_space([1.0, math.inf])
     with pytest.raises(whipple.WhippleError):
         benchmark.eig([math.nan])
+
+
+def test_eigenvalues_at_absurd_speeds_are_right_or_refused():
+    """The capsize root at 1e16 m/s was returned as 0 (it is +2.3722196e-16 1/s, from a
+    60-digit reference on the same matrices); where round-off decides the roots (the two-mass
+    skate at 1e6 m/s) the call raises instead of returning numbers."""
+    bike = whipple.Bicycle.preset("benchmark")
+    for tracked in (True, False):
+        values = bike.eig([1e16], tracked=tracked).values[0]
+        small = values[np.argmin(np.abs(values))]
+        assert small.imag == 0 and abs(small.real - 2.3722196e-16) < 1e-22, values
+    skate = whipple.Bicycle.preset("two-mass-skate")
+    for tracked in (True, False):
+        with pytest.raises(whipple.AccuracyLostError, match="eigenvalues at 1000000 m/s"):
+            skate.eig([1e6], tracked=tracked)
+
+
+def test_critical_speeds_are_those_of_forward_riding():
+    """On a range reaching below zero, v_w and v_c were their mirror images (−4.29, −6.02)."""
+    c = whipple.Bicycle.preset("benchmark").critical_speeds(-math.inf, 10.0)
+    assert abs(c.v_w - 4.292382536341) < 1e-9 and abs(c.v_c - 6.024262015388) < 1e-9
+    assert abs(c.v_d - 0.684283078892) < 1e-9
