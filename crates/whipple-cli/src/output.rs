@@ -722,8 +722,7 @@ impl ReportDir {
                 }
                 {
                     let mut guard = pending();
-                    fs::create_dir(path)
-                        .map_err(|e| fail(format!("cannot be created ({e})")))?;
+                    fs::create_dir(path).map_err(|e| fail(format!("cannot be created ({e})")))?;
                     guard.directories.push(path.to_path_buf());
                 }
                 Ok(ReportDir {

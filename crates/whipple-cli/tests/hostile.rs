@@ -41,15 +41,35 @@ fn an_output_onto_the_input_file_is_refused() {
     std::os::unix::fs::symlink(&bike, &figure).expect("symlink");
     let figure = figure.to_str().expect("utf-8");
     let b = bike.to_str().expect("utf-8");
-    for out in [b, link.to_str().expect("utf-8"), hard.to_str().expect("utf-8")] {
+    for out in [
+        b,
+        link.to_str().expect("utf-8"),
+        hard.to_str().expect("utf-8"),
+    ] {
         for args in [
             vec!["eig", "--bike", b, "--speeds", "0:10:1", "--out", out],
             vec!["eig", "--bike", b, "--speeds", "0:10:1", "--plot", figure],
             vec![
-                "simulate", "--bike", b, "--speed", "5", "--duration", "0.1", "--out", out,
+                "simulate",
+                "--bike",
+                b,
+                "--speed",
+                "5",
+                "--duration",
+                "0.1",
+                "--out",
+                out,
             ],
             vec![
-                "map", "--bike", b, "--x", "trail=0:0.1:3", "--y", "w=1:1.1:3", "--out", out,
+                "map",
+                "--bike",
+                b,
+                "--x",
+                "trail=0:0.1:3",
+                "--y",
+                "w=1:1.1:3",
+                "--out",
+                out,
             ],
             vec!["convert", "--bike", b, "--to", "json", "--out", out],
         ] {
@@ -144,7 +164,8 @@ fn a_signal_leaves_no_temporary_file_and_says_what_was_not_written() {
         let err = String::from_utf8_lossy(&output.stderr);
         assert_eq!(output.status.code(), Some(code), "{signal}: {err}");
         assert!(
-            err.contains(&format!("SIG{signal}")) && err.contains("not written")
+            err.contains(&format!("SIG{signal}"))
+                && err.contains("not written")
                 && err.contains("--out"),
             "{signal}: {err}"
         );
@@ -200,7 +221,11 @@ fn an_endless_or_huge_parameter_file_is_refused_at_the_bound() {
     assert!(err.contains("longer than 4 MiB"), "{err}");
     let big = dir.join("big.toml");
     fs::write(&big, "# padding\n".repeat(500_000)).expect("write");
-    let err = stderr_of_failure(&whipple(&["speeds", "--bike", big.to_str().expect("utf-8")]));
+    let err = stderr_of_failure(&whipple(&[
+        "speeds",
+        "--bike",
+        big.to_str().expect("utf-8"),
+    ]));
     assert!(err.contains("longer than 4 MiB"), "{err}");
 }
 
@@ -240,7 +265,11 @@ fn a_decimal_comma_names_file_line_and_column() {
     let dir = scratch("decimal-comma");
     let file = dir.join("CommaBenchmark.txt");
     fs::write(&file, "c = 0.08\nw = 1,02\n").expect("write");
-    let err = stderr_of_failure(&whipple(&["speeds", "--bike", file.to_str().expect("utf-8")]));
+    let err = stderr_of_failure(&whipple(&[
+        "speeds",
+        "--bike",
+        file.to_str().expect("utf-8"),
+    ]));
     assert!(
         err.contains("CommaBenchmark.txt")
             && err.contains("line 2, column 5")
@@ -256,7 +285,13 @@ fn a_decimal_comma_names_file_line_and_column() {
 #[test]
 fn eigenvalues_at_absurd_speeds_are_right_or_refused() {
     let csv = stdout(&whipple(&[
-        "eig", "--bike", "benchmark", "--speeds", "1e16:1e16:1", "--format", "csv",
+        "eig",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "1e16:1e16:1",
+        "--format",
+        "csv",
     ]));
     let row: Vec<f64> = csv
         .lines()
@@ -278,7 +313,10 @@ fn eigenvalues_at_absurd_speeds_are_right_or_refused() {
         vec!["modes", "--bike", "benchmark", "--speed", "1e44"],
     ] {
         let err = stderr_of_failure(&whipple(&args));
-        assert!(err.contains("accuracy lost in the eigenvalues"), "{args:?}: {err}");
+        assert!(
+            err.contains("accuracy lost in the eigenvalues"),
+            "{args:?}: {err}"
+        );
     }
 }
 
@@ -286,7 +324,13 @@ fn eigenvalues_at_absurd_speeds_are_right_or_refused() {
 /// beside a positive stable range.
 #[test]
 fn critical_speeds_are_those_of_forward_riding() {
-    let out = stdout(&whipple(&["speeds", "--bike", "benchmark", "--range", ":10"]));
+    let out = stdout(&whipple(&[
+        "speeds",
+        "--bike",
+        "benchmark",
+        "--range",
+        ":10",
+    ]));
     assert!(out.contains("weave speed v_w        4.29"), "{out}");
     assert!(out.contains("capsize speed v_c      6.02"), "{out}");
     assert!(out.contains("double root speed v_d  0.68"), "{out}");
@@ -315,7 +359,11 @@ fn an_undecided_interval_is_never_contradicted() {
     // Stable at the benchmark's trail; the range closes somewhere below.
     let (mut stable, mut closed) = (0.08, -0.2);
     assert!(width(stable).is_some_and(|w| w.0 > 0.0));
-    assert!(width(closed).is_some_and(|w| w.0 == 0.0), "{:?}", width(closed));
+    assert!(
+        width(closed).is_some_and(|w| w.0 == 0.0),
+        "{:?}",
+        width(closed)
+    );
     for _ in 0..200 {
         let mid = 0.5 * (stable + closed);
         if mid == stable || mid == closed {
@@ -341,7 +389,11 @@ fn an_undecided_interval_is_never_contradicted() {
         let file = dir.join(format!("design{k}.toml"));
         let bike = Bicycle::new(whipple::parameters::Description::Benchmark(b));
         fs::write(&file, write(&bike, Format::Toml).expect("writes")).expect("write");
-        let out = stdout(&whipple(&["speeds", "--bike", file.to_str().expect("utf-8")]));
+        let out = stdout(&whipple(&[
+            "speeds",
+            "--bike",
+            file.to_str().expect("utf-8"),
+        ]));
         if out.contains("not decided") {
             undecided += 1;
             assert!(out.contains("self-stable            undecided in"), "{out}");

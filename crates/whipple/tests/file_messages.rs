@@ -468,7 +468,13 @@ fn a_decimal_comma_is_refused_not_averaged() {
     }
     // Lists of measurements, as BicycleParameters writes them, are still averaged.
     let rigid = include_str!("data/bicycleparameters/RigidBenchmark.txt");
-    for list in ["1.0, 2.0", "1.0,2.0", "1, 2", "1.0 ,2", "1.0 +/- 0.1, 2 +/- 0.1"] {
+    for list in [
+        "1.0, 2.0",
+        "1.0,2.0",
+        "1, 2",
+        "1.0 ,2",
+        "1.0 +/- 0.1, 2 +/- 0.1",
+    ] {
         let text: String = rigid
             .lines()
             .map(|l| {
@@ -490,8 +496,11 @@ fn a_decimal_comma_is_refused_not_averaged() {
 /// refuses the repetition, and so does JSON now, naming the key, the line and the column.
 #[test]
 fn a_duplicate_json_key_is_refused() {
-    let json = write(&Bicycle::new(Description::Benchmark(BenchmarkParameters::meijaard2007())), Format::Json)
-        .unwrap_or_default();
+    let json = write(
+        &Bicycle::new(Description::Benchmark(BenchmarkParameters::meijaard2007())),
+        Format::Json,
+    )
+    .unwrap_or_default();
     assert!(parse(&json, Format::Json).is_ok());
     // Repeat the first key of the benchmark table inside its object.
     let at = json.find("\"w\"").expect("a `w` key");
@@ -500,5 +509,8 @@ fn a_duplicate_json_key_is_refused() {
     assert!(m.contains("duplicate key `w`"), "{m}");
     assert!(m.contains("line "), "{m}");
     // The same key in two different objects is fine.
-    assert!(whipple::parameters::io::json_without_duplicates(r#"{"a": {"w": 1}, "b": {"w": 2}}"#).is_ok());
+    assert!(
+        whipple::parameters::io::json_without_duplicates(r#"{"a": {"w": 1}, "b": {"w": 2}}"#)
+            .is_ok()
+    );
 }

@@ -31,10 +31,17 @@ fn seeds(target: &str) -> Vec<(String, Vec<u8>)> {
 fn replay(name: &str, text: &str, format: Format) {
     match parse(text, format) {
         Ok(bike) => {
-            assert!(name.starts_with("ok-"), "{name}: read, but it is a hostile input");
+            assert!(
+                name.starts_with("ok-"),
+                "{name}: read, but it is a hostile input"
+            );
             let written = write(&bike, Format::Toml).expect("writes");
             let again = parse(&written, Format::Toml).expect("reads back");
-            assert_eq!(write(&again, Format::Toml).expect("writes"), written, "{name}");
+            assert_eq!(
+                write(&again, Format::Toml).expect("writes"),
+                written,
+                "{name}"
+            );
         }
         Err(e) => {
             assert!(name.starts_with("err-"), "{name}: refused: {e}");
@@ -61,13 +68,21 @@ fn field_file_seeds() {
 #[test]
 fn json_seeds() {
     for (name, data) in seeds("parse_json") {
-        replay(&name, std::str::from_utf8(&data).expect("UTF-8"), Format::Json);
+        replay(
+            &name,
+            std::str::from_utf8(&data).expect("UTF-8"),
+            Format::Json,
+        );
     }
 }
 
 #[test]
 fn toml_seeds() {
     for (name, data) in seeds("parse_toml") {
-        replay(&name, std::str::from_utf8(&data).expect("UTF-8"), Format::Toml);
+        replay(
+            &name,
+            std::str::from_utf8(&data).expect("UTF-8"),
+            Format::Toml,
+        );
     }
 }

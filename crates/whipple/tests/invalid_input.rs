@@ -350,7 +350,11 @@ fn overlapping_wheels_are_warned_about() {
         .collect();
     assert_eq!(overlap.len(), 1, "{notices:?}");
     assert_eq!(overlap[0].field, "w");
-    assert!(overlap[0].message.contains("1.67"), "{}", overlap[0].message);
+    assert!(
+        overlap[0].message.contains("1.67"),
+        "{}",
+        overlap[0].message
+    );
     // Exactly touching wheels (w = 2·√(rR·rF)) are not warned about; a hair closer is.
     let mut touching = benchmark();
     touching.r_r = 0.5;

@@ -20,7 +20,12 @@ fn complex_text(z: Complex64) -> String {
     if z.im == 0.0 {
         short_number(z.re)
     } else {
-        format!("{} {} {}i", short_number(z.re), if z.im < 0.0 { "-" } else { "+" }, short_number(z.im.abs()))
+        format!(
+            "{} {} {}i",
+            short_number(z.re),
+            if z.im < 0.0 { "-" } else { "+" },
+            short_number(z.im.abs())
+        )
     }
 }
 
@@ -55,7 +60,10 @@ pub const EIGENVALUE_TOLERANCE: f64 = 1e-6;
 /// ([`CharacteristicPolynomial::error_bounds`]) and γ₈|aₖ| that of Horner's scheme. At a double
 /// root (v_d) the computed pair is √ε apart and the bound stays near √ε, well inside the
 /// tolerance.
-pub(crate) fn certified_roots(poly: &CharacteristicPolynomial, speed: f64) -> Result<[Complex64; 4]> {
+pub(crate) fn certified_roots(
+    poly: &CharacteristicPolynomial,
+    speed: f64,
+) -> Result<[Complex64; 4]> {
     check_speed(speed)?;
     let a = poly.at_speed(speed);
     let roots = quartic_roots(&a)?;
@@ -83,7 +91,10 @@ pub(crate) fn certified_roots(poly: &CharacteristicPolynomial, speed: f64) -> Re
         let allowed = EIGENVALUE_TOLERANCE * size + floor;
         if !(radius <= allowed) {
             return Err(Error::AccuracyLost {
-                quantity: format!("the eigenvalues at {} m/s", crate::error::short_number(speed)),
+                quantity: format!(
+                    "the eigenvalues at {} m/s",
+                    crate::error::short_number(speed)
+                ),
                 reason: format!(
                     "round-off in the characteristic polynomial could move the eigenvalue {} by \
                      up to {} 1/s, more than {EIGENVALUE_TOLERANCE:e} of its size: the roots' \

@@ -88,4 +88,3 @@ pub fn full_state_jacobian_fd(
     };
     central_differences(field, &y0, &params.fd)
 }
-
