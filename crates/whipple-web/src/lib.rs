@@ -218,6 +218,14 @@ pub async fn serve(options: ServeOptions) -> Result<(), ServeError> {
             options.address
         );
     }
+    if options.address.is_unspecified() {
+        eprintln!(
+            "whipple serve: note: requests are answered only when addressed to 127.0.0.1, \
+             localhost, [::1] or {} itself (Host header); to serve other machines, give this \
+             machine's own address with --address",
+            options.address
+        );
+    }
     if options.open {
         open_browser(&url);
     }
