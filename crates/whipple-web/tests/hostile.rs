@@ -197,14 +197,17 @@ async fn issue_10_a_preset_name_that_is_not_utf8_is_answered_in_json() -> TestRe
 
 /// Parsing, validating and converting run on the bounded computing pool (so 40 large parses
 /// cannot hold up `/api/health`): with a compute time limit of a microsecond they time out.
-#[tokio::test]
+/// The file is near the body limit and the runtime has two workers, so that the parse takes
+/// longer than the timer's 1 ms tick and a stalled test thread on a loaded machine (a
+/// current-thread runtime answered 422 about one run in four under a load average of 9).
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn issue_10_parsing_runs_on_the_computing_pool() -> TestResult {
     let router = app(Limits {
         compute_timeout: Duration::from_micros(1),
         ..Limits::default()
     });
     let mut text = String::from("[benchmark]\n");
-    for i in 0..20_000 {
+    for i in 0..45_000 {
         text.push_str(&format!("# comment line {i}\n"));
     }
     let body = json!({"text": text, "format": "toml"}).to_string();
