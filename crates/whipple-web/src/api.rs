@@ -4,7 +4,8 @@
 //! "benchmark": {...}}` or `{..., "jbike6": {...}}`) and are read and written by
 //! `whipple::parameters::io`, so the API, the CLI and the files agree on every key and rule.
 
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::net::{IpAddr, Ipv4Addr};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
 
 use axum::body::Bytes;
@@ -18,7 +19,7 @@ use axum::{Json, Router};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use tokio::sync::Semaphore;
+use tokio::sync::{OwnedSemaphorePermit, Semaphore, TryAcquireError};
 use whipple::analysis::sensitivity;
 use whipple::analysis::stability::{critical_speeds, CriticalSpeeds};
 use whipple::analysis::sweep::{eigen_sweep, speed_grid};
@@ -31,8 +32,8 @@ use whipple::{Bicycle, Description};
 
 use crate::error::{quoted_field, ApiError};
 use crate::geometry::{side_view, SideView};
-use crate::modes::{self as mode_api, ModesRequest, ModesResponse, ResponseJson, ResponseRequest};
-use crate::simulation::{self, SimulateRequest, SimulateResponse};
+use crate::modes::{self as mode_api, ModesRequest, ModesResponse, ResponseRequest};
+use crate::simulation::{self, SimulateRequest};
 use crate::{assets, Limits};
 
 /// The OpenAPI 3 description of every `/api` route (served at `/api/openapi.json`).
@@ -41,15 +42,42 @@ pub const OPENAPI: &str = include_str!("openapi.json");
 #[derive(Clone)]
 pub(crate) struct AppState {
     pub(crate) limits: Limits,
-    computing: Arc<Semaphore>,
+    /// The address the server is bound to: a Host naming it is accepted (see `access`).
+    bound: IpAddr,
+    /// Slots of the heavy work (maps, studies, simulations, sweeps, sensitivities, responses).
+    heavy: Arc<Semaphore>,
+    /// Heavy requests waiting for a slot now.
+    heavy_waiting: Arc<AtomicUsize>,
+    /// Slots of the interactive work (validate, convert, parse, critical speeds, modes,
+    /// turns): its own, so that it never waits behind heavy work.
+    interactive: Arc<Semaphore>,
 }
 
-/// The whole application: page, assets and API, with the body-size limit, the request timeout
-/// and JSON errors for unknown paths and methods.
+/// Which computing slots a request's work takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Budget {
+    /// Milliseconds of work the page asks for as one types: never queued behind heavy work.
+    Interactive,
+    /// Work that may take a second or more: its own slots and a bounded waiting line.
+    Heavy,
+}
+
+/// The whole application for a server on a loopback address: page, assets and API, with the
+/// body-size limit, the request timeout, the Host, Origin and Content-Type checks and JSON
+/// errors for unknown paths and methods.
 pub fn app(limits: Limits) -> Router {
+    app_bound_to(limits, IpAddr::V4(Ipv4Addr::LOCALHOST))
+}
+
+/// [`app`] for a server bound to `bound`: a Host header naming that address is accepted as
+/// well as the loopback names.
+pub fn app_bound_to(limits: Limits, bound: IpAddr) -> Router {
     let state = AppState {
         limits,
-        computing: Arc::new(Semaphore::new(limits.max_concurrent_computations.max(1))),
+        bound,
+        heavy: Arc::new(Semaphore::new(limits.max_concurrent_computations.max(1))),
+        heavy_waiting: Arc::new(AtomicUsize::new(0)),
+        interactive: Arc::new(Semaphore::new(limits.max_interactive_computations.max(1))),
     };
     Router::new()
         .route("/", get(assets::index))
@@ -79,10 +107,18 @@ pub fn app(limits: Limits) -> Router {
         .with_state(state)
 }
 
-/// Bounds each request's total time (408) and marks every answer `nosniff`.
+/// Refuses requests from elsewhere (Host 421, Origin 403, Content-Type 415: see `access`),
+/// bounds each request's total time (408) and marks every answer `nosniff`.
 async fn guard(State(state): State<AppState>, request: Request, next: Next) -> Response {
     let limit = state.limits.request_timeout;
-    let mut response = match tokio::time::timeout(limit, next.run(request)).await {
+    let checked = crate::access::check(request.method(), request.headers(), state.bound);
+    let answer = async move {
+        match checked {
+            Ok(()) => next.run(request).await,
+            Err(refused) => refused.into_response(),
+        }
+    };
+    let mut response = match tokio::time::timeout(limit, answer).await {
         Ok(response) => response,
         Err(_) => ApiError::new(
             StatusCode::REQUEST_TIMEOUT,
@@ -207,32 +243,77 @@ impl Drop for StopOnDrop {
     }
 }
 
-/// Runs CPU-heavy work on the blocking pool, a bounded number at a time, within the limits;
-/// `advice` ends the timeout's message (what to ask for instead). The work gets a stop flag,
-/// set once nobody waits for its result any more (time up, client gone): work that can stop
-/// early (a simulation) should, to give its computing slot back.
+/// Leaves the heavy waiting line when dropped (served, refused or gone).
+struct InLine(Arc<AtomicUsize>);
+
+impl Drop for InLine {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::Relaxed);
+    }
+}
+
+/// Seconds a client told "busy" is asked to wait before trying again (`Retry-After`).
+const RETRY_AFTER_SECONDS: u64 = 2;
+
+fn busy(message: String) -> ApiError {
+    ApiError::new(StatusCode::SERVICE_UNAVAILABLE, "busy", message).retry_after(RETRY_AFTER_SECONDS)
+}
+
+/// A computing slot of `budget`: at once when one is free; else, for heavy work, a place in a
+/// waiting line of at most `max_waiting_heavy` (503 `busy` at once past it); then at most
+/// `queue_timeout` of waiting (503 `busy`).
+async fn slot(state: &AppState, budget: Budget) -> Result<OwnedSemaphorePermit, ApiError> {
+    let limits = state.limits;
+    let (slots, what) = match budget {
+        Budget::Interactive => (&state.interactive, "interactive"),
+        Budget::Heavy => (&state.heavy, "heavy"),
+    };
+    match slots.clone().try_acquire_owned() {
+        Ok(permit) => return Ok(permit),
+        Err(TryAcquireError::Closed) => {
+            return Err(ApiError::internal("the computing pool is closed"))
+        }
+        Err(TryAcquireError::NoPermits) => {}
+    }
+    let _in_line = match budget {
+        Budget::Interactive => None,
+        Budget::Heavy => {
+            let ahead = state.heavy_waiting.fetch_add(1, Ordering::Relaxed);
+            let place = InLine(state.heavy_waiting.clone());
+            if ahead >= limits.max_waiting_heavy {
+                return Err(busy(format!(
+                    "the server is busy: all {} slots for heavy work (maps, studies, \
+                     simulations, sweeps) are taken and {ahead} requests wait for one, the \
+                     server's limit; try again in {RETRY_AFTER_SECONDS} s",
+                    limits.max_concurrent_computations.max(1)
+                )));
+            }
+            Some(place)
+        }
+    };
+    tokio::time::timeout(limits.queue_timeout, slots.clone().acquire_owned())
+        .await
+        .map_err(|_| {
+            busy(format!(
+                "the server is busy: no {what} computing slot came free within {} s; try again",
+                limits.queue_timeout.as_secs_f64()
+            ))
+        })?
+        .map_err(|_| ApiError::internal("the computing pool is closed"))
+}
+
+/// Runs CPU-heavy work on the blocking pool, a bounded number at a time per `budget`, within
+/// the limits; `advice` ends the timeout's message (what to ask for instead). The work gets a
+/// stop flag, set once nobody waits for its result any more (time up, client gone): work that
+/// can stop early (a simulation, a map) should, to give its computing slot back.
 pub(crate) async fn compute<T: Send + 'static>(
     state: &AppState,
+    budget: Budget,
     advice: &str,
     work: impl FnOnce(Arc<AtomicBool>) -> Result<T, ApiError> + Send + 'static,
 ) -> Result<T, ApiError> {
     let limits = state.limits;
-    let permit = tokio::time::timeout(
-        limits.queue_timeout,
-        state.computing.clone().acquire_owned(),
-    )
-    .await
-    .map_err(|_| {
-        ApiError::new(
-            StatusCode::SERVICE_UNAVAILABLE,
-            "busy",
-            format!(
-                "the server is busy: no computing slot came free within {} s; try again",
-                limits.queue_timeout.as_secs_f64()
-            ),
-        )
-    })?
-    .map_err(|_| ApiError::internal("the computing pool is closed"))?;
+    let permit = slot(state, budget).await?;
     let stop = StopOnDrop(Arc::new(AtomicBool::new(false)));
     let flag = stop.0.clone();
     let task = tokio::task::spawn_blocking(move || {
@@ -254,6 +335,31 @@ pub(crate) async fn compute<T: Send + 'static>(
             ),
         )),
     }
+}
+
+/// [`compute`], the answer written as JSON on the computing thread too: a map's or a
+/// simulation's answer is megabytes, whose writing must not hold up the threads that answer
+/// everything else.
+pub(crate) async fn compute_json<T: Serialize + 'static>(
+    state: &AppState,
+    budget: Budget,
+    advice: &str,
+    work: impl FnOnce(Arc<AtomicBool>) -> Result<T, ApiError> + Send + 'static,
+) -> Result<Response, ApiError> {
+    let bytes = compute(state, budget, advice, move |stop| {
+        let answer = work(stop)?;
+        serde_json::to_vec(&answer)
+            .map_err(|e| ApiError::internal(format!("the answer could not be written: {e}")))
+    })
+    .await?;
+    Ok((
+        [(
+            header::CONTENT_TYPE,
+            HeaderValue::from_static("application/json"),
+        )],
+        bytes,
+    )
+        .into_response())
 }
 
 #[derive(Serialize)]
@@ -351,9 +457,12 @@ async fn validate(
     body: Result<Bytes, BytesRejection>,
 ) -> Result<Json<Validated>, ApiError> {
     let bytes = body_bytes(body)?;
-    compute(&state, "send a smaller bicycle", move |_| {
-        validate_bike(bytes)
-    })
+    compute(
+        &state,
+        Budget::Interactive,
+        "send a smaller bicycle",
+        move |_| validate_bike(bytes),
+    )
     .await
     .map(Json)
 }
@@ -388,13 +497,18 @@ async fn to_toml(
     body: Result<Bytes, BytesRejection>,
 ) -> Result<Json<TomlText>, ApiError> {
     let bytes = body_bytes(body)?;
-    compute(&state, "send a smaller bicycle", move |_| {
-        let request: BikeRequest = json_body(Ok(bytes))?;
-        let bike = bicycle(&request.bike)?;
-        Ok(TomlText {
-            toml: io::write(&bike, Format::Toml)?,
-        })
-    })
+    compute(
+        &state,
+        Budget::Interactive,
+        "send a smaller bicycle",
+        move |_| {
+            let request: BikeRequest = json_body(Ok(bytes))?;
+            let bike = bicycle(&request.bike)?;
+            Ok(TomlText {
+                toml: io::write(&bike, Format::Toml)?,
+            })
+        },
+    )
     .await
     .map(Json)
 }
@@ -426,30 +540,35 @@ async fn parse_file(
     let bytes = body_bytes(body)?;
     // Parsing a file of up to the body limit is work: on the computing pool, not the
     // workers that answer `/api/health`.
-    compute(&state, "send a smaller file", move |_| {
-        let request: ParseRequest = json_body(Ok(bytes))?;
-        let format = if request.format == "auto" {
-            Format::detect(request.file_name.as_deref().unwrap_or(""), &request.text)?
-        } else {
-            Format::from_name(&request.format).ok_or_else(|| {
-                ApiError::new(
-                    StatusCode::UNPROCESSABLE_ENTITY,
-                    "invalid_request",
-                    format!(
+    compute(
+        &state,
+        Budget::Interactive,
+        "send a smaller file",
+        move |_| {
+            let request: ParseRequest = json_body(Ok(bytes))?;
+            let format = if request.format == "auto" {
+                Format::detect(request.file_name.as_deref().unwrap_or(""), &request.text)?
+            } else {
+                Format::from_name(&request.format).ok_or_else(|| {
+                    ApiError::new(
+                        StatusCode::UNPROCESSABLE_ENTITY,
+                        "invalid_request",
+                        format!(
                         "unknown format `{}` (formats: toml, json, m, bp-txt, hc-txt, yaml, auto)",
                         whipple::shorten(&request.format, 40)
                     ),
-                )
-                .at("format", "one of toml, json, m, bp-txt, hc-txt, yaml, auto")
-            })?
-        };
-        let bike = io::parse(&request.text, format)?;
-        Ok(Parsed {
-            bike: bicycle_json(&bike)?,
-            format: format.name(),
-            warnings: bike.notices.clone(),
-        })
-    })
+                    )
+                    .at("format", "one of toml, json, m, bp-txt, hc-txt, yaml, auto")
+                })?
+            };
+            let bike = io::parse(&request.text, format)?;
+            Ok(Parsed {
+                bike: bicycle_json(&bike)?,
+                format: format.name(),
+                warnings: bike.notices.clone(),
+            })
+        },
+    )
     .await
     .map(Json)
 }
@@ -494,26 +613,30 @@ struct SensitivityResponse {
 async fn sensitivity(
     State(state): State<AppState>,
     body: Result<Bytes, BytesRejection>,
-) -> Result<Json<SensitivityResponse>, ApiError> {
+) -> Result<Response, ApiError> {
     let request: SensitivityRequest = json_body(body)?;
     let bike = bicycle(&request.bike)?;
     let (lo, hi) = SpeedRange::bounds(request.range);
     let speed = request.speed;
-    let result = compute(&state, "ask for a narrower range", move |_| {
-        let checked = bike.check()?;
-        let s = sensitivity::sensitivities(&bike, lo, hi, speed)?;
-        let u = sensitivity::critical_speeds_sigma(&bike, lo, hi)?;
-        Ok(SensitivityResponse {
-            name: bike.name.clone(),
-            sensitivities: s,
-            double_root_speed_sigma: u.double_root_speed_sigma,
-            weave_speed_sigma: u.weave_speed_sigma,
-            capsize_speed_sigma: u.capsize_speed_sigma,
-            warnings: checked.notices,
-        })
-    })
-    .await?;
-    Ok(Json(result))
+    compute_json(
+        &state,
+        Budget::Heavy,
+        "ask for a narrower range",
+        move |_| {
+            let checked = bike.check()?;
+            let s = sensitivity::sensitivities(&bike, lo, hi, speed)?;
+            let u = sensitivity::critical_speeds_sigma(&bike, lo, hi)?;
+            Ok(SensitivityResponse {
+                name: bike.name.clone(),
+                sensitivities: s,
+                double_root_speed_sigma: u.double_root_speed_sigma,
+                weave_speed_sigma: u.weave_speed_sigma,
+                capsize_speed_sigma: u.capsize_speed_sigma,
+                warnings: checked.notices,
+            })
+        },
+    )
+    .await
 }
 
 #[derive(Deserialize, Clone, Copy)]
@@ -546,8 +669,14 @@ struct EigenResponse {
     critical: Option<CriticalSpeeds>,
 }
 
-/// Checks the grid's size before building it, so that no huge vector is ever allocated.
-fn check_grid(grid: SpeedGrid, max_speeds: usize) -> Result<(), ApiError> {
+/// Sweeps of at most this many speeds (the page's plot asks for a few hundred as one types)
+/// take the interactive budget; longer ones are heavy work.
+const INTERACTIVE_SPEEDS: f64 = 2_000.0;
+
+/// The number of speeds on the grid (0 when it is not a valid grid: the library says why),
+/// checked against the limit before the grid is built, so that no huge vector is ever
+/// allocated.
+fn check_grid(grid: SpeedGrid, max_speeds: usize) -> Result<f64, ApiError> {
     let SpeedGrid { start, stop, step } = grid;
     if start.is_finite() && stop.is_finite() && step.is_finite() && step > 0.0 && stop >= start {
         // Counted as `speed_grid` counts (it includes STOP when on the grid to round-off).
@@ -565,19 +694,25 @@ fn check_grid(grid: SpeedGrid, max_speeds: usize) -> Result<(), ApiError> {
                 format!("at most {max_speeds} speeds per request"),
             ));
         }
+        return Ok(count);
     }
-    Ok(())
+    Ok(0.0)
 }
 
 async fn eigen(
     State(state): State<AppState>,
     body: Result<Bytes, BytesRejection>,
-) -> Result<Json<EigenResponse>, ApiError> {
+) -> Result<Response, ApiError> {
     let request: EigenRequest = json_body(body)?;
     let bike = bicycle(&request.bike)?;
     let grid = request.speeds;
-    check_grid(grid, state.limits.max_speeds)?;
-    let response = compute(&state, "ask for fewer speeds", move |_| {
+    let count = check_grid(grid, state.limits.max_speeds)?;
+    let budget = if count <= INTERACTIVE_SPEEDS {
+        Budget::Interactive
+    } else {
+        Budget::Heavy
+    };
+    compute_json(&state, budget, "ask for fewer speeds", move |_| {
         let benchmark = bike.benchmark()?;
         let canonical = Canonical::new(&benchmark)?;
         let speeds = speed_grid(grid.start, grid.stop, grid.step)?;
@@ -605,8 +740,7 @@ async fn eigen(
             critical,
         })
     })
-    .await?;
-    Ok(Json(response))
+    .await
 }
 
 /// A speed range; `hi` null or left out for no upper end.
@@ -641,10 +775,15 @@ async fn speeds(
     let request: SpeedsRequest = json_body(body)?;
     let bike = bicycle(&request.bike)?;
     let (lo, hi) = SpeedRange::bounds(request.range);
-    let result = compute(&state, "ask for a narrower range", move |_| {
-        let canonical = Canonical::new(&bike.benchmark()?)?;
-        Ok(critical_speeds(&canonical, lo, hi)?)
-    })
+    let result = compute(
+        &state,
+        Budget::Interactive,
+        "ask for a narrower range",
+        move |_| {
+            let canonical = Canonical::new(&bike.benchmark()?)?;
+            Ok(critical_speeds(&canonical, lo, hi)?)
+        },
+    )
     .await?;
     Ok(Json(result))
 }
@@ -652,21 +791,21 @@ async fn speeds(
 async fn simulate(
     State(state): State<AppState>,
     body: Result<Bytes, BytesRejection>,
-) -> Result<Json<SimulateResponse>, ApiError> {
+) -> Result<Response, ApiError> {
     let request: SimulateRequest = json_body(body)?;
     let bike = bicycle(&request.bike)?;
     let plan = simulation::check(&request, &state.limits)?;
     let max_steps = state.limits.max_sim_steps;
-    let response = compute(
+    compute_json(
         &state,
+        Budget::Heavy,
         "simulate a shorter time or use a larger dt",
         move |stop| {
             let benchmark = bike.benchmark()?;
             simulation::run(bike.name.clone(), &benchmark, plan, max_steps, stop)
         },
     )
-    .await?;
-    Ok(Json(response))
+    .await
 }
 
 async fn modes(
@@ -676,7 +815,7 @@ async fn modes(
     let request: ModesRequest = json_body(body)?;
     let bike = bicycle(&request.bike)?;
     let speed = mode_api::check_modes(&request)?;
-    let response = compute(&state, "try again", move |_| {
+    let response = compute(&state, Budget::Interactive, "try again", move |_| {
         let canonical = Canonical::new(&bike.benchmark()?)?;
         mode_api::modes(bike.name.clone(), &canonical, speed)
     })
@@ -687,16 +826,20 @@ async fn modes(
 async fn linear_response(
     State(state): State<AppState>,
     body: Result<Bytes, BytesRejection>,
-) -> Result<Json<ResponseJson>, ApiError> {
+) -> Result<Response, ApiError> {
     let request: ResponseRequest = json_body(body)?;
     let bike = bicycle(&request.bike)?;
     let plan = mode_api::check_response(&request, &state.limits)?;
-    let response = compute(&state, "ask for a shorter time or a larger dt", move |_| {
-        let canonical = Canonical::new(&bike.benchmark()?)?;
-        mode_api::response(bike.name.clone(), &canonical, plan)
-    })
-    .await?;
-    Ok(Json(response))
+    compute_json(
+        &state,
+        Budget::Heavy,
+        "ask for a shorter time or a larger dt",
+        move |_| {
+            let canonical = Canonical::new(&bike.benchmark()?)?;
+            mode_api::response(bike.name.clone(), &canonical, plan)
+        },
+    )
+    .await
 }
 
 #[cfg(test)]
@@ -714,11 +857,14 @@ mod tests {
         };
         let state = AppState {
             limits,
-            computing: Arc::new(Semaphore::new(1)),
+            bound: IpAddr::V4(Ipv4Addr::LOCALHOST),
+            heavy: Arc::new(Semaphore::new(1)),
+            heavy_waiting: Arc::new(AtomicUsize::new(0)),
+            interactive: Arc::new(Semaphore::new(1)),
         };
         let saw_stop = Arc::new(AtomicBool::new(false));
         let seen = saw_stop.clone();
-        let result = compute(&state, "wait less", move |stop| {
+        let result = compute(&state, Budget::Heavy, "wait less", move |stop| {
             // Bounded: 30 s at most, unless told to stop.
             let until = std::time::Instant::now() + std::time::Duration::from_secs(30);
             while std::time::Instant::now() < until {
@@ -735,7 +881,7 @@ mod tests {
         // The slot comes back as soon as the work has stopped, long before its 30 s.
         let permit = tokio::time::timeout(
             std::time::Duration::from_secs(10),
-            state.computing.clone().acquire_owned(),
+            state.heavy.clone().acquire_owned(),
         )
         .await;
         assert!(matches!(permit, Ok(Ok(_))), "the slot did not come back");

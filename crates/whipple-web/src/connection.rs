@@ -5,6 +5,7 @@
 
 use std::future::Future;
 use std::io;
+use std::net::IpAddr;
 use std::pin::Pin;
 use std::sync::Arc;
 use std::task::{Context, Poll};
@@ -19,16 +20,17 @@ use tokio::net::{TcpListener, TcpStream};
 use tokio::sync::Semaphore;
 use tokio::time::{Instant, Sleep};
 
-use crate::{app, Limits};
+use crate::{app_bound_to, Limits};
 
 /// Serves `listener` until `shutdown` completes, then lets the connections under way finish
 /// for at most the request timeout.
 pub async fn serve(
     listener: TcpListener,
     limits: Limits,
+    bound: IpAddr,
     shutdown: impl Future<Output = ()> + Send + 'static,
 ) {
-    let router = app(limits);
+    let router = app_bound_to(limits, bound);
     let slots = Arc::new(Semaphore::new(limits.max_connections.max(1)));
     let graceful = GracefulShutdown::new();
     tokio::pin!(shutdown);

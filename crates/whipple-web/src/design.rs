@@ -5,13 +5,14 @@ use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
 use axum::extract::State;
 use axum::http::StatusCode;
+use axum::response::Response;
 use axum::Json;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use whipple::analysis::design::{Axis, DesignStatus, Shard, Study, StudyOptions};
 use whipple::analysis::modes::Mode;
 
-use crate::api::{bicycle, bicycle_json, compute, json_body, AppState, SpeedRange};
+use crate::api::{bicycle, bicycle_json, compute_json, json_body, AppState, Budget, SpeedRange};
 use crate::error::ApiError;
 
 /// A map or study request: axes as `NAME=START:STOP:COUNT`, as in the CLI.
@@ -95,7 +96,7 @@ async fn run(
     state: AppState,
     body: Result<Bytes, BytesRejection>,
     two: bool,
-) -> Result<Json<DesignResponse>, ApiError> {
+) -> Result<Response, ApiError> {
     let request: DesignRequest = json_body(body)?;
     let bike = bicycle(&request.bike)?;
     if two != request.y.is_some() {
@@ -134,71 +135,75 @@ async fn run(
         )
         .at("x", format!("at most {limit} designs per request")));
     }
-    let response = compute(&state, "ask for fewer designs", move |stop| {
-        let n = study.len() as usize;
-        let mut r = DesignResponse {
-            x: study.x.clone(),
-            y: study.y.clone(),
-            base: study.base_point(),
-            nx: study.x.count,
-            ny: study.y.as_ref().map_or(1, |a| a.count),
-            status: Vec::with_capacity(n),
-            reasons: Vec::new(),
-            v_d: Vec::with_capacity(n),
-            v_w: Vec::with_capacity(n),
-            v_c: Vec::with_capacity(n),
-            weave_frequency: Vec::with_capacity(n),
-            stable: Vec::with_capacity(n),
-            stable_width: Vec::with_capacity(n),
-            stable_unbounded: Vec::with_capacity(n),
-            stable_from: Vec::with_capacity(n),
-            stable_to: Vec::with_capacity(n),
-            max_real: Vec::with_capacity(n),
-            max_real_mode: Vec::with_capacity(n),
-        };
-        let finite = |x: Option<f64>| x.filter(|v| v.is_finite());
-        study.run(Shard::WHOLE, &stop, |rows| {
-            for row in rows {
-                let q = &row.quantities;
-                let ok = row.status == DesignStatus::Ok;
-                r.status.push(row.status);
-                if let Some(reason) = &row.reason {
-                    r.reasons.push((row.index, reason.clone()));
+    compute_json(
+        &state,
+        Budget::Heavy,
+        "ask for fewer designs",
+        move |stop| {
+            let n = study.len() as usize;
+            let mut r = DesignResponse {
+                x: study.x.clone(),
+                y: study.y.clone(),
+                base: study.base_point(),
+                nx: study.x.count,
+                ny: study.y.as_ref().map_or(1, |a| a.count),
+                status: Vec::with_capacity(n),
+                reasons: Vec::new(),
+                v_d: Vec::with_capacity(n),
+                v_w: Vec::with_capacity(n),
+                v_c: Vec::with_capacity(n),
+                weave_frequency: Vec::with_capacity(n),
+                stable: Vec::with_capacity(n),
+                stable_width: Vec::with_capacity(n),
+                stable_unbounded: Vec::with_capacity(n),
+                stable_from: Vec::with_capacity(n),
+                stable_to: Vec::with_capacity(n),
+                max_real: Vec::with_capacity(n),
+                max_real_mode: Vec::with_capacity(n),
+            };
+            let finite = |x: Option<f64>| x.filter(|v| v.is_finite());
+            study.run(Shard::WHOLE, &stop, |rows| {
+                for row in rows {
+                    let q = &row.quantities;
+                    let ok = row.status == DesignStatus::Ok;
+                    r.status.push(row.status);
+                    if let Some(reason) = &row.reason {
+                        r.reasons.push((row.index, reason.clone()));
+                    }
+                    r.v_d.push(finite(q.double_root_speed));
+                    r.v_w.push(finite(q.weave_speed));
+                    r.v_c.push(finite(q.capsize_speed));
+                    r.weave_frequency.push(finite(q.weave_frequency));
+                    r.stable.push(q.stable);
+                    r.stable_width.push(if ok {
+                        finite(Some(q.stable_width))
+                    } else {
+                        None
+                    });
+                    r.stable_unbounded.push(q.stable_width == f64::INFINITY);
+                    r.stable_from.push(finite(q.stable_from));
+                    r.stable_to.push(finite(q.stable_to));
+                    r.max_real.push(finite(q.max_real));
+                    r.max_real_mode.push(q.max_real_mode);
                 }
-                r.v_d.push(finite(q.double_root_speed));
-                r.v_w.push(finite(q.weave_speed));
-                r.v_c.push(finite(q.capsize_speed));
-                r.weave_frequency.push(finite(q.weave_frequency));
-                r.stable.push(q.stable);
-                r.stable_width.push(if ok {
-                    finite(Some(q.stable_width))
-                } else {
-                    None
-                });
-                r.stable_unbounded.push(q.stable_width == f64::INFINITY);
-                r.stable_from.push(finite(q.stable_from));
-                r.stable_to.push(finite(q.stable_to));
-                r.max_real.push(finite(q.max_real));
-                r.max_real_mode.push(q.max_real_mode);
-            }
-            Ok(())
-        })?;
-        Ok(r)
-    })
-    .await?;
-    Ok(Json(response))
+                Ok(())
+            })?;
+            Ok(r)
+        },
+    )
+    .await
 }
 
 pub(crate) async fn map(
     State(state): State<AppState>,
     body: Result<Bytes, BytesRejection>,
-) -> Result<Json<DesignResponse>, ApiError> {
+) -> Result<Response, ApiError> {
     run(state, body, true).await
 }
 
 pub(crate) async fn study(
     State(state): State<AppState>,
     body: Result<Bytes, BytesRejection>,
-) -> Result<Json<DesignResponse>, ApiError> {
+) -> Result<Response, ApiError> {
     run(state, body, false).await
 }

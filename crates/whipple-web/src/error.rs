@@ -14,6 +14,8 @@ pub struct ApiError {
     pub status: StatusCode,
     /// What the body says.
     pub body: Box<ErrorBody>,
+    /// Seconds to wait before trying again, sent as `Retry-After` (with 503 `busy`).
+    pub retry_after: Option<u64>,
 }
 
 /// The `error` object of an error response.
@@ -21,7 +23,8 @@ pub struct ApiError {
 pub struct ErrorBody {
     /// Machine-readable kind (`invalid_parameter`, `invalid_bicycle`, `parse`, `bad_json`,
     /// `invalid_request`, `limit_exceeded`, `too_large`, `unknown_preset`, `not_found`,
-    /// `method_not_allowed`, `timeout`, `busy`, `numerical`, `internal`).
+    /// `method_not_allowed`, `misdirected_request`, `forbidden_origin`,
+    /// `unsupported_media_type`, `timeout`, `busy`, `numerical`, `internal`).
     pub kind: &'static str,
     /// The whole message, for people.
     pub message: String,
@@ -56,7 +59,14 @@ impl ApiError {
                 line: None,
                 column: None,
             }),
+            retry_after: None,
         }
+    }
+
+    /// The same error asking the client to try again in `seconds` (`Retry-After`).
+    pub fn retry_after(mut self, seconds: u64) -> Self {
+        self.retry_after = Some(seconds);
+        self
     }
 
     /// The same error naming the field at fault and the rule broken.
@@ -148,6 +158,13 @@ struct Envelope<'a> {
 
 impl IntoResponse for ApiError {
     fn into_response(self) -> Response {
-        (self.status, axum::Json(Envelope { error: &self.body })).into_response()
+        let mut response =
+            (self.status, axum::Json(Envelope { error: &self.body })).into_response();
+        if let Some(seconds) = self.retry_after {
+            response
+                .headers_mut()
+                .insert(axum::http::header::RETRY_AFTER, seconds.into());
+        }
+        response
     }
 }

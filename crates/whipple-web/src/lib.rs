@@ -6,7 +6,15 @@
 //!
 //! The page is bundled at build time (see `build.rs`) and embedded in the binary, so serving it
 //! needs nothing at run time. Every answer is computed by the `whipple` library; CPU-heavy
-//! requests run on the blocking pool, a bounded number at a time, under [`Limits`].
+//! requests run on the blocking pool, a bounded number at a time, under [`Limits`]: heavy work
+//! (maps, studies, simulations, long sweeps) and interactive work (validating, converting,
+//! critical speeds, short sweeps) each within its own budget, so that the page's small
+//! requests are never queued behind maps.
+//!
+//! Only requests addressed to this server are answered (Host `127.0.0.1`, `localhost`,
+//! `[::1]` or the bound address, else 421), state-changing ones only from its own page or
+//! from clients that send no Origin (else 403), and bodies only as `application/json` (else
+//! 415): a page on another site cannot drive it.
 //!
 //! ```no_run
 //! use whipple_web::{run, ServeOptions};
@@ -16,6 +24,7 @@
 //! ```
 #![warn(missing_docs)]
 
+mod access;
 mod api;
 mod assets;
 mod connection;
@@ -30,7 +39,7 @@ use std::future::Future;
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::time::Duration;
 
-pub use api::app;
+pub use api::{app, app_bound_to};
 pub use error::{ApiError, ErrorBody};
 
 /// Bounds that keep the server responsive whatever it is asked.
@@ -50,10 +59,20 @@ pub struct Limits {
     pub request_timeout: Duration,
     /// Longest time one computation may run (default 10 s); then 503.
     pub compute_timeout: Duration,
-    /// Longest wait for a free computing slot (default 10 s); then 503.
+    /// Longest wait for a free computing slot (default 10 s); then 503 `busy` with
+    /// `Retry-After`.
     pub queue_timeout: Duration,
-    /// Computations run at once on the blocking pool (default: the number of CPUs, at least 2).
+    /// Heavy computations (maps, studies, simulations, sensitivities, linear responses,
+    /// sweeps of more than 2,000 speeds) run at once on the blocking pool (default: the number
+    /// of CPUs, at least 2).
     pub max_concurrent_computations: usize,
+    /// Heavy requests that may wait for a slot when all are taken (default 8); one more gets
+    /// 503 `busy` with `Retry-After` at once.
+    pub max_waiting_heavy: usize,
+    /// Interactive computations (validate, convert, parse, critical speeds, modes, turns,
+    /// sweeps of up to 2,000 speeds) run at once, in slots of their own that heavy work never
+    /// takes (default: the number of CPUs, at least 2).
+    pub max_interactive_computations: usize,
     /// Longest time a client may take to send a request's headers, from the moment the
     /// server waits for them (default 10 s); then the connection is closed. Guards against a
     /// client that trickles a byte at a time to hold a connection.
@@ -71,6 +90,9 @@ pub struct Limits {
 
 impl Default for Limits {
     fn default() -> Self {
+        let cpus = std::thread::available_parallelism()
+            .map_or(2, |n| n.get())
+            .max(2);
         Limits {
             max_body_bytes: 1 << 20,
             max_speeds: 100_000,
@@ -79,9 +101,9 @@ impl Default for Limits {
             request_timeout: Duration::from_secs(30),
             compute_timeout: Duration::from_secs(10),
             queue_timeout: Duration::from_secs(10),
-            max_concurrent_computations: std::thread::available_parallelism()
-                .map_or(2, |n| n.get())
-                .max(2),
+            max_concurrent_computations: cpus,
+            max_waiting_heavy: 8,
+            max_interactive_computations: cpus,
             header_timeout: Duration::from_secs(10),
             idle_timeout: Duration::from_secs(60),
             max_connections: 256,
@@ -180,7 +202,7 @@ impl Server {
         self,
         shutdown: impl Future<Output = ()> + Send + 'static,
     ) -> Result<(), ServeError> {
-        connection::serve(self.listener, self.limits, shutdown).await;
+        connection::serve(self.listener, self.limits, self.address.ip(), shutdown).await;
         Ok(())
     }
 }
@@ -193,6 +215,14 @@ pub async fn serve(options: ServeOptions) -> Result<(), ServeError> {
     if !options.address.is_loopback() {
         eprintln!(
             "whipple serve: warning: listening on {}, which other machines may reach",
+            options.address
+        );
+    }
+    if options.address.is_unspecified() {
+        eprintln!(
+            "whipple serve: note: requests are answered only when addressed to 127.0.0.1, \
+             localhost, [::1] or {} itself (Host header); to serve other machines, give this \
+             machine's own address with --address",
             options.address
         );
     }

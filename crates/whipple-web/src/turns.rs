@@ -11,7 +11,7 @@ use serde_json::Value;
 use whipple::analysis::turns::{held_turn, stability, Held, Stability, SteadyTurn, TurnSettings};
 use whipple::nonlinear::Model;
 
-use crate::api::{bicycle, compute, json_body, AppState};
+use crate::api::{bicycle, compute, json_body, AppState, Budget};
 use crate::error::ApiError;
 
 /// The body of `POST /api/turn`: the speed of the rear contact and exactly one of the lean, the
@@ -70,34 +70,39 @@ pub(crate) async fn turn(
         }
     };
     let speed = request.speed;
-    let response = compute(&state, "ask for a smaller lean or steer", move |_| {
-        let model = Model::new(&bike.benchmark()?)?;
-        let turn = held_turn(&model, speed, given, &TurnSettings::default()).map_err(|e| {
-            let name = match &e {
-                whipple::Error::InvalidArgument { what, .. } => Some(field(what).to_string()),
-                // No turn at this speed with what was given: the given is the field to change.
-                whipple::Error::NoSteadyTurn { .. } => Some(given_field.to_string()),
-                _ => None,
+    let response = compute(
+        &state,
+        Budget::Interactive,
+        "ask for a smaller lean or steer",
+        move |_| {
+            let model = Model::new(&bike.benchmark()?)?;
+            let turn = held_turn(&model, speed, given, &TurnSettings::default()).map_err(|e| {
+                let name = match &e {
+                    whipple::Error::InvalidArgument { what, .. } => Some(field(what).to_string()),
+                    // No turn at this speed with what was given: the given is the field to change.
+                    whipple::Error::NoSteadyTurn { .. } => Some(given_field.to_string()),
+                    _ => None,
+                };
+                let error = ApiError::from(e);
+                match name {
+                    Some(name) => error.in_field(name),
+                    None => error,
+                }
+            })?;
+            let (stability, stability_error) = match stability(&model, &turn) {
+                Ok(s) => (Some(s), None),
+                Err(e) => (None, Some(e.to_string())),
             };
-            let error = ApiError::from(e);
-            match name {
-                Some(name) => error.in_field(name),
-                None => error,
-            }
-        })?;
-        let (stability, stability_error) = match stability(&model, &turn) {
-            Ok(s) => (Some(s), None),
-            Err(e) => (None, Some(e.to_string())),
-        };
-        Ok(TurnResponse {
-            name: bike.name.clone(),
-            lean_deg: turn.lean.to_degrees(),
-            steer_deg: turn.steer.to_degrees(),
-            turn,
-            stability,
-            stability_error,
-        })
-    })
+            Ok(TurnResponse {
+                name: bike.name.clone(),
+                lean_deg: turn.lean.to_degrees(),
+                steer_deg: turn.steer.to_degrees(),
+                turn,
+                stability,
+                stability_error,
+            })
+        },
+    )
     .await?;
     Ok(Json(response))
 }
