@@ -185,27 +185,32 @@ pub(crate) fn json_body<T: DeserializeOwned>(
     body: Result<Bytes, BytesRejection>,
 ) -> Result<T, ApiError> {
     let bytes = body_bytes(body)?;
-    serde_json::from_slice(&bytes).map_err(|e| {
-        use serde_json::error::Category;
-        match e.classify() {
-            Category::Data => {
-                let what = strip_position(&e.to_string());
-                let mut error = ApiError::new(
-                    StatusCode::UNPROCESSABLE_ENTITY,
-                    "invalid_request",
-                    format!("the request does not have the documented shape: {what}"),
-                );
-                error.body.field = quoted_field(&what);
-                error.body.rule = Some(what);
-                error
+    // A key named twice in one object is refused (serde_json would keep the last one), as in
+    // every parameter file; then the body is read into its documented shape.
+    whipple::parameters::io::json_slice_without_duplicates(&bytes)
+        .map(drop)
+        .and_then(|()| serde_json::from_slice(&bytes))
+        .map_err(|e| {
+            use serde_json::error::Category;
+            match e.classify() {
+                Category::Data => {
+                    let what = strip_position(&e.to_string());
+                    let mut error = ApiError::new(
+                        StatusCode::UNPROCESSABLE_ENTITY,
+                        "invalid_request",
+                        format!("the request does not have the documented shape: {what}"),
+                    );
+                    error.body.field = quoted_field(&what);
+                    error.body.rule = Some(what);
+                    error
+                }
+                Category::Syntax | Category::Eof | Category::Io => ApiError::new(
+                    StatusCode::BAD_REQUEST,
+                    "bad_json",
+                    format!("the request body is not valid JSON: {e}"),
+                ),
             }
-            Category::Syntax | Category::Eof | Category::Io => ApiError::new(
-                StatusCode::BAD_REQUEST,
-                "bad_json",
-                format!("the request body is not valid JSON: {e}"),
-            ),
-        }
-    })
+        })
 }
 
 fn strip_position(message: &str) -> String {

@@ -143,7 +143,12 @@ impl From<Error> for ApiError {
 
 /// The field named in serde's "missing field `x`" / "unknown field `x`" messages.
 pub(crate) fn quoted_field(message: &str) -> Option<String> {
-    for prefix in ["missing field `", "unknown field `", "duplicate field `"] {
+    for prefix in [
+        "missing field `",
+        "unknown field `",
+        "duplicate field `",
+        "duplicate key `",
+    ] {
         if let Some(rest) = message.strip_prefix(prefix) {
             return rest.split('`').next().map(str::to_string);
         }

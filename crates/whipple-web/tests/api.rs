@@ -1268,3 +1268,36 @@ async fn security_headers_are_sent() -> TestResult {
     }
     Ok(())
 }
+
+/// A request body naming a key twice was read with the last value winning (serde_json's rule);
+/// it is refused with 422 naming the key, as a parameter file is.
+#[tokio::test]
+async fn a_duplicate_json_key_in_a_body_is_refused() -> TestResult {
+    let app = app(Limits::default());
+    let bike = preset_json("benchmark")?.to_string();
+    for text in [
+        format!(r#"{{"bike": {bike}, "range": [0, 10], "range": [0, 20]}}"#),
+        bike.replacen(r#""w":"#, r#""w": 2.0, "w":"#, 1),
+    ] {
+        let body = if text.starts_with(r#"{"bike""#) {
+            text
+        } else {
+            format!(r#"{{"bike": {text}}}"#)
+        };
+        let (status, _, answer) = send(&app, Method::POST, "/api/speeds", Some(body)).await?;
+        let answer: Value = serde_json::from_str(&answer)?;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{answer}");
+        assert_eq!(answer["error"]["kind"], "invalid_request", "{answer}");
+        let field = answer["error"]["field"].as_str().unwrap_or_default();
+        assert!(field == "range" || field == "w", "{answer}");
+    }
+    // The same body without the repetition is answered.
+    let (status, _) = post(
+        &app,
+        "/api/speeds",
+        &json!({"bike": preset_json("benchmark")?}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::OK);
+    Ok(())
+}
