@@ -89,7 +89,8 @@ pub(crate) fn certified_roots(
         }
         let radius = (p.norm() + slack) / dp.norm();
         let allowed = EIGENVALUE_TOLERANCE * size + floor;
-        if !(radius <= allowed) {
+        // A NaN radius (an overflow) is refused too.
+        if radius.is_nan() || radius > allowed {
             return Err(Error::AccuracyLost {
                 quantity: format!(
                     "the eigenvalues at {} m/s",
