@@ -9,7 +9,7 @@ use whipple::analysis::design::{Axis, DesignRow, DesignStatus, Shard, Study, Stu
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
-use crate::guard::{interruptible, memory_error, reserve};
+use crate::guard::{interruptible, memory_error, reserve, stopped, SHORT};
 
 fn axis_dict<'py>(py: Python<'py>, axis: &Axis) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
@@ -103,7 +103,9 @@ impl Columns {
         })
     }
 
-    fn push(&mut self, r: &DesignRow, coordinates: bool) {
+    /// Appends a design; false when the reasons (the one column not reserved ahead: only
+    /// refused designs have one) cannot grow.
+    fn push(&mut self, r: &DesignRow, coordinates: bool) -> bool {
         if coordinates {
             self.index.push(r.index);
             self.ix.push(r.ix as u64);
@@ -112,6 +114,9 @@ impl Columns {
             self.y.push(r.y);
         }
         if let Some(reason) = &r.reason {
+            if self.reason_at.try_reserve(1).is_err() || self.reason_text.try_reserve(1).is_err() {
+                return false;
+            }
             self.reason_at.push(self.status.len() as u64);
             self.reason_text.push(reason.clone());
         }
@@ -137,6 +142,7 @@ impl Columns {
         }
         self.stable.push(q.stable);
         self.unresolved.push(q.unresolved);
+        true
     }
 }
 
@@ -178,15 +184,28 @@ impl NativeBicycle {
         let (first, end) = shard.indices(total);
         let count = usize::try_from(end - first).unwrap_or(usize::MAX);
         let mut columns = Columns::new(count, coordinates)?;
-        interruptible(py, |stop| {
+        let mut full = false;
+        let outcome = interruptible(py, count <= SHORT, |stop| {
             study.run(shard, stop, |chunk| {
                 for r in chunk {
-                    columns.push(r, coordinates);
+                    if !columns.push(r, coordinates) {
+                        full = true;
+                        return Err(stopped());
+                    }
                 }
                 Ok(())
             })
-        })?
-        .py_err(py)?;
+        })?;
+        if full {
+            let reasons = columns.reason_at.len() as u128;
+            return Err(memory_error(
+                "design_map",
+                reasons,
+                "refused designs' reasons",
+                reasons * 100,
+            ));
+        }
+        outcome.py_err(py)?;
         let c = columns;
         let d = PyDict::new(py);
         d.set_item("total", total)?;

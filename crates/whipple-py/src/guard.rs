@@ -19,7 +19,11 @@ use pyo3::prelude::*;
 use whipple::Error;
 
 /// How often the calling thread checks for signals while the work runs.
-pub const POLL: Duration = Duration::from_millis(20);
+pub const POLL: Duration = Duration::from_millis(10);
+
+/// Speeds or designs few enough to compute on the calling thread without a watcher (at most
+/// tens of microseconds each: a few milliseconds in all).
+pub const SHORT: usize = 64;
 
 /// The error a worker returns when it saw the stop flag (replaced by the signal's exception).
 pub fn stopped() -> Error {
@@ -83,11 +87,21 @@ pub fn grow<T: Clone>(v: &mut Vec<T>, len: usize, fill: T, stop: &AtomicBool) ->
 /// work's result (it should return soon after, with [`stopped`]) is dropped and the signal's
 /// exception raised. Signals that arrived while the work ran are also raised when it finished
 /// between two checks, before the caller touches Python or numpy again.
+///
+/// `short`: the work is known to take well under [`POLL`] (a few speeds or designs); it then
+/// runs on the calling thread with no watcher, sparing the hand-over to another thread (tens
+/// of microseconds on an idle machine, milliseconds on a loaded one).
 pub fn interruptible<T: Send>(
     py: Python<'_>,
+    short: bool,
     work: impl FnOnce(&AtomicBool) -> T + Send,
 ) -> PyResult<T> {
     let stop = AtomicBool::new(false);
+    if short {
+        let value = py.detach(|| work(&stop));
+        py.check_signals()?;
+        return Ok(value);
+    }
     let outcome: PyResult<T> = py.detach(|| {
         std::thread::scope(|scope| {
             let (sender, receiver) = mpsc::channel();

@@ -21,7 +21,9 @@ use whipple::{
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
-use crate::guard::{estimate, grow, interruptible, is_stopped, memory_error, reserve, stopped};
+use crate::guard::{
+    estimate, grow, interruptible, is_stopped, memory_error, reserve, stopped, SHORT,
+};
 
 fn matrix2<'py>(py: Python<'py>, m: &Matrix2<f64>) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let rows = vec![vec![m[(0, 0)], m[(0, 1)]], vec![m[(1, 0)], m[(1, 1)]]];
@@ -157,7 +159,7 @@ impl NativeBicycle {
         let too_big = || memory_error("state_space", n as u128, "speeds", estimate(n, PER_SPEED));
         let mut a = reserve(n.saturating_mul(16), too_big)?;
         let mut b = reserve(n.saturating_mul(8), too_big)?;
-        interruptible(py, |stop| {
+        interruptible(py, n <= SHORT, |stop| {
             grow(&mut a, n * 16, 0.0, stop)?;
             grow(&mut b, n * 8, 0.0, stop)?;
             fill_rows(&speeds, &mut a, 16, &mut b, 8, parallel, stop, |i, a, b| {
@@ -213,7 +215,7 @@ impl NativeBicycle {
         } else {
             (Vec::new(), Vec::new(), Vec::new())
         };
-        let labels = interruptible(py, |stop| {
+        let labels = interruptible(py, n <= SHORT, |stop| {
             grow(&mut values, n * 4, zero, stop)?;
             grow(&mut vectors, n * 16, zero, stop)?;
             let modes = if tracked && n > 0 {
@@ -445,7 +447,7 @@ impl NativeBicycle {
             memory_error("nonlinear_state_matrix", n as u128, "speeds", bytes)
         };
         let mut a = reserve(n.saturating_mul(16), too_big)?;
-        interruptible(py, |stop| {
+        interruptible(py, n <= SHORT, |stop| {
             grow(&mut a, n * 16, 0.0, stop)?;
             fill_rows(
                 &speeds,
@@ -512,7 +514,8 @@ impl NativeBicycle {
         }
         let bike = self.checked.benchmark;
         let settings = StudySettings::default();
-        let sweep = interruptible(py, |stop| {
+        // Each speed takes milliseconds: always watched.
+        let sweep = interruptible(py, false, |stop| {
             compare_with_linear_until(&bike, &speeds, &chosen, &settings, stop)
         })?
         .py_err(py)?;
