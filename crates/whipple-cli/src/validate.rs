@@ -11,7 +11,7 @@ use clap::ValueEnum;
 use serde_json::json;
 use whipple::analysis::comparison::{
     capsize_spike, compare_with_linear, double_root_conditioning, ComparisonSweep, Linearization,
-    LinearizationSweep, StudySettings,
+    LinearizationSweep, StudySettings, MAX_COMPARED_SPEEDS,
 };
 use whipple::analysis::eigen::Complex64;
 use whipple::analysis::sweep;
@@ -40,9 +40,6 @@ pub enum ValidateFormat {
     Json,
 }
 
-/// The most speeds one validation sweeps (`--speeds 0:1e5:0.01` would have taken a day).
-pub const MAX_VALIDATE_SPEEDS: u64 = 100_000;
-
 pub fn validate(
     arg: &str,
     speeds: &str,
@@ -55,9 +52,11 @@ pub fn validate(
     let count = sweep::SpeedGrid::new(start, stop, step)
         .context("--speeds")?
         .len();
-    if count > MAX_VALIDATE_SPEEDS {
+    // The library's one limit for every front end (`--speeds 0:1e5:0.01` would take a day),
+    // checked on the count before the grid is made.
+    if count > MAX_COMPARED_SPEEDS as u64 {
         anyhow::bail!(
-            "--speeds {speeds} holds {count} speeds, more than the limit of {MAX_VALIDATE_SPEEDS} \
+            "--speeds {speeds} holds {count} speeds, more than the limit of {MAX_COMPARED_SPEEDS} \
              (each speed linearizes the non-linear model by every method, about 10 ms of one \
              core: the limit is about 20 minutes); use a larger step or a narrower range"
         );

@@ -8,6 +8,7 @@ mod bicycle;
 mod cli;
 mod design;
 mod errors;
+mod guard;
 mod linear;
 mod side_view;
 mod simulate;
@@ -18,6 +19,14 @@ use pyo3::prelude::*;
 /// The native module.
 #[pymodule]
 fn _whipple(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // numpy's C API is looked up once, on first use, by importing numpy; were that first use
+    // after a Ctrl-C (a result built after an interrupted computation), the import would
+    // raise the pending KeyboardInterrupt and rust-numpy panic ("Failed to access NumPy array
+    // API capsule"). Looked up here, at import, it never is.
+    let py = m.py();
+    py.check_signals()?;
+    py.import("numpy")?;
+    numpy::PyArray1::<f64>::zeros(py, 0, false);
     m.add_class::<bicycle::NativeBicycle>()?;
     m.add_function(wrap_pyfunction!(bicycle::presets, m)?)?;
     m.add_function(wrap_pyfunction!(bicycle::formats, m)?)?;

@@ -2,22 +2,28 @@
 //! speeds (rayon, the GIL released); critical speeds with σ; sensitivities; the non-linear
 //! model's exact A(v) and the comparison with the linear model.
 
+use std::sync::atomic::AtomicBool;
+
 use nalgebra::{Matrix2, Matrix4};
 use numpy::{Complex64 as NpComplex, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
+use whipple::analysis::comparison::{compare_with_linear_until, MAX_COMPARED_SPEEDS};
 use whipple::analysis::eigen::eigenpairs_with;
 use whipple::analysis::sensitivity::{self, critical_speeds_sigma};
 use whipple::analysis::stability::CrossingKind;
+use whipple::analysis::sweep::SweepPlan;
 use whipple::linear::{CharacteristicPolynomial, SpeedPolynomials};
 use whipple::{
-    compare_with_linear, eigen_sweep, lean_steer_matrix, Canonical, Error, Linearization, Model,
-    StateSpace, StudySettings,
+    lean_steer_matrix, Canonical, Error, Linearization, Model, StateSpace, StudySettings,
 };
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
+use crate::guard::{
+    estimate, grow, interruptible, is_stopped, memory_error, reserve, stopped, SHORT,
+};
 
 fn matrix2<'py>(py: Python<'py>, m: &Matrix2<f64>) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let rows = vec![vec![m[(0, 0)], m[(0, 1)]], vec![m[(1, 0)], m[(1, 1)]]];
@@ -44,28 +50,71 @@ impl NativeBicycle {
     }
 }
 
-/// Runs `f` over the speeds in parallel with the GIL released; the first error (in speed
-/// order) is returned.
-fn par_map<T: Send>(
-    py: Python<'_>,
+/// Fills `a` (`wa` numbers a speed) and `b` (`wb` a speed, or none when `wb` is 0) speed by
+/// speed with `f(speed, a_row, b_row)`, in parallel or in order, checking `stop` before each
+/// speed; the first error in speed order is returned (a parallel failure is redone in order
+/// to find it, as the serial path reports it).
+#[allow(clippy::too_many_arguments)]
+fn fill_rows<T: Send>(
     speeds: &[f64],
+    a: &mut [T],
+    wa: usize,
+    b: &mut [T],
+    wb: usize,
     parallel: bool,
-    f: impl Fn(f64) -> Result<T, Error> + Sync + Send,
-) -> PyResult<Vec<T>> {
-    py.detach(|| {
-        if parallel {
-            speeds
-                .par_iter()
-                .map(|&v| f(v))
-                .collect::<Result<Vec<T>, Error>>()
-        } else {
-            speeds
-                .iter()
-                .map(|&v| f(v))
-                .collect::<Result<Vec<T>, Error>>()
+    stop: &AtomicBool,
+    f: impl Fn(usize, &mut [T], &mut [T]) -> Result<(), Error> + Sync,
+) -> Result<(), Error> {
+    let one = |i: usize, x: &mut [T], y: &mut [T]| {
+        if is_stopped(stop) {
+            return Err(stopped());
         }
-    })
-    .py_err(py)
+        f(i, x, y)
+    };
+    let mut none: [T; 0] = [];
+    let failed = parallel && {
+        let rows_a = a.par_chunks_mut(wa.max(1));
+        if wb == 0 {
+            rows_a
+                .enumerate()
+                .try_for_each(|(i, x)| one(i, x, &mut []))
+                .is_err()
+        } else {
+            rows_a
+                .zip(b.par_chunks_mut(wb))
+                .enumerate()
+                .try_for_each(|(i, (x, y))| one(i, x, y))
+                .is_err()
+        }
+    };
+    if !parallel || failed {
+        for i in 0..speeds.len() {
+            let x = &mut a[i * wa..(i + 1) * wa];
+            let y = if wb == 0 {
+                &mut none[..]
+            } else {
+                &mut b[i * wb..(i + 1) * wb]
+            };
+            one(i, x, y)?;
+        }
+    }
+    Ok(())
+}
+
+/// The speeds of a call copied out of the caller's array (the work runs with the GIL released,
+/// when Python could change the array), fallibly.
+fn speeds_of(
+    call: &str,
+    speeds: &PyReadonlyArray1<'_, f64>,
+    per_speed: usize,
+) -> PyResult<Vec<f64>> {
+    let slice = speeds.as_slice()?;
+    let n = slice.len();
+    let mut out = reserve(n, || {
+        memory_error(call, n as u128, "speeds", estimate(n, per_speed))
+    })?;
+    out.extend_from_slice(slice);
+    Ok(out)
 }
 
 /// Eigenvalues, eigenvectors and the column labels.
@@ -103,21 +152,30 @@ impl NativeBicycle {
         parallel: bool,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
         let c = self.canonical_matrices(py)?;
-        let speeds = speeds.as_slice()?.to_vec();
+        // A and B: 24 numbers of 8 bytes a speed, and the speed copied.
+        const PER_SPEED: usize = 24 * 8 + 8;
+        let speeds = speeds_of("state_space", &speeds, PER_SPEED)?;
         let n = speeds.len();
-        let rows = par_map(py, &speeds, parallel, |v| StateSpace::new(&c, v))?;
-        let mut a = Vec::with_capacity(n * 16);
-        let mut b = Vec::with_capacity(n * 8);
-        for ss in &rows {
-            for i in 0..4 {
-                for j in 0..4 {
-                    a.push(ss.a[(i, j)]);
+        let too_big = || memory_error("state_space", n as u128, "speeds", estimate(n, PER_SPEED));
+        let mut a = reserve(n.saturating_mul(16), too_big)?;
+        let mut b = reserve(n.saturating_mul(8), too_big)?;
+        interruptible(py, n <= SHORT, |stop| {
+            grow(&mut a, n * 16, 0.0, stop)?;
+            grow(&mut b, n * 8, 0.0, stop)?;
+            fill_rows(&speeds, &mut a, 16, &mut b, 8, parallel, stop, |i, a, b| {
+                let ss = StateSpace::new(&c, speeds[i])?;
+                for r in 0..4 {
+                    for j in 0..4 {
+                        a[4 * r + j] = ss.a[(r, j)];
+                    }
+                    for j in 0..2 {
+                        b[2 * r + j] = ss.b[(r, j)];
+                    }
                 }
-                for j in 0..2 {
-                    b.push(ss.b[(i, j)]);
-                }
-            }
-        }
+                Ok(())
+            })
+        })?
+        .py_err(py)?;
         Ok((shaped(py, a, &[n, 4, 4])?, shaped(py, b, &[n, 4, 2])?))
     }
 
@@ -134,79 +192,108 @@ impl NativeBicycle {
         parallel: bool,
     ) -> PyResult<EigResult<'py>> {
         let c = self.canonical_matrices(py)?;
-        let speeds = speeds.as_slice()?.to_vec();
+        // Values (4) and vectors (16) of 16 bytes a speed and the speed copied; tracked, the
+        // sorted order (8), the sorted speeds (8) and the tracked values (64) besides.
+        let per_speed = 20 * 16 + 8 + if tracked { 80 } else { 0 };
+        let speeds = speeds_of("eig", &speeds, per_speed)?;
         let n = speeds.len();
+        let too_big = || memory_error("eig", n as u128, "speeds", estimate(n, per_speed));
         // The precision check of the characteristic polynomial once, not per speed.
         SpeedPolynomials::new(&c).py_err(py)?;
         let poly = CharacteristicPolynomial::new(&c);
-        // Tracked: the sweep over the speeds sorted gives each speed's eigenvalues in mode
-        // order; `rank[i]` is speed i's place in it.
-        let tracking = if tracked && n > 0 {
-            let mut sorted: Vec<usize> = (0..n).collect();
-            sorted.sort_by(|&i, &j| speeds[i].total_cmp(&speeds[j]));
-            let grid: Vec<f64> = sorted.iter().map(|&i| speeds[i]).collect();
-            let sweep = py.detach(|| eigen_sweep(&c, &grid)).py_err(py)?;
-            let mut rank = vec![0usize; n];
-            for (k, &i) in sorted.iter().enumerate() {
-                rank[i] = k;
-            }
-            Some((sweep, rank))
-        } else {
-            None
-        };
-        // Each speed's eigenpairs written straight into the two output buffers (no array of
-        // pairs in between: at 10⁶ speeds that was 320 MB copied once more), in parallel.
-        let fill = |i: usize, values: &mut [NpComplex], vectors: &mut [NpComplex]| {
-            let pairs = eigenpairs_with(&c, &poly, speeds[i])?;
-            let mut order = [0, 1, 2, 3];
-            if let Some((sweep, rank)) = &tracking {
-                let mut taken = [false; 4];
-                for (col, target) in sweep.eigenvalues[rank[i]].iter().enumerate() {
-                    let best = (0..4)
-                        .filter(|&p| !taken[p])
-                        .min_by(|&p, &q| {
-                            let dp = (pairs[p].value - target).norm_sqr();
-                            let dq = (pairs[q].value - target).norm_sqr();
-                            dp.total_cmp(&dq)
-                        })
-                        .unwrap_or(col);
-                    taken[best] = true;
-                    order[col] = best;
-                }
-            }
-            for (col, &k) in order.iter().enumerate() {
-                values[col] = complex(pairs[k].value);
-                for row in 0..4 {
-                    vectors[4 * row + col] = complex(pairs[k].vector[row]);
-                }
-            }
-            Ok::<(), Error>(())
-        };
         let zero = NpComplex::new(0.0, 0.0);
-        let mut values = vec![zero; n * 4];
-        let mut vectors = vec![zero; n * 16];
-        py.detach(|| {
-            let failed = if parallel {
-                values
-                    .par_chunks_mut(4)
-                    .zip(vectors.par_chunks_mut(16))
-                    .enumerate()
-                    .try_for_each(|(i, (v, x))| fill(i, v, x))
-                    .is_err()
-            } else {
-                false
-            };
-            // Sequentially (and again after a parallel failure, to report the first error in
-            // speed order, as the serial path does).
-            if !parallel || failed {
-                for (i, (v, x)) in values.chunks_mut(4).zip(vectors.chunks_mut(16)).enumerate() {
-                    fill(i, v, x)?;
+        let mut values = reserve(n.saturating_mul(4), too_big)?;
+        let mut vectors = reserve(n.saturating_mul(16), too_big)?;
+        // Tracked: the sweep over the speeds sorted gives each speed's eigenvalues in mode
+        // order; `targets[i]` is speed i's.
+        let (mut sorted, mut grid, mut targets) = if tracked && n > 0 {
+            (
+                reserve::<usize>(n, too_big)?,
+                reserve::<f64>(n, too_big)?,
+                reserve(n, too_big)?,
+            )
+        } else {
+            (Vec::new(), Vec::new(), Vec::new())
+        };
+        let labels = interruptible(py, n <= SHORT, |stop| {
+            grow(&mut values, n * 4, zero, stop)?;
+            grow(&mut vectors, n * 16, zero, stop)?;
+            let modes = if tracked && n > 0 {
+                grow(
+                    &mut targets,
+                    n,
+                    [whipple::Complex64::new(0.0, 0.0); 4],
+                    stop,
+                )?;
+                sorted.extend(0..n);
+                // Speeds are most often given in order: then nothing to sort.
+                if speeds.windows(2).any(|w| w[0].total_cmp(&w[1]).is_gt()) {
+                    sorted.par_sort_by(|&i, &j| speeds[i].total_cmp(&speeds[j]));
                 }
-            }
-            Ok::<(), Error>(())
-        })
+                grid.extend(sorted.iter().map(|&i| speeds[i]));
+                // The speeds end early when stopped: the plan is then dropped unused.
+                let walk = grid.iter().copied().take_while(|_| !is_stopped(stop));
+                let plan = SweepPlan::new(&c, walk)?;
+                let mut k = 0;
+                plan.rows(|_, row| {
+                    if is_stopped(stop) {
+                        return Err(stopped());
+                    }
+                    targets[sorted[k]] = *row;
+                    k += 1;
+                    Ok::<(), Error>(())
+                })?;
+                if is_stopped(stop) {
+                    return Err(stopped());
+                }
+                Some(plan.modes())
+            } else {
+                None
+            };
+            let targets = &targets;
+            // Each speed's eigenpairs written straight into the two output buffers (no
+            // array of pairs in between: at 10⁶ speeds that was 320 MB copied once more).
+            fill_rows(
+                &speeds,
+                &mut values,
+                4,
+                &mut vectors,
+                16,
+                parallel,
+                stop,
+                |i, values, vectors| {
+                    let pairs = eigenpairs_with(&c, &poly, speeds[i])?;
+                    let mut order = [0, 1, 2, 3];
+                    if modes.is_some() {
+                        let mut taken = [false; 4];
+                        for (col, target) in targets[i].iter().enumerate() {
+                            let best = (0..4)
+                                .filter(|&p| !taken[p])
+                                .min_by(|&p, &q| {
+                                    let dp = (pairs[p].value - target).norm_sqr();
+                                    let dq = (pairs[q].value - target).norm_sqr();
+                                    dp.total_cmp(&dq)
+                                })
+                                .unwrap_or(col);
+                            taken[best] = true;
+                            order[col] = best;
+                        }
+                    }
+                    for (col, &k) in order.iter().enumerate() {
+                        values[col] = complex(pairs[k].value);
+                        for row in 0..4 {
+                            vectors[4 * row + col] = complex(pairs[k].vector[row]);
+                        }
+                    }
+                    Ok(())
+                },
+            )?;
+            Ok::<_, Error>(modes)
+        })?
         .py_err(py)?;
-        let labels = tracking.map(|(sweep, _)| sweep.modes.iter().map(|m| m.name()).collect());
+        drop((sorted, grid, targets));
+        let labels: Option<Vec<&'static str>> =
+            labels.map(|m| m.iter().map(|m| m.name()).collect());
         Ok((
             shaped(py, values, &[n, 4])?,
             shaped(py, vectors, &[n, 4, 4])?,
@@ -352,18 +439,36 @@ impl NativeBicycle {
         parallel: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         let model = Model::new(&self.checked.benchmark).py_err(py)?;
-        let speeds = speeds.as_slice()?.to_vec();
+        const PER_SPEED: usize = 16 * 8 + 8;
+        let speeds = speeds_of("nonlinear_state_matrix", &speeds, PER_SPEED)?;
         let n = speeds.len();
-        let rows: Vec<Matrix4<f64>> =
-            par_map(py, &speeds, parallel, |v| lean_steer_matrix(&model, v))?;
-        let mut a = Vec::with_capacity(n * 16);
-        for m in &rows {
-            for i in 0..4 {
-                for j in 0..4 {
-                    a.push(m[(i, j)]);
-                }
-            }
-        }
+        let too_big = || {
+            let bytes = estimate(n, PER_SPEED);
+            memory_error("nonlinear_state_matrix", n as u128, "speeds", bytes)
+        };
+        let mut a = reserve(n.saturating_mul(16), too_big)?;
+        interruptible(py, n <= SHORT, |stop| {
+            grow(&mut a, n * 16, 0.0, stop)?;
+            fill_rows(
+                &speeds,
+                &mut a,
+                16,
+                &mut [],
+                0,
+                parallel,
+                stop,
+                |i, a, _| {
+                    let m: Matrix4<f64> = lean_steer_matrix(&model, speeds[i])?;
+                    for r in 0..4 {
+                        for j in 0..4 {
+                            a[4 * r + j] = m[(r, j)];
+                        }
+                    }
+                    Ok(())
+                },
+            )
+        })?
+        .py_err(py)?;
         shaped(py, a, &[n, 4, 4])
     }
 
@@ -376,6 +481,18 @@ impl NativeBicycle {
         speeds: PyReadonlyArray1<'py, f64>,
         methods: Vec<String>,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let count = speeds.as_slice()?.len();
+        if count > MAX_COMPARED_SPEEDS {
+            return Err(Error::LimitExceeded {
+                what: "v",
+                rule: format!(
+                    "{count} speeds is more than the limit of {MAX_COMPARED_SPEEDS} a comparison \
+                     takes (each speed linearizes the non-linear model by every method, about \
+                     10 ms of one core); use fewer speeds"
+                ),
+            })
+            .py_err(py);
+        }
         let speeds = speeds.as_slice()?.to_vec();
         let all = [
             Linearization::Exact,
@@ -396,9 +513,12 @@ impl NativeBicycle {
             }
         }
         let bike = self.checked.benchmark;
-        let sweep = py
-            .detach(|| compare_with_linear(&bike, &speeds, &chosen, &StudySettings::default()))
-            .py_err(py)?;
+        let settings = StudySettings::default();
+        // Each speed takes milliseconds: always watched.
+        let sweep = interruptible(py, false, |stop| {
+            compare_with_linear_until(&bike, &speeds, &chosen, &settings, stop)
+        })?
+        .py_err(py)?;
         let n = sweep.speeds.len();
         let flat = |rows: &[[whipple::Complex64; 4]]| -> Vec<NpComplex> {
             rows.iter()

@@ -366,3 +366,36 @@ fn overlapping_wheels_are_warned_about() {
         .check()
         .is_ok_and(|n| n.iter().any(|n| n.message.contains("wheels overlap"))));
 }
+
+/// Issue 26 item 14: the comparison of the models takes at most the library's one limit of
+/// speeds (the command line's `validate` and Python's `compare` both use it), refused before
+/// any work; a stop flag ends it early.
+#[test]
+fn the_comparison_takes_at_most_its_limit_of_speeds_and_stops_when_asked() {
+    use std::sync::atomic::AtomicBool;
+    use whipple::analysis::comparison::{compare_with_linear_until, MAX_COMPARED_SPEEDS};
+    use whipple::{compare_with_linear, Linearization, StudySettings};
+
+    let speeds = vec![1.0; MAX_COMPARED_SPEEDS + 1];
+    let methods = [Linearization::Exact];
+    let settings = StudySettings::default();
+    match compare_with_linear(&benchmark(), &speeds, &methods, &settings) {
+        Err(Error::LimitExceeded { what, rule }) => {
+            assert_eq!(what, "speeds");
+            assert!(rule.contains("100001") && rule.contains("100000"), "{rule}");
+        }
+        other => panic!("expected LimitExceeded, got {other:?}"),
+    }
+    let stop = AtomicBool::new(true);
+    let stopped = compare_with_linear_until(&benchmark(), &[1.0, 2.0], &methods, &settings, &stop);
+    assert!(
+        matches!(
+            stopped,
+            Err(Error::InvalidArgument {
+                what: "stopped",
+                ..
+            })
+        ),
+        "{stopped:?}"
+    );
+}

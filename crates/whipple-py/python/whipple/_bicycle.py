@@ -299,14 +299,14 @@ class Bicycle:
         GIL released. ``shard=(k, n)`` computes only part k of n and returns its columns (a
         dict; ``whipple.DesignMap(parts)`` assembles them, :func:`whipple.design_map_dask`
         does it on a Dask cluster)."""
-        from ._design import DesignMap
+        from ._design import DesignMap, part
 
-        part = self._native.design(x, y, lo=float(lo), hi=float(hi), speed=speed,
-                                   double_root=double_root, shard_index=shard[0],
-                                   shard_count=shard[1])
-        if shard != (0, 1):
-            return part
-        return DesignMap([part])
+        whole = tuple(shard) == (0, 1)
+        # The whole map needs no coordinate columns (its designs are the grid in order).
+        columns = part(self._native.design(x, y, lo=float(lo), hi=float(hi), speed=speed,
+                                           double_root=double_root, shard_index=shard[0],
+                                           shard_count=shard[1], coordinates=not whole))
+        return DesignMap([columns]) if whole else columns
 
     def __reduce__(self):
         # Pickled as its TOML text (every number round-trips): for multiprocessing and Dask.

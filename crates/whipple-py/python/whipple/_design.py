@@ -8,6 +8,8 @@ from typing import Any, Dict, List, Optional, Sequence
 
 import numpy as np
 
+STATUS = np.array(["ok", "invalid", "accuracy_lost"], dtype=object)
+
 QUANTITIES = ("v_d", "v_w", "v_c", "weave_frequency", "stable_width", "stable_from",
               "stable_to", "max_real", "stable", "unresolved")
 
@@ -34,25 +36,27 @@ class DesignMap:
         self.base_x: Optional[float] = base[0]
         self.base_y: Optional[float] = base[1] if y_axis else None
         shape = (len(self.y), len(self.x)) if y_axis else (len(self.x),)
-        seen = sum(len(p["index"]) for p in parts)
-        if seen != first["total"]:
-            raise ValueError(f"the parts hold {seen} designs of {first['total']}: a shard is missing")
-        ix = np.concatenate([p["ix"] for p in parts]).astype(np.intp)
-        iy = np.concatenate([p["iy"] for p in parts]).astype(np.intp)
-        where = (iy, ix) if y_axis else (ix,)
-        self.quantities: Dict[str, np.ndarray] = {}
-        for name in QUANTITIES:
-            values = np.concatenate([p[name] for p in parts])
-            grid = np.zeros(shape, dtype=values.dtype) if values.dtype == bool else np.full(shape, np.nan)
-            grid[where] = values
-            self.quantities[name] = grid
-        status = np.empty(shape, dtype=object)
-        status[where] = [s for p in parts for s in p["status"]]
-        reason = np.empty(shape, dtype=object)
-        reason[where] = [s for p in parts for s in p["reason"]]
-        self.status = status
-        self.reason = reason
+        # Each part holds the designs start..start + count in row-major order, so the parts in
+        # order of `start`, end to end, are the grid: no scatter, and a whole map's columns are
+        # only reshaped (no copy).
+        parts = sorted(parts, key=lambda p: p["start"])
+        seen = sum(p["count"] for p in parts)
+        if seen != first["total"] or any(
+                p["start"] + p["count"] != q["start"] for p, q in zip(parts, parts[1:])):
+            raise ValueError(f"the parts hold {seen} designs of {first['total']}: a shard is "
+                             "missing or given twice")
 
+        def column(name: str) -> np.ndarray:
+            if len(parts) == 1:
+                return np.asarray(parts[0][name]).reshape(shape)
+            return np.concatenate([p[name] for p in parts]).reshape(shape)
+
+        self.quantities: Dict[str, np.ndarray] = {name: column(name) for name in QUANTITIES}
+        #: Why each design has no numbers: ``'ok'``, ``'invalid'``, ``'accuracy_lost'`` (an
+        #: object array whose cells share the three strings).
+        self.status: np.ndarray = column("status")
+        #: The rule broken or the accuracy lost, in words, None where computed.
+        self.reason: np.ndarray = column("reason")
     def __getattr__(self, name: str) -> np.ndarray:
         q = self.__dict__.get("quantities", {})
         if name in q:
@@ -106,4 +110,21 @@ def design_map_dask(bike: Any, x: str, y: Optional[str] = None, *, client: Any,
 def _shard(text: str, x: str, y: Optional[str], k: int, n: int, options: Dict[str, Any]):
     from ._bicycle import Bicycle
 
-    return Bicycle.from_text(text, "toml")._native.design(x, y, shard_index=k, shard_count=n, **options)
+    native = Bicycle.from_text(text, "toml")._native
+    return part(native.design(x, y, shard_index=k, shard_count=n, **options))
+
+
+def part(native: Dict[str, Any]) -> Dict[str, Any]:
+    """The native module's columns of a shard with ``status`` and ``reason`` as object arrays
+    (the status codes mapped to three shared strings; a reason only where a design has one)."""
+    native["status"] = STATUS[native.pop("status_code")]
+    reason = np.full(len(native["status"]), None, dtype=object)
+    at = native.pop("reason_at")
+    if len(at):
+        texts = np.empty(len(at), dtype=object)
+        texts[:] = native.pop("reason_text")
+        reason[at] = texts
+    else:
+        native.pop("reason_text")
+    native["reason"] = reason
+    return native

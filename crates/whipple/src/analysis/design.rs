@@ -613,20 +613,23 @@ impl Study {
     ) -> Result<()> {
         let (first, end) = shard.indices(self.len());
         let mut start = first;
-        let mut rows: Vec<DesignRow> = Vec::new();
         while start < end {
             if stop.load(Ordering::Relaxed) {
                 return Err(stopped());
             }
             let stop_at = (start + CHUNK).min(end);
-            rows.clear();
-            (0..(stop_at - start) as usize)
+            // The flag is checked before every design too, so that a chunk (a second or more
+            // of work) stops within one design's time.
+            let rows = (0..(stop_at - start) as usize)
                 .into_par_iter()
-                .map(|k| self.design(start + k as u64))
-                .collect_into_vec(&mut rows);
-            if stop.load(Ordering::Relaxed) {
-                return Err(stopped());
-            }
+                .map(|k| {
+                    if stop.load(Ordering::Relaxed) {
+                        Err(stopped())
+                    } else {
+                        Ok(self.design(start + k as u64))
+                    }
+                })
+                .collect::<Result<Vec<DesignRow>>>()?;
             sink(&rows)?;
             start = stop_at;
         }

@@ -31,6 +31,8 @@
 //! Words: *validate* always means checking input against rules
 //! ([`crate::BenchmarkParameters::validate`]); comparing one model with another is *compare*.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 mod conditioning;
 mod jacobians;
 mod picking;
@@ -169,6 +171,11 @@ pub struct ComparisonSweep {
     pub methods: Vec<LinearizationSweep>,
 }
 
+/// The most speeds one comparison takes, for every front end (the command line's `validate`,
+/// Python's `compare`): each speed linearizes the non-linear model by every method asked for,
+/// about 10 ms of one core, so the limit is about 20 minutes of one core.
+pub const MAX_COMPARED_SPEEDS: usize = 100_000;
+
 /// Compares the non-linear model of `bike` with the linear one at every speed of `speeds`
 /// (sorted, as from [`crate::analysis::sweep::speed_grid`]) by each of `methods`: Dressel's
 /// benchmark, redone.
@@ -180,12 +187,35 @@ pub struct ComparisonSweep {
 /// assert!(sweep.methods[0].max_abs_diff.iter().all(|d| *d < 1e-11));
 /// # Ok::<(), whipple::Error>(())
 /// ```
+///
+/// At most [`MAX_COMPARED_SPEEDS`] speeds ([`Error::LimitExceeded`] `what: "speeds"`).
 pub fn compare_with_linear(
     bike: &BenchmarkParameters,
     speeds: &[f64],
     methods: &[Linearization],
     study: &StudySettings,
 ) -> Result<ComparisonSweep> {
+    compare_with_linear_until(bike, speeds, methods, study, &AtomicBool::new(false))
+}
+
+/// [`compare_with_linear`] that stops early when `stop` is set (checked before every speed),
+/// with [`Error::InvalidArgument`] `what: "stopped"`: for front ends that honour Ctrl-C.
+pub fn compare_with_linear_until(
+    bike: &BenchmarkParameters,
+    speeds: &[f64],
+    methods: &[Linearization],
+    study: &StudySettings,
+    stop: &AtomicBool,
+) -> Result<ComparisonSweep> {
+    if speeds.len() > MAX_COMPARED_SPEEDS {
+        return Err(Error::LimitExceeded {
+            what: "speeds",
+            rule: format!(
+                "{} speeds is more than the limit of {MAX_COMPARED_SPEEDS} a comparison takes",
+                speeds.len()
+            ),
+        });
+    }
     let canonical = Canonical::new(bike)?;
     let model = Model::new(bike)?;
     let eig = eigen_sweep(&canonical, speeds)?;
@@ -204,6 +234,12 @@ pub fn compare_with_linear(
     let work = |range: std::ops::Range<usize>| -> Result<Vec<Vec<Comparison>>> {
         range
             .map(|i| {
+                if stop.load(Ordering::Relaxed) {
+                    return Err(Error::InvalidArgument {
+                        what: "stopped",
+                        rule: "the comparison was stopped before it finished".into(),
+                    });
+                }
                 methods
                     .iter()
                     .map(|&m| {
