@@ -436,7 +436,22 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         })),
         ..settings_without_progress
     };
-    let run = simulate(&model, start, &settings).context("simulating")?;
+    let run = simulate(&model, start, &settings).map_err(|error| match error {
+        // "--dt 0.25 is too large for this run: …; use --dt <= 0.05" (no outcome, no samples).
+        whipple::Error::StepTooLarge {
+            what,
+            value,
+            reason,
+            suggested,
+        } => anyhow::anyhow!(
+            "simulating: {} {} is too large for this run: {reason}; use {} <= {}",
+            option(what),
+            whipple::short_number(value),
+            option(what),
+            whipple::short_number(suggested)
+        ),
+        other => anyhow::Error::new(other).context("simulating"),
+    })?;
     bar.finish_and_clear();
 
     let (outcome, failed) = (run.outcome.to_string(), run.outcome.is_failure());

@@ -146,6 +146,15 @@ pub fn turn_text(turn: &SteadyTurn, stab: &Result<Stability, String>) -> Result<
             fixed(c.lateral, 3)?,
             fixed(c.longitudinal, 3)?
         )?;
+        if c.normal < 0.0 {
+            // A held turn like this is refused by the library; a hands-free one from the
+            // families is shown, flagged.
+            writeln!(
+                t,
+                "  WARNING: the ground would pull the {name} wheel down ({} N): it lifts off, and the knife-edge model cannot hold this turn",
+                fixed(c.normal, 1)?
+            )?;
+        }
     }
     writeln!(
         t,
@@ -388,6 +397,20 @@ fn summary(label: &str, families: &[Family], lo: f64, hi: f64) -> Result<String>
                 "  stable from v {} to {} m/s (between traced points)",
                 fixed(a, 3)?,
                 fixed(b, 3)?
+            )?;
+        }
+        let lifting: Vec<f64> = pts
+            .iter()
+            .filter(|p| p.turn.contact.iter().any(|c| c.normal < 0.0))
+            .map(|p| p.turn.speed)
+            .collect();
+        if let (Some(a), Some(b)) = (lifting.first(), lifting.last()) {
+            writeln!(
+                t,
+                "  a wheel's normal force is negative at {} point(s), v {} to {} m/s: the ground would pull the wheel down, so those are not turns the knife-edge model can hold",
+                lifting.len(),
+                fixed(*a, 3)?,
+                fixed(*b, 3)?
             )?;
         }
         let undecided = pts.iter().filter(|p| p.stability.is_none()).count();

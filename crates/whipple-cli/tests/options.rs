@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{stderr_of_failure, whipple};
+use common::{stderr_of_failure, stdout, whipple};
 
 const SIMULATE: [&str; 6] = [
     "simulate",
@@ -114,4 +114,43 @@ fn issue_10_a_file_named_like_a_preset_does_not_hide_it() {
     assert!(by_path.status.success(), "{err}");
     assert!(!err.contains("names both"), "{err}");
     assert_eq!(trail(&out).as_deref(), Some("0.5"), "{out}");
+}
+
+/// Issue 26: this exact command reported `fell` with exit status 0 for a bicycle inside its
+/// self-stable range, the energy grown 326-fold. A step beyond RK4's stability bound for the
+/// fastest mode at the run's speed is an error naming the step to use, never an outcome.
+#[test]
+fn issue_26_a_step_too_large_is_an_error_naming_the_step_to_use() {
+    let command = [
+        "simulate",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "4.6",
+        "--lean-rate",
+        "0.5",
+        "--duration",
+        "10",
+        "--dt",
+    ];
+    let mut args = command.to_vec();
+    args.push("0.25");
+    let output = whipple(&args);
+    let err = stderr_of_failure(&output);
+    assert!(err.contains("--dt 0.25 is too large"), "{err}");
+    assert!(err.contains("use --dt <= 0.05"), "{err}");
+    assert!(!err.contains("fell"), "{err}");
+    assert!(output.stdout.is_empty(), "no table for a refused run");
+    // The step it suggests runs, and the outcome is the default step's.
+    for dt in ["0.05", "0.001"] {
+        let mut args = command.to_vec();
+        args.push(dt);
+        let out = stdout(&whipple(&args));
+        assert!(
+            out.lines()
+                .next()
+                .is_some_and(|l| l.ends_with("non-linear simulation, completed")),
+            "--dt {dt}: {out}"
+        );
+    }
 }

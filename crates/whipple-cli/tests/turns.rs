@@ -155,3 +155,32 @@ fn simulate_from_a_turn_stays_on_it() {
         assert!((lean - 11.5f64.to_radians()).abs() < 1e-7, "{lean}");
     }
 }
+
+/// Issue 26: `turn --radius 1e200` said "a computed result is not a finite number (NaN)";
+/// `--radius 0.5` at 5 m/s printed a turn with the rear normal force at −1448 N. The first is
+/// refused naming the radius and its bound, the second naming the wheel and the force.
+#[test]
+fn issue_26_turns_past_the_radius_bound_or_lifting_a_wheel_are_errors() {
+    let turn = |radius: &str| {
+        stderr_of_failure(&whipple(&[
+            "turn",
+            "--bike",
+            "benchmark",
+            "--speed",
+            "5",
+            "--radius",
+            radius,
+        ]))
+    };
+    let err = turn("1e200");
+    assert!(err.contains("radius") && err.contains("1e9 m"), "{err}");
+    assert!(
+        !err.contains("NaN") && !err.contains("not a finite"),
+        "{err}"
+    );
+    let err = turn("0.5");
+    assert!(
+        err.contains("rear wheel's normal force would be -1448.") && err.contains("lifts off"),
+        "{err}"
+    );
+}

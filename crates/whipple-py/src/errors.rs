@@ -117,6 +117,33 @@ pub fn to_py(py: Python<'_>, error: Error) -> PyErr {
                 ("rule", obj(py, rule)),
             ],
         ),
+        // A step or tolerance too coarse for the run: the argument (`dt`, `rtol`) at fault,
+        // the step to use in the rule.
+        Error::StepTooLarge {
+            what,
+            value,
+            reason,
+            suggested,
+        } => raise(
+            py,
+            "ArgumentError",
+            message,
+            &[
+                ("field", obj(py, what)),
+                ("value", obj(py, value)),
+                (
+                    "rule",
+                    obj(
+                        py,
+                        format!(
+                            "{reason}; use {what} <= {}",
+                            whipple::short_number(suggested)
+                        ),
+                    ),
+                ),
+                ("suggested", obj(py, suggested)),
+            ],
+        ),
         Error::AccuracyLost { quantity, reason } => raise(
             py,
             "AccuracyLostError",

@@ -94,3 +94,14 @@ def test_to_pandas(benchmark):
     assert list(e.columns) == ["re1", "im1", "re2", "im2", "re3", "im3", "re4", "im4"]
     s = benchmark.sensitivities().to_pandas()
     assert "c" in s.index
+
+
+def test_a_step_too_large_raises_instead_of_an_outcome(benchmark):
+    # Issue 26: dt = 0.25 s at 4.6 m/s gave "fell" while the energy grew 326-fold.
+    with pytest.raises(whipple.ArgumentError) as info:
+        benchmark.simulate(4.6, 10.0, lean_rate=0.5, dt=0.25)
+    e = info.value
+    assert e.field == "dt" and e.value == 0.25 and e.suggested == 0.05
+    assert "use dt <= 0.05" in str(e) and "stability" in str(e)
+    # A step inside the bound runs as before.
+    assert benchmark.simulate(4.6, 2.0, lean_rate=0.5, dt=0.05).outcome_kind == "completed"

@@ -152,6 +152,26 @@ def test_impossible_turn_raises_typed_error(benchmark):
     assert e.rule and e.given and "radius" in str(e)
 
 
+def test_turn_with_a_wheel_pulled_down_is_refused(benchmark):
+    # Issue 26: a 0.5 m circle at 5 m/s solves with the rear normal force at -1448 N; the
+    # knife-edge model cannot hold it, and it was returned as a turn.
+    with pytest.raises(whipple.NoSteadyTurnError) as info:
+        benchmark.turn(5.0, radius=0.5)
+    e = info.value
+    assert e.field == "radius"
+    assert "rear wheel's normal force would be -14" in str(e) and "lift" in str(e)
+
+
+def test_huge_radius_is_refused_naming_the_bound(benchmark):
+    # Issue 26: radius=1e200 said "a computed result is not a finite number".
+    with pytest.raises(whipple.ArgumentError) as info:
+        benchmark.turn(5.0, radius=1e200)
+    assert info.value.field == "radius" and "1e9" in str(info.value)
+    # The bound itself is a turn, straight running to round-off.
+    turn = benchmark.turn(5.0, radius=1e9)
+    assert math.isfinite(turn.lean) and abs(turn.lean) < 1e-8
+
+
 @pytest.mark.parametrize("kwargs, field", [
     (dict(), "lean"),
     (dict(lean=0.1, steer=0.1), "steer"),

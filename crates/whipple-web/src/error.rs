@@ -22,8 +22,8 @@ pub struct ApiError {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ErrorBody {
     /// Machine-readable kind (`invalid_parameter`, `invalid_bicycle`, `parse`, `bad_json`,
-    /// `invalid_request`, `limit_exceeded`, `too_large`, `unknown_preset`, `not_found`,
-    /// `method_not_allowed`, `misdirected_request`, `forbidden_origin`,
+    /// `invalid_request`, `limit_exceeded`, `step_too_large`, `too_large`, `unknown_preset`,
+    /// `not_found`, `method_not_allowed`, `misdirected_request`, `forbidden_origin`,
     /// `unsupported_media_type`, `timeout`, `busy`, `numerical`, `internal`).
     pub kind: &'static str,
     /// The whole message, for people.
@@ -125,6 +125,22 @@ impl From<Error> for ApiError {
             Error::AccuracyLost { .. } => ApiError::new(unprocessable, "accuracy_lost", message),
             Error::LimitExceeded { what, rule } => {
                 ApiError::new(unprocessable, "limit_exceeded", message).at(what, rule)
+            }
+            // The integrator's step or tolerance cannot resolve the run: no outcome, the step
+            // to use in the rule.
+            Error::StepTooLarge {
+                what,
+                value,
+                reason,
+                suggested,
+            } => {
+                let rule = format!(
+                    "{reason}; use {what} <= {}",
+                    whipple::short_number(suggested)
+                );
+                let mut e = ApiError::new(unprocessable, "step_too_large", message).at(what, rule);
+                e.body.value = value.is_finite().then_some(value);
+                e
             }
             Error::Strict { field, .. } => ApiError::new(unprocessable, "strict", message)
                 .at(field, "a warning, with strict set"),

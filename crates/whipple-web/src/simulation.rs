@@ -415,7 +415,11 @@ pub fn run(
         ..settings
     };
     let duration = settings.duration;
-    let simulation = simulate(&model, start, &settings).map_err(at_start)?;
+    let simulation = simulate(&model, start, &settings).map_err(|error| match error {
+        // A step too coarse for the run names `dt` or `rtol`, not the initial state.
+        error @ whipple::Error::StepTooLarge { .. } => ApiError::from(error),
+        other => at_start(other),
+    })?;
     let g = &model.bodies().geometry;
     let geometry = DrawingGeometry {
         rear_wheel_radius: model.parameters().r_r,

@@ -1301,3 +1301,53 @@ async fn a_duplicate_json_key_in_a_body_is_refused() -> TestResult {
     assert_eq!(status, StatusCode::OK);
     Ok(())
 }
+
+/// Issue 26: a step beyond RK4's stability bound for the fastest mode at the run's speed is a
+/// 422 naming `dt` and the step to use (it was a 200 with the outcome `fell`); a step inside
+/// it runs as before.
+#[tokio::test]
+async fn issue_26_a_step_too_large_is_422_naming_the_step_to_use() -> TestResult {
+    let app = app(Limits::default());
+    let coarse = simulation(json!({"duration": 10.0, "dt": 0.25}))?;
+    let (status, body) = post(&app, "/api/simulate", &coarse).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    let error = &body["error"];
+    assert_eq!(error["kind"], "step_too_large", "{body}");
+    assert_eq!(error["field"], "dt", "{body}");
+    assert_eq!(error["value"], 0.25, "{body}");
+    for text in [&error["message"], &error["rule"]] {
+        assert!(
+            text.as_str().is_some_and(|t| t.contains("use dt <= 0.05")),
+            "{body}"
+        );
+    }
+    let fine = simulation(json!({"dt": 0.05}))?;
+    let (status, body) = post(&app, "/api/simulate", &fine).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert_eq!(body["outcome"]["kind"], "completed", "{body}");
+    Ok(())
+}
+
+/// Issue 26: a turn whose rear normal force is negative (0.5 m at 5 m/s: −1448 N) was
+/// answered as a turn; a radius of 1e200 as a non-finite result. Both are 422 naming `radius`.
+#[tokio::test]
+async fn issue_26_turns_lifting_a_wheel_or_past_the_radius_bound_are_422() -> TestResult {
+    let app = app(Limits::default());
+    let bike = preset_json("benchmark")?;
+    let turn = |radius: f64| json!({"bike": bike.clone(), "speed": 5.0, "radius": radius});
+    let (status, body) = post(&app, "/api/turn", &turn(0.5)).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    assert_eq!(body["error"]["kind"], "no_steady_turn", "{body}");
+    assert_eq!(body["error"]["field"], "radius", "{body}");
+    assert!(
+        body["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("rear wheel's normal force would be -1448.")),
+        "{body}"
+    );
+    let (status, body) = post(&app, "/api/turn", &turn(1e200)).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    assert_eq!(body["error"]["kind"], "invalid_argument", "{body}");
+    assert_eq!(body["error"]["field"], "radius", "{body}");
+    Ok(())
+}

@@ -65,6 +65,22 @@ pub enum Error {
         /// The bound and how far the request is past it.
         rule: String,
     },
+    /// An integration step (RK4's `dt`) or tolerance (the adaptive integrator's `rtol`) too
+    /// coarse for the run: the step cannot resolve the bicycle's fastest mode, or the energy
+    /// (conserved but for the rider's work) drifted far beyond what the integrator's accuracy
+    /// allows. Never answered with an outcome (fell, completed): the motion computed would be
+    /// the integrator's, not the bicycle's.
+    #[error("{what} = {} is too large for this run: {reason}; use {what} <= {}", short_number(*.value), short_number(*.suggested))]
+    StepTooLarge {
+        /// `dt` or `rtol`.
+        what: &'static str,
+        /// The step \[s\] or tolerance given.
+        value: f64,
+        /// Why, with the numbers that show it.
+        reason: String,
+        /// The step or tolerance to use instead (at most this).
+        suggested: f64,
+    },
     /// A numerical method did not reach its tolerance within its iteration bound.
     #[error("{method} did not converge after {iterations} iterations (residual {residual:e})")]
     NoConvergence {

@@ -89,6 +89,14 @@ pub use error::Result;
 /// ```
 pub use error::shorten;
 
+/// A number for a message: shortest round-trip text, in exponent form when very large or small
+/// (the library's messages and the front ends' write numbers the same way).
+///
+/// ```
+/// assert_eq!((whipple::short_number(0.25), whipple::short_number(1e300)), ("0.25".into(), "1e300".into()));
+/// ```
+pub use error::short_number;
+
 /// A bicycle as it was described (benchmark or JBike6 form), with its name and source.
 ///
 /// ```

@@ -907,3 +907,82 @@ fn two_mass_skate_runs_with_its_rear_skate_pulled_down() -> Result<()> {
     assert!(last < 1e-3, "lean after 6 s: {last}");
     Ok(())
 }
+
+/// Issue 26: `simulate --speed 4.6 --lean-rate 0.5 --duration 10 --dt 0.25` gave "fell" (the
+/// energy grown 326-fold). A step beyond RK4's stability bound for the fastest mode of the
+/// linearized bicycle at the run's speed is refused before any step, with the step to use.
+#[test]
+fn a_step_beyond_rk4s_stability_bound_is_refused() -> Result<()> {
+    use whipple::nonlinear::{check_rk4_step, fastest_mode};
+    let (model, start) = kicked_benchmark(4.6)?;
+    let lambda = fastest_mode(&model, 4.6).expect("the benchmark's linear model");
+    // The castering mode, real and fast.
+    assert!(lambda.im == 0.0 && lambda.re < -10.0, "{lambda}");
+    let bound = 2.5 / lambda.norm();
+    let result = simulate(
+        &model,
+        start,
+        &weave_settings(Integrator::Rk4 { dt: 0.25 }, 10.0),
+    );
+    let Err(whipple::Error::StepTooLarge {
+        what,
+        value,
+        reason,
+        suggested,
+    }) = result
+    else {
+        panic!("dt = 0.25 s: {result:?}")
+    };
+    assert_eq!((what, value, suggested), ("dt", 0.25, 0.05));
+    assert!(reason.contains("stability bound"), "{reason}");
+    assert!(suggested * lambda.norm() <= 1.0);
+    // Just inside the bound the step is accepted, just outside refused.
+    assert!(check_rk4_step(&model, 4.6, bound * 0.999).is_ok());
+    assert!(check_rk4_step(&model, 4.6, bound * 1.001).is_err());
+    // The suggested step runs, and gives what the default step gives.
+    let coarse = simulate(
+        &model,
+        start,
+        &weave_settings(Integrator::Rk4 { dt: suggested }, 10.0),
+    )?;
+    let fine = simulate(
+        &model,
+        start,
+        &weave_settings(Integrator::Rk4 { dt: 1e-3 }, 10.0),
+    )?;
+    assert_eq!(
+        (coarse.outcome.clone(), fine.outcome),
+        (Outcome::Completed, Outcome::Completed)
+    );
+    Ok(())
+}
+
+/// The check during the run: an energy balance that drifts beyond `MAX_ENERGY_DRIFT` ends the
+/// run with `StepTooLarge` (never an outcome), for the adaptive integrator too, whose steps
+/// the a-priori check does not see.
+#[test]
+fn an_energy_drift_ends_the_run_with_an_error() -> Result<()> {
+    let (model, start) = kicked_benchmark(4.6)?;
+    let loose = Integrator::Dopri5(Dopri5Settings::with_rtol(0.5));
+    let result = simulate(&model, start, &weave_settings(loose, 10.0));
+    let Err(whipple::Error::StepTooLarge {
+        what,
+        reason,
+        suggested,
+        ..
+    }) = result
+    else {
+        panic!("rtol = 0.5: {result:?}")
+    };
+    assert_eq!((what, suggested), ("rtol", 0.0005));
+    assert!(reason.contains("energy drifted"), "{reason}");
+    // At the default tolerance the same run completes, its energy kept.
+    let run = simulate(
+        &model,
+        start,
+        &weave_settings(Integrator::adaptive(1e-8), 10.0),
+    )?;
+    assert_eq!(run.outcome, Outcome::Completed);
+    assert!(run.extremes.largest_energy_change < 1e-6 * run.extremes.initial_energy);
+    Ok(())
+}

@@ -433,3 +433,61 @@ fn perturbations_grow_or_decay_at_the_eigenvalue_rate() -> Result<()> {
     }
     Ok(())
 }
+
+/// Issue 26: a 0.5 m circle at 5 m/s solved with the rear normal force at −1448 N and was
+/// returned as a turn; the ground would have to pull the wheel down. Refused, naming the wheel
+/// and the force.
+#[test]
+fn a_turn_that_pulls_a_wheel_down_is_refused() {
+    let model = benchmark();
+    let result = held_turn(&model, 5.0, Held::Radius(0.5), &TurnSettings::default());
+    let Err(Error::NoSteadyTurn { given, reason }) = result else {
+        panic!("a turn with a negative normal force: {result:?}")
+    };
+    assert!(given.contains("radius 0.5 m"), "{given}");
+    assert!(
+        reason.contains("the rear wheel's normal force would be -1448."),
+        "{reason}"
+    );
+    // A turn with both wheels pressed onto the ground is still one.
+    let turn = held_turn(&model, 5.0, Held::Radius(12.0), &TurnSettings::default())
+        .expect("a 12 m circle at 5 m/s");
+    assert!(turn.contact.iter().all(|c| c.normal > 0.0));
+}
+
+/// Issue 26: `--radius 1e200` gave "a computed result is not a finite number". Past
+/// `MAX_RADIUS` the radius is refused, naming it and the bound; at the bound the turn is
+/// computed, finite, and is straight running to round-off.
+#[test]
+fn a_radius_beyond_the_bound_is_refused_and_the_bound_is_computed() -> Result<()> {
+    use whipple::analysis::turns::MAX_RADIUS;
+    let model = benchmark();
+    for r in [1e200, -1e200, 2.0 * MAX_RADIUS] {
+        let result = held_turn(&model, 5.0, Held::Radius(r), &TurnSettings::default());
+        let Err(Error::InvalidArgument { what, rule }) = result else {
+            panic!("radius {r}: {result:?}")
+        };
+        assert_eq!(what, "radius");
+        assert!(rule.contains("1e9 m"), "{rule}");
+    }
+    // Lean, steer and torque are proportional to the curvature in the large-radius limit: the
+    // turn at the bound is the one at 10 km scaled, to the accuracy of that limit.
+    let near = held_turn(&model, 5.0, Held::Radius(1e4), &TurnSettings::default())?;
+    for r in [MAX_RADIUS, -MAX_RADIUS] {
+        let turn = held_turn(&model, 5.0, Held::Radius(r), &TurnSettings::default())?;
+        let radius = turn.rear_radius.expect("a turning bicycle");
+        assert!((radius / r - 1.0).abs() < 1e-9, "{radius}");
+        assert!(turn.lateral_acceleration.is_finite() && turn.centre.is_some());
+        for (far, near) in [
+            (turn.lean, near.lean),
+            (turn.steer, near.steer),
+            (turn.steer_torque, near.steer_torque),
+        ] {
+            assert!(
+                (far * r / (near * 1e4) - 1.0).abs() < 1e-6,
+                "{far} at {r} m, {near} at 10 km"
+            );
+        }
+    }
+    Ok(())
+}

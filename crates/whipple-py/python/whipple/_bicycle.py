@@ -335,7 +335,11 @@ class Bicycle:
         run and is raised here). The run stops when |lean| passes ``fall_angle_deg`` or a
         wheel's normal force turns negative (unless ``stop_on_lift_off=False``); those are
         outcomes, not errors. ``every=N`` keeps one sample in N steps (the first and the last
-        always), for long runs: at most 1.5 million samples are kept.
+        always), for long runs: at most 1.5 million samples are kept. A step too coarse for the
+        run raises :class:`whipple.ArgumentError` (``field`` ``'dt'`` or ``'rtol'``, the step to
+        use in ``rule`` and ``suggested``), never an outcome: an RK4 ``dt`` with |λ|·dt beyond
+        2.5 for the fastest mode λ of the upright linearized bicycle at ``speed``, or a run
+        whose energy balance drifts by more than 1% (either integrator).
 
         ``from_turn=True`` starts on the held steady turn at ``speed`` (the rear contact's) and
         ``lean`` (:meth:`turn`), as ``whipple simulate --from-turn`` does: the turn's steer,
@@ -362,7 +366,9 @@ class Bicycle:
         torque) at that speed on the families :meth:`turns` traces, both leans, as a list.
 
         :class:`whipple.NoSteadyTurnError` (``field`` the argument given) when there is no such
-        turn; :class:`whipple.ArgumentError` for an unusable speed, lean, steer or radius."""
+        turn, or when the ground would have to pull a wheel down (a negative normal force: the
+        wheel lifts off, the message names it and the force); :class:`whipple.ArgumentError`
+        for an unusable speed, lean, steer or radius (``radius`` at most 1e9 m in size)."""
         given = [name for name, x in (("lean", lean), ("steer", steer), ("radius", radius))
                  if x is not None]
         if hands_free:

@@ -59,6 +59,12 @@ fn re<T: RealField + Copy>(x: T) -> f64 {
 /// Largest lean a turn may have \[rad\] (89°): the orientation angles are singular at 90°.
 pub const MAX_LEAN: f64 = 89.0 * std::f64::consts::PI / 180.0;
 
+/// Largest turn radius a held turn may be asked for \[m\] (a million kilometres): beyond it the
+/// turn is straight running to within 1e-9 of any length of a bicycle, and the radius is the
+/// quotient of two numbers each near round-off. [`held_turn`] refuses a larger one
+/// ([`Error::InvalidArgument`] naming `radius`).
+pub const MAX_RADIUS: f64 = 1e9;
+
 /// Settings of the turn solvers, with their defaults.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TurnSettings {
@@ -433,14 +439,14 @@ fn describe(
     let (radii, lateral_acceleration, centre_xy) = if yaw_rate != 0.0 {
         // The centre of the circles: ω × (P − C) = v_P for the rear contact P.
         let axis = Vector3::new(0.0, 0.0, yaw_rate);
-        let turn_centre =
-            horizontal(rear) + axis.cross(&horizontal(v_rear)) / (yaw_rate * yaw_rate);
+        // ω × v / ω², divided once by ω each (ω² underflows for very large radii).
+        let turn_centre = horizontal(rear) + axis.cross(&horizontal(v_rear)) / yaw_rate / yaw_rate;
         let sign = yaw_rate.signum();
         let radius = |p: Vector3<f64>| Some(sign * (horizontal(p) - turn_centre).norm());
         let r_cm = (horizontal(centre) - turn_centre).norm();
         (
             [radius(rear), radius(front), radius(centre)],
-            sign * yaw_rate * yaw_rate * r_cm,
+            sign * yaw_rate * (yaw_rate * r_cm),
             Some([turn_centre.x, turn_centre.y]),
         )
     } else {
@@ -515,6 +521,15 @@ pub fn held_turn(
             rule: format!("must be a finite, non-zero number, got {target}"),
         });
     }
+    if index.is_none() && target.abs() > MAX_RADIUS {
+        return Err(Error::InvalidArgument {
+            what: "radius",
+            rule: format!(
+                "must be at most {MAX_RADIUS:e} m in size (beyond it the turn is straight running), got {}",
+                crate::error::short_number(target)
+            ),
+        });
+    }
     if index == Some(LEAN) && target.abs() > MAX_LEAN {
         return Err(Error::InvalidArgument {
             what: "lean",
@@ -587,10 +602,39 @@ pub fn held_turn(
             ))
         })?;
     }
-    describe(model, &z, iterations, settings).map_err(|e| match e {
+    let turn = describe(model, &z, iterations, settings).map_err(|e| match e {
         Error::NoSteadyTurn { reason, .. } => fail(reason),
         other => other,
-    })
+    })?;
+    check_contact(model, &turn).map_err(fail)?;
+    Ok(turn)
+}
+
+/// A held turn the knife-edge model can hold: the ground pushes on both wheels. A wheel whose
+/// normal force is negative in the turn would lift off (the contacts are bilateral constraints
+/// in the equations, so they solve all the same), and the turn is refused, naming the wheel and
+/// the force; a wheel already pulled down in straight running at the same speed (a skate whose
+/// masses sit beyond its front contact) is left as the simulation leaves it.
+fn check_contact(model: &Model, turn: &SteadyTurn) -> std::result::Result<(), String> {
+    let negative: Vec<usize> = (0..2).filter(|&i| turn.contact[i].normal < 0.0).collect();
+    if negative.is_empty() {
+        return Ok(());
+    }
+    let straight = model
+        .initial_state(&InitialConditions::upright(turn.hub_speed))
+        .and_then(|state| model.forward(&state, &Inputs::default()))
+        .map(|d| [d.contact[0].normal, d.contact[1].normal]);
+    for i in negative {
+        let pressed = straight.as_ref().map_or(true, |n| n[i] >= 0.0);
+        if pressed {
+            let wheel = ["rear", "front"][i];
+            return Err(format!(
+                "the {wheel} wheel's normal force would be {:.1} N: the ground would have to pull the wheel down, so it lifts off and the knife-edge model cannot hold this turn (ask for a larger radius, a smaller lean or steer, or a lower speed)",
+                turn.contact[i].normal
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn describe_given(given: Held) -> String {

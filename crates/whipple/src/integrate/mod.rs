@@ -33,6 +33,46 @@ pub const DEFAULT_DT: f64 = 1e-3;
 /// The adaptive integrator's relative tolerance when none is given.
 pub const DEFAULT_RTOL: f64 = 1e-8;
 
+/// The largest |λ·dt| RK4 is given for a mode λ of the system it integrates. RK4's stability
+/// region (|1 + z + z²/2 + z³/6 + z⁴/24| ≤ 1, z = λ·dt) reaches 2.785 along the negative real
+/// axis and 2.828 along the imaginary one; the half-disc |z| ≤ 2.5, Re z ≤ 0 lies inside it
+/// with a margin (|R(z)| ≤ 0.873 on it). Beyond this bound a decaying mode can grow from step
+/// to step: the motion computed is the integrator's, not the system's.
+pub const RK4_STABLE_RADIUS: f64 = 2.5;
+
+/// The |λ·dt| of the step a too-coarse RK4 run is told to use: within it a mode's growth
+/// factor per step is off by at most 2% (for example R(−1) = 0.375 against e⁻¹ = 0.368, and
+/// R(i) = 0.994 e^(0.994i) against e^i).
+pub const RK4_ACCURATE_RADIUS: f64 = 1.0;
+
+/// The largest number of the form 1, 2 or 5 × 10ᵏ that is at most `x` (positive, finite): a
+/// step or tolerance to suggest in a message. `x` itself when it is not positive and finite.
+pub fn round_down_125(x: f64) -> f64 {
+    if !(x.is_finite() && x > 0.0) {
+        return x;
+    }
+    let decade = 10f64.powf(x.log10().floor());
+    let mantissa = x / decade;
+    let m = if mantissa >= 5.0 - 1e-9 {
+        5.0
+    } else if mantissa >= 2.0 - 1e-9 {
+        2.0
+    } else {
+        1.0
+    };
+    let rounded = m * decade;
+    // Round-off in log10 may land a hair above x: one step down then.
+    if rounded > x * (1.0 + 1e-12) {
+        match m as u8 {
+            5 => 2.0 * decade,
+            2 => decade,
+            _ => 0.5 * decade,
+        }
+    } else {
+        rounded
+    }
+}
+
 /// A first-order system ẏ = f(t, y) of fixed size N.
 pub trait OdeSystem<const N: usize> {
     /// f(t, y). May fail (for example a singular constrained system).

@@ -75,7 +75,7 @@ pub use settings::{
     samples_kept, IntegratorKind, ProgressFn, SimulationRequest, SimulationSettings, TorqueFn,
     TorqueInput, DEFAULT_FALL_ANGLE_DEG, MAX_SAMPLES, MAX_STEPS,
 };
-pub use simulate::simulate;
+pub use simulate::{check_rk4_step, fastest_mode, simulate, MAX_ENERGY_DRIFT};
 pub use state::{BodyPose, State, StateView, COORDINATES, LEAN, PITCH, SPEEDS, STATE_LEN, YAW};
 pub use topology::{
     BODIES, BODY_NAMES, FRONT_FRAME, FRONT_WHEEL, HOLONOMIC_ROWS, REAR_FRAME, REAR_WHEEL,

@@ -23,8 +23,21 @@ use super::poses::Poses;
 use super::settings::{SimulationSettings, TorqueFn};
 use super::state::{State, STATE_LEN};
 use super::Model;
-use crate::error::{Error, Result};
-use crate::integrate::{DenseOutput, OdeSystem, Step, StepFailure, Stepper};
+use crate::analysis::eigen::{self, Complex64};
+use crate::error::{short_number, Error, Result};
+use crate::integrate::{
+    round_down_125, DenseOutput, Integrator, OdeSystem, Step, StepFailure, Stepper,
+    RK4_ACCURATE_RADIUS, RK4_STABLE_RADIUS,
+};
+use crate::linear::Canonical;
+
+/// The largest drift of the energy balance a run may show, as a fraction of its energy scale
+/// (the initial energy plus the work the rider's torques did, in size): E − E₀ − W, with W the
+/// rider's work (trapezoidal over each step). Without rider torques the bicycle conserves its
+/// energy (rolling without slip, no friction), and a run at the default step keeps it to about
+/// 1e-12 of itself (the benchmark bicycle's kicked weave at 4.6 m/s; 1e-9 for one falling over
+/// at 3 m/s); a drift of 1% is the integrator's, not the bicycle's.
+pub const MAX_ENERGY_DRIFT: f64 = 1e-2;
 
 /// The model with its rider inputs as an ODE ẏ = f(t, y) on y = [q; u].
 pub(crate) struct BicycleOde<'a> {
@@ -59,6 +72,24 @@ impl BicycleOde<'_> {
         }
         self.model.forward(state, &inputs)
     }
+
+    /// The rider's power at (t, state) [W]: T_δ δ̇ + T_φ φ̇ (the steer torque acts between the
+    /// frames about the steer axis, the lean torque on the rear frame about the lean axis); 0
+    /// hands free, and 0 where a torque is not finite (the step reports that).
+    pub fn power(&self, t: f64, state: &State<f64>) -> f64 {
+        if self.steer_torque.is_none() && self.lean_torque.is_none() {
+            return 0.0;
+        }
+        let view = self.model.observe(state);
+        let steer = self.steer_torque.map_or(0.0, |f| f(t, &view));
+        let lean = self.lean_torque.map_or(0.0, |f| f(t, &view));
+        let power = steer * view.steer_rate + lean * view.lean_rate;
+        if power.is_finite() {
+            power
+        } else {
+            0.0
+        }
+    }
 }
 
 impl OdeSystem<STATE_LEN> for BicycleOde<'_> {
@@ -67,10 +98,66 @@ impl OdeSystem<STATE_LEN> for BicycleOde<'_> {
     }
 }
 
+/// The upright linearized bicycle's fastest mode at `speed`: the eigenvalue of A(v) largest in
+/// size (at low speed the castering mode, at very low speed the capsize and inverted-pendulum
+/// pair). `None` when the linear model cannot be formed for these parameters.
+pub fn fastest_mode(model: &Model, speed: f64) -> Option<Complex64> {
+    let canonical = Canonical::new(model.parameters()).ok()?;
+    eigen::eigenvalues(&canonical, speed)
+        .ok()?
+        .into_iter()
+        .filter(|l| l.re.is_finite() && l.im.is_finite())
+        .max_by(|a, b| a.norm().total_cmp(&b.norm()))
+}
+
+/// The a-priori check of RK4's fixed step `dt` for a run at `speed`: the upright linearized
+/// bicycle's fastest mode λ ([`fastest_mode`]) must have |λ|·dt ≤ [`RK4_STABLE_RADIUS`], or
+/// [`Error::StepTooLarge`] suggests a step with |λ|·dt ≤ [`RK4_ACCURATE_RADIUS`] (rounded down
+/// to 1, 2 or 5 × 10ᵏ). Cheap (one quartic), and a bound for the run's start only: a leaning
+/// or turning bicycle has other modes, which the energy check during the run covers.
+///
+/// ```
+/// use whipple::{BenchmarkParameters, Error, nonlinear::{check_rk4_step, Model}};
+/// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+/// assert!(check_rk4_step(&model, 4.6, 1e-3).is_ok());
+/// let Err(Error::StepTooLarge { what, suggested, .. }) = check_rk4_step(&model, 4.6, 0.25) else {
+///     panic!("a quarter-second step resolves nothing at 4.6 m/s")
+/// };
+/// assert_eq!((what, suggested), ("dt", 0.05));
+/// # Ok::<(), whipple::Error>(())
+/// ```
+pub fn check_rk4_step(model: &Model, speed: f64, dt: f64) -> Result<()> {
+    let Some(lambda) = fastest_mode(model, speed) else {
+        return Ok(());
+    };
+    let size = lambda.norm();
+    if size * dt <= RK4_STABLE_RADIUS {
+        return Ok(());
+    }
+    let mode = if lambda.im == 0.0 {
+        format!("{:.4}", lambda.re)
+    } else {
+        format!("{:.4} ± {:.4}i", lambda.re, lambda.im.abs())
+    };
+    Err(Error::StepTooLarge {
+        what: "dt",
+        value: dt,
+        reason: format!(
+            "the fastest mode of the linearized bicycle at {} m/s, λ = {mode} 1/s, has |λ|·dt = {:.3}, beyond RK4's stability bound |λ|·dt <= {RK4_STABLE_RADIUS} (the steps would amplify what the bicycle damps)",
+            short_number(speed),
+            size * dt
+        ),
+        suggested: round_down_125(RK4_ACCURATE_RADIUS / size),
+    })
+}
+
 /// Simulates from `initial` (projected onto the constraints first) for `settings.duration`.
 ///
-/// Returns `Err` only for unusable settings or an initial state that cannot be evaluated;
-/// everything that happens during the run (a fall, a lifted wheel, a failed projection, a
+/// Returns `Err` for unusable settings, an initial state that cannot be evaluated, and a step
+/// too coarse for the run ([`Error::StepTooLarge`]): an RK4 step beyond the stability bound of
+/// the fastest mode at the run's speed ([`check_rk4_step`], before any step), or, for either
+/// integrator, an energy balance drifting by more than [`MAX_ENERGY_DRIFT`] during the run.
+/// Everything else that happens during the run (a fall, a lifted wheel, a failed projection, a
 /// non-finite state) is an [`Outcome`], with the samples computed up to then.
 pub fn simulate(
     model: &Model,
@@ -81,13 +168,16 @@ pub fn simulate(
     if !initial.is_finite() {
         return Err(Error::NonFiniteState { t: 0.0 });
     }
+    if let Integrator::Rk4 { dt } = settings.integrator {
+        check_rk4_step(model, model.speed(&initial), dt)?;
+    }
     let ode = BicycleOde {
         model,
         steer_torque: settings.steer_torque.as_ref(),
         lean_torque: settings.lean_torque.as_ref(),
     };
     let mut run = Run::start(&ode, initial, settings)?;
-    let outcome = run.until_done();
+    let outcome = run.until_done()?;
     // The last state reached is always a sample, thinned or not.
     if let Some(last) = run.pending.take() {
         run.samples.push(last);
@@ -123,6 +213,23 @@ struct Run<'a> {
     /// Lift-off is a normal force turning negative; a wheel pulled down from the start is not
     /// watched.
     watched: [bool; 2],
+    /// The energy balance: the rider's power at the current state, the work done so far and
+    /// the sum of its sizes (the scale of the balance besides the initial energy).
+    power: f64,
+    work: f64,
+    work_size: f64,
+}
+
+/// What ends a run: an outcome, or an error (a step too coarse for the run).
+enum End {
+    Outcome(Outcome),
+    Error(Error),
+}
+
+impl From<Outcome> for End {
+    fn from(outcome: Outcome) -> Self {
+        End::Outcome(outcome)
+    }
 }
 
 impl<'a> Run<'a> {
@@ -160,33 +267,83 @@ impl<'a> Run<'a> {
             extremes: RunExtremes::start(&first),
             steps: 0,
             watched: derivatives.contact.map(|c| c.normal >= 0.0),
+            power: ode.power(0.0, &state),
+            work: 0.0,
+            work_size: 0.0,
         })
     }
 
-    /// Steps until the end time, an event or a failure.
-    fn until_done(&mut self) -> Outcome {
+    /// Steps until the end time, an event or a failure; `Err` for a step too coarse for the
+    /// run.
+    fn until_done(&mut self) -> Result<Outcome> {
         let lean = self.state.lean();
         if lean.abs() > self.settings.fall_angle {
-            return Outcome::Fell { t: 0.0, lean };
+            return Ok(Outcome::Fell { t: 0.0, lean });
         }
         loop {
             if self.stepper.done() {
-                return Outcome::Completed;
+                return Ok(Outcome::Completed);
             }
             let t = self.stepper.t();
             let stop = self.settings.stop.as_ref();
             if stop.is_some_and(|stop| stop.load(Ordering::Relaxed)) {
-                return Outcome::Stopped { t };
+                return Ok(Outcome::Stopped { t });
             }
-            if let Err(outcome) = self.advance() {
-                return outcome;
+            match self.advance() {
+                Ok(()) => {}
+                Err(End::Outcome(outcome)) => return Ok(outcome),
+                Err(End::Error(error)) => return Err(error),
             }
         }
     }
 
+    /// The energy balance after the step from t0 to the sample `s` (its state `next`): the
+    /// rider's work by the trapezoidal rule, and [`Error::StepTooLarge`] when E − E₀ − W has
+    /// drifted beyond [`MAX_ENERGY_DRIFT`] of the balance's scale.
+    fn check_energy(&mut self, t0: f64, next: &State<f64>, s: &Sample) -> Result<()> {
+        let power = self.ode.power(s.t, next);
+        let work = 0.5 * (self.power + power) * (s.t - t0);
+        self.power = power;
+        self.work += work;
+        self.work_size += work.abs();
+        let initial = self.extremes.initial_energy;
+        let drift = s.energy - initial - self.work;
+        let scale = initial.abs() + self.work_size;
+        // A non-finite energy is the NonFiniteState outcome's, not this check's.
+        if !(drift.is_finite() && scale.is_finite()) || drift.abs() <= MAX_ENERGY_DRIFT * scale {
+            return Ok(());
+        }
+        let balance = if self.work_size > 0.0 {
+            format!(" (beyond the rider's work of {} J)", digits4(self.work))
+        } else {
+            String::new()
+        };
+        let reason = format!(
+            "the energy drifted by {} J{balance} from {} J by t = {:.4} s, {:.3e} of the run's energy where the bicycle conserves it (the limit is {MAX_ENERGY_DRIFT}): the motion computed is the integrator's, not the bicycle's",
+            digits4(drift),
+            digits4(initial),
+            s.t,
+            drift.abs() / scale
+        );
+        Err(match self.settings.integrator {
+            Integrator::Rk4 { dt } => Error::StepTooLarge {
+                what: "dt",
+                value: dt,
+                reason,
+                suggested: round_down_125(dt / 10.0),
+            },
+            Integrator::Dopri5(p) => Error::StepTooLarge {
+                what: "rtol",
+                value: p.rtol,
+                reason,
+                suggested: round_down_125(p.rtol / 1000.0),
+            },
+        })
+    }
+
     /// One accepted step: integrate, project, evaluate, record, look for events. The outcome
-    /// that ends the run, if any, is the error.
-    fn advance(&mut self) -> std::result::Result<(), Outcome> {
+    /// that ends the run, if any, is the error, as is a step too coarse for the run.
+    fn advance(&mut self) -> std::result::Result<(), End> {
         let (t, model) = (self.stepper.t(), self.ode.model);
         let y = self.state.to_vector();
         let Step {
@@ -221,6 +378,7 @@ impl<'a> Run<'a> {
             .map_err(|error| failed(t_new, error))?;
         self.steps += 1;
         let recorded = sample(model, t_new, &next, &poses, &d_new, report.residual);
+        self.check_energy(t, &next, &recorded).map_err(End::Error)?;
         self.extremes.observe(&recorded);
         if self.steps % self.settings.sample_every.max(1) == 0 {
             self.samples.push(recorded);
@@ -238,7 +396,7 @@ impl<'a> Run<'a> {
         let event = self.first_event(t, &next, &d_new, t_new, dense.as_ref());
         self.state = next;
         self.derivatives = d_new;
-        event.map_or(Ok(()), Err)
+        event.map_or(Ok(()), |outcome| Err(outcome.into()))
     }
 
     /// The first event within the step from (t0, the current state) to (t1, `next`): a fall
@@ -288,6 +446,18 @@ impl<'a> Run<'a> {
             .into_iter()
             .min_by(|a, b| a.0.total_cmp(&b.0))
             .map(|(_, outcome)| outcome)
+    }
+}
+
+/// A number to four significant digits for a message (exponent form when very large or small).
+fn digits4(x: f64) -> String {
+    let size = x.abs();
+    if (1e-3..1e6).contains(&size) {
+        // 4 significant digits: 1 to 6 decimals in this range.
+        let decimals = (3.0 - size.log10().floor()).clamp(0.0, 6.0) as usize;
+        format!("{x:.decimals$}")
+    } else {
+        format!("{x:.3e}")
     }
 }
 
