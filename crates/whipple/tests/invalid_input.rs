@@ -399,3 +399,19 @@ fn the_comparison_takes_at_most_its_limit_of_speeds_and_stops_when_asked() {
         "{stopped:?}"
     );
 }
+
+/// A warning whose violation has no finite percentage (a wheel with IRxx = 0 and IRyy > 0:
+/// the reference is zero) carried an infinite `violation_percent`, which JSON prints as null
+/// (the server's answer then broke its own schema, found by schemathesis).
+#[test]
+fn a_notice_never_carries_a_non_finite_percentage() {
+    let mut b = benchmark();
+    b.i_rxx = 0.0;
+    let notices = b.check().unwrap_or_default();
+    assert!(!notices.is_empty());
+    for n in &notices {
+        assert!(n.violation_percent.is_none_or(f64::is_finite), "{n:?}");
+        let json = serde_json::to_string(n).unwrap_or_default();
+        assert!(!json.contains("null"), "{json}");
+    }
+}

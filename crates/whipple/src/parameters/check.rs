@@ -44,7 +44,9 @@ impl Notice {
             severity: Severity::Warning,
             field: field.into(),
             message: message.into(),
-            violation_percent,
+            // A violation against a zero or overflowing reference has no finite percentage
+            // (the message says it in words); JSON would print it as null.
+            violation_percent: violation_percent.filter(|p| p.is_finite()),
             affects: affects.into(),
         }
     }
