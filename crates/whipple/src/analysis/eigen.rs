@@ -44,7 +44,7 @@ pub(crate) fn check_speed(speed: f64) -> Result<()> {
 /// How far a printed eigenvalue may be from the exact eigenvalue of the stored matrices,
 /// relative to its size; a root near zero may also be off by 1e-12 of the bicycle's rate scale
 /// at rest (max over k of |aₖ/a₄|^(1/(4−k)) at v = 0, a few 1/s for a real bicycle).
-pub const EIGENVALUE_TOLERANCE: f64 = 1e-6;
+pub(crate) const EIGENVALUE_TOLERANCE: f64 = 1e-6;
 
 /// The eigenvalues at `speed`, each certified: a bound on how far round-off (in forming the
 /// quartic's coefficients at this speed and in evaluating it) can have moved it is computed,

@@ -81,7 +81,7 @@ impl CharacteristicPolynomial {
     /// most 12 on the matrices as stored, so each computed aₖ lies within γ₁₂ Σⱼ |cₖⱼ| |v|ʲ of
     /// the exact coefficient of those matrices (Higham 2002, §3.1; the |cₖⱼ| are the expansion
     /// of the entries' absolute values).
-    pub fn error_bounds(&self, v: f64) -> [f64; DEGREE + 1] {
+    pub(crate) fn error_bounds(&self, v: f64) -> [f64; DEGREE + 1] {
         const U: f64 = f64::EPSILON / 2.0;
         let gamma = 12.0 * U / (1.0 - 12.0 * U);
         let mut e = [0.0; DEGREE + 1];
