@@ -297,6 +297,15 @@ try {
   check(!(await page.locator("#sim-steer-torque").evaluate((e) => e.classList.contains("invalid"))), `steering into the lean holds it up at 3 m/s: "${await text("sim-outcome")}"`);
   await page.getByTestId("tab-eigen").click();
   check(await page.locator("#panel-eigen").isVisible(), "the eigenvalue tab comes back");
+  // A design whose self-stable range is about 1e-12 m/s wide (the benchmark with its trail
+  // where v_w meets v_c): the certificate cannot decide there, and no cell may contradict it
+  // ("nowhere" or "none" beside an undecided interval).
+  await page.goto(`${url}?bike=preset:benchmark&e=c:-0.008009376368681962`);
+  await page.waitForSelector("body[data-ready=true]");
+  const undecided = await waitForText("stable-ranges", (t) => t.startsWith("undecided in"));
+  check(undecided.includes("2.696") && undecided.endsWith("nowhere else"), `an undecided design: self-stable "${undecided}"`);
+  const weaveUndecided = await text("weave-speed");
+  check(weaveUndecided.startsWith("undecided in 2.696"), `and its weave speed "${weaveUndecided}", not "none"`);
   check(errors.length === 0, `no page errors (${errors.join("; ") || "none"})`);
   console.log(`e2e: ok (${checks} checks)`);
 } catch (e) {

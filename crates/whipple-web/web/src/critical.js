@@ -29,7 +29,7 @@ function speed(v, eigen, mode, range, c) {
   if (v !== null && v !== undefined) return fixed(v, 4);
   // Where the certificate could not decide, "none" would contradict it.
   const open = undecided(c);
-  if (open) return `none certified; undecided in ${open}`;
+  if (open) return `undecided in ${open}`;
   const where = range ? ` ${fixed(range[0], 1)}–${fixed(range[1], 1)}` : "";
   const state = mode && throughout(eigen, mode);
   if (state === "unstable") return `none: unstable at every speed${where}`;
