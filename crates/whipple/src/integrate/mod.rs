@@ -47,7 +47,7 @@ pub const RK4_ACCURATE_RADIUS: f64 = 1.0;
 
 /// The largest number of the form 1, 2 or 5 × 10ᵏ that is at most `x` (positive, finite): a
 /// step or tolerance to suggest in a message. `x` itself when it is not positive and finite.
-pub fn round_down_125(x: f64) -> f64 {
+pub(crate) fn round_down_125(x: f64) -> f64 {
     if !(x.is_finite() && x > 0.0) {
         return x;
     }

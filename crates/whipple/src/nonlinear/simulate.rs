@@ -76,7 +76,7 @@ impl BicycleOde<'_> {
     /// The rider's power at (t, state) [W]: T_δ δ̇ + T_φ φ̇ (the steer torque acts between the
     /// frames about the steer axis, the lean torque on the rear frame about the lean axis); 0
     /// hands free, and 0 where a torque is not finite (the step reports that).
-    pub fn power(&self, t: f64, state: &State<f64>) -> f64 {
+    pub(crate) fn power(&self, t: f64, state: &State<f64>) -> f64 {
         if self.steer_torque.is_none() && self.lean_torque.is_none() {
             return 0.0;
         }
