@@ -5,12 +5,13 @@
 mod common;
 
 use std::fs;
-use std::io::{BufRead, BufReader};
 use std::path::Path;
-use std::process::{Command, Stdio};
+use std::process::Command;
 use std::time::{Duration, Instant};
 
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use common::{
+    read_first_line_then_close, scratch, spawn_quiet, stderr_of_failure, stdout, whipple,
+};
 
 fn write_benchmark_toml(dir: &Path) -> std::path::PathBuf {
     let path = dir.join("bike.toml");
@@ -139,22 +140,17 @@ fn a_signal_leaves_no_temporary_file_and_says_what_was_not_written() {
     for (signal, code) in [("TERM", 143), ("HUP", 129), ("INT", 130)] {
         let dir = scratch(&format!("signal-{signal}"));
         let out = dir.join("map.csv");
-        let mut child = Command::new(env!("CARGO_BIN_EXE_whipple"))
-            .args([
-                "map",
-                "--bike",
-                "benchmark",
-                "--x",
-                "trail=-0.05:0.25:3000",
-                "--y",
-                "head_angle_deg=60:85:3000",
-                "--out",
-                out.to_str().expect("utf-8"),
-            ])
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("runs");
+        let mut child = spawn_quiet(&[
+            "map",
+            "--bike",
+            "benchmark",
+            "--x",
+            "trail=-0.05:0.25:3000",
+            "--y",
+            "head_angle_deg=60:85:3000",
+            "--out",
+            out.to_str().expect("utf-8"),
+        ]);
         assert!(
             wait_for_temporary(&dir, &mut child),
             "{signal}: no temporary file appeared"
@@ -179,20 +175,15 @@ fn a_signal_leaves_no_temporary_file_and_says_what_was_not_written() {
 fn a_signal_removes_the_report_directory_it_created() {
     let dir = scratch("signal-report");
     let report = dir.join("out");
-    let child = Command::new(env!("CARGO_BIN_EXE_whipple"))
-        .args([
-            "validate",
-            "--bike",
-            "benchmark",
-            "--speeds",
-            "0:10:0.0005",
-            "--report",
-            report.to_str().expect("utf-8"),
-        ])
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("runs");
+    let child = spawn_quiet(&[
+        "validate",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "0:10:0.0005",
+        "--report",
+        report.to_str().expect("utf-8"),
+    ]);
     let deadline = Instant::now() + Duration::from_secs(60);
     while !report.exists() && Instant::now() < deadline {
         std::thread::yield_now();
@@ -233,8 +224,8 @@ fn an_endless_or_huge_parameter_file_is_refused_at_the_bound() {
 /// goes away is a normal end.
 #[test]
 fn a_map_into_a_closed_pipe_ends_quietly() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_whipple"))
-        .args([
+    let output = read_first_line_then_close(
+        &[
             "map",
             "--bike",
             "benchmark",
@@ -242,18 +233,9 @@ fn a_map_into_a_closed_pipe_ends_quietly() {
             "trail=-0.05:0.25:1000",
             "--y",
             "head_angle_deg=60:85:1000",
-        ])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("runs");
-    {
-        let out = child.stdout.take().expect("stdout");
-        let mut first = String::new();
-        BufReader::new(out).read_line(&mut first).expect("a line");
-        assert!(first.starts_with("# whipple design study"), "{first}");
-    }
-    let output = child.wait_with_output().expect("ends");
+        ],
+        |line| line.starts_with("# whipple design study"),
+    );
     let err = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "{err}");
     assert!(err.is_empty(), "{err}");

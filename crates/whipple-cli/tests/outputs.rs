@@ -5,10 +5,8 @@
 mod common;
 
 use std::fs;
-use std::io::{BufRead, BufReader};
-use std::process::{Command, Stdio};
 
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use common::{read_one_line_then_close, scratch, stderr_of_failure, stdout, whipple};
 
 const EIG: [&str; 5] = ["eig", "--bike", "benchmark", "--speeds", "0:10:0.5"];
 
@@ -345,24 +343,6 @@ fn issue_10_simulate_checks_its_outputs_before_the_run() {
     ]));
     assert!(err.contains("--plot"), "{err}");
     assert!(!out.exists());
-}
-
-/// Runs `whipple ARGS | head -1`: reads the first line of standard output, closes the pipe and
-/// waits for the end.
-fn read_one_line_then_close(args: &[&str]) -> std::process::Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_whipple"))
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("runs");
-    {
-        let out = child.stdout.take().expect("stdout");
-        let mut first = String::new();
-        BufReader::new(out).read_line(&mut first).expect("a line");
-        assert!(!first.is_empty());
-    } // the pipe is closed here
-    child.wait_with_output().expect("ends")
 }
 
 /// `whipple eig ... | head -1`: the reader going away ends the run quietly, with success.

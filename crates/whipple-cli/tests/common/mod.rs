@@ -1,8 +1,9 @@
 //! Helpers shared by the integration tests that run the real binary.
 #![allow(dead_code)] // each test file uses its own subset
 
+use std::io::{BufRead, BufReader};
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::{Child, Command, Output, Stdio};
 
 /// Runs `whipple` with these arguments.
 pub fn whipple(args: &[&str]) -> Output {
@@ -34,4 +35,37 @@ pub fn scratch(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("scratch directory");
     dir
+}
+
+/// Runs `whipple ARGS | head -1`: reads the first line of standard output, closes the pipe and
+/// waits for the end. The line is checked by `first`.
+pub fn read_first_line_then_close(args: &[&str], first: impl Fn(&str) -> bool) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_whipple"))
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("runs");
+    {
+        let out = child.stdout.take().expect("stdout");
+        let mut line = String::new();
+        BufReader::new(out).read_line(&mut line).expect("a line");
+        assert!(first(&line), "first line: {line}");
+    } // the pipe is closed here
+    child.wait_with_output().expect("ends")
+}
+
+/// [`read_first_line_then_close`] with any non-empty first line.
+pub fn read_one_line_then_close(args: &[&str]) -> Output {
+    read_first_line_then_close(args, |line| !line.is_empty())
+}
+
+/// Starts `whipple ARGS` in the background, standard output discarded and standard error kept.
+pub fn spawn_quiet(args: &[&str]) -> Child {
+    Command::new(env!("CARGO_BIN_EXE_whipple"))
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("runs")
 }
