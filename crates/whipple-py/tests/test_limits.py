@@ -117,8 +117,13 @@ def interrupted_within(call: str, busy: float = 0.3) -> float:
         start = cpu_seconds(p.pid)
         deadline = time.monotonic() + 60
         while cpu_seconds(p.pid) - start < busy:
-            assert time.monotonic() < deadline and p.poll() is None, "the call did not start"
-            time.sleep(0.01)
+            assert time.monotonic() < deadline, "the call did not start"
+            # Waits on the child: its end before the signal is a failure.
+            try:
+                p.wait(timeout=0.01)
+            except subprocess.TimeoutExpired:
+                continue
+            pytest.fail(f"{call}: the child ended before it was interrupted")
         sent = time.monotonic()
         p.send_signal(signal.SIGINT)
         try:
