@@ -317,6 +317,52 @@ fn issue_11_other_keys_are_reported_or_refused() -> Result<(), Error> {
     Ok(())
 }
 
+/// Arithmetic in a `.txt` value follows the usual precedence, as torque expressions do: a
+/// leading minus binds looser than `^` (`-3^2/10` is −0.9, the benchmark's z_B, not +0.9),
+/// `-` and `/` associate to the left, `^` to the right; a value that cannot be evaluated is
+/// refused naming its key as the file wrote it.
+#[test]
+fn txt_values_evaluate_with_the_usual_precedence() -> Result<(), Error> {
+    let base = write(
+        &presets::find("benchmark")?.bicycle(),
+        Format::HumanControlTxt,
+    )?;
+    let with = |key: &str, value: &str| -> String {
+        base.lines()
+            .map(|l| {
+                if l.split('=').next().map(str::trim) == Some(key) {
+                    format!("{key} = {value}")
+                } else {
+                    l.to_string()
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    let expected = parse(&base, Format::HumanControlTxt)?.description;
+    // zB = -0.9, xB = 0.3, w = 1.02, c = 0.08 in the benchmark.
+    for (key, value) in [
+        ("zB", "-3^2/10"),
+        ("xB", "1.2 - 0.6 - 0.3"),
+        ("w", "4.08/2/2"),
+        ("c", "2^3^2/6400"),
+        ("zB", "-0.9*2^-1*2"),
+    ] {
+        let bike = parse(&with(key, value), Format::HumanControlTxt)?;
+        assert_eq!(bike.description, expected, "{key} = {value}");
+    }
+    for (value, says) in [
+        ("2*t", "unknown name `t` at column 3"),
+        ("sqrt 2", "needs its argument in parentheses"),
+        ("(1", "to close the `(` at column 1"),
+        ("1/0", "not a finite number"),
+    ] {
+        let m = message(parse(&with("zB", value), Format::HumanControlTxt));
+        assert!(m.contains("zB") && m.contains(says), "{value}: {m}");
+    }
+    Ok(())
+}
+
 /// An ambiguous `.txt` gets a message listing the formats and how to choose one.
 #[test]
 fn ambiguous_text_files_list_the_formats() {

@@ -12,6 +12,10 @@
 //! take scientific notation, and both the length and the nesting depth are bounded (no
 //! recursion a hostile input can drive deep).
 //!
+//! The same parser evaluates the arithmetic in BicycleParameters and HumanControl `.txt` values
+//! ([`evaluate_constant`]): there no variable is known, and the names are those such files use
+//! (`pi`, `sqrt`, `sin`, `cos`, `tan`, `abs`, `deg2rad`), with the same precedence.
+//!
 //! ```
 //! use whipple::nonlinear::TorqueExpression;
 //! let torque = TorqueExpression::parse("10*lean + 20*lean_rate")?;
@@ -139,6 +143,68 @@ fn constant(name: &str) -> Option<f64> {
     })
 }
 
+/// The functions a parameter file's value may call (what MATLAB's `str2num` of such files
+/// evaluates).
+fn file_function(name: &str) -> Option<fn(f64) -> f64> {
+    Some(match name {
+        "abs" => f64::abs,
+        "cos" => f64::cos,
+        "deg2rad" => f64::to_radians,
+        "sin" => f64::sin,
+        "sqrt" => f64::sqrt,
+        "tan" => f64::tan,
+        _ => return None,
+    })
+}
+
+/// The one constant a parameter file's value may name.
+fn file_constant(name: &str) -> Option<f64> {
+    (name == "pi").then_some(std::f64::consts::PI)
+}
+
+/// No function of two arguments in a parameter file.
+fn no_binary(_: &str) -> Option<fn(f64, f64) -> f64> {
+    None
+}
+
+/// The names one use of the language knows: the grammar and precedence are the same for all.
+struct Dialect {
+    variables: &'static [&'static str],
+    unary: fn(&str) -> Option<fn(f64) -> f64>,
+    binary: fn(&str) -> Option<fn(f64, f64) -> f64>,
+    constant: fn(&str) -> Option<f64>,
+    /// What an unknown name's message lists as known.
+    known: fn() -> String,
+    /// The argument of the example call in the message about a call without parentheses.
+    example_argument: &'static str,
+}
+
+/// Rider torques: time, the state, every function and constant.
+const TORQUE: Dialect = Dialect {
+    variables: &VARIABLES,
+    unary,
+    binary,
+    constant,
+    known: || {
+        format!(
+            "the variables are {}; the functions {}, atan2, min, max; the constants pi, e, tau",
+            VARIABLES.join(", "),
+            FUNCTIONS.join(", ")
+        )
+    },
+    example_argument: "t",
+};
+
+/// Values in BicycleParameters and HumanControl `.txt` files: no variables.
+const FILE_VALUE: Dialect = Dialect {
+    variables: &[],
+    unary: file_function,
+    binary: no_binary,
+    constant: file_constant,
+    known: || "the functions are abs, cos, deg2rad, sin, sqrt, tan; the constant pi".into(),
+    example_argument: "2",
+};
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Token<'a> {
     Number(f64),
@@ -225,6 +291,7 @@ fn tokens(text: &str) -> std::result::Result<Vec<Located<'_>>, String> {
 
 /// Recursive descent over the tokens, bounded by [`MAX_DEPTH`], emitting postfix code.
 struct Parser<'a> {
+    dialect: &'a Dialect,
     tokens: Vec<Located<'a>>,
     at: usize,
     program: Vec<Op>,
@@ -345,29 +412,30 @@ impl<'a> Parser<'a> {
             }
             Token::Name(name) => {
                 let call = self.peek_symbol('(');
-                if let Some(slot) = VARIABLES.iter().position(|v| *v == name) {
+                let d = self.dialect;
+                if let Some(slot) = d.variables.iter().position(|v| *v == name) {
                     self.program.push(Op::Variable(slot));
-                } else if let (false, Some(x)) = (call, constant(name)) {
+                } else if let (false, Some(x)) = (call, (d.constant)(name)) {
                     self.program.push(Op::Number(x));
-                } else if let (true, Some(f)) = (call, unary(name)) {
+                } else if let (true, Some(f)) = (call, (d.unary)(name)) {
                     self.arguments(name, column, 1)?;
                     self.program.push(Op::Call(f));
-                } else if let (true, Some(f)) = (call, binary(name)) {
+                } else if let (true, Some(f)) = (call, (d.binary)(name)) {
                     self.arguments(name, column, 2)?;
                     self.program.push(Op::Call2(f));
-                } else if call && constant(name).is_some() {
+                } else if call && (d.constant)(name).is_some() {
                     return Err(format!(
                         "`{name}` at column {column} is a constant, not a function"
                     ));
-                } else if unary(name).is_some() || binary(name).is_some() {
+                } else if (d.unary)(name).is_some() || (d.binary)(name).is_some() {
                     return Err(format!(
-                        "the function `{name}` at column {column} needs its argument in parentheses, as `{name}(t)`"
+                        "the function `{name}` at column {column} needs its argument in parentheses, as `{name}({})`",
+                        d.example_argument
                     ));
                 } else {
                     return Err(format!(
-                        "unknown name `{name}` at column {column} (the variables are {}; the functions {}, atan2, min, max; the constants pi, e, tau)",
-                        VARIABLES.join(", "),
-                        FUNCTIONS.join(", ")
+                        "unknown name `{name}` at column {column} ({})",
+                        (d.known)()
                     ));
                 }
             }
@@ -426,12 +494,12 @@ fn stack_depth(program: &[Op]) -> usize {
     most
 }
 
-fn run(program: &[Op], stack: &mut Vec<f64>, variables: &[f64; VARIABLES.len()]) -> f64 {
+fn run(program: &[Op], stack: &mut Vec<f64>, variables: &[f64]) -> f64 {
     stack.clear();
     for op in program {
         let x = match *op {
             Op::Number(x) => x,
-            Op::Variable(slot) => variables[slot],
+            Op::Variable(slot) => variables.get(slot).copied().unwrap_or(f64::NAN),
             Op::Negate => -stack.pop().unwrap_or(f64::NAN),
             Op::Call(f) => f(stack.pop().unwrap_or(f64::NAN)),
             _ => {
@@ -458,6 +526,63 @@ fn run(program: &[Op], stack: &mut Vec<f64>, variables: &[f64; VARIABLES.len()])
     }
 }
 
+/// Why a text is not an expression of a dialect.
+enum Refusal {
+    /// Longer than [`MAX_LENGTH`] bytes (its length).
+    TooLong(usize),
+    /// Nothing but white space.
+    Empty,
+    /// What is wrong, and at which column.
+    Unreadable(String),
+}
+
+/// Parses `text` in `dialect` into postfix code and the stack depth it needs.
+fn compile(text: &str, dialect: &Dialect) -> std::result::Result<(Vec<Op>, usize), Refusal> {
+    if text.len() > MAX_LENGTH {
+        return Err(Refusal::TooLong(text.len()));
+    }
+    let tokens = tokens(text).map_err(Refusal::Unreadable)?;
+    if tokens.is_empty() {
+        return Err(Refusal::Empty);
+    }
+    let mut parser = Parser {
+        dialect,
+        tokens,
+        at: 0,
+        program: Vec::new(),
+        depth: 0,
+    };
+    parser.sum().map_err(Refusal::Unreadable)?;
+    if let Some(rest) = parser.peek() {
+        let why = match rest {
+            (Token::Symbol(')'), column) => {
+                format!("the `)` at column {column} closes no `(`")
+            }
+            _ => format!("{} where an operator was expected", describe(Some(rest))),
+        };
+        return Err(Refusal::Unreadable(why));
+    }
+    let stack = stack_depth(&parser.program);
+    Ok((parser.program, stack))
+}
+
+/// The value of a number written as arithmetic in a BicycleParameters or HumanControl `.txt`
+/// file (`pi/10`, `-2^2`, `sqrt(2)*0.5`, `deg2rad(18)`): the torque language's grammar and
+/// precedence, without variables, with the names such files use. The error says what is wrong
+/// and at which column of `text`; the caller names the field.
+pub(crate) fn evaluate_constant(text: &str) -> std::result::Result<f64, String> {
+    let (program, depth) = compile(text, &FILE_VALUE).map_err(|refusal| match refusal {
+        Refusal::TooLong(n) => format!("it is {n} bytes long, more than the limit of {MAX_LENGTH}"),
+        Refusal::Empty => "it is empty".into(),
+        Refusal::Unreadable(why) => why,
+    })?;
+    let v = run(&program, &mut Vec::with_capacity(depth), &[]);
+    if !v.is_finite() {
+        return Err(format!("the result is not a finite number ({v})"));
+    }
+    Ok(v)
+}
+
 impl TorqueExpression {
     /// Parses `text`; its names must be among [`VARIABLES`], the constants and the functions,
     /// and it must evaluate to a finite number at rest (every variable zero). The error's rule
@@ -467,42 +592,24 @@ impl TorqueExpression {
             what: "torque expression",
             rule,
         };
-        if text.len() > MAX_LENGTH {
-            return Err(invalid(format!(
-                "is {} bytes long, more than the limit of {MAX_LENGTH}",
-                text.len()
-            )));
-        }
         // Quoted in messages with its control characters escaped, so that it cannot break the
         // message's lines.
         let shown = text.escape_debug().to_string();
-        let cannot_read = |why: String| invalid(format!("cannot read `{shown}`: {why}"));
-        let tokens = tokens(text).map_err(&cannot_read)?;
-        if tokens.is_empty() {
-            return Err(invalid(
-                "is empty (write 0 for no torque, or an expression such as `0.5*sin(2*t)`)".into(),
-            ));
-        }
-        let mut parser = Parser {
-            tokens,
-            at: 0,
-            program: Vec::new(),
-            depth: 0,
-        };
-        parser.sum().map_err(&cannot_read)?;
-        if let Some(rest) = parser.peek() {
-            let why = match rest {
-                (Token::Symbol(')'), column) => {
-                    format!("the `)` at column {column} closes no `(`")
+        let (program, stack) = compile(text, &TORQUE).map_err(|refusal| {
+            invalid(match refusal {
+                Refusal::TooLong(n) => {
+                    format!("is {n} bytes long, more than the limit of {MAX_LENGTH}")
                 }
-                _ => format!("{} where an operator was expected", describe(Some(rest))),
-            };
-            return Err(cannot_read(why));
-        }
-        let program = parser.program;
+                Refusal::Empty => {
+                    "is empty (write 0 for no torque, or an expression such as `0.5*sin(2*t)`)"
+                        .into()
+                }
+                Refusal::Unreadable(why) => format!("cannot read `{shown}`: {why}"),
+            })
+        })?;
         let expression = TorqueExpression {
             text: text.to_string(),
-            stack: stack_depth(&program),
+            stack,
             program,
         };
         let at_rest = expression.eval(0.0, &StateView::default());
@@ -597,6 +704,51 @@ mod tests {
         assert_eq!(at_rest("max(1, min(2, 3)) + atan2(0, 1)"), 2.0);
         assert!((at_rest("cos(pi)") + 1.0).abs() < 1e-15);
         assert_eq!(at_rest("sign(0)"), 0.0);
+    }
+
+    /// Parameter-file values use the same grammar and precedence as torques: `-2^2` is −4
+    /// in both, `-` and `/` associate to the left and `^` to the right; only the names differ
+    /// (no variables, `deg2rad`, only `pi`).
+    #[test]
+    fn file_values_share_the_grammar() {
+        let value = |text: &str| match evaluate_constant(text) {
+            Ok(v) => v,
+            Err(e) => panic!("{text}: {e}"),
+        };
+        for text in [
+            "-2^2",
+            "2^-1",
+            "2^3^2",
+            "1 - 2 - 3",
+            "8/2/2",
+            "--1",
+            "(1 + 2)*3",
+        ] {
+            assert_eq!(value(text), at_rest(text), "{text}");
+        }
+        assert_eq!(value("-2^2"), -4.0);
+        assert_eq!(value("2^3^2"), 512.0);
+        assert_eq!(value("8/2/2"), 2.0);
+        assert_eq!(value("1 - 2 - 3"), -4.0);
+        assert_eq!(value("deg2rad(180)"), std::f64::consts::PI);
+        assert_eq!(value("pi/10"), std::f64::consts::PI / 10.0);
+        for (text, expected) in [
+            ("t", "unknown name `t` at column 1"),
+            ("e", "unknown name `e` at column 1"),
+            ("exp(1)", "unknown name `exp`"),
+            ("sqrt 2", "needs its argument in parentheses, as `sqrt(2)`"),
+            ("1/0", "not a finite number"),
+            ("1 +", "the expression ends where"),
+            ("2 3", "follows an operand"),
+            ("", "empty"),
+        ] {
+            match evaluate_constant(text) {
+                Ok(v) => panic!("{text}: accepted as {v}"),
+                Err(got) => assert!(got.contains(expected), "{text}: {got}"),
+            }
+        }
+        let deep = format!("{}1{}", "(".repeat(400), ")".repeat(400));
+        assert!(evaluate_constant(&deep).is_err());
     }
 
     /// Every message names the place and never an internal detail of the parser.

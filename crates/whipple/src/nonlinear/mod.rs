@@ -61,6 +61,7 @@ mod tree;
 
 pub use bodies::{Bodies, Geometry, RigidBody};
 pub use constraints::Residuals;
+pub(crate) use expression::evaluate_constant;
 pub use expression::{
     TorqueExpression, BINARY_FUNCTIONS, FUNCTIONS, MAX_DEPTH as MAX_EXPRESSION_DEPTH,
     MAX_LENGTH as MAX_EXPRESSION_LENGTH, VARIABLES,
