@@ -463,7 +463,7 @@ pub(crate) fn round_to_sigma(v: f64, s: f64) -> String {
 
 /// Each tracked eigenvalue's real part ± σ at every speed of the sweep.
 fn eigen_sigma_bands(bike: &LoadedBike, s: &sweep::EigenSweep) -> Result<Vec<[(f64, f64); 4]>> {
-    let d = sensitivity::Derivatives::new(&bike.bicycle)?;
+    let d = sensitivity::ParameterDerivatives::new(&bike.bicycle)?;
     let mut bands = Vec::with_capacity(s.speeds.len());
     for (v, row) in s.speeds.iter().zip(&s.eigenvalues) {
         let sig = sensitivity::eigenvalue_sigmas(&d, *v)?;

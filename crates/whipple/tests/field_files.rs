@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use whipple::analysis::sensitivity::{
-    critical_speeds_sigma, sensitivities, with_parameter, Derivatives,
+    critical_speeds_sigma, sensitivities, with_parameter, ParameterDerivatives,
 };
 use whipple::analysis::stability::critical_speeds;
 use whipple::linear::Canonical;
@@ -270,7 +270,7 @@ fn weave_speed_sigma_agrees_with_monte_carlo() -> TestResult {
     let bike = read(&data("bicycleparameters").join("FisherBenchmark.txt"))?;
     let first_order = critical_speeds_sigma(&bike, 0.0, 10.0)?;
     let sigma = first_order.weave_speed_sigma.ok_or("σ of v_w")?;
-    let d = Derivatives::new(&bike)?;
+    let d = ParameterDerivatives::new(&bike)?;
     let mut rng = Normal(20071955);
     let n = 2000;
     let mut samples = Vec::with_capacity(n);
@@ -305,7 +305,7 @@ fn weave_speed_sigma_agrees_with_monte_carlo() -> TestResult {
 #[test]
 fn eigenvalue_derivatives_match_central_differences() -> TestResult {
     let bike = presets::find("benchmark")?.bicycle();
-    let d = Derivatives::new(&bike)?;
+    let d = ParameterDerivatives::new(&bike)?;
     let derivs = d.eigenvalue_derivatives(5.0)?;
     let k = d.index("mB").ok_or("mB")?;
     let h = 1e-4;

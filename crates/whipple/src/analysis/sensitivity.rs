@@ -12,10 +12,10 @@
 //! differentiation); the double-root speed, where p = ∂p/∂λ = 0, by dv = −(∂p/∂pᵢ)/(∂p/∂v).
 //!
 //! ```
-//! use whipple::analysis::sensitivity::Derivatives;
+//! use whipple::analysis::sensitivity::ParameterDerivatives;
 //! use whipple::parameters::presets;
 //! let bike = presets::find("benchmark")?.bicycle();
-//! let d = Derivatives::new(&bike)?;
+//! let d = ParameterDerivatives::new(&bike)?;
 //! let critical = whipple::analysis::stability::critical_speeds(&d.canonical, 0.0, 10.0)?;
 //! let dv = d.weave_speed_derivatives(&critical).unwrap();
 //! let trail = d.index("c").unwrap();
@@ -39,7 +39,7 @@ use crate::parameters::{BenchmarkParameters, Bicycle, Description, Jbike6Paramet
 /// The canonical matrices of a bicycle and their exact derivatives with respect to each
 /// parameter of its own form, with the parameters' values and standard deviations.
 #[derive(Debug, Clone)]
-pub struct Derivatives {
+pub struct ParameterDerivatives {
     /// The form whose parameters are differentiated.
     pub form: Form,
     /// The parameters, in the form's table order.
@@ -97,7 +97,7 @@ fn root_function(root: Root, a: &[Dual64; 5]) -> Dual64 {
     }
 }
 
-impl Derivatives {
+impl ParameterDerivatives {
     /// Checks the bicycle (warnings do not stop it) and differentiates its canonical matrices
     /// with respect to every parameter of its own form: one dual-number pass per parameter.
     pub fn new(bike: &Bicycle) -> Result<Self> {
@@ -125,7 +125,7 @@ impl Derivatives {
             });
             debug_assert!((re(&c.m) - canonical.m).norm() <= 1e-9 * canonical.m.norm());
         }
-        Ok(Derivatives {
+        Ok(ParameterDerivatives {
             form,
             parameters: table,
             values,
@@ -135,7 +135,7 @@ impl Derivatives {
         })
     }
 
-    /// The position of a parameter (by file key) in [`Derivatives::parameters`].
+    /// The position of a parameter (by file key) in [`ParameterDerivatives::parameters`].
     pub fn index(&self, key: &str) -> Option<usize> {
         self.parameters
             .iter()
@@ -340,7 +340,7 @@ pub struct CriticalSpeedsSigma {
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub fn critical_speeds_sigma(bike: &Bicycle, lo: f64, hi: f64) -> Result<CriticalSpeedsSigma> {
-    let d = Derivatives::new(bike)?;
+    let d = ParameterDerivatives::new(bike)?;
     let speeds = critical_speeds(&d.canonical, lo, hi)?;
     let sig = |x: Option<Vec<f64>>| x.map(|x| d.sigma_of(&x));
     Ok(CriticalSpeedsSigma {
@@ -375,7 +375,7 @@ pub struct EigenvalueSigma {
 }
 
 /// The eigenvalues at speed v with first-order standard deviations.
-pub fn eigenvalue_sigmas(d: &Derivatives, v: f64) -> Result<Vec<EigenvalueSigma>> {
+pub fn eigenvalue_sigmas(d: &ParameterDerivatives, v: f64) -> Result<Vec<EigenvalueSigma>> {
     Ok(d.eigenvalue_derivatives(v)?
         .into_iter()
         .map(|(l, dl)| {
@@ -464,7 +464,7 @@ pub fn sensitivities(
     hi: f64,
     speed: Option<f64>,
 ) -> Result<Sensitivities> {
-    let d = Derivatives::new(bike)?;
+    let d = ParameterDerivatives::new(bike)?;
     let critical = critical_speeds(&d.canonical, lo, hi)?;
     let dw = d.weave_speed_derivatives(&critical);
     let dc = d.capsize_speed_derivatives(&critical);

@@ -43,8 +43,8 @@ use crate::analysis::linearize::{jacobian, VectorField};
 use crate::error::{Error, Result};
 use crate::linear::Canonical;
 use crate::nonlinear::{
-    ContactForce, Derivatives, InitialConditions, Inputs, Model, State, BODIES, REAR_FRAME,
-    REAR_WHEEL, YAW,
+    ContactForce, InitialConditions, Inputs, Model, State, StateRates, BODIES, BODY_YAW,
+    REAR_FRAME, REAR_WHEEL,
 };
 
 #[inline]
@@ -215,7 +215,7 @@ impl SteadyTurn {
 /// The model evaluated at (φ, δ, v, T_δ) with φ̇ = δ̇ = 0.
 struct Evaluation<T: RealField + Copy> {
     state: State<T>,
-    d: Derivatives<T>,
+    d: StateRates<T>,
     /// φ̈, δ̈.
     accelerations: [T; 2],
     /// The rear hub's forward acceleration.
@@ -226,12 +226,12 @@ struct Evaluation<T: RealField + Copy> {
 }
 
 /// The rear hub's forward acceleration d/dt (v_hub · h(ψ)) with h the horizontal heading.
-fn hub_speed_rate<T: RealField + Copy>(state: &State<T>, d: &Derivatives<T>) -> T {
-    let yaw = state.q[6 * REAR_FRAME + YAW];
+fn hub_speed_rate<T: RealField + Copy>(state: &State<T>, d: &StateRates<T>) -> T {
+    let yaw = state.q[6 * REAR_FRAME + BODY_YAW];
     let (s, co) = yaw.sin_cos();
     let v = state.velocity(REAR_WHEEL);
     let a = d.u_dot.fixed_rows::<3>(6 * REAR_WHEEL).into_owned();
-    let yaw_rate = d.q_dot[6 * REAR_FRAME + YAW];
+    let yaw_rate = d.q_dot[6 * REAR_FRAME + BODY_YAW];
     a.x * co + a.y * s + (v.y * co - v.x * s) * yaw_rate
 }
 
@@ -289,10 +289,11 @@ fn evaluate<T: RealField + Copy>(
 
 /// The variables of the turn equations: z = [φ, δ, v, T_δ].
 type Point = [f64; 4];
-const LEAN: usize = 0;
-const STEER: usize = 1;
-const SPEED: usize = 2;
-const TORQUE: usize = 3;
+// Indices into a `Point` (not the linear state's `linear::LEAN`, … nor a body's `BODY_LEAN`).
+const TURN_LEAN: usize = 0;
+const TURN_STEER: usize = 1;
+const TURN_SPEED: usize = 2;
+const TURN_TORQUE: usize = 3;
 
 /// The equations (φ̈, δ̈ and, when a curvature is given, κ − κ₀) and their exact Jacobian in
 /// the unknowns, by one dual-number pass per unknown.
@@ -307,7 +308,13 @@ fn equations(
     let mut jac = DMatrix::zeros(rows, unknowns.len());
     for (j, &k) in unknowns.iter().enumerate() {
         let d = |i: usize| Dual64::new(z[i], if i == k { 1.0 } else { 0.0 });
-        let e = evaluate(model, d(LEAN), d(STEER), d(SPEED), d(TORQUE))?;
+        let e = evaluate(
+            model,
+            d(TURN_LEAN),
+            d(TURN_STEER),
+            d(TURN_SPEED),
+            d(TURN_TORQUE),
+        )?;
         let mut out = vec![e.accelerations[0], e.accelerations[1]];
         if let Some(k0) = curvature {
             out.push(e.curvature - Dual64::from_re(k0));
@@ -353,7 +360,7 @@ fn newton(
             z[k] += step[j];
             small &= step[j].abs() <= settings.step_tolerance * (1.0 + z[k].abs());
         }
-        if z[LEAN].abs() > MAX_LEAN || z[SPEED] < 0.0 {
+        if z[TURN_LEAN].abs() > MAX_LEAN || z[TURN_SPEED] < 0.0 {
             break;
         }
         if small {
@@ -377,9 +384,15 @@ fn describe(
     // The configuration is 2π-periodic in steer: report the steer in (−π, π].
     let mut z = *z;
     let tau = std::f64::consts::TAU;
-    z[STEER] -= tau * (z[STEER] / tau).round();
+    z[TURN_STEER] -= tau * (z[TURN_STEER] / tau).round();
     let z = &z;
-    let e = evaluate(model, z[LEAN], z[STEER], z[SPEED], z[TORQUE])?;
+    let e = evaluate(
+        model,
+        z[TURN_LEAN],
+        z[TURN_STEER],
+        z[TURN_SPEED],
+        z[TURN_TORQUE],
+    )?;
     let residuals = TurnResiduals {
         lean_acceleration: e.accelerations[0],
         steer_acceleration: e.accelerations[1],
@@ -388,10 +401,10 @@ fn describe(
     let given = || {
         format!(
             "speed {} m/s, lean {:.3}°, steer {:.3}°, steer torque {} N m",
-            z[SPEED],
-            z[LEAN].to_degrees(),
-            z[STEER].to_degrees(),
-            z[TORQUE]
+            z[TURN_SPEED],
+            z[TURN_LEAN].to_degrees(),
+            z[TURN_STEER].to_degrees(),
+            z[TURN_TORQUE]
         )
     };
     let finite = [
@@ -416,7 +429,7 @@ fn describe(
             ),
         });
     }
-    if z[LEAN].abs() > MAX_LEAN {
+    if z[TURN_LEAN].abs() > MAX_LEAN {
         return Err(Error::NoSteadyTurn {
             given: given(),
             reason: "the lean is beyond 89°: the bicycle would lie on the ground".into(),
@@ -453,11 +466,11 @@ fn describe(
         ([None; 3], 0.0, None)
     };
     Ok(SteadyTurn {
-        speed: z[SPEED],
-        lean: z[LEAN],
-        steer: z[STEER],
-        steer_torque: z[TORQUE],
-        pitch: state.q[6 * REAR_FRAME + crate::nonlinear::PITCH],
+        speed: z[TURN_SPEED],
+        lean: z[TURN_LEAN],
+        steer: z[TURN_STEER],
+        steer_torque: z[TURN_TORQUE],
+        pitch: state.q[6 * REAR_FRAME + crate::nonlinear::BODY_PITCH],
         hub_speed: e.hub_speed,
         yaw_rate,
         wheel_rates: model.wheel_rates(state),
@@ -511,9 +524,9 @@ pub fn held_turn(
     check_speed(speed)?;
     let (target, index, unknowns, what): (f64, Option<usize>, &[usize], &'static str) = match given
     {
-        Held::Lean(x) => (x, Some(LEAN), &[STEER, TORQUE], "lean"),
-        Held::Steer(x) => (x, Some(STEER), &[LEAN, TORQUE], "steer"),
-        Held::Radius(r) => (r, None, &[LEAN, STEER, TORQUE], "radius"),
+        Held::Lean(x) => (x, Some(TURN_LEAN), &[TURN_STEER, TURN_TORQUE], "lean"),
+        Held::Steer(x) => (x, Some(TURN_STEER), &[TURN_LEAN, TURN_TORQUE], "steer"),
+        Held::Radius(r) => (r, None, &[TURN_LEAN, TURN_STEER, TURN_TORQUE], "radius"),
     };
     if !target.is_finite() || (index.is_none() && target == 0.0) {
         return Err(Error::InvalidArgument {
@@ -530,13 +543,13 @@ pub fn held_turn(
             ),
         });
     }
-    if index == Some(LEAN) && target.abs() > MAX_LEAN {
+    if index == Some(TURN_LEAN) && target.abs() > MAX_LEAN {
         return Err(Error::InvalidArgument {
             what: "lean",
             rule: format!("must lie within ±89°, got {:.3}°", target.to_degrees()),
         });
     }
-    if index == Some(STEER) && target.abs() >= std::f64::consts::PI {
+    if index == Some(TURN_STEER) && target.abs() >= std::f64::consts::PI {
         return Err(Error::InvalidArgument {
             what: "steer",
             rule: format!(
@@ -560,7 +573,7 @@ pub fn held_turn(
         reason,
     };
     let mut z: Point = [0.0; 4];
-    z[SPEED] = speed;
+    z[TURN_SPEED] = speed;
     let mut iterations = 0;
     for part in 1..=parts {
         let s = target * part as f64 / parts as f64;
@@ -569,13 +582,13 @@ pub fn held_turn(
                 if part == 1 {
                     // The linear model's prediction.
                     let lean = match i {
-                        LEAN => s,
+                        TURN_LEAN => s,
                         _ if steer_per_lean != 0.0 => s / steer_per_lean,
                         _ => 0.0,
                     };
-                    z[LEAN] = lean;
-                    z[STEER] = lean * steer_per_lean;
-                    z[TORQUE] = lean * torque_per_lean;
+                    z[TURN_LEAN] = lean;
+                    z[TURN_STEER] = lean * steer_per_lean;
+                    z[TURN_TORQUE] = lean * torque_per_lean;
                 }
                 z[i] = s;
                 None
@@ -584,13 +597,13 @@ pub fn held_turn(
                 let kappa = part as f64 / (parts as f64 * target);
                 if part == 1 {
                     // Kinematic steer and the linear lean row.
-                    z[STEER] = kappa * p.w / cos_lambda;
-                    z[LEAN] = if steer_per_lean != 0.0 {
-                        z[STEER] / steer_per_lean
+                    z[TURN_STEER] = kappa * p.w / cos_lambda;
+                    z[TURN_LEAN] = if steer_per_lean != 0.0 {
+                        z[TURN_STEER] / steer_per_lean
                     } else {
                         0.0
                     };
-                    z[TORQUE] = z[LEAN] * torque_per_lean;
+                    z[TURN_TORQUE] = z[TURN_LEAN] * torque_per_lean;
                 }
                 Some(kappa)
             }
@@ -654,12 +667,12 @@ pub fn hands_free_turn_near(
     settings: &TurnSettings,
 ) -> Result<SteadyTurn> {
     let mut z: Point = [guess[0], guess[1], guess[2], 0.0];
-    let unknowns: Vec<usize> = [LEAN, STEER, SPEED]
+    let unknowns: Vec<usize> = [TURN_LEAN, TURN_STEER, TURN_SPEED]
         .into_iter()
         .filter(|&k| k != held)
         .collect();
     let iterations = newton(model, &mut z, &unknowns, None, settings)?;
-    if z[SPEED] < 0.0 {
+    if z[TURN_SPEED] < 0.0 {
         return Err(Error::NoSteadyTurn {
             given: format!("hands-free turn near {guess:?}"),
             reason: "Newton went to a negative speed".into(),
@@ -859,11 +872,11 @@ pub fn branch_from_straight(model: &Model, settings: &TurnSettings) -> Result<Op
                 }
             };
             let speed = HyperDual64::new(v.re, 0.0, v.eps, 0.0);
-            let e = evaluate(model, dir(LEAN), dir(STEER), speed, h(0.0))?;
+            let e = evaluate(model, dir(TURN_LEAN), dir(TURN_STEER), speed, h(0.0))?;
             Ok(e.accelerations.map(|x| Dual64::new(x.eps1, x.eps1eps2)))
         };
-        let dl = de(LEAN)?;
-        let ds = de(STEER)?;
+        let dl = de(TURN_LEAN)?;
+        let ds = de(TURN_STEER)?;
         Ok([dl[0] + s * ds[0], dl[1] + s * ds[1]])
     };
     for iteration in 1..=settings.max_iterations {
@@ -980,7 +993,7 @@ pub struct Family {
 /// The hands-free equations and their 2 × 3 Jacobian in (φ, δ, v).
 fn free_equations(model: &Model, y: &[f64; 3]) -> Result<(nalgebra::Vector2<f64>, Matrix2x3<f64>)> {
     let z = [y[0], y[1], y[2], 0.0];
-    let (value, jac) = equations(model, &z, &[LEAN, STEER, SPEED], None)?;
+    let (value, jac) = equations(model, &z, &[TURN_LEAN, TURN_STEER, TURN_SPEED], None)?;
     Ok((
         nalgebra::Vector2::new(value[0], value[1]),
         Matrix2x3::from_fn(|i, j| jac[(i, j)]),
@@ -1002,8 +1015,8 @@ pub fn trace_family(
     let scale = Vector3::new(1.0, 1.0, 1.0 / settings.speed_scale);
     let unscale = |y: Vector3<f64>| [y.x, y.y, y.z * settings.speed_scale];
     // Correct the start with the lean held.
-    let first = hands_free_turn_near(model, start, LEAN, &settings.turn)
-        .or_else(|_| hands_free_turn_near(model, start, SPEED, &settings.turn))?;
+    let first = hands_free_turn_near(model, start, TURN_LEAN, &settings.turn)
+        .or_else(|_| hands_free_turn_near(model, start, TURN_SPEED, &settings.turn))?;
     let mut y = Vector3::new(first.lean, first.steer, first.speed).component_mul(&scale);
     let mut points = Vec::new();
     let push = |points: &mut Vec<FamilyPoint>, turn: SteadyTurn| {
@@ -1104,9 +1117,12 @@ pub fn trace_family(
         if turn.speed <= 0.0 {
             // Through standstill: the static equilibrium there ends the family (v → −v mirrors
             // it, the equations depend on v² only).
-            if let Ok(rest) =
-                hands_free_turn_near(model, [turn.lean, turn.steer, 0.0], SPEED, &settings.turn)
-            {
+            if let Ok(rest) = hands_free_turn_near(
+                model,
+                [turn.lean, turn.steer, 0.0],
+                TURN_SPEED,
+                &settings.turn,
+            ) {
                 if (rest.lean - turn.lean).abs() + (rest.steer - turn.steer).abs() < 2.0 * h {
                     push(&mut points, rest);
                 }
@@ -1269,7 +1285,7 @@ pub fn hands_free_turns_at_speed(
                 a.steer + t * (b.steer - a.steer),
                 speed,
             ];
-            if let Ok(turn) = hands_free_turn_near(model, guess, SPEED, settings) {
+            if let Ok(turn) = hands_free_turn_near(model, guess, TURN_SPEED, settings) {
                 if !out.iter().any(|o| {
                     (o.lean - turn.lean).abs() < 1e-8 && (o.steer - turn.steer).abs() < 1e-8
                 }) {

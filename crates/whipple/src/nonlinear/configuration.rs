@@ -12,7 +12,7 @@ use super::rotation;
 use super::state::COORDINATES;
 use super::topology::{
     FRONT_CONTACT, FRONT_FRAME, FRONT_HUB, FRONT_WHEEL, REAR_CONTACT, REAR_FRAME, REAR_HUB,
-    REAR_WHEEL, STEER,
+    REAR_WHEEL, STEER_JOINT,
 };
 use super::Model;
 use crate::error::{Error, Result};
@@ -53,7 +53,7 @@ impl Model {
     ) -> FramePoses<T> {
         let [rear_hub, steer_joint, front_hub] = [
             &self.joints[REAR_HUB],
-            &self.joints[STEER],
+            &self.joints[STEER_JOINT],
             &self.joints[FRONT_HUB],
         ];
         let [yaw, lean, pitch] = angles;

@@ -80,9 +80,10 @@ pub struct ContactForce<T> {
     pub lateral: T,
 }
 
-/// The result of [`Model::forward`].
+/// The result of [`Model::forward`]: the rates of the state ẋ = [q̇; u̇] and the ground forces
+/// that come with them.
 #[derive(Debug, Clone, Copy)]
-pub struct Derivatives<T: RealField + Copy> {
+pub struct StateRates<T: RealField + Copy> {
     /// q̇: coordinate rates.
     pub q_dot: SVector<T, COORDINATES>,
     /// u̇: accelerations (world translational, body angular).
@@ -91,7 +92,7 @@ pub struct Derivatives<T: RealField + Copy> {
     pub contact: [ContactForce<T>; 2],
 }
 
-impl<T: RealField + Copy> Derivatives<T> {
+impl<T: RealField + Copy> StateRates<T> {
     /// The first-order derivative `[q̇; u̇]`.
     pub fn to_vector(&self) -> SVector<T, STATE_LEN> {
         let mut y = SVector::<T, STATE_LEN>::zeros();
@@ -120,7 +121,7 @@ impl Model {
         &self,
         state: &State<T>,
         inputs: &Inputs<T>,
-    ) -> Result<Derivatives<T>> {
+    ) -> Result<StateRates<T>> {
         let angles = Angles::new(&state.q);
         let poses = Poses::from_angles(&state.q, &angles);
         let (tree, _) = self.tree(&poses, &state.u);
@@ -130,7 +131,7 @@ impl Model {
         } else {
             self.solve_rolling(&poses, &tree, &applied)?
         };
-        Ok(Derivatives {
+        Ok(StateRates {
             q_dot: coordinate_rates(&angles, &state.u),
             u_dot,
             contact,

@@ -7,7 +7,7 @@ use nalgebra::{RealField, SMatrix, SVector, Vector3};
 
 use super::poses::Poses;
 use super::state::State;
-use super::topology::{FRAME_RATE, REAR_FRAME, STEER_RATE, TREE};
+use super::topology::{FRAME_RATE, REAR_FRAME, TREE, TREE_STEER_RATE};
 use super::tree::speeds_of;
 use super::Model;
 use crate::error::{Error, Result};
@@ -102,7 +102,7 @@ pub(crate) fn solve_tree_speeds<T: RealField + Copy>(
     a[(7, FRAME_RATE)] = cp;
     a[(7, FRAME_RATE + 2)] = sp;
     b[7] = lean_rate;
-    a[(8, STEER_RATE)] = T::one();
+    a[(8, TREE_STEER_RATE)] = T::one();
     b[8] = steer_rate;
     a.lu().solve(&b).filter(|w| w.iter().all(|x| x.is_finite()))
 }

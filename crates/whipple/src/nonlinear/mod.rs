@@ -66,7 +66,7 @@ pub use expression::{
     TorqueExpression, BINARY_FUNCTIONS, FUNCTIONS, MAX_DEPTH as MAX_EXPRESSION_DEPTH,
     MAX_LENGTH as MAX_EXPRESSION_LENGTH, VARIABLES,
 };
-pub use forward::{ContactForce, Derivatives, Inputs};
+pub use forward::{ContactForce, Inputs, StateRates};
 pub use initial::InitialConditions;
 pub use model::Model;
 pub use outcome::{Outcome, Progress, RunExtremes, Sample, Simulation, Wheel};
@@ -77,7 +77,9 @@ pub use settings::{
     TorqueInput, DEFAULT_FALL_ANGLE_DEG, MAX_SAMPLES, MAX_STEPS,
 };
 pub use simulate::{check_rk4_step, fastest_mode, simulate, MAX_ENERGY_DRIFT};
-pub use state::{BodyPose, State, StateView, COORDINATES, LEAN, PITCH, SPEEDS, STATE_LEN, YAW};
+pub use state::{
+    BodyPose, State, StateView, BODY_LEAN, BODY_PITCH, BODY_YAW, COORDINATES, SPEEDS, STATE_LEN,
+};
 pub use topology::{
     BODIES, BODY_NAMES, FRONT_FRAME, FRONT_WHEEL, HOLONOMIC_ROWS, REAR_FRAME, REAR_WHEEL,
     VELOCITY_ROWS,

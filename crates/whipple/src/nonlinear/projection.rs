@@ -19,7 +19,7 @@ use num_dual::Dual64;
 use super::assembly::{symmetrize, Reduced};
 use super::poses::Poses;
 use super::saddle;
-use super::state::{State, COORDINATES, LEAN, PITCH, SPEEDS, YAW};
+use super::state::{State, BODY_LEAN, BODY_PITCH, BODY_YAW, COORDINATES, SPEEDS};
 use super::topology::{
     row_bodies, BODIES, FRONT_CONTACT, FRONT_FRAME, FRONT_WHEEL, HOLONOMIC_ROWS, REAR_CONTACT,
     REAR_FRAME, REAR_WHEEL,
@@ -149,12 +149,12 @@ impl Model {
         params: &ProjectionSettings,
     ) -> Result<(ProjectionReport, Poses<f64>)> {
         let b = 6 * REAR_FRAME;
-        let (yaw, lean, mut pitch) = (q[b + YAW], q[b + LEAN], q[b + PITCH]);
+        let (yaw, lean, mut pitch) = (q[b + BODY_YAW], q[b + BODY_LEAN], q[b + BODY_PITCH]);
         let poses = Poses::new(q);
         let steer = self.steer_at(&poses);
         let wheel_angles = [
-            q[6 * REAR_WHEEL + PITCH] - pitch,
-            q[6 * FRONT_WHEEL + PITCH] - q[6 * FRONT_FRAME + PITCH],
+            q[6 * REAR_WHEEL + BODY_PITCH] - pitch,
+            q[6 * FRONT_WHEEL + BODY_PITCH] - q[6 * FRONT_FRAME + BODY_PITCH],
         ];
         let contact = self.contacts[REAR_CONTACT].point(&poses);
         let c = Dual64::from_re;

@@ -4,10 +4,10 @@
 use nalgebra::{RealField, SVector, Vector3};
 use num_dual::Dual64;
 
-use super::forward::Derivatives;
+use super::forward::StateRates;
 use super::outcome::Sample;
 use super::poses::Poses;
-use super::state::{BodyPose, State, StateView, COORDINATES, PITCH};
+use super::state::{BodyPose, State, StateView, BODY_PITCH, COORDINATES};
 use super::topology::{BODIES, FRONT_FRAME, REAR_FRAME, REAR_WHEEL};
 use super::Model;
 
@@ -112,7 +112,7 @@ impl Model {
     /// angles.
     pub fn wheel_angles<T: RealField + Copy>(&self, q: &SVector<T, COORDINATES>) -> [T; 2] {
         self.contacts
-            .map(|c| q[6 * c.wheel + PITCH] - q[6 * c.frame + PITCH])
+            .map(|c| q[6 * c.wheel + BODY_PITCH] - q[6 * c.frame + BODY_PITCH])
     }
 
     /// The pose of each body ([`super::REAR_WHEEL`], [`super::REAR_FRAME`], [`super::FRONT_FRAME`], [`super::FRONT_WHEEL`]
@@ -166,7 +166,7 @@ impl Model {
     /// model's speeds into second derivatives of other coordinates (steer, Euler angles).
     pub fn time_derivative(
         state: &State<f64>,
-        derivatives: &Derivatives<f64>,
+        derivatives: &StateRates<f64>,
         h: impl Fn(&State<Dual64>) -> Dual64,
     ) -> f64 {
         let dual = State {

@@ -18,11 +18,11 @@
 use nalgebra::{Matrix3, RealField, SMatrix, SVector, Vector3, Vector4};
 use num_dual::Dual64;
 
-use super::forward::{Derivatives, Inputs};
+use super::forward::{Inputs, StateRates};
 use super::initial::solve_tree_speeds;
 use super::poses::Poses;
 use super::rotation;
-use super::state::{State, COORDINATES, PITCH, STATE_LEN};
+use super::state::{State, BODY_PITCH, COORDINATES, STATE_LEN};
 use super::topology::{FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL, TREE};
 use super::tree::speeds_of;
 use super::Model;
@@ -202,11 +202,11 @@ impl Model {
     pub(crate) fn lean_steer_accelerations<T: RealField + Copy>(
         &self,
         state: &State<T>,
-        d: &Derivatives<T>,
+        d: &StateRates<T>,
     ) -> [T; 2] {
         let b = 6 * REAR_FRAME;
-        let pitch = state.q[b + PITCH];
-        let pitch_rate = d.q_dot[b + PITCH];
+        let pitch = state.q[b + BODY_PITCH];
+        let pitch_rate = d.q_dot[b + BODY_PITCH];
         let (sp, cp) = pitch.sin_cos();
         let w_b = state.angular_velocity(REAR_FRAME);
         let w_h = state.angular_velocity(FRONT_FRAME);
@@ -271,7 +271,7 @@ const WHEELS: [usize; 2] = [REAR_WHEEL, FRONT_WHEEL];
 
 /// R_y(θ) of wheel k: from its body axes to its spin-free axes.
 fn unspin<T: RealField + Copy>(q: &SVector<T, COORDINATES>, k: usize) -> Matrix3<T> {
-    rotation::matrix(T::zero(), T::zero(), q[6 * k + PITCH])
+    rotation::matrix(T::zero(), T::zero(), q[6 * k + BODY_PITCH])
 }
 
 /// y = [q; ũ] of a state: the wheels' angular velocities turned from body axes into
@@ -299,14 +299,14 @@ pub fn state_from_spin_free<T: RealField + Copy>(y: &SVector<T, STATE_LEN>) -> S
 /// d/dt (R_y(θ) ω) = R_y(θ) ω̇ + θ̇ e_y × ω̃.
 pub fn spin_free_derivative<T: RealField + Copy>(
     state: &State<T>,
-    d: &Derivatives<T>,
+    d: &StateRates<T>,
 ) -> SVector<T, STATE_LEN> {
     let mut out = d.to_vector();
     for k in WHEELS {
         let r = unspin(&state.q, k);
         let w = r * state.angular_velocity(k);
         let dw = d.u_dot.fixed_rows::<3>(6 * k + 3).into_owned();
-        let spin_rate = d.q_dot[6 * k + PITCH];
+        let spin_rate = d.q_dot[6 * k + BODY_PITCH];
         let rate = r * dw + Vector3::y().cross(&w) * spin_rate;
         out.fixed_rows_mut::<3>(COORDINATES + 6 * k + 3)
             .copy_from(&rate);

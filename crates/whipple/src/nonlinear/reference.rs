@@ -6,7 +6,7 @@
 use nalgebra::{DMatrix, DVector, SVector, Vector3};
 
 use super::constraints::contact_destinations;
-use super::forward::{coordinate_rates, Derivatives, Inputs};
+use super::forward::{coordinate_rates, Inputs, StateRates};
 use super::poses::{Angles, Poses};
 use super::state::{State, SPEEDS};
 use super::topology::{BODIES, VELOCITY_ROWS};
@@ -21,7 +21,7 @@ impl Model {
         &self,
         state: &State<f64>,
         inputs: &Inputs<f64>,
-    ) -> Result<Derivatives<f64>> {
+    ) -> Result<StateRates<f64>> {
         let angles = Angles::new(&state.q);
         let poses = Poses::from_angles(&state.q, &angles);
         let omega: [Vector3<f64>; BODIES] = std::array::from_fn(|k| state.angular_velocity(k));
@@ -61,7 +61,7 @@ impl Model {
             }
             self.contact_force(i, &nu)
         });
-        Ok(Derivatives {
+        Ok(StateRates {
             q_dot: coordinate_rates(&angles, &state.u),
             u_dot,
             contact,

@@ -17,7 +17,7 @@ use std::sync::atomic::Ordering;
 
 use nalgebra::SVector;
 
-use super::forward::{Derivatives, Inputs};
+use super::forward::{Inputs, StateRates};
 use super::outcome::{Outcome, Progress, RunExtremes, Sample, Simulation, Wheel};
 use super::poses::Poses;
 use super::settings::{SimulationSettings, TorqueFn};
@@ -53,7 +53,7 @@ impl BicycleOde<'_> {
     /// Forward dynamics with the inputs evaluated at (t, state). A non-finite state or rider
     /// torque is [`Error::NonFiniteState`] at t (not a singular system, which is what the
     /// solve would otherwise report).
-    pub fn derivatives(&self, t: f64, state: &State<f64>) -> Result<Derivatives<f64>> {
+    pub fn derivatives(&self, t: f64, state: &State<f64>) -> Result<StateRates<f64>> {
         let finite = |x: &f64| x.is_finite();
         if !(state.q.iter().all(finite) && state.u.iter().all(finite)) {
             return Err(Error::NonFiniteState { t });
@@ -204,7 +204,7 @@ struct Run<'a> {
     settings: &'a SimulationSettings,
     stepper: Stepper,
     state: State<f64>,
-    derivatives: Derivatives<f64>,
+    derivatives: StateRates<f64>,
     samples: Vec<Sample>,
     /// The last accepted step's sample when it was thinned out.
     pending: Option<Sample>,
@@ -406,7 +406,7 @@ impl<'a> Run<'a> {
         &self,
         t0: f64,
         next: &State<f64>,
-        d_new: &Derivatives<f64>,
+        d_new: &StateRates<f64>,
         t1: f64,
         dense: Option<&DenseOutput<STATE_LEN>>,
     ) -> Option<Outcome> {
@@ -467,7 +467,7 @@ fn sample(
     t: f64,
     state: &State<f64>,
     poses: &Poses<f64>,
-    d: &Derivatives<f64>,
+    d: &StateRates<f64>,
     position_residual: f64,
 ) -> Sample {
     let view = model.observe_at(poses, state);

@@ -20,11 +20,11 @@ pub const SPEEDS: usize = 24;
 pub const STATE_LEN: usize = COORDINATES + SPEEDS;
 
 /// Offset of the yaw angle within a body's six coordinates.
-pub const YAW: usize = 3;
+pub const BODY_YAW: usize = 3;
 /// Offset of the lean angle within a body's six coordinates.
-pub const LEAN: usize = 4;
+pub const BODY_LEAN: usize = 4;
 /// Offset of the pitch angle (wheel rotation for a wheel) within a body's six coordinates.
-pub const PITCH: usize = 5;
+pub const BODY_PITCH: usize = 5;
 
 /// Coordinates and speeds of the four bodies.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -78,17 +78,17 @@ impl<T: RealField + Copy> State<T> {
 
     /// φ: lean of the rear frame, right positive \[rad\].
     pub fn lean(&self) -> T {
-        self.q[6 * super::REAR_FRAME + LEAN]
+        self.q[6 * super::REAR_FRAME + BODY_LEAN]
     }
 
     /// ψ: yaw (heading) of the rear frame, right turn positive \[rad\].
     pub fn yaw(&self) -> T {
-        self.q[6 * super::REAR_FRAME + YAW]
+        self.q[6 * super::REAR_FRAME + BODY_YAW]
     }
 
     /// θ_B: pitch of the rear frame, nose up positive (a dependent coordinate) \[rad\].
     pub fn pitch(&self) -> T {
-        self.q[6 * super::REAR_FRAME + PITCH]
+        self.q[6 * super::REAR_FRAME + BODY_PITCH]
     }
 
     /// (yaw rate, lean rate, pitch rate) of body `k` [rad/s].

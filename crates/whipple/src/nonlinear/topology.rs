@@ -45,7 +45,7 @@ pub(crate) const HUB_VELOCITY: usize = 0;
 /// Offset of ω_B, the rear frame's angular velocity in its own axes (3 speeds).
 pub(crate) const FRAME_RATE: usize = 3;
 /// Offset of δ̇, the steer rate.
-pub(crate) const STEER_RATE: usize = 6;
+pub(crate) const TREE_STEER_RATE: usize = 6;
 /// Offset of σ_R, the rear wheel's spin rate relative to the rear frame.
 pub(crate) const REAR_SPIN: usize = 7;
 /// Offset of σ_F, the front wheel's spin rate relative to the front frame.
@@ -86,7 +86,7 @@ pub(crate) struct JointSpec {
 /// Index of the rear hub joint (B–R) among the joints.
 pub(crate) const REAR_HUB: usize = 0;
 /// Index of the steer joint (B–H).
-pub(crate) const STEER: usize = 1;
+pub(crate) const STEER_JOINT: usize = 1;
 /// Index of the front hub joint (H–F).
 pub(crate) const FRONT_HUB: usize = 2;
 /// Number of joints.
@@ -104,7 +104,7 @@ pub(crate) const JOINTS: [JointSpec; JOINT_COUNT] = [
         parent: REAR_FRAME,
         child: FRONT_FRAME,
         kind: JointKind::Steer,
-        speed: STEER_RATE,
+        speed: TREE_STEER_RATE,
     },
     JointSpec {
         parent: FRONT_FRAME,

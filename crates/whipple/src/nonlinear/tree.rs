@@ -16,8 +16,8 @@ use super::rotation;
 use super::state::{COORDINATES, SPEEDS};
 use super::topology::{
     rolling, BODIES, FRAME_RATE, FRONT_FRAME, FRONT_HUB, FRONT_SPIN, FRONT_WHEEL, HUB_VELOCITY,
-    REAR_CONTACT, REAR_FRAME, REAR_HUB, REAR_SPIN, REAR_WHEEL, ROLLING_TREE, STEER, STEER_RATE,
-    TREE,
+    REAR_CONTACT, REAR_FRAME, REAR_HUB, REAR_SPIN, REAR_WHEEL, ROLLING_TREE, STEER_JOINT, TREE,
+    TREE_STEER_RATE,
 };
 use super::Model;
 
@@ -86,8 +86,8 @@ impl Model {
         let s: Vector3<T> = g.steer_axis.cast();
         let ey = Vector3::<T>::y();
         let p_br: Vector3<T> = self.joints[REAR_HUB].point_in_parent.cast();
-        let p_bs: Vector3<T> = self.joints[STEER].point_in_parent.cast();
-        let p_hs: Vector3<T> = self.joints[STEER].point_in_child.cast();
+        let p_bs: Vector3<T> = self.joints[STEER_JOINT].point_in_parent.cast();
+        let p_hs: Vector3<T> = self.joints[STEER_JOINT].point_in_child.cast();
         let p_hf: Vector3<T> = self.joints[FRONT_HUB].point_in_parent.cast();
         let omega_of = |k: usize| u.fixed_rows::<3>(6 * k + 3).into_owned();
 
@@ -104,12 +104,12 @@ impl Model {
         let mut w = SVector::<T, TREE>::zeros();
         w.fixed_rows_mut::<3>(HUB_VELOCITY).copy_from(&nu);
         w.fixed_rows_mut::<3>(FRAME_RATE).copy_from(&w_b);
-        w[STEER_RATE] = steer_rate;
+        w[TREE_STEER_RATE] = steer_rate;
         w[REAR_SPIN] = sigma_r;
         w[FRONT_SPIN] = sigma_f;
 
         // Columns [ω_B, δ̇, σ_R, σ_F] (the ν columns are R_B in every translation row).
-        let (omega_b, delta) = (rolling(FRAME_RATE), rolling(STEER_RATE));
+        let (omega_b, delta) = (rolling(FRAME_RATE), rolling(TREE_STEER_RATE));
         let mut rest = [SMatrix::<T, 6, ROLLING_TREE>::zeros(); BODIES];
         // Rear wheel.
         let j = &mut rest[REAR_WHEEL];
@@ -204,7 +204,7 @@ impl Model {
             .copy_from(&(poses.rot[REAR_FRAME].transpose() * rear_hub_velocity));
         w.fixed_rows_mut::<3>(FRAME_RATE)
             .copy_from(rear_frame_angular_velocity);
-        w[STEER_RATE] = steer_rate;
+        w[TREE_STEER_RATE] = steer_rate;
         w[REAR_SPIN] = wheel_rates[0];
         w[FRONT_SPIN] = wheel_rates[1];
         speeds_of(&tree.jacobians(), &w)
