@@ -487,26 +487,77 @@ fn pair_frequency(sp: &SpeedPolynomials, nu: f64) -> Option<f64> {
     (w2 > 0.0).then(|| sp.sqrt_g * w2.sqrt())
 }
 
-/// Accumulates stable gaps into ranges.
-#[derive(Default)]
-struct Ranges {
-    open: Option<(f64, f64)>,
+/// What a walk along the stability line finds inside a speed range, in increasing speed.
+enum Finding {
+    /// A self-stable range [a, b] (m/s): adjacent stable gaps joined.
+    Stable(f64, f64),
+    /// Speeds [a, b] (m/s) that round-off could not classify.
+    Unresolved(f64, f64),
+    /// A change of the number of unstable eigenvalues, with its enclosure (not yet checked
+    /// against [`MAX_RELATIVE_ENCLOSURE`]: each caller decides which crossings it reports).
+    Crossing(Crossing),
 }
 
-impl Ranges {
-    fn gap(&mut self, a: f64, b: f64, count: Option<u8>, done: &mut impl FnMut(f64, f64)) {
-        if count == Some(0) {
-            self.open = Some(match self.open {
-                Some((start, _)) => (start, b),
-                None => (a, b),
-            });
-        } else {
-            self.close(done);
-        }
-    }
-    fn close(&mut self, done: &mut impl FnMut(f64, f64)) {
-        if let Some((a, b)) = self.open.take() {
-            done(a, b);
+/// v_w's rule: a pair crossing at a forward speed that lowers the unstable count.
+fn is_weave(c: &Crossing) -> bool {
+    c.speed >= 0.0 && c.kind == CrossingKind::Pair && c.unstable_above < c.unstable_below
+}
+
+/// v_c's rule: a real crossing at a forward speed that raises the unstable count.
+fn is_capsize(c: &Crossing) -> bool {
+    c.speed >= 0.0 && c.kind == CrossingKind::Real && c.unstable_above > c.unstable_below
+}
+
+impl Structure {
+    /// The one reading of the stability line: stable ranges, unresolved speeds and crossings
+    /// inside [lo, hi] (m/s), in increasing speed, without allocating. Both
+    /// [`critical_speeds`] and [`summary`] are projections of it.
+    fn findings(&self, sp: &SpeedPolynomials, lo: f64, hi: f64, mut visit: impl FnMut(Finding)) {
+        let s = self.sqrt_g;
+        let mut open: Option<(f64, f64)> = None;
+        self.walk(lo, hi, |event| match event {
+            Event::Gap(a, b, count) => {
+                if count == Some(0) {
+                    open = Some(open.map_or((a, b), |(start, _)| (start, b)));
+                } else if let Some((a, b)) = open.take() {
+                    visit(Finding::Stable(a, b));
+                }
+            }
+            Event::Group(g, v, left, right) => {
+                let enc = enclosure(g, s);
+                if g.unresolved() {
+                    if let Some((a, b)) = open.take() {
+                        visit(Finding::Stable(a, b));
+                    }
+                    visit(Finding::Unresolved(enc.0.max(lo), enc.1.min(hi)));
+                    return;
+                }
+                let (Some(l), Some(r)) = (left, right) else {
+                    return;
+                };
+                if l == r || g.kinds & CROSSING == 0 || g.kinds & ZERO != 0 {
+                    return;
+                }
+                let kind = if g.kinds & PAIR != 0 {
+                    CrossingKind::Pair
+                } else {
+                    CrossingKind::Real
+                };
+                visit(Finding::Crossing(Crossing {
+                    speed: v,
+                    enclosure: enc,
+                    kind,
+                    unstable_below: l,
+                    unstable_above: r,
+                    frequency: match kind {
+                        CrossingKind::Pair => pair_frequency(sp, g.value),
+                        CrossingKind::Real => None,
+                    },
+                }));
+            }
+        });
+        if let Some((a, b)) = open {
+            visit(Finding::Stable(a, b));
         }
     }
 }
@@ -535,60 +586,40 @@ pub fn summary(sp: &SpeedPolynomials, lo: f64, hi: f64) -> Result<StabilitySumma
         stable_ranges: 0,
         unresolved: false,
     };
-    let mut ranges = Ranges::default();
-    let mut weave_nu = f64::NAN;
+    let mut weave: Option<Crossing> = None;
+    let mut capsize: Option<Crossing> = None;
     let mut failure: Option<Error> = None;
-    let s = structure.sqrt_g;
-    let mut done = |a: f64, b: f64| {
-        out.stable_width += b - a;
-        out.stable_ranges += 1;
-        if out.stable_from.is_none() {
-            out.stable_from = Some(a);
-            out.stable_to = Some(b);
+    structure.findings(sp, lo, hi, |finding| match finding {
+        Finding::Stable(a, b) => {
+            out.stable_width += b - a;
+            out.stable_ranges += 1;
+            if out.stable_from.is_none() {
+                out.stable_from = Some(a);
+                out.stable_to = Some(b);
+            }
         }
-    };
-    let mut weave = None;
-    let mut capsize = None;
-    let mut unresolved = false;
-    structure.walk(lo, hi, |event| match event {
-        Event::Gap(a, b, count) => ranges.gap(a, b, count, &mut done),
-        Event::Group(g, v, left, right) => {
-            if g.unresolved() {
-                unresolved = true;
-                ranges.close(&mut done);
-                return;
-            }
-            let (Some(l), Some(r)) = (left, right) else {
-                return;
-            };
-            if g.kinds & ZERO != 0 {
-                return;
-            }
-            if v >= 0.0 && g.kinds & PAIR != 0 && l > r && weave.is_none() {
+        Finding::Unresolved(..) => out.unresolved = true,
+        Finding::Crossing(c) => {
+            if weave.is_none() && is_weave(&c) {
                 if failure.is_none() {
-                    failure = check_enclosure("the weave speed", v, enclosure(g, s)).err();
+                    failure = check_enclosure("the weave speed", c.speed, c.enclosure).err();
                 }
-                weave = Some(v);
-                weave_nu = g.value;
+                weave = Some(c);
             }
-            if v >= 0.0 && g.kinds & A0 != 0 && r > l && capsize.is_none() {
+            if capsize.is_none() && is_capsize(&c) {
                 if failure.is_none() {
-                    failure = check_enclosure("the capsize speed", v, enclosure(g, s)).err();
+                    failure = check_enclosure("the capsize speed", c.speed, c.enclosure).err();
                 }
-                capsize = Some(v);
+                capsize = Some(c);
             }
         }
     });
-    ranges.close(&mut done);
     if let Some(e) = failure {
         return Err(e);
     }
-    out.unresolved = unresolved;
-    out.weave_speed = weave;
-    out.capsize_speed = capsize;
-    if weave.is_some() {
-        out.weave_frequency = pair_frequency(sp, weave_nu);
-    }
+    out.weave_speed = weave.map(|c| c.speed);
+    out.weave_frequency = weave.and_then(|c| c.frequency);
+    out.capsize_speed = capsize.map(|c| c.speed);
     Ok(out)
 }
 
@@ -608,61 +639,27 @@ pub fn critical_speeds(canonical: &Canonical, lo: f64, hi: f64) -> Result<Critic
     check_range(lo, hi)?;
     let sp = SpeedPolynomials::new(canonical)?;
     let structure = Structure::stability(&sp)?;
-    let s = structure.sqrt_g;
     let mut stable: Vec<(f64, f64)> = Vec::new();
-    let mut crossings = Vec::new();
+    let mut crossings: Vec<Crossing> = Vec::new();
     let mut unresolved = Vec::new();
     let mut failure: Option<Error> = None;
-    let mut ranges = Ranges::default();
-    let mut done = |a: f64, b: f64| stable.push((a, b));
-    structure.walk(lo, hi, |event| match event {
-        Event::Gap(a, b, count) => ranges.gap(a, b, count, &mut done),
-        Event::Group(g, v, left, right) => {
-            let enc = enclosure(g, s);
-            if g.unresolved() {
-                unresolved.push((enc.0.max(lo), enc.1.min(hi)));
-                ranges.close(&mut done);
-                return;
-            }
-            let (Some(l), Some(r)) = (left, right) else {
-                return;
-            };
-            if l == r || g.kinds & CROSSING == 0 || g.kinds & ZERO != 0 {
-                return;
-            }
-            let kind = if g.kinds & PAIR != 0 {
-                CrossingKind::Pair
-            } else {
-                CrossingKind::Real
-            };
+    structure.findings(&sp, lo, hi, |finding| match finding {
+        Finding::Stable(a, b) => stable.push((a, b)),
+        Finding::Unresolved(a, b) => unresolved.push((a, b)),
+        Finding::Crossing(c) => {
             if failure.is_none() {
-                failure = check_enclosure("a critical speed", v, enc).err();
+                failure = check_enclosure("a critical speed", c.speed, c.enclosure).err();
             }
-            crossings.push(Crossing {
-                speed: v,
-                enclosure: enc,
-                kind,
-                unstable_below: l,
-                unstable_above: r,
-                frequency: match kind {
-                    CrossingKind::Pair => pair_frequency(&sp, g.value),
-                    CrossingKind::Real => None,
-                },
-            });
+            crossings.push(c);
         }
     });
-    ranges.close(&mut done);
     if let Some(e) = failure {
         return Err(e);
     }
     // v_d, v_w and v_c are speeds of forward riding: a range reaching below zero has their
     // mirror images there (p(λ, −v) = p(−λ, v)), where nothing turns stable.
-    let weave = crossings.iter().find(|c| {
-        c.speed >= 0.0 && c.kind == CrossingKind::Pair && c.unstable_above < c.unstable_below
-    });
-    let capsize = crossings.iter().find(|c| {
-        c.speed >= 0.0 && c.kind == CrossingKind::Real && c.unstable_above > c.unstable_below
-    });
+    let weave = crossings.iter().find(|c| is_weave(c));
+    let capsize = crossings.iter().find(|c| is_capsize(c));
     let mut double_root_unavailable = None;
     let (double_root_speed, double_root_eigenvalue) = if hi < 0.0 {
         (None, None)

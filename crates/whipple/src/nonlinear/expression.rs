@@ -167,11 +167,16 @@ fn no_binary(_: &str) -> Option<fn(f64, f64) -> f64> {
     None
 }
 
+/// Looks up a function of one argument by name.
+type UnaryLookup = fn(&str) -> Option<fn(f64) -> f64>;
+/// Looks up a function of two arguments by name.
+type BinaryLookup = fn(&str) -> Option<fn(f64, f64) -> f64>;
+
 /// The names one use of the language knows: the grammar and precedence are the same for all.
 struct Dialect {
     variables: &'static [&'static str],
-    unary: fn(&str) -> Option<fn(f64) -> f64>,
-    binary: fn(&str) -> Option<fn(f64, f64) -> f64>,
+    unary: UnaryLookup,
+    binary: BinaryLookup,
     constant: fn(&str) -> Option<f64>,
     /// What an unknown name's message lists as known.
     known: fn() -> String,
