@@ -252,65 +252,204 @@ fn presets_agree_with_a_dense_scan() -> Result<()> {
     Ok(())
 }
 
-fn random_bicycle() -> impl Strategy<Value = BenchmarkParameters> {
-    (
-        (
-            0.8f64..1.3,
-            -0.05f64..0.3,
-            -0.2f64..0.7,
-            0.25f64..0.4,
-            0.25f64..0.4,
-        ),
-        (40.0f64..130.0, 0.1f64..0.7, -1.3f64..-0.5, 0.5f64..2.0),
-        (0.5f64..8.0, -0.9f64..-0.4, 0.0f64..1.5, 0.2f64..3.0),
-    )
-        .prop_map(
-            |((w, c, lam, r_r, r_f), (m_b, x_b, z_b, s_b), (m_h, z_h, x_h, spin))| {
-                let mut b = BenchmarkParameters::meijaard2007();
-                b.w = w;
-                b.c = c;
-                b.lambda = lam;
-                b.r_r = r_r;
-                b.r_f = r_f;
-                b.m_b = m_b;
-                b.x_b = x_b;
-                b.z_b = z_b;
-                b.i_bxx *= s_b;
-                b.i_bzz *= s_b;
-                b.i_bxz *= s_b;
-                b.i_byy *= s_b;
-                b.m_h = m_h;
-                b.z_h = z_h;
-                b.x_h = x_h * w;
-                b.i_ryy *= spin;
-                b.i_rxx *= spin;
-                b.i_fyy *= spin;
-                b.i_fxx *= spin;
-                b
-            },
-        )
+/// A small deterministic generator (SplitMix64): the same bicycles on every run, so that a
+/// failure names a seed that reproduces it.
+struct Draws(u64);
+
+impl Draws {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform on [a, b).
+    fn uniform(&mut self, a: f64, b: f64) -> f64 {
+        a + (b - a) * (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    /// Exactly zero with probability `p` (the edge every non-negative parameter admits),
+    /// otherwise uniform on [0, b).
+    fn or_zero(&mut self, p: f64, b: f64) -> f64 {
+        if self.uniform(0.0, 1.0) < p {
+            0.0
+        } else {
+            self.uniform(0.0, b)
+        }
+    }
+}
+
+/// A bicycle drawn over the whole admissible space at bicycle scale: every parameter of
+/// Table 1 independently, each over everything `BenchmarkParameters::check` admits within a
+/// few times the largest value of a real bicycle (lengths to 3 m, masses to 150 kg, inertias
+/// to 20 kg m²), both signs where a sign is admitted (trail, steer tilt, centres of mass
+/// ahead, behind, above and below the ground, products of inertia), and the edges: massless
+/// bodies and wheels of zero radius (skates). Nothing is taken from the benchmark, so the
+/// draws do not cluster around it. `None` for a draw `check` refuses (not positive
+/// semi-definite inertia, a spinning skate, a massless body with inertia, M not positive
+/// definite): the caller counts those.
+fn admissible_bicycle(draws: &mut Draws) -> Option<BenchmarkParameters> {
+    let mut b = BenchmarkParameters::meijaard2007();
+    b.w = draws.uniform(0.05, 3.0);
+    b.c = draws.uniform(-1.0, 1.0);
+    b.lambda = draws.uniform(-1.5, 1.5);
+    b.g = draws.uniform(1.0, 30.0);
+    b.r_r = draws.or_zero(0.1, 1.0);
+    b.r_f = draws.or_zero(0.1, 1.0);
+    b.m_r = draws.or_zero(0.1, 10.0);
+    b.m_f = draws.or_zero(0.1, 10.0);
+    b.m_b = draws.or_zero(0.05, 150.0);
+    b.m_h = draws.or_zero(0.05, 20.0);
+    b.x_b = draws.uniform(-1.0, 3.0);
+    b.z_b = draws.uniform(-2.5, 0.5);
+    b.x_h = draws.uniform(-1.0, 3.0);
+    b.z_h = draws.uniform(-2.5, 0.5);
+    // A massless body carries no inertia (the rule `check` enforces), and a skate no spin
+    // inertia; otherwise drawn freely.
+    let wheel = |d: &mut Draws, m: f64, r: f64| {
+        let scale = if m > 0.0 { 1.0 } else { 0.0 };
+        let spin = if r > 0.0 { scale } else { 0.0 };
+        (scale * d.or_zero(0.1, 1.0), spin * d.or_zero(0.1, 2.0))
+    };
+    (b.i_rxx, b.i_ryy) = wheel(draws, b.m_r, b.r_r);
+    (b.i_fxx, b.i_fyy) = wheel(draws, b.m_f, b.r_f);
+    let frame = |d: &mut Draws, m: f64| {
+        let scale = if m > 0.0 { 1.0 } else { 0.0 };
+        [
+            scale * d.uniform(0.0, 20.0),
+            scale * d.uniform(0.0, 20.0),
+            scale * d.uniform(0.0, 20.0),
+            scale * d.uniform(-10.0, 10.0),
+        ]
+    };
+    [b.i_bxx, b.i_byy, b.i_bzz, b.i_bxz] = frame(draws, b.m_b);
+    [b.i_hxx, b.i_hyy, b.i_hzz, b.i_hxz] = frame(draws, b.m_h);
+    b.check().ok().map(|_| b)
+}
+
+/// How the draws of [`random_bicycles_over_the_admissible_space_equal_a_dense_scan`] ended.
+#[derive(Debug, Default)]
+struct Outcomes {
+    /// Refused by `check` (not bicycles).
+    refused: usize,
+    /// Checked against the dense scan.
+    agreed: usize,
+    /// Of those, how many have a self-stable range in the range searched.
+    self_stable: usize,
+    /// `AccuracyLost`: round-off does not allow a certified answer.
+    accuracy_lost: Vec<(u64, String)>,
+    /// Certified, but with speeds below [`RIDING`] that round-off could not classify.
+    undecided: Vec<(u64, Vec<(f64, f64)>)>,
+    /// Certified, with unclassified speeds only above [`RIDING`] (the horizon where the
+    /// highest powers of v in the speed polynomials meet their round-off bounds).
+    undecided_far: Vec<(u64, Vec<(f64, f64)>)>,
+}
+
+/// Speeds a bicycle is ridden at, with a wide margin [m/s].
+const RIDING: f64 = 100.0;
+
+/// Random bicycles over the whole admissible space and ranges up to 1e6 m/s: the certified
+/// verdict equals a dense eigenvalue scan's at every scan point, every sign change of the scan
+/// has a certified crossing, and the design studies' allocation-free `summary` is the same
+/// projection of the answer as `critical_speeds` gives.
+///
+/// A bicycle whose answer is not certified (`AccuracyLost`, or a non-empty `unresolved`) is
+/// not a pass: such outcomes are counted apart, printed with their seeds, and must stay rare.
+/// The certification fails only where round-off in the stored matrices cannot separate two
+/// roots of the speed polynomials (a near-tangency or near-double root) or swamps a
+/// coefficient, which for independent continuous draws happens on a set of small measure at
+/// riding speeds: at most 1 in 20 admitted bicycles may lose accuracy or leave speeds below
+/// [`RIDING`] unclassified (the 64 draws give none of either). Far above, where the terms of
+/// highest degree in v meet their round-off bounds (from about 1e4 m/s), unclassified speeds
+/// are expected and allowed for at most 1 in 5 (the draws give 3 of 64).
+#[test]
+fn random_bicycles_over_the_admissible_space_equal_a_dense_scan() -> Result<()> {
+    const BICYCLES: usize = 64;
+    let mut outcomes = Outcomes::default();
+    let mut seed = 0u64;
+    while outcomes.agreed + outcomes.accuracy_lost.len() < BICYCLES {
+        seed += 1;
+        assert!(
+            seed < 100 * BICYCLES as u64,
+            "too few admissible draws: {outcomes:?}"
+        );
+        let mut draws = Draws(seed);
+        let Some(bike) = admissible_bicycle(&mut draws) else {
+            outcomes.refused += 1;
+            continue;
+        };
+        let lo = draws.uniform(0.0, 5.0);
+        let hi = if draws.uniform(0.0, 1.0) < 0.5 {
+            f64::INFINITY
+        } else {
+            lo + draws.uniform(1.0, 1e6)
+        };
+        let c = Canonical::new(&bike)?;
+        let speeds = match stability::critical_speeds(&c, lo, hi) {
+            Ok(s) => s,
+            Err(Error::AccuracyLost { quantity, reason }) => {
+                outcomes
+                    .accuracy_lost
+                    .push((seed, format!("{quantity}: {reason}")));
+                continue;
+            }
+            Err(e) => panic!("seed {seed}: {e}\n{bike:?}"),
+        };
+        if speeds.unresolved.iter().any(|u| u.0 < RIDING) {
+            outcomes.undecided.push((seed, speeds.unresolved.clone()));
+        } else if !speeds.unresolved.is_empty() {
+            outcomes
+                .undecided_far
+                .push((seed, speeds.unresolved.clone()));
+        }
+        agrees_with_a_dense_scan(&c, lo, hi)?;
+        let summary = stability::summary(&whipple::linear::SpeedPolynomials::new(&c)?, lo, hi)?;
+        let ranges = &speeds.stable_speed_ranges;
+        assert_eq!(summary.weave_speed, speeds.weave_speed, "seed {seed}");
+        assert_eq!(
+            summary.weave_frequency, speeds.weave_frequency,
+            "seed {seed}"
+        );
+        assert_eq!(summary.capsize_speed, speeds.capsize_speed, "seed {seed}");
+        assert_eq!(summary.stable_ranges as usize, ranges.len(), "seed {seed}");
+        assert_eq!(
+            summary.stable_from,
+            ranges.first().map(|r| r.0),
+            "seed {seed}"
+        );
+        assert_eq!(
+            summary.stable_to,
+            ranges.first().map(|r| r.1),
+            "seed {seed}"
+        );
+        let width: f64 = ranges.iter().map(|r| r.1 - r.0).sum();
+        assert_eq!(summary.stable_width, width, "seed {seed}");
+        outcomes.agreed += 1;
+        outcomes.self_stable += usize::from(!ranges.is_empty());
+    }
+    eprintln!("{outcomes:#?}");
+    let admitted = outcomes.agreed + outcomes.accuracy_lost.len();
+    assert!(
+        outcomes.accuracy_lost.len() * 20 <= admitted,
+        "accuracy lost too often: {outcomes:#?}"
+    );
+    assert!(
+        outcomes.undecided.len() * 20 <= admitted,
+        "undecided at riding speeds too often: {outcomes:#?}"
+    );
+    assert!(
+        outcomes.undecided_far.len() * 5 <= admitted,
+        "undecided far above riding speeds too often: {outcomes:#?}"
+    );
+    // Both verdicts occur: the draws are not all of the benchmark's kind.
+    assert!(outcomes.self_stable > 0 && outcomes.self_stable < outcomes.agreed);
+    // The draws reach the refused edges of the space, yet mostly land inside it.
+    assert!(outcomes.refused > 0 && outcomes.refused < 2 * BICYCLES);
+    Ok(())
 }
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
-
-    /// Random bicycles and ranges up to 1e6 m/s: the certified verdict equals a dense
-    /// eigenvalue scan's at every scan point, and every sign change of the scan has a certified
-    /// crossing.
-    #[test]
-    fn certified_speeds_equal_a_dense_scan(
-        bike in random_bicycle(),
-        lo in 0.0f64..5.0,
-        span in prop_oneof![Just(f64::INFINITY), 1.0f64..1e6],
-    ) {
-        let Ok(c) = Canonical::new(&bike) else {
-            return Ok(()); // an invalid random design (M not positive definite, …)
-        };
-        match agrees_with_a_dense_scan(&c, lo, lo + span) {
-            Ok(_) | Err(Error::AccuracyLost { .. }) => {}
-            Err(e) => prop_assert!(false, "{e}"),
-        }
-    }
 
     /// Random cells of random maps: each design's critical speeds equal the single-bicycle
     /// answer (`whipple speeds`) to 1e-10 m/s.
