@@ -274,6 +274,93 @@ fn missing_keys_are_all_named_at_once() -> Result<(), Error> {
     Ok(())
 }
 
+/// The benchmark's file with its front frame H replaced by a handlebar G and a fork S.
+fn split_front_frame(g: [f64; 7], s: [f64; 7]) -> Result<String, Error> {
+    let base = write(
+        &presets::find("benchmark")?.bicycle(),
+        Format::BicycleParametersTxt,
+    )?;
+    let h = ["mH", "xH", "zH", "IHxx", "IHyy", "IHzz", "IHxz"];
+    let mut text: String = base
+        .lines()
+        .filter(|l| {
+            !h.iter()
+                .any(|k| l.split('=').next().map(str::trim) == Some(*k))
+        })
+        .map(|l| format!("{l}\n"))
+        .collect();
+    for (body, values) in [("G", g), ("S", s)] {
+        for (key, value) in ["m", "x", "z", "Ixx", "Iyy", "Izz", "Ixz"]
+            .iter()
+            .zip(values)
+        {
+            let key = match key.strip_prefix('I') {
+                Some(axes) => format!("I{body}{axes}"),
+                None => format!("{key}{body}"),
+            };
+            text.push_str(&format!("{key} = {value:e}\n"));
+        }
+    }
+    Ok(text)
+}
+
+/// The tensor of a body of the plane of symmetry (the only product is xz), 3 × 3.
+fn tensor(ixx: f64, iyy: f64, izz: f64, ixz: f64) -> nalgebra::Matrix3<f64> {
+    nalgebra::Matrix3::new(ixx, 0.0, ixz, 0.0, iyy, 0.0, ixz, 0.0, izz)
+}
+
+/// A front frame read as a handlebar G and a fork S with masses and centres apart (so that
+/// every parallel-axis term counts) equals an independent combination: each body's full 3 × 3
+/// tensor moved to the origin, I + m (|r|² E − r rᵀ), summed, and moved back to the combined
+/// centre of mass, rather than the reader's direct shift of each body to that centre.
+#[test]
+fn handlebar_and_fork_combine_by_the_parallel_axis_theorem() -> Result<(), Error> {
+    use nalgebra::{Matrix3, Vector3};
+    let g = [2.3, 0.91, -0.98, 0.072, 0.081, 0.022, 0.011];
+    let s = [1.9, 0.96, -0.55, 0.05, 0.06, 0.013, -0.008];
+    let h = parse(&split_front_frame(g, s)?, Format::BicycleParametersTxt)?.benchmark()?;
+    let shift =
+        |m: f64, r: Vector3<f64>| m * (r.norm_squared() * Matrix3::identity() - r * r.transpose());
+    let mut about_origin = Matrix3::zeros();
+    let mut moment = Vector3::zeros();
+    for b in [g, s] {
+        let r = Vector3::new(b[1], 0.0, b[2]);
+        about_origin += tensor(b[3], b[4], b[5], b[6]) + shift(b[0], r);
+        moment += b[0] * r;
+    }
+    let m = g[0] + s[0];
+    let centre = moment / m;
+    let expected = about_origin - shift(m, centre);
+    let got = tensor(h.i_hxx, h.i_hyy, h.i_hzz, h.i_hxz);
+    assert!((h.m_h - m).abs() <= 1e-15 * m);
+    assert!((Vector3::new(h.x_h, 0.0, h.z_h) - centre).norm() <= 1e-14);
+    assert!((got - expected).norm() <= 1e-13, "{got} vs {expected}");
+    // The Steiner terms are not small here: the sum of the two tensors is far from the answer.
+    let plain = tensor(g[3] + s[3], g[4] + s[4], g[5] + s[5], g[6] + s[6]);
+    assert!((plain - expected).norm() > 0.05, "{plain} vs {expected}");
+
+    // Textbook case: two point masses m₁, m₂ a distance d apart have, about their centre of
+    // mass, the moment μ d² (μ = m₁ m₂ / (m₁ + m₂)) about any axis perpendicular to the line
+    // joining them, and none along it.
+    let (m1, m2) = (3.0, 1.0);
+    let (p1, p2) = ([0.8, -1.0], [1.1, -0.6]);
+    let h = parse(
+        &split_front_frame(
+            [m1, p1[0], p1[1], 0.0, 0.0, 0.0, 0.0],
+            [m2, p2[0], p2[1], 0.0, 0.0, 0.0, 0.0],
+        )?,
+        Format::BicycleParametersTxt,
+    )?
+    .benchmark()?;
+    let mu = m1 * m2 / (m1 + m2);
+    let (dx, dz): (f64, f64) = (p2[0] - p1[0], p2[1] - p1[1]);
+    assert!((h.i_hyy - mu * (dx * dx + dz * dz)).abs() <= 1e-14);
+    assert!((h.i_hxx - mu * dz * dz).abs() <= 1e-14);
+    assert!((h.i_hzz - mu * dx * dx).abs() <= 1e-14);
+    assert!((h.i_hxz + mu * dx * dz).abs() <= 1e-14);
+    Ok(())
+}
+
 /// Issue 11: keys of other models are never dropped silently; left-right asymmetry refused.
 #[test]
 fn issue_11_other_keys_are_reported_or_refused() -> Result<(), Error> {

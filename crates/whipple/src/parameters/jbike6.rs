@@ -709,63 +709,69 @@ impl<T: Copy> Jbike6Parameters<T> {
     }
 }
 
-/// One planar body ready to be combined: mass, centre of mass (x, y up) and in-plane tensor
-/// (xx, yy, xy) plus the lateral moment zz, in JBike6's axes.
-#[derive(Debug, Clone, Copy)]
-struct PlanarBody<T> {
-    m: T,
-    x: T,
-    y: T,
-    t_xx: T,
-    t_yy: T,
-    t_xy: T,
-    t_zz: T,
+/// A body of the bicycle's plane of symmetry in the benchmark's axes (x forward, y to the
+/// right, z down): mass \[kg\], centre of mass (x, z) \[m\] and the inertia tensor about it
+/// \[kg m²\], whose only product is I_xz, the tensor's xz entry as in Table 1. The one home of
+/// combining bodies: JBike6's seven bodies and a BicycleParameters file's handlebar and fork.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct PlaneBody<T> {
+    pub(crate) m: T,
+    pub(crate) x: T,
+    pub(crate) z: T,
+    pub(crate) i_xx: T,
+    pub(crate) i_yy: T,
+    pub(crate) i_zz: T,
+    pub(crate) i_xz: T,
 }
 
-impl<T: RealField + Copy> PlanarBody<T> {
-    fn new(m: T, x: T, y: T, inertia: [T; 3], alpha: T) -> Self {
+impl<T: RealField + Copy> PlaneBody<T> {
+    /// A JBike6 body: centre (x forward, y up) and principal moments [I11, I22, Izz], the first
+    /// two in the plane with the principal axis of I11 turned by `alpha` from x towards y.
+    fn jbike6(m: T, x: T, y: T, inertia: [T; 3], alpha: T) -> Self {
         let [i11, i22, izz] = inertia;
         let (s, c) = alpha.sin_cos();
-        // R(alpha) diag(I11, I22) R(alpha)^T with R = [[c, -s], [s, c]].
-        PlanarBody {
+        // R(alpha) diag(I11, I22) R(alpha)^T with R = [[c, -s], [s, c]], in JBike6's x-y
+        // axes; the benchmark's z is −y, so its xz product is minus JBike6's xy product.
+        PlaneBody {
             m,
             x,
-            y,
-            t_xx: i11 * c * c + i22 * s * s,
-            t_yy: i11 * s * s + i22 * c * c,
-            t_xy: (i11 - i22) * s * c,
-            t_zz: izz,
+            z: -y,
+            i_xx: i11 * c * c + i22 * s * s,
+            i_yy: izz,
+            i_zz: i11 * s * s + i22 * c * c,
+            i_xz: -((i11 - i22) * s * c),
         }
     }
 
-    /// Combines bodies: masses added, centre of mass the mass-weighted mean, tensors moved to
-    /// the combined centre of mass by the parallel-axis theorem.
-    fn combine(bodies: &[PlanarBody<T>]) -> PlanarBody<T> {
+    /// One body from several: masses added, centre of mass the mass-weighted mean (the origin
+    /// when the total mass is zero), each tensor moved to that centre by the parallel-axis
+    /// theorem, I + m (|d|² E − d dᵀ) with d from the combined centre to the body's.
+    pub(crate) fn combine(bodies: &[PlaneBody<T>]) -> PlaneBody<T> {
         let zero = T::zero();
         let m = bodies.iter().fold(zero, |a, b| a + b.m);
-        let (x, y) = if m > zero {
+        let (x, z) = if m > zero {
             (
                 bodies.iter().fold(zero, |a, b| a + b.m * b.x) / m,
-                bodies.iter().fold(zero, |a, b| a + b.m * b.y) / m,
+                bodies.iter().fold(zero, |a, b| a + b.m * b.z) / m,
             )
         } else {
             (zero, zero)
         };
-        let mut total = PlanarBody {
+        let mut total = PlaneBody {
             m,
             x,
-            y,
-            t_xx: zero,
-            t_yy: zero,
-            t_xy: zero,
-            t_zz: zero,
+            z,
+            i_xx: zero,
+            i_yy: zero,
+            i_zz: zero,
+            i_xz: zero,
         };
         for b in bodies {
-            let (dx, dy) = (b.x - x, b.y - y);
-            total.t_xx += b.t_xx + b.m * dy * dy;
-            total.t_yy += b.t_yy + b.m * dx * dx;
-            total.t_xy += b.t_xy - b.m * dx * dy;
-            total.t_zz += b.t_zz + b.m * (dx * dx + dy * dy);
+            let (dx, dz) = (b.x - x, b.z - z);
+            total.i_xx += b.i_xx + b.m * dz * dz;
+            total.i_yy += b.i_yy + b.m * (dx * dx + dz * dz);
+            total.i_zz += b.i_zz + b.m * dx * dx;
+            total.i_xz += b.i_xz - b.m * dx * dz;
         }
         total
     }
@@ -786,16 +792,16 @@ impl<T: RealField + Copy> Jbike6Parameters<T> {
     pub fn to_benchmark_unchecked(&self) -> BenchmarkParameters<T> {
         let half: T = nalgebra::convert(0.5);
         let lambda = T::frac_pi_2() - self.head_angle;
-        let rear = PlanarBody::combine(&[
+        let rear = PlaneBody::combine(&[
             rear_body(&self.rider),
             rear_body(&self.frame),
             rear_body(&self.rack),
         ]);
         let place = |b: &Jbike6FrontBody<T>| {
             let [x, y] = self.front_body_centre(b);
-            PlanarBody::new(b.m, x, y, b.inertia, b.alpha)
+            PlaneBody::jbike6(b.m, x, y, b.inertia, b.alpha)
         };
-        let front = PlanarBody::combine(&[place(&self.fork), place(&self.basket)]);
+        let front = PlaneBody::combine(&[place(&self.fork), place(&self.basket)]);
         BenchmarkParameters {
             w: self.wheelbase,
             c: self.trail,
@@ -806,19 +812,19 @@ impl<T: RealField + Copy> Jbike6Parameters<T> {
             i_rxx: self.rear_wheel.inertia[0],
             i_ryy: self.rear_wheel.inertia[2],
             x_b: rear.x,
-            z_b: -rear.y,
+            z_b: rear.z,
             m_b: rear.m,
-            i_bxx: rear.t_xx,
-            i_byy: rear.t_zz,
-            i_bzz: rear.t_yy,
-            i_bxz: -rear.t_xy,
+            i_bxx: rear.i_xx,
+            i_byy: rear.i_yy,
+            i_bzz: rear.i_zz,
+            i_bxz: rear.i_xz,
             x_h: front.x,
-            z_h: -front.y,
+            z_h: front.z,
             m_h: front.m,
-            i_hxx: front.t_xx,
-            i_hyy: front.t_zz,
-            i_hzz: front.t_yy,
-            i_hxz: -front.t_xy,
+            i_hxx: front.i_xx,
+            i_hyy: front.i_yy,
+            i_hzz: front.i_zz,
+            i_hxz: front.i_xz,
             r_f: half * self.front_wheel.diameter,
             m_f: self.front_wheel.m,
             i_fxx: self.front_wheel.inertia[0],
@@ -827,8 +833,8 @@ impl<T: RealField + Copy> Jbike6Parameters<T> {
     }
 }
 
-fn rear_body<T: RealField + Copy>(b: &Jbike6RearBody<T>) -> PlanarBody<T> {
-    PlanarBody::new(b.m, b.xcm, b.ycm, b.inertia, b.alpha)
+fn rear_body<T: RealField + Copy>(b: &Jbike6RearBody<T>) -> PlaneBody<T> {
+    PlaneBody::jbike6(b.m, b.xcm, b.ycm, b.inertia, b.alpha)
 }
 
 /// The JBike6 names behind a benchmark key, for messages about a converted bicycle.

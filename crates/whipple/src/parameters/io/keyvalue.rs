@@ -24,6 +24,7 @@
 use super::{error_at, parse_number, rounding_allowance, Format};
 use crate::error::{shorten, Result};
 use crate::parameters::check::{percent, Notice};
+use crate::parameters::jbike6::PlaneBody;
 use crate::parameters::table::{index_of, Form};
 use crate::parameters::{BenchmarkParameters, Bicycle, Description, Extra, BENCHMARK_TABLE};
 
@@ -240,10 +241,10 @@ fn decimal_comma(rhs: &str) -> Option<usize> {
 /// Keys that must be zero in a left-right symmetric model.
 const SYMMETRIC_ZERO: [&str; 6] = ["yB", "yH", "IBxy", "IByz", "IHxy", "IHyz"];
 
-/// The handlebar (G) and fork (S) keys, measured apart.
 /// The front frame H's keys, in the order of [`combine_fork`]'s result.
 const FRONT_FRAME: [&str; 7] = ["mH", "xH", "zH", "IHxx", "IHyy", "IHzz", "IHxz"];
 
+/// The handlebar (G) and fork (S) keys, measured apart.
 const SPLIT_FORK: [&str; 14] = [
     "mG", "xG", "zG", "IGxx", "IGyy", "IGzz", "IGxz", "mS", "xS", "zS", "ISxx", "ISyy", "ISzz",
     "ISxz",
@@ -627,27 +628,18 @@ fn check_extra(
 }
 
 /// The front frame H from the handlebar G and fork S ([mG, xG, zG, IGxx, IGyy, IGzz, IGxz, mS,
-/// ...]): masses added, mass-weighted centre, tensors moved by the parallel-axis theorem (x-z
-/// plane, z down, products of inertia as in the benchmark: I_xz = −∫ x z dm).
+/// ...]), combined as every body is ([`PlaneBody::combine`]: masses added, mass-weighted
+/// centre, tensors moved by the parallel-axis theorem).
 fn combine_fork(v: &[f64]) -> [f64; 7] {
-    let (mg, xg, zg) = (v[0], v[1], v[2]);
-    let (ms, xs, zs) = (v[7], v[8], v[9]);
-    let m = mg + ms;
-    let (x, z) = if m > 0.0 {
-        ((mg * xg + ms * xs) / m, (mg * zg + ms * zs) / m)
-    } else {
-        (0.0, 0.0)
+    let body = |k: usize| PlaneBody {
+        m: v[k],
+        x: v[k + 1],
+        z: v[k + 2],
+        i_xx: v[k + 3],
+        i_yy: v[k + 4],
+        i_zz: v[k + 5],
+        i_xz: v[k + 6],
     };
-    let shift = |mass: f64, bx: f64, bz: f64, ixx: f64, iyy: f64, izz: f64, ixz: f64| {
-        let (dx, dz) = (bx - x, bz - z);
-        [
-            ixx + mass * dz * dz,
-            iyy + mass * (dx * dx + dz * dz),
-            izz + mass * dx * dx,
-            ixz - mass * dx * dz,
-        ]
-    };
-    let g = shift(mg, xg, zg, v[3], v[4], v[5], v[6]);
-    let s = shift(ms, xs, zs, v[10], v[11], v[12], v[13]);
-    [m, x, z, g[0] + s[0], g[1] + s[1], g[2] + s[2], g[3] + s[3]]
+    let h = PlaneBody::combine(&[body(0), body(7)]);
+    [h.m, h.x, h.z, h.i_xx, h.i_yy, h.i_zz, h.i_xz]
 }
