@@ -137,6 +137,42 @@ impl Model {
         q
     }
 
+    /// The rear frame pitch θ that puts the front wheel on the ground at lean φ and steer δ, in
+    /// any scalar: [`Model::pitch_for`]'s bounded Newton iteration in f64 from `guess` gives
+    /// θ₀, then one more Newton step θ₀ − h(θ₀)/h'(θ₀) is taken in the scalar type, which gives
+    /// dual numbers the exact derivative ∂θ/∂(φ, δ) = −(∂h/∂θ)⁻¹ ∂h/∂(φ, δ) (implicit function
+    /// theorem) and moves the value by at most the last step's round-off.
+    pub(crate) fn ground_pitch<T: RealField + Copy>(
+        &self,
+        lean: T,
+        steer: T,
+        guess: f64,
+    ) -> Result<T> {
+        let re = |x: T| nalgebra::try_convert::<T, f64>(x).unwrap_or(f64::NAN);
+        let (lean0, steer0) = (re(lean), re(steer));
+        let pitch0 = self.pitch_for(lean0, steer0, guess)?;
+        let zero = Dual64::from_re(0.0);
+        let slope = self
+            .front_height(
+                [zero, Dual64::from_re(lean0), Dual64::new(pitch0, 1.0)],
+                Dual64::from_re(steer0),
+                [zero, zero],
+            )
+            .eps;
+        if !(slope.is_finite() && slope != 0.0) {
+            return Err(Error::SingularDynamics {
+                context: format!("the front contact height does not depend on pitch ({slope})"),
+            });
+        }
+        let convert = |x: f64| -> T { nalgebra::convert(x) };
+        let h = self.front_height(
+            [T::zero(), lean, convert(pitch0)],
+            steer,
+            [T::zero(), T::zero()],
+        );
+        Ok(convert(pitch0) - h / convert(slope))
+    }
+
     /// The rear frame pitch that puts the front wheel on the ground, by Newton iteration
     /// (derivative by a dual number) from `guess`.
     pub fn pitch_for(&self, lean: f64, steer: f64, guess: f64) -> Result<f64> {

@@ -90,10 +90,8 @@ impl Model {
 
     /// The full consistent state at lean φ, steer δ, forward speed v, lean rate φ̇ and steer rate
     /// δ̇ (with zero rates, a steady turn's state), for any lean and steer at which the front
-    /// wheel can touch the ground: the
-    /// pitch by Newton iteration in f64 ([`Model::pitch_for`], from upright's pitch), then one
-    /// Newton step in the scalar type with the exact slope there, which for dual numbers gives
-    /// the exact derivative of the pitch (implicit function theorem). Heading along +x from the
+    /// wheel can touch the ground: the pitch by [`Model::ground_pitch`] from upright's pitch
+    /// (for dual numbers with the exact derivative of the pitch). Heading along +x from the
     /// origin, wheel angles zero. Unlike [`Model::reduced_state`] (chord steps with upright's
     /// slope, fast near upright) it converges with the front wheel turned far round.
     pub(crate) fn manifold_state<T: RealField + Copy>(
@@ -102,24 +100,8 @@ impl Model {
         steer: T,
         speed_and_rates: [T; 3],
     ) -> Result<State<T>> {
-        let re = |x: T| nalgebra::try_convert::<T, f64>(x).unwrap_or(f64::NAN);
         let upright = self.pitch_for(0.0, 0.0, 0.0)?;
-        let p0 = self.pitch_for(re(lean), re(steer), upright)?;
-        let zero = Dual64::from_re(0.0);
-        let slope = self
-            .front_height(
-                [zero, Dual64::from_re(re(lean)), Dual64::new(p0, 1.0)],
-                Dual64::from_re(re(steer)),
-                [zero, zero],
-            )
-            .eps;
-        if !(slope.is_finite() && slope != 0.0) {
-            return Err(Error::SingularDynamics {
-                context: format!("the front contact height does not depend on pitch ({slope})"),
-            });
-        }
-        let h = self.front_height([T::zero(), lean, c(p0)], steer, [T::zero(), T::zero()]);
-        let pitch = c::<T>(p0) - h / c(slope);
+        let pitch = self.ground_pitch(lean, steer, upright)?;
         self.state_at_pitch(lean, steer, pitch, speed_and_rates)
     }
 
