@@ -13,7 +13,7 @@
 //! recursion a hostile input can drive deep).
 //!
 //! ```
-//! use whipple::nonlinear::TorqueExpression;
+//! use whipple::advanced::nonlinear::TorqueExpression;
 //! let torque = TorqueExpression::parse("10*lean + 20*lean_rate")?;
 //! assert_eq!(torque.text(), "10*lean + 20*lean_rate");
 //! assert!(TorqueExpression::parse("2*foo").is_err());
@@ -27,7 +27,7 @@ use crate::error::{Error, Result};
 
 /// The names an expression may use: time t \[s\], the lean, steer and yaw angles \[rad\], their
 /// rates [rad/s] and the forward speed [m/s].
-pub const VARIABLES: [&str; 7] = [
+pub(crate) const VARIABLES: [&str; 7] = [
     "lean",
     "lean_rate",
     "speed",
@@ -39,14 +39,11 @@ pub const VARIABLES: [&str; 7] = [
 
 /// The functions of one argument an expression may call (`log` is the natural logarithm, as
 /// `ln`).
-pub const FUNCTIONS: [&str; 26] = [
+pub(crate) const FUNCTIONS: [&str; 26] = [
     "abs", "acos", "acosh", "asin", "asinh", "atan", "atanh", "cbrt", "ceil", "cos", "cosh", "exp",
     "floor", "fract", "ln", "log", "log10", "log2", "round", "sign", "signum", "sin", "sinh",
     "sqrt", "tan", "tanh",
 ];
-
-/// The functions of two arguments.
-pub const BINARY_FUNCTIONS: [&str; 3] = ["atan2", "max", "min"];
 
 /// Longest expression accepted, in bytes.
 pub const MAX_LENGTH: usize = 1000;
@@ -459,7 +456,7 @@ fn run(program: &[Op], stack: &mut Vec<f64>, variables: &[f64; VARIABLES.len()])
 }
 
 impl TorqueExpression {
-    /// Parses `text`; its names must be among [`VARIABLES`], the constants and the functions,
+    /// Parses `text`; its names must be among `VARIABLES`, the constants and the functions,
     /// and it must evaluate to a finite number at rest (every variable zero). The error's rule
     /// says what is wrong and at which column.
     pub fn parse(text: &str) -> Result<Self> {

@@ -93,7 +93,7 @@ pub struct Derivatives<T: RealField + Copy> {
 
 impl<T: RealField + Copy> Derivatives<T> {
     /// The first-order derivative `[q̇; u̇]`.
-    pub fn to_vector(&self) -> SVector<T, STATE_LEN> {
+    pub fn to_vector(self) -> SVector<T, STATE_LEN> {
         let mut y = SVector::<T, STATE_LEN>::zeros();
         y.fixed_rows_mut::<COORDINATES>(0).copy_from(&self.q_dot);
         y.fixed_rows_mut::<SPEEDS>(COORDINATES)
@@ -108,7 +108,9 @@ impl Model {
     /// Allocation-free.
     ///
     /// ```
-    /// use whipple::{BenchmarkParameters, nonlinear::{Inputs, InitialConditions, Model}};
+    /// use whipple::BenchmarkParameters;
+    /// use whipple::advanced::nonlinear::Inputs;
+    /// use whipple::{InitialConditions, Model};
     /// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
     /// let state = model.initial_state(&InitialConditions::upright(5.0))?;
     /// let d = model.forward(&state, &Inputs::default())?;
