@@ -4,7 +4,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use whipple::parameters::io::{parse, write, Format};
+use whipple::advanced::io::{parse, write, Format};
 
 const FIELD_FORMATS: [Format; 3] = [
     Format::BicycleParametersTxt,

@@ -3,6 +3,6 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use whipple::parameters::io::Format;
+use whipple::advanced::io::Format;
 
 fuzz_target!(|data: &[u8]| whipple_fuzz::check_parse(data, Format::Jbike6M));

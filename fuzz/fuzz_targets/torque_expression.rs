@@ -3,7 +3,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use whipple::nonlinear::{StateView, TorqueExpression};
+use whipple::advanced::nonlinear::{StateView, TorqueExpression};
 
 fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {

@@ -1,6 +1,6 @@
 //! Design maps: one design's whole analysis (validation, canonical matrices, the certified
 //! stability structure on every speed v ≥ 0), against the single-bicycle path a user would
-//! otherwise loop over (`Canonical::new` + `stability::critical_speeds`, as `whipple speeds`
+//! otherwise loop over (`Canonical::new` + `whipple::critical_speeds`, as `whipple speeds`
 //! runs it). One core; a 64 × 64 map of trail against head angle.
 //!
 //! `cargo bench -p whipple-bench --bench design`
@@ -8,10 +8,10 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use whipple::analysis::design::{Axis, Study, StudyOptions};
-use whipple::analysis::stability;
-use whipple::linear::Canonical;
-use whipple::parameters::presets;
+use whipple::advanced::design::{Axis, StudyOptions};
+use whipple::presets;
+use whipple::Canonical;
+use whipple::Study;
 
 fn study(preset: &str, x: &str, y: &str) -> Study {
     let bike = presets::find(preset).expect("a preset").bicycle();
@@ -59,8 +59,7 @@ fn benches(c: &mut Criterion) {
                 for bike in &bikes {
                     if let Ok(p) = black_box(bike).benchmark() {
                         if let Ok(canonical) = Canonical::new(&p) {
-                            if let Ok(s) =
-                                stability::critical_speeds(&canonical, 0.0, f64::INFINITY)
+                            if let Ok(s) = whipple::critical_speeds(&canonical, 0.0, f64::INFINITY)
                             {
                                 ranges += s.stable_speed_ranges.len();
                             }

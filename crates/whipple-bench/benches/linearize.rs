@@ -5,11 +5,11 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use whipple::analysis::comparison::{
+use whipple::advanced::comparison::{
     full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix, StudySettings,
 };
-use whipple::nonlinear::Model;
 use whipple::BenchmarkParameters;
+use whipple::Model;
 
 fn linearize(c: &mut Criterion) {
     let model =

@@ -4,8 +4,9 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use whipple::nonlinear::{simulate, InitialConditions, Inputs, Model, SimulationSettings};
+use whipple::advanced::nonlinear::Inputs;
 use whipple::BenchmarkParameters;
+use whipple::{simulate, InitialConditions, Model, SimulationSettings};
 
 fn forward(c: &mut Criterion) {
     let model =

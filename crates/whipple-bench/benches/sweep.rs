@@ -5,14 +5,15 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use whipple::analysis::{eigen, stability, sweep};
-use whipple::linear::{Canonical, CharacteristicPolynomial, StateSpace};
+use whipple::advanced::eigen;
+use whipple::advanced::linear::{CharacteristicPolynomial, StateSpace};
 use whipple::BenchmarkParameters;
+use whipple::Canonical;
 
 fn benches(c: &mut Criterion) {
     let canonical =
         Canonical::new(&BenchmarkParameters::meijaard2007()).expect("the benchmark bike is valid");
-    let speeds = sweep::speed_grid(0.0, 10.0, 0.001).expect("valid grid");
+    let speeds = whipple::speed_grid(0.0, 10.0, 0.001).expect("valid grid");
     let poly = CharacteristicPolynomial::new(&canonical);
 
     let mut group = c.benchmark_group("linear");
@@ -40,12 +41,12 @@ fn benches(c: &mut Criterion) {
         })
     });
     group.bench_function("eigen_sweep_tracked_10001_speeds", |b| {
-        b.iter(|| sweep::eigen_sweep(&canonical, black_box(&speeds)).expect("sweeps"))
+        b.iter(|| whipple::eigen_sweep(&canonical, black_box(&speeds)).expect("sweeps"))
     });
     group.finish();
 
     c.bench_function("critical_speeds_0_to_10", |b| {
-        b.iter(|| stability::critical_speeds(&canonical, 0.0, black_box(10.0)).expect("finds"))
+        b.iter(|| whipple::critical_speeds(&canonical, 0.0, black_box(10.0)).expect("finds"))
     });
 }
 

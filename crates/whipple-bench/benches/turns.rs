@@ -5,11 +5,11 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use whipple::analysis::turns::{
+use whipple::advanced::turns::{
     branch_family, branch_from_straight, held_turn, stability, FamilySettings, Held, TurnSettings,
 };
-use whipple::nonlinear::Model;
 use whipple::BenchmarkParameters;
+use whipple::Model;
 
 fn turns(c: &mut Criterion) {
     let model =

@@ -5,8 +5,9 @@
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
-use whipple::analysis::design::{Axis, Shard, Study, StudyOptions};
-use whipple::parameters::presets;
+use whipple::advanced::design::{Axis, Shard, StudyOptions};
+use whipple::presets;
+use whipple::Study;
 
 fn main() -> Result<(), whipple::Error> {
     let args: Vec<String> = std::env::args().collect();
@@ -34,7 +35,7 @@ fn main() -> Result<(), whipple::Error> {
     study.run(Shard::WHOLE, &stop, |rows| {
         for r in rows {
             stable += u64::from(r.quantities.stable);
-            invalid += u64::from(r.status != whipple::analysis::design::DesignStatus::Ok);
+            invalid += u64::from(r.status != whipple::advanced::design::DesignStatus::Ok);
         }
         Ok(())
     })?;

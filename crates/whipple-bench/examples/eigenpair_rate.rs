@@ -4,9 +4,10 @@
 
 use std::time::Instant;
 
-use whipple::analysis::eigen::eigenpairs_with;
-use whipple::linear::{Canonical, CharacteristicPolynomial, SpeedPolynomials};
+use whipple::advanced::eigen::eigenpairs_with;
+use whipple::advanced::linear::{CharacteristicPolynomial, SpeedPolynomials};
 use whipple::BenchmarkParameters;
+use whipple::Canonical;
 
 fn main() -> Result<(), whipple::Error> {
     let n: usize = std::env::args()

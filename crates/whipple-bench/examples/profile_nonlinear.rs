@@ -14,8 +14,9 @@
 
 use std::hint::black_box;
 
-use whipple::nonlinear::{simulate, InitialConditions, Inputs, Model, SimulationSettings};
+use whipple::advanced::nonlinear::Inputs;
 use whipple::BenchmarkParameters;
+use whipple::{simulate, InitialConditions, Model, SimulationSettings};
 
 fn main() -> Result<(), whipple::Error> {
     let what = std::env::args().nth(1).unwrap_or_else(|| "simulate".into());

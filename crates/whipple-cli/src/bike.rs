@@ -4,9 +4,9 @@ use std::path::Path;
 use std::sync::{Mutex, PoisonError};
 
 use anyhow::{anyhow, bail, Context, Result};
-use whipple::parameters::io::{parse, Format, MAX_FILE_BYTES};
-use whipple::parameters::presets;
-use whipple::parameters::Notice;
+use whipple::advanced::io::{parse, Format, MAX_FILE_BYTES};
+use whipple::advanced::parameters::Notice;
+use whipple::presets;
 use whipple::{BenchmarkParameters, Bicycle, Error};
 
 /// The global reading options, set from the command line by each run of the command.

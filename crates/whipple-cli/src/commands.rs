@@ -6,13 +6,14 @@ use std::path::Path;
 use anyhow::{bail, Context, Result};
 use nalgebra::Matrix2;
 use serde_json::json;
-use whipple::analysis::sensitivity;
-use whipple::analysis::{stability, sweep};
-use whipple::linear::Canonical;
-use whipple::parameters::io::{write, Format};
-use whipple::parameters::presets::PRESETS;
-use whipple::parameters::table::key_doc;
-use whipple::{Bicycle, Description};
+use whipple::advanced::io::{write, Format};
+use whipple::advanced::parameters::Description;
+use whipple::advanced::sensitivity;
+use whipple::advanced::sweep;
+use whipple::advanced::table::key_doc;
+use whipple::presets::PRESETS;
+use whipple::Bicycle;
+use whipple::Canonical;
 
 use crate::bike::{load, LoadedBike};
 use crate::output::{self, number, parse_triple, print_stdout, Sink, Target};
@@ -235,7 +236,7 @@ pub fn eig(
     let modes = plan.modes();
     let every = grid.len().div_ceil(MAX_PLOT_SPEEDS).max(1);
     let last = grid.len() - 1;
-    let mut shown = sweep::EigenSweep {
+    let mut shown = whipple::EigenSweep {
         speeds: Vec::new(),
         eigenvalues: Vec::new(),
         modes,
@@ -301,7 +302,7 @@ pub fn eig(
                 shown.speeds.len()
             );
         }
-        let critical = stability::critical_speeds(&c, start.min(stop), stop.max(start + step))?;
+        let critical = whipple::critical_speeds(&c, start.min(stop), stop.max(start + step))?;
         let bands = if sigma_bands {
             Some(eigen_sigma_bands(&bike, &shown)?)
         } else {
@@ -326,7 +327,7 @@ pub fn modes(arg: &str, speed: f64, format: TextFormat) -> Result<()> {
         bail!("--speed must be a finite number, got {speed:?}");
     }
     let c = canonical(&bike)?;
-    let pairs: Vec<_> = whipple::analysis::modes::mode_shapes(&c, speed)
+    let pairs: Vec<_> = whipple::advanced::modes::mode_shapes(&c, speed)
         .with_context(|| format!("--speed {speed:?}"))?
         .into_iter()
         .map(|shape| (shape.pair, shape.mode.name()))
@@ -462,7 +463,7 @@ pub(crate) fn round_to_sigma(v: f64, s: f64) -> String {
 }
 
 /// Each tracked eigenvalue's real part ± σ at every speed of the sweep.
-fn eigen_sigma_bands(bike: &LoadedBike, s: &sweep::EigenSweep) -> Result<Vec<[(f64, f64); 4]>> {
+fn eigen_sigma_bands(bike: &LoadedBike, s: &whipple::EigenSweep) -> Result<Vec<[(f64, f64); 4]>> {
     let d = sensitivity::ParameterDerivatives::new(&bike.bicycle)?;
     let mut bands = Vec::with_capacity(s.speeds.len());
     for (v, row) in s.speeds.iter().zip(&s.eigenvalues) {
@@ -565,8 +566,8 @@ pub fn sensitivity(
                 "{}: exact sensitivities (dual numbers) to each parameter of its {} form\n",
                 bike.label,
                 match s.form {
-                    whipple::parameters::Form::Benchmark => "benchmark",
-                    whipple::parameters::Form::Jbike6 => "JBike6",
+                    whipple::advanced::table::Form::Benchmark => "benchmark",
+                    whipple::advanced::table::Form::Jbike6 => "JBike6",
                 }
             );
             let show = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.6}"));

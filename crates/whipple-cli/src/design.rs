@@ -9,9 +9,8 @@ use std::time::Instant;
 
 use anyhow::{anyhow, bail, Context, Result};
 use rayon::prelude::*;
-use whipple::analysis::design::{
-    Axis, DesignRow, DesignStatus, Parameter, Shard, Study, StudyOptions,
-};
+use whipple::advanced::design::{Axis, DesignRow, DesignStatus, Parameter, Shard, StudyOptions};
+use whipple::Study;
 use whipple_report::{design_map, design_study, MapData, StudyData};
 
 use crate::bike::load;

@@ -3,7 +3,8 @@
 use std::path::Path;
 
 use anyhow::{Context, Result};
-use whipple::analysis::{stability::CriticalSpeeds, sweep::EigenSweep};
+use whipple::CriticalSpeeds;
+use whipple::EigenSweep;
 use whipple_report::{EigenPlotOptions, Figure};
 
 use crate::bike::LoadedBike;
@@ -50,7 +51,7 @@ pub fn side_view(bike: &LoadedBike, target: &Target) -> Result<()> {
 /// named, rendered for `path` (not written).
 pub fn tornado(
     bike: &LoadedBike,
-    s: &whipple::analysis::sensitivity::Sensitivities,
+    s: &whipple::advanced::sensitivity::Sensitivities,
     path: &Path,
 ) -> Result<Vec<u8>> {
     let bars: Vec<whipple_report::Bar> = s

@@ -30,18 +30,18 @@ struct Cli {
     /// Format of the --bike file: toml, json, m, bp-txt (BicycleParameters <Name>Benchmark.txt),
     /// hc-txt (HumanControl <Name>Par.txt), yaml; by default from the extension and content.
     #[arg(long = "bike-format", global = true, value_parser = parse_format)]
-    format_in: Option<whipple::parameters::io::Format>,
+    format_in: Option<whipple::advanced::io::Format>,
     /// Treat the bicycle's warnings (a triangle inequality broken by a measured tensor, ...) as
     /// errors.
     #[arg(long, global = true)]
     strict: bool,
 }
 
-fn parse_format(name: &str) -> Result<whipple::parameters::io::Format, String> {
-    whipple::parameters::io::Format::from_name(name).ok_or_else(|| {
+fn parse_format(name: &str) -> Result<whipple::advanced::io::Format, String> {
+    whipple::advanced::io::Format::from_name(name).ok_or_else(|| {
         format!(
             "unknown format `{name}` (formats: {})",
-            whipple::parameters::io::FORMATS
+            whipple::advanced::io::FORMATS
                 .iter()
                 .map(|(_, n, _)| *n)
                 .collect::<Vec<_>>()

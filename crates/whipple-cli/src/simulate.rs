@@ -9,12 +9,12 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use serde_json::json;
-use whipple::nonlinear::{
-    simulate, InitialConditions, IntegratorKind, Model, Outcome, Sample, Simulation,
-    SimulationRequest, SimulationSettings, TorqueInput,
+use whipple::advanced::nonlinear::{
+    IntegratorKind, Outcome, Sample, Simulation, SimulationRequest, TorqueInput,
 };
+use whipple::{simulate, InitialConditions, Model, SimulationSettings};
 
-use whipple::analysis::turns::{held_turn, Held, SteadyTurn, TurnSettings};
+use whipple::advanced::turns::{held_turn, Held, SteadyTurn, TurnSettings};
 
 use crate::bike::{load, LoadedBike};
 use crate::output::{self, number, Sink};
@@ -446,9 +446,9 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         } => anyhow::anyhow!(
             "simulating: {} {} is too large for this run: {reason}; use {} <= {}",
             option(what),
-            whipple::short_number(value),
+            whipple::advanced::short_number(value),
             option(what),
-            whipple::short_number(suggested)
+            whipple::advanced::short_number(suggested)
         ),
         other => anyhow::Error::new(other).context("simulating"),
     })?;

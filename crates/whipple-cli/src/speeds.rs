@@ -5,9 +5,9 @@ use std::fmt::Write as _;
 
 use anyhow::{bail, Context, Result};
 use serde_json::json;
-use whipple::analysis::sensitivity;
-use whipple::analysis::sensitivity::CriticalSpeedsSigma;
-use whipple::analysis::stability::CriticalSpeeds;
+use whipple::advanced::sensitivity;
+use whipple::advanced::sensitivity::CriticalSpeedsSigma;
+use whipple::CriticalSpeeds;
 
 use crate::bike::load;
 use crate::commands::{emit, optional, with_sigma};
@@ -199,7 +199,7 @@ pub fn speeds(arg: &str, range: Option<&str>, format: TextFormat) -> Result<()> 
         None => (0.0, f64::INFINITY),
     };
     // The certified speeds, with their first-order standard deviations where the file gives
-    // the parameters' (the speeds are the same as stability::critical_speeds gives).
+    // the parameters' (the speeds are the same as whipple::critical_speeds gives).
     let su = sensitivity::critical_speeds_sigma(&bike.bicycle, lo, hi)
         .with_context(|| format!("critical speeds of {}", bike.label))?;
     let s = &su.speeds;

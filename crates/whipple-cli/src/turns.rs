@@ -6,11 +6,11 @@ use std::fmt::Write as _;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use serde_json::json;
-use whipple::analysis::turns::{
+use whipple::advanced::turns::{
     hands_free_families, hands_free_turns_at_speed, held_turn, stability, Family, FamilySettings,
     Held, Stability, SteadyTurn, TurnSettings,
 };
-use whipple::nonlinear::Model;
+use whipple::Model;
 
 use crate::bike::{load, LoadedBike};
 use crate::commands::emit;
@@ -276,7 +276,7 @@ pub fn turn(args: &TurnArgs) -> Result<()> {
 
 /// The mirror image of a hands-free turn, (φ, δ) → (−φ, −δ), solved again (not copied).
 fn held_turn_mirror(model: &Model, t: &SteadyTurn, settings: &TurnSettings) -> Result<SteadyTurn> {
-    Ok(whipple::analysis::turns::hands_free_turn_near(
+    Ok(whipple::advanced::turns::hands_free_turn_near(
         model,
         [-t.lean, -t.steer, t.speed],
         2,
@@ -306,7 +306,7 @@ pub fn turns(args: &TurnsArgs) -> Result<()> {
     let families = hands_free_families(&model, &settings)
         .with_context(|| format!("hands-free turns of {}", bike.label))?;
     let in_range =
-        |p: &whipple::analysis::turns::FamilyPoint| p.turn.speed >= lo && p.turn.speed <= hi;
+        |p: &whipple::advanced::turns::FamilyPoint| p.turn.speed >= lo && p.turn.speed <= hi;
     let text = match args.format {
         TextFormat::Json => {
             let fams: Vec<serde_json::Value> = families

@@ -9,12 +9,12 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 use clap::ValueEnum;
 use serde_json::json;
-use whipple::analysis::comparison::{
+use whipple::advanced::comparison::{
     capsize_spike, compare_with_linear, double_root_conditioning, ComparisonSweep, Linearization,
     LinearizationSweep, StudySettings, MAX_COMPARED_SPEEDS,
 };
-use whipple::analysis::eigen::Complex64;
-use whipple::analysis::sweep;
+use whipple::advanced::eigen::Complex64;
+use whipple::advanced::sweep;
 use whipple_report::{line_plot, xy_log_plot, Dash, Figure, Marker, Series, XyPlotOptions};
 
 use crate::bike::{load, LoadedBike};
@@ -61,7 +61,7 @@ pub fn validate(
              core: the limit is about 20 minutes); use a larger step or a narrower range"
         );
     }
-    let grid = sweep::speed_grid(start, stop, step).context("--speeds")?;
+    let grid = whipple::speed_grid(start, stop, step).context("--speeds")?;
     let methods: Vec<Linearization> = match choice {
         MethodChoice::Fd => vec![Linearization::FiniteDifferences],
         MethodChoice::Ad => vec![Linearization::Exact],

@@ -324,8 +324,8 @@ fn critical_speeds_are_those_of_forward_riding() {
 /// to print "self-stable nowhere" beside a "not decided" interval that holds the range.
 #[test]
 fn an_undecided_interval_is_never_contradicted() {
-    use whipple::analysis::stability::critical_speeds;
-    use whipple::parameters::io::{write, Format};
+    use whipple::advanced::io::{write, Format};
+    use whipple::critical_speeds;
     use whipple::{BenchmarkParameters, Bicycle, Canonical};
     let width = |c: f64| -> Option<(f64, usize)> {
         let mut b = BenchmarkParameters::meijaard2007();
@@ -369,7 +369,7 @@ fn an_undecided_interval_is_never_contradicted() {
         let mut b = BenchmarkParameters::meijaard2007();
         b.c = c;
         let file = dir.join(format!("design{k}.toml"));
-        let bike = Bicycle::new(whipple::parameters::Description::Benchmark(b));
+        let bike = Bicycle::new(whipple::advanced::parameters::Description::Benchmark(b));
         fs::write(&file, write(&bike, Format::Toml).expect("writes")).expect("write");
         let out = stdout(&whipple(&[
             "speeds",

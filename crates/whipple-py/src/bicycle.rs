@@ -5,9 +5,14 @@ use std::collections::BTreeMap;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use whipple::parameters::table::{self, Form};
-use whipple::parameters::{presets as library_presets, Checked, Severity};
-use whipple::{io, Bicycle, Description, Error, Format};
+use whipple::advanced::io;
+use whipple::advanced::io::Format;
+use whipple::advanced::parameters::Description;
+use whipple::advanced::parameters::{Checked, Severity};
+use whipple::advanced::table;
+use whipple::advanced::table::Form;
+use whipple::presets as library_presets;
+use whipple::{Bicycle, Error};
 
 use crate::errors::IntoPy;
 
@@ -259,9 +264,11 @@ impl NativeBicycle {
                     })?),
                 ),
                 Description::Jbike6(_) => Description::Jbike6(
-                    whipple::Jbike6Parameters::from_array(values.try_into().map_err(|_| {
-                        pyo3::exceptions::PyRuntimeError::new_err("parameter count")
-                    })?),
+                    whipple::advanced::parameters::Jbike6Parameters::from_array(
+                        values.try_into().map_err(|_| {
+                            pyo3::exceptions::PyRuntimeError::new_err("parameter count")
+                        })?,
+                    ),
                 ),
             };
         // Notes of the file (unused keys) stay; the checks' warnings are redone.

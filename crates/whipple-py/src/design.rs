@@ -5,7 +5,8 @@
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use whipple::analysis::design::{Axis, DesignRow, DesignStatus, Shard, Study, StudyOptions};
+use whipple::advanced::design::{Axis, DesignRow, DesignStatus, Shard, StudyOptions};
+use whipple::Study;
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;

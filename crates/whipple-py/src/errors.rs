@@ -137,7 +137,7 @@ pub fn to_py(py: Python<'_>, error: Error) -> PyErr {
                         py,
                         format!(
                             "{reason}; use {what} <= {}",
-                            whipple::short_number(suggested)
+                            whipple::advanced::short_number(suggested)
                         ),
                     ),
                 ),

@@ -9,15 +9,16 @@ use numpy::{Complex64 as NpComplex, PyArray1, PyArray2, PyArrayMethods, PyReadon
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
-use whipple::analysis::comparison::{compare_with_linear_until, MAX_COMPARED_SPEEDS};
-use whipple::analysis::eigen::eigenpairs_with;
-use whipple::analysis::sensitivity::{self, critical_speeds_sigma};
-use whipple::analysis::stability::CrossingKind;
-use whipple::analysis::sweep::SweepPlan;
-use whipple::linear::{CharacteristicPolynomial, SpeedPolynomials};
-use whipple::{
-    lean_steer_matrix, Canonical, Error, Linearization, Model, StateSpace, StudySettings,
-};
+use whipple::advanced::comparison::{compare_with_linear_until, MAX_COMPARED_SPEEDS};
+use whipple::advanced::comparison::{lean_steer_matrix, Linearization, StudySettings};
+use whipple::advanced::eigen::eigenpairs_with;
+use whipple::advanced::linear::StateSpace;
+use whipple::advanced::linear::{CharacteristicPolynomial, SpeedPolynomials};
+use whipple::advanced::sensitivity;
+use whipple::advanced::sensitivity::critical_speeds_sigma;
+use whipple::advanced::stability::CrossingKind;
+use whipple::advanced::sweep::SweepPlan;
+use whipple::{Canonical, Error, Model};
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
@@ -40,7 +41,7 @@ fn shaped<'py, T: numpy::Element>(
     Ok(PyArray1::from_vec(py, data).reshape(shape)?.into_any())
 }
 
-fn complex(z: whipple::Complex64) -> NpComplex {
+fn complex(z: whipple::advanced::eigen::Complex64) -> NpComplex {
     NpComplex::new(z.re, z.im)
 }
 
@@ -222,7 +223,7 @@ impl NativeBicycle {
                 grow(
                     &mut targets,
                     n,
-                    [whipple::Complex64::new(0.0, 0.0); 4],
+                    [whipple::advanced::eigen::Complex64::new(0.0, 0.0); 4],
                     stop,
                 )?;
                 sorted.extend(0..n);
@@ -520,7 +521,7 @@ impl NativeBicycle {
         })?
         .py_err(py)?;
         let n = sweep.speeds.len();
-        let flat = |rows: &[[whipple::Complex64; 4]]| -> Vec<NpComplex> {
+        let flat = |rows: &[[whipple::advanced::eigen::Complex64; 4]]| -> Vec<NpComplex> {
             rows.iter()
                 .flat_map(|r| r.iter().map(|z| complex(*z)))
                 .collect()
@@ -553,8 +554,8 @@ impl NativeBicycle {
 impl NativeBicycle {
     fn form_name(&self) -> &'static str {
         match self.bicycle.description.form() {
-            whipple::parameters::Form::Benchmark => "benchmark",
-            whipple::parameters::Form::Jbike6 => "jbike6",
+            whipple::advanced::table::Form::Benchmark => "benchmark",
+            whipple::advanced::table::Form::Jbike6 => "jbike6",
         }
     }
 }

@@ -1,9 +1,9 @@
-//! The library's side view (`whipple::side_view`: wheels, steer axis, trail, stylized frame
+//! The library's side view (`whipple::advanced::side_view`: wheels, steer axis, trail, stylized frame
 //! tubes, each body's centre of mass and inertia ellipse) as a dict for the Python figure.
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use whipple::side_view::{side_view, Part};
+use whipple::advanced::side_view::{side_view, Part};
 
 use crate::bicycle::NativeBicycle;
 
@@ -24,7 +24,7 @@ fn part_name(part: Part) -> &'static str {
 #[pymethods]
 impl NativeBicycle {
     /// The side view's geometry (x forward from the rear contact, y up, metres): every point of
-    /// `whipple::side_view::SideView`, `frame_tubes` (six segments) and `bodies` (dicts: part,
+    /// `whipple::advanced::side_view::SideView`, `frame_tubes` (six segments) and `bodies` (dicts: part,
     /// name, mass, centre, ellipse (semi_axes, angle) or None, is_wheel, is_front).
     fn side_view<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let v = side_view(&self.checked.benchmark, self.bicycle.jbike6());

@@ -8,12 +8,12 @@ use std::sync::{Arc, Mutex};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use whipple::analysis::turns::{held_turn, Held, TurnSettings};
-use whipple::nonlinear::{
-    simulate, IntegratorKind, Model, Sample, SimulationRequest, StateView, TorqueFn, TorqueInput,
-    BODY_NAMES,
+use whipple::advanced::nonlinear::{
+    IntegratorKind, Sample, SimulationRequest, StateView, TorqueFn, TorqueInput, BODY_NAMES,
 };
+use whipple::advanced::turns::{held_turn, Held, TurnSettings};
 use whipple::Error;
+use whipple::{simulate, Model};
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;

@@ -5,13 +5,13 @@
 use numpy::{Complex64, PyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use whipple::analysis::turns::{
+use whipple::advanced::turns::{
     branch_from_straight, hands_free_families, hands_free_turn_near, hands_free_turns_at_speed,
     held_turn, stability, Family, FamilyPoint, FamilySettings, Held, Stability, SteadyTurn,
     TurnSettings,
 };
-use whipple::nonlinear::Model;
 use whipple::Error;
+use whipple::Model;
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
@@ -132,8 +132,8 @@ fn family_dict<'py>(
 }
 
 /// The snake_case name of a family's end (as the CLI's JSON writes it).
-fn serde_name(end: whipple::analysis::turns::FamilyEnd) -> &'static str {
-    use whipple::analysis::turns::FamilyEnd as E;
+fn serde_name(end: whipple::advanced::turns::FamilyEnd) -> &'static str {
+    use whipple::advanced::turns::FamilyEnd as E;
     match end {
         E::Fell => "fell",
         E::MaxSpeed => "max_speed",

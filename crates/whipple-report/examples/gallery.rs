@@ -3,9 +3,8 @@
 
 use std::path::PathBuf;
 
-use whipple::analysis::{stability, sweep};
-use whipple::linear::Canonical;
-use whipple::parameters::presets;
+use whipple::presets;
+use whipple::Canonical;
 use whipple_report::{eigen_comparison_plot, eigen_plot, BikeEigen, EigenPlotOptions, Format};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -18,8 +17,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let bicycle = presets::find(name)?.bicycle();
         let bike = bicycle.benchmark()?;
         let canonical = Canonical::new(&bike)?;
-        let eig = sweep::eigen_sweep(&canonical, &sweep::speed_grid(0.0, 10.0, 0.01)?)?;
-        let critical = stability::critical_speeds(&canonical, 0.0, 10.0)?;
+        let eig = whipple::eigen_sweep(&canonical, &whipple::speed_grid(0.0, 10.0, 0.01)?)?;
+        let critical = whipple::critical_speeds(&canonical, 0.0, 10.0)?;
         let figure = eigen_plot(&eig, &critical, &EigenPlotOptions::default())?;
         for format in [Format::Png, Format::Svg] {
             let path = dir.join(format!("eigen-{name}.{}", format.extension()));

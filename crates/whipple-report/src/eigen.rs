@@ -5,9 +5,9 @@
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
-use whipple::analysis::modes::Mode;
-use whipple::analysis::stability::CriticalSpeeds;
-use whipple::analysis::sweep::EigenSweep;
+use whipple::advanced::modes::Mode;
+use whipple::CriticalSpeeds;
+use whipple::EigenSweep;
 
 use crate::clip::Rect;
 use crate::draw::{
@@ -120,11 +120,13 @@ fn check_range(what: &'static str, (lo, hi): (f64, f64)) -> Result<()> {
 /// Eigenvalues of one bicycle against speed (Meijaard 2007 Fig. 3 style).
 ///
 /// ```
-/// use whipple::{analysis::{stability, sweep}, linear::Canonical, BenchmarkParameters};
+/// use whipple::advanced::{stability, sweep};
+/// use whipple::Canonical;
+/// use whipple::BenchmarkParameters;
 /// use whipple_report::{eigen_plot, EigenPlotOptions};
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007()).unwrap();
-/// let s = sweep::eigen_sweep(&canonical, &sweep::speed_grid(0.0, 10.0, 0.05).unwrap()).unwrap();
-/// let c = stability::critical_speeds(&canonical, 0.0, 10.0).unwrap();
+/// let s = whipple::eigen_sweep(&canonical, &whipple::speed_grid(0.0, 10.0, 0.05).unwrap()).unwrap();
+/// let c = whipple::critical_speeds(&canonical, 0.0, 10.0).unwrap();
 /// let svg = eigen_plot(&s, &c, &EigenPlotOptions::default())?.to_svg()?;
 /// assert!(svg.contains("v_w = 4.292 m/s") && svg.contains("castering"));
 /// # Ok::<(), whipple_report::Error>(())
@@ -464,7 +466,7 @@ impl EigenFigure {
 
 /// Whether column k's |Im λ| is drawn at this speed: it is complex, and it is not the
 /// negative-imaginary member of a conjugate pair whose other member is also a column.
-fn shows_imaginary(values: &[whipple::analysis::eigen::Complex64; 4], k: usize) -> bool {
+fn shows_imaginary(values: &[whipple::advanced::eigen::Complex64; 4], k: usize) -> bool {
     let l = values[k];
     if l.im > 0.0 {
         return true;

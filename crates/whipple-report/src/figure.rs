@@ -167,11 +167,13 @@ impl Figure {
     /// Renders to bytes in `format`: UTF-8 SVG text or a PNG image.
     ///
     /// ```
-    /// use whipple::{analysis::{stability, sweep}, linear::Canonical, BenchmarkParameters};
+    /// use whipple::advanced::{stability, sweep};
+    /// use whipple::Canonical;
+    /// use whipple::BenchmarkParameters;
     /// use whipple_report::{eigen_plot, EigenPlotOptions, Format};
     /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007()).unwrap();
-    /// let s = sweep::eigen_sweep(&canonical, &sweep::speed_grid(0.0, 10.0, 0.1).unwrap()).unwrap();
-    /// let c = stability::critical_speeds(&canonical, 0.0, 10.0).unwrap();
+    /// let s = whipple::eigen_sweep(&canonical, &whipple::speed_grid(0.0, 10.0, 0.1).unwrap()).unwrap();
+    /// let c = whipple::critical_speeds(&canonical, 0.0, 10.0).unwrap();
     /// let svg = eigen_plot(&s, &c, &EigenPlotOptions::default())?.render(Format::Svg)?;
     /// assert!(String::from_utf8_lossy(&svg).contains("<svg"));
     /// # Ok::<(), whipple_report::Error>(())

@@ -8,13 +8,15 @@
 //! writes no files. Text is set in DejaVu Sans, embedded from the `dejavu` crate.
 //!
 //! ```
-//! use whipple::{analysis::{stability, sweep}, linear::Canonical, BenchmarkParameters};
+//! use whipple::advanced::{stability, sweep};
+//! use whipple::Canonical;
+//! use whipple::BenchmarkParameters;
 //! use whipple_report::{eigen_csv, eigen_plot, EigenPlotOptions, Format};
 //!
 //! let canonical = Canonical::new(&BenchmarkParameters::meijaard2007()).unwrap();
-//! let speeds = sweep::speed_grid(0.0, 10.0, 0.1).unwrap();
-//! let eig = sweep::eigen_sweep(&canonical, &speeds).unwrap();
-//! let critical = stability::critical_speeds(&canonical, 0.0, 10.0).unwrap();
+//! let speeds = whipple::speed_grid(0.0, 10.0, 0.1).unwrap();
+//! let eig = whipple::eigen_sweep(&canonical, &speeds).unwrap();
+//! let critical = whipple::critical_speeds(&canonical, 0.0, 10.0).unwrap();
 //! let png = eigen_plot(&eig, &critical, &EigenPlotOptions::default())?.render(Format::Png)?;
 //! assert_eq!(&png[1..4], b"PNG");
 //! assert!(eigen_csv(&eig).starts_with("v,re1,im1,re2,im2,re3,im3,re4,im4\n"));

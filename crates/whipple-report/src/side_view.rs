@@ -7,8 +7,9 @@
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use whipple::side_view::{Part, SideView};
-use whipple::{BenchmarkParameters, Jbike6Parameters};
+use whipple::advanced::parameters::Jbike6Parameters;
+use whipple::advanced::side_view::{Part, SideView};
+use whipple::BenchmarkParameters;
 
 use crate::draw::{place, text, Placed, BLUE, DARK, GREY, VERMILLION};
 use crate::error::Result;
@@ -45,7 +46,7 @@ fn mass(m: f64) -> String {
 }
 
 /// The side view of a bicycle (JBike6 style), drawn from the library's geometry
-/// ([`whipple::side_view`]); with its JBike6 form, the individual bodies (rider, frame, rack,
+/// ([`whipple::advanced::side_view`]); with its JBike6 form, the individual bodies (rider, frame, rack,
 /// fork, basket) are shown instead of the combined B and H.
 ///
 /// ```
@@ -60,7 +61,7 @@ pub fn side_view(
     jbike6: Option<&Jbike6Parameters>,
     name: &str,
 ) -> Figure {
-    let view = whipple::side_view::side_view(bike, jbike6);
+    let view = whipple::advanced::side_view::side_view(bike, jbike6);
     let rider = jbike6.map_or(bike.m_b, |j| j.rider.m) > RIDER_MASS;
     let centres = view
         .bodies

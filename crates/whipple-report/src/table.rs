@@ -1,16 +1,18 @@
 //! Tables of eigenvalues: CSV for files, fixed-width text for the terminal.
 
-use whipple::analysis::eigen::Complex64;
-use whipple::analysis::modes::Mode;
-use whipple::analysis::sweep::EigenSweep;
+use whipple::advanced::eigen::Complex64;
+use whipple::advanced::modes::Mode;
+use whipple::EigenSweep;
 
 /// The eigenvalue sweep as CSV: header `v,re1,im1,re2,im2,re3,im3,re4,im4`, one row per speed,
 /// columns in the sweep's mode order, numbers in Rust's shortest round-trip form (`{}` of f64).
 ///
 /// ```
-/// use whipple::{analysis::sweep, linear::Canonical, BenchmarkParameters};
+/// use whipple::advanced::sweep;
+/// use whipple::Canonical;
+/// use whipple::BenchmarkParameters;
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007()).unwrap();
-/// let s = sweep::eigen_sweep(&canonical, &[0.0, 5.0]).unwrap();
+/// let s = whipple::eigen_sweep(&canonical, &[0.0, 5.0]).unwrap();
 /// let csv = whipple_report::eigen_csv(&s);
 /// assert_eq!(csv.lines().count(), 3);
 /// assert!(csv.lines().nth(2).unwrap().starts_with("5,"));
@@ -79,9 +81,9 @@ pub fn eigen_table_row(v: f64, values: &[Complex64; 4]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use whipple::analysis::sweep::eigen_sweep;
-    use whipple::linear::Canonical;
+    use whipple::eigen_sweep;
     use whipple::BenchmarkParameters;
+    use whipple::Canonical;
 
     #[test]
     fn csv_header_and_round_trip() -> Result<(), whipple::Error> {

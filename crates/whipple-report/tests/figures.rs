@@ -1,9 +1,9 @@
 //! Rendering tests: every figure renders to non-empty SVG and PNG with the expected text.
 
-use whipple::analysis::stability::{critical_speeds, CriticalSpeeds};
-use whipple::analysis::sweep::{eigen_sweep, speed_grid, EigenSweep};
-use whipple::linear::Canonical;
-use whipple::parameters::presets;
+use whipple::presets;
+use whipple::Canonical;
+use whipple::{critical_speeds, CriticalSpeeds};
+use whipple::{eigen_sweep, speed_grid, EigenSweep};
 use whipple_report::{
     eigen_comparison_plot, eigen_plot, line_plot, side_view, time_series_plot, xy_log_plot,
     BikeEigen, EigenPlotOptions, Error, Figure, Format, Marker, Series, SimulationSeries,

@@ -83,7 +83,7 @@ fn names_this_server(host: &str, bound: IpAddr) -> bool {
 /// A header's value as text for a message: printable, at most 60 characters.
 fn shown(value: &HeaderValue) -> String {
     match value.to_str() {
-        Ok(text) => format!("`{}`", whipple::shorten(text, 60)),
+        Ok(text) => format!("`{}`", whipple::advanced::shorten(text, 60)),
         Err(_) => "a value that is not visible ASCII".to_string(),
     }
 }

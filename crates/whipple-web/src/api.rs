@@ -2,7 +2,7 @@
 //!
 //! Bicycles travel as the JSON layout of the parameter files (`{"name", "source",
 //! "benchmark": {...}}` or `{..., "jbike6": {...}}`) and are read and written by
-//! `whipple::parameters::io`, so the API, the CLI and the files agree on every key and rule.
+//! `whipple::advanced::io`, so the API, the CLI and the files agree on every key and rule.
 
 use std::net::{IpAddr, Ipv4Addr};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -20,15 +20,19 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use tokio::sync::{OwnedSemaphorePermit, Semaphore, TryAcquireError};
-use whipple::analysis::sensitivity;
-use whipple::analysis::stability::{critical_speeds, CriticalSpeeds};
-use whipple::analysis::sweep::{eigen_sweep, speed_grid};
-use whipple::linear::Canonical;
-use whipple::parameters::io::{self, Format};
-use whipple::parameters::presets::{self, PRESETS};
-use whipple::parameters::table::{self, Form, ParameterInfo};
-use whipple::parameters::Notice;
-use whipple::{Bicycle, Description};
+use whipple::advanced::io;
+use whipple::advanced::io::Format;
+use whipple::advanced::parameters::Description;
+use whipple::advanced::parameters::Notice;
+use whipple::advanced::sensitivity;
+use whipple::advanced::table;
+use whipple::advanced::table::{Form, ParameterInfo};
+use whipple::presets;
+use whipple::presets::PRESETS;
+use whipple::Bicycle;
+use whipple::Canonical;
+use whipple::{critical_speeds, CriticalSpeeds};
+use whipple::{eigen_sweep, speed_grid};
 
 use crate::error::{quoted_field, ApiError};
 use crate::geometry::{side_view, SideView};
@@ -187,7 +191,7 @@ pub(crate) fn json_body<T: DeserializeOwned>(
     let bytes = body_bytes(body)?;
     // A key named twice in one object is refused (serde_json would keep the last one), as in
     // every parameter file; then the body is read into its documented shape.
-    whipple::parameters::io::json_slice_without_duplicates(&bytes)
+    whipple::advanced::io::json_slice_without_duplicates(&bytes)
         .map(drop)
         .and_then(|()| serde_json::from_slice(&bytes))
         .map_err(|e| {
@@ -560,7 +564,7 @@ async fn parse_file(
                         "invalid_request",
                         format!(
                         "unknown format `{}` (formats: toml, json, m, bp-txt, hc-txt, yaml, auto)",
-                        whipple::shorten(&request.format, 40)
+                        whipple::advanced::shorten(&request.format, 40)
                     ),
                     )
                     .at("format", "one of toml, json, m, bp-txt, hc-txt, yaml, auto")

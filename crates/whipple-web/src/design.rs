@@ -1,4 +1,4 @@
-//! `/api/map` and `/api/study`: design studies computed by `whipple::analysis::design` within
+//! `/api/map` and `/api/study`: design studies computed by `whipple::advanced::design` within
 //! the server's limits, answered as columns (one array per quantity, row-major).
 
 use axum::body::Bytes;
@@ -9,8 +9,9 @@ use axum::response::Response;
 use axum::Json;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use whipple::analysis::design::{Axis, DesignStatus, Shard, Study, StudyOptions};
-use whipple::analysis::modes::Mode;
+use whipple::advanced::design::{Axis, DesignStatus, Shard, StudyOptions};
+use whipple::advanced::modes::Mode;
+use whipple::Study;
 
 use crate::api::{bicycle, bicycle_json, compute_json, json_body, AppState, Budget, SpeedRange};
 use crate::error::ApiError;

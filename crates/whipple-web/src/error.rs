@@ -136,7 +136,7 @@ impl From<Error> for ApiError {
             } => {
                 let rule = format!(
                     "{reason}; use {what} <= {}",
-                    whipple::short_number(suggested)
+                    whipple::advanced::short_number(suggested)
                 );
                 let mut e = ApiError::new(unprocessable, "step_too_large", message).at(what, rule);
                 e.body.value = value.is_finite().then_some(value);

@@ -1,12 +1,12 @@
 //! JBike6's stylized side view, as geometry for the page to draw: the library's
-//! [`whipple::side_view`] (wheels, steer axis, fork, frame tubes, each body's centre of mass
+//! [`whipple::advanced::side_view`] (wheels, steer axis, fork, frame tubes, each body's centre of mass
 //! with its inertia ellipse) in the shape the page reads.
 //!
 //! Coordinates: metres, x forward from the rear wheel's contact, y up (JBike6's side view;
 //! the benchmark's z points down, so y = −z).
 
 use serde::Serialize;
-pub use whipple::side_view::{Ellipse, Point};
+pub use whipple::advanced::side_view::{Ellipse, Point};
 use whipple::{BenchmarkParameters, Bicycle};
 
 /// A wheel: a circle standing on the ground.
@@ -66,7 +66,7 @@ pub struct SideView {
 /// The side view of a bicycle whose benchmark parameters are `p` (already validated), with
 /// JBike6's separate bodies when it was described in that form.
 pub fn side_view(bike: &Bicycle, p: &BenchmarkParameters) -> SideView {
-    let v = whipple::side_view::side_view(p, bike.jbike6());
+    let v = whipple::advanced::side_view::side_view(p, bike.jbike6());
     SideView {
         wheelbase: v.wheelbase,
         trail: v.trail,
@@ -107,7 +107,7 @@ pub fn side_view(bike: &Bicycle, p: &BenchmarkParameters) -> SideView {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use whipple::parameters::presets;
+    use whipple::presets;
 
     /// The centre of mass drawn is the one the benchmark parameters imply (masses R, B, H, F).
     #[test]
@@ -132,7 +132,7 @@ mod tests {
     fn the_page_draws_the_library_geometry() -> Result<(), whipple::Error> {
         let bike = presets::find("schwinn-crown")?.bicycle();
         let p = bike.benchmark()?;
-        let v = whipple::side_view::side_view(&p, bike.jbike6());
+        let v = whipple::advanced::side_view::side_view(&p, bike.jbike6());
         let page = side_view(&bike, &p);
         assert_eq!(page.fork, [v.front_hub, v.crown]);
         assert_eq!(page.steer_axis, v.steer_axis);

@@ -7,8 +7,9 @@ use axum::http::StatusCode;
 use nalgebra::Vector4;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use whipple::analysis::modes::mode_shapes;
-use whipple::linear::{Canonical, StateSpace};
+use whipple::advanced::linear::StateSpace;
+use whipple::advanced::modes::mode_shapes;
+use whipple::Canonical;
 
 use crate::error::ApiError;
 use crate::Limits;

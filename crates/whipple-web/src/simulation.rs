@@ -11,12 +11,12 @@ use std::sync::Arc;
 use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use whipple::analysis::turns::{held_turn, Held, SteadyTurn, TurnSettings};
-use whipple::nonlinear::{
-    simulate, ContactForce, InitialConditions, IntegratorKind, Model, Outcome, Sample,
-    SimulationRequest, SimulationSettings, TorqueInput,
+use whipple::advanced::nonlinear::{
+    ContactForce, IntegratorKind, Outcome, Sample, SimulationRequest, TorqueInput,
 };
+use whipple::advanced::turns::{held_turn, Held, SteadyTurn, TurnSettings};
 use whipple::BenchmarkParameters;
+use whipple::{simulate, InitialConditions, Model, SimulationSettings};
 
 use crate::error::ApiError;
 use crate::Limits;

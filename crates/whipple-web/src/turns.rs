@@ -1,5 +1,5 @@
 //! `POST /api/turn`: one held steady turn of the non-linear bicycle, the steer torque that holds
-//! it and its stability (`whipple::analysis::turns`, what `whipple turn` prints).
+//! it and its stability (`whipple::advanced::turns`, what `whipple turn` prints).
 
 use axum::body::Bytes;
 use axum::extract::rejection::BytesRejection;
@@ -8,8 +8,8 @@ use axum::http::StatusCode;
 use axum::Json;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use whipple::analysis::turns::{held_turn, stability, Held, Stability, SteadyTurn, TurnSettings};
-use whipple::nonlinear::Model;
+use whipple::advanced::turns::{held_turn, stability, Held, Stability, SteadyTurn, TurnSettings};
+use whipple::Model;
 
 use crate::api::{bicycle, compute, json_body, AppState, Budget};
 use crate::error::ApiError;

@@ -10,8 +10,8 @@ use std::time::Duration;
 use serde_json::{json, Value};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
-use whipple::parameters::io::{write, Format};
-use whipple::parameters::presets;
+use whipple::advanced::io::{write, Format};
+use whipple::presets;
 use whipple_web::{ServeOptions, Server};
 
 type TestResult = Result<(), Box<dyn std::error::Error + Send + Sync>>;

@@ -8,8 +8,8 @@ use axum::Router;
 use http_body_util::BodyExt;
 use serde_json::{json, Value};
 use tower::ServiceExt;
-use whipple::parameters::io::{write, Format};
-use whipple::parameters::presets;
+use whipple::advanced::io::{write, Format};
+use whipple::presets;
 use whipple_web::{app, Limits};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;

@@ -353,9 +353,9 @@ async fn issue_26_16_heavy_work_past_its_budget_is_busy_and_small_requests_are_n
         ..Limits::default()
     })
     .await?;
-    let bike: Value = serde_json::from_str(&whipple::parameters::io::write(
-        &whipple::parameters::presets::find("benchmark")?.bicycle(),
-        whipple::parameters::io::Format::Json,
+    let bike: Value = serde_json::from_str(&whipple::advanced::io::write(
+        &whipple::presets::find("benchmark")?.bicycle(),
+        whipple::advanced::io::Format::Json,
     )?)?;
     let map = json!({"bike": bike, "x": "trail=-0.05:0.2:500", "y": "head_angle_deg=60:85:500"})
         .to_string();

@@ -15,8 +15,8 @@ use hyper_util::client::legacy::Client;
 use hyper_util::rt::TokioExecutor;
 use serde_json::{json, Value};
 use tokio::sync::Semaphore;
-use whipple::parameters::io::{write, Format};
-use whipple::parameters::presets;
+use whipple::advanced::io::{write, Format};
+use whipple::presets;
 use whipple_web::{ServeOptions, Server};
 
 const REQUESTS: usize = 2_000;

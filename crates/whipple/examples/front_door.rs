@@ -3,9 +3,10 @@
 //!
 //! `cargo run -p whipple --example front_door`
 
+use whipple::speed_grid;
 use whipple::{
-    critical_speeds, eigen_sweep, simulate, speed_grid, BenchmarkParameters, Canonical,
-    InitialConditions, Model, SimulationSettings,
+    critical_speeds, eigen_sweep, simulate, BenchmarkParameters, Canonical, InitialConditions,
+    Model, SimulationSettings,
 };
 
 fn main() -> whipple::Result<()> {

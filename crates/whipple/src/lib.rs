@@ -10,7 +10,7 @@
 //!
 //! ```
 //! use whipple::{critical_speeds, eigen_sweep, simulate, speed_grid, BenchmarkParameters,
-//!               Canonical, InitialConditions, Model, Outcome, SimulationSettings};
+//!               Canonical, InitialConditions, Model, SimulationSettings};
 //!
 //! let bike = BenchmarkParameters::meijaard2007();                  // Meijaard 2007, Table 1
 //! let linear = Canonical::new(&bike)?;                              // M, C₁, K₀, K₂
@@ -23,43 +23,53 @@
 //!
 //! assert_eq!((sweep.speeds.len(), sweep.modes[0].name()), (101, "weave"));
 //! assert!(critical.weave_speed.is_some_and(|v| (v - 4.29238253634111).abs() < 1e-12));
-//! assert_eq!(run.outcome, Outcome::Completed);                     // 4.6 m/s is self-stable
+//! assert_eq!(run.outcome.to_string(), "completed");               // 4.6 m/s is self-stable
 //! # Ok::<(), whipple::Error>(())
 //! ```
 //!
 //! The same program, printing what it finds, is `examples/front_door.rs` (`cargo run -p whipple
 //! --example front_door`).
 //!
-//! ## Which module to open for what
+//! ## The front door, and what lies behind it
+//!
+//! The crate's root holds what a user of the model needs: a bicycle ([`Bicycle`],
+//! [`BenchmarkParameters`], [`presets`]), the linear model ([`Canonical`]), its eigenvalues over
+//! speed ([`speed_grid`], [`eigen_sweep`], [`EigenSweep`]), the critical speeds ([`critical_speeds`],
+//! [`CriticalSpeeds`]), the non-linear model ([`Model`], [`InitialConditions`]) and its simulation
+//! ([`simulate`], [`SimulationSettings`]), design studies ([`Study`]) and the [`Error`].
+//! Everything else the front ends (the command, the server, the Python package) need is in
+//! [`advanced`], one module per area; the rest of the crate is private.
 //!
 //! | to … | open |
 //! |---|---|
-//! | describe a bicycle: benchmark form, JBike6's form, presets, files (TOML, JSON, `.m`) | [`parameters`] ([`presets`], [`io`]) |
-//! | get the linearized equations M q̈ + v C₁ q̇ + (g K₀ + v² K₂) q = f, A(v), p(λ, v) | [`linear`] |
-//! | eigenvalues, eigenvectors, modes, speed sweeps | [`analysis::eigen`], [`analysis::modes`], [`analysis::sweep`] |
-//! | critical speeds and self-stable ranges | [`analysis::stability`] (root finding in [`analysis::roots`]) |
-//! | the non-linear multibody bicycle: states, forward dynamics, projection, simulation | [`nonlinear`] |
-//! | integrate any ẏ = f(t, y) (RK4, Dormand–Prince) | [`integrate`] |
-//! | linearize any model exactly (dual numbers) or by the study's differences | [`analysis::linearize`] |
-//! | compare the non-linear model with the linear one (Dressel's benchmark) | [`analysis::comparison`] |
-//! | where the parts of the drawn bicycle are (JBike6's side view) | [`side_view`] |
+//! | describe a bicycle: benchmark form, JBike6's form, presets, files | [`presets`], [`advanced::parameters`], [`advanced::io`], [`advanced::table`] |
+//! | get the linearized equations M q̈ + v C₁ q̇ + (g K₀ + v² K₂) q = f, A(v), p(λ, v) | [`Canonical`], [`advanced::linear`] |
+//! | eigenvalues, eigenvectors, modes, speed sweeps | [`eigen_sweep`], [`advanced::eigen`], [`advanced::modes`], [`advanced::sweep`] |
+//! | critical speeds and self-stable ranges, their σ and sensitivities | [`critical_speeds`], [`advanced::stability`], [`advanced::sensitivity`] |
+//! | design studies over one or two parameters | [`Study`], [`advanced::design`] |
+//! | the non-linear multibody bicycle: states, forward dynamics, simulation | [`Model`], [`simulate`], [`advanced::nonlinear`] |
+//! | steady turns | [`advanced::turns`] |
+//! | integrate any ẏ = f(t, y) (RK4, Dormand–Prince) | [`advanced::integrate`] |
+//! | linearize any model exactly (dual numbers) or by the study's differences | [`advanced::linearize`] |
+//! | compare the non-linear model with the linear one (Dressel's benchmark) | [`advanced::comparison`] |
+//! | where the parts of the drawn bicycle are (JBike6's side view) | [`advanced::side_view`] |
 //! | what can go wrong | [`Error`] |
 //!
 //! Words: *validate* means checking input against rules ([`BenchmarkParameters::validate`],
-//! [`SimulationRequest::validate`], [`Integrator::validate`]); comparing one model with another
-//! is *compare* ([`compare_with_linear`]). Settings structs are named `…Settings`
-//! ([`SimulationSettings`], [`StudySettings`], `ProjectionSettings`, `Dopri5Settings`, …), each
-//! with a `Default`. The benchmark bicycle is [`BenchmarkParameters::meijaard2007`]; every
-//! named bicycle, that one included, is also found by name with [`presets::find`].
+//! [`advanced::nonlinear::SimulationRequest::validate`]); comparing one model with another is
+//! *compare* ([`advanced::comparison::compare_with_linear`]). Settings structs are named
+//! `…Settings`, each with a `Default`. The benchmark bicycle is
+//! [`BenchmarkParameters::meijaard2007`]; every named bicycle, that one included, is also found by
+//! name with [`presets::find`].
 #![deny(missing_docs)]
-
-pub mod analysis;
+#![warn(unreachable_pub)]
+mod analysis;
 mod error;
-pub mod integrate;
-pub mod linear;
-pub mod nonlinear;
-pub mod parameters;
-pub mod side_view;
+mod integrate;
+mod linear;
+mod nonlinear;
+mod parameters;
+mod side_view;
 
 /// The library's error: one variant per kind of failure, naming the field, value and rule.
 ///
@@ -81,26 +91,13 @@ pub use error::Error;
 /// ```
 pub use error::Result;
 
-/// A piece of a user's input cut for a message (the library's messages and the front ends'
-/// quote input the same way).
-///
-/// ```
-/// assert_eq!(whipple::shorten("abcdef", 4), "abc…");
-/// ```
-pub use error::shorten;
-
-/// A number for a message: shortest round-trip text, in exponent form when very large or small
-/// (the library's messages and the front ends' write numbers the same way).
-///
-/// ```
-/// assert_eq!((whipple::short_number(0.25), whipple::short_number(1e300)), ("0.25".into(), "1e300".into()));
-/// ```
-pub use error::short_number;
-
 /// A bicycle as it was described (benchmark or JBike6 form), with its name and source.
 ///
 /// ```
-/// use whipple::{io, presets, Bicycle, Description, Format};
+/// use whipple::advanced::io;
+/// use whipple::{presets, Bicycle};
+/// use whipple::advanced::parameters::Description;
+/// use whipple::advanced::io::Format;
 /// let crown: Bicycle = presets::find("schwinn-crown")?.bicycle();        // from a preset
 /// let text = io::write(&crown, Format::Toml)?;
 /// let again = io::parse(&text, Format::Toml)?;                           // from file text
@@ -109,15 +106,6 @@ pub use error::short_number;
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub use parameters::Bicycle;
-
-/// The form a bicycle was described in.
-///
-/// ```
-/// use whipple::{presets, Description};
-/// assert!(matches!(presets::find("benchmark")?.bicycle().description, Description::Benchmark(_)));
-/// # Ok::<(), whipple::Error>(())
-/// ```
-pub use parameters::Description;
 
 /// The 25 benchmark parameters of Meijaard et al. 2007 (Table 1) plus g.
 ///
@@ -129,15 +117,6 @@ pub use parameters::Description;
 /// ```
 pub use parameters::BenchmarkParameters;
 
-/// JBike6's seven bodies (wheels, rider, frame, rack, fork, basket).
-///
-/// ```
-/// let crown = whipple::presets::schwinn_crown_jbike6();
-/// assert!((crown.to_benchmark()?.m_b - 84.5).abs() < 1e-12);
-/// # Ok::<(), whipple::Error>(())
-/// ```
-pub use parameters::Jbike6Parameters;
-
 /// Named bicycles from the literature.
 ///
 /// ```
@@ -147,22 +126,6 @@ pub use parameters::Jbike6Parameters;
 /// ```
 pub use parameters::presets;
 
-/// Parameter files from and to text: TOML, JSON, JBike6's `.m`.
-///
-/// ```
-/// use whipple::{io, Format};
-/// let bike = io::parse("[benchmark]\nw = 1.02\n", Format::Toml);
-/// assert!(bike.is_err()); // every key is required
-/// ```
-pub use parameters::io;
-
-/// A parameter file's format.
-///
-/// ```
-/// assert_eq!(whipple::Format::from_extension("toml"), Some(whipple::Format::Toml));
-/// ```
-pub use parameters::io::Format;
-
 /// The linearized model M q̈ + v C₁ q̇ + (g K₀ + v² K₂) q = f (Meijaard 2007, Appendix A).
 ///
 /// ```
@@ -171,44 +134,6 @@ pub use parameters::io::Format;
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub use linear::Canonical;
-
-/// The state-space form ẋ = A x + B u at a speed, x = [φ, δ, φ̇, δ̇].
-///
-/// ```
-/// use whipple::{BenchmarkParameters, Canonical, StateSpace};
-/// let ss = StateSpace::new(&Canonical::new(&BenchmarkParameters::meijaard2007())?, 5.0)?;
-/// assert_eq!(ss.a[(0, 2)], 1.0);
-/// # Ok::<(), whipple::Error>(())
-/// ```
-pub use linear::StateSpace;
-
-/// The characteristic polynomial p(λ, v) = det(M λ² + v C₁ λ + g K₀ + v² K₂).
-///
-/// ```
-/// use whipple::{BenchmarkParameters, Canonical, CharacteristicPolynomial};
-/// let p = CharacteristicPolynomial::new(&Canonical::new(&BenchmarkParameters::meijaard2007())?);
-/// assert_eq!(p.at_speed(5.0).len(), 5);
-/// # Ok::<(), whipple::Error>(())
-/// ```
-pub use linear::CharacteristicPolynomial;
-
-/// The four eigenvalues of the linearized model at one speed.
-///
-/// ```
-/// use whipple::{eigenvalues, BenchmarkParameters, Canonical};
-/// let lambda = eigenvalues(&Canonical::new(&BenchmarkParameters::meijaard2007())?, 5.0)?;
-/// assert!(lambda.iter().all(|l| l.re < 0.0)); // 5 m/s is self-stable
-/// # Ok::<(), whipple::Error>(())
-/// ```
-pub use analysis::eigen::eigenvalues;
-
-/// A complex number of f64 (an eigenvalue).
-///
-/// ```
-/// let z = whipple::Complex64::new(-0.5, 3.0);
-/// assert_eq!(z.conj().im, -3.0);
-/// ```
-pub use analysis::eigen::Complex64;
 
 /// Eigenvalues over a sweep of speeds, modes tracked and labelled.
 ///
@@ -238,16 +163,6 @@ pub use analysis::sweep::EigenSweep;
 /// ```
 pub use analysis::sweep::speed_grid;
 
-/// The name of a tracked mode: weave, capsize, castering, or unclassified.
-///
-/// ```
-/// use whipple::{eigen_sweep, speed_grid, BenchmarkParameters, Canonical, Mode};
-/// let sweep = eigen_sweep(&Canonical::new(&BenchmarkParameters::meijaard2007())?, &speed_grid(0.0, 10.0, 0.1)?)?;
-/// assert!(sweep.modes.contains(&Mode::Capsize));
-/// # Ok::<(), whipple::Error>(())
-/// ```
-pub use analysis::modes::Mode;
-
 /// The double-root, weave and capsize speeds and the self-stable ranges within a range.
 ///
 /// ```
@@ -272,7 +187,8 @@ pub use analysis::stability::CriticalSpeeds;
 /// The non-linear multibody bicycle (four rigid bodies, 24 coordinates, constraint rows).
 ///
 /// ```
-/// use whipple::{BenchmarkParameters, InitialConditions, Model, nonlinear::Inputs};
+/// use whipple::{BenchmarkParameters, InitialConditions, Model};
+/// use whipple::advanced::nonlinear::Inputs;
 /// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
 /// let state = model.initial_state(&InitialConditions::upright(5.0))?;
 /// assert!(model.forward(&state, &Inputs::default())?.u_dot.amax() < 1e-12);
@@ -306,107 +222,302 @@ pub use nonlinear::simulate;
 /// What a simulation runs with (defaults: RK4 at 1 ms, 10 s, fall at 60°).
 ///
 /// ```
-/// use whipple::{Integrator, SimulationSettings};
+/// use whipple::advanced::integrate::Integrator;
+/// use whipple::SimulationSettings;
 /// let settings = SimulationSettings { integrator: Integrator::adaptive(1e-9), ..SimulationSettings::default() };
 /// settings.validate()?;
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub use nonlinear::SimulationSettings;
 
-/// A simulation as a person asks for it (degrees as typed), checked by one set of rules.
+/// A design study: the critical speeds of a bicycle as one or two parameters vary (rows streamed
+/// in order, computed in parallel).
 ///
 /// ```
-/// let (initial, settings) = whipple::SimulationRequest::new(4.6, 5.0).validate()?;
-/// assert_eq!((initial.speed, settings.duration), (4.6, 5.0));
+/// use whipple::advanced::design::{Axis, Shard, StudyOptions};
+/// use whipple::{presets, Study};
+/// let bike = presets::find("benchmark")?.bicycle();
+/// let x = Axis::parse("trail=0.05:0.1:3", &bike)?;
+/// let study = Study::new(bike, x, None, StudyOptions::default())?;
+/// let mut rows = Vec::new();
+/// study.run(Shard::WHOLE, &Default::default(), |chunk| { rows.extend_from_slice(chunk); Ok(()) })?;
+/// assert_eq!(rows.len(), 3);
 /// # Ok::<(), whipple::Error>(())
 /// ```
-pub use nonlinear::SimulationRequest;
+pub use analysis::design::Study;
 
-/// The result of [`simulate`]: samples, outcome, counts.
-///
-/// ```
-/// use whipple::{simulate, BenchmarkParameters, InitialConditions, Model, Simulation, SimulationSettings};
-/// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
-/// let start = model.initial_state(&InitialConditions::upright(4.6))?;
-/// let run: Simulation = simulate(&model, start, &SimulationSettings { duration: 0.1, ..SimulationSettings::default() })?;
-/// assert_eq!((run.steps, run.samples.len()), (100, 101));
-/// # Ok::<(), whipple::Error>(())
-/// ```
-pub use nonlinear::Simulation;
-
-/// One recorded instant of a simulation.
-///
-/// ```
-/// use whipple::{simulate, BenchmarkParameters, InitialConditions, Model, Sample, SimulationSettings};
-/// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
-/// let start = model.initial_state(&InitialConditions::upright(4.6))?;
-/// let run = simulate(&model, start, &SimulationSettings { duration: 0.1, ..SimulationSettings::default() })?;
-/// let last: &Sample = &run.samples[run.samples.len() - 1];
-/// assert!((last.speed - 4.6).abs() < 1e-9 && last.is_finite());
-/// # Ok::<(), whipple::Error>(())
-/// ```
-pub use nonlinear::Sample;
-
-/// How a simulation ended.
-///
-/// ```
-/// assert_eq!(whipple::Outcome::Completed.to_string(), "completed");
-/// ```
-pub use nonlinear::Outcome;
-
-/// The integration method and its step settings.
-///
-/// ```
-/// use whipple::Integrator;
-/// assert_eq!(Integrator::default(), Integrator::Rk4 { dt: 1e-3 });
-/// assert!(Integrator::Rk4 { dt: 0.0 }.validate().is_err());
-/// ```
-pub use integrate::Integrator;
-
-/// The non-linear model's own A(v) about upright straight running, exact (dual numbers).
-///
-/// ```
-/// use whipple::{lean_steer_matrix, BenchmarkParameters, Canonical, Model, StateSpace};
-/// let bike = BenchmarkParameters::meijaard2007();
-/// let a = lean_steer_matrix(&Model::new(&bike)?, 5.0)?;
-/// let linear = StateSpace::new(&Canonical::new(&bike)?, 5.0)?.a;
-/// assert!((a - linear).amax() < 1e-12 * linear.amax());
-/// # Ok::<(), whipple::Error>(())
-/// ```
-pub use analysis::comparison::lean_steer_matrix;
-
-/// Compares the non-linear model with the linear one over a sweep of speeds.
-///
-/// ```
-/// use whipple::{compare_with_linear, BenchmarkParameters, Linearization, StudySettings};
-/// let sweep = compare_with_linear(&BenchmarkParameters::meijaard2007(), &[2.0, 6.0],
-///                                 &[Linearization::Exact], &StudySettings::default())?;
-/// assert!(sweep.methods[0].max_abs_diff.iter().all(|d| *d < 1e-11));
-/// # Ok::<(), whipple::Error>(())
-/// ```
-pub use analysis::comparison::compare_with_linear;
-
-/// A way to linearize the non-linear model: the study's differences, exact, exact full state.
-///
-/// ```
-/// assert_eq!(whipple::Linearization::Exact.name(), "ad");
-/// ```
-pub use analysis::comparison::Linearization;
-
-/// Settings of the study's finite-difference linearization.
-///
-/// ```
-/// assert!(whipple::StudySettings::default().projection.is_some());
-/// ```
-pub use analysis::comparison::StudySettings;
-
-/// The result of [`compare_with_linear`].
-///
-/// ```
-/// use whipple::{compare_with_linear, BenchmarkParameters, ComparisonSweep, Linearization, StudySettings};
-/// let sweep: ComparisonSweep = compare_with_linear(&BenchmarkParameters::meijaard2007(), &[5.0],
-///                                                  &[Linearization::Exact], &StudySettings::default())?;
-/// assert!(sweep.method(Linearization::Exact).is_some());
-/// # Ok::<(), whipple::Error>(())
-/// ```
-pub use analysis::comparison::ComparisonSweep;
+/// What the front ends (the command, the server, the Python package) and advanced users need
+/// beyond the front door, by area. Everything else in the crate is private.
+pub mod advanced {
+    /// A number for a message: shortest round-trip text, in exponent form when very large or small
+    /// (the library's messages and the front ends' write numbers the same way).
+    ///
+    /// ```
+    /// assert_eq!((whipple::advanced::short_number(0.25), whipple::advanced::short_number(1e300)), ("0.25".into(), "1e300".into()));
+    /// ```
+    pub use crate::error::short_number;
+    /// A piece of a user's input cut for a message (the library's messages and the front ends'
+    /// quote input the same way).
+    ///
+    /// ```
+    /// assert_eq!(whipple::advanced::shorten("abcdef", 4), "abc…");
+    /// ```
+    pub use crate::error::shorten;
+    #[doc = "The non-linear model against the linear one (Dressel's benchmark)."]
+    pub mod comparison {
+        /// Compares the non-linear model with the linear one over a sweep of speeds.
+        ///
+        /// ```
+        /// use whipple::advanced::comparison::{compare_with_linear, Linearization, StudySettings};
+        /// use whipple::BenchmarkParameters;
+        /// let sweep = compare_with_linear(&BenchmarkParameters::meijaard2007(), &[2.0, 6.0],
+        ///                                 &[Linearization::Exact], &StudySettings::default())?;
+        /// assert!(sweep.methods[0].max_abs_diff.iter().all(|d| *d < 1e-11));
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::analysis::comparison::compare_with_linear;
+        /// The non-linear model's own A(v) about upright straight running, exact (dual numbers).
+        ///
+        /// ```
+        /// use whipple::advanced::comparison::lean_steer_matrix;
+        /// use whipple::{BenchmarkParameters, Canonical, Model};
+        /// use whipple::advanced::linear::StateSpace;
+        /// let bike = BenchmarkParameters::meijaard2007();
+        /// let a = lean_steer_matrix(&Model::new(&bike)?, 5.0)?;
+        /// let linear = StateSpace::new(&Canonical::new(&bike)?, 5.0)?.a;
+        /// assert!((a - linear).amax() < 1e-12 * linear.amax());
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::analysis::comparison::lean_steer_matrix;
+        /// The result of [`compare_with_linear`].
+        ///
+        /// ```
+        /// use whipple::advanced::comparison::{compare_with_linear, ComparisonSweep, Linearization, StudySettings};
+        /// use whipple::BenchmarkParameters;
+        /// let sweep: ComparisonSweep = compare_with_linear(&BenchmarkParameters::meijaard2007(), &[5.0],
+        ///                                                  &[Linearization::Exact], &StudySettings::default())?;
+        /// assert!(sweep.method(Linearization::Exact).is_some());
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::analysis::comparison::ComparisonSweep;
+        /// A way to linearize the non-linear model: the study's differences, exact, exact full state.
+        ///
+        /// ```
+        /// assert_eq!(whipple::advanced::comparison::Linearization::Exact.name(), "ad");
+        /// ```
+        pub use crate::analysis::comparison::Linearization;
+        /// Settings of the study's finite-difference linearization.
+        ///
+        /// ```
+        /// assert!(whipple::advanced::comparison::StudySettings::default().projection.is_some());
+        /// ```
+        pub use crate::analysis::comparison::StudySettings;
+        pub use crate::analysis::comparison::{
+            capsize_spike, compare_with_linear_until, double_root_conditioning,
+            full_state_jacobian, full_state_jacobian_fd, general_eigenvalues,
+            lean_steer_eigenvalues, max_abs_diff, pick, zero_cluster, LinearizationSweep,
+            MAX_COMPARED_SPEEDS,
+        };
+    }
+    #[doc = "Design studies over one or two parameters."]
+    pub mod design {
+        pub use crate::analysis::design::{
+            Axis, DesignRow, DesignStatus, Parameter, Shard, StudyOptions,
+        };
+    }
+    #[doc = "Eigenvalues and eigenvectors of the linear model at one speed."]
+    pub mod eigen {
+        /// The four eigenvalues of the linearized model at one speed.
+        ///
+        /// ```
+        /// use whipple::advanced::eigen::eigenvalues;
+        /// use whipple::{BenchmarkParameters, Canonical};
+        /// let lambda = eigenvalues(&Canonical::new(&BenchmarkParameters::meijaard2007())?, 5.0)?;
+        /// assert!(lambda.iter().all(|l| l.re < 0.0)); // 5 m/s is self-stable
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::analysis::eigen::eigenvalues;
+        /// A complex number of f64 (an eigenvalue).
+        ///
+        /// ```
+        /// let z = whipple::advanced::eigen::Complex64::new(-0.5, 3.0);
+        /// assert_eq!(z.conj().im, -3.0);
+        /// ```
+        pub use crate::analysis::eigen::Complex64;
+        pub use crate::analysis::eigen::{eigenpairs, eigenpairs_with, quartic_roots};
+    }
+    #[doc = "Integration of ODEs: RK4 and Dormand–Prince 5(4)."]
+    pub mod integrate {
+        /// The integration method and its step settings.
+        ///
+        /// ```
+        /// use whipple::advanced::integrate::Integrator;
+        /// assert_eq!(Integrator::default(), Integrator::Rk4 { dt: 1e-3 });
+        /// assert!(Integrator::Rk4 { dt: 0.0 }.validate().is_err());
+        /// ```
+        pub use crate::integrate::Integrator;
+        pub use crate::integrate::{Dopri5Settings, OdeSystem, Stepper};
+    }
+    #[doc = "Parameter files from and to text: TOML, JSON, JBike6's `.m`, BicycleParameters' and HumanControl's `.txt`, YAML."]
+    pub mod io {
+        /// A parameter file's format.
+        ///
+        /// ```
+        /// assert_eq!(whipple::advanced::io::Format::from_extension("toml"), Some(whipple::advanced::io::Format::Toml));
+        /// ```
+        pub use crate::parameters::io::Format;
+        pub use crate::parameters::io::{
+            json_slice_without_duplicates, json_without_duplicates, parse, write, FORMATS,
+            MAX_FILE_BYTES,
+        };
+    }
+    #[doc = "The linearized model: canonical matrices, state space, characteristic polynomial."]
+    pub mod linear {
+        /// The characteristic polynomial p(λ, v) = det(M λ² + v C₁ λ + g K₀ + v² K₂).
+        ///
+        /// ```
+        /// use whipple::{BenchmarkParameters, Canonical};
+        /// use whipple::advanced::linear::CharacteristicPolynomial;
+        /// let p = CharacteristicPolynomial::new(&Canonical::new(&BenchmarkParameters::meijaard2007())?);
+        /// assert_eq!(p.at_speed(5.0).len(), 5);
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::linear::CharacteristicPolynomial;
+        pub use crate::linear::SpeedPolynomials;
+        /// The state-space form ẋ = A x + B u at a speed, x = [φ, δ, φ̇, δ̇].
+        ///
+        /// ```
+        /// use whipple::{BenchmarkParameters, Canonical};
+        /// use whipple::advanced::linear::StateSpace;
+        /// let ss = StateSpace::new(&Canonical::new(&BenchmarkParameters::meijaard2007())?, 5.0)?;
+        /// assert_eq!(ss.a[(0, 2)], 1.0);
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::linear::StateSpace;
+    }
+    #[doc = "Jacobians of any vector field: exact (dual numbers) and by central differences."]
+    pub mod linearize {
+        pub use crate::analysis::linearize::{
+            central_differences, jacobian, FdSettings, VectorField,
+        };
+    }
+    #[doc = "Modes: tracking, labels (weave, capsize, castering) and mode shapes."]
+    pub mod modes {
+        pub use crate::analysis::modes::mode_shapes;
+        /// The name of a tracked mode: weave, capsize, castering, or unclassified.
+        ///
+        /// ```
+        /// use whipple::{eigen_sweep, speed_grid, BenchmarkParameters, Canonical};
+        /// use whipple::advanced::modes::Mode;
+        /// let sweep = eigen_sweep(&Canonical::new(&BenchmarkParameters::meijaard2007())?, &speed_grid(0.0, 10.0, 0.1)?)?;
+        /// assert!(sweep.modes.contains(&Mode::Capsize));
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::analysis::modes::Mode;
+    }
+    #[doc = "The non-linear multibody bicycle: states, forward dynamics, simulation and its settings."]
+    pub mod nonlinear {
+        pub use crate::nonlinear::rotation;
+        /// How a simulation ended.
+        ///
+        /// ```
+        /// assert_eq!(whipple::advanced::nonlinear::Outcome::Completed.to_string(), "completed");
+        /// ```
+        pub use crate::nonlinear::Outcome;
+        /// One recorded instant of a simulation.
+        ///
+        /// ```
+        /// use whipple::{simulate, BenchmarkParameters, InitialConditions, Model, SimulationSettings};
+        /// use whipple::advanced::nonlinear::Sample;
+        /// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+        /// let start = model.initial_state(&InitialConditions::upright(4.6))?;
+        /// let run = simulate(&model, start, &SimulationSettings { duration: 0.1, ..SimulationSettings::default() })?;
+        /// let last: &Sample = &run.samples[run.samples.len() - 1];
+        /// assert!((last.speed - 4.6).abs() < 1e-9 && last.is_finite());
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::nonlinear::Sample;
+        /// The result of [`simulate`](crate::simulate): samples, outcome, counts.
+        ///
+        /// ```
+        /// use whipple::{simulate, BenchmarkParameters, InitialConditions, Model, SimulationSettings};
+        /// use whipple::advanced::nonlinear::Simulation;
+        /// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
+        /// let start = model.initial_state(&InitialConditions::upright(4.6))?;
+        /// let run: Simulation = simulate(&model, start, &SimulationSettings { duration: 0.1, ..SimulationSettings::default() })?;
+        /// assert_eq!((run.steps, run.samples.len()), (100, 101));
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::nonlinear::Simulation;
+        /// A simulation as a person asks for it (degrees as typed), checked by one set of rules.
+        ///
+        /// ```
+        /// let (initial, settings) = whipple::advanced::nonlinear::SimulationRequest::new(4.6, 5.0).validate()?;
+        /// assert_eq!((initial.speed, settings.duration), (4.6, 5.0));
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::nonlinear::SimulationRequest;
+        pub use crate::nonlinear::{
+            check_rk4_step, fastest_mode, ContactForce, Inputs, IntegratorKind, Progress,
+            ProjectionMethod, ProjectionSettings, State, StateView, TorqueExpression, TorqueFn,
+            TorqueInput, Wheel, BODY_NAMES, FRONT_WHEEL, MAX_EXPRESSION_DEPTH,
+            MAX_EXPRESSION_LENGTH, REAR_FRAME, REAR_WHEEL, STATE_LEN,
+        };
+    }
+    #[doc = "Bicycle descriptions: the benchmark and JBike6 forms, checks and their notices."]
+    pub mod parameters {
+        /// The form a bicycle was described in.
+        ///
+        /// ```
+        /// use whipple::presets;
+        /// use whipple::advanced::parameters::Description;
+        /// assert!(matches!(presets::find("benchmark")?.bicycle().description, Description::Benchmark(_)));
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::parameters::Description;
+        /// JBike6's seven bodies (wheels, rider, frame, rack, fork, basket).
+        ///
+        /// ```
+        /// let crown = whipple::presets::schwinn_crown_jbike6();
+        /// assert!((crown.to_benchmark()?.m_b - 84.5).abs() < 1e-12);
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::parameters::Jbike6Parameters;
+        pub use crate::parameters::{Checked, Notice, Severity};
+    }
+    #[doc = "Certified real roots of low-degree polynomials."]
+    pub mod roots {
+        pub use crate::analysis::roots::{real_roots, BoundedPolynomial, RealRoot};
+    }
+    #[doc = "Exact derivatives by dual numbers: sensitivities and first-order σ."]
+    pub mod sensitivity {
+        pub use crate::analysis::sensitivity::{
+            critical_speeds_sigma, eigenvalue_sigmas, sensitivities, with_parameter,
+            CriticalSpeedsSigma, ParameterDerivatives, ParameterSensitivity, Sensitivities,
+        };
+    }
+    #[doc = "Where the parts of the drawn bicycle are (JBike6's side view)."]
+    pub mod side_view {
+        pub use crate::side_view::{side_view, Ellipse, Part, Point, SideView};
+    }
+    #[doc = "Certified critical speeds and self-stable ranges."]
+    pub mod stability {
+        pub use crate::analysis::stability::{summary, CrossingKind};
+    }
+    #[doc = "Speed grids and eigenvalue sweeps."]
+    pub mod sweep {
+        pub use crate::analysis::sweep::{SpeedGrid, SweepPlan};
+    }
+    #[doc = "The one parameter table: names, keys, symbols, units and meanings of every parameter."]
+    pub mod table {
+        pub use crate::parameters::table::{index_of, key_doc, parameters, Form, ParameterInfo};
+    }
+    #[doc = "Steady turns of the non-linear model: held and hands-free."]
+    pub mod turns {
+        pub use crate::analysis::turns::{
+            branch_family, branch_from_straight, hands_free_families, hands_free_turn_near,
+            hands_free_turns_at_speed, held_turn, stability, turn_jacobian, Family, FamilyEnd,
+            FamilyPoint, FamilySettings, Held, Stability, SteadyTurn, TurnSettings, MAX_RADIUS,
+        };
+    }
+}

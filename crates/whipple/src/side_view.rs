@@ -10,7 +10,8 @@
 //! placed from them by fixed rules of thumb.
 //!
 //! ```
-//! use whipple::{side_view::side_view, BenchmarkParameters};
+//! use whipple::advanced::side_view::side_view;
+//! use whipple::BenchmarkParameters;
 //! let view = side_view(&BenchmarkParameters::meijaard2007(), None);
 //! assert_eq!(view.front_hub, [1.02, 0.35]);
 //! assert!((view.total_mass - 94.0).abs() < 1e-12);
@@ -147,7 +148,7 @@ impl SideView {
 
 /// Semi-axes of the uniform ellipsoid with in-plane principal moments `i1` (about the first
 /// axis) and `i2`, and lateral moment `i3`: a_k² = 5 (I_j + I_3 − I_k) / (2m).
-pub fn ellipse(mass: f64, i1: f64, i2: f64, i3: f64, angle: f64) -> Option<Ellipse> {
+pub(crate) fn ellipse(mass: f64, i1: f64, i2: f64, i3: f64, angle: f64) -> Option<Ellipse> {
     if mass <= 0.0 {
         return None;
     }
@@ -161,7 +162,13 @@ pub fn ellipse(mass: f64, i1: f64, i2: f64, i3: f64, angle: f64) -> Option<Ellip
 }
 
 /// A benchmark body's ellipse from I_xx, I_yy (lateral), I_zz, I_xz (z down).
-pub fn benchmark_ellipse(mass: f64, ixx: f64, iyy: f64, izz: f64, ixz: f64) -> Option<Ellipse> {
+pub(crate) fn benchmark_ellipse(
+    mass: f64,
+    ixx: f64,
+    iyy: f64,
+    izz: f64,
+    ixz: f64,
+) -> Option<Ellipse> {
     let mean = 0.5 * (ixx + izz);
     let radius = (0.25 * (ixx - izz).powi(2) + ixz * ixz).sqrt();
     // The larger principal moment's axis lies at θ from x toward +z (down), so at −θ with y up.

@@ -5,11 +5,13 @@ use std::sync::atomic::AtomicBool;
 
 use approx::assert_abs_diff_eq;
 use proptest::prelude::*;
-use whipple::analysis::design::{Axis, DesignStatus, Shard, Study, StudyOptions};
-use whipple::analysis::{eigen, stability};
-use whipple::linear::Canonical;
-use whipple::parameters::presets;
-use whipple::{BenchmarkParameters, Bicycle, Description, Error, Result};
+use whipple::advanced::design::{Axis, DesignStatus, Shard, StudyOptions};
+use whipple::advanced::parameters::Description;
+use whipple::advanced::{eigen, stability};
+use whipple::presets;
+use whipple::Canonical;
+use whipple::Study;
+use whipple::{BenchmarkParameters, Bicycle, Error, Result};
 
 fn preset(name: &str) -> Result<Canonical> {
     Canonical::new(&presets::find(name)?.bicycle().benchmark()?)
@@ -23,7 +25,7 @@ const TABLE_2: (f64, f64, f64) = (0.68428307889246, 4.29238253634111, 6.02426201
 #[test]
 fn speeds_range_0_20000_finds_the_weave() -> Result<()> {
     for hi in [20.0, 20000.0, 1e5, 1e6, f64::INFINITY] {
-        let s = stability::critical_speeds(&preset("benchmark")?, 0.0, hi)?;
+        let s = whipple::critical_speeds(&preset("benchmark")?, 0.0, hi)?;
         assert_abs_diff_eq!(
             s.double_root_speed.unwrap_or(0.0),
             TABLE_2.0,
@@ -43,13 +45,13 @@ fn speeds_range_0_20000_finds_the_weave() -> Result<()> {
 fn speeds_range_0_1e5_finds_the_weave_of_schwinn_crown_and_browser_jason() -> Result<()> {
     for name in ["schwinn-crown", "browser-jason"] {
         let c = preset(name)?;
-        let all = stability::critical_speeds(&c, 0.0, f64::INFINITY)?;
+        let all = whipple::critical_speeds(&c, 0.0, f64::INFINITY)?;
         assert!(
             all.weave_speed.is_some() && all.capsize_speed.is_some(),
             "{name}"
         );
         for hi in [20.0, 20000.0, 1e5] {
-            let s = stability::critical_speeds(&c, 0.0, hi)?;
+            let s = whipple::critical_speeds(&c, 0.0, hi)?;
             assert_eq!(s.weave_speed, all.weave_speed, "{name} 0..{hi}");
             assert_eq!(s.capsize_speed, all.capsize_speed, "{name} 0..{hi}");
             assert_eq!(
@@ -59,7 +61,7 @@ fn speeds_range_0_1e5_finds_the_weave_of_schwinn_crown_and_browser_jason() -> Re
         }
     }
     // Dressel's Schwinn Crown capsize speed, 7.9807 m/s with JBike6's gravity.
-    let crown = stability::critical_speeds(&preset("schwinn-crown")?, 0.0, f64::INFINITY)?;
+    let crown = whipple::critical_speeds(&preset("schwinn-crown")?, 0.0, f64::INFINITY)?;
     assert_abs_diff_eq!(crown.capsize_speed.unwrap_or(0.0), 7.9807, epsilon = 5e-5);
     Ok(())
 }
@@ -68,7 +70,7 @@ fn speeds_range_0_1e5_finds_the_weave_of_schwinn_crown_and_browser_jason() -> Re
 /// range (its upper end is where round-off in the stored matrices leaves the answer open).
 #[test]
 fn an_unbounded_stable_range_is_reported_as_such() -> Result<()> {
-    let s = stability::critical_speeds(&preset("two-mass-skate")?, 0.0, f64::INFINITY)?;
+    let s = whipple::critical_speeds(&preset("two-mass-skate")?, 0.0, f64::INFINITY)?;
     assert!(s.capsize_speed.is_none());
     let vw = s.weave_speed.unwrap_or(0.0);
     assert_abs_diff_eq!(vw, 2.841008323370, epsilon = 1e-9);
@@ -97,7 +99,7 @@ fn modified(f: impl Fn(&mut BenchmarkParameters)) -> Result<Canonical> {
 /// gravity is scaled out, so the critical speeds are those of g = 9.81 times √(g / 9.81).
 #[test]
 fn g_1e300_scales_the_critical_speeds_instead_of_printing_none() -> Result<()> {
-    let s = stability::critical_speeds(&modified(|b| b.g = 1e300)?, 0.0, f64::INFINITY)?;
+    let s = whipple::critical_speeds(&modified(|b| b.g = 1e300)?, 0.0, f64::INFINITY)?;
     let scale = (1e300f64 / 9.81).sqrt();
     let rel = |x: Option<f64>, want: f64| (x.unwrap_or(0.0) / scale - want).abs() / want;
     assert!(rel(s.weave_speed, TABLE_2.1) < 1e-12, "{s:?}");
@@ -116,12 +118,12 @@ fn mb_1e18_reports_accuracy_lost_instead_of_garbage_eigenvalues() -> Result<()> 
         Err(Error::AccuracyLost { .. })
     ));
     assert!(matches!(
-        stability::critical_speeds(&c, 0.0, f64::INFINITY),
+        whipple::critical_speeds(&c, 0.0, f64::INFINITY),
         Err(Error::AccuracyLost { .. })
     ));
     // An ordinary heavy rider is not refused.
     let heavy = modified(|b| b.m_b = 250.0)?;
-    assert!(stability::critical_speeds(&heavy, 0.0, f64::INFINITY).is_ok());
+    assert!(whipple::critical_speeds(&heavy, 0.0, f64::INFINITY).is_ok());
     Ok(())
 }
 
@@ -130,7 +132,7 @@ fn mb_1e18_reports_accuracy_lost_instead_of_garbage_eigenvalues() -> Result<()> 
 #[test]
 fn the_whole_line_includes_riding_backwards() -> Result<()> {
     let c = preset("benchmark")?;
-    let s = stability::critical_speeds(&c, f64::NEG_INFINITY, f64::INFINITY)?;
+    let s = whipple::critical_speeds(&c, f64::NEG_INFINITY, f64::INFINITY)?;
     assert_eq!(s.stable_speed_ranges.len(), 1);
     assert_abs_diff_eq!(s.stable_speed_ranges[0].0, TABLE_2.1, epsilon = 1e-12);
     Ok(())
@@ -139,7 +141,7 @@ fn the_whole_line_includes_riding_backwards() -> Result<()> {
 /// The largest real part of the eigenvalues of A(v) and the spectral radius, by faer's general
 /// (Hessenberg QR) eigensolver: independent of the characteristic polynomial, backward stable.
 fn max_real(c: &Canonical, v: f64) -> Result<(f64, f64)> {
-    let a = whipple::linear::StateSpace::new(c, v)?.a;
+    let a = whipple::advanced::linear::StateSpace::new(c, v)?.a;
     let m = faer::Mat::<f64>::from_fn(4, 4, |i, j| a[(i, j)]);
     let values = m.eigenvalues().map_err(|e| Error::NonFinite {
         context: format!("faer's eigenvalues at {v}: {e:?}"),
@@ -158,7 +160,7 @@ fn max_real(c: &Canonical, v: f64) -> Result<(f64, f64)> {
 /// The scan is uniform over the first 50 m/s (10,000 points), log-spaced beyond (2,000 points),
 /// and adds the middle of every certified interval, so every interval is visited.
 fn agrees_with_a_dense_scan(c: &Canonical, lo: f64, hi: f64) -> Result<usize> {
-    let s = stability::critical_speeds(c, lo, hi)?;
+    let s = whipple::critical_speeds(c, lo, hi)?;
     let mut scan: Vec<f64> = Vec::new();
     let top = hi.min(50.0);
     for k in 0..=10_000 {
@@ -385,7 +387,7 @@ fn random_bicycles_over_the_admissible_space_equal_a_dense_scan() -> Result<()> 
             lo + draws.uniform(1.0, 1e6)
         };
         let c = Canonical::new(&bike)?;
-        let speeds = match stability::critical_speeds(&c, lo, hi) {
+        let speeds = match whipple::critical_speeds(&c, lo, hi) {
             Ok(s) => s,
             Err(Error::AccuracyLost { quantity, reason }) => {
                 outcomes
@@ -403,7 +405,11 @@ fn random_bicycles_over_the_admissible_space_equal_a_dense_scan() -> Result<()> 
                 .push((seed, speeds.unresolved.clone()));
         }
         agrees_with_a_dense_scan(&c, lo, hi)?;
-        let summary = stability::summary(&whipple::linear::SpeedPolynomials::new(&c)?, lo, hi)?;
+        let summary = stability::summary(
+            &whipple::advanced::linear::SpeedPolynomials::new(&c)?,
+            lo,
+            hi,
+        )?;
         let ranges = &speeds.stable_speed_ranges;
         assert_eq!(summary.weave_speed, speeds.weave_speed, "seed {seed}");
         assert_eq!(
@@ -468,7 +474,7 @@ proptest! {
             let mut b = BenchmarkParameters::meijaard2007();
             b.c = x.value(ix);
             b.lambda = std::f64::consts::FRAC_PI_2 - y.value(iy).to_radians();
-            let single = Canonical::new(&b).and_then(|c| stability::summary(&whipple::linear::SpeedPolynomials::new(&c)?, 0.0, f64::INFINITY).and(stability::critical_speeds(&c, 0.0, f64::INFINITY)));
+            let single = Canonical::new(&b).and_then(|c| stability::summary(&whipple::advanced::linear::SpeedPolynomials::new(&c)?, 0.0, f64::INFINITY).and(whipple::critical_speeds(&c, 0.0, f64::INFINITY)));
             match single {
                 Ok(s) => {
                     prop_assert_eq!(row.status, DesignStatus::Ok);
@@ -533,7 +539,7 @@ fn a_designs_bicycle_is_the_one_computed() -> Result<()> {
     assert_eq!(design.name.as_deref(), Some("schwinn-crown"));
     let row = study.design(index);
     let speeds =
-        stability::critical_speeds(&Canonical::new(&design.benchmark()?)?, 0.0, f64::INFINITY)?;
+        whipple::critical_speeds(&Canonical::new(&design.benchmark()?)?, 0.0, f64::INFINITY)?;
     assert_eq!(row.quantities.weave_speed, speeds.weave_speed);
     assert!(matches!(
         study.bicycle_at(study.len()),

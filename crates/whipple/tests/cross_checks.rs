@@ -3,9 +3,11 @@
 //! critical speeds against the eigenvalues on either side of them.
 
 use faer::Mat;
-use whipple::analysis::{eigen, stability, sweep};
-use whipple::linear::{Canonical, StateSpace};
-use whipple::parameters::presets::{self, PRESETS};
+use whipple::advanced::eigen;
+use whipple::advanced::linear::StateSpace;
+use whipple::presets;
+use whipple::presets::PRESETS;
+use whipple::Canonical;
 use whipple::{BenchmarkParameters, Result};
 
 fn faer_eigenvalues(a: &nalgebra::Matrix4<f64>) -> Vec<(f64, f64)> {
@@ -130,12 +132,14 @@ fn jbike6_and_benchmark_forms_agree() -> Result<()> {
     assert!((converted.x_b - x_b).abs() < 1e-15);
     assert!((converted.z_b + y_b).abs() < 1e-15);
     // Write the converted bike in the benchmark form and read it back: same matrices, bit for bit.
-    let text = whipple::parameters::io::write(
-        &whipple::Bicycle::new(whipple::Description::Benchmark(converted)),
-        whipple::parameters::io::Format::Toml,
+    let text = whipple::advanced::io::write(
+        &whipple::Bicycle::new(whipple::advanced::parameters::Description::Benchmark(
+            converted,
+        )),
+        whipple::advanced::io::Format::Toml,
     )?;
-    let back = whipple::parameters::io::parse(&text, whipple::parameters::io::Format::Toml)?
-        .benchmark()?;
+    let back =
+        whipple::advanced::io::parse(&text, whipple::advanced::io::Format::Toml)?.benchmark()?;
     assert_eq!(Canonical::new(&back)?, Canonical::new(&converted)?);
     // The JBike6 convention is the benchmark one with the steer sign flipped and g in K0.
     let c = Canonical::new(&converted)?;
@@ -176,7 +180,7 @@ fn jbike6_inertia_rotation_matches_a_hand_calculation() -> Result<()> {
 fn critical_speeds_separate_the_eigenvalues() -> Result<()> {
     for (name, bike) in all_bikes()? {
         let c = Canonical::new(&bike)?;
-        let s = stability::critical_speeds(&c, 0.0, 20.0)?;
+        let s = whipple::critical_speeds(&c, 0.0, 20.0)?;
         let max_re = |v: f64| -> Result<f64> {
             Ok(eigen::eigenvalues(&c, v)?
                 .iter()
@@ -212,7 +216,7 @@ fn critical_speeds_separate_the_eigenvalues() -> Result<()> {
 #[test]
 fn tracked_modes_are_continuous() -> Result<()> {
     let c = Canonical::new(&BenchmarkParameters::meijaard2007())?;
-    let s = sweep::eigen_sweep(&c, &sweep::speed_grid(0.0, 10.0, 0.01)?)?;
+    let s = whipple::eigen_sweep(&c, &whipple::speed_grid(0.0, 10.0, 0.01)?)?;
     let vd = 0.68428307889246;
     for i in 1..s.speeds.len() {
         if (s.speeds[i] - vd).abs() < 0.05 {
@@ -236,11 +240,11 @@ fn tracked_modes_are_continuous() -> Result<()> {
 /// wider sweep inherit the labels of their tracks.
 #[test]
 fn modes_are_labelled_only_from_evidence() -> Result<()> {
-    use whipple::analysis::modes::Mode;
+    use whipple::advanced::modes::Mode;
     let c = Canonical::new(&BenchmarkParameters::meijaard2007())?;
-    let low = sweep::eigen_sweep(&c, &sweep::speed_grid(0.0, 0.5, 0.05)?)?;
+    let low = whipple::eigen_sweep(&c, &whipple::speed_grid(0.0, 0.5, 0.05)?)?;
     assert_eq!(low.modes, [Mode::Unclassified; 4]);
-    let wide = sweep::eigen_sweep(&c, &sweep::speed_grid(0.0, 10.0, 0.05)?)?;
+    let wide = whipple::eigen_sweep(&c, &whipple::speed_grid(0.0, 10.0, 0.05)?)?;
     assert_eq!(
         wide.modes,
         [Mode::Weave, Mode::Weave, Mode::Capsize, Mode::Castering]
@@ -250,9 +254,9 @@ fn modes_are_labelled_only_from_evidence() -> Result<()> {
     assert!((wide.eigenvalues[0][2].re + 3.13164324790656).abs() < 1e-12);
     for preset in ["two-mass-skate", "browser-jason", "schwinn-crown"] {
         let bike = presets::find(preset)?.bicycle().benchmark()?;
-        let s = sweep::eigen_sweep(
+        let s = whipple::eigen_sweep(
             &Canonical::new(&bike)?,
-            &sweep::speed_grid(0.0, 10.0, 0.05)?,
+            &whipple::speed_grid(0.0, 10.0, 0.05)?,
         )?;
         assert_eq!(s.modes[0], Mode::Weave, "{preset}");
         assert_eq!(s.modes[1], Mode::Weave, "{preset}");
@@ -265,8 +269,8 @@ fn modes_are_labelled_only_from_evidence() -> Result<()> {
 #[test]
 fn coarse_sweeps_are_tracked_like_fine_ones() -> Result<()> {
     let c = Canonical::new(&BenchmarkParameters::meijaard2007())?;
-    let coarse = sweep::eigen_sweep(&c, &[0.0, 5.0, 10.0])?;
-    let fine = sweep::eigen_sweep(&c, &sweep::speed_grid(0.0, 10.0, 0.01)?)?;
+    let coarse = whipple::eigen_sweep(&c, &[0.0, 5.0, 10.0])?;
+    let fine = whipple::eigen_sweep(&c, &whipple::speed_grid(0.0, 10.0, 0.01)?)?;
     assert_eq!(coarse.modes, fine.modes);
     for (k, index) in [0usize, 500, 1000].into_iter().enumerate() {
         assert_eq!(coarse.eigenvalues[k], fine.eigenvalues[index]);

@@ -5,11 +5,11 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use whipple::integrate::{Dopri5Settings, Integrator};
-use whipple::nonlinear::{
-    simulate, InitialConditions, Inputs, Model, Outcome, ProjectionMethod, ProjectionSettings,
-    Simulation, SimulationSettings, State, StateView, TorqueFn,
+use whipple::advanced::integrate::{Dopri5Settings, Integrator};
+use whipple::advanced::nonlinear::{
+    Inputs, Outcome, ProjectionMethod, ProjectionSettings, Simulation, State, StateView, TorqueFn,
 };
+use whipple::{simulate, InitialConditions, Model, SimulationSettings};
 use whipple::{BenchmarkParameters, Error, Result};
 
 fn benchmark() -> Result<Model> {

@@ -5,13 +5,15 @@
 
 use std::path::{Path, PathBuf};
 
-use whipple::analysis::sensitivity::{
+use whipple::advanced::io::{parse, write, Format};
+use whipple::advanced::parameters::Severity;
+use whipple::advanced::sensitivity::{
     critical_speeds_sigma, sensitivities, with_parameter, ParameterDerivatives,
 };
-use whipple::analysis::stability::critical_speeds;
-use whipple::linear::Canonical;
-use whipple::parameters::io::{parse, write, Format};
-use whipple::parameters::{presets, Bicycle, Severity};
+use whipple::critical_speeds;
+use whipple::presets;
+use whipple::Bicycle;
+use whipple::Canonical;
 use whipple::Error;
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
@@ -310,9 +312,9 @@ fn eigenvalue_derivatives_match_central_differences() -> TestResult {
     let k = d.index("mB").ok_or("mB")?;
     let h = 1e-4;
     let eig =
-        |m: f64| -> Result<[whipple::analysis::eigen::Complex64; 4], Box<dyn std::error::Error>> {
+        |m: f64| -> Result<[whipple::advanced::eigen::Complex64; 4], Box<dyn std::error::Error>> {
             let b = with_parameter(&bike, "mB", m).ok_or("mB")?;
-            Ok(whipple::analysis::eigen::eigenvalues(
+            Ok(whipple::advanced::eigen::eigenvalues(
                 &Canonical::new(&b.benchmark()?)?,
                 5.0,
             )?)
@@ -320,7 +322,7 @@ fn eigenvalue_derivatives_match_central_differences() -> TestResult {
     let (up, down) = (eig(85.0 + h)?, eig(85.0 - h)?);
     for (l, dl) in &derivs {
         let dl = dl.as_ref().ok_or("simple eigenvalue")?[k];
-        let near = |set: &[whipple::analysis::eigen::Complex64; 4]| {
+        let near = |set: &[whipple::advanced::eigen::Complex64; 4]| {
             *set.iter()
                 .min_by(|a, b| (**a - l).norm().total_cmp(&(**b - l).norm()))
                 .unwrap_or(l)

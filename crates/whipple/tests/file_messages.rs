@@ -3,8 +3,10 @@
 //! cannot be broken by a name.
 
 use proptest::prelude::*;
-use whipple::parameters::io::{parse, write, Format, FORMATS};
-use whipple::parameters::{presets, Bicycle, Description};
+use whipple::advanced::io::{parse, write, Format, FORMATS};
+use whipple::advanced::parameters::Description;
+use whipple::presets;
+use whipple::Bicycle;
 use whipple::{BenchmarkParameters, Error};
 
 fn message<T: std::fmt::Debug>(r: Result<T, Error>) -> String {
@@ -643,7 +645,6 @@ fn a_duplicate_json_key_is_refused() {
     assert!(m.contains("line "), "{m}");
     // The same key in two different objects is fine.
     assert!(
-        whipple::parameters::io::json_without_duplicates(r#"{"a": {"w": 1}, "b": {"w": 2}}"#)
-            .is_ok()
+        whipple::advanced::io::json_without_duplicates(r#"{"a": {"w": 1}, "b": {"w": 2}}"#).is_ok()
     );
 }

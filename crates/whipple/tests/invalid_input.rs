@@ -1,9 +1,9 @@
 //! One test per class of bad input: each is refused with an error naming the field, the value
 //! and the rule, and nothing panics.
 
-use whipple::analysis::sweep::speed_grid;
-use whipple::parameters::io::{parse, Format};
-use whipple::parameters::presets;
+use whipple::advanced::io::{parse, Format};
+use whipple::presets;
+use whipple::speed_grid;
 use whipple::{BenchmarkParameters, Error};
 
 fn benchmark() -> BenchmarkParameters {
@@ -171,7 +171,7 @@ fn toml_syntax_errors_name_line_and_column() {
 
 #[test]
 fn toml_unknown_and_missing_keys_are_refused() {
-    let good = whipple::parameters::io::write(
+    let good = whipple::advanced::io::write(
         &presets::find("benchmark").expect("preset").bicycle(),
         Format::Toml,
     )
@@ -307,8 +307,8 @@ fn no_panic_on_arbitrary_parameters() {
             3 => f64::NAN,
             _ => next() * 2.0,
         };
-        let mut text = whipple::parameters::io::write(
-            &whipple::Bicycle::new(whipple::Description::Benchmark(b)),
+        let mut text = whipple::advanced::io::write(
+            &whipple::Bicycle::new(whipple::advanced::parameters::Description::Benchmark(b)),
             Format::Json,
         )
         .expect("writes");
@@ -327,9 +327,9 @@ fn no_panic_on_arbitrary_parameters() {
         if let Ok(bike) = parse(&text, Format::Json) {
             if let Ok(p) = bike.benchmark() {
                 b = p;
-                let c = whipple::linear::Canonical::new(&b).expect("validated");
-                let _ = whipple::analysis::stability::critical_speeds(&c, 0.0, 10.0);
-                let _ = whipple::analysis::sweep::eigen_sweep(&c, &[0.0, 1.0, 5.0]);
+                let c = whipple::Canonical::new(&b).expect("validated");
+                let _ = whipple::critical_speeds(&c, 0.0, 10.0);
+                let _ = whipple::eigen_sweep(&c, &[0.0, 1.0, 5.0]);
             }
         }
     }
@@ -373,8 +373,8 @@ fn overlapping_wheels_are_warned_about() {
 #[test]
 fn the_comparison_takes_at_most_its_limit_of_speeds_and_stops_when_asked() {
     use std::sync::atomic::AtomicBool;
-    use whipple::analysis::comparison::{compare_with_linear_until, MAX_COMPARED_SPEEDS};
-    use whipple::{compare_with_linear, Linearization, StudySettings};
+    use whipple::advanced::comparison::{compare_with_linear, Linearization, StudySettings};
+    use whipple::advanced::comparison::{compare_with_linear_until, MAX_COMPARED_SPEEDS};
 
     let speeds = vec![1.0; MAX_COMPARED_SPEEDS + 1];
     let methods = [Linearization::Exact];

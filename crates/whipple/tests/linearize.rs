@@ -4,14 +4,16 @@
 //! field against time derivatives of the full state; the zero cluster behind the capsize spike.
 
 use nalgebra::{DMatrix, Vector4};
-use whipple::analysis::comparison::{
+use whipple::advanced::comparison::{
     full_state_jacobian, full_state_jacobian_fd, general_eigenvalues, lean_steer_eigenvalues,
     lean_steer_matrix, max_abs_diff, pick, zero_cluster, StudySettings,
 };
-use whipple::analysis::{eigen, stability};
-use whipple::linear::{Canonical, StateSpace};
-use whipple::nonlinear::{Inputs, Model};
-use whipple::parameters::presets::PRESETS;
+use whipple::advanced::eigen;
+use whipple::advanced::linear::StateSpace;
+use whipple::advanced::nonlinear::Inputs;
+use whipple::presets::PRESETS;
+use whipple::Canonical;
+use whipple::Model;
 use whipple::{BenchmarkParameters, Result};
 
 fn all_bikes() -> Result<Vec<(&'static str, BenchmarkParameters)>> {
@@ -30,7 +32,7 @@ fn exact_linearization_matches_linear_model_for_every_preset() -> Result<()> {
     for (name, bike) in all_bikes()? {
         let model = Model::new(&bike)?;
         let canonical = Canonical::new(&bike)?;
-        let critical = stability::critical_speeds(&canonical, 0.0, 10.0)?;
+        let critical = whipple::critical_speeds(&canonical, 0.0, 10.0)?;
         let mut speeds = vec![0.0, 1.0, 4.6, 8.0, 10.0];
         speeds.extend(critical.weave_speed);
         speeds.extend(critical.capsize_speed);
@@ -64,7 +66,7 @@ fn exact_linearization_at_the_double_root() -> Result<()> {
     for (name, bike) in all_bikes()? {
         let model = Model::new(&bike)?;
         let canonical = Canonical::new(&bike)?;
-        let critical = stability::critical_speeds(&canonical, 0.0, 10.0)?;
+        let critical = whipple::critical_speeds(&canonical, 0.0, 10.0)?;
         let Some(vd) = critical.double_root_speed else {
             continue;
         };
@@ -89,12 +91,10 @@ fn exact_linearization_at_the_double_root() -> Result<()> {
 #[test]
 fn finite_differences_stay_within_their_measured_bound() -> Result<()> {
     for name in ["schwinn-crown", "benchmark"] {
-        let bike = whipple::parameters::presets::find(name)?
-            .bicycle()
-            .benchmark()?;
+        let bike = whipple::presets::find(name)?.bicycle().benchmark()?;
         let model = Model::new(&bike)?;
         let canonical = Canonical::new(&bike)?;
-        let critical = stability::critical_speeds(&canonical, 0.0, 10.0)?;
+        let critical = whipple::critical_speeds(&canonical, 0.0, 10.0)?;
         let vc = critical.capsize_speed.unwrap_or(8.0);
         let vw = critical.weave_speed.unwrap_or(4.0);
         for (v, bound) in [
@@ -151,12 +151,12 @@ fn reduced_field_is_the_full_dynamics_on_the_manifold() -> Result<()> {
 /// at round-off.
 #[test]
 fn capsize_spike_comes_from_the_full_states_zero_cluster() -> Result<()> {
-    let bike = whipple::parameters::presets::find("schwinn-crown")?
+    let bike = whipple::presets::find("schwinn-crown")?
         .bicycle()
         .benchmark()?;
     let model = Model::new(&bike)?;
     let canonical = Canonical::new(&bike)?;
-    let vc = stability::critical_speeds(&canonical, 0.0, 10.0)?
+    let vc = whipple::critical_speeds(&canonical, 0.0, 10.0)?
         .capsize_speed
         .unwrap_or(8.0);
     let v = vc + 0.05;

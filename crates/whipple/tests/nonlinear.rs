@@ -5,14 +5,15 @@ use std::f64::consts::PI;
 
 use nalgebra::{DMatrix, DVector, Matrix4, SVector, Vector3};
 use num_dual::Dual64;
-use whipple::analysis::eigen;
-use whipple::integrate::{Dopri5Settings, Integrator};
-use whipple::linear::Canonical;
-use whipple::nonlinear::{
-    rotation, simulate, InitialConditions, Inputs, Model, Outcome, Progress, ProjectionMethod,
-    ProjectionSettings, SimulationSettings, State, Wheel, REAR_FRAME, REAR_WHEEL, STATE_LEN,
+use whipple::advanced::eigen;
+use whipple::advanced::integrate::{Dopri5Settings, Integrator};
+use whipple::advanced::nonlinear::{
+    rotation, Inputs, Outcome, Progress, ProjectionMethod, ProjectionSettings, State, Wheel,
+    REAR_FRAME, REAR_WHEEL, STATE_LEN,
 };
-use whipple::parameters::presets;
+use whipple::presets;
+use whipple::Canonical;
+use whipple::{simulate, InitialConditions, Model, SimulationSettings};
 use whipple::{BenchmarkParameters, Result};
 
 /// Basu-Mandal, Chatterjee & Papadopoulos 2007, Proc. R. Soc. A 463:1983–2003, Table 1: a
@@ -158,7 +159,7 @@ fn skate_bicycle() -> BenchmarkParameters {
         z_b: -0.9,
         x_h: 0.85,
         z_h: -0.5,
-        ..whipple::parameters::presets::two_mass_skate()
+        ..whipple::presets::two_mass_skate()
     }
 }
 
@@ -404,7 +405,7 @@ fn linearization_matches_linear_model_eigenvalues() -> Result<()> {
                 a[(2, j)] = (fp[0] - fm[0]) / (2.0 * h);
                 a[(3, j)] = (fp[1] - fm[1]) / (2.0 * h);
             }
-            let linear = whipple::linear::StateSpace::new(&canonical, v)?;
+            let linear = whipple::advanced::linear::StateSpace::new(&canonical, v)?;
             assert!(
                 (a - linear.a).amax() < 1e-6 * linear.a.amax(),
                 "{name} at {v}: {a} vs {}",
@@ -691,7 +692,7 @@ fn weave_decays_at_4_6_m_per_s() -> Result<()> {
     // early peak (measured 3%; the linear weave alone gives 5%). The trajectory itself is
     // pinned to 1e-9 against an independent model in tests/trajectories.rs.
     let canonical = Canonical::new(model.parameters())?;
-    let a = whipple::linear::StateSpace::new(&canonical, 4.6)?.a;
+    let a = whipple::advanced::linear::StateSpace::new(&canonical, 4.6)?.a;
     let mut x = nalgebra::Vector4::new(0.0, 0.0, 0.5, 0.0);
     let mut worst: f64 = 0.0;
     let mut largest: f64 = 0.0;
@@ -887,7 +888,7 @@ fn skate_and_massless_wheels_simulate() -> Result<()> {
 /// perturbation dies out.
 #[test]
 fn two_mass_skate_runs_with_its_rear_skate_pulled_down() -> Result<()> {
-    let bike = whipple::parameters::presets::two_mass_skate();
+    let bike = whipple::presets::two_mass_skate();
     let model = Model::new(&bike)?;
     let start = model.initial_state(&InitialConditions {
         lean_rate: 0.2,
@@ -898,10 +899,13 @@ fn two_mass_skate_runs_with_its_rear_skate_pulled_down() -> Result<()> {
         start,
         &weave_settings(Integrator::Rk4 { dt: 1e-3 }, 6.0),
     )?;
-    assert_eq!(run.outcome, whipple::nonlinear::Outcome::Completed);
+    assert_eq!(
+        run.outcome,
+        whipple::advanced::nonlinear::Outcome::Completed
+    );
     assert_eq!(
         run.pulled_down_from_start,
-        vec![whipple::nonlinear::Wheel::Rear]
+        vec![whipple::advanced::nonlinear::Wheel::Rear]
     );
     let last = run.samples.last().map_or(f64::INFINITY, |s| s.lean.abs());
     assert!(last < 1e-3, "lean after 6 s: {last}");
@@ -913,7 +917,7 @@ fn two_mass_skate_runs_with_its_rear_skate_pulled_down() -> Result<()> {
 /// linearized bicycle at the run's speed is refused before any step, with the step to use.
 #[test]
 fn a_step_beyond_rk4s_stability_bound_is_refused() -> Result<()> {
-    use whipple::nonlinear::{check_rk4_step, fastest_mode};
+    use whipple::advanced::nonlinear::{check_rk4_step, fastest_mode};
     let (model, start) = kicked_benchmark(4.6)?;
     let lambda = fastest_mode(&model, 4.6).expect("the benchmark's linear model");
     // The castering mode, real and fast.
@@ -1000,7 +1004,7 @@ fn two_mass_skate_is_odd_and_cubic_beyond_the_linear_model() -> Result<()> {
     let bike = presets::two_mass_skate();
     let model = Model::new(&bike)?;
     let v = 4.0;
-    let a = whipple::linear::StateSpace::new(&Canonical::new(&bike)?, v)?.a;
+    let a = whipple::advanced::linear::StateSpace::new(&Canonical::new(&bike)?, v)?.a;
     for x in [
         [1.0, 0.0, 0.0, 0.0],
         [0.0, 1.0, 0.0, 0.0],
@@ -1056,7 +1060,7 @@ fn two_mass_skate_kicked_agrees_across_integrators_beyond_the_linear_model() -> 
         lean_rate: kick,
         ..InitialConditions::upright(v)
     })?;
-    let run = |integrator: Integrator| -> Result<whipple::nonlinear::Simulation> {
+    let run = |integrator: Integrator| -> Result<whipple::advanced::nonlinear::Simulation> {
         let run = simulate(&model, start, &weave_settings(integrator, duration))?;
         assert_eq!(run.outcome, Outcome::Completed, "{integrator:?}");
         let e0 = run.samples[0].energy;
@@ -1101,11 +1105,8 @@ fn two_mass_skate_kicked_agrees_across_integrators_beyond_the_linear_model() -> 
         "RK4 and DOPRI5 differ by {disagreement}"
     );
     // The linear prediction at the same time, from the same kick.
-    let linear = whipple::linear::StateSpace::new(&Canonical::new(&bike)?, v)?.free_response(
-        &nalgebra::Vector4::new(0.0, 0.0, kick, 0.0),
-        1e-3,
-        3000,
-    )?;
+    let linear = whipple::advanced::linear::StateSpace::new(&Canonical::new(&bike)?, v)?
+        .free_response(&nalgebra::Vector4::new(0.0, 0.0, kick, 0.0), 1e-3, 3000)?;
     let l = linear[3000];
     let from_linear = (l[0] - a.lean)
         .abs()

@@ -4,10 +4,10 @@
 //! same inputs the fuzz targets in `fuzz/` explore for hours, a few hundred cases here.
 
 use proptest::prelude::*;
-use whipple::nonlinear::{
+use whipple::advanced::io::{parse, Format};
+use whipple::advanced::nonlinear::{
     StateView, TorqueExpression, MAX_EXPRESSION_DEPTH, MAX_EXPRESSION_LENGTH,
 };
-use whipple::parameters::io::{parse, Format};
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]

@@ -3,9 +3,10 @@
 
 use approx::assert_abs_diff_eq;
 use nalgebra::Matrix2;
-use whipple::analysis::{eigen, modes::Mode, stability, sweep};
-use whipple::linear::Canonical;
-use whipple::parameters::presets;
+use whipple::advanced::eigen;
+use whipple::advanced::modes::Mode;
+use whipple::presets;
+use whipple::Canonical;
 use whipple::{BenchmarkParameters, Result};
 
 /// Meijaard, Papadopoulos, Ruina & Schwab 2007, Proc. R. Soc. A 463:1955–1982, §5
@@ -126,7 +127,7 @@ fn eigenvalues_match_meijaard_2007_table_2() -> Result<()> {
         assert_eq!(l.im, 0.0);
     }
     let speeds: Vec<f64> = TABLE_2.iter().map(|row| row.0).collect();
-    let s = sweep::eigen_sweep(&c, &speeds)?;
+    let s = whipple::eigen_sweep(&c, &speeds)?;
     assert_eq!(
         s.modes,
         [Mode::Weave, Mode::Weave, Mode::Capsize, Mode::Castering]
@@ -150,7 +151,7 @@ fn eigenvalues_match_meijaard_2007_table_2() -> Result<()> {
 #[test]
 fn critical_speeds_match_meijaard_2007() -> Result<()> {
     let c = Canonical::new(&BenchmarkParameters::meijaard2007())?;
-    let s = stability::critical_speeds(&c, 0.0, 10.0)?;
+    let s = whipple::critical_speeds(&c, 0.0, 10.0)?;
     let get = |x: Option<f64>| x.expect("the benchmark bicycle has every critical speed");
     assert_abs_diff_eq!(get(s.double_root_speed), 0.68428307889246, epsilon = 1e-12);
     assert_abs_diff_eq!(
@@ -182,7 +183,7 @@ fn schwinn_crown_capsize_speed_matches_dressel() -> Result<()> {
     let bike = presets::find("schwinn-crown")?.bicycle().benchmark()?;
     assert_eq!(bike.g, 9.80665);
     let c = Canonical::new(&bike)?;
-    let s = stability::critical_speeds(&c, 0.0, 20.0)?;
+    let s = whipple::critical_speeds(&c, 0.0, 20.0)?;
     let vc = s
         .capsize_speed
         .expect("the Schwinn Crown has a capsize speed");
@@ -196,7 +197,7 @@ fn schwinn_crown_capsize_speed_matches_dressel() -> Result<()> {
 #[test]
 fn browser_jason_state_matrix_matches_bicycleparameters() -> Result<()> {
     let bike = presets::find("browser-jason")?.bicycle().benchmark()?;
-    let ss = whipple::linear::StateSpace::new(&Canonical::new(&bike)?, 5.0)?;
+    let ss = whipple::advanced::linear::StateSpace::new(&Canonical::new(&bike)?, 5.0)?;
     let published = [
         [8.26150335, -17.52187211, -0.1488979, -1.07153674],
         [17.66475151, -22.88692074, 9.96449204, -14.22097935],
@@ -231,8 +232,8 @@ fn two_mass_skate_matches_an_independent_derivation() -> Result<()> {
         serde_json::from_str(include_str!("data/references.json")).expect("valid JSON");
     let reference = &doc["two_mass_skate"];
     let listed = serde_json::json!({ "benchmark": reference["bicycle"] }).to_string();
-    let listed = whipple::parameters::io::parse(&listed, whipple::parameters::io::Format::Json)?
-        .benchmark()?;
+    let listed =
+        whipple::advanced::io::parse(&listed, whipple::advanced::io::Format::Json)?.benchmark()?;
     assert_eq!(
         listed, bike,
         "the reference is computed for the preset's numbers"
@@ -247,7 +248,7 @@ fn two_mass_skate_matches_an_independent_derivation() -> Result<()> {
     assert_abs_diff_eq!(c.c1, matrix("C1"), epsilon = 1e-14);
     assert_abs_diff_eq!(c.k0, matrix("K0"), epsilon = 1e-14);
     assert_abs_diff_eq!(c.k2, matrix("K2"), epsilon = 1e-14);
-    let s = stability::critical_speeds(&c, 0.0, 20.0)?;
+    let s = whipple::critical_speeds(&c, 0.0, 20.0)?;
     assert!(s.capsize_speed.is_none());
     let vw = s.weave_speed.expect("the TMS has a weave speed");
     let expected = reference["weave_speed"].as_f64().expect("a number");

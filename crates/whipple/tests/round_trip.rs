@@ -4,9 +4,10 @@
 //! bicycles in both forms.
 
 use proptest::prelude::*;
-use whipple::parameters::io::{parse, write, Format};
-use whipple::parameters::presets::PRESETS;
-use whipple::{BenchmarkParameters, Bicycle, Description, Jbike6Parameters};
+use whipple::advanced::io::{parse, write, Format};
+use whipple::advanced::parameters::{Description, Jbike6Parameters};
+use whipple::presets::PRESETS;
+use whipple::{BenchmarkParameters, Bicycle};
 
 fn round_trip(bike: &Bicycle, format: Format) -> Bicycle {
     let text = write(bike, format).expect("every bicycle can be written");
@@ -88,7 +89,7 @@ fn benchmark(v: &[f64]) -> BenchmarkParameters {
 
 /// A JBike6 bicycle with every one of its 51 numbers replaced.
 fn jbike6(v: &[f64]) -> Jbike6Parameters {
-    let mut p = whipple::parameters::presets::schwinn_crown_jbike6();
+    let mut p = whipple::presets::schwinn_crown_jbike6();
     let mut next = v.iter().copied();
     let mut n = || next.next().unwrap_or(0.0);
     p.wheelbase = n();

@@ -8,12 +8,11 @@
 //! reaches; and the time the lean reaches a fall angle.
 
 use serde_json::Value;
-use whipple::integrate::{Dopri5Settings, Integrator};
-use whipple::nonlinear::{
-    simulate, InitialConditions, Model, Outcome, Sample, SimulationSettings, TorqueExpression,
-};
-use whipple::parameters::io::{parse, Format};
-use whipple::parameters::presets;
+use whipple::advanced::integrate::{Dopri5Settings, Integrator};
+use whipple::advanced::io::{parse, Format};
+use whipple::advanced::nonlinear::{Outcome, Sample, TorqueExpression};
+use whipple::presets;
+use whipple::{simulate, InitialConditions, Model, SimulationSettings};
 use whipple::{BenchmarkParameters, Result};
 
 const REFERENCES: &str = include_str!("data/references.json");
@@ -67,7 +66,7 @@ fn settings(scenario: &Value, integrator: Integrator, duration: f64) -> Result<S
     })
 }
 
-fn start(model: &Model, scenario: &Value) -> Result<whipple::nonlinear::State<f64>> {
+fn start(model: &Model, scenario: &Value) -> Result<whipple::advanced::nonlinear::State<f64>> {
     let ic = &scenario["initial"];
     model.initial_state(&InitialConditions {
         lean: number(&ic["lean"]),

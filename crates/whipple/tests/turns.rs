@@ -4,16 +4,15 @@
 //! on a turn.
 
 use nalgebra::{SVector, Vector3};
-use whipple::analysis::eigen;
-use whipple::analysis::turns::{
+use whipple::advanced::eigen;
+use whipple::advanced::integrate::{Dopri5Settings, Integrator};
+use whipple::advanced::nonlinear::{Simulation, FRONT_WHEEL};
+use whipple::advanced::turns::{
     branch_family, branch_from_straight, hands_free_turn_near, held_turn, stability, turn_jacobian,
     FamilyEnd, FamilySettings, Held, SteadyTurn, TurnSettings,
 };
-use whipple::integrate::{Dopri5Settings, Integrator};
-use whipple::linear::Canonical;
-use whipple::nonlinear::{
-    simulate, InitialConditions, Model, Simulation, SimulationSettings, FRONT_WHEEL,
-};
+use whipple::Canonical;
+use whipple::{simulate, InitialConditions, Model, SimulationSettings};
 use whipple::{BenchmarkParameters, Error, Result};
 
 fn benchmark() -> Model {
@@ -297,7 +296,7 @@ fn hands_free_families_are_found() -> Result<()> {
     let model = benchmark();
     let start = std::time::Instant::now();
     let families =
-        whipple::analysis::turns::hands_free_families(&model, &FamilySettings::default())?;
+        whipple::advanced::turns::hands_free_families(&model, &FamilySettings::default())?;
     println!("{} families in {:?}", families.len(), start.elapsed());
     for f in &families {
         let p = &f.points;
@@ -460,7 +459,7 @@ fn a_turn_that_pulls_a_wheel_down_is_refused() {
 /// computed, finite, and is straight running to round-off.
 #[test]
 fn a_radius_beyond_the_bound_is_refused_and_the_bound_is_computed() -> Result<()> {
-    use whipple::analysis::turns::MAX_RADIUS;
+    use whipple::advanced::turns::MAX_RADIUS;
     let model = benchmark();
     for r in [1e200, -1e200, 2.0 * MAX_RADIUS] {
         let result = held_turn(&model, 5.0, Held::Radius(r), &TurnSettings::default());

@@ -27,10 +27,10 @@ use crate::parameters::table::{parameters, Form};
 use crate::parameters::{Bicycle, Description};
 
 /// The most designs one study may hold (a 100,000 × 100,000 map).
-pub const MAX_DESIGNS: u64 = 10_000_000_000;
+pub(crate) const MAX_DESIGNS: u64 = 10_000_000_000;
 
 /// The most points on one axis.
-pub const MAX_AXIS_POINTS: usize = 10_000_000;
+pub(crate) const MAX_AXIS_POINTS: usize = 10_000_000;
 
 /// What an axis varies.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -89,8 +89,8 @@ impl Axis {
     /// Parses `NAME=START:STOP:COUNT` for a base bicycle (the name must exist in its form).
     ///
     /// ```
-    /// use whipple::analysis::design::Axis;
-    /// use whipple::parameters::presets;
+    /// use whipple::advanced::design::Axis;
+    /// use whipple::presets;
     /// let crown = presets::find("schwinn-crown")?.bicycle();
     /// let axis = Axis::parse("head_angle_deg=60:80:401", &crown)?;
     /// assert!(axis.degrees && axis.count == 401 && (axis.value(200) - 70.0).abs() < 1e-12);
@@ -426,14 +426,15 @@ pub struct Study {
 }
 
 /// Designs computed per parallel chunk (bounds memory: a few MB of rows).
-pub const CHUNK: u64 = 1 << 15;
+pub(crate) const CHUNK: u64 = 1 << 15;
 
 impl Study {
     /// A study; checks the sizes and the options.
     ///
     /// ```
-    /// use whipple::analysis::design::{Axis, Study, StudyOptions, Shard};
-    /// use whipple::parameters::presets;
+    /// use whipple::advanced::design::{Axis, StudyOptions, Shard};
+    /// use whipple::Study;
+    /// use whipple::presets;
     /// let bike = presets::find("benchmark")?.bicycle();
     /// let x = Axis::parse("trail=0:0.2:5", &bike)?;
     /// let study = Study::new(bike, x, None, StudyOptions::default())?;
@@ -493,8 +494,9 @@ impl Study {
     /// that the base gives two values: `wheel_radius` of a bicycle with wheels of two sizes).
     ///
     /// ```
-    /// use whipple::analysis::design::{Axis, Study, StudyOptions};
-    /// use whipple::parameters::presets;
+    /// use whipple::advanced::design::{Axis, StudyOptions};
+    /// use whipple::Study;
+    /// use whipple::presets;
     /// let bike = presets::find("benchmark")?.bicycle(); // rR = 0.3 m, rF = 0.35 m
     /// let trail = Axis::parse("trail=0:0.2:5", &bike)?;
     /// let radius = Axis::parse("wheel_radius=0.2:0.5:4", &bike)?;
@@ -601,7 +603,7 @@ impl Study {
         }
     }
 
-    /// Computes the shard's designs in order, in parallel chunks of [`CHUNK`] on rayon's pool,
+    /// Computes the shard's designs in order, in parallel chunks of `CHUNK` on rayon's pool,
     /// handing each chunk to `sink` in index order; stops early (with
     /// [`Error::InvalidArgument`] `what: "stopped"`) when `stop` is set, and with the sink's
     /// error when it fails. Memory: one chunk of rows at a time.
@@ -654,7 +656,7 @@ fn canonical_of(d: &Description) -> Result<Canonical> {
 }
 
 /// The quantities of one described bicycle.
-pub fn analyse(
+pub(crate) fn analyse(
     description: &Description,
     speed: Option<f64>,
     options: &StudyOptions,

@@ -219,7 +219,7 @@ fn ferrari(b: f64, c: f64, d: f64, e: f64) -> [Complex64; 4] {
 /// conjugate pairs.
 ///
 /// ```
-/// use whipple::analysis::eigen::quartic_roots;
+/// use whipple::advanced::eigen::quartic_roots;
 /// // (λ² − 1)(λ² + 4)
 /// let roots = quartic_roots(&[-4.0, 0.0, 3.0, 0.0, 1.0])?;
 /// assert!((roots[0].re - 1.0).abs() < 1e-15 && (roots[1].im - 2.0).abs() < 1e-15);
@@ -374,7 +374,9 @@ fn tidy(mut z: [Complex64; 4]) -> [Complex64; 4] {
 /// The four eigenvalues of A(v), sorted by decreasing real part.
 ///
 /// ```
-/// use whipple::{BenchmarkParameters, linear::Canonical, analysis::eigen};
+/// use whipple::BenchmarkParameters;
+/// use whipple::Canonical;
+/// use whipple::advanced::eigen;
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
 /// let lambdas = eigen::eigenvalues(&canonical, 5.0)?;
 /// assert!(lambdas.iter().all(|l| l.re < 0.0)); // 5 m/s is in the self-stable range
@@ -408,8 +410,8 @@ pub fn eigenpairs(canonical: &Canonical, speed: f64) -> Result<[EigenPair; 4]> {
 /// call), so a batch pays for neither per speed. The same numbers, bit for bit.
 ///
 /// ```
-/// use whipple::analysis::eigen::{eigenpairs, eigenpairs_with};
-/// use whipple::linear::{CharacteristicPolynomial, SpeedPolynomials};
+/// use whipple::advanced::eigen::{eigenpairs, eigenpairs_with};
+/// use whipple::advanced::linear::{CharacteristicPolynomial, SpeedPolynomials};
 /// use whipple::{BenchmarkParameters, Canonical};
 /// let c = Canonical::new(&BenchmarkParameters::meijaard2007())?;
 /// SpeedPolynomials::new(&c)?;

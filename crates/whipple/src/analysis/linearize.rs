@@ -8,7 +8,7 @@
 //!
 //! ```
 //! use nalgebra::{RealField, SVector, Vector2};
-//! use whipple::analysis::linearize::{central_differences, jacobian, FdSettings, VectorField};
+//! use whipple::advanced::linearize::{central_differences, jacobian, FdSettings, VectorField};
 //!
 //! /// The pendulum θ̈ = −sin θ in first-order form.
 //! struct Pendulum;

@@ -72,14 +72,14 @@ const PERMUTATIONS: [[usize; 4]; 24] = [
 /// Tracking one speed at a time: column k of each result continues column k of the results
 /// before it (see the module documentation). [`track`] over a slice is the same, speed by speed.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Tracker {
+pub(crate) struct Tracker {
     previous: Option<[Complex64; 4]>,
     before: Option<[Complex64; 4]>,
 }
 
 impl Tracker {
     /// The eigenvalues `current` reordered to continue the tracks.
-    pub fn next(&mut self, current: [Complex64; 4]) -> [Complex64; 4] {
+    pub(crate) fn next(&mut self, current: [Complex64; 4]) -> [Complex64; 4] {
         let Some(previous) = self.previous else {
             self.previous = Some(current);
             return current;
@@ -106,14 +106,6 @@ impl Tracker {
     }
 }
 
-/// Reorders each speed's eigenvalues so that column k follows one continuous track.
-pub fn track(eigenvalues: &mut [[Complex64; 4]]) {
-    let mut tracker = Tracker::default();
-    for values in eigenvalues.iter_mut() {
-        *values = tracker.next(*values);
-    }
-}
-
 /// The structural labels at one speed, when it shows the benchmark's pattern.
 fn vote(values: &[Complex64; 4]) -> Option<[Mode; 4]> {
     let complex: Vec<usize> = (0..4).filter(|&k| values[k].im != 0.0).collect();
@@ -136,14 +128,14 @@ fn vote(values: &[Complex64; 4]) -> Option<[Mode; 4]> {
 
 /// The labels at one speed where the spectrum shows the benchmark's pattern (one complex pair:
 /// weave; two real eigenvalues: the larger capsize, the smaller castering), else `None`.
-pub fn pattern_labels(values: &[Complex64; 4]) -> Option<[Mode; 4]> {
+pub(crate) fn pattern_labels(values: &[Complex64; 4]) -> Option<[Mode; 4]> {
     vote(values)
 }
 
 /// The labels' votes, gathered one tracked speed at a time ([`classify`] over a slice is the
 /// same).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct Votes {
+pub(crate) struct Votes {
     /// `votes[column][m]`: speeds at which the column showed weave, capsize, castering.
     votes: [[usize; 3]; 4],
 }
@@ -152,7 +144,7 @@ const LABELS: [Mode; 3] = [Mode::Weave, Mode::Capsize, Mode::Castering];
 
 impl Votes {
     /// Counts the votes of one speed's tracked eigenvalues.
-    pub fn add(&mut self, values: &[Complex64; 4]) {
+    pub(crate) fn add(&mut self, values: &[Complex64; 4]) {
         if let Some(labels) = vote(values) {
             for (column, label) in self.votes.iter_mut().zip(labels) {
                 if let Some(m) = LABELS.iter().position(|&m| m == label) {
@@ -163,7 +155,7 @@ impl Votes {
     }
 
     /// Labels for the four tracked columns (see the module documentation).
-    pub fn labels(&self) -> [Mode; 4] {
+    pub(crate) fn labels(&self) -> [Mode; 4] {
         let votes = &self.votes;
         let mut labels = [Mode::Unclassified; 4];
         // Assign the weave to the two columns with most weave votes, then capsize and castering.
@@ -184,15 +176,6 @@ impl Votes {
     }
 }
 
-/// Labels for the four tracked columns (see the module documentation).
-pub fn classify(tracked: &[[Complex64; 4]]) -> [Mode; 4] {
-    let mut votes = Votes::default();
-    for values in tracked {
-        votes.add(values);
-    }
-    votes.labels()
-}
-
 /// One eigenmode at one speed: its name, eigenvalue and shape.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ModeShape {
@@ -208,8 +191,9 @@ pub struct ModeShape {
 /// `speed` (what `whipple modes` prints and the page animates).
 ///
 /// ```
-/// use whipple::analysis::modes::{mode_shapes, Mode};
-/// use whipple::{BenchmarkParameters, linear::Canonical};
+/// use whipple::advanced::modes::{mode_shapes, Mode};
+/// use whipple::BenchmarkParameters;
+/// use whipple::Canonical;
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
 /// let shapes = mode_shapes(&canonical, 5.0)?;
 /// assert_eq!(shapes.iter().filter(|s| s.mode == Mode::Weave).count(), 2);

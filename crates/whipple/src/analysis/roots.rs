@@ -29,7 +29,7 @@
 use crate::error::{Error, Result};
 
 /// The largest degree [`real_roots`] handles.
-pub const MAX_DEGREE: usize = 6;
+pub(crate) const MAX_DEGREE: usize = 6;
 
 /// Unit round-off of f64, 2⁻⁵³.
 pub(crate) const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
@@ -567,7 +567,7 @@ fn certify(c: &[f64], e: &[f64], roots: &mut [RealRoot; MAX_DEGREE]) -> usize {
 /// message.
 ///
 /// ```
-/// use whipple::analysis::roots::{real_roots, BoundedPolynomial, RealRoot};
+/// use whipple::advanced::roots::{real_roots, BoundedPolynomial, RealRoot};
 /// // (x - 1)(x - 2)(x² + 1) = x⁴ - 3x³ + 3x² - 3x + 2
 /// let q = BoundedPolynomial::exact([2.0, -3.0, 3.0, -3.0, 1.0]);
 /// let roots = real_roots(&q, "example")?;
@@ -688,108 +688,9 @@ pub fn real_roots<const N: usize>(q: &BoundedPolynomial<N>, what: &str) -> Resul
     Ok(out)
 }
 
-/// Upper bound on Brent iterations (it needs about 60 in the worst case for f64).
-const MAX_ITERATIONS: usize = 200;
-
-/// A root of `f` in [a, b] where f(a) and f(b) differ in sign (or one is zero), to an absolute
-/// tolerance of `4 ε |x| + tolerance` (Brent 1973, zeroin).
-pub fn brent(f: impl Fn(f64) -> f64, a: f64, b: f64, tolerance: f64) -> Result<f64> {
-    let (mut a, mut b) = (a, b);
-    let (mut fa, mut fb) = (f(a), f(b));
-    if fa == 0.0 {
-        return Ok(a);
-    }
-    if fb == 0.0 {
-        return Ok(b);
-    }
-    if !(fa.is_finite() && fb.is_finite()) || fa.signum() == fb.signum() {
-        return Err(Error::InvalidArgument {
-            what: "bracket",
-            rule: format!("f({a}) = {fa} and f({b}) = {fb} do not bracket a root"),
-        });
-    }
-    let (mut c, mut fc) = (a, fa);
-    let (mut d, mut e) = (b - a, b - a);
-    for _ in 0..MAX_ITERATIONS {
-        if fb.signum() == fc.signum() {
-            c = a;
-            fc = fa;
-            d = b - a;
-            e = d;
-        }
-        if fc.abs() < fb.abs() {
-            a = b;
-            b = c;
-            c = a;
-            fa = fb;
-            fb = fc;
-            fc = fa;
-        }
-        let tol = 2.0 * f64::EPSILON * b.abs() + 0.5 * tolerance;
-        let m = 0.5 * (c - b);
-        if m.abs() <= tol || fb == 0.0 {
-            return Ok(b);
-        }
-        if e.abs() >= tol && fa.abs() > fb.abs() {
-            let s = fb / fa;
-            let (mut p, mut q);
-            if a == c {
-                p = 2.0 * m * s;
-                q = 1.0 - s;
-            } else {
-                let qq = fa / fc;
-                let r = fb / fc;
-                p = s * (2.0 * m * qq * (qq - r) - (b - a) * (r - 1.0));
-                q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
-            }
-            if p > 0.0 {
-                q = -q;
-            } else {
-                p = -p;
-            }
-            if 2.0 * p < (3.0 * m * q - (tol * q).abs()).min((e * q).abs()) {
-                e = d;
-                d = p / q;
-            } else {
-                d = m;
-                e = m;
-            }
-        } else {
-            d = m;
-            e = m;
-        }
-        a = b;
-        fa = fb;
-        b += if d.abs() > tol { d } else { tol.copysign(m) };
-        fb = f(b);
-        if !fb.is_finite() {
-            return Err(Error::NonFinite {
-                context: format!("root finding at {b}"),
-            });
-        }
-    }
-    Err(Error::NoConvergence {
-        method: "Brent's root finder",
-        iterations: MAX_ITERATIONS,
-        residual: fb.abs(),
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn finds_sqrt_two_to_round_off() -> Result<()> {
-        let r = brent(|x| x * x - 2.0, 0.0, 2.0, 0.0)?;
-        assert!((r - 2f64.sqrt()).abs() <= 4.0 * f64::EPSILON);
-        Ok(())
-    }
-
-    #[test]
-    fn rejects_a_non_bracket() {
-        assert!(brent(|x| x * x + 1.0, -1.0, 1.0, 0.0).is_err());
-    }
 
     fn simple(roots: &RealRoots) -> Vec<f64> {
         roots

@@ -12,11 +12,11 @@
 //! differentiation); the double-root speed, where p = ∂p/∂λ = 0, by dv = −(∂p/∂pᵢ)/(∂p/∂v).
 //!
 //! ```
-//! use whipple::analysis::sensitivity::ParameterDerivatives;
-//! use whipple::parameters::presets;
+//! use whipple::advanced::sensitivity::ParameterDerivatives;
+//! use whipple::presets;
 //! let bike = presets::find("benchmark")?.bicycle();
 //! let d = ParameterDerivatives::new(&bike)?;
-//! let critical = whipple::analysis::stability::critical_speeds(&d.canonical, 0.0, 10.0)?;
+//! let critical = whipple::critical_speeds(&d.canonical, 0.0, 10.0)?;
 //! let dv = d.weave_speed_derivatives(&critical).unwrap();
 //! let trail = d.index("c").unwrap();
 //! assert!((dv[trail] - 11.48).abs() < 0.01); // more trail, a higher weave speed
@@ -302,15 +302,6 @@ impl ParameterDerivatives {
     }
 }
 
-/// A value with its first-order standard deviation.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Uncertain {
-    /// The value.
-    pub value: f64,
-    /// Its standard deviation (first order, parameters independent).
-    pub sigma: f64,
-}
-
 /// The critical speeds with their standard deviations (`None` where the speed does not exist or
 /// is not differentiable).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -331,8 +322,9 @@ pub struct CriticalSpeedsSigma {
 /// parameter sigmas.
 ///
 /// ```
-/// use whipple::analysis::sensitivity::critical_speeds_sigma;
-/// use whipple::parameters::{io, presets};
+/// use whipple::advanced::sensitivity::critical_speeds_sigma;
+/// use whipple::advanced::io;
+/// use whipple::presets;
 /// let mut bike = presets::find("benchmark")?.bicycle();
 /// bike.sigma.insert("c".into(), 0.001);
 /// let s = critical_speeds_sigma(&bike, 0.0, 10.0)?;
@@ -451,8 +443,8 @@ pub struct Sensitivities {
 /// The sensitivities of a bicycle over the speed range [lo, hi], and optionally at `speed`.
 ///
 /// ```
-/// use whipple::analysis::sensitivity::sensitivities;
-/// use whipple::parameters::presets;
+/// use whipple::advanced::sensitivity::sensitivities;
+/// use whipple::presets;
 /// let s = sensitivities(&presets::find("benchmark")?.bicycle(), 0.0, 10.0, Some(5.0))?;
 /// let trail = s.parameters.iter().find(|p| p.key == "c").unwrap();
 /// assert!(trail.weave_speed.unwrap() > 0.0);

@@ -36,7 +36,7 @@ use crate::linear::{Canonical, SpeedPolynomials};
 
 /// A reported speed is refused ([`Error::AccuracyLost`]) when its certified enclosure is wider
 /// than this, relative to the speed (ordinary bicycles give about 1e-15).
-pub const MAX_RELATIVE_ENCLOSURE: f64 = 1e-8;
+pub(crate) const MAX_RELATIVE_ENCLOSURE: f64 = 1e-8;
 
 /// The critical speeds of a bicycle within a speed range. `None` where no such speed lies in the
 /// range.
@@ -123,7 +123,7 @@ fn serialize_ranges<S: Serializer>(ranges: &[(f64, f64)], s: S) -> Result<S::Ok,
 }
 
 /// Checks a speed range: not NaN, LO < HI; LO may be −∞ and HI +∞.
-pub fn check_range(lo: f64, hi: f64) -> Result<()> {
+pub(crate) fn check_range(lo: f64, hi: f64) -> Result<()> {
     if lo.is_nan() || hi.is_nan() || lo >= hi || lo == f64::INFINITY || hi == f64::NEG_INFINITY {
         return Err(Error::InvalidArgument {
             what: "range",
@@ -566,8 +566,10 @@ impl Structure {
 /// needs it: no allocation, no eigenvalue computation.
 ///
 /// ```
-/// use whipple::{BenchmarkParameters, linear::{Canonical, SpeedPolynomials}};
-/// use whipple::analysis::stability::summary;
+/// use whipple::BenchmarkParameters;
+/// use whipple::Canonical;
+/// use whipple::advanced::linear::SpeedPolynomials;
+/// use whipple::advanced::stability::summary;
 /// let sp = SpeedPolynomials::new(&Canonical::new(&BenchmarkParameters::meijaard2007())?)?;
 /// let s = summary(&sp, 0.0, f64::INFINITY)?;
 /// assert!((s.stable_width - (6.02426201538837 - 4.29238253634111)).abs() < 1e-12);
@@ -627,9 +629,10 @@ pub fn summary(sp: &SpeedPolynomials, lo: f64, hi: f64) -> Result<StabilitySumma
 /// `f64::NEG_INFINITY`): the answer is certified on the whole range, however large.
 ///
 /// ```
-/// use whipple::{BenchmarkParameters, linear::Canonical, analysis::stability};
+/// use whipple::BenchmarkParameters;
+/// use whipple::Canonical;
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
-/// let speeds = stability::critical_speeds(&canonical, 0.0, f64::INFINITY)?;
+/// let speeds = whipple::critical_speeds(&canonical, 0.0, f64::INFINITY)?;
 /// assert!((speeds.weave_speed.unwrap() - 4.29238253634111).abs() < 1e-12);
 /// assert!((speeds.capsize_speed.unwrap() - 6.02426201538837).abs() < 1e-12);
 /// assert_eq!(speeds.stable_speed_ranges.len(), 1);

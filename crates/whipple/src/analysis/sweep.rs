@@ -6,14 +6,14 @@ use crate::error::{Error, Result};
 use crate::linear::{Canonical, CharacteristicPolynomial};
 
 /// The largest number of speeds one sweep may hold.
-pub const MAX_SPEEDS: usize = 10_000_000;
+pub(crate) const MAX_SPEEDS: usize = 10_000_000;
 
 /// An evenly spaced grid of speeds START:STOP:STEP, both ends included (STOP is included when
 /// it lies on the grid to within round-off), held as its three numbers: a grid of any size
 /// costs no memory until it is collected ([`speed_grid`]) or swept ([`SweepPlan`]).
 ///
 /// ```
-/// use whipple::analysis::sweep::SpeedGrid;
+/// use whipple::advanced::sweep::SpeedGrid;
 /// let grid = SpeedGrid::new(0.0, 1.0, 0.25)?;
 /// assert_eq!(grid.len(), 5);
 /// assert_eq!(grid.iter().collect::<Vec<_>>(), vec![0.0, 0.25, 0.5, 0.75, 1.0]);
@@ -28,7 +28,7 @@ pub struct SpeedGrid {
 }
 
 /// The most speeds a [`SpeedGrid`] may describe (callers bound what they sweep far lower).
-pub const MAX_GRID_SPEEDS: f64 = 1e15;
+pub(crate) const MAX_GRID_SPEEDS: f64 = 1e15;
 
 impl SpeedGrid {
     /// The grid START:STOP:STEP: finite numbers, STEP > 0, STOP ≥ START.
@@ -98,11 +98,11 @@ impl SpeedGrid {
 }
 
 /// Evenly spaced speeds START:STOP:STEP, both ends included (STOP is included when it lies on
-/// the grid to within round-off), at most [`MAX_SPEEDS`] of them; [`SpeedGrid`] describes a
+/// the grid to within round-off), at most `MAX_SPEEDS` of them; [`SpeedGrid`] describes a
 /// larger grid without holding it.
 ///
 /// ```
-/// let v = whipple::analysis::sweep::speed_grid(0.0, 1.0, 0.25)?;
+/// let v = whipple::speed_grid(0.0, 1.0, 0.25)?;
 /// assert_eq!(v, vec![0.0, 0.25, 0.5, 0.75, 1.0]);
 /// # Ok::<(), whipple::Error>(())
 /// ```
@@ -158,10 +158,12 @@ const MAX_EXTRA_SPEEDS: f64 = 2_000_000.0;
 /// one would be. The whole sweep is held in memory; [`SweepPlan`] streams it row by row.
 ///
 /// ```
-/// use whipple::{BenchmarkParameters, linear::Canonical, analysis::sweep};
+/// use whipple::BenchmarkParameters;
+/// use whipple::Canonical;
+/// use whipple::{eigen_sweep, speed_grid};
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
-/// let s = sweep::eigen_sweep(&canonical, &sweep::speed_grid(0.0, 10.0, 0.1)?)?;
-/// assert_eq!(s.modes[2], whipple::analysis::modes::Mode::Capsize);
+/// let s = eigen_sweep(&canonical, &speed_grid(0.0, 10.0, 0.1)?)?;
+/// assert_eq!(s.modes[2], whipple::advanced::modes::Mode::Capsize);
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub fn eigen_sweep(canonical: &Canonical, speeds: &[f64]) -> Result<EigenSweep> {
@@ -185,7 +187,9 @@ pub fn eigen_sweep(canonical: &Canonical, speeds: &[f64]) -> Result<EigenSweep> 
 /// bit for bit.
 ///
 /// ```
-/// use whipple::{BenchmarkParameters, linear::Canonical, analysis::sweep::{SpeedGrid, SweepPlan}};
+/// use whipple::BenchmarkParameters;
+/// use whipple::Canonical;
+/// use whipple::advanced::sweep::{SpeedGrid, SweepPlan};
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
 /// let grid = SpeedGrid::new(0.0, 10.0, 0.01)?;
 /// let plan = SweepPlan::new(&canonical, grid.iter())?;

@@ -24,8 +24,9 @@
 //!   ([`branch_from_straight`]).
 //!
 //! ```
-//! use whipple::{BenchmarkParameters, nonlinear::Model};
-//! use whipple::analysis::turns::{held_turn, Held, TurnSettings};
+//! use whipple::BenchmarkParameters;
+//! use whipple::Model;
+//! use whipple::advanced::turns::{held_turn, Held, TurnSettings};
 //! let model = Model::new(&BenchmarkParameters::meijaard2007())?;
 //! let turn = held_turn(&model, 5.0, Held::Lean(11.5f64.to_radians()), &TurnSettings::default())?;
 //! assert!(turn.steer > 0.0 && turn.rear_radius.is_some());
@@ -57,7 +58,7 @@ fn re<T: RealField + Copy>(x: T) -> f64 {
 }
 
 /// Largest lean a turn may have \[rad\] (89°): the orientation angles are singular at 90°.
-pub const MAX_LEAN: f64 = 89.0 * std::f64::consts::PI / 180.0;
+pub(crate) const MAX_LEAN: f64 = 89.0 * std::f64::consts::PI / 180.0;
 
 /// Largest turn radius a held turn may be asked for \[m\] (a million kilometres): beyond it the
 /// turn is straight running to within 1e-9 of any length of a bicycle, and the radius is the
@@ -688,7 +689,7 @@ pub fn hands_free_turn_near(
 /// and wheel angles are ignorable, every other coordinate and speed follows from the
 /// constraints. Its equilibria are the steady turns.
 #[derive(Debug, Clone, Copy)]
-pub struct TurnField<'a> {
+pub(crate) struct TurnField<'a> {
     /// The model.
     pub model: &'a Model,
     /// T_δ [N m], held constant.
@@ -745,7 +746,7 @@ pub struct Stability {
     pub stable: bool,
 }
 
-/// The stability of a steady turn from the exact Jacobian of [`TurnField`] at it (dual numbers).
+/// The stability of a steady turn from the exact Jacobian of `TurnField` at it (dual numbers).
 ///
 /// The Jacobian's eigenvalue nearest zero is the family's (its eigenvector is the tangent of the
 /// curve of steady turns at this T_δ, (dφ, dδ, 0, 0, dv)); it is checked to be zero to
@@ -787,7 +788,7 @@ pub fn stability(model: &Model, turn: &SteadyTurn) -> Result<Stability> {
     })
 }
 
-/// The Jacobian of [`TurnField`] at a steady turn (5 × 5, exact), for the tests and for users who
+/// The Jacobian of `TurnField` at a steady turn (5 × 5, exact), for the tests and for users who
 /// want the eigenvectors.
 pub fn turn_jacobian(model: &Model, turn: &SteadyTurn) -> Result<SMatrix<f64, 5, 5>> {
     let field = TurnField {
@@ -912,7 +913,7 @@ pub fn branch_from_straight(model: &Model, settings: &TurnSettings) -> Result<Op
     })
 }
 
-/// Settings of [`trace_family`], with their defaults.
+/// Settings of `trace_family`, with their defaults.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FamilySettings {
     /// Newton settings of each corrector.
@@ -1006,7 +1007,7 @@ fn free_equations(model: &Model, y: &[f64; 3]) -> Result<(nalgebra::Vector2<f64>
 /// Jacobian (the cross product of its rows, exact by dual numbers), the corrector Newton on the
 /// two equations plus the arclength condition, so the tracing goes through folds in speed.
 /// Steps adapt (halved on failure, grown after easy corrections), bounded by the settings.
-pub fn trace_family(
+pub(crate) fn trace_family(
     model: &Model,
     start: [f64; 3],
     direction: f64,

@@ -66,7 +66,7 @@ pub struct Dopri5Settings {
 }
 
 impl Default for Dopri5Settings {
-    /// [`Dopri5Settings::with_rtol`] of [`super::DEFAULT_RTOL`]: rtol 1e-8, atol 1e-10.
+    /// [`Dopri5Settings::with_rtol`] of `super::DEFAULT_RTOL`: rtol 1e-8, atol 1e-10.
     fn default() -> Self {
         Dopri5Settings::with_rtol(super::DEFAULT_RTOL)
     }
@@ -257,7 +257,7 @@ const MAX_FACTOR: f64 = 10.0;
 
 impl Controller {
     /// A controller whose first step comes from the settings or from the initial slope.
-    pub fn new<const N: usize>(
+    pub(crate) fn new<const N: usize>(
         params: &Dopri5Settings,
         y: &SVector<f64, N>,
         f: &SVector<f64, N>,
@@ -288,13 +288,13 @@ impl Controller {
     }
 
     /// The step to attempt next \[s\].
-    pub fn step(&self) -> f64 {
+    pub(crate) fn step(&self) -> f64 {
         self.h
     }
 
     /// Judges an attempt of size h with scaled error `error`: true to accept. Sets the next
     /// step either way; fails when the step would fall below the minimum.
-    pub fn accept(&mut self, error: f64, h: f64) -> Result<bool> {
+    pub(crate) fn accept(&mut self, error: f64, h: f64) -> Result<bool> {
         if !error.is_finite() {
             self.h = h * MIN_FACTOR;
             self.rejected = true;

@@ -6,7 +6,7 @@
 //!
 //! ```
 //! use nalgebra::Vector2;
-//! use whipple::integrate::{Integrator, OdeSystem, Stepper};
+//! use whipple::advanced::integrate::{Integrator, OdeSystem, Stepper};
 //! // Harmonic oscillator: y = [x, ẋ], ẍ = −x.
 //! let f = |_t: f64, y: &Vector2<f64>| Ok(Vector2::new(y[1], -y[0]));
 //! let mut y = Vector2::new(1.0, 0.0);
@@ -26,24 +26,25 @@ pub(crate) mod rk4;
 use nalgebra::SVector;
 
 use crate::error::{Error, Result};
-pub use dopri5::{DenseOutput, Dopri5Settings};
+pub(crate) use dopri5::DenseOutput;
+pub use dopri5::Dopri5Settings;
 
 /// The RK4 step when none is given \[s\] (the study's).
-pub const DEFAULT_DT: f64 = 1e-3;
+pub(crate) const DEFAULT_DT: f64 = 1e-3;
 /// The adaptive integrator's relative tolerance when none is given.
-pub const DEFAULT_RTOL: f64 = 1e-8;
+pub(crate) const DEFAULT_RTOL: f64 = 1e-8;
 
 /// The largest |λ·dt| RK4 is given for a mode λ of the system it integrates. RK4's stability
 /// region (|1 + z + z²/2 + z³/6 + z⁴/24| ≤ 1, z = λ·dt) reaches 2.785 along the negative real
 /// axis and 2.828 along the imaginary one; the half-disc |z| ≤ 2.5, Re z ≤ 0 lies inside it
 /// with a margin (|R(z)| ≤ 0.873 on it). Beyond this bound a decaying mode can grow from step
 /// to step: the motion computed is the integrator's, not the system's.
-pub const RK4_STABLE_RADIUS: f64 = 2.5;
+pub(crate) const RK4_STABLE_RADIUS: f64 = 2.5;
 
 /// The |λ·dt| of the step a too-coarse RK4 run is told to use: within it a mode's growth
 /// factor per step is off by at most 2% (for example R(−1) = 0.375 against e⁻¹ = 0.368, and
 /// R(i) = 0.994 e^(0.994i) against e^i).
-pub const RK4_ACCURATE_RADIUS: f64 = 1.0;
+pub(crate) const RK4_ACCURATE_RADIUS: f64 = 1.0;
 
 /// The largest number of the form 1, 2 or 5 × 10ᵏ that is at most `x` (positive, finite): a
 /// step or tolerance to suggest in a message. `x` itself when it is not positive and finite.
@@ -101,7 +102,7 @@ pub enum Integrator {
 }
 
 impl Default for Integrator {
-    /// RK4 with the step [`DEFAULT_DT`].
+    /// RK4 with the step `DEFAULT_DT`.
     fn default() -> Self {
         Integrator::Rk4 { dt: DEFAULT_DT }
     }

@@ -31,7 +31,7 @@ pub struct Canonical<T = f64> {
 /// The intermediate quantities of Meijaard 2007 Appendix A, in the paper's order.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[allow(missing_docs)] // each field is named after the paper's symbol, documented in the paper
-pub struct Intermediates<T = f64> {
+pub(crate) struct Intermediates<T = f64> {
     pub m_t: T,
     pub x_t: T,
     pub z_t: T,
@@ -59,7 +59,7 @@ impl<T: RealField + Copy> Intermediates<T> {
     /// Appendix A of Meijaard 2007 (eqs. A1–A22), line by line. A wheel of zero radius (a skate)
     /// has no spin inertia (validation guarantees it) and contributes no gyroscopic term.
     #[inline]
-    pub fn new(p: &BenchmarkParameters<T>) -> Self {
+    pub(crate) fn new(p: &BenchmarkParameters<T>) -> Self {
         let two: T = nalgebra::convert(2.0);
         let zero = T::zero();
         let (sin_l, cos_l) = p.lambda.sin_cos();
@@ -135,7 +135,8 @@ impl Canonical {
     /// The canonical matrices of a bicycle, after validating its parameters.
     ///
     /// ```
-    /// use whipple::{BenchmarkParameters, linear::Canonical};
+    /// use whipple::BenchmarkParameters;
+    /// use whipple::Canonical;
     /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
     /// assert!((canonical.m[(0, 0)] - 80.81722).abs() < 1e-12);
     /// # Ok::<(), whipple::Error>(())

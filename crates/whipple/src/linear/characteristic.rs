@@ -126,29 +126,8 @@ impl CharacteristicPolynomial {
 }
 
 /// Δ₃ of a quartic with coefficients `a` (lowest power first).
-pub fn hurwitz_delta3(a: &[f64; 5]) -> f64 {
+pub(crate) fn hurwitz_delta3(a: &[f64; 5]) -> f64 {
     a[3] * a[2] * a[1] - a[4] * a[1] * a[1] - a[0] * a[3] * a[3]
-}
-
-/// The discriminant of a quartic with coefficients `a` (lowest power first): positive when the
-/// roots are all real or all complex, negative with two real roots and a complex pair, zero at a
-/// multiple root.
-pub fn discriminant(a: &[f64; 5]) -> f64 {
-    let (e, d, c, b, a) = (a[0], a[1], a[2], a[3], a[4]);
-    256.0 * a.powi(3) * e.powi(3) - 192.0 * a * a * b * d * e * e - 128.0 * a * a * c * c * e * e
-        + 144.0 * a * a * c * d * d * e
-        - 27.0 * a * a * d.powi(4)
-        + 144.0 * a * b * b * c * e * e
-        - 6.0 * a * b * b * d * d * e
-        - 80.0 * a * b * c * c * d * e
-        + 18.0 * a * b * c * d.powi(3)
-        + 16.0 * a * c.powi(4) * e
-        - 4.0 * a * c.powi(3) * d * d
-        - 27.0 * b.powi(4) * e * e
-        + 18.0 * b.powi(3) * c * d * e
-        - 4.0 * b.powi(3) * d.powi(3)
-        - 4.0 * b * b * c.powi(3) * e
-        + b * b * c * c * d * d
 }
 
 /// A value with what an a-priori round-off bound needs: the computed value, the same circuit
@@ -484,7 +463,9 @@ impl SpeedPolynomials {
     /// not certainly positive (lost to cancellation).
     ///
     /// ```
-    /// use whipple::{BenchmarkParameters, linear::{Canonical, SpeedPolynomials}};
+    /// use whipple::BenchmarkParameters;
+    /// use whipple::Canonical;
+    /// use whipple::advanced::linear::SpeedPolynomials;
     /// let p = SpeedPolynomials::new(&Canonical::new(&BenchmarkParameters::meijaard2007())?)?;
     /// // The capsize speed is the positive root of a₀(u), u = v²/g.
     /// let vc = p.sqrt_g * (-p.a0.coefficients[0] / p.a0.coefficients[1]).sqrt();

@@ -5,8 +5,6 @@ mod canonical;
 mod characteristic;
 mod state_space;
 
-pub use canonical::{Canonical, Intermediates};
-pub use characteristic::{
-    discriminant, hurwitz_delta3, CharacteristicPolynomial, SpeedPolynomials,
-};
-pub use state_space::{StateSpace, LEAN, LEAN_RATE, STEER, STEER_RATE};
+pub use canonical::Canonical;
+pub use characteristic::{CharacteristicPolynomial, SpeedPolynomials};
+pub use state_space::StateSpace;

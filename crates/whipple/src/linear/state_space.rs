@@ -6,13 +6,13 @@ use super::Canonical;
 use crate::error::{Error, Result};
 
 /// Index of lean φ in the state x = [φ, δ, φ̇, δ̇].
-pub const LEAN: usize = 0;
+pub(crate) const LEAN: usize = 0;
 /// Index of steer δ in the state.
-pub const STEER: usize = 1;
+pub(crate) const STEER: usize = 1;
 /// Index of lean rate φ̇ in the state.
-pub const LEAN_RATE: usize = 2;
+pub(crate) const LEAN_RATE: usize = 2;
 /// Index of steer rate δ̇ in the state.
-pub const STEER_RATE: usize = 3;
+pub(crate) const STEER_RATE: usize = 3;
 
 /// ẋ = A x + B f for x = [φ, δ, φ̇, δ̇] and f = [T_φ, T_δ]:
 /// `A = [[0, I], [−M⁻¹(g K₀ + v² K₂), −v M⁻¹ C₁]]`, `B = [[0], [M⁻¹]]`.
@@ -30,7 +30,9 @@ impl StateSpace {
     /// A and B at forward speed `speed` (any finite value; negative is riding backwards).
     ///
     /// ```
-    /// use whipple::{BenchmarkParameters, linear::{Canonical, StateSpace}};
+    /// use whipple::BenchmarkParameters;
+    /// use whipple::Canonical;
+    /// use whipple::advanced::linear::StateSpace;
     /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
     /// let ss = StateSpace::new(&canonical, 5.0)?;
     /// assert_eq!(ss.a[(0, 2)], 1.0);
@@ -66,7 +68,9 @@ impl StateSpace {
     ///
     /// ```
     /// use nalgebra::Vector4;
-    /// use whipple::{BenchmarkParameters, linear::{Canonical, StateSpace}};
+    /// use whipple::BenchmarkParameters;
+    /// use whipple::Canonical;
+    /// use whipple::advanced::linear::StateSpace;
     /// let ss = StateSpace::new(&Canonical::new(&BenchmarkParameters::meijaard2007())?, 5.0)?;
     /// let x = ss.free_response(&Vector4::new(0.0, 0.0, 0.5, 0.0), 0.01, 1000)?;
     /// assert_eq!(x.len(), 1001);

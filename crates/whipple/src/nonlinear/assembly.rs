@@ -31,7 +31,7 @@ pub(crate) struct Reduced<'a, T: RealField + Copy, const N: usize> {
 impl<T: RealField + Copy, const N: usize> Reduced<'_, T, N> {
     /// Adds body k's share over the tree speeds that can move it.
     #[inline]
-    pub fn add_body(&mut self, k: usize) {
+    pub(crate) fn add_body(&mut self, k: usize) {
         if N == TREE {
             match k {
                 REAR_WHEEL => self.add(REAR_WHEEL_COLUMNS),

@@ -27,7 +27,7 @@ pub(crate) const NORMAL: usize = 2;
 
 /// The knife-edge contact of one wheel.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct KnifeEdge {
+pub(crate) struct KnifeEdge {
     /// The wheel's body index.
     pub wheel: usize,
     /// The index of the frame that carries the wheel's axle.
@@ -38,7 +38,7 @@ pub struct KnifeEdge {
 
 /// Ground directions at a contact and the offset from hub to contact point, world axes.
 #[derive(Debug, Clone, Copy)]
-pub struct ContactFrame<T: RealField + Copy> {
+pub(crate) struct ContactFrame<T: RealField + Copy> {
     /// f: longitudinal (rolling) direction, horizontal.
     pub longitudinal: Vector3<T>,
     /// n: lateral direction, horizontal, to the right of f.
@@ -49,7 +49,7 @@ pub struct ContactFrame<T: RealField + Copy> {
 
 /// Velocity rows `[longitudinal (or spin lock), lateral, normal]` of one contact.
 #[derive(Debug, Clone, Copy)]
-pub struct ContactRows<T: RealField + Copy> {
+pub(crate) struct ContactRows<T: RealField + Copy> {
     /// Coefficients of the wheel's speeds (v world, ω body).
     pub wheel: SMatrix<T, 3, 6>,
     /// Coefficients of the frame's speeds (non-zero only in a skate's spin-lock row).
@@ -83,12 +83,12 @@ pub(crate) struct ContactKinematics<T: RealField + Copy> {
 
 impl KnifeEdge {
     /// True for a wheel of zero radius.
-    pub fn is_skate(&self) -> bool {
+    pub(crate) fn is_skate(&self) -> bool {
         self.radius == 0.0
     }
 
     /// Ground directions and hub → contact offset for the wheel's current axle.
-    pub fn contact_frame<T: RealField + Copy>(&self, poses: &Poses<T>) -> ContactFrame<T> {
+    pub(crate) fn contact_frame<T: RealField + Copy>(&self, poses: &Poses<T>) -> ContactFrame<T> {
         let a = poses.rot[self.wheel].column(1).into_owned();
         let (f, _) = longitudinal(&a);
         let lateral = Vector3::new(-f.y, f.x, T::zero());
@@ -101,12 +101,12 @@ impl KnifeEdge {
     }
 
     /// The contact point (lowest point of the rim), world axes \[m\].
-    pub fn point<T: RealField + Copy>(&self, poses: &Poses<T>) -> Vector3<T> {
+    pub(crate) fn point<T: RealField + Copy>(&self, poses: &Poses<T>) -> Vector3<T> {
         poses.pos[self.wheel] + self.contact_frame(poses).offset
     }
 
     /// Holonomic residual: height of the lowest rim point above the ground, as z (down) \[m\].
-    pub fn height<T: RealField + Copy>(&self, poses: &Poses<T>) -> T {
+    pub(crate) fn height<T: RealField + Copy>(&self, poses: &Poses<T>) -> T {
         let a = poses.rot[self.wheel].column(1).into_owned();
         poses.pos[self.wheel].z + (a.x * a.x + a.y * a.y).sqrt() * nalgebra::convert(self.radius)
     }
@@ -149,7 +149,7 @@ impl KnifeEdge {
 
     /// Velocity rows and γ from the wheel's velocity (world) and angular velocity (body axes)
     /// and its frame's angular velocity (body axes).
-    pub fn rows<T: RealField + Copy>(
+    pub(crate) fn rows<T: RealField + Copy>(
         &self,
         poses: &Poses<T>,
         v_wheel: &Vector3<T>,

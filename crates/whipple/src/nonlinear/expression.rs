@@ -17,7 +17,7 @@
 //! (`pi`, `sqrt`, `sin`, `cos`, `tan`, `abs`, `deg2rad`), with the same precedence.
 //!
 //! ```
-//! use whipple::nonlinear::TorqueExpression;
+//! use whipple::advanced::nonlinear::TorqueExpression;
 //! let torque = TorqueExpression::parse("10*lean + 20*lean_rate")?;
 //! assert_eq!(torque.text(), "10*lean + 20*lean_rate");
 //! assert!(TorqueExpression::parse("2*foo").is_err());
@@ -31,7 +31,7 @@ use crate::error::{Error, Result};
 
 /// The names an expression may use: time t \[s\], the lean, steer and yaw angles \[rad\], their
 /// rates [rad/s] and the forward speed [m/s].
-pub const VARIABLES: [&str; 7] = [
+pub(crate) const VARIABLES: [&str; 7] = [
     "lean",
     "lean_rate",
     "speed",
@@ -43,14 +43,11 @@ pub const VARIABLES: [&str; 7] = [
 
 /// The functions of one argument an expression may call (`log` is the natural logarithm, as
 /// `ln`).
-pub const FUNCTIONS: [&str; 26] = [
+pub(crate) const FUNCTIONS: [&str; 26] = [
     "abs", "acos", "acosh", "asin", "asinh", "atan", "atanh", "cbrt", "ceil", "cos", "cosh", "exp",
     "floor", "fract", "ln", "log", "log10", "log2", "round", "sign", "signum", "sin", "sinh",
     "sqrt", "tan", "tanh",
 ];
-
-/// The functions of two arguments.
-pub const BINARY_FUNCTIONS: [&str; 3] = ["atan2", "max", "min"];
 
 /// Longest expression accepted, in bytes.
 pub const MAX_LENGTH: usize = 1000;
@@ -589,7 +586,7 @@ pub(crate) fn evaluate_constant(text: &str) -> std::result::Result<f64, String> 
 }
 
 impl TorqueExpression {
-    /// Parses `text`; its names must be among [`VARIABLES`], the constants and the functions,
+    /// Parses `text`; its names must be among `VARIABLES`, the constants and the functions,
     /// and it must evaluate to a finite number at rest (every variable zero). The error's rule
     /// says what is wrong and at which column.
     pub fn parse(text: &str) -> Result<Self> {

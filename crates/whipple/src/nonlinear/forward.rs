@@ -94,7 +94,7 @@ pub struct StateRates<T: RealField + Copy> {
 
 impl<T: RealField + Copy> StateRates<T> {
     /// The first-order derivative `[q̇; u̇]`.
-    pub fn to_vector(&self) -> SVector<T, STATE_LEN> {
+    pub fn to_vector(self) -> SVector<T, STATE_LEN> {
         let mut y = SVector::<T, STATE_LEN>::zeros();
         y.fixed_rows_mut::<COORDINATES>(0).copy_from(&self.q_dot);
         y.fixed_rows_mut::<SPEEDS>(COORDINATES)
@@ -109,7 +109,9 @@ impl Model {
     /// Allocation-free.
     ///
     /// ```
-    /// use whipple::{BenchmarkParameters, nonlinear::{Inputs, InitialConditions, Model}};
+    /// use whipple::BenchmarkParameters;
+    /// use whipple::advanced::nonlinear::Inputs;
+    /// use whipple::{InitialConditions, Model};
     /// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
     /// let state = model.initial_state(&InitialConditions::upright(5.0))?;
     /// let d = model.forward(&state, &Inputs::default())?;

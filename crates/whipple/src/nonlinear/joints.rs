@@ -18,7 +18,7 @@ use super::rotation::skew;
 
 /// A revolute joint between two bodies.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Revolute {
+pub(crate) struct Revolute {
     /// Parent body index.
     pub parent: usize,
     /// Child body index.
@@ -35,7 +35,7 @@ pub struct Revolute {
 
 /// Rows of one joint: coefficients of the parent's and the child's six speeds, and γ.
 #[derive(Debug, Clone, Copy)]
-pub struct JointRows<T: RealField + Copy> {
+pub(crate) struct JointRows<T: RealField + Copy> {
     /// Coefficients of the parent's speeds (v world, ω body).
     pub parent: SMatrix<T, 5, 6>,
     /// Coefficients of the child's speeds.
@@ -46,7 +46,7 @@ pub struct JointRows<T: RealField + Copy> {
 
 impl Revolute {
     /// The five holonomic residuals: point coincidence (3) \[m\], axis alignment (2) [-].
-    pub fn residual<T: RealField + Copy>(&self, poses: &Poses<T>) -> SVector<T, 5> {
+    pub(crate) fn residual<T: RealField + Copy>(&self, poses: &Poses<T>) -> SVector<T, 5> {
         let (ra, rc) = (&poses.rot[self.parent], &poses.rot[self.child]);
         let pa: Vector3<T> = self.point_in_parent.cast();
         let pc: Vector3<T> = self.point_in_child.cast();
@@ -58,7 +58,7 @@ impl Revolute {
     }
 
     /// Velocity rows and γ, given the angular velocities (body axes) of parent and child.
-    pub fn rows<T: RealField + Copy>(
+    pub(crate) fn rows<T: RealField + Copy>(
         &self,
         poses: &Poses<T>,
         omega_parent: &Vector3<T>,

@@ -4,7 +4,9 @@
 //! holonomic + 4 non-holonomic), Newton–Euler dynamics with Lagrange multipliers.
 //!
 //! ```
-//! use whipple::{BenchmarkParameters, nonlinear::{InitialConditions, Inputs, Model}};
+//! use whipple::BenchmarkParameters;
+//! use whipple::{InitialConditions, Model};
+//! use whipple::advanced::nonlinear::Inputs;
 //! let model = Model::new(&BenchmarkParameters::meijaard2007())?;
 //! let state = model.initial_state(&InitialConditions {
 //!     lean_rate: 0.5,
@@ -59,28 +61,20 @@ mod state;
 mod topology;
 mod tree;
 
-pub use bodies::{Bodies, Geometry, RigidBody};
-pub use constraints::Residuals;
 pub(crate) use expression::evaluate_constant;
 pub use expression::{
-    TorqueExpression, BINARY_FUNCTIONS, FUNCTIONS, MAX_DEPTH as MAX_EXPRESSION_DEPTH,
-    MAX_LENGTH as MAX_EXPRESSION_LENGTH, VARIABLES,
+    TorqueExpression, MAX_DEPTH as MAX_EXPRESSION_DEPTH, MAX_LENGTH as MAX_EXPRESSION_LENGTH,
 };
-pub use forward::{ContactForce, Inputs, StateRates};
+pub(crate) use forward::StateRates;
+pub use forward::{ContactForce, Inputs};
 pub use initial::InitialConditions;
 pub use model::Model;
-pub use outcome::{Outcome, Progress, RunExtremes, Sample, Simulation, Wheel};
-pub use projection::{accepted_residual, ProjectionMethod, ProjectionReport, ProjectionSettings};
-pub use reduced::{FullStateField, LeanSteerField};
-pub use settings::{
-    samples_kept, IntegratorKind, ProgressFn, SimulationRequest, SimulationSettings, TorqueFn,
-    TorqueInput, DEFAULT_FALL_ANGLE_DEG, MAX_SAMPLES, MAX_STEPS,
-};
-pub use simulate::{check_rk4_step, fastest_mode, simulate, MAX_ENERGY_DRIFT};
-pub use state::{
-    BodyPose, State, StateView, BODY_LEAN, BODY_PITCH, BODY_YAW, COORDINATES, SPEEDS, STATE_LEN,
-};
-pub use topology::{
-    BODIES, BODY_NAMES, FRONT_FRAME, FRONT_WHEEL, HOLONOMIC_ROWS, REAR_FRAME, REAR_WHEEL,
-    VELOCITY_ROWS,
-};
+pub use outcome::{Outcome, Progress, Sample, Simulation, Wheel};
+pub use projection::{ProjectionMethod, ProjectionSettings};
+pub(crate) use reduced::{FullStateField, LeanSteerField};
+pub use settings::{IntegratorKind, SimulationRequest, SimulationSettings, TorqueFn, TorqueInput};
+pub use simulate::{check_rk4_step, fastest_mode, simulate};
+pub use state::{State, StateView, STATE_LEN};
+pub(crate) use state::{BODY_PITCH, BODY_YAW};
+pub(crate) use topology::BODIES;
+pub use topology::{BODY_NAMES, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};

@@ -19,7 +19,7 @@ use crate::parameters::BenchmarkParameters;
 /// use whipple::{BenchmarkParameters, Model};
 /// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
 /// assert_eq!(model.parameters().w, 1.02);
-/// assert_eq!(model.bodies().body[whipple::nonlinear::REAR_FRAME].mass, 85.0);
+/// assert_eq!(model.bodies().body[whipple::advanced::nonlinear::REAR_FRAME].mass, 85.0);
 /// # Ok::<(), whipple::Error>(())
 /// ```
 #[derive(Debug, Clone, PartialEq)]

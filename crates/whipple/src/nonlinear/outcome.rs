@@ -52,7 +52,7 @@ impl fmt::Display for Wheel {
 /// web API sends it as the outcome's message).
 ///
 /// ```
-/// use whipple::nonlinear::{Outcome, Wheel};
+/// use whipple::advanced::nonlinear::{Outcome, Wheel};
 /// assert_eq!(Outcome::Completed.to_string(), "completed");
 /// let fell = Outcome::Fell { t: 2.5, lean: -1.05 };
 /// assert_eq!(fell.to_string(), "fell: |lean| passed the fall angle at t = 2.5000 s (lean -60.16 deg)");

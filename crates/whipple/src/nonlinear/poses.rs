@@ -18,13 +18,13 @@ pub(crate) struct Poses<T: RealField + Copy> {
 
 impl<T: RealField + Copy> Poses<T> {
     /// Stage 1: poses from the coordinates.
-    pub fn new(q: &SVector<T, COORDINATES>) -> Self {
+    pub(crate) fn new(q: &SVector<T, COORDINATES>) -> Self {
         Self::from_angles(q, &Angles::new(q))
     }
 
     /// Poses from q and the sines and cosines of its angles.
     #[inline]
-    pub fn from_angles(q: &SVector<T, COORDINATES>, angles: &Angles<T>) -> Self {
+    pub(crate) fn from_angles(q: &SVector<T, COORDINATES>, angles: &Angles<T>) -> Self {
         Poses {
             rot: std::array::from_fn(|k| {
                 let [yaw, lean, pitch] = angles.0[k];
@@ -43,7 +43,7 @@ pub(crate) struct Angles<T>(pub [[SinCos<T>; 3]; BODIES]);
 impl<T: RealField + Copy> Angles<T> {
     /// The sines and cosines of q's angles.
     #[inline]
-    pub fn new(q: &SVector<T, COORDINATES>) -> Self {
+    pub(crate) fn new(q: &SVector<T, COORDINATES>) -> Self {
         Angles(std::array::from_fn(|k| {
             std::array::from_fn(|i| SinCos::new(q[6 * k + 3 + i]))
         }))

@@ -49,7 +49,7 @@ pub struct ProjectionSettings {
     /// Largest holonomic residual accepted near the origin \[m\]. Default 1e-13. The rows are
     /// differences of positions, so their round-off grows with the distance from the origin:
     /// the residual accepted is `tolerance · max(1, L / 1 m)`, with L the largest body position
-    /// coordinate, a tolerance relative to the coordinates' scale (see [`accepted_residual`]).
+    /// coordinate, a tolerance relative to the coordinates' scale (see `accepted_residual`).
     pub tolerance: f64,
     /// Newton iterations always made, even when the residual is already below tolerance
     /// (the study found one necessary to keep the drift from building up). Default 1.
@@ -73,7 +73,7 @@ impl Default for ProjectionSettings {
 /// largest absolute body position coordinate. A residual row is a difference of positions, so
 /// its round-off is a few units in the last place of the positions' size: an absolute
 /// tolerance would fail any run that goes far enough (at 1 km, one ulp is 1.1e-13 m).
-pub fn accepted_residual(q: &SVector<f64, COORDINATES>, tolerance: f64) -> f64 {
+pub(crate) fn accepted_residual(q: &SVector<f64, COORDINATES>, tolerance: f64) -> f64 {
     let scale = (0..BODIES)
         .flat_map(|k| (0..3).map(move |i| 6 * k + i))
         .map(|i| q[i].abs())

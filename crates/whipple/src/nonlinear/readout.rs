@@ -115,11 +115,13 @@ impl Model {
             .map(|c| q[6 * c.wheel + BODY_PITCH] - q[6 * c.frame + BODY_PITCH])
     }
 
-    /// The pose of each body ([`super::REAR_WHEEL`], [`super::REAR_FRAME`], [`super::FRONT_FRAME`], [`super::FRONT_WHEEL`]
+    /// The pose of each body ([`super::REAR_WHEEL`], [`super::REAR_FRAME`], `super::FRONT_FRAME`, [`super::FRONT_WHEEL`]
     /// order) in a state: origin (centre of mass) and rotation matrix, world axes.
     ///
     /// ```
-    /// use whipple::{BenchmarkParameters, nonlinear::{InitialConditions, Model, REAR_FRAME}};
+    /// use whipple::BenchmarkParameters;
+    /// use whipple::{InitialConditions, Model};
+    /// use whipple::advanced::nonlinear::REAR_FRAME;
     /// let bike = BenchmarkParameters::meijaard2007();
     /// let model = Model::new(&bike)?;
     /// let state = model.initial_state(&InitialConditions::upright(5.0))?;
@@ -138,7 +140,7 @@ impl Model {
     /// simulation can be animated from its samples alone.
     ///
     /// ```
-    /// use whipple::{BenchmarkParameters, nonlinear::*};
+    /// use whipple::{simulate, BenchmarkParameters, InitialConditions, Model, SimulationSettings};
     /// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
     /// let start = model.initial_state(&InitialConditions { lean_rate: 0.5, ..InitialConditions::upright(4.6) })?;
     /// let run = simulate(&model, start, &SimulationSettings { duration: 0.5, ..SimulationSettings::default() })?;

@@ -157,7 +157,8 @@ impl Model {
     ///
     /// ```
     /// use nalgebra::Vector4;
-    /// use whipple::{BenchmarkParameters, nonlinear::Model};
+    /// use whipple::BenchmarkParameters;
+    /// use whipple::Model;
     /// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
     /// let f = model.lean_steer_field(&Vector4::new(0.01, 0.0, 0.0, 0.0), 4.6)?;
     /// assert!(f[2] > 0.0); // leaning right, it falls further right
@@ -206,7 +207,7 @@ impl Model {
 /// The non-linear model on the linear model's state x = [φ, δ, φ̇, δ̇] at a fixed forward speed
 /// (see [`Model::lean_steer_field`]).
 #[derive(Debug, Clone, Copy)]
-pub struct LeanSteerField<'a> {
+pub(crate) struct LeanSteerField<'a> {
     /// The model.
     pub model: &'a Model,
     /// v: forward speed [m/s].
@@ -232,7 +233,7 @@ impl VectorField<4> for LeanSteerField<'_> {
 /// reference motion is steady, F does not depend on the wheel angles, and the Jacobian's
 /// eigenvalues are the exponents.
 #[derive(Debug, Clone, Copy)]
-pub struct FullStateField<'a> {
+pub(crate) struct FullStateField<'a> {
     /// The model.
     pub model: &'a Model,
 }
@@ -258,7 +259,7 @@ fn unspin<T: RealField + Copy>(q: &SVector<T, COORDINATES>, k: usize) -> Matrix3
 
 /// y = [q; ũ] of a state: the wheels' angular velocities turned from body axes into
 /// spin-free axes, ω̃ = R_y(θ) ω.
-pub fn spin_free_vector<T: RealField + Copy>(state: &State<T>) -> SVector<T, STATE_LEN> {
+pub(crate) fn spin_free_vector<T: RealField + Copy>(state: &State<T>) -> SVector<T, STATE_LEN> {
     let mut y = state.to_vector();
     for k in WHEELS {
         let w = unspin(&state.q, k) * state.angular_velocity(k);
@@ -268,7 +269,7 @@ pub fn spin_free_vector<T: RealField + Copy>(state: &State<T>) -> SVector<T, STA
 }
 
 /// The state of y = [q; ũ] (the inverse of [`spin_free_vector`]).
-pub fn state_from_spin_free<T: RealField + Copy>(y: &SVector<T, STATE_LEN>) -> State<T> {
+pub(crate) fn state_from_spin_free<T: RealField + Copy>(y: &SVector<T, STATE_LEN>) -> State<T> {
     let mut state = State::from_vector(y);
     for k in WHEELS {
         let w = unspin(&state.q, k).transpose() * state.angular_velocity(k);
@@ -279,7 +280,7 @@ pub fn state_from_spin_free<T: RealField + Copy>(y: &SVector<T, STATE_LEN>) -> S
 
 /// ẏ = [q̇; d/dt ũ] from the model's derivatives: for a wheel,
 /// d/dt (R_y(θ) ω) = R_y(θ) ω̇ + θ̇ e_y × ω̃.
-pub fn spin_free_derivative<T: RealField + Copy>(
+pub(crate) fn spin_free_derivative<T: RealField + Copy>(
     state: &State<T>,
     d: &StateRates<T>,
 ) -> SVector<T, STATE_LEN> {

@@ -27,7 +27,7 @@ pub(crate) struct SinCos<T> {
 
 impl<T: RealField + Copy> SinCos<T> {
     #[inline]
-    pub fn new(angle: T) -> Self {
+    pub(crate) fn new(angle: T) -> Self {
         let (sin, cos) = angle.sin_cos();
         SinCos { sin, cos }
     }

@@ -22,26 +22,26 @@ use crate::integrate::{Integrator, DEFAULT_DT, DEFAULT_RTOL};
 pub type TorqueFn = Box<dyn Fn(f64, &StateView) -> f64 + Send + Sync>;
 
 /// A progress hook, called after each accepted step.
-pub type ProgressFn = Box<dyn Fn(super::Progress) + Send + Sync>;
+pub(crate) type ProgressFn = Box<dyn Fn(super::Progress) + Send + Sync>;
 
 /// The fall angle when none is given \[deg\].
-pub const DEFAULT_FALL_ANGLE_DEG: f64 = 60.0;
+pub(crate) const DEFAULT_FALL_ANGLE_DEG: f64 = 60.0;
 
 /// The most integration steps a request may ask for when it sets no bound of its own (RK4's
 /// steps are known in advance and refused beyond it; the adaptive integrator stops there). It
 /// bounds the work: a step takes about 20 µs, so 2·10⁷ steps are about seven minutes of
 /// computing.
-pub const MAX_STEPS: usize = 20_000_000;
+pub(crate) const MAX_STEPS: usize = 20_000_000;
 
 /// The most samples a run keeps (see [`SimulationSettings::sample_every`]). It bounds the
 /// memory: a [`super::Sample`] is about 190 bytes and a front end writes it as a row of about
 /// 400 bytes of text, so 1.5 million samples stay within about 0.8 GiB (a run keeping all of
 /// 10⁸ steps had grown towards 25 GB).
-pub const MAX_SAMPLES: usize = 1_500_000;
+pub(crate) const MAX_SAMPLES: usize = 1_500_000;
 
 /// What keeping 1 sample in `every` steps of `steps` amounts to: the first, every `every`-th
 /// and the last.
-pub fn samples_kept(steps: usize, every: usize) -> usize {
+pub(crate) fn samples_kept(steps: usize, every: usize) -> usize {
     steps / every.max(1) + 2
 }
 
@@ -63,7 +63,7 @@ pub struct SimulationSettings {
     /// Stop when a wheel's normal force becomes negative (it would lift off). Default true.
     pub stop_on_lift_off: bool,
     /// Keep one sample in this many accepted steps (the first and the last are always kept);
-    /// at least 1, the default. The run's extremes ([`super::RunExtremes`]: energy change,
+    /// at least 1, the default. The run's extremes (`super::RunExtremes`: energy change,
     /// residuals, normal forces) are taken over every step all the same.
     pub sample_every: usize,
     /// Called after each accepted step.
@@ -203,7 +203,7 @@ impl TorqueInput {
 /// words: `--lean` for `lean_deg`, `--fall-angle` for `fall_angle_deg`).
 ///
 /// ```
-/// use whipple::nonlinear::{IntegratorKind, SimulationRequest};
+/// use whipple::advanced::nonlinear::{IntegratorKind, SimulationRequest};
 /// let request = SimulationRequest {
 ///     lean_rate: 0.5,
 ///     integrator: IntegratorKind::Adaptive,
@@ -231,9 +231,9 @@ pub struct SimulationRequest {
     pub duration: f64,
     /// The integrator.
     pub integrator: IntegratorKind,
-    /// RK4 step \[s\] (default [`DEFAULT_DT`]); only with RK4.
+    /// RK4 step \[s\] (default `DEFAULT_DT`); only with RK4.
     pub dt: Option<f64>,
-    /// Relative tolerance of the adaptive integrator (default [`DEFAULT_RTOL`]; the absolute
+    /// Relative tolerance of the adaptive integrator (default `DEFAULT_RTOL`; the absolute
     /// tolerance is rtol·1e-2); only with it.
     pub rtol: Option<f64>,
     /// T_δ: steer torque (default hands free).
@@ -246,10 +246,10 @@ pub struct SimulationRequest {
     pub stop_on_lift_off: bool,
     /// The most integration steps the run may take: an RK4 request needing more is refused
     /// ([`Error::LimitExceeded`]), the adaptive integrator stops there (outcome
-    /// [`super::Outcome::StepSizeTooSmall`]). `None`: [`MAX_STEPS`].
+    /// [`super::Outcome::StepSizeTooSmall`]). `None`: `MAX_STEPS`.
     pub max_steps: Option<usize>,
     /// Keep one sample in this many steps (default 1: every step); the samples kept are
-    /// bounded by [`MAX_SAMPLES`].
+    /// bounded by `MAX_SAMPLES`.
     pub sample_every: usize,
 }
 

@@ -3,7 +3,8 @@
 //! end time) and samples.
 //!
 //! ```
-//! use whipple::{BenchmarkParameters, nonlinear::*};
+//! use whipple::{simulate, BenchmarkParameters, InitialConditions, Model, SimulationSettings};
+//! use whipple::advanced::nonlinear::*;
 //! let model = Model::new(&BenchmarkParameters::meijaard2007())?;
 //! let start = model.initial_state(&InitialConditions { lean_rate: 0.5, ..InitialConditions::upright(4.6) })?;
 //! let settings = SimulationSettings { duration: 1.0, ..SimulationSettings::default() };
@@ -37,7 +38,7 @@ use crate::linear::Canonical;
 /// energy (rolling without slip, no friction), and a run at the default step keeps it to about
 /// 1e-12 of itself (the benchmark bicycle's kicked weave at 4.6 m/s; 1e-9 for one falling over
 /// at 3 m/s); a drift of 1% is the integrator's, not the bicycle's.
-pub const MAX_ENERGY_DRIFT: f64 = 1e-2;
+pub(crate) const MAX_ENERGY_DRIFT: f64 = 1e-2;
 
 /// The model with its rider inputs as an ODE ẏ = f(t, y) on y = [q; u].
 pub(crate) struct BicycleOde<'a> {
@@ -53,7 +54,7 @@ impl BicycleOde<'_> {
     /// Forward dynamics with the inputs evaluated at (t, state). A non-finite state or rider
     /// torque is [`Error::NonFiniteState`] at t (not a singular system, which is what the
     /// solve would otherwise report).
-    pub fn derivatives(&self, t: f64, state: &State<f64>) -> Result<StateRates<f64>> {
+    pub(crate) fn derivatives(&self, t: f64, state: &State<f64>) -> Result<StateRates<f64>> {
         let finite = |x: &f64| x.is_finite();
         if !(state.q.iter().all(finite) && state.u.iter().all(finite)) {
             return Err(Error::NonFiniteState { t });
@@ -111,13 +112,15 @@ pub fn fastest_mode(model: &Model, speed: f64) -> Option<Complex64> {
 }
 
 /// The a-priori check of RK4's fixed step `dt` for a run at `speed`: the upright linearized
-/// bicycle's fastest mode λ ([`fastest_mode`]) must have |λ|·dt ≤ [`RK4_STABLE_RADIUS`], or
-/// [`Error::StepTooLarge`] suggests a step with |λ|·dt ≤ [`RK4_ACCURATE_RADIUS`] (rounded down
+/// bicycle's fastest mode λ ([`fastest_mode`]) must have |λ|·dt ≤ `RK4_STABLE_RADIUS`, or
+/// [`Error::StepTooLarge`] suggests a step with |λ|·dt ≤ `RK4_ACCURATE_RADIUS` (rounded down
 /// to 1, 2 or 5 × 10ᵏ). Cheap (one quartic), and a bound for the run's start only: a leaning
 /// or turning bicycle has other modes, which the energy check during the run covers.
 ///
 /// ```
-/// use whipple::{BenchmarkParameters, Error, nonlinear::{check_rk4_step, Model}};
+/// use whipple::{BenchmarkParameters, Error};
+/// use whipple::advanced::nonlinear::check_rk4_step;
+/// use whipple::Model;
 /// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
 /// assert!(check_rk4_step(&model, 4.6, 1e-3).is_ok());
 /// let Err(Error::StepTooLarge { what, suggested, .. }) = check_rk4_step(&model, 4.6, 0.25) else {
@@ -156,7 +159,7 @@ pub fn check_rk4_step(model: &Model, speed: f64, dt: f64) -> Result<()> {
 /// Returns `Err` for unusable settings, an initial state that cannot be evaluated, and a step
 /// too coarse for the run ([`Error::StepTooLarge`]): an RK4 step beyond the stability bound of
 /// the fastest mode at the run's speed ([`check_rk4_step`], before any step), or, for either
-/// integrator, an energy balance drifting by more than [`MAX_ENERGY_DRIFT`] during the run.
+/// integrator, an energy balance drifting by more than `MAX_ENERGY_DRIFT` during the run.
 /// Everything else that happens during the run (a fall, a lifted wheel, a failed projection, a
 /// non-finite state) is an [`Outcome`], with the samples computed up to then.
 pub fn simulate(

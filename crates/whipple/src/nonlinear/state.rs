@@ -13,18 +13,18 @@
 use nalgebra::{Matrix3, RealField, SVector, Vector3};
 
 /// Number of coordinates (3 position + 3 angles per body).
-pub const COORDINATES: usize = 24;
+pub(crate) const COORDINATES: usize = 24;
 /// Number of speeds (3 translational + 3 angular per body).
-pub const SPEEDS: usize = 24;
+pub(crate) const SPEEDS: usize = 24;
 /// Length of the first-order state `[q; u]`.
 pub const STATE_LEN: usize = COORDINATES + SPEEDS;
 
 /// Offset of the yaw angle within a body's six coordinates.
-pub const BODY_YAW: usize = 3;
+pub(crate) const BODY_YAW: usize = 3;
 /// Offset of the lean angle within a body's six coordinates.
-pub const BODY_LEAN: usize = 4;
+pub(crate) const BODY_LEAN: usize = 4;
 /// Offset of the pitch angle (wheel rotation for a wheel) within a body's six coordinates.
-pub const BODY_PITCH: usize = 5;
+pub(crate) const BODY_PITCH: usize = 5;
 
 /// Coordinates and speeds of the four bodies.
 #[derive(Debug, Clone, Copy, PartialEq)]

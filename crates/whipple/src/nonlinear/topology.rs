@@ -26,11 +26,11 @@ pub const REAR_WHEEL: usize = 0;
 /// Index of the rear frame B (frame and rider).
 pub const REAR_FRAME: usize = 1;
 /// Index of the front frame H (fork and handlebar).
-pub const FRONT_FRAME: usize = 2;
+pub(crate) const FRONT_FRAME: usize = 2;
 /// Index of the front wheel F.
 pub const FRONT_WHEEL: usize = 3;
 /// Number of bodies.
-pub const BODIES: usize = 4;
+pub(crate) const BODIES: usize = 4;
 /// Body names in index order.
 pub const BODY_NAMES: [&str; BODIES] = ["rear wheel", "rear frame", "front frame", "front wheel"];
 
@@ -157,10 +157,10 @@ const fn parent(body: usize) -> usize {
 /// Rows per joint: point coincidence (3) and axis alignment (2).
 pub(crate) const JOINT_ROWS: usize = 5;
 /// Holonomic rows: the joints' rows, then one contact height per contact.
-pub const HOLONOMIC_ROWS: usize = JOINT_ROWS * JOINT_COUNT + CONTACT_COUNT;
+pub(crate) const HOLONOMIC_ROWS: usize = JOINT_ROWS * JOINT_COUNT + CONTACT_COUNT;
 /// All velocity rows: the holonomic ones differentiated, then two rolling (non-holonomic)
 /// rows per contact.
-pub const VELOCITY_ROWS: usize = HOLONOMIC_ROWS + 2 * CONTACT_COUNT;
+pub(crate) const VELOCITY_ROWS: usize = HOLONOMIC_ROWS + 2 * CONTACT_COUNT;
 
 /// First row of a joint.
 pub(crate) const fn joint_row(joint: usize) -> usize {

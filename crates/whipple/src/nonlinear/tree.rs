@@ -42,7 +42,7 @@ pub(crate) struct Tree<T: RealField + Copy> {
 
 impl<T: RealField + Copy> Tree<T> {
     /// Body k's whole J (6 × 9) over `w = [ν, ω_B, δ̇, σ_R, σ_F]`.
-    pub fn jac(&self, k: usize) -> SMatrix<T, 6, TREE> {
+    pub(crate) fn jac(&self, k: usize) -> SMatrix<T, 6, TREE> {
         let mut j = SMatrix::<T, 6, TREE>::zeros();
         j.fixed_view_mut::<3, 3>(0, HUB_VELOCITY)
             .copy_from(&self.hub);
@@ -52,7 +52,7 @@ impl<T: RealField + Copy> Tree<T> {
     }
 
     /// Every body's whole J.
-    pub fn jacobians(&self) -> [SMatrix<T, 6, TREE>; BODIES] {
+    pub(crate) fn jacobians(&self) -> [SMatrix<T, 6, TREE>; BODIES] {
         std::array::from_fn(|k| self.jac(k))
     }
 }

@@ -20,7 +20,7 @@ macro_rules! benchmark_parameters {
         /// above the ground. Four bodies: rear wheel R, rear frame with rider B, front frame
         /// (fork and handlebar) H, front wheel F. The file keys (serde names) are those of the
         /// paper and of BicycleParameters: `w`, `c`, `lam`, `g`, `rR`, `mR`, `IRxx`, … (see
-        /// [`BENCHMARK_TABLE`]).
+        /// `BENCHMARK_TABLE`).
         ///
         /// Generic over the scalar so that dual numbers run through the same conversion and
         /// linear model as `f64` (exact derivatives); `BenchmarkParameters` alone is the `f64` one.
@@ -35,7 +35,7 @@ macro_rules! benchmark_parameters {
         }
 
         /// Every benchmark parameter in the order of Meijaard 2007 Table 1.
-        pub const BENCHMARK_TABLE: [ParameterInfo; 26] = [
+        pub(crate) const BENCHMARK_TABLE: [ParameterInfo; 26] = [
             $(
                 ParameterInfo {
                     name: stringify!($field),
@@ -51,12 +51,12 @@ macro_rules! benchmark_parameters {
         ];
 
         impl<T: Copy> BenchmarkParameters<T> {
-            /// The values in the order of [`BENCHMARK_TABLE`].
+            /// The values in the order of `BENCHMARK_TABLE`.
             pub fn to_array(&self) -> [T; 26] {
                 [$(self.$field,)*]
             }
 
-            /// The parameters from values in the order of [`BENCHMARK_TABLE`].
+            /// The parameters from values in the order of `BENCHMARK_TABLE`.
             pub fn from_array(values: [T; 26]) -> Self {
                 let [$($field,)*] = values;
                 BenchmarkParameters { $($field,)* }

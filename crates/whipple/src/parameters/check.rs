@@ -82,12 +82,7 @@ impl std::fmt::Display for Notice {
 }
 
 /// Turns the warnings among `notices` into an error (notes pass): what `--strict` asks for.
-///
-/// ```
-/// use whipple::parameters::check::{strict, Notice};
-/// assert!(strict(&[]).is_ok());
-/// ```
-pub fn strict(notices: &[Notice]) -> Result<()> {
+pub(crate) fn strict(notices: &[Notice]) -> Result<()> {
     let warnings: Vec<&Notice> = notices.iter().filter(|n| n.is_warning()).collect();
     match warnings.first() {
         None => Ok(()),

@@ -19,7 +19,7 @@ use super::table::{Form, ParameterInfo};
 use crate::error::{short_number, Error, Result};
 
 /// JBike6's default gravitational acceleration [m/s²] (standard gravity).
-pub const JBIKE6_GRAVITY: f64 = 9.80665;
+pub(crate) const JBIKE6_GRAVITY: f64 = 9.80665;
 
 /// A wheel in JBike6's description: a disk whose centre sits at height `D / 2` above its
 /// contact point.
@@ -113,7 +113,7 @@ pub struct Jbike6Parameters<T = f64> {
 }
 
 /// Every JBike6 parameter in the order of the original study's listing.
-pub const JBIKE6_TABLE: [ParameterInfo; 51] = [
+pub(crate) const JBIKE6_TABLE: [ParameterInfo; 51] = [
     ParameterInfo {
         name: "wheelbase",
         key: "wheelbase",
@@ -627,10 +627,10 @@ pub const JBIKE6_TABLE: [ParameterInfo; 51] = [
 ];
 
 /// Number of JBike6 parameters.
-pub const JBIKE6_COUNT: usize = 51;
+pub(crate) const JBIKE6_COUNT: usize = 51;
 
 impl<T: Copy> Jbike6Parameters<T> {
-    /// The values in the order of [`JBIKE6_TABLE`].
+    /// The values in the order of `JBIKE6_TABLE`.
     pub fn to_array(&self) -> [T; JBIKE6_COUNT] {
         let mut out = Vec::with_capacity(JBIKE6_COUNT);
         out.extend([self.wheelbase, self.head_angle, self.trail, self.gravity]);
@@ -671,7 +671,7 @@ impl<T: Copy> Jbike6Parameters<T> {
         array
     }
 
-    /// The parameters from values in the order of [`JBIKE6_TABLE`].
+    /// The parameters from values in the order of `JBIKE6_TABLE`.
     pub fn from_array(v: [T; JBIKE6_COUNT]) -> Self {
         let wheel = |o: usize| Jbike6Wheel {
             diameter: v[o],
@@ -931,7 +931,7 @@ impl Jbike6Parameters {
     /// Sets the parameter with this `.m` key or TOML path; `false` for an unknown key.
     ///
     /// ```
-    /// let mut crown = whipple::parameters::presets::schwinn_crown_jbike6();
+    /// let mut crown = whipple::presets::schwinn_crown_jbike6();
     /// assert!(crown.set("mrider", 70.0) && crown.set("fork.ucm", 0.01));
     /// assert_eq!((crown.rider.m, crown.fork.ucm), (70.0, 0.01));
     /// assert!(!crown.set("mB", 1.0));
@@ -1086,7 +1086,7 @@ impl Jbike6Parameters {
     /// Validates both this form and the result, naming JBike6's variables in errors.
     ///
     /// ```
-    /// use whipple::parameters::presets;
+    /// use whipple::presets;
     /// let crown = presets::schwinn_crown_jbike6();
     /// let bike = crown.to_benchmark()?;
     /// assert_eq!(bike.w, 1.016);

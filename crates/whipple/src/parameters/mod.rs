@@ -1,23 +1,26 @@
 //! What a bicycle is: numbers only. The benchmark form (Meijaard 2007), JBike6's seven-body
 //! form and its conversion, named presets, and the parameter file formats.
 
-pub mod benchmark;
-pub mod check;
-pub mod io;
-pub mod jbike6;
+pub(crate) mod benchmark;
+pub(crate) mod check;
+pub(crate) mod io;
+pub(crate) mod jbike6;
 pub mod presets;
-pub mod table;
+pub(crate) mod table;
 
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-pub use benchmark::{BenchmarkParameters, BENCHMARK_TABLE};
+pub use benchmark::BenchmarkParameters;
+pub(crate) use benchmark::BENCHMARK_TABLE;
 pub use check::{Notice, Severity};
-pub use jbike6::{
-    Jbike6FrontBody, Jbike6Parameters, Jbike6RearBody, Jbike6Wheel, JBIKE6_GRAVITY, JBIKE6_TABLE,
+pub use jbike6::Jbike6Parameters;
+pub(crate) use jbike6::{
+    Jbike6FrontBody, Jbike6RearBody, Jbike6Wheel, JBIKE6_GRAVITY, JBIKE6_TABLE,
 };
-pub use table::{Form, ParameterInfo};
+pub(crate) use table::Form;
+pub(crate) use table::ParameterInfo;
 
 use crate::error::Result;
 
@@ -128,7 +131,7 @@ impl Bicycle {
     /// [`Jbike6Parameters::check`]).
     ///
     /// ```
-    /// use whipple::parameters::presets;
+    /// use whipple::presets;
     /// let checked = presets::find("benchmark")?.bicycle().check()?;
     /// assert_eq!(checked.notices.len(), 0);
     /// # Ok::<(), whipple::Error>(())

@@ -235,7 +235,7 @@ pub fn names() -> String {
 /// The preset of that name.
 ///
 /// ```
-/// let bike = whipple::parameters::presets::find("benchmark")?.bicycle();
+/// let bike = whipple::presets::find("benchmark")?.bicycle();
 /// assert_eq!(bike.benchmark()?.w, 1.02);
 /// # Ok::<(), whipple::Error>(())
 /// ```

@@ -60,7 +60,7 @@ pub fn parameters(form: Form) -> &'static [ParameterInfo] {
 
 /// The parameter with this file key in either form (`IBxx`, `mrider`, `Irider(1)`), or with this
 /// TOML path in the JBike6 form (`rider.m`).
-pub fn find(key: &str) -> Option<&'static ParameterInfo> {
+pub(crate) fn find(key: &str) -> Option<&'static ParameterInfo> {
     parameters(Form::Benchmark)
         .iter()
         .chain(parameters(Form::Jbike6))

@@ -16,9 +16,9 @@ use crate::parameters::BenchmarkParameters;
 
 /// Half-width of the interval about v_d where the eigenvalues are ill-conditioned by nature
 /// (two real eigenvalues meet there) [m/s].
-pub const DOUBLE_ROOT_HALF_WIDTH: f64 = 0.02;
+pub(crate) const DOUBLE_ROOT_HALF_WIDTH: f64 = 0.02;
 /// Half-width of the interval about v_c called "near the capsize speed" [m/s].
-pub const CAPSIZE_HALF_WIDTH: f64 = 0.25;
+pub(crate) const CAPSIZE_HALF_WIDTH: f64 = 0.25;
 
 /// Right eigenvectors of a real square matrix, with their eigenvalues (faer).
 fn eigenvectors<const N: usize>(
@@ -40,7 +40,7 @@ fn eigenvectors<const N: usize>(
 /// κ = ‖x‖ ‖y‖ / |yᴴ x| (x, y: its right and left eigenvectors, the left ones from Aᵀ): a
 /// perturbation of size ε of the matrix moves a simple eigenvalue by up to about κ ε; κ grows
 /// without bound as the eigenvalue approaches a defective one.
-pub fn eigenvalue_condition<const N: usize>(
+pub(crate) fn eigenvalue_condition<const N: usize>(
     a: &SMatrix<f64, N, N>,
     near: Complex64,
 ) -> Result<(Complex64, f64)> {
@@ -76,7 +76,7 @@ pub struct ZeroCluster {
     pub radius: f64,
 }
 
-/// The zero cluster of `a` (see [`ZeroCluster`]); `lean_steer` are the eigenvalues of `a`
+/// The zero cluster of `a` (see `ZeroCluster`); `lean_steer` are the eigenvalues of `a`
 /// picked as lean and steer, left out of the radius.
 pub fn zero_cluster(a: &FullJacobian, lean_steer: &[Complex64; 4]) -> Result<ZeroCluster> {
     let n = STATE_LEN;
@@ -139,7 +139,7 @@ pub struct DoubleRootConditioning {
     pub max_diff_away: f64,
 }
 
-/// The conditioning of the exact method near v_d (see [`DoubleRootConditioning`]); `None`
+/// The conditioning of the exact method near v_d (see `DoubleRootConditioning`); `None`
 /// when the sweep has no double-root speed or no exact method.
 pub fn double_root_conditioning(
     bike: &BenchmarkParameters,
@@ -213,9 +213,9 @@ pub struct SpikeRow {
 }
 
 /// The speeds about v_c at which [`capsize_spike`] looks [m/s].
-pub const SPIKE_OFFSETS: [f64; 6] = [-0.5, -0.05, -0.01, 0.01, 0.05, 0.5];
+pub(crate) const SPIKE_OFFSETS: [f64; 6] = [-0.5, -0.05, -0.01, 0.01, 0.05, 0.5];
 
-/// The capsize spike's evidence at v_c + [`SPIKE_OFFSETS`]: for the exact full-state Jacobian
+/// The capsize spike's evidence at v_c + `SPIKE_OFFSETS`: for the exact full-state Jacobian
 /// and the study's, the zero cluster, the capsize eigenvalue's condition number and the
 /// eigenvalue difference.
 pub fn capsize_spike(bike: &BenchmarkParameters, capsize_speed: f64) -> Result<Vec<SpikeRow>> {

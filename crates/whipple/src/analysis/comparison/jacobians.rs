@@ -13,7 +13,7 @@ use crate::nonlinear::{
 };
 
 /// The full-state Jacobian (48 × 48).
-pub type FullJacobian = SMatrix<f64, STATE_LEN, STATE_LEN>;
+pub(crate) type FullJacobian = SMatrix<f64, STATE_LEN, STATE_LEN>;
 
 /// Settings of the study's finite-difference method.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -40,16 +40,18 @@ impl Default for StudySettings {
 }
 
 /// The consistent full state of upright straight running at `speed`.
-pub fn upright_state(model: &Model, speed: f64) -> Result<State<f64>> {
+pub(crate) fn upright_state(model: &Model, speed: f64) -> Result<State<f64>> {
     model.initial_state(&InitialConditions::upright(speed))
 }
 
 /// The non-linear model's A(v) for x = [φ, δ, φ̇, δ̇] about upright straight running at
 /// `speed`, by exact forward-mode derivatives of [`Model::lean_steer_field`]; comparable entry
-/// by entry with the linear model's `StateSpace::a` ([`crate::StateSpace`]).
+/// by entry with the linear model's `StateSpace::a` (`crate::StateSpace`).
 ///
 /// ```
-/// use whipple::{lean_steer_matrix, BenchmarkParameters, Canonical, Model, StateSpace};
+/// use whipple::advanced::comparison::lean_steer_matrix;
+/// use whipple::{BenchmarkParameters, Canonical, Model};
+/// use whipple::advanced::linear::StateSpace;
 /// let bike = BenchmarkParameters::meijaard2007();
 /// let a = lean_steer_matrix(&Model::new(&bike)?, 5.0)?;
 /// let linear = StateSpace::new(&Canonical::new(&bike)?, 5.0)?.a;

@@ -46,16 +46,13 @@ use crate::linear::{Canonical, StateSpace};
 use crate::nonlinear::Model;
 use crate::parameters::BenchmarkParameters;
 
-pub use conditioning::{
-    capsize_spike, double_root_conditioning, eigenvalue_condition, zero_cluster,
-    DoubleRootConditioning, SpikeRow, ZeroCluster, CAPSIZE_HALF_WIDTH, DOUBLE_ROOT_HALF_WIDTH,
-    SPIKE_OFFSETS,
-};
+pub use conditioning::{capsize_spike, double_root_conditioning, zero_cluster};
+pub(crate) use conditioning::{CAPSIZE_HALF_WIDTH, DOUBLE_ROOT_HALF_WIDTH};
+pub(crate) use jacobians::FullJacobian;
 pub use jacobians::{
-    full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix, upright_state, FullJacobian,
-    StudySettings,
+    full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix, StudySettings,
 };
-pub use picking::{assign, general_eigenvalues, lean_steer_eigenvalues, max_abs_diff, pick};
+pub use picking::{general_eigenvalues, lean_steer_eigenvalues, max_abs_diff, pick};
 
 /// A way to linearize the non-linear model about upright straight running.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -94,7 +91,7 @@ impl Linearization {
 
 /// One method's linearization at one speed, compared with the linear model.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Comparison {
+pub(crate) struct Comparison {
     /// The lean and steer eigenvalues [1/s], matched to the linear ones (same order).
     pub eigenvalues: [Complex64; 4],
     /// max |λ − λ_linear| over the four [1/s].
@@ -105,7 +102,7 @@ pub struct Comparison {
 
 /// Linearizes `model` at `speed` by `method` and compares with the linear eigenvalues
 /// `linear` (in the order to match) and, for the exact method, the linear `A`.
-pub fn compare_at(
+pub(crate) fn compare_at(
     model: &Model,
     canonical: &Canonical,
     speed: f64,
@@ -181,7 +178,8 @@ pub const MAX_COMPARED_SPEEDS: usize = 100_000;
 /// benchmark, redone.
 ///
 /// ```
-/// use whipple::{compare_with_linear, BenchmarkParameters, Linearization, StudySettings};
+/// use whipple::advanced::comparison::{compare_with_linear, Linearization, StudySettings};
+/// use whipple::BenchmarkParameters;
 /// let sweep = compare_with_linear(&BenchmarkParameters::meijaard2007(), &[1.0, 5.0],
 ///                                 &[Linearization::Exact], &StudySettings::default())?;
 /// assert!(sweep.methods[0].max_abs_diff.iter().all(|d| *d < 1e-11));
@@ -324,7 +322,7 @@ pub struct SpeedInterval {
 }
 
 impl ComparisonSweep {
-    /// The intervals of speeds a report tabulates (see [`SpeedInterval`]).
+    /// The intervals of speeds a report tabulates (see `SpeedInterval`).
     pub fn intervals(&self) -> Vec<SpeedInterval> {
         let lo = self.speeds.first().copied().unwrap_or(0.0);
         let hi = self.speeds.last().copied().unwrap_or(0.0);

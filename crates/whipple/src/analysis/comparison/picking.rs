@@ -46,7 +46,7 @@ pub(crate) fn faer_failure(error: faer::linalg::evd::EvdError) -> Error {
 /// Only the four nearest candidates of each target can take part in an optimal assignment
 /// (were one assigned further away, one of its four nearest would be free, and closer), so the
 /// search is over at most 4⁴ combinations.
-pub fn assign(targets: &[Complex64; 4], candidates: &[Complex64]) -> Result<[usize; 4]> {
+pub(crate) fn assign(targets: &[Complex64; 4], candidates: &[Complex64]) -> Result<[usize; 4]> {
     if candidates.len() < 4 {
         return Err(Error::InvalidArgument {
             what: "candidates",
@@ -91,7 +91,7 @@ pub fn assign(targets: &[Complex64; 4], candidates: &[Complex64]) -> Result<[usi
     }
 }
 
-/// The members of `candidates` assigned to `targets` (see [`assign`]), in the targets' order.
+/// The members of `candidates` assigned to `targets` (see `assign`), in the targets' order.
 pub fn pick(targets: &[Complex64; 4], candidates: &[Complex64]) -> Result<[Complex64; 4]> {
     Ok(assign(targets, candidates)?.map(|i| candidates[i]))
 }

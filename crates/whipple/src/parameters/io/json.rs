@@ -12,7 +12,7 @@ use serde_json::{Map, Number, Value};
 /// message names the key; serde_json adds the line and column of the repetition).
 ///
 /// ```
-/// use whipple::parameters::io::json_without_duplicates;
+/// use whipple::advanced::io::json_without_duplicates;
 /// assert!(json_without_duplicates(r#"{"a": 1, "b": {"a": 2}}"#).is_ok());
 /// let e = json_without_duplicates(r#"{"a": 1, "a": 2}"#).unwrap_err();
 /// assert!(e.to_string().contains("duplicate key `a`"), "{e}");

@@ -130,7 +130,7 @@ fn statements(text: &str) -> Result<Vec<Statement>> {
 /// `[a; b; c]`), `%` starting a comment, `...` continuing a line, blank lines ignored. Every
 /// variable of the original study's listing is required except `gravity` (JBike6's default
 /// 9.80665); unknown names, repeated assignments and matrices are errors.
-pub fn parse_jbike6_m(text: &str) -> Result<Jbike6Parameters> {
+pub(crate) fn parse_jbike6_m(text: &str) -> Result<Jbike6Parameters> {
     let text = super::strip_bom(text);
     let names = known_names();
     let mut values: HashMap<&'static str, (MValue, usize)> = HashMap::new();

@@ -21,7 +21,6 @@ mod write;
 mod yaml;
 
 pub use json::{json_slice_without_duplicates, json_without_duplicates};
-pub use matlab::parse_jbike6_m;
 
 use super::Bicycle;
 use crate::error::{shorten, Error, Result};
@@ -115,7 +114,7 @@ impl Format {
     /// differently, gets an error listing the formats and how to choose one (`--format`).
     ///
     /// ```
-    /// use whipple::parameters::io::Format;
+    /// use whipple::advanced::io::Format;
     /// assert_eq!(Format::detect("BrowserPar.txt", "w=1.121\n")?, Format::HumanControlTxt);
     /// assert_eq!(Format::detect("FisherBenchmark.txt", "w = 1.07+/-0.002\n")?,
     ///            Format::BicycleParametersTxt);
@@ -223,7 +222,7 @@ pub(crate) fn strip_bom(text: &str) -> &str {
 /// numbers are checked by [`Bicycle::check`], not here.
 ///
 /// ```
-/// use whipple::parameters::io::{parse, Format};
+/// use whipple::advanced::io::{parse, Format};
 /// let text = "wheelbase = 1.016; % metres\n";
 /// let err = parse(text, Format::Jbike6M).unwrap_err();
 /// assert!(err.to_string().contains("missing"));
@@ -259,12 +258,6 @@ pub fn parse(text: &str, format: Format) -> Result<Bicycle> {
 /// formats and HumanControl's only for the benchmark form.
 pub fn write(bike: &Bicycle, format: Format) -> Result<String> {
     write::write(bike, format)
-}
-
-/// Meaning and unit of each benchmark file key, for comments and tables; `""` for a key that is
-/// not one (see [`super::table::key_doc`], which says so with `None`).
-pub fn benchmark_key_doc(key: &str) -> String {
-    super::table::key_doc(key).unwrap_or_default()
 }
 
 /// 1-based line and column of a byte offset.
