@@ -1,4 +1,4 @@
-// End-to-end checks of issue 14 (the page never shows numbers that do not match the form; plots
+// End-to-end checks of the page (the page never shows numbers that do not match the form; plots
 // to explore; modes; links; weight; accessibility; layouts) in headless Chromium:
 //   node page.mjs URL
 // Run by crates/whipple-web/tests/e2e.rs. Each section starts from a fresh load of the page and
@@ -159,7 +159,7 @@ await section("weight: the first load is small and compressed; three.js comes wi
   check(true, "opening the Simulation tab fetches the 3-D code");
 });
 
-await section("bug 1: the hover read-out follows a redraw (bicycle switched with the keyboard)", async () => {
+await section("the hover read-out follows a redraw (bicycle switched with the keyboard)", async () => {
   await open("?bike=preset:schwinn-crown");
   const box = await plotBox("eigen-plot");
   await page.mouse.move(box.x + box.width * 0.6, box.y + box.height * 0.5);
@@ -180,7 +180,7 @@ await section("bug 1: the hover read-out follows a redraw (bicycle switched with
   check(!v || Number(v[1]) <= 8, `after a new speed range the read-out's speed lies in it (${v?.[1]})`);
 });
 
-await section("bug 2: text in a number field is reflected everywhere, and nothing else is applied", async () => {
+await section("text in a number field is reflected everywhere, and nothing else is applied", async () => {
   await open("?bike=preset:schwinn-crown");
   await page.getByTestId("param-mrider").fill("abc");
   await waitForText("error-mrider", (t) => t === "not a number");
@@ -208,7 +208,7 @@ await section("bug 2: text in a number field is reflected everywhere, and nothin
   check(await page.locator("[data-testid=eigen-plot] [data-testid=stale-veil]").count() === 0 && !(await page.getByTestId("message").isVisible()), `mended, both edits are applied at once: v_c ${await text("capsize-speed")}`);
 });
 
-await section("bug 3: saving with text in a field is refused", async () => {
+await section("saving with text in a field is refused", async () => {
   await open("?bike=preset:schwinn-crown");
   await page.evaluate(() => localStorage.clear());
   await page.getByTestId("param-mrider").fill("abc");
@@ -236,7 +236,7 @@ await section("bug 3: saving with text in a field is refused", async () => {
   check(/not saved/i.test(await text("message")), `a Save clicked before the keystroke's recompute ran keeps its refusal: "${await text("message")}"`);
 });
 
-await section("bug 4: edits survive a switch (undo) and a reload; a deletion can be undone", async () => {
+await section("edits survive a switch (undo) and a reload; a deletion can be undone", async () => {
   await open("?bike=preset:schwinn-crown");
   await page.evaluate(() => localStorage.clear());
   await page.getByTestId("param-trail").fill("0.05");
@@ -263,7 +263,7 @@ await section("bug 4: edits survive a switch (undo) and a reload; a deletion can
   check(await page.evaluate(() => JSON.parse(localStorage.getItem("whipple.designs.v1")).some((d) => d.name === "to delete")), "undo restores the design");
 });
 
-await section("bug 5: opening the same file twice makes one design", async () => {
+await section("opening the same file twice makes one design", async () => {
   await open("?bike=preset:benchmark");
   await page.evaluate(() => localStorage.clear());
   const dir = mkdtempSync(join(tmpdir(), "whipple-e2e-page-"));
@@ -283,7 +283,7 @@ await section("bug 5: opening the same file twice makes one design", async () =>
   check(names.filter((n) => n === "opened twice").length === 1, `one design after two opens: ${JSON.stringify(names)}`);
 });
 
-await section("bug 6: a refused simulation says what the plots still show", async () => {
+await section("a refused simulation says what the plots still show", async () => {
   await open("?bike=preset:benchmark&tab=sim");
   await page.getByTestId("tab-sim").click();
   await page.fill("#sim-speed", "4.6");
@@ -297,7 +297,7 @@ await section("bug 6: a refused simulation says what the plots still show", asyn
   check(/refused/.test(pill) && /previous run/.test(pill), `the outcome says the run was refused and the plots are the previous run's: "${pill}"`);
 });
 
-await section("issue 15: the simulation starts on a held steady turn, with its torque and stability", async () => {
+await section("the simulation starts on a held steady turn, with its torque and stability", async () => {
   await open("?bike=preset:benchmark&tab=sim");
   await page.getByTestId("tab-sim").click();
   await page.getByTestId("sim-from-turn").check();
@@ -334,7 +334,7 @@ await section("issue 15: the simulation starts on a held steady turn, with its t
   check(!(await page.locator("#sim-steer").isDisabled()) && !(await page.getByTestId("sim-turn").isVisible()), "unticked, the steer input is back and the turn's numbers are gone");
 });
 
-await section("bug 7: the speed hint follows the bicycle", async () => {
+await section("the speed hint follows the bicycle", async () => {
   await open("?bike=preset:schwinn-crown");
   await page.getByTestId("tab-sim").click();
   await page.fill("#sim-speed", "6");
@@ -345,14 +345,14 @@ await section("bug 7: the speed hint follows the bicycle", async () => {
   check((await page.inputValue("#sim-speed")) === "6", "and the speed typed stays");
 });
 
-await section("bug 8: with negative trail the table says the capsize mode is unstable at every speed", async () => {
+await section("with negative trail the table says the capsize mode is unstable at every speed", async () => {
   await open("?bike=preset:schwinn-crown");
   await page.getByTestId("param-trail").fill("-0.05");
   const vc = await waitForText("capsize-speed", (t) => !t.startsWith("7.98"));
   check(/unstable at every speed/.test(vc), `v_c reads "${vc}"`);
 });
 
-await section("bug 9: a benchmark rule met in the JBike6 form flags the JBike6 fields", async () => {
+await section("a benchmark rule met in the JBike6 form flags the JBike6 fields", async () => {
   await open("?bike=preset:schwinn-crown");
   await page.getByTestId("param-Dfrontwheel").fill("0");
   await waitForText("error-Dfrontwheel", (t) => t.length > 0);
@@ -362,7 +362,7 @@ await section("bug 9: a benchmark rule met in the JBike6 form flags the JBike6 f
   check(!message.startsWith("invalid parameter `IFyy`") && /front wheel|Dfrontwheel/i.test(message), `the message speaks of the JBike6 entries: "${message}"`);
 });
 
-await section("bug 10: a negative simulation speed is answered", async () => {
+await section("a negative simulation speed is answered", async () => {
   await open("?bike=preset:benchmark");
   await page.getByTestId("tab-sim").click();
   await page.fill("#sim-speed", "-2");
@@ -371,7 +371,7 @@ await section("bug 10: a negative simulation speed is answered", async () => {
   check(/backwards/.test(note), `a negative speed is named: "${note}"`);
 });
 
-await section("bug 11: no sideways scroll at 768 and 390 px; 1920 px uses the width", async () => {
+await section("no sideways scroll at 768 and 390 px; 1920 px uses the width", async () => {
   for (const [width, height] of [[768, 1024], [390, 844]]) {
     await open("?bike=preset:benchmark", { width, height });
     for (const tab of ["eigen", "sim"]) {

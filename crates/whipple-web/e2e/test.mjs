@@ -131,7 +131,7 @@ try {
   // CSV export.
   const [csv] = await Promise.all([page.waitForEvent("download"), page.click("#eigen-csv")]);
   const csvText = readFileSync(await csv.path(), "utf8").split("\n");
-  // Issue 14: a first line naming the designs, the CLI's columns with the mode names, then the
+  // A first line naming the designs, the CLI's columns with the mode names, then the
   // compared design's columns.
   check(csvText[0].startsWith("# ") && csvText[1].startsWith("v,re1_weave,im1_weave,re2_weave,im2_weave,re3_capsize,im3_capsize,re4_castering,im4_castering,"), `the CSV export names the designs and the modes: ${csvText[1].slice(0, 60)}…`);
   check(csvText.filter(Boolean).length === 1003, "and one row per speed (1001)");

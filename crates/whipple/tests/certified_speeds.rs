@@ -1,5 +1,5 @@
-//! The certified critical speeds (issue 10, "wrong answers given without a word"): regression
-//! tests named after each misbehaviour, and property tests against dense eigenvalue scans.
+//! The certified critical speeds, never a wrong answer given without a word: regression
+//! tests named after each misbehaviour they guard against, and property tests against dense eigenvalue scans.
 
 use std::sync::atomic::AtomicBool;
 

@@ -8,7 +8,7 @@ import "./style.css";
 import { api } from "./api.js";
 import { listDesigns, saveDesign, deleteDesign, findDesign } from "./store.js";
 import { Editor, parseNumber } from "./editor.js";
-import { setPath, applyParameterTable, JBIKE6_SOURCES, JBIKE6_GROUPS, BENCHMARK_GROUPS, PRESET_TITLES } from "./fields.js";
+import { setPath, applyParameterTable, JBIKE6_SOURCES, JBIKE6_GROUPS, BENCHMARK_GROUPS } from "./fields.js";
 import { drawSideView } from "./sideview.js";
 import { EigenPlot, LocusPlot, COMPARE_COLOURS } from "./plot.js";
 import { drawCritical } from "./critical.js";
@@ -112,8 +112,9 @@ function quiet(source) {
 
 // ---- picker -------------------------------------------------------------------------------
 
+/** A preset's display title, as the library names it (GET /api/presets). */
 function presetTitle(name) {
-  return PRESET_TITLES[name] ?? name;
+  return state.presets.find((p) => p.name === name)?.title ?? name;
 }
 
 function fillPickers() {
