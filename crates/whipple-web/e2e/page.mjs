@@ -59,15 +59,35 @@ await page.route("**/*", (route) => {
 
 const text = async (id) => ((await page.getByTestId(id).first().textContent({ timeout: 3_000 })) ?? "").trim();
 const number = (s) => Number(s.replace("−", "-").replace(/[^0-9.eE+-].*$/, ""));
+/** The page's next animation frame: what it draws by then is drawn. */
+const nextFrame = () => page.evaluate(() => new Promise((done) => requestAnimationFrame(() => done())));
+/** Until `predicate` (run here, re-checked at each of the page's frames) is true. */
 async function waitFor(what, predicate, ms = 10_000) {
   const until = Date.now() + ms;
   let last;
   while (Date.now() < until) {
     last = await predicate().catch((e) => `(${e.message})`);
     if (last === true) return;
-    await page.waitForTimeout(80);
+    await nextFrame();
   }
   throw new Error(`timed out waiting for ${what} (last: ${JSON.stringify(last)})`);
+}
+/** Whether `predicate` becomes true in time; the check after it says what was seen. */
+const becomes = (predicate, ms) => waitFor("", predicate, ms).then(() => true, () => false);
+/**
+ * Until the page has settled: no request in flight, no recompute scheduled, no handler running
+ * (the page's <body data-pending>, web/src/work.js), and what that work drew is drawn. What an
+ * action would have done, it has done by then: a check that nothing happened can follow.
+ */
+async function settled(ms = 20_000) {
+  const pending = () => page.evaluate(() => document.body.dataset.pending);
+  try {
+    await page.waitForSelector("body[data-pending='0']", { state: "attached", timeout: ms });
+    await nextFrame();
+    await page.waitForSelector("body[data-pending='0']", { state: "attached", timeout: ms });
+  } catch (e) {
+    throw new Error(`the page did not settle: ${await pending()} pieces of work still under way (${e.message.split("\n")[0]})`);
+  }
 }
 const waitForText = async (id, predicate, ms) => {
   let seen = null;
@@ -125,7 +145,8 @@ await section("weight: the first load is small and compressed; three.js comes wi
   const atPlot = await page.evaluate(() => performance.now());
   timings.navigationToPlotMs = Math.round(atPlot);
   timings.wallMs = Date.now() - started;
-  await page.waitForTimeout(300);
+  await page.waitForLoadState("load");
+  await settled();
   let transferred = 0;
   let raw = 0;
   const assets = [];
@@ -154,8 +175,9 @@ await section("weight: the first load is small and compressed; three.js comes wi
   const again = await page.evaluate(async (etag) => (await fetch("/", { headers: { "if-none-match": etag } })).status, pageAsset.etag);
   check(again === 304, `If-None-Match answers 304 (${again})`);
   responses.length = 0;
+  const fetched = page.waitForResponse((r) => /view3d-.*\.js$/.test(r.url()));
   await page.getByTestId("tab-sim").click();
-  await waitFor("three.js to be fetched", async () => responses.some((r) => /view3d-.*\.js$/.test(r.url())));
+  await fetched;
   check(true, "opening the Simulation tab fetches the 3-D code");
 });
 
@@ -168,14 +190,14 @@ await section("the hover read-out follows a redraw (bicycle switched with the ke
   await page.getByTestId("bike-select").focus();
   await page.keyboard.press("ArrowUp"); // the benchmark bicycle is the first preset
   await waitForText("capsize-speed", (t) => t.startsWith("6.0243"));
-  await page.waitForTimeout(300);
+  await settled();
   const visible = await page.getByTestId("plot-tooltip").isVisible();
   const after = visible ? await text("plot-tooltip") : "";
   check(!visible || (after !== before && /benchmark/i.test(after) && !/schwinn/i.test(after)), `after the switch the read-out shows the new bicycle's values: "${after.slice(0, 60)}…" (was "${before.slice(0, 60)}…")`);
   // And after the speed range changes.
   await page.fill("#v-stop", "8");
   await page.press("#v-stop", "Enter");
-  await page.waitForTimeout(600);
+  await settled();
   const v = (await text("plot-tooltip").catch(() => "")).match(/v = ([\d.]+)/);
   check(!v || Number(v[1]) <= 8, `after a new speed range the read-out's speed lies in it (${v?.[1]})`);
 });
@@ -197,7 +219,7 @@ await section("text in a number field is reflected everywhere, and nothing else 
   check(!m2.includes("-5") && /not a number/.test(m2), `-5 then abc: the message follows the field: "${m2}"`);
   const capsize = await text("capsize-speed");
   await page.getByTestId("param-trail").fill("0.05");
-  await page.waitForTimeout(600);
+  await settled();
   check((await text("capsize-speed")) === capsize && /not a number/.test(await text("message")), "an edit of another field meanwhile is not computed and the page keeps saying why");
   check(await page.locator("[data-testid=eigen-plot] [data-testid=stale-veil]").count() === 1, "and the plot stays veiled");
   await page.getByTestId("param-mrider").fill("");
@@ -216,11 +238,11 @@ await section("saving with text in a field is refused", async () => {
   const listener = () => { downloaded = true; };
   page.on("download", listener);
   await page.click("#save-toml");
-  await page.waitForTimeout(1200);
+  await settled();
   page.off("download", listener);
   check(!downloaded && /not saved/i.test(await text("message")), `Save TOML refuses: "${await text("message")}"`);
   await page.click("#save-design");
-  await page.waitForTimeout(300);
+  await settled();
   check(await page.evaluate(() => (JSON.parse(localStorage.getItem("whipple.designs.v1") ?? "[]")).length === 0) && /not saved/i.test(await text("message")), "Save to my designs refuses too");
   // Typed and clicked in one task, so the recompute the keystroke scheduled is still pending
   // at the click: the refusal must not be replaced by it afterwards.
@@ -232,7 +254,7 @@ await section("saving with text in a field is refused", async () => {
     }
     document.getElementById("save-toml").click();
   });
-  await page.waitForTimeout(500);
+  await settled();
   check(/not saved/i.test(await text("message")), `a Save clicked before the keystroke's recompute ran keeps its refusal: "${await text("message")}"`);
 });
 
@@ -256,7 +278,7 @@ await section("edits survive a switch (undo) and a reload; a deletion can be und
   await page.click("#save-design");
   await page.click("#delete-design");
   await waitForText("capsize-speed", (t) => t.startsWith("7.9807"));
-  await page.waitForTimeout(500);
+  await settled();
   check(await page.getByTestId("undo-delete").isVisible(), `the deletion's message stays, with an undo: "${await text("message")}"`);
   await page.getByTestId("undo-delete").click();
   await waitForText("capsize-speed", (t) => t === edited);
@@ -277,7 +299,7 @@ await section("opening the same file twice makes one design", async () => {
   await page.setInputFiles("#file-input", file);
   await page.waitForFunction(() => document.querySelector("#bike-select").value.startsWith("design:"));
   await page.setInputFiles("#file-input", file);
-  await page.waitForTimeout(800);
+  await settled();
   rmSync(dir, { recursive: true, force: true });
   const names = await page.evaluate(() => JSON.parse(localStorage.getItem("whipple.designs.v1")).map((d) => d.name));
   check(names.filter((n) => n === "opened twice").length === 1, `one design after two opens: ${JSON.stringify(names)}`);
@@ -366,7 +388,7 @@ await section("a negative simulation speed is answered", async () => {
   await open("?bike=preset:benchmark");
   await page.getByTestId("tab-sim").click();
   await page.fill("#sim-speed", "-2");
-  await page.waitForTimeout(200);
+  await settled();
   const note = (await page.getByTestId("sim-speed-note").isVisible()) ? await text("sim-speed-note") : "";
   check(/backwards/.test(note), `a negative speed is named: "${note}"`);
 });
@@ -376,7 +398,7 @@ await section("no sideways scroll at 768 and 390 px; 1920 px uses the width", as
     await open("?bike=preset:benchmark", { width, height });
     for (const tab of ["eigen", "sim"]) {
       await page.getByTestId(`tab-${tab}`).click();
-      await page.waitForTimeout(300);
+      await settled();
       const { scroll, inner, wide } = await page.evaluate(() => ({
         scroll: document.documentElement.scrollWidth,
         inner: window.innerWidth,
@@ -399,7 +421,7 @@ await section("explore: zoom, pan, box zoom, reset, autoscale and keyboard on th
   const full = await xTicks("eigen-plot");
   await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
   await page.mouse.wheel(0, -400);
-  await page.waitForTimeout(300);
+  await becomes(async () => (await xTicks("eigen-plot")) !== full);
   const zoomed = await xTicks("eigen-plot");
   check(zoomed !== full, `the wheel zooms: ticks "${full.slice(0, 40)}" → "${zoomed.slice(0, 40)}"`);
   await page.getByTestId("plot-tooltip").waitFor({ state: "visible" });
@@ -408,11 +430,11 @@ await section("explore: zoom, pan, box zoom, reset, autoscale and keyboard on th
   await page.mouse.down();
   await page.mouse.move(box.x + box.width * 0.3, box.y + box.height * 0.5, { steps: 5 });
   await page.mouse.up();
-  await page.waitForTimeout(200);
+  await becomes(async () => (await xTicks("eigen-plot")) !== zoomed);
   const panned = await xTicks("eigen-plot");
   check(panned !== zoomed, "dragging pans");
   await page.mouse.dblclick(box.x + box.width * 0.5, box.y + box.height * 0.5);
-  await page.waitForTimeout(200);
+  await becomes(async () => (await xTicks("eigen-plot")) === full);
   check((await xTicks("eigen-plot")) === full, "a double-click resets the view");
   await page.keyboard.down("Shift");
   await page.mouse.move(box.x + box.width * 0.4, box.y + box.height * 0.3);
@@ -420,12 +442,12 @@ await section("explore: zoom, pan, box zoom, reset, autoscale and keyboard on th
   await page.mouse.move(box.x + box.width * 0.6, box.y + box.height * 0.6, { steps: 5 });
   await page.mouse.up();
   await page.keyboard.up("Shift");
-  await page.waitForTimeout(400);
+  await becomes(async () => (await xTicks("eigen-plot")) !== full);
   check((await xTicks("eigen-plot")) !== full, "shift-drag zooms to the box");
   await page.getByTestId("zoom-auto").first().click();
-  await page.waitForTimeout(200);
+  await settled();
   await page.getByTestId("zoom-reset").first().click();
-  await page.waitForTimeout(200);
+  await becomes(async () => (await xTicks("eigen-plot")) === full);
   check((await xTicks("eigen-plot")) === full, "Autoscale and Reset buttons work");
   await page.mouse.move(1, 1);
   await page.getByTestId("eigen-plot").focus();
@@ -451,13 +473,13 @@ await section("explore: zoom, pan, box zoom, reset, autoscale and keyboard on th
   const t0 = await xTicks("sim-time-plot");
   await page.mouse.move(tb.x + tb.width * 0.5, tb.y + tb.height * 0.6);
   await page.mouse.wheel(0, -400);
-  await page.waitForTimeout(300);
+  await becomes(async () => (await xTicks("sim-time-plot")) !== t0);
   check((await xTicks("sim-time-plot")) !== t0, "the time plot zooms");
   const gb = await plotBox("sim-track");
   const g0 = await xTicks("sim-track");
   await page.mouse.move(gb.x + gb.width * 0.5, gb.y + gb.height * 0.6);
   await page.mouse.wheel(0, -400);
-  await page.waitForTimeout(300);
+  await becomes(async () => (await xTicks("sim-track")) !== g0);
   check((await xTicks("sim-track")) !== g0, "the ground track zooms");
 });
 
@@ -485,7 +507,7 @@ await section("a link reproduces the state; back and forward work", async () => 
   await page.fill("#v-stop", "8");
   await page.press("#v-stop", "Enter");
   await page.getByTestId("tab-locus").click();
-  await page.waitForTimeout(500);
+  await settled();
   const link = page.url();
   const other = await context.newPage();
   await other.goto(link);
@@ -500,15 +522,19 @@ await section("a link reproduces the state; back and forward work", async () => 
   }));
   await other.close();
   check(seen.bike === "preset:benchmark" && seen.c === "0.07" && seen.stop === "8" && seen.tab === "locus" && seen.compare !== null, `the link opens the same state elsewhere: ${JSON.stringify(seen)}`);
+  const tabShown = () => page.$eval(".tab[data-view][aria-selected=true]", (e) => e.dataset.view);
   await page.goBack();
-  await page.waitForTimeout(600);
-  check((await page.$eval(".tab[data-view][aria-selected=true]", (e) => e.dataset.view)) === "eigen", "back returns to the previous tab");
+  await becomes(async () => (await tabShown()) === "eigen");
+  await settled();
+  check((await tabShown()) === "eigen", "back returns to the previous tab");
   await page.goBack();
-  await page.waitForTimeout(600);
+  await becomes(async () => (await page.inputValue("#v-stop")) === "10");
+  await settled();
   check((await page.inputValue("#v-stop")) === "10", "back again, the previous speed range");
   await page.goForward();
   await page.goForward();
-  await page.waitForTimeout(800);
+  await becomes(async () => (await tabShown()) === "locus" && (await page.inputValue("#v-stop")) === "8");
+  await settled();
   check((await page.$eval(".tab[data-view][aria-selected=true]", (e) => e.dataset.view)) === "locus" && (await page.inputValue("#v-stop")) === "8", "forward redoes both");
 });
 
@@ -529,7 +555,7 @@ await section("modes: in words, animated, and played in 3-D", async () => {
   // The read-out is written on the first animation frame, which a loaded machine may delay.
   const r = await waitForText("mode-anim-readout", (t) => /φ/.test(t));
   const t1 = await page.getByTestId("mode-anim").getAttribute("data-t");
-  await page.waitForTimeout(400);
+  await becomes(async () => (await page.getByTestId("mode-anim").getAttribute("data-t")) !== t1);
   const t2 = await page.getByTestId("mode-anim").getAttribute("data-t");
   check(t1 !== t2 && /φ/.test(r), `the weave is animated beside the side view: ${r}`);
   await page.getByTestId("mode-3d-weave").click();
@@ -586,8 +612,11 @@ await section("degrees, precision, display names", async () => {
     return texts.filter((t) => /\d\.\d{9,}/.test(t));
   });
   check(long.length === 0, `no number shown with round-off digits (${long.slice(0, 3).join(", ")})`);
+  // The form is drawn on the click (no request): the next frame shows it. Not `settled()`: the
+  // requests for the 1.24° head angle typed above may still be computing on the server,
+  // superseded.
   await page.click("#tab-benchmark");
-  await page.waitForTimeout(300);
+  await nextFrame();
   const shown = await page.$$eval("#editor-body input", (is) => is.map((i) => i.value).filter((v) => v.replace(/[-.]/g, "").length > 13));
   check(shown.length === 0, `the converted benchmark form shows sensible digits (${shown.slice(0, 3).join(", ")})`);
 });
@@ -682,10 +711,10 @@ await section("accessibility: axe-core finds nothing; headings", async () => {
   await run("eigenvalue tab");
   check((await page.locator("h1").count()) === 1 && (await page.locator("h2").count()) >= 4, "one h1 and a heading per panel");
   await page.getByTestId("tab-sim").click();
-  await page.waitForTimeout(500);
+  await settled();
   await run("simulation tab");
   await page.getByTestId("tab-modes").click();
-  await page.waitForTimeout(800);
+  await settled();
   await run("modes tab");
   await page.getByTestId("tab-sens").click();
   await page.getByTestId("sens-tornado").waitFor({ timeout: 15_000 });

@@ -40,14 +40,21 @@ await page.route("**/*", (route) => {
 const text = async (id) => (await page.getByTestId(id).textContent()).trim();
 const number = (s) => Number(s.replace("−", "-").replace(/[^0-9.eE+-].*$/, ""));
 const plotPaths = () => page.$$eval("[data-testid=eigen-plot] svg path", (ps) => ps.map((p) => p.getAttribute("d")).join("|"));
-/** Polls the element's text until `predicate` holds (15 s at most). */
+/** The page's next animation frame: what it draws by then is drawn. */
+const nextFrame = () => page.evaluate(() => new Promise((done) => requestAnimationFrame(() => done())));
+/** Until the page has settled: nothing in flight or scheduled (web/src/work.js), and drawn. */
+async function settled() {
+  await page.waitForSelector("body[data-pending='0']", { state: "attached" });
+  await nextFrame();
+}
+/** Reads the element's text at each of the page's frames until `predicate` holds (15 s at most). */
 async function waitForText(id, predicate) {
   const until = Date.now() + 15_000;
   let last = null;
   while (Date.now() < until) {
     last = await page.getByTestId(id).textContent({ timeout: 1_000 }).catch(() => null);
     if (last !== null && predicate(last.trim())) return last.trim();
-    await page.waitForTimeout(100);
+    await nextFrame();
   }
   throw new Error(`timed out waiting on ${id}: last text "${last}"`);
 }
@@ -86,8 +93,10 @@ try {
       await page.getByTestId("plot-tooltip").waitFor({ state: "visible", timeout: 3_000 });
       shown = true;
     } catch {
+      // Off the plot, the read-out hides: the next attempt starts from there.
       await page.mouse.move(0, 0);
-      await page.waitForTimeout(500);
+      await page.getByTestId("plot-tooltip").waitFor({ state: "hidden", timeout: 5_000 }).catch(() => {});
+      await settled();
     }
   }
   check(shown, "the plot's read-out appears on hover");
@@ -196,7 +205,7 @@ try {
   const advanced = async (r0) => {
     const until = Date.now() + 15_000;
     while (Date.now() < until) {
-      await page.waitForTimeout(100);
+      await nextFrame();
       const r = await reading();
       if (r.t > r0.t && r.scrub > r0.scrub) return r;
     }
@@ -209,7 +218,8 @@ try {
   check(r3.t > r2.t, `and keeps advancing: ${r3.t} s`);
   await page.getByTestId("sim-play").click();
   const p1 = await simTime();
-  await page.waitForTimeout(400);
+  // Twenty of the page's frames: each would have advanced a playing animation.
+  for (let frame = 0; frame < 20; frame++) await nextFrame();
   check((await simTime()) === p1, `pause stops it at t = ${p1} s`);
   const pixels = () => page.$eval("[data-testid=sim-canvas]", (c) => {
     const gl = c.getContext("webgl2") ?? c.getContext("webgl");
@@ -251,15 +261,15 @@ try {
   // At 2x, simulated time runs twice as fast as the page's clock (measured in the page).
   // SwiftShader under load may take a second per frame, and the page advances at most 1 s of
   // wall time per frame (so as not to jump): time the displayed clock at the moments it
-  // changes (polled every 20 ms) over at least 1.5 s, and note the slowest frame.
+  // changes (read at every frame) over at least 1.5 s, and note the slowest frame.
   const { rate, slowest } = await page.evaluate(async () => {
     const t = () => Number(document.getElementById("sim-t").textContent.replace("−", "-"));
-    const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+    const frame = () => new Promise((r) => requestAnimationFrame(() => r()));
     let slowest = 0;
     let seen = performance.now();
     const change = async (from, until) => {
       while (performance.now() < until) {
-        await sleep(20);
+        await frame();
         if (t() !== from) {
           slowest = Math.max(slowest, performance.now() - seen);
           seen = performance.now();
