@@ -1,6 +1,7 @@
 // End-to-end test of the page in headless Chromium: node test.mjs URL
 // Run by crates/whipple-web/tests/e2e.rs against a server on an ephemeral loopback port.
 import { launch } from "./browser.mjs";
+import { CAPSIZE_SPEED, WEAVE_SPEED, asShown } from "./reference.mjs";
 import { readFileSync, writeFileSync, mkdtempSync, rmSync } from "node:fs";
 import { join } from "node:path";
 import { tmpdir } from "node:os";
@@ -66,8 +67,8 @@ try {
 
   // Pick another bicycle, then JBike6's default, the Schwinn Crown.
   await page.getByTestId("bike-select").selectOption("preset:benchmark");
-  await waitForText("capsize-speed", (t) => t.startsWith("6.0243"));
-  check(true, "the benchmark bicycle's capsize speed is 6.0243 m/s (Meijaard et al. 2007)");
+  await waitForText("capsize-speed", (t) => t.startsWith(asShown(CAPSIZE_SPEED)));
+  check(true, `the benchmark bicycle's capsize speed is ${asShown(CAPSIZE_SPEED)} m/s (Meijaard et al. 2007)`);
   await page.getByTestId("bike-select").selectOption("preset:schwinn-crown");
   await waitForText("capsize-speed", (t) => t.startsWith("7.98"));
   const capsize = number(await text("capsize-speed"));
@@ -134,8 +135,8 @@ try {
 
   // Comparison of two designs on one plot.
   await page.getByTestId("compare-select").selectOption("preset:benchmark");
-  await waitForText("compare-capsize-speed", (t) => t.startsWith("6.0243"));
-  check(true, "comparing with the benchmark bicycle lists its capsize speed 6.0243 beside the Crown's");
+  await waitForText("compare-capsize-speed", (t) => t.startsWith(asShown(CAPSIZE_SPEED)));
+  check(true, `comparing with the benchmark bicycle lists its capsize speed ${asShown(CAPSIZE_SPEED)} beside the Crown's`);
 
   // CSV export.
   const [csv] = await Promise.all([page.waitForEvent("download"), page.click("#eigen-csv")]);
@@ -161,7 +162,7 @@ try {
   const file = join(dir, "short-trail.toml");
   writeFileSync(file, tomlText.replace(/^name = .*$/m, 'name = "short trail"'));
   await page.getByTestId("bike-select").selectOption("preset:benchmark");
-  await waitForText("capsize-speed", (t) => t.startsWith("6.0243"));
+  await waitForText("capsize-speed", (t) => t.startsWith(asShown(CAPSIZE_SPEED)));
   await page.setInputFiles("#file-input", file);
   await waitForText("capsize-speed", (t) => t === edited);
   rmSync(dir, { recursive: true, force: true });
@@ -180,11 +181,11 @@ try {
   check(readFileSync(await side.path(), "utf8").includes("total 91.1 kg"), "the side view exports as SVG");
   // The simulation panel: the benchmark bicycle at 4.6 m/s (self-stable: the weave decays).
   await page.getByTestId("bike-select").selectOption("preset:benchmark");
-  await waitForText("capsize-speed", (t) => t.startsWith("6.0243"));
+  await waitForText("capsize-speed", (t) => t.startsWith(asShown(CAPSIZE_SPEED)));
   await page.getByTestId("tab-sim").click();
   check((await page.locator("#panel-sim").isVisible()) && !(await page.locator("#panel-eigen").isVisible()), "the Simulation tab takes the eigenvalue plot's place");
   const suggested = Number(await page.inputValue("#sim-speed"));
-  check(Math.abs(suggested - (4.2924 + 6.0243) / 2) < 0.01, `the suggested speed ${suggested} m/s is the middle of the self-stable range`);
+  check(Math.abs(suggested - (WEAVE_SPEED + CAPSIZE_SPEED) / 2) < 0.01, `the suggested speed ${suggested} m/s is the middle of the self-stable range`);
   await page.fill("#sim-duration", "31");
   await page.click("[data-testid=sim-run]");
   await waitForText("sim-message", (t) => t.includes("limit of 30 s"));

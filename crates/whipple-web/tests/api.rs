@@ -10,6 +10,7 @@ use serde_json::{json, Value};
 use tower::ServiceExt;
 use whipple::parameters::io::{write, Format};
 use whipple::parameters::presets;
+use whipple_reference::meijaard2007 as published;
 use whipple_web::{app, Limits};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
@@ -268,11 +269,19 @@ async fn eigen_sweep_and_critical_speeds() -> TestResult {
         assert_eq!(column["im"].as_array().map(Vec::len), Some(101));
     }
     let critical = &body["critical"];
-    assert!(approx(&critical["weave_speed"], 4.29238253634111, 1e-10));
-    assert!(approx(&critical["capsize_speed"], 6.02426201538837, 1e-10));
+    assert!(approx(
+        &critical["weave_speed"],
+        published::WEAVE_SPEED,
+        1e-10
+    ));
+    assert!(approx(
+        &critical["capsize_speed"],
+        published::CAPSIZE_SPEED,
+        1e-10
+    ));
     assert!(approx(
         &critical["stable_speed_ranges"][0][0],
-        4.29238253634111,
+        published::WEAVE_SPEED,
         1e-10
     ));
 
@@ -301,7 +310,11 @@ async fn speeds_endpoint() -> TestResult {
     )
     .await?;
     assert_eq!(status, StatusCode::OK);
-    assert!(approx(&body["capsize_speed"], 6.02426201538837, 1e-10));
+    assert!(approx(
+        &body["capsize_speed"],
+        published::CAPSIZE_SPEED,
+        1e-10
+    ));
     assert!(approx(&body["double_root_speed"], 0.684, 1e-3));
     let (status, body) = post(
         &app,
