@@ -106,6 +106,9 @@ try {
     await shot("13-sensitivity");
     await ready("?bike=preset:schwinn-crown&tab=map");
     await page.waitForFunction(() => /designs/.test(document.querySelector("[data-testid=map-meta]")?.textContent ?? ""), null, { timeout: 20_000 });
+    // In view, so that the pointer is over the map and its read-out is drawn (on a phone the map
+    // lies below the fold).
+    await page.getByTestId("map-canvas").scrollIntoViewIfNeeded();
     const mbox = await page.getByTestId("map-canvas").boundingBox();
     await page.mouse.move(mbox.x + mbox.width * 0.6, mbox.y + mbox.height * 0.45);
     await shows("map-readout", /./);
