@@ -466,6 +466,7 @@ pub mod advanced {
     }
     #[doc = "Bicycle descriptions: the benchmark and JBike6 forms, checks and their notices."]
     pub mod parameters {
+        pub use crate::parameters::jbike6::BENCHMARK_FROM_JBIKE6;
         /// The form a bicycle was described in.
         ///
         /// ```
