@@ -14,7 +14,7 @@ use whipple::parameters::presets::PRESETS;
 use whipple::parameters::table::key_doc;
 use whipple::{Bicycle, Description};
 
-use crate::bike::{load, LoadedBike};
+use crate::bike::{load, LoadedBike, RunContext};
 use crate::output::{self, number, parse_triple, print_stdout, Sink, Target};
 use crate::{FileFormat, TableFormat, TextFormat};
 
@@ -48,8 +48,8 @@ pub fn presets() -> Result<()> {
     emit(&text, None)
 }
 
-pub fn show(arg: &str) -> Result<()> {
-    let bike = load(arg)?;
+pub fn show(cx: &RunContext, arg: &str) -> Result<()> {
+    let bike = load(cx, arg)?;
     let mut text = String::new();
     writeln!(text, "{}", bike.label)?;
     if let Some(source) = &bike.bicycle.source {
@@ -99,9 +99,15 @@ pub fn show(arg: &str) -> Result<()> {
     emit(&text, None)
 }
 
-pub fn convert(arg: &str, to: FileFormat, keep_form: bool, out: Option<&Path>) -> Result<()> {
+pub fn convert(
+    cx: &RunContext,
+    arg: &str,
+    to: FileFormat,
+    keep_form: bool,
+    out: Option<&Path>,
+) -> Result<()> {
     let out = out.map(|p| Target::check("--out", p)).transpose()?;
-    let bike = load(arg)?;
+    let bike = load(cx, arg)?;
     let bicycle = if keep_form {
         bike.bicycle.clone()
     } else {
@@ -146,8 +152,8 @@ fn matrix_json(m: &Matrix2<f64>) -> Result<serde_json::Value> {
     Ok(json!([[m[(0, 0)], m[(0, 1)]], [m[(1, 0)], m[(1, 1)]]]))
 }
 
-pub fn matrices(arg: &str, jbike6: bool, format: TextFormat) -> Result<()> {
-    let bike = load(arg)?;
+pub fn matrices(cx: &RunContext, arg: &str, jbike6: bool, format: TextFormat) -> Result<()> {
+    let bike = load(cx, arg)?;
     let c = canonical(&bike)?;
     let (names, mats, note) = if jbike6 {
         let [m, c1, k0, k2] = c.jbike6_convention();
@@ -197,6 +203,7 @@ pub fn matrices(arg: &str, jbike6: bool, format: TextFormat) -> Result<()> {
 }
 
 pub fn eig(
+    cx: &RunContext,
     arg: &str,
     speeds: &str,
     format: TableFormat,
@@ -205,7 +212,7 @@ pub fn eig(
     sigma_bands: bool,
 ) -> Result<()> {
     let (out, plot) = output::table_and_plot(out, plot)?;
-    let bike = load(arg)?;
+    let bike = load(cx, arg)?;
     let (start, stop, step) = parse_triple(speeds, "--speeds")?;
     let grid = sweep::SpeedGrid::new(start, stop, step).context("--speeds")?;
     if grid.len() > MAX_EIG_SPEEDS {
@@ -320,8 +327,8 @@ pub fn eig(
     output::commit(finished)
 }
 
-pub fn modes(arg: &str, speed: f64, format: TextFormat) -> Result<()> {
-    let bike = load(arg)?;
+pub fn modes(cx: &RunContext, arg: &str, speed: f64, format: TextFormat) -> Result<()> {
+    let bike = load(cx, arg)?;
     if !speed.is_finite() {
         bail!("--speed must be a finite number, got {speed:?}");
     }
@@ -486,6 +493,7 @@ fn eigen_sigma_bands(bike: &LoadedBike, s: &sweep::EigenSweep) -> Result<Vec<[(f
 }
 
 pub fn sensitivity(
+    cx: &RunContext,
     arg: &str,
     speed: Option<f64>,
     range: &str,
@@ -494,7 +502,7 @@ pub fn sensitivity(
     plot: Option<&Path>,
 ) -> Result<()> {
     let (out, plot) = output::table_and_plot(out, plot)?;
-    let bike = load(arg)?;
+    let bike = load(cx, arg)?;
     let (lo, hi) = crate::speeds::parse_range(range, "--range")?;
     if lo >= hi {
         bail!("--range: LO ({lo}) must be less than HI ({hi})");
@@ -643,10 +651,10 @@ pub fn sensitivity(
     output::commit(finished)
 }
 
-pub fn draw(arg: &str, out: &Path) -> Result<()> {
+pub fn draw(cx: &RunContext, arg: &str, out: &Path) -> Result<()> {
     whipple_report::Format::from_path(out).with_context(|| format!("--out {}", out.display()))?;
     let target = Target::check("--out", out)?;
-    let bike = load(arg)?;
+    let bike = load(cx, arg)?;
     crate::figures::side_view(&bike, &target)
 }
 

@@ -32,7 +32,7 @@ use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use anyhow::{bail, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 
 /// How many symbolic links are followed before giving up (as the kernel's `ELOOP`).
 const MAX_LINKS: usize = 40;
@@ -776,17 +776,11 @@ pub fn print_stdout(text: &str) -> Result<()> {
     }
 }
 
-/// Shortest text that reads back as the same f64; refuses NaN and infinities.
+/// A result as the outputs print it ([`whipple_front::format::number`]); a NaN or an infinity
+/// is an error (no result is printed as one).
 pub fn number(x: f64) -> Result<String> {
-    if !x.is_finite() {
-        bail!("a computed result is not a finite number ({x})");
-    }
-    // Print negative zero as 0: it carries no meaning in a table of results.
-    // Very large and very small magnitudes in exponent form (also shortest round-trip).
-    if x != 0.0 && (x.abs() >= 1e16 || x.abs() < 1e-5) {
-        return Ok(format!("{x:e}"));
-    }
-    Ok(format!("{}", if x == 0.0 { 0.0 } else { x }))
+    whipple_front::format::number(x)
+        .ok_or_else(|| anyhow!("a computed result is not a finite number ({x})"))
 }
 
 /// Parses `START:STOP:STEP` into three finite numbers.

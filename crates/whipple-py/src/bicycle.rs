@@ -67,7 +67,7 @@ impl NativeBicycle {
                 what: "format",
                 rule: format!(
                     "unknown format `{name}` (known: {})",
-                    io::FORMATS.map(|(_, n, _)| n).join(", ")
+                    whipple_front::formats::names()
                 ),
             }),
             None => Format::detect(file_name, text),
@@ -221,7 +221,7 @@ impl NativeBicycle {
                 what: "format",
                 rule: format!(
                     "unknown format `{format}` (known: {})",
-                    io::FORMATS.map(|(_, n, _)| n).join(", ")
+                    whipple_front::formats::names()
                 ),
             })
             .py_err(py)?;

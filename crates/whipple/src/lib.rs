@@ -46,7 +46,7 @@
 //! | what can go wrong | [`Error`] |
 //!
 //! Words: *validate* means checking input against rules ([`BenchmarkParameters::validate`],
-//! [`SimulationRequest::validate`], [`Integrator::validate`]); comparing one model with another
+//! [`SimulationSettings::validate`], [`Integrator::validate`]); comparing one model with another
 //! is *compare* ([`compare_with_linear`]). Settings structs are named `…Settings`
 //! ([`SimulationSettings`], [`StudySettings`], `ProjectionSettings`, `Dopri5Settings`, …), each
 //! with a `Default`. The benchmark bicycle is [`BenchmarkParameters::meijaard2007`]; every
@@ -312,15 +312,6 @@ pub use nonlinear::simulate;
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub use nonlinear::SimulationSettings;
-
-/// A simulation as a person asks for it (degrees as typed), checked by one set of rules.
-///
-/// ```
-/// let (initial, settings) = whipple::SimulationRequest::new(4.6, 5.0).validate()?;
-/// assert_eq!((initial.speed, settings.duration), (4.6, 5.0));
-/// # Ok::<(), whipple::Error>(())
-/// ```
-pub use nonlinear::SimulationRequest;
 
 /// The result of [`simulate`]: samples, outcome, counts.
 ///

@@ -33,7 +33,7 @@
 //! | `reference.rs` | the dense 45 × 45 reference solve that checks [`Model::forward`] |
 //! | `projection.rs` | positions and velocities back onto the constraints |
 //! | `reduced.rs` | the model on the linear model's state [φ, δ, φ̇, δ̇] and in spin-free speeds |
-//! | `settings.rs`, `outcome.rs`, `simulate.rs`, `expression.rs` | a simulation's rules, its results, the run itself, rider torques as expressions |
+//! | `settings.rs`, `outcome.rs`, `simulate.rs`, `expression.rs` | a simulation's settings and bounds, its results, the run itself, rider torques as expressions |
 
 mod assembly;
 mod bodies;
@@ -72,8 +72,8 @@ pub use outcome::{Outcome, Progress, RunExtremes, Sample, Simulation, Wheel};
 pub use projection::{accepted_residual, ProjectionMethod, ProjectionReport, ProjectionSettings};
 pub use reduced::{FullStateField, LeanSteerField};
 pub use settings::{
-    samples_kept, IntegratorKind, ProgressFn, SimulationRequest, SimulationSettings, TorqueFn,
-    TorqueInput, DEFAULT_FALL_ANGLE_DEG, MAX_SAMPLES, MAX_STEPS,
+    samples_kept, ProgressFn, SimulationSettings, TorqueFn, DEFAULT_FALL_ANGLE, MAX_SAMPLES,
+    MAX_STEPS,
 };
 pub use simulate::{check_rk4_step, fastest_mode, simulate, MAX_ENERGY_DRIFT};
 pub use state::{BodyPose, State, StateView, COORDINATES, LEAN, PITCH, SPEEDS, STATE_LEN, YAW};
