@@ -12,7 +12,7 @@
 //!   the library's parameter table's);
 //! - [`message`]: the library's errors in the words of the options the user gave;
 //! - [`formats`]: the parameter file formats as help texts list them, from the library's list;
-//! - [`format`]: numbers as results print them (numbers in messages are the library's).
+//! - [`format`](mod@format): numbers as results print them (numbers in messages are the library's).
 //!
 //! ```
 //! use whipple_front::simulation::SimulationRequest;

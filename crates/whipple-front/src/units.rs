@@ -1,9 +1,8 @@
 //! Units as people type and read them. Inside the library every quantity is SI and every angle
 //! in radians; a front end takes an angle in degrees where its name says so (`_deg`) and prints
-//! a unit as people write it (`kg m²`). What unit a parameter has is the library's parameter
-//! table's ([`whipple::parameters::table`]); this module only converts and spells.
-
-use whipple::parameters::table::ANGLE_UNIT;
+//! a unit as people write it (`kg m²`). What unit a parameter has, and whether it is an angle,
+//! is the library's parameter table's ([`whipple::parameters::table`],
+//! [`whipple::analysis::design::Parameter::is_angle`]); this module only converts and spells.
 
 /// The suffix of a name whose value is given in degrees (`lean_deg`, `head_angle_deg`).
 pub const DEGREES_SUFFIX: &str = "_deg";
@@ -49,11 +48,6 @@ pub fn display(unit: &'static str) -> &'static str {
     }
 }
 
-/// Whether a unit of the table is an angle's (the ones a front end may take in degrees).
-pub fn is_angle(unit: &str) -> bool {
-    unit == ANGLE_UNIT
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -78,6 +72,5 @@ mod tests {
         assert_eq!(display("m/s^2"), "m/s²");
         assert_eq!(display("m"), "m");
         assert_eq!(display("rad"), "rad");
-        assert!(is_angle("rad") && !is_angle("m"));
     }
 }
