@@ -280,14 +280,20 @@ fn permission_bits(_meta: &fs::Metadata) -> u32 {
 struct Pending {
     temporaries: Vec<(PathBuf, String)>,
     directories: Vec<PathBuf>,
-    inputs: Vec<PathBuf>,
 }
 
 static PENDING: std::sync::Mutex<Pending> = std::sync::Mutex::new(Pending {
     temporaries: Vec::new(),
     directories: Vec::new(),
-    inputs: Vec::new(),
 });
+
+thread_local! {
+    /// The parameter files read by the run on this thread. A run of the command is one call of
+    /// `main_with_args`, which reads its inputs and checks its outputs on the calling thread;
+    /// runs on other threads of the same process (the Python package's) keep lists of their
+    /// own, so one run's start never forgets another's inputs.
+    static INPUTS: std::cell::RefCell<Vec<PathBuf>> = const { std::cell::RefCell::new(Vec::new()) };
+}
 
 fn pending() -> std::sync::MutexGuard<'static, Pending> {
     PENDING
@@ -295,21 +301,21 @@ fn pending() -> std::sync::MutexGuard<'static, Pending> {
         .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
-/// Forgets the inputs of an earlier run (the Python package runs the command in-process).
+/// Forgets the inputs of an earlier run on this thread (the Python package runs the command
+/// in-process).
 pub fn begin_run() {
-    pending().inputs.clear();
+    INPUTS.with_borrow_mut(Vec::clear);
 }
 
 /// Records a parameter file read by this run: no output may be written onto it.
 pub fn register_input(path: &Path) {
     let resolved = fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
-    pending().inputs.push(resolved);
+    INPUTS.with_borrow_mut(|inputs| inputs.push(resolved));
 }
 
 /// Whether `path` (an output's destination) is a file this run read.
 fn is_input(path: &Path) -> Option<PathBuf> {
-    let inputs = pending().inputs.clone();
-    inputs.into_iter().find(|input| same_file(input, path))
+    INPUTS.with_borrow(|inputs| inputs.iter().find(|input| same_file(input, path)).cloned())
 }
 
 #[cfg(unix)]

@@ -78,3 +78,72 @@ fn concurrent_runs_keep_their_own_options() {
         }
     });
 }
+
+/// A run that would write its output onto the file it reads is refused, however many runs start
+/// beside it in the same process (a run's start forgets only its own thread's inputs).
+#[test]
+fn concurrent_runs_keep_their_own_inputs() {
+    let dir = scratch("in_process_inputs");
+    let input = dir.join("bike.toml");
+    let wrote = whipple_cli::main_with_args([
+        "whipple",
+        "convert",
+        "--bike",
+        "benchmark",
+        "--to",
+        "toml",
+        "--out",
+        &input.to_string_lossy(),
+    ]);
+    assert_eq!(wrote, 0);
+    let input = input.to_string_lossy().into_owned();
+    const ROUNDS: usize = 200;
+    let barrier = Barrier::new(2);
+    thread::scope(|scope| {
+        let onto_input = scope.spawn(|| {
+            let mut wrong = Vec::new();
+            for round in 0..ROUNDS {
+                let args = [
+                    "whipple", "convert", "--bike", &input, "--to", "toml", "--out", &input,
+                ];
+                barrier.wait();
+                let status = whipple_cli::main_with_args(args);
+                if status != 1 {
+                    wrong.push(round);
+                }
+            }
+            wrong
+        });
+        let beside = scope.spawn(|| {
+            let mut wrong = Vec::new();
+            for round in 0..ROUNDS {
+                let out = dir.join(format!("beside-{round}.toml"));
+                let out = out.to_string_lossy().into_owned();
+                let args = [
+                    "whipple",
+                    "convert",
+                    "--bike",
+                    "benchmark",
+                    "--to",
+                    "toml",
+                    "--out",
+                    &out,
+                ];
+                barrier.wait();
+                if whipple_cli::main_with_args(args) != 0 {
+                    wrong.push(round);
+                }
+            }
+            wrong
+        });
+        let onto_input = onto_input.join().expect("a run never panics");
+        assert!(
+            onto_input.is_empty(),
+            "rounds that wrote onto their input: {onto_input:?}"
+        );
+        assert_eq!(
+            beside.join().expect("a run never panics"),
+            Vec::<usize>::new()
+        );
+    });
+}
