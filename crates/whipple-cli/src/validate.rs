@@ -17,7 +17,7 @@ use whipple::advanced::eigen::Complex64;
 use whipple::advanced::sweep;
 use whipple_report::{line_plot, xy_log_plot, Dash, Figure, Marker, Series, XyPlotOptions};
 
-use crate::bike::{load, LoadedBike};
+use crate::bike::{load, LoadedBike, RunContext};
 use crate::output::{self, number, parse_triple, Finished, ReportDir};
 
 /// Which linearizations to compare with the linear model.
@@ -41,13 +41,14 @@ pub enum ValidateFormat {
 }
 
 pub fn validate(
+    cx: &RunContext,
     arg: &str,
     speeds: &str,
     choice: MethodChoice,
     format: ValidateFormat,
     report: Option<&Path>,
 ) -> Result<()> {
-    let bike = load(arg)?;
+    let bike = load(cx, arg)?;
     let (start, stop, step) = parse_triple(speeds, "--speeds")?;
     let count = sweep::SpeedGrid::new(start, stop, step)
         .context("--speeds")?

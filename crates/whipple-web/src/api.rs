@@ -565,11 +565,15 @@ async fn parse_file(
                         StatusCode::UNPROCESSABLE_ENTITY,
                         "invalid_request",
                         format!(
-                        "unknown format `{}` (formats: toml, json, m, bp-txt, hc-txt, yaml, auto)",
-                        whipple::advanced::shorten(&request.format, 40)
-                    ),
+                            "unknown format `{}` (formats: {}, auto)",
+                            whipple::advanced::shorten(&request.format, 40),
+                            whipple_front::formats::names()
+                        ),
                     )
-                    .at("format", "one of toml, json, m, bp-txt, hc-txt, yaml, auto")
+                    .at(
+                        "format",
+                        format!("one of {}, auto", whipple_front::formats::names()),
+                    )
                 })?
             };
             let bike = io::parse(&request.text, format)?;

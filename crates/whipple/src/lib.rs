@@ -56,7 +56,7 @@
 //! | what can go wrong | [`Error`] |
 //!
 //! Words: *validate* means checking input against rules ([`BenchmarkParameters::validate`],
-//! [`advanced::nonlinear::SimulationRequest::validate`]); comparing one model with another is
+//! [`SimulationSettings::validate`]); comparing one model with another is
 //! *compare* ([`advanced::comparison::compare_with_linear`]). Settings structs are named
 //! `…Settings`, each with a `Default`. The benchmark bicycle is
 //! [`BenchmarkParameters::meijaard2007`]; every named bicycle, that one included, is also found by
@@ -322,7 +322,7 @@ pub mod advanced {
     #[doc = "Design studies over one or two parameters."]
     pub mod design {
         pub use crate::analysis::design::{
-            Axis, DesignRow, DesignStatus, Parameter, Shard, StudyOptions,
+            Axis, DesignRow, DesignStatus, Parameter, Shard, StudyOptions, MAX_AXIS_POINTS,
         };
     }
     #[doc = "Eigenvalues and eigenvectors of the linear model at one speed."]
@@ -356,7 +356,7 @@ pub mod advanced {
         /// assert!(Integrator::Rk4 { dt: 0.0 }.validate().is_err());
         /// ```
         pub use crate::integrate::Integrator;
-        pub use crate::integrate::{Dopri5Settings, OdeSystem, Stepper};
+        pub use crate::integrate::{Dopri5Settings, OdeSystem, Stepper, DEFAULT_DT, DEFAULT_RTOL};
     }
     #[doc = "Parameter files from and to text: TOML, JSON, JBike6's `.m`, BicycleParameters' and HumanControl's `.txt`, YAML."]
     pub mod io {
@@ -449,19 +449,11 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::nonlinear::Simulation;
-        /// A simulation as a person asks for it (degrees as typed), checked by one set of rules.
-        ///
-        /// ```
-        /// let (initial, settings) = whipple::advanced::nonlinear::SimulationRequest::new(4.6, 5.0).validate()?;
-        /// assert_eq!((initial.speed, settings.duration), (4.6, 5.0));
-        /// # Ok::<(), whipple::Error>(())
-        /// ```
-        pub use crate::nonlinear::SimulationRequest;
         pub use crate::nonlinear::{
-            check_rk4_step, fastest_mode, ContactForce, Inputs, IntegratorKind, Progress,
+            check_rk4_step, fastest_mode, samples_kept, ContactForce, Inputs, Progress,
             ProjectionMethod, ProjectionSettings, State, StateView, TorqueExpression, TorqueFn,
-            TorqueInput, Wheel, BODY_NAMES, FRONT_WHEEL, MAX_EXPRESSION_DEPTH,
-            MAX_EXPRESSION_LENGTH, REAR_FRAME, REAR_WHEEL, STATE_LEN,
+            Wheel, BODY_NAMES, DEFAULT_FALL_ANGLE, FRONT_WHEEL, MAX_EXPRESSION_DEPTH,
+            MAX_EXPRESSION_LENGTH, MAX_SAMPLES, MAX_STEPS, REAR_FRAME, REAR_WHEEL, STATE_LEN,
         };
     }
     #[doc = "Bicycle descriptions: the benchmark and JBike6 forms, checks and their notices."]
