@@ -234,10 +234,10 @@ pub use nonlinear::SimulationSettings;
 /// in order, computed in parallel).
 ///
 /// ```
-/// use whipple::advanced::design::{Axis, Shard, StudyOptions};
+/// use whipple::advanced::design::{Axis, Parameter, Shard, StudyOptions};
 /// use whipple::{presets, Study};
 /// let bike = presets::find("benchmark")?.bicycle();
-/// let x = Axis::parse("trail=0.05:0.1:3", &bike)?;
+/// let x = Axis::new(Parameter::Benchmark("c".into()), 0.05, 0.1, 3)?; // trail c [m]
 /// let study = Study::new(bike, x, None, StudyOptions::default())?;
 /// let mut rows = Vec::new();
 /// study.run(Shard::WHOLE, &Default::default(), |chunk| { rows.extend_from_slice(chunk); Ok(()) })?;
