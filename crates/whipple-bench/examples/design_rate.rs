@@ -5,7 +5,7 @@
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
-use whipple::advanced::design::{Shard, StudyOptions};
+use whipple::advanced::design::{Shard, StudySettings};
 use whipple::presets;
 use whipple::Study;
 use whipple_front::design::AxisSpec;
@@ -30,7 +30,7 @@ fn main() -> Result<(), whipple::Error> {
             .build_global()
             .ok();
     }
-    let study = Study::new(bike, x, Some(y), StudyOptions::default())?;
+    let study = Study::new(bike, x, Some(y), StudySettings::default())?;
     let stop = AtomicBool::new(false);
     let start = Instant::now();
     let mut stable = 0u64;

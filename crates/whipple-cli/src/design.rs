@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use anyhow::{anyhow, bail, Context, Result};
 use rayon::prelude::*;
-use whipple::advanced::design::{DesignRow, DesignStatus, Parameter, Shard, StudyOptions};
+use whipple::advanced::design::{DesignRow, DesignStatus, Parameter, Shard, StudySettings};
 use whipple_front::design::{AxisSpec, DesignStudy};
 use whipple_report::{design_map, design_study, MapData, StudyData};
 
@@ -323,7 +323,7 @@ pub fn run(cx: &RunContext, args: &DesignArgs<'_>) -> Result<()> {
     if args.quantity == Quantity::MaxReal && args.speed.is_none() && !speed_axis {
         bail!("--quantity max-real needs --speed V (or an axis named speed)");
     }
-    let options = StudyOptions {
+    let options = StudySettings {
         range: (lo, hi),
         speed: args.speed,
         double_root: args.double_root || args.quantity == Quantity::DoubleRootSpeed,

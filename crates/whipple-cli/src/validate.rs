@@ -10,8 +10,8 @@ use anyhow::{Context, Result};
 use clap::ValueEnum;
 use serde_json::json;
 use whipple::advanced::comparison::{
-    capsize_spike, compare_with_linear, double_root_conditioning, ComparisonSweep, Linearization,
-    LinearizationSweep, StudySettings, MAX_COMPARED_SPEEDS,
+    capsize_spike, compare_with_linear, double_root_conditioning, ComparisonSettings,
+    ComparisonSweep, Linearization, LinearizationSweep, MAX_COMPARED_SPEEDS,
 };
 use whipple::advanced::eigen::Complex64;
 use whipple::advanced::sweep;
@@ -73,7 +73,7 @@ pub fn validate(
     let report_dir = report
         .map(|dir| ReportDir::prepare("--report", dir))
         .transpose()?;
-    let study = StudySettings::default();
+    let study = ComparisonSettings::default();
     // One run per method, so that each is timed on its own.
     let mut timings = Vec::new();
     let mut result: Option<ComparisonSweep> = None;

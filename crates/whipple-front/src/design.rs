@@ -8,7 +8,7 @@
 
 use serde::ser::SerializeStruct;
 use serde::{Serialize, Serializer};
-use whipple::advanced::design::{Axis, Parameter, StudyOptions, MAX_AXIS_POINTS};
+use whipple::advanced::design::{Axis, Parameter, StudySettings, MAX_AXIS_POINTS};
 use whipple::advanced::parameters::Description;
 use whipple::Study;
 use whipple::{Bicycle, Error, Result};
@@ -189,7 +189,7 @@ impl DesignStudy {
         base: Bicycle,
         x: AxisSpec,
         y: Option<AxisSpec>,
-        options: StudyOptions,
+        options: StudySettings,
     ) -> Result<DesignStudy> {
         // The options' rules come first, then the names, then the size (in that order the
         // library checked them when it held the names).
@@ -215,13 +215,13 @@ impl DesignStudy {
     /// parameter of the bicycle ([`Study::base_point`]).
     ///
     /// ```
-    /// use whipple::advanced::design::StudyOptions;
+    /// use whipple::advanced::design::StudySettings;
     /// use whipple::presets;
     /// use whipple_front::design::{AxisSpec, DesignStudy};
     /// let bike = presets::find("benchmark")?.bicycle(); // λ = π/10: a head angle of 72°
     /// let x = AxisSpec::parse("trail=0:0.2:5", &bike)?;
     /// let y = AxisSpec::parse("head_angle_deg=60:80:5", &bike)?;
-    /// let study = DesignStudy::new(bike, x, Some(y), StudyOptions::default())?;
+    /// let study = DesignStudy::new(bike, x, Some(y), StudySettings::default())?;
     /// let (c, head) = study.base_point();
     /// assert_eq!(c, Some(0.08));
     /// assert!((head.unwrap_or(0.0) - 72.0).abs() < 1e-12);
@@ -408,7 +408,7 @@ mod tests {
             benchmark.clone(),
             x.clone(),
             Some(x.clone()),
-            StudyOptions::default(),
+            StudySettings::default(),
         ) {
             Err(Error::InvalidArgument { what: "axis", rule }) => {
                 assert_eq!(rule, "x and y both vary `trail`")
@@ -416,7 +416,7 @@ mod tests {
             other => panic!("{other:?}"),
         }
         let v = AxisSpec::parse("speed=1:10:3", &benchmark)?;
-        let study = DesignStudy::new(benchmark, x, Some(v), StudyOptions::default())?;
+        let study = DesignStudy::new(benchmark, x, Some(v), StudySettings::default())?;
         assert_eq!(study.base_point(), (Some(0.08), None));
         Ok(())
     }

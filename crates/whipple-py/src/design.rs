@@ -6,7 +6,7 @@
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use whipple::advanced::design::{DesignRow, DesignStatus, Shard, StudyOptions};
+use whipple::advanced::design::{DesignRow, DesignStatus, Shard, StudySettings};
 use whipple_front::design::{AxisSpec, DesignStudy};
 
 use crate::bicycle::NativeBicycle;
@@ -179,7 +179,7 @@ impl NativeBicycle {
             .transpose()
             .py_err(py)?;
         let shard = Shard::parse(&format!("{shard_index}/{shard_count}")).py_err(py)?;
-        let options = StudyOptions {
+        let options = StudySettings {
             range: (lo, hi),
             speed,
             double_root,

@@ -9,7 +9,7 @@ use axum::response::Response;
 use axum::Json;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use whipple::advanced::design::{DesignStatus, Shard, StudyOptions};
+use whipple::advanced::design::{DesignStatus, Shard, StudySettings};
 use whipple::advanced::modes::Mode;
 use whipple_front::design::{AxisSpec, DesignStudy};
 
@@ -88,7 +88,7 @@ pub(crate) async fn design_at(
         Some(spec) => Some(axis(spec, &bike, "y")?),
         None => None,
     };
-    let study = DesignStudy::new(bike, x, y, StudyOptions::default())?;
+    let study = DesignStudy::new(bike, x, y, StudySettings::default())?;
     let design = study.study.bicycle_at(request.index)?;
     Ok(Json(serde_json::json!({ "bike": bicycle_json(&design)? })))
 }
@@ -118,7 +118,7 @@ async fn run(
         None => None,
     };
     let (lo, hi) = SpeedRange::bounds(request.range);
-    let options = StudyOptions {
+    let options = StudySettings {
         range: (lo, hi),
         speed: request.speed,
         double_root: request.double_root,

@@ -234,11 +234,11 @@ pub use nonlinear::SimulationSettings;
 /// in order, computed in parallel).
 ///
 /// ```
-/// use whipple::advanced::design::{Axis, Parameter, Shard, StudyOptions};
+/// use whipple::advanced::design::{Axis, Parameter, Shard, StudySettings};
 /// use whipple::{presets, Study};
 /// let bike = presets::find("benchmark")?.bicycle();
 /// let x = Axis::new(Parameter::Benchmark("c".into()), 0.05, 0.1, 3)?; // trail c [m]
-/// let study = Study::new(bike, x, None, StudyOptions::default())?;
+/// let study = Study::new(bike, x, None, StudySettings::default())?;
 /// let mut rows = Vec::new();
 /// study.run(Shard::WHOLE, &Default::default(), |chunk| { rows.extend_from_slice(chunk); Ok(()) })?;
 /// assert_eq!(rows.len(), 3);
@@ -268,10 +268,10 @@ pub mod advanced {
         /// Compares the non-linear model with the linear one over a sweep of speeds.
         ///
         /// ```
-        /// use whipple::advanced::comparison::{compare_with_linear, Linearization, StudySettings};
+        /// use whipple::advanced::comparison::{compare_with_linear, Linearization, ComparisonSettings};
         /// use whipple::BenchmarkParameters;
         /// let sweep = compare_with_linear(&BenchmarkParameters::meijaard2007(), &[2.0, 6.0],
-        ///                                 &[Linearization::Exact], &StudySettings::default())?;
+        ///                                 &[Linearization::Exact], &ComparisonSettings::default())?;
         /// assert!(sweep.methods[0].max_abs_diff.iter().all(|d| *d < 1e-11));
         /// # Ok::<(), whipple::Error>(())
         /// ```
@@ -289,13 +289,19 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::analysis::comparison::lean_steer_matrix;
+        /// Settings of the study's finite-difference linearization.
+        ///
+        /// ```
+        /// assert!(whipple::advanced::comparison::ComparisonSettings::default().projection.is_some());
+        /// ```
+        pub use crate::analysis::comparison::ComparisonSettings;
         /// The result of [`compare_with_linear`].
         ///
         /// ```
-        /// use whipple::advanced::comparison::{compare_with_linear, ComparisonSweep, Linearization, StudySettings};
+        /// use whipple::advanced::comparison::{compare_with_linear, ComparisonSweep, Linearization, ComparisonSettings};
         /// use whipple::BenchmarkParameters;
         /// let sweep: ComparisonSweep = compare_with_linear(&BenchmarkParameters::meijaard2007(), &[5.0],
-        ///                                                  &[Linearization::Exact], &StudySettings::default())?;
+        ///                                                  &[Linearization::Exact], &ComparisonSettings::default())?;
         /// assert!(sweep.method(Linearization::Exact).is_some());
         /// # Ok::<(), whipple::Error>(())
         /// ```
@@ -306,12 +312,6 @@ pub mod advanced {
         /// assert_eq!(whipple::advanced::comparison::Linearization::Exact.name(), "ad");
         /// ```
         pub use crate::analysis::comparison::Linearization;
-        /// Settings of the study's finite-difference linearization.
-        ///
-        /// ```
-        /// assert!(whipple::advanced::comparison::StudySettings::default().projection.is_some());
-        /// ```
-        pub use crate::analysis::comparison::StudySettings;
         pub use crate::analysis::comparison::{
             capsize_spike, compare_with_linear_until, double_root_conditioning,
             full_state_jacobian, full_state_jacobian_fd, general_eigenvalues,
@@ -322,7 +322,7 @@ pub mod advanced {
     #[doc = "Design studies over one or two parameters."]
     pub mod design {
         pub use crate::analysis::design::{
-            Axis, DesignRow, DesignStatus, Parameter, Shard, StudyOptions, MAX_AXIS_POINTS,
+            Axis, DesignRow, DesignStatus, Parameter, Shard, StudySettings, MAX_AXIS_POINTS,
         };
     }
     #[doc = "Eigenvalues and eigenvectors of the linear model at one speed."]

@@ -5,7 +5,7 @@ use std::sync::atomic::AtomicBool;
 
 use approx::assert_abs_diff_eq;
 use proptest::prelude::*;
-use whipple::advanced::design::{Axis, DesignStatus, Parameter, Shard, StudyOptions};
+use whipple::advanced::design::{Axis, DesignStatus, Parameter, Shard, StudySettings};
 use whipple::advanced::parameters::Description;
 use whipple::advanced::{eigen, stability};
 use whipple::presets;
@@ -331,7 +331,7 @@ proptest! {
         let bike = presets::find("benchmark").map_err(|e| TestCaseError::fail(e.to_string()))?.bicycle();
         let x = Axis::new(Parameter::Benchmark("c".into()), trail.0, trail.1, 41).map_err(|e| TestCaseError::fail(e.to_string()))?;
         let y = Axis::scaled(Parameter::Benchmark("head_angle".into()), head.0, head.1, 31, 1f64.to_radians()).map_err(|e| TestCaseError::fail(e.to_string()))?;
-        let study = Study::new(bike, x.clone(), Some(y.clone()), StudyOptions::default()).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let study = Study::new(bike, x.clone(), Some(y.clone()), StudySettings::default()).map_err(|e| TestCaseError::fail(e.to_string()))?;
         for (ix, iy) in cells {
             let row = study.design((iy * 41 + ix) as u64);
             let mut b = BenchmarkParameters::meijaard2007();
@@ -364,7 +364,7 @@ fn shards_reassemble_the_whole_study() -> Result<()> {
     assert!(matches!(bike.description, Description::Jbike6(_)));
     let x = Axis::new(Parameter::Jbike6("trail".into()), 0.0, 0.2, 23)?;
     let y = Axis::new(Parameter::Jbike6("ycmrider".into()), 0.8, 1.4, 7)?;
-    let study = Study::new(bike, x, Some(y), StudyOptions::default())?;
+    let study = Study::new(bike, x, Some(y), StudySettings::default())?;
     let stop = AtomicBool::new(false);
     let mut whole = Vec::new();
     study.run(Shard::WHOLE, &stop, |rows| {
@@ -391,7 +391,7 @@ fn a_designs_bicycle_is_the_one_computed() -> Result<()> {
     let bike: Bicycle = presets::find("schwinn-crown")?.bicycle();
     let x = Axis::new(Parameter::Jbike6("trail".into()), 0.0, 0.2, 23)?;
     let y = Axis::new(Parameter::Jbike6("ycmrider".into()), 0.8, 1.4, 7)?;
-    let study = Study::new(bike, x, Some(y), StudyOptions::default())?;
+    let study = Study::new(bike, x, Some(y), StudySettings::default())?;
     let index = 5 * 23 + 9;
     let design = study.bicycle_at(index)?;
     let Description::Jbike6(j) = &design.description else {
@@ -432,7 +432,7 @@ fn jbike6_parameters_take_toml_paths() -> Result<()> {
             bike.clone(),
             Axis::new(parameter, start, stop, count)?,
             None,
-            StudyOptions::default(),
+            StudySettings::default(),
         )?;
         let speeds: Vec<Option<f64>> = (0..study.len())
             .map(|i| study.design(i).quantities.weave_speed)
@@ -451,7 +451,7 @@ fn jbike6_parameters_take_toml_paths() -> Result<()> {
 fn invalid_designs_are_marked_not_computed() -> Result<()> {
     let bike = presets::find("benchmark")?.bicycle();
     let x = Axis::new(Parameter::Benchmark("mB".into()), -10.0, 10.0, 3)?;
-    let study = Study::new(bike, x, None, StudyOptions::default())?;
+    let study = Study::new(bike, x, None, StudySettings::default())?;
     let first = study.design(0);
     assert_eq!(first.status, DesignStatus::Invalid);
     assert!(first.reason.as_deref().unwrap_or("").contains("mB"));

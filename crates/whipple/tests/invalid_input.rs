@@ -373,12 +373,12 @@ fn overlapping_wheels_are_warned_about() {
 #[test]
 fn the_comparison_takes_at_most_its_limit_of_speeds_and_stops_when_asked() {
     use std::sync::atomic::AtomicBool;
-    use whipple::advanced::comparison::{compare_with_linear, Linearization, StudySettings};
+    use whipple::advanced::comparison::{compare_with_linear, ComparisonSettings, Linearization};
     use whipple::advanced::comparison::{compare_with_linear_until, MAX_COMPARED_SPEEDS};
 
     let speeds = vec![1.0; MAX_COMPARED_SPEEDS + 1];
     let methods = [Linearization::Exact];
-    let settings = StudySettings::default();
+    let settings = ComparisonSettings::default();
     match compare_with_linear(&benchmark(), &speeds, &methods, &settings) {
         Err(Error::LimitExceeded { what, rule }) => {
             assert_eq!(what, "speeds");

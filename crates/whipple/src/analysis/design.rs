@@ -285,7 +285,7 @@ pub enum DesignStatus {
 /// `None` where the quantity does not exist (no weave speed in the range) or was not asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct DesignQuantities {
-    /// v_d (only when [`StudyOptions::double_root`] is set).
+    /// v_d (only when [`StudySettings::double_root`] is set).
     pub double_root_speed: Option<f64>,
     /// v_w.
     pub weave_speed: Option<f64>,
@@ -350,7 +350,7 @@ pub struct DesignRow {
 
 /// What to compute for every design.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct StudyOptions {
+pub struct StudySettings {
     /// The speed range the critical speeds and stable ranges are read on [m/s] (default
     /// [0, +∞)).
     pub range: (f64, f64),
@@ -360,9 +360,9 @@ pub struct StudyOptions {
     pub double_root: bool,
 }
 
-impl Default for StudyOptions {
+impl Default for StudySettings {
     fn default() -> Self {
-        StudyOptions {
+        StudySettings {
             range: (0.0, f64::INFINITY),
             speed: None,
             double_root: false,
@@ -381,7 +381,7 @@ pub struct Study {
     /// The second axis, for a map.
     pub y: Option<Axis>,
     /// What to compute.
-    pub options: StudyOptions,
+    pub options: StudySettings,
 }
 
 /// Designs computed per parallel chunk (bounds memory: a few MB of rows).
@@ -391,19 +391,19 @@ impl Study {
     /// A study; checks the sizes and the options.
     ///
     /// ```
-    /// use whipple::advanced::design::{Axis, Parameter, StudyOptions, Shard};
+    /// use whipple::advanced::design::{Axis, Parameter, StudySettings, Shard};
     /// use whipple::Study;
     /// use whipple::presets;
     /// let bike = presets::find("benchmark")?.bicycle();
     /// let x = Axis::new(Parameter::Benchmark("c".into()), 0.0, 0.2, 5)?;
-    /// let study = Study::new(bike, x, None, StudyOptions::default())?;
+    /// let study = Study::new(bike, x, None, StudySettings::default())?;
     /// let mut rows = Vec::new();
     /// study.run(Shard::WHOLE, &Default::default(), |chunk| { rows.extend_from_slice(chunk); Ok(()) })?;
     /// assert_eq!(rows.len(), 5);
     /// assert!((rows[2].quantities.weave_speed.unwrap() - 4.6).abs() < 1.0); // c = 0.1 m
     /// # Ok::<(), whipple::Error>(())
     /// ```
-    pub fn new(base: Bicycle, x: Axis, y: Option<Axis>, options: StudyOptions) -> Result<Study> {
+    pub fn new(base: Bicycle, x: Axis, y: Option<Axis>, options: StudySettings) -> Result<Study> {
         stability::check_range(options.range.0, options.range.1)?;
         if let Some(v) = options.speed {
             if !v.is_finite() {
@@ -445,13 +445,13 @@ impl Study {
     /// that the base gives two values: `wheel_radius` of a bicycle with wheels of two sizes).
     ///
     /// ```
-    /// use whipple::advanced::design::{Axis, Parameter, StudyOptions};
+    /// use whipple::advanced::design::{Axis, Parameter, StudySettings};
     /// use whipple::Study;
     /// use whipple::presets;
     /// let bike = presets::find("benchmark")?.bicycle(); // rR = 0.3 m, rF = 0.35 m
     /// let trail = Axis::new(Parameter::Benchmark("c".into()), 0.0, 0.2, 5)?;
     /// let radius = Axis::new(Parameter::Benchmark("wheel_radius".into()), 0.2, 0.5, 4)?;
-    /// let study = Study::new(bike, trail, Some(radius), StudyOptions::default())?;
+    /// let study = Study::new(bike, trail, Some(radius), StudySettings::default())?;
     /// assert_eq!(study.base_point(), (Some(0.08), None));
     /// # Ok::<(), whipple::Error>(())
     /// ```
@@ -610,7 +610,7 @@ fn canonical_of(d: &Description) -> Result<Canonical> {
 pub(crate) fn analyse(
     description: &Description,
     speed: Option<f64>,
-    options: &StudyOptions,
+    options: &StudySettings,
 ) -> Result<DesignQuantities> {
     let canonical = canonical_of(description)?;
     let sp = SpeedPolynomials::new(&canonical)?;
