@@ -16,6 +16,22 @@ fn data(path: &str) -> String {
     )
 }
 
+/// The benchmark bicycle written as TOML at `path`, by the command run in-process.
+fn write_benchmark_toml(path: &std::path::Path) {
+    let out = path.to_string_lossy();
+    let args = [
+        "whipple",
+        "convert",
+        "--bike",
+        "benchmark",
+        "--to",
+        "toml",
+        "--out",
+        &out,
+    ];
+    assert_eq!(whipple_cli::main_with_args(args), 0);
+}
+
 /// Four kinds of run, started together many times: `--strict` on a bicycle with a warning
 /// (refused: 1), the same without it (0), a TOML file named `.json` read with `--bike-format
 /// toml` (0), the same without the option (a JSON syntax error: 1). A run that saw another's
@@ -26,17 +42,7 @@ fn concurrent_runs_keep_their_own_options() {
     let warned = data("bicycleparameters/BrowserBenchmark.txt");
     let toml_as_json = dir.join("bike.json");
     let benchmark_toml = dir.join("benchmark.toml");
-    let wrote = whipple_cli::main_with_args([
-        "whipple",
-        "convert",
-        "--bike",
-        "benchmark",
-        "--to",
-        "toml",
-        "--out",
-        &benchmark_toml.to_string_lossy(),
-    ]);
-    assert_eq!(wrote, 0);
+    write_benchmark_toml(&benchmark_toml);
     std::fs::copy(&benchmark_toml, &toml_as_json).expect("scratch file");
     let toml_as_json = toml_as_json.to_string_lossy().into_owned();
 
@@ -85,17 +91,7 @@ fn concurrent_runs_keep_their_own_options() {
 fn concurrent_runs_keep_their_own_inputs() {
     let dir = scratch("in_process_inputs");
     let input = dir.join("bike.toml");
-    let wrote = whipple_cli::main_with_args([
-        "whipple",
-        "convert",
-        "--bike",
-        "benchmark",
-        "--to",
-        "toml",
-        "--out",
-        &input.to_string_lossy(),
-    ]);
-    assert_eq!(wrote, 0);
+    write_benchmark_toml(&input);
     let input = input.to_string_lossy().into_owned();
     const ROUNDS: usize = 200;
     let barrier = Barrier::new(2);
