@@ -8,16 +8,17 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use whipple::advanced::design::{Axis, StudyOptions};
+use whipple::advanced::design::StudySettings;
 use whipple::presets;
 use whipple::Canonical;
 use whipple::Study;
+use whipple_front::design::AxisSpec;
 
 fn study(preset: &str, x: &str, y: &str) -> Study {
     let bike = presets::find(preset).expect("a preset").bicycle();
-    let x = Axis::parse(x, &bike).expect("a valid axis");
-    let y = Axis::parse(y, &bike).expect("a valid axis");
-    Study::new(bike, x, Some(y), StudyOptions::default()).expect("a valid study")
+    let x = AxisSpec::parse(x, &bike).expect("a valid axis").axis;
+    let y = AxisSpec::parse(y, &bike).expect("a valid axis").axis;
+    Study::new(bike, x, Some(y), StudySettings::default()).expect("a valid study")
 }
 
 fn benches(c: &mut Criterion) {

@@ -6,7 +6,7 @@ use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use whipple::advanced::comparison::{
-    full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix, StudySettings,
+    full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix, ComparisonSettings,
 };
 use whipple::BenchmarkParameters;
 use whipple::Model;
@@ -20,7 +20,7 @@ fn linearize(c: &mut Criterion) {
     c.bench_function("exact full-state Jacobian (48x48, dual numbers)", |b| {
         b.iter(|| full_state_jacobian(black_box(&model), black_box(4.6)))
     });
-    let study = StudySettings::default();
+    let study = ComparisonSettings::default();
     c.bench_function("study finite-difference Jacobian (48x48)", |b| {
         b.iter(|| full_state_jacobian_fd(black_box(&model), black_box(4.6), &study))
     });

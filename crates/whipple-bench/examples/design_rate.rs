@@ -5,29 +5,32 @@
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
-use whipple::advanced::design::{Axis, Shard, StudyOptions};
+use whipple::advanced::design::{Shard, StudySettings};
 use whipple::presets;
 use whipple::Study;
+use whipple_front::design::AxisSpec;
 
 fn main() -> Result<(), whipple::Error> {
     let args: Vec<String> = std::env::args().collect();
     let bike = presets::find(args.get(1).map_or("benchmark", |s| s.as_str()))?.bicycle();
-    let x = Axis::parse(
+    let x = AxisSpec::parse(
         args.get(2).map_or("trail=0:0.2:1000", |s| s.as_str()),
         &bike,
-    )?;
-    let y = Axis::parse(
+    )?
+    .axis;
+    let y = AxisSpec::parse(
         args.get(3)
             .map_or("head_angle_deg=60:80:1000", |s| s.as_str()),
         &bike,
-    )?;
+    )?
+    .axis;
     if let Some(t) = args.get(4).and_then(|t| t.parse::<usize>().ok()) {
         rayon::ThreadPoolBuilder::new()
             .num_threads(t)
             .build_global()
             .ok();
     }
-    let study = Study::new(bike, x, Some(y), StudyOptions::default())?;
+    let study = Study::new(bike, x, Some(y), StudySettings::default())?;
     let stop = AtomicBool::new(false);
     let start = Instant::now();
     let mut stable = 0u64;

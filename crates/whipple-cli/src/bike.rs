@@ -1,37 +1,24 @@
-//! `--bike`: a preset name or a parameter file path; `--format` and `--strict` (global options).
+//! `--bike`: a preset name or a parameter file path; `--bike-format` and `--strict` (global
+//! options, carried by [`RunContext`]).
 
 use std::path::Path;
-use std::sync::{Mutex, PoisonError};
 
 use anyhow::{anyhow, bail, Context, Result};
-use whipple::advanced::io::{parse, Format, MAX_FILE_BYTES};
+use whipple::advanced::io::{parse, Format, FORMATS, MAX_FILE_BYTES};
 use whipple::advanced::parameters::Notice;
 use whipple::presets;
 use whipple::{BenchmarkParameters, Bicycle, Error};
 
-/// The global reading options, set from the command line by each run of the command.
+/// What one run of the command was asked besides its subcommand: the global options, passed
+/// to every command that reads a bicycle. Never kept in a global: runs may share a process
+/// (the Python package runs the command in the interpreter's process, from any thread), each
+/// with its own options.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct ReadOptions {
-    /// `--format`: the file format, overriding extension and content.
+pub struct RunContext {
+    /// `--bike-format`: the file format, overriding extension and content.
     pub format: Option<Format>,
     /// `--strict`: warnings are errors.
     pub strict: bool,
-}
-
-// A Mutex, not a OnceLock: the command may run more than once in one process (the Python
-// package calls `main_with_args` in the interpreter's process), each run with its own options.
-static OPTIONS: Mutex<ReadOptions> = Mutex::new(ReadOptions {
-    format: None,
-    strict: false,
-});
-
-/// Sets the reading options (from `main_with_args`, before the command runs).
-pub fn set_options(options: ReadOptions) {
-    *OPTIONS.lock().unwrap_or_else(PoisonError::into_inner) = options;
-}
-
-fn options() -> ReadOptions {
-    *OPTIONS.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 /// A loaded bicycle, checked, with a label for titles and messages and its warnings and notes
@@ -54,9 +41,9 @@ impl LoadedBike {
 /// working directory gets a note saying which was taken), otherwise a file whose format
 /// follows from `--format`, its extension or its content. Warnings and notes go to standard
 /// error; with `--strict` a warning is an error.
-pub fn load(arg: &str) -> Result<LoadedBike> {
+pub fn load(cx: &RunContext, arg: &str) -> Result<LoadedBike> {
     let path = Path::new(arg);
-    let opts = options();
+    let opts = cx;
     let preset = presets::find(arg).ok();
     let (label, bicycle) = match preset {
         Some(preset) if opts.format.is_none() || !path.is_file() => {
@@ -73,13 +60,16 @@ pub fn load(arg: &str) -> Result<LoadedBike> {
             let looks_like_file = path.is_file()
                 || opts.format.is_some()
                 || extension.is_some_and(|e| {
-                    Format::from_extension(e).is_some() || e.eq_ignore_ascii_case("txt")
+                    FORMATS
+                        .iter()
+                        .any(|(f, _, _)| f.extensions().iter().any(|x| x.eq_ignore_ascii_case(e)))
                 });
             if !looks_like_file {
                 let known = presets::names();
+                let extensions = whipple_front::formats::extensions_in_words();
                 bail!(
                     "unknown preset `{arg}` (known presets: {known}), and no parameter file of \
-                     that name (--bike takes a preset name or a .toml, .json, .m, .txt or .yml file)"
+                     that name (--bike takes a preset name or a {extensions} file)"
                 );
             }
             let bytes = read_capped(path)?;
@@ -112,6 +102,7 @@ pub fn load(arg: &str) -> Result<LoadedBike> {
     let checked = if opts.strict {
         checked
             .strict()
+            .map_err(|e| anyhow!(whipple_front::message::message(&e)))
             .with_context(|| format!("checking the parameters of {label} (--strict)"))?
     } else {
         checked

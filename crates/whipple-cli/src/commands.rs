@@ -15,7 +15,7 @@ use whipple::presets::PRESETS;
 use whipple::Bicycle;
 use whipple::Canonical;
 
-use crate::bike::{load, LoadedBike};
+use crate::bike::{load, LoadedBike, RunContext};
 use crate::output::{self, number, parse_triple, print_stdout, Sink, Target};
 use crate::{FileFormat, TableFormat, TextFormat};
 
@@ -49,8 +49,8 @@ pub fn presets() -> Result<()> {
     emit(&text, None)
 }
 
-pub fn show(arg: &str) -> Result<()> {
-    let bike = load(arg)?;
+pub fn show(cx: &RunContext, arg: &str) -> Result<()> {
+    let bike = load(cx, arg)?;
     let mut text = String::new();
     writeln!(text, "{}", bike.label)?;
     if let Some(source) = &bike.bicycle.source {
@@ -100,9 +100,15 @@ pub fn show(arg: &str) -> Result<()> {
     emit(&text, None)
 }
 
-pub fn convert(arg: &str, to: FileFormat, keep_form: bool, out: Option<&Path>) -> Result<()> {
+pub fn convert(
+    cx: &RunContext,
+    arg: &str,
+    to: FileFormat,
+    keep_form: bool,
+    out: Option<&Path>,
+) -> Result<()> {
     let out = out.map(|p| Target::check("--out", p)).transpose()?;
-    let bike = load(arg)?;
+    let bike = load(cx, arg)?;
     let bicycle = if keep_form {
         bike.bicycle.clone()
     } else {
@@ -147,8 +153,8 @@ fn matrix_json(m: &Matrix2<f64>) -> Result<serde_json::Value> {
     Ok(json!([[m[(0, 0)], m[(0, 1)]], [m[(1, 0)], m[(1, 1)]]]))
 }
 
-pub fn matrices(arg: &str, jbike6: bool, format: TextFormat) -> Result<()> {
-    let bike = load(arg)?;
+pub fn matrices(cx: &RunContext, arg: &str, jbike6: bool, format: TextFormat) -> Result<()> {
+    let bike = load(cx, arg)?;
     let c = canonical(&bike)?;
     let (names, mats, note) = if jbike6 {
         let [m, c1, k0, k2] = c.jbike6_convention();
@@ -198,6 +204,7 @@ pub fn matrices(arg: &str, jbike6: bool, format: TextFormat) -> Result<()> {
 }
 
 pub fn eig(
+    cx: &RunContext,
     arg: &str,
     speeds: &str,
     format: TableFormat,
@@ -206,7 +213,7 @@ pub fn eig(
     sigma_bands: bool,
 ) -> Result<()> {
     let (out, plot) = output::table_and_plot(out, plot)?;
-    let bike = load(arg)?;
+    let bike = load(cx, arg)?;
     let (start, stop, step) = parse_triple(speeds, "--speeds")?;
     let grid = sweep::SpeedGrid::new(start, stop, step).context("--speeds")?;
     if grid.len() > MAX_EIG_SPEEDS {
@@ -321,8 +328,8 @@ pub fn eig(
     output::commit(finished)
 }
 
-pub fn modes(arg: &str, speed: f64, format: TextFormat) -> Result<()> {
-    let bike = load(arg)?;
+pub fn modes(cx: &RunContext, arg: &str, speed: f64, format: TextFormat) -> Result<()> {
+    let bike = load(cx, arg)?;
     if !speed.is_finite() {
         bail!("--speed must be a finite number, got {speed:?}");
     }
@@ -487,6 +494,7 @@ fn eigen_sigma_bands(bike: &LoadedBike, s: &whipple::EigenSweep) -> Result<Vec<[
 }
 
 pub fn sensitivity(
+    cx: &RunContext,
     arg: &str,
     speed: Option<f64>,
     range: &str,
@@ -495,7 +503,7 @@ pub fn sensitivity(
     plot: Option<&Path>,
 ) -> Result<()> {
     let (out, plot) = output::table_and_plot(out, plot)?;
-    let bike = load(arg)?;
+    let bike = load(cx, arg)?;
     let (lo, hi) = crate::speeds::parse_range(range, "--range")?;
     if lo >= hi {
         bail!("--range: LO ({lo}) must be less than HI ({hi})");
@@ -644,10 +652,10 @@ pub fn sensitivity(
     output::commit(finished)
 }
 
-pub fn draw(arg: &str, out: &Path) -> Result<()> {
+pub fn draw(cx: &RunContext, arg: &str, out: &Path) -> Result<()> {
     whipple_report::Format::from_path(out).with_context(|| format!("--out {}", out.display()))?;
     let target = Target::check("--out", out)?;
-    let bike = load(arg)?;
+    let bike = load(cx, arg)?;
     crate::figures::side_view(&bike, &target)
 }
 

@@ -9,11 +9,11 @@ use std::time::Instant;
 
 use anyhow::{anyhow, bail, Context, Result};
 use rayon::prelude::*;
-use whipple::advanced::design::{Axis, DesignRow, DesignStatus, Parameter, Shard, StudyOptions};
-use whipple::Study;
+use whipple::advanced::design::{DesignRow, DesignStatus, Parameter, Shard, StudySettings};
+use whipple_front::design::{AxisSpec, DesignStudy};
 use whipple_report::{design_map, design_study, MapData, StudyData};
 
-use crate::bike::load;
+use crate::bike::{load, RunContext};
 use crate::output;
 use crate::speeds::parse_range;
 
@@ -234,15 +234,16 @@ fn csv_row(out: &mut String, r: &DesignRow, two: bool) {
 }
 
 /// The study's description line (a JSON object), identical in every shard.
-fn study_line(label: &str, study: &Study) -> Result<String> {
+fn study_line(label: &str, study: &DesignStudy) -> Result<String> {
+    let options = &study.study.options;
     let doc = serde_json::json!({
         "bike": label,
         "x": study.x,
         "y": study.y,
-        "range": [finite(study.options.range.0), finite(study.options.range.1)],
-        "speed": study.options.speed,
-        "double_root": study.options.double_root,
-        "designs": study.len(),
+        "range": [finite(options.range.0), finite(options.range.1)],
+        "speed": options.speed,
+        "double_root": options.double_root,
+        "designs": study.study.len(),
     });
     Ok(serde_json::to_string(&doc)?)
 }
@@ -251,7 +252,7 @@ fn finite(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)
 }
 
-fn header(study: &Study) -> String {
+fn header(study: &DesignStudy) -> String {
     let mut h = String::from("index,ix,");
     if let Some(y) = &study.y {
         let _ = write!(h, "iy,{},{},", csv_text(&study.x.name), csv_text(&y.name));
@@ -301,33 +302,33 @@ fn progress(total: u64) -> indicatif::ProgressBar {
 }
 
 /// Runs `map` (two axes) or `study` (one).
-pub fn run(args: &DesignArgs<'_>) -> Result<()> {
-    let bike = load(args.bike)?;
-    let x = Axis::parse(args.x, &bike.bicycle).context(if args.y.is_some() {
+pub fn run(cx: &RunContext, args: &DesignArgs<'_>) -> Result<()> {
+    let bike = load(cx, args.bike)?;
+    let x = AxisSpec::parse(args.x, &bike.bicycle).context(if args.y.is_some() {
         "--x"
     } else {
         "--vary"
     })?;
     let y = match args.y {
-        Some(spec) => Some(Axis::parse(spec, &bike.bicycle).context("--y")?),
+        Some(spec) => Some(AxisSpec::parse(spec, &bike.bicycle).context("--y")?),
         None => None,
     };
     let (lo, hi) = match args.range {
         Some(text) => parse_range(text, "--range")?,
         None => (0.0, f64::INFINITY),
     };
-    let speed_axis = matches!(x.parameter, Parameter::Speed)
+    let speed_axis = x.axis.parameter == Parameter::Speed
         || y.as_ref()
-            .is_some_and(|a| matches!(a.parameter, Parameter::Speed));
+            .is_some_and(|a| a.axis.parameter == Parameter::Speed);
     if args.quantity == Quantity::MaxReal && args.speed.is_none() && !speed_axis {
         bail!("--quantity max-real needs --speed V (or an axis named speed)");
     }
-    let options = StudyOptions {
+    let options = StudySettings {
         range: (lo, hi),
         speed: args.speed,
         double_root: args.double_root || args.quantity == Quantity::DoubleRootSpeed,
     };
-    let study = Study::new(bike.bicycle.clone(), x, y, options)
+    let study = DesignStudy::new(bike.bicycle.clone(), x, y, options)
         .with_context(|| format!("the study of {}", bike.label))?;
     let shard = match args.shard {
         Some(text) => Shard::parse(text).context("--shard")?,
@@ -336,10 +337,10 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
     if args.plot.is_some() && shard != Shard::WHOLE {
         bail!("--plot draws a whole study: plot after `whipple merge` (merge --plot)");
     }
-    if args.plot.is_some() && study.len() > MAX_PLOT_CELLS {
+    if args.plot.is_some() && study.study.len() > MAX_PLOT_CELLS {
         bail!(
             "--plot holds every design in memory: at most {MAX_PLOT_CELLS} designs, the study has {}",
-            study.len()
+            study.study.len()
         );
     }
     if let Some(p) = args.plot {
@@ -359,7 +360,7 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
     let label = bike.label.clone();
     let two = study.y.is_some();
     let mut sink = Sink::open(args.out, args.plot.is_some())?;
-    let (first, end) = shard.indices(study.len());
+    let (first, end) = shard.indices(study.study.len());
     let mut head = String::new();
     match args.format {
         DesignFormat::Csv => {
@@ -402,7 +403,7 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
     let mut written = 0u64;
     let mut text = String::new();
     let mut closed = false;
-    let result = study.run(shard, stop, |rows| {
+    let result = study.study.run(shard, stop, |rows| {
         text.clear();
         if args.format == DesignFormat::Csv {
             // Formatting the numbers costs as much as computing the designs: it runs on every
@@ -481,8 +482,8 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
                 title: format!("{label}: {}", args.quantity.label()),
                 x_label: axis_label(&study.x),
                 y_label: axis_label(y),
-                x: (study.x.start, study.x.stop, study.x.count),
-                y: (y.start, y.stop, y.count),
+                x: (study.x.axis.start, study.x.axis.stop, study.x.axis.count),
+                y: (y.axis.start, y.axis.stop, y.axis.count),
                 values,
                 stable,
                 quantity: args.quantity.label().to_string(),
@@ -498,13 +499,13 @@ pub fn run(args: &DesignArgs<'_>) -> Result<()> {
     Ok(())
 }
 
-fn axis_label(a: &Axis) -> String {
+fn axis_label(a: &AxisSpec) -> String {
     format!("{} [{}]", a.name, a.unit())
 }
 
 fn study_figure(
     label: &str,
-    x: &Axis,
+    x: &AxisSpec,
     rows: &[DesignRow],
     base: Option<f64>,
 ) -> Result<whipple_report::Figure> {

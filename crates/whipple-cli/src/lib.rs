@@ -27,9 +27,19 @@ use clap::{Parser, Subcommand, ValueEnum};
 struct Cli {
     #[command(subcommand)]
     command: Command,
-    /// Format of the --bike file: toml, json, m, bp-txt (BicycleParameters <Name>Benchmark.txt),
-    /// hc-txt (HumanControl <Name>Par.txt), yaml; by default from the extension and content.
-    #[arg(long = "bike-format", global = true, value_parser = parse_format)]
+    #[arg(
+        long = "bike-format",
+        global = true,
+        value_parser = parse_format,
+        help = format!(
+            "Format of the --bike file: {}; by default from the extension and content",
+            whipple_front::formats::names()
+        ),
+        long_help = format!(
+            "Format of the --bike file; by default from the extension and content.\n{}",
+            whipple_front::formats::described()
+        ),
+    )]
     format_in: Option<whipple::advanced::io::Format>,
     /// Treat the bicycle's warnings (a triangle inequality broken by a measured tensor, ...) as
     /// errors.
@@ -41,11 +51,7 @@ fn parse_format(name: &str) -> Result<whipple::advanced::io::Format, String> {
     whipple::advanced::io::Format::from_name(name).ok_or_else(|| {
         format!(
             "unknown format `{name}` (formats: {})",
-            whipple::advanced::io::FORMATS
-                .iter()
-                .map(|(_, n, _)| *n)
-                .collect::<Vec<_>>()
-                .join(", ")
+            whipple_front::formats::names()
         )
     })
 }
@@ -95,14 +101,12 @@ enum Command {
     Presets,
     /// Show a bicycle's parameters (JBike6 form where known, and the benchmark form).
     Show {
-        /// A preset name or a parameter file (.toml, .json, .m).
-        #[arg(long)]
+        #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
     },
     /// Write a bicycle as a parameter file in the benchmark form (JBike6 bodies combined).
     Convert {
-        /// A preset name or a parameter file (.toml, .json, .m).
-        #[arg(long)]
+        #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
         /// Output format.
         #[arg(long, value_enum)]
@@ -116,8 +120,7 @@ enum Command {
     },
     /// The linearized model's matrices M, C1, K0, K2.
     Matrices {
-        /// A preset name or a parameter file (.toml, .json, .m).
-        #[arg(long)]
+        #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
         /// JBike6's convention: steer left positive, g inside K0.
         #[arg(long)]
@@ -128,8 +131,7 @@ enum Command {
     },
     /// Eigenvalues against forward speed, modes tracked and labelled.
     Eig {
-        /// A preset name or a parameter file (.toml, .json, .m).
-        #[arg(long)]
+        #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
         /// Speeds START:STOP:STEP in m/s, both ends included.
         #[arg(long, default_value = "0:10:0.1", allow_hyphen_values = true)]
@@ -150,8 +152,7 @@ enum Command {
     },
     /// Eigenvalues and mode shapes (eigenvectors) at one speed.
     Modes {
-        /// A preset name or a parameter file (.toml, .json, .m).
-        #[arg(long)]
+        #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
         /// Forward speed in m/s.
         #[arg(long, allow_hyphen_values = true)]
@@ -162,8 +163,7 @@ enum Command {
     },
     /// Critical speeds (double root, weave, capsize) and the self-stable speed ranges.
     Speeds {
-        /// A preset name or a parameter file (.toml, .json, .m).
-        #[arg(long)]
+        #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
         /// Speed range LO:HI in m/s; HI may be `inf` (default: every speed v >= 0).
         #[arg(long, allow_hyphen_values = true)]
@@ -174,8 +174,7 @@ enum Command {
     },
     /// A map of one quantity over two parameters of a bicycle (a design study).
     Map {
-        /// A preset name or a parameter file (.toml, .json, .m).
-        #[arg(long)]
+        #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
         /// The x axis: NAME=START:STOP:COUNT (for example trail=0:0.2:401; `_deg` for degrees).
         #[arg(long, allow_hyphen_values = true)]
@@ -194,8 +193,7 @@ enum Command {
     },
     /// The classic one-parameter study: critical speeds against one parameter.
     Study {
-        /// A preset name or a parameter file (.toml, .json, .m).
-        #[arg(long)]
+        #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
         /// The parameter: NAME=START:STOP:COUNT (for example trail=-0.1:0.3:401).
         #[arg(long, allow_hyphen_values = true)]
@@ -224,8 +222,7 @@ enum Command {
     /// parameter of the bicycle's own form (and, at --speed, of the weave's and capsize's real
     /// parts): derivatives and elasticities.
     Sensitivity {
-        /// A preset name or a parameter file.
-        #[arg(long)]
+        #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
         /// Also the derivatives of the weave's and capsize's real parts at this speed [m/s].
         #[arg(long)]
@@ -266,8 +263,7 @@ enum Command {
     /// Linearize the non-linear model about upright straight running and compare its
     /// eigenvalues with the linear model's, speed by speed (the JBike6 benchmark).
     Validate {
-        /// A preset name or a parameter file (.toml, .json, .m).
-        #[arg(long)]
+        #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
         /// Speeds START:STOP:STEP in m/s, both ends included.
         #[arg(long, default_value = "0:10:0.01", allow_hyphen_values = true)]
@@ -284,8 +280,7 @@ enum Command {
     },
     /// JBike6's stylized side view of the bicycle.
     Draw {
-        /// A preset name or a parameter file (.toml, .json, .m).
-        #[arg(long)]
+        #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
         /// The drawing, .svg or .png.
         #[arg(long)]
@@ -316,24 +311,24 @@ where
         // directory is left, and the message says what was not written.
         interrupt::install();
     }
-    bike::set_options(bike::ReadOptions {
+    let cx = &bike::RunContext {
         format: cli.format_in,
         strict: cli.strict,
-    });
+    };
     let result = match cli.command {
         Command::Presets => commands::presets(),
-        Command::Show { bike } => commands::show(&bike),
+        Command::Show { bike } => commands::show(cx, &bike),
         Command::Convert {
             bike,
             to,
             keep_form,
             out,
-        } => commands::convert(&bike, to, keep_form, out.as_deref()),
+        } => commands::convert(cx, &bike, to, keep_form, out.as_deref()),
         Command::Matrices {
             bike,
             jbike6,
             format,
-        } => commands::matrices(&bike, jbike6, format),
+        } => commands::matrices(cx, &bike, jbike6, format),
         Command::Eig {
             bike,
             speeds,
@@ -342,6 +337,7 @@ where
             plot,
             sigma_bands,
         } => commands::eig(
+            cx,
             &bike,
             &speeds,
             format,
@@ -357,6 +353,7 @@ where
             out,
             plot,
         } => commands::sensitivity(
+            cx,
             &bike,
             speed,
             &range,
@@ -368,13 +365,13 @@ where
             bike,
             speed,
             format,
-        } => commands::modes(&bike, speed, format),
+        } => commands::modes(cx, &bike, speed, format),
         Command::Speeds {
             bike,
             range,
             format,
-        } => speeds::speeds(&bike, range.as_deref(), format),
-        Command::Draw { bike, out } => commands::draw(&bike, &out),
+        } => speeds::speeds(cx, &bike, range.as_deref(), format),
+        Command::Draw { bike, out } => commands::draw(cx, &bike, &out),
         Command::Map {
             bike,
             x,
@@ -382,28 +379,34 @@ where
             quantity,
             options,
             plot,
-        } => design::run(&options.args(&bike, &x, Some(&y), quantity, plot.as_deref())),
+        } => design::run(
+            cx,
+            &options.args(&bike, &x, Some(&y), quantity, plot.as_deref()),
+        ),
         Command::Study {
             bike,
             vary,
             options,
             plot,
-        } => design::run(&options.args(
-            &bike,
-            &vary,
-            None,
-            design::Quantity::StableWidth,
-            plot.as_deref(),
-        )),
+        } => design::run(
+            cx,
+            &options.args(
+                &bike,
+                &vary,
+                None,
+                design::Quantity::StableWidth,
+                plot.as_deref(),
+            ),
+        ),
         Command::Merge {
             files,
             out,
             plot,
             quantity,
         } => design::merge(&files, out.as_deref(), plot.as_deref(), quantity),
-        Command::Simulate(args) => simulate::run(&args),
-        Command::Turn(args) => turns::turn(&args),
-        Command::Turns(args) => turns::turns(&args),
+        Command::Simulate(args) => simulate::run(cx, &args),
+        Command::Turn(args) => turns::turn(cx, &args),
+        Command::Turns(args) => turns::turns(cx, &args),
         Command::Serve {
             port,
             address,
@@ -415,7 +418,7 @@ where
             method,
             format,
             report,
-        } => validate::validate(&bike, &speeds, method, format, report.as_deref()),
+        } => validate::validate(cx, &bike, &speeds, method, format, report.as_deref()),
     };
     match result {
         Ok(()) => 0,

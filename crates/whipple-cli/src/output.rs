@@ -32,7 +32,7 @@ use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use anyhow::{bail, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 
 /// How many symbolic links are followed before giving up (as the kernel's `ELOOP`).
 const MAX_LINKS: usize = 40;
@@ -280,14 +280,20 @@ fn permission_bits(_meta: &fs::Metadata) -> u32 {
 struct Pending {
     temporaries: Vec<(PathBuf, String)>,
     directories: Vec<PathBuf>,
-    inputs: Vec<PathBuf>,
 }
 
 static PENDING: std::sync::Mutex<Pending> = std::sync::Mutex::new(Pending {
     temporaries: Vec::new(),
     directories: Vec::new(),
-    inputs: Vec::new(),
 });
+
+thread_local! {
+    /// The parameter files read by the run on this thread. A run of the command is one call of
+    /// `main_with_args`, which reads its inputs and checks its outputs on the calling thread;
+    /// runs on other threads of the same process (the Python package's) keep lists of their
+    /// own, so one run's start never forgets another's inputs.
+    static INPUTS: std::cell::RefCell<Vec<PathBuf>> = const { std::cell::RefCell::new(Vec::new()) };
+}
 
 fn pending() -> std::sync::MutexGuard<'static, Pending> {
     PENDING
@@ -295,21 +301,21 @@ fn pending() -> std::sync::MutexGuard<'static, Pending> {
         .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
-/// Forgets the inputs of an earlier run (the Python package runs the command in-process).
+/// Forgets the inputs of an earlier run on this thread (the Python package runs the command
+/// in-process).
 pub fn begin_run() {
-    pending().inputs.clear();
+    INPUTS.with_borrow_mut(Vec::clear);
 }
 
 /// Records a parameter file read by this run: no output may be written onto it.
 pub fn register_input(path: &Path) {
     let resolved = fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
-    pending().inputs.push(resolved);
+    INPUTS.with_borrow_mut(|inputs| inputs.push(resolved));
 }
 
 /// Whether `path` (an output's destination) is a file this run read.
 fn is_input(path: &Path) -> Option<PathBuf> {
-    let inputs = pending().inputs.clone();
-    inputs.into_iter().find(|input| same_file(input, path))
+    INPUTS.with_borrow(|inputs| inputs.iter().find(|input| same_file(input, path)).cloned())
 }
 
 #[cfg(unix)]
@@ -776,17 +782,11 @@ pub fn print_stdout(text: &str) -> Result<()> {
     }
 }
 
-/// Shortest text that reads back as the same f64; refuses NaN and infinities.
+/// A result as the outputs print it ([`whipple_front::format::number`]); a NaN or an infinity
+/// is an error (no result is printed as one).
 pub fn number(x: f64) -> Result<String> {
-    if !x.is_finite() {
-        bail!("a computed result is not a finite number ({x})");
-    }
-    // Print negative zero as 0: it carries no meaning in a table of results.
-    // Very large and very small magnitudes in exponent form (also shortest round-trip).
-    if x != 0.0 && (x.abs() >= 1e16 || x.abs() < 1e-5) {
-        return Ok(format!("{x:e}"));
-    }
-    Ok(format!("{}", if x == 0.0 { 0.0 } else { x }))
+    whipple_front::format::number(x)
+        .ok_or_else(|| anyhow!("a computed result is not a finite number ({x})"))
 }
 
 /// Parses `START:STOP:STEP` into three finite numbers.

@@ -9,14 +9,14 @@ use std::time::{Duration, Instant};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use serde_json::json;
-use whipple::advanced::nonlinear::{
-    IntegratorKind, Outcome, Sample, Simulation, SimulationRequest, TorqueInput,
-};
+use whipple::advanced::nonlinear::{Outcome, Sample, Simulation};
 use whipple::{simulate, InitialConditions, Model, SimulationSettings};
+use whipple_front::simulation::{IntegratorKind, SimulationRequest, TorqueInput};
+use whipple_front::units::degrees;
 
 use whipple::advanced::turns::{held_turn, Held, SteadyTurn, TurnSettings};
 
-use crate::bike::{load, LoadedBike};
+use crate::bike::{load, LoadedBike, RunContext};
 use crate::output::{self, number, Sink};
 use crate::TableFormat;
 
@@ -32,8 +32,7 @@ pub enum IntegratorChoice {
 /// Arguments of `whipple simulate`.
 #[derive(Args, Debug, Clone)]
 pub struct SimulateArgs {
-    /// A preset name or a parameter file (.toml, .json, .m).
-    #[arg(long)]
+    #[arg(long, help = whipple_front::formats::bike_help())]
     pub bike: String,
     /// Forward speed v in m/s.
     #[arg(long, allow_hyphen_values = true)]
@@ -147,8 +146,8 @@ fn settings(
     let mut request = request(args);
     if let Some(turn) = turn {
         request.speed = turn.hub_speed;
-        request.lean_deg = turn.lean.to_degrees();
-        request.steer_deg = turn.steer.to_degrees();
+        request.lean_deg = degrees(turn.lean);
+        request.steer_deg = degrees(turn.steer);
         if args.steer_torque.is_none() {
             request.steer_torque = TorqueInput::Constant(turn.steer_torque);
         }
@@ -374,13 +373,13 @@ fn plot(bike: &LoadedBike, args: &SimulateArgs, run: &Simulation, path: &Path) -
         .with_context(|| format!("drawing {}", path.display()))
 }
 
-pub fn run(args: &SimulateArgs) -> Result<()> {
+pub fn run(cx: &RunContext, args: &SimulateArgs) -> Result<()> {
     // The options' own rules first (before any file is read).
     settings(args, None)?;
     // Every output is checked before the work, and none is put in place unless all are written.
     let (out_target, plot_target) =
         output::table_and_plot(args.out.as_deref(), args.plot.as_deref())?;
-    let bike = load(&args.bike)?;
+    let bike = load(cx, &args.bike)?;
     let model = Model::new(&bike.benchmark)
         .with_context(|| format!("building the non-linear model of {}", bike.label))?;
     let turn = if args.from_turn {

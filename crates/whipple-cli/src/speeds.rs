@@ -9,7 +9,7 @@ use whipple::advanced::sensitivity;
 use whipple::advanced::sensitivity::CriticalSpeedsSigma;
 use whipple::CriticalSpeeds;
 
-use crate::bike::load;
+use crate::bike::{load, RunContext};
 use crate::commands::{emit, optional, with_sigma};
 use crate::output::number;
 use crate::TextFormat;
@@ -192,8 +192,8 @@ pub fn table(
     Ok(t)
 }
 
-pub fn speeds(arg: &str, range: Option<&str>, format: TextFormat) -> Result<()> {
-    let bike = load(arg)?;
+pub fn speeds(cx: &RunContext, arg: &str, range: Option<&str>, format: TextFormat) -> Result<()> {
+    let bike = load(cx, arg)?;
     let (lo, hi) = match range {
         Some(text) => parse_range(text, "--range")?,
         None => (0.0, f64::INFINITY),

@@ -12,7 +12,7 @@ use whipple::advanced::turns::{
 };
 use whipple::Model;
 
-use crate::bike::{load, LoadedBike};
+use crate::bike::{load, LoadedBike, RunContext};
 use crate::commands::emit;
 use crate::output::{number, table_and_plot};
 use crate::speeds::parse_range;
@@ -21,8 +21,7 @@ use crate::TextFormat;
 /// Arguments of `whipple turn`.
 #[derive(Args, Debug)]
 pub struct TurnArgs {
-    /// A preset name or a parameter file.
-    #[arg(long)]
+    #[arg(long, help = whipple_front::formats::bike_help())]
     pub bike: String,
     /// Speed of the rear contact in m/s.
     #[arg(long, allow_hyphen_values = true)]
@@ -47,8 +46,7 @@ pub struct TurnArgs {
 /// Arguments of `whipple turns`.
 #[derive(Args, Debug)]
 pub struct TurnsArgs {
-    /// A preset name or a parameter file.
-    #[arg(long)]
+    #[arg(long, help = whipple_front::formats::bike_help())]
     pub bike: String,
     /// Speeds traced, LO:HI in m/s (default 0:20).
     #[arg(long, allow_hyphen_values = true)]
@@ -73,9 +71,10 @@ fn deg(x: f64) -> Result<String> {
     fixed(x.to_degrees(), 4)
 }
 
+/// A finite result with `digits` decimals ([`whipple_front::format::fixed`]).
 fn fixed(x: f64, digits: usize) -> Result<String> {
     number(x)?;
-    Ok(format!("{x:.digits$}"))
+    Ok(whipple_front::format::fixed(x, digits))
 }
 
 fn radius_text(r: Option<f64>) -> Result<String> {
@@ -200,8 +199,8 @@ fn turn_json(turn: &SteadyTurn, stab: &Result<Stability, String>) -> Result<serd
     Ok(v)
 }
 
-pub fn turn(args: &TurnArgs) -> Result<()> {
-    let bike = load(&args.bike)?;
+pub fn turn(cx: &RunContext, args: &TurnArgs) -> Result<()> {
+    let bike = load(cx, &args.bike)?;
     let model = model_of(&bike)?;
     let settings = TurnSettings::default();
     let given = match (args.lean, args.steer, args.radius, args.hands_free) {
@@ -288,9 +287,9 @@ fn held_turn_mirror(model: &Model, t: &SteadyTurn, settings: &TurnSettings) -> R
 const HELD_LEANS_DEG: [f64; 4] = [0.0, 10.0, 20.0, 30.0];
 const HELD_SPEEDS: [f64; 3] = [3.0, 5.0, 7.0];
 
-pub fn turns(args: &TurnsArgs) -> Result<()> {
+pub fn turns(cx: &RunContext, args: &TurnsArgs) -> Result<()> {
     let (out, plot) = table_and_plot(args.out.as_deref(), args.plot.as_deref())?;
-    let bike = load(&args.bike)?;
+    let bike = load(cx, &args.bike)?;
     let model = model_of(&bike)?;
     let (lo, hi) = match &args.range {
         Some(text) => parse_range(text, "--range")?,

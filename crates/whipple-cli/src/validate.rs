@@ -10,14 +10,14 @@ use anyhow::{Context, Result};
 use clap::ValueEnum;
 use serde_json::json;
 use whipple::advanced::comparison::{
-    capsize_spike, compare_with_linear, double_root_conditioning, ComparisonSweep, Linearization,
-    LinearizationSweep, StudySettings, MAX_COMPARED_SPEEDS,
+    capsize_spike, compare_with_linear, double_root_conditioning, ComparisonSettings,
+    ComparisonSweep, Linearization, LinearizationSweep, MAX_COMPARED_SPEEDS,
 };
 use whipple::advanced::eigen::Complex64;
 use whipple::advanced::sweep;
 use whipple_report::{line_plot, xy_log_plot, Dash, Figure, Marker, Series, XyPlotOptions};
 
-use crate::bike::{load, LoadedBike};
+use crate::bike::{load, LoadedBike, RunContext};
 use crate::output::{self, number, parse_triple, Finished, ReportDir};
 
 /// Which linearizations to compare with the linear model.
@@ -41,13 +41,14 @@ pub enum ValidateFormat {
 }
 
 pub fn validate(
+    cx: &RunContext,
     arg: &str,
     speeds: &str,
     choice: MethodChoice,
     format: ValidateFormat,
     report: Option<&Path>,
 ) -> Result<()> {
-    let bike = load(arg)?;
+    let bike = load(cx, arg)?;
     let (start, stop, step) = parse_triple(speeds, "--speeds")?;
     let count = sweep::SpeedGrid::new(start, stop, step)
         .context("--speeds")?
@@ -72,7 +73,7 @@ pub fn validate(
     let report_dir = report
         .map(|dir| ReportDir::prepare("--report", dir))
         .transpose()?;
-    let study = StudySettings::default();
+    let study = ComparisonSettings::default();
     // One run per method, so that each is timed on its own.
     let mut timings = Vec::new();
     let mut result: Option<ComparisonSweep> = None;

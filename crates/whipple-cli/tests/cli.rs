@@ -3,6 +3,7 @@
 mod common;
 
 use common::{scratch, stderr_of_failure, stdout, whipple};
+use whipple_reference::meijaard2007 as published;
 
 #[test]
 fn presets_lists_every_preset_with_its_source() {
@@ -38,10 +39,13 @@ fn eig_csv_has_the_documented_header_and_published_values() {
     assert_eq!(rows.len(), 21);
     let at5 = &rows[10];
     assert_eq!(at5[0], 5.0);
-    assert!((at5[1] + 0.77534188219585).abs() < 1e-12);
-    assert!((at5[2] - 4.46486771378823).abs() < 1e-12);
-    assert!((at5[5] + 0.32286642900409).abs() < 1e-12);
-    assert!((at5[7] + 14.0783896927982).abs() < 1e-12);
+    // Meijaard et al. 2007, Table 2, at 5 m/s.
+    let (v, weave_re, weave_im, capsize, castering) = published::EIGENVALUES[4];
+    assert_eq!(v, 5.0);
+    assert!((at5[1] - weave_re).abs() < 1e-12);
+    assert!((at5[2] - weave_im).abs() < 1e-12);
+    assert!((at5[5] - capsize).abs() < 1e-12);
+    assert!((at5[7] - castering).abs() < 1e-12);
 }
 
 #[test]
@@ -100,9 +104,9 @@ fn speeds_json_has_the_documented_keys() {
         ]
     );
     let get = |k: &str| doc[k].as_f64().expect("a number");
-    assert!((get("double_root_speed") - 0.68428307889246).abs() < 1e-12);
-    assert!((get("weave_speed") - 4.29238253634111).abs() < 1e-12);
-    assert!((get("capsize_speed") - 6.02426201538837).abs() < 1e-12);
+    assert!((get("double_root_speed") - published::DOUBLE_ROOT_SPEED).abs() < 1e-12);
+    assert!((get("weave_speed") - published::WEAVE_SPEED).abs() < 1e-12);
+    assert!((get("capsize_speed") - published::CAPSIZE_SPEED).abs() < 1e-12);
     assert_eq!(doc["stable_speed_ranges"].as_array().map(Vec::len), Some(1));
 }
 

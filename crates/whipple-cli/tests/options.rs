@@ -1,4 +1,4 @@
-//! Issue 10, messages that name the option as the user wrote it: negative numbers reach our
+//! Messages that name the option as the user wrote it: negative numbers reach our
 //! checks (not clap's "unexpected argument '-1'"), and numbers in messages are short.
 
 mod common;
@@ -22,7 +22,7 @@ fn simulate_with(duration: &str, extra: &[&str]) -> String {
 }
 
 #[test]
-fn issue_10_negative_numbers_are_checked_and_named() {
+fn negative_numbers_are_checked_and_named() {
     for (extra, option) in [
         (&["--dt", "-1"][..], "--dt"),
         (&["--integrator", "adaptive", "--rtol", "-1"][..], "--rtol"),
@@ -37,7 +37,7 @@ fn issue_10_negative_numbers_are_checked_and_named() {
 }
 
 #[test]
-fn issue_10_modes_names_speed_and_keeps_numbers_short() {
+fn modes_names_speed_and_keeps_numbers_short() {
     let err = stderr_of_failure(&whipple(&[
         "modes",
         "--bike",
@@ -51,7 +51,7 @@ fn issue_10_modes_names_speed_and_keeps_numbers_short() {
 }
 
 #[test]
-fn issue_10_tiny_steps_are_shown_in_scientific_notation() {
+fn tiny_steps_are_shown_in_scientific_notation() {
     let err = simulate_with("1e-300", &["--dt", "1e-3"]);
     assert!(err.contains("--dt") && err.contains("1e-300"), "{err}");
     assert!(err.len() < 400, "{err}");
@@ -59,7 +59,7 @@ fn issue_10_tiny_steps_are_shown_in_scientific_notation() {
 
 /// `validate --speeds 0:1e5:0.01` was accepted and would have taken a day.
 #[test]
-fn issue_10_validate_refuses_sweeps_past_its_time_bound() {
+fn validate_refuses_sweeps_past_its_time_bound() {
     let err = stderr_of_failure(&whipple(&[
         "validate",
         "--bike",
@@ -74,7 +74,7 @@ fn issue_10_validate_refuses_sweeps_past_its_time_bound() {
 /// the preset is taken with a note saying so and how to name the file (`./benchmark`), which
 /// then reads the file.
 #[test]
-fn issue_10_a_file_named_like_a_preset_does_not_hide_it() {
+fn a_file_named_like_a_preset_does_not_hide_it() {
     let dir = common::scratch("preset-and-file");
     // The benchmark bicycle with a 0.5 m trail instead of 0.08 m: a different bicycle.
     let preset = whipple(&["convert", "--bike", "benchmark", "--to", "toml"]);
@@ -116,11 +116,11 @@ fn issue_10_a_file_named_like_a_preset_does_not_hide_it() {
     assert_eq!(trail(&out).as_deref(), Some("0.5"), "{out}");
 }
 
-/// Issue 26: this exact command reported `fell` with exit status 0 for a bicycle inside its
+/// This exact command reported `fell` with exit status 0 for a bicycle inside its
 /// self-stable range, the energy grown 326-fold. A step beyond RK4's stability bound for the
 /// fastest mode at the run's speed is an error naming the step to use, never an outcome.
 #[test]
-fn issue_26_a_step_too_large_is_an_error_naming_the_step_to_use() {
+fn a_step_too_large_is_an_error_naming_the_step_to_use() {
     let command = [
         "simulate",
         "--bike",

@@ -1,4 +1,4 @@
-//! Issue 10, outputs: every output is checked before the work, written whole or not at all,
+//! Outputs: every output is checked before the work, written whole or not at all,
 //! written through symbolic links and directly into devices, never replacing something that is
 //! not a regular file. The real binary, run as a user runs it.
 
@@ -17,7 +17,7 @@ fn eig_with(extra: &[&str]) -> std::process::Output {
 }
 
 #[test]
-fn issue_10_dev_full_is_an_error_naming_the_option() {
+fn dev_full_is_an_error_naming_the_option() {
     if fs::metadata("/dev/full").is_err() {
         return; // not a Linux machine
     }
@@ -32,7 +32,7 @@ fn issue_10_dev_full_is_an_error_naming_the_option() {
 }
 
 #[test]
-fn issue_10_dev_null_is_written_in_place_and_stays_a_device() {
+fn dev_null_is_written_in_place_and_stays_a_device() {
     use std::os::unix::fs::FileTypeExt;
     if fs::metadata("/dev/null").is_err() {
         return;
@@ -45,7 +45,7 @@ fn issue_10_dev_null_is_written_in_place_and_stays_a_device() {
 }
 
 #[test]
-fn issue_10_a_directory_as_out_is_refused_naming_out() {
+fn a_directory_as_out_is_refused_naming_out() {
     let dir = scratch("out-is-a-directory");
     let err = stderr_of_failure(&eig_with(&["--out", dir.to_str().expect("utf-8")]));
     assert!(
@@ -55,7 +55,7 @@ fn issue_10_a_directory_as_out_is_refused_naming_out() {
 }
 
 #[test]
-fn issue_10_a_missing_directory_is_refused_before_the_work() {
+fn a_missing_directory_is_refused_before_the_work() {
     let dir = scratch("missing-directory");
     let out = dir.join("old.csv");
     fs::write(&out, "old contents\n").expect("write");
@@ -74,7 +74,7 @@ fn issue_10_a_missing_directory_is_refused_before_the_work() {
 }
 
 #[test]
-fn issue_10_a_failing_run_leaves_the_old_file_intact() {
+fn a_failing_run_leaves_the_old_file_intact() {
     let dir = scratch("failing-run");
     let out = dir.join("old.csv");
     fs::write(&out, "old contents\n").expect("write");
@@ -99,7 +99,7 @@ fn issue_10_a_failing_run_leaves_the_old_file_intact() {
 }
 
 #[test]
-fn issue_10_a_symlink_stays_a_link_and_its_target_is_written() {
+fn a_symlink_stays_a_link_and_its_target_is_written() {
     let dir = scratch("symlink-out");
     let real = dir.join("real.csv");
     fs::write(&real, "old\n").expect("write");
@@ -120,7 +120,7 @@ fn issue_10_a_symlink_stays_a_link_and_its_target_is_written() {
 }
 
 #[test]
-fn issue_10_a_replaced_file_keeps_its_permissions() {
+fn a_replaced_file_keeps_its_permissions() {
     use std::os::unix::fs::PermissionsExt;
     let dir = scratch("permissions");
     let out = dir.join("eig.csv");
@@ -132,7 +132,7 @@ fn issue_10_a_replaced_file_keeps_its_permissions() {
 }
 
 #[test]
-fn issue_10_out_and_plot_naming_one_file_are_refused() {
+fn out_and_plot_naming_one_file_are_refused() {
     let dir = scratch("same-file");
     let path = dir.join("x.svg");
     let p = path.to_str().expect("utf-8");
@@ -143,7 +143,7 @@ fn issue_10_out_and_plot_naming_one_file_are_refused() {
 
 /// `validate --report` left a CSV and six PNGs behind when `summary.md` could not be written.
 #[test]
-fn issue_10_validate_report_is_whole_or_not_at_all() {
+fn validate_report_is_whole_or_not_at_all() {
     let dir = scratch("partial-report");
     let report = dir.join("report");
     fs::create_dir_all(report.join("summary.md")).expect("a directory in the way");
@@ -169,7 +169,7 @@ fn issue_10_validate_report_is_whole_or_not_at_all() {
 
 /// A report directory the command created is removed again when the command fails.
 #[test]
-fn issue_10_validate_report_into_a_missing_parent_is_refused_before_the_work() {
+fn validate_report_into_a_missing_parent_is_refused_before_the_work() {
     let dir = scratch("report-missing-parent");
     let report = dir.join("a").join("b");
     let err = stderr_of_failure(&whipple(&[
@@ -191,7 +191,7 @@ fn issue_10_validate_report_into_a_missing_parent_is_refused_before_the_work() {
 /// `simulate --duration 1e-4 --dt 1e-12` was accepted (1e8 steps) and grew towards ~25 GB: now
 /// refused by the bound on the work, which the message states in minutes.
 #[test]
-fn issue_10_simulate_refuses_runs_past_the_work_bound() {
+fn simulate_refuses_runs_past_the_work_bound() {
     let err = stderr_of_failure(&whipple(&[
         "simulate",
         "--bike",
@@ -209,7 +209,7 @@ fn issue_10_simulate_refuses_runs_past_the_work_bound() {
 /// 2000 s at 1 ms keeps 2·10⁶ samples, past the memory bound: refused naming `--every` and
 /// the thinning that fits; with `--every 2` the same run is within it (checked, not run).
 #[test]
-fn issue_10_simulate_keeps_at_most_the_memory_bound_of_samples() {
+fn simulate_keeps_at_most_the_memory_bound_of_samples() {
     let err = stderr_of_failure(&whipple(&[
         "simulate",
         "--bike",
@@ -240,7 +240,7 @@ fn issue_10_simulate_keeps_at_most_the_memory_bound_of_samples() {
 /// `--every N` keeps the first sample, one in N steps and the last, in every format; the
 /// summary's extremes are over every step (the same as an unthinned run's).
 #[test]
-fn issue_10_simulate_every_thins_the_samples() {
+fn simulate_every_thins_the_samples() {
     let run = |extra: &[&str]| {
         let mut args = vec![
             "simulate",
@@ -287,7 +287,7 @@ fn issue_10_simulate_every_thins_the_samples() {
 /// `whipple eig ... --plot eig.png | head -1` and the same for `simulate`: the table's reader
 /// going away ends only the table; the plot is still drawn and put in place.
 #[test]
-fn issue_10_a_closed_stdout_still_writes_the_plot() {
+fn a_closed_stdout_still_writes_the_plot() {
     let dir = scratch("closed-stdout-plot");
     for (name, args) in [
         (
@@ -325,7 +325,7 @@ fn issue_10_a_closed_stdout_still_writes_the_plot() {
 
 /// `simulate --out` and `--plot` are checked before the run and land together.
 #[test]
-fn issue_10_simulate_checks_its_outputs_before_the_run() {
+fn simulate_checks_its_outputs_before_the_run() {
     let dir = scratch("simulate-outputs");
     let out = dir.join("run.csv");
     let err = stderr_of_failure(&whipple(&[
@@ -347,7 +347,7 @@ fn issue_10_simulate_checks_its_outputs_before_the_run() {
 
 /// `whipple eig ... | head -1`: the reader going away ends the run quietly, with success.
 #[test]
-fn issue_10_a_closed_stdout_ends_quietly() {
+fn a_closed_stdout_ends_quietly() {
     let output =
         read_one_line_then_close(&["eig", "--bike", "benchmark", "--speeds", "0:1000:0.001"]);
     let err = String::from_utf8_lossy(&output.stderr);

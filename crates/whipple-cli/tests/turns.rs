@@ -156,11 +156,11 @@ fn simulate_from_a_turn_stays_on_it() {
     }
 }
 
-/// Issue 26: `turn --radius 1e200` said "a computed result is not a finite number (NaN)";
+/// `turn --radius 1e200` said "a computed result is not a finite number (NaN)";
 /// `--radius 0.5` at 5 m/s printed a turn with the rear normal force at −1448 N. The first is
 /// refused naming the radius and its bound, the second naming the wheel and the force.
 #[test]
-fn issue_26_turns_past_the_radius_bound_or_lifting_a_wheel_are_errors() {
+fn turns_past_the_radius_bound_or_lifting_a_wheel_are_errors() {
     let turn = |radius: &str| {
         stderr_of_failure(&whipple(&[
             "turn",

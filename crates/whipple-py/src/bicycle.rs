@@ -72,7 +72,7 @@ impl NativeBicycle {
                 what: "format",
                 rule: format!(
                     "unknown format `{name}` (known: {})",
-                    io::FORMATS.map(|(_, n, _)| n).join(", ")
+                    whipple_front::formats::names()
                 ),
             }),
             None => Format::detect(file_name, text),
@@ -226,7 +226,7 @@ impl NativeBicycle {
                 what: "format",
                 rule: format!(
                     "unknown format `{format}` (known: {})",
-                    io::FORMATS.map(|(_, n, _)| n).join(", ")
+                    whipple_front::formats::names()
                 ),
             })
             .py_err(py)?;

@@ -1,31 +1,33 @@
-//! Design studies from Python: the library's `analysis::design::Study` over one or two axes,
+//! Design studies from Python: the library's `analysis::design::Study` over one or two axes
+//! (typed as on the command line: `whipple_front::design`),
 //! whole or one shard (the unit a Dask task computes), as typed columns of numpy arrays built
 //! here (no Python object per design): 67 bytes a design, 107 with the coordinate columns.
 
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use whipple::advanced::design::{Axis, DesignRow, DesignStatus, Shard, StudyOptions};
-use whipple::Study;
+use whipple::advanced::design::{DesignRow, DesignStatus, Shard, StudySettings};
+use whipple_front::design::{AxisSpec, DesignStudy};
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
 use crate::guard::{interruptible, memory_error, reserve, stopped, SHORT};
 
-fn axis_dict<'py>(py: Python<'py>, axis: &Axis) -> PyResult<Bound<'py, PyDict>> {
+fn axis_dict<'py>(py: Python<'py>, axis: &AxisSpec) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("name", &axis.name)?;
     d.set_item("unit", axis.unit())?;
     d.set_item("degrees", axis.degrees)?;
-    let mut values = reserve(axis.count, || {
+    let count = axis.axis.count;
+    let mut values = reserve(count, || {
         memory_error(
             "design_map",
-            axis.count as u128,
+            count as u128,
             "axis values",
-            axis.count as u128 * 8,
+            count as u128 * 8,
         )
     })?;
-    values.extend((0..axis.count).map(|i| axis.value(i)));
+    values.extend((0..count).map(|i| axis.value(i)));
     d.set_item("values", PyArray1::from_vec(py, values))?;
     Ok(d)
 }
@@ -171,23 +173,26 @@ impl NativeBicycle {
         coordinates: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         let base = self.bicycle.clone();
-        let x_axis = Axis::parse(x, &base).py_err(py)?;
-        let y_axis = y.map(|y| Axis::parse(y, &base)).transpose().py_err(py)?;
+        let x_axis = AxisSpec::parse(x, &base).py_err(py)?;
+        let y_axis = y
+            .map(|y| AxisSpec::parse(y, &base))
+            .transpose()
+            .py_err(py)?;
         let shard = Shard::parse(&format!("{shard_index}/{shard_count}")).py_err(py)?;
-        let options = StudyOptions {
+        let options = StudySettings {
             range: (lo, hi),
             speed,
             double_root,
         };
-        let study = Study::new(base, x_axis.clone(), y_axis.clone(), options).py_err(py)?;
-        let total = study.len();
+        let study = DesignStudy::new(base, x_axis.clone(), y_axis.clone(), options).py_err(py)?;
+        let total = study.study.len();
         let base_point = study.base_point();
         let (first, end) = shard.indices(total);
         let count = usize::try_from(end - first).unwrap_or(usize::MAX);
         let mut columns = Columns::new(count, coordinates)?;
         let mut full = false;
         let outcome = interruptible(py, count <= SHORT, |stop| {
-            study.run(shard, stop, |chunk| {
+            study.study.run(shard, stop, |chunk| {
                 for r in chunk {
                     if !columns.push(r, coordinates) {
                         full = true;

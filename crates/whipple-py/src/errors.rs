@@ -32,7 +32,7 @@ fn obj<'py, T: IntoPyObject<'py>>(py: Python<'py>, value: T) -> Py<PyAny> {
 
 /// The Python exception for a library error.
 pub fn to_py(py: Python<'_>, error: Error) -> PyErr {
-    let message = error.to_string();
+    let message = whipple_front::message::message(&error);
     match error {
         Error::InvalidParameter { field, value, rule } => raise(
             py,
@@ -54,7 +54,7 @@ pub fn to_py(py: Python<'_>, error: Error) -> PyErr {
                 ("rule", obj(py, rule)),
             ],
         ),
-        Error::Strict {
+        Error::WarningsRefused {
             field,
             count,
             message: rule,

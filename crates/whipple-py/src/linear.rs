@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
 use whipple::advanced::comparison::{compare_with_linear_until, MAX_COMPARED_SPEEDS};
-use whipple::advanced::comparison::{lean_steer_matrix, Linearization, StudySettings};
+use whipple::advanced::comparison::{lean_steer_matrix, ComparisonSettings, Linearization};
 use whipple::advanced::eigen::eigenpairs_with;
 use whipple::advanced::linear::StateSpace;
 use whipple::advanced::linear::{CharacteristicPolynomial, SpeedPolynomials};
@@ -514,7 +514,7 @@ impl NativeBicycle {
             }
         }
         let bike = self.checked.benchmark;
-        let settings = StudySettings::default();
+        let settings = ComparisonSettings::default();
         // Each speed takes milliseconds: always watched.
         let sweep = interruptible(py, false, |stop| {
             compare_with_linear_until(&bike, &speeds, &chosen, &settings, stop)

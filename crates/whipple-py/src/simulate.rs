@@ -1,5 +1,5 @@
-//! The non-linear bicycle simulated from Python. The request is the library's
-//! `SimulationRequest` (one set of rules for every front end); a torque may also be a Python
+//! The non-linear bicycle simulated from Python. The request is the front ends'
+//! `whipple_front::simulation::SimulationRequest` (one set of rules for every front end); a torque may also be a Python
 //! callable `f(t, state) -> float`, called with the GIL taken only around the call.
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -8,12 +8,12 @@ use std::sync::{Arc, Mutex};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use whipple::advanced::nonlinear::{
-    IntegratorKind, Sample, SimulationRequest, StateView, TorqueFn, TorqueInput, BODY_NAMES,
-};
+use whipple::advanced::nonlinear::{Sample, StateView, TorqueFn, BODY_NAMES};
 use whipple::advanced::turns::{held_turn, Held, TurnSettings};
 use whipple::Error;
 use whipple::{simulate, Model};
+use whipple_front::simulation::{IntegratorKind, SimulationRequest, TorqueInput};
+use whipple_front::units::degrees;
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
@@ -199,8 +199,8 @@ impl NativeBicycle {
         };
         let mut request = SimulationRequest {
             speed,
-            lean_deg: lean.to_degrees(),
-            steer_deg: steer.to_degrees(),
+            lean_deg: degrees(lean),
+            steer_deg: degrees(steer),
             lean_rate,
             steer_rate,
             duration,
@@ -216,8 +216,8 @@ impl NativeBicycle {
         };
         if let Some(turn) = &turn {
             request.speed = turn.hub_speed;
-            request.lean_deg = turn.lean.to_degrees();
-            request.steer_deg = turn.steer.to_degrees();
+            request.lean_deg = degrees(turn.lean);
+            request.steer_deg = degrees(turn.steer);
             if !steer_torque_given {
                 request.steer_torque = TorqueInput::Constant(turn.steer_torque);
             }

@@ -40,13 +40,21 @@ def cli():
     pytest.skip(message)
 
 
-def optional(module: str):
+def _excused(module: str) -> bool:
+    """Whether ci-test let this package go missing: WHIPPLE_PY_MISSING names those it could not
+    install where they are not required (outside CI)."""
+    return module in os.environ.get("WHIPPLE_PY_MISSING", "").split(",")
+
+
+def optional(module: str, *, module_level: bool = False):
     """Imports an optional package of the test environment; skips with the reason when it is
-    missing, fails with WHIPPLE_PY_REQUIRED=1."""
+    missing, fails with WHIPPLE_PY_REQUIRED=1 (which ci-test sets) unless ci-test excused it
+    (WHIPPLE_PY_MISSING). `module_level`: called at a test module's top, where a failure stops
+    the whole run (a collection error) and a skip skips the module."""
     try:
         return __import__(module)
     except ImportError as error:
         message = f"{module} is not installed in this environment ({error}); ci-test installs it"
-        if _required("WHIPPLE_PY_REQUIRED"):
-            pytest.fail(message)
-        pytest.skip(message)
+        if _required("WHIPPLE_PY_REQUIRED") and not _excused(module):
+            pytest.fail(message, pytrace=False)
+        pytest.skip(message, allow_module_level=module_level)

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import whipple
+from reference import CAPSIZE_SPEED, DOUBLE_ROOT_SPEED, WEAVE_SPEED
 
 
 def test_parameter_error(benchmark):
@@ -129,5 +130,5 @@ def test_eigenvalues_at_absurd_speeds_are_right_or_refused():
 def test_critical_speeds_are_those_of_forward_riding():
     """On a range reaching below zero, v_w and v_c were their mirror images (−4.29, −6.02)."""
     c = whipple.Bicycle.preset("benchmark").critical_speeds(-math.inf, 10.0)
-    assert abs(c.v_w - 4.292382536341) < 1e-9 and abs(c.v_c - 6.024262015388) < 1e-9
-    assert abs(c.v_d - 0.684283078892) < 1e-9
+    assert abs(c.v_w - WEAVE_SPEED) < 1e-9 and abs(c.v_c - CAPSIZE_SPEED) < 1e-9
+    assert abs(c.v_d - DOUBLE_ROOT_SPEED) < 1e-9

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import pytest
 
+from conftest import optional
+
 EXAMPLES = sorted((Path(__file__).resolve().parents[1] / "examples").glob("*.py"))
 
 
@@ -26,7 +28,7 @@ def test_example_runs(script, tmp_path):
 
 
 def test_plots_draw(tmp_path):
-    matplotlib = pytest.importorskip("matplotlib", reason="matplotlib is not installed")
+    matplotlib = optional("matplotlib")
     matplotlib.use("Agg")
     import numpy as np
 

@@ -97,7 +97,7 @@ def test_to_pandas(benchmark):
 
 
 def test_a_step_too_large_raises_instead_of_an_outcome(benchmark):
-    # Issue 26: dt = 0.25 s at 4.6 m/s gave "fell" while the energy grew 326-fold.
+    # dt = 0.25 s at 4.6 m/s once gave "fell" while the energy grew 326-fold.
     with pytest.raises(whipple.ArgumentError) as info:
         benchmark.simulate(4.6, 10.0, lean_rate=0.5, dt=0.25)
     e = info.value

@@ -153,7 +153,7 @@ def test_impossible_turn_raises_typed_error(benchmark):
 
 
 def test_turn_with_a_wheel_pulled_down_is_refused(benchmark):
-    # Issue 26: a 0.5 m circle at 5 m/s solves with the rear normal force at -1448 N; the
+    # A 0.5 m circle at 5 m/s solves with the rear normal force at -1448 N; the
     # knife-edge model cannot hold it, and it was returned as a turn.
     with pytest.raises(whipple.NoSteadyTurnError) as info:
         benchmark.turn(5.0, radius=0.5)
@@ -163,7 +163,7 @@ def test_turn_with_a_wheel_pulled_down_is_refused(benchmark):
 
 
 def test_huge_radius_is_refused_naming_the_bound(benchmark):
-    # Issue 26: radius=1e200 said "a computed result is not a finite number".
+    # radius=1e200 once said "a computed result is not a finite number".
     with pytest.raises(whipple.ArgumentError) as info:
         benchmark.turn(5.0, radius=1e200)
     assert info.value.field == "radius" and "1e9" in str(info.value)

@@ -238,7 +238,6 @@ pub(crate) fn boxed_text<DB: DrawingBackend>(
     area.draw_text(label, style, pos).or_draw(figure)
 }
 
-/// A "nice" number format: up to `digits` decimals, trailing zeros kept for alignment.
 /// An axis tick label: the shortest text of the value rounded to nine decimals, so that a tick
 /// at round-off from zero reads "0" (never "-0.0") and 0.30000000000000004 reads "0.3".
 pub(crate) fn tick(value: &f64) -> String {
@@ -246,9 +245,8 @@ pub(crate) fn tick(value: &f64) -> String {
     format!("{rounded}")
 }
 
-pub(crate) fn fixed(value: f64, digits: usize) -> String {
-    format!("{value:.digits$}")
-}
+/// Labels' numbers with a fixed count of decimals, as the front ends print them.
+pub(crate) use whipple_front::format::fixed;
 
 /// Labels for vertical markers along the top of a plotting area (pixel range `px`, `py`), each
 /// beside its line at pixel x, in rows chosen so that none overlap.

@@ -11,18 +11,33 @@ const widths = list.split(",").map(Number);
 const { context, close } = await launch();
 const page = context.pages()[0] ?? (await context.newPage());
 page.on("pageerror", (e) => console.log(`[page error] ${e.message}`));
+/** The page's next animation frame: what it draws by then is drawn. */
+const nextFrame = () => page.evaluate(() => new Promise((done) => requestAnimationFrame(() => done())));
+/** Until the page has settled: nothing in flight or scheduled (web/src/work.js), and drawn. */
+const settled = async () => {
+  await page.waitForSelector("body[data-pending='0']", { state: "attached", timeout: 30_000 });
+  await nextFrame();
+};
+/** Until the element's text matches `pattern`. */
+const shows = (id, pattern) => page.waitForFunction(([id, source]) => new RegExp(source).test(document.querySelector(`[data-testid="${id}"]`)?.textContent ?? ""), [id, pattern.source], { timeout: 30_000 });
+const ticks = (id) => page.$$eval(`[data-testid=${id}] svg > g[fill] > text`, (ts) => ts.map((t) => t.textContent).join(" "));
 const ready = async (query) => {
   await page.goto(new URL(query, url).href);
   await page.waitForSelector("body[data-ready=true]", { timeout: 20_000 });
   await page.waitForFunction(() => /\d/.test(document.querySelector("[data-testid=capsize-speed]")?.textContent ?? ""));
-  await page.waitForTimeout(300);
+  await settled();
 };
 const run = async (speed, seconds, duration = 10) => {
   await page.fill("#sim-speed", String(speed));
   await page.fill("#sim-duration", String(duration));
   await page.click("[data-testid=sim-run]");
   await page.waitForFunction(() => !document.querySelector("[data-testid=sim-outcome]").classList.contains("running"), null, { timeout: 30_000 });
-  await page.waitForTimeout(seconds * 1000);
+  // The animation played to `seconds` of simulated time (or to its end, when the run is shorter).
+  await page.waitForFunction((s) => {
+    const t = Number(document.getElementById("sim-t").textContent.replace("−", "-"));
+    const end = Number(document.getElementById("sim-scrub").max);
+    return t >= Math.min(s, end);
+  }, seconds, { timeout: 60_000 });
   if ((await page.getByTestId("sim-play").getAttribute("aria-pressed")) === "true") await page.getByTestId("sim-play").click();
 };
 try {
@@ -38,30 +53,37 @@ try {
     await page.getByTestId("eigen-plot").scrollIntoViewIfNeeded();
     const box = await page.getByTestId("eigen-plot").boundingBox();
     await page.mouse.move(box.x + box.width * 0.55, box.y + box.height * 0.5);
-    await page.waitForTimeout(200);
+    await page.getByTestId("plot-tooltip").waitFor({ state: "visible" });
     await shot("2-hover");
+    const full = await ticks("eigen-plot");
     await page.mouse.wheel(0, -500);
-    await page.waitForTimeout(300);
+    await page.waitForFunction((before) => [...document.querySelectorAll("[data-testid=eigen-plot] svg > g[fill] > text")].map((t) => t.textContent).join(" ") !== before, full);
+    await nextFrame();
     await shot("3-zoomed");
     await page.mouse.move(1, 1);
     await ready("?bike=preset:schwinn-crown&cmp=preset:benchmark,preset:browser-jason");
-    await page.waitForTimeout(600);
+    await shows("compare2-capsize-speed", /\d/);
+    await settled();
     await shot("4-compare-three");
     await ready("?bike=preset:schwinn-crown");
     await page.getByTestId("param-mrider").fill("-5");
-    await page.waitForTimeout(900);
+    await shows("error-mrider", /./);
+    await settled();
     await shot("5-invalid");
     await page.getByTestId("param-mrider").fill("abc");
-    await page.waitForTimeout(500);
+    await shows("error-mrider", /not a number/);
+    await settled();
     await shot("6-not-a-number");
     await page.getByTestId("param-mrider").fill("80");
     await page.getByTestId("param-head_angle").fill("1.2388");
-    await page.waitForTimeout(700);
+    await shows("hint-head_angle", /./);
+    await settled();
     await shot("7-did-you-mean");
     await ready("?bike=preset:benchmark&tab=locus");
     await shot("8-root-locus");
     await ready("?bike=preset:benchmark&tab=modes&mv=5");
-    await page.waitForTimeout(1200);
+    await shows("mode-meta", /at 5 m\/s/);
+    await settled();
     await shot("9-modes");
     await ready("?bike=preset:benchmark&tab=sim");
     await run(4.6, 2.5);
@@ -72,20 +94,24 @@ try {
       e.value = e.max;
       e.dispatchEvent(new Event("input", { bubbles: true }));
     });
-    await page.waitForTimeout(300);
+    await settled();
     await shot("11-sim-fall");
     await ready("?bike=preset:schwinn-crown");
     await page.getByTestId("param-trail").fill("-0.05");
-    await page.waitForTimeout(900);
+    await shows("capsize-speed", /unstable at every speed/);
+    await settled();
     await shot("12-negative-trail");
     await ready("?bike=preset:browser-jason&tab=sens");
     await page.getByTestId("sens-tornado").waitFor({ timeout: 15_000 });
     await shot("13-sensitivity");
     await ready("?bike=preset:schwinn-crown&tab=map");
     await page.waitForFunction(() => /designs/.test(document.querySelector("[data-testid=map-meta]")?.textContent ?? ""), null, { timeout: 20_000 });
+    // In view, so that the pointer is over the map and its read-out is drawn (on a phone the map
+    // lies below the fold).
+    await page.getByTestId("map-canvas").scrollIntoViewIfNeeded();
     const mbox = await page.getByTestId("map-canvas").boundingBox();
     await page.mouse.move(mbox.x + mbox.width * 0.6, mbox.y + mbox.height * 0.45);
-    await page.waitForTimeout(200);
+    await shows("map-readout", /./);
     await shot("14-design-map");
     await page.mouse.move(1, 1);
     await ready("?bike=preset:benchmark&tab=sim&sim=speed:5;lean_deg:11.5;lean_rate:0.05;turn:held");

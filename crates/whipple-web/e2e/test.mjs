@@ -1,6 +1,7 @@
 // End-to-end test of the page in headless Chromium: node test.mjs URL
 // Run by crates/whipple-web/tests/e2e.rs against a server on an ephemeral loopback port.
 import { launch } from "./browser.mjs";
+import { CAPSIZE_SPEED, WEAVE_SPEED, asShown } from "./reference.mjs";
 import { readFileSync, writeFileSync, mkdtempSync, rmSync } from "node:fs";
 import { join } from "node:path";
 import { tmpdir } from "node:os";
@@ -40,14 +41,21 @@ await page.route("**/*", (route) => {
 const text = async (id) => (await page.getByTestId(id).textContent()).trim();
 const number = (s) => Number(s.replace("−", "-").replace(/[^0-9.eE+-].*$/, ""));
 const plotPaths = () => page.$$eval("[data-testid=eigen-plot] svg path", (ps) => ps.map((p) => p.getAttribute("d")).join("|"));
-/** Polls the element's text until `predicate` holds (15 s at most). */
+/** The page's next animation frame: what it draws by then is drawn. */
+const nextFrame = () => page.evaluate(() => new Promise((done) => requestAnimationFrame(() => done())));
+/** Until the page has settled: nothing in flight or scheduled (web/src/work.js), and drawn. */
+async function settled() {
+  await page.waitForSelector("body[data-pending='0']", { state: "attached" });
+  await nextFrame();
+}
+/** Reads the element's text at each of the page's frames until `predicate` holds (15 s at most). */
 async function waitForText(id, predicate) {
   const until = Date.now() + 15_000;
   let last = null;
   while (Date.now() < until) {
     last = await page.getByTestId(id).textContent({ timeout: 1_000 }).catch(() => null);
     if (last !== null && predicate(last.trim())) return last.trim();
-    await page.waitForTimeout(100);
+    await nextFrame();
   }
   throw new Error(`timed out waiting on ${id}: last text "${last}"`);
 }
@@ -59,8 +67,8 @@ try {
 
   // Pick another bicycle, then JBike6's default, the Schwinn Crown.
   await page.getByTestId("bike-select").selectOption("preset:benchmark");
-  await waitForText("capsize-speed", (t) => t.startsWith("6.0243"));
-  check(true, "the benchmark bicycle's capsize speed is 6.0243 m/s (Meijaard et al. 2007)");
+  await waitForText("capsize-speed", (t) => t.startsWith(asShown(CAPSIZE_SPEED)));
+  check(true, `the benchmark bicycle's capsize speed is ${asShown(CAPSIZE_SPEED)} m/s (Meijaard et al. 2007)`);
   await page.getByTestId("bike-select").selectOption("preset:schwinn-crown");
   await waitForText("capsize-speed", (t) => t.startsWith("7.98"));
   const capsize = number(await text("capsize-speed"));
@@ -86,8 +94,10 @@ try {
       await page.getByTestId("plot-tooltip").waitFor({ state: "visible", timeout: 3_000 });
       shown = true;
     } catch {
+      // Off the plot, the read-out hides: the next attempt starts from there.
       await page.mouse.move(0, 0);
-      await page.waitForTimeout(500);
+      await page.getByTestId("plot-tooltip").waitFor({ state: "hidden", timeout: 5_000 }).catch(() => {});
+      await settled();
     }
   }
   check(shown, "the plot's read-out appears on hover");
@@ -125,13 +135,13 @@ try {
 
   // Comparison of two designs on one plot.
   await page.getByTestId("compare-select").selectOption("preset:benchmark");
-  await waitForText("compare-capsize-speed", (t) => t.startsWith("6.0243"));
-  check(true, "comparing with the benchmark bicycle lists its capsize speed 6.0243 beside the Crown's");
+  await waitForText("compare-capsize-speed", (t) => t.startsWith(asShown(CAPSIZE_SPEED)));
+  check(true, `comparing with the benchmark bicycle lists its capsize speed ${asShown(CAPSIZE_SPEED)} beside the Crown's`);
 
   // CSV export.
   const [csv] = await Promise.all([page.waitForEvent("download"), page.click("#eigen-csv")]);
   const csvText = readFileSync(await csv.path(), "utf8").split("\n");
-  // Issue 14: a first line naming the designs, the CLI's columns with the mode names, then the
+  // A first line naming the designs, the CLI's columns with the mode names, then the
   // compared design's columns.
   check(csvText[0].startsWith("# ") && csvText[1].startsWith("v,re1_weave,im1_weave,re2_weave,im2_weave,re3_capsize,im3_capsize,re4_castering,im4_castering,"), `the CSV export names the designs and the modes: ${csvText[1].slice(0, 60)}…`);
   check(csvText.filter(Boolean).length === 1003, "and one row per speed (1001)");
@@ -152,7 +162,7 @@ try {
   const file = join(dir, "short-trail.toml");
   writeFileSync(file, tomlText.replace(/^name = .*$/m, 'name = "short trail"'));
   await page.getByTestId("bike-select").selectOption("preset:benchmark");
-  await waitForText("capsize-speed", (t) => t.startsWith("6.0243"));
+  await waitForText("capsize-speed", (t) => t.startsWith(asShown(CAPSIZE_SPEED)));
   await page.setInputFiles("#file-input", file);
   await waitForText("capsize-speed", (t) => t === edited);
   rmSync(dir, { recursive: true, force: true });
@@ -171,11 +181,11 @@ try {
   check(readFileSync(await side.path(), "utf8").includes("total 91.1 kg"), "the side view exports as SVG");
   // The simulation panel: the benchmark bicycle at 4.6 m/s (self-stable: the weave decays).
   await page.getByTestId("bike-select").selectOption("preset:benchmark");
-  await waitForText("capsize-speed", (t) => t.startsWith("6.0243"));
+  await waitForText("capsize-speed", (t) => t.startsWith(asShown(CAPSIZE_SPEED)));
   await page.getByTestId("tab-sim").click();
   check((await page.locator("#panel-sim").isVisible()) && !(await page.locator("#panel-eigen").isVisible()), "the Simulation tab takes the eigenvalue plot's place");
   const suggested = Number(await page.inputValue("#sim-speed"));
-  check(Math.abs(suggested - (4.2924 + 6.0243) / 2) < 0.01, `the suggested speed ${suggested} m/s is the middle of the self-stable range`);
+  check(Math.abs(suggested - (WEAVE_SPEED + CAPSIZE_SPEED) / 2) < 0.01, `the suggested speed ${suggested} m/s is the middle of the self-stable range`);
   await page.fill("#sim-duration", "31");
   await page.click("[data-testid=sim-run]");
   await waitForText("sim-message", (t) => t.includes("limit of 30 s"));
@@ -196,7 +206,7 @@ try {
   const advanced = async (r0) => {
     const until = Date.now() + 15_000;
     while (Date.now() < until) {
-      await page.waitForTimeout(100);
+      await nextFrame();
       const r = await reading();
       if (r.t > r0.t && r.scrub > r0.scrub) return r;
     }
@@ -209,7 +219,8 @@ try {
   check(r3.t > r2.t, `and keeps advancing: ${r3.t} s`);
   await page.getByTestId("sim-play").click();
   const p1 = await simTime();
-  await page.waitForTimeout(400);
+  // Twenty of the page's frames: each would have advanced a playing animation.
+  for (let frame = 0; frame < 20; frame++) await nextFrame();
   check((await simTime()) === p1, `pause stops it at t = ${p1} s`);
   const pixels = () => page.$eval("[data-testid=sim-canvas]", (c) => {
     const gl = c.getContext("webgl2") ?? c.getContext("webgl");
@@ -251,15 +262,15 @@ try {
   // At 2x, simulated time runs twice as fast as the page's clock (measured in the page).
   // SwiftShader under load may take a second per frame, and the page advances at most 1 s of
   // wall time per frame (so as not to jump): time the displayed clock at the moments it
-  // changes (polled every 20 ms) over at least 1.5 s, and note the slowest frame.
+  // changes (read at every frame) over at least 1.5 s, and note the slowest frame.
   const { rate, slowest } = await page.evaluate(async () => {
     const t = () => Number(document.getElementById("sim-t").textContent.replace("−", "-"));
-    const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+    const frame = () => new Promise((r) => requestAnimationFrame(() => r()));
     let slowest = 0;
     let seen = performance.now();
     const change = async (from, until) => {
       while (performance.now() < until) {
-        await sleep(20);
+        await frame();
         if (t() !== from) {
           slowest = Math.max(slowest, performance.now() - seen);
           seen = performance.now();

@@ -1,4 +1,4 @@
-//! Which requests the local server answers at all (issue 26, item 15). A page on any web site
+//! Which requests the local server answers at all. A page on any web site
 //! can make the browser send requests to `127.0.0.1:PORT`; these checks keep it from driving
 //! the server or reading its answers:
 //!

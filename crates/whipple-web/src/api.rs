@@ -395,6 +395,7 @@ async fn openapi() -> Response {
 #[derive(Serialize)]
 struct PresetSummary {
     name: &'static str,
+    title: &'static str,
     summary: &'static str,
     source: &'static str,
     form: &'static str,
@@ -413,6 +414,7 @@ async fn list_presets() -> Json<Vec<PresetSummary>> {
             .iter()
             .map(|p| PresetSummary {
                 name: p.name,
+                title: p.title,
                 summary: p.summary,
                 source: p.source,
                 form: form_name(&(p.description)()),
@@ -563,11 +565,15 @@ async fn parse_file(
                         StatusCode::UNPROCESSABLE_ENTITY,
                         "invalid_request",
                         format!(
-                        "unknown format `{}` (formats: toml, json, m, bp-txt, hc-txt, yaml, auto)",
-                        whipple::advanced::shorten(&request.format, 40)
-                    ),
+                            "unknown format `{}` (formats: {}, auto)",
+                            whipple::advanced::shorten(&request.format, 40),
+                            whipple_front::formats::names()
+                        ),
                     )
-                    .at("format", "one of toml, json, m, bp-txt, hc-txt, yaml, auto")
+                    .at(
+                        "format",
+                        format!("one of {}, auto", whipple_front::formats::names()),
+                    )
                 })?
             };
             let bike = io::parse(&request.text, format)?;
@@ -586,14 +592,21 @@ async fn parse_file(
 struct ParameterTable {
     benchmark: &'static [ParameterInfo],
     jbike6: &'static [ParameterInfo],
+    /// Benchmark key → the JBike6 entries to flag for it (the library's
+    /// `jbike6::BENCHMARK_FROM_JBIKE6`).
+    jbike6_sources: std::collections::BTreeMap<&'static str, &'static [&'static str]>,
 }
 
 /// The one parameter table of the library: every parameter of both forms with its key, path,
-/// symbol, unit, description and whether the linear model sees it.
+/// symbol, unit, description and whether the linear model sees it, and which JBike6 entries
+/// each benchmark key comes from.
 async fn parameter_table() -> Json<ParameterTable> {
     Json(ParameterTable {
         benchmark: table::parameters(Form::Benchmark),
         jbike6: table::parameters(Form::Jbike6),
+        jbike6_sources: whipple::advanced::parameters::BENCHMARK_FROM_JBIKE6
+            .into_iter()
+            .collect(),
     })
 }
 
@@ -682,30 +695,29 @@ struct EigenResponse {
 /// take the interactive budget; longer ones are heavy work.
 const INTERACTIVE_SPEEDS: f64 = 2_000.0;
 
-/// The number of speeds on the grid (0 when it is not a valid grid: the library says why),
+/// The number of speeds on the grid, as the library counts them (`sweep::SpeedGrid::count`; 0 when it
+/// is not a valid grid: the library says why when the sweep is built),
 /// checked against the limit before the grid is built, so that no huge vector is ever
 /// allocated.
 fn check_grid(grid: SpeedGrid, max_speeds: usize) -> Result<f64, ApiError> {
     let SpeedGrid { start, stop, step } = grid;
-    if start.is_finite() && stop.is_finite() && step.is_finite() && step > 0.0 && stop >= start {
-        // Counted as `speed_grid` counts (it includes STOP when on the grid to round-off).
-        let count = ((stop - start) / step * (1.0 + 1e-12) + 1e-9).floor() + 1.0;
-        if count > max_speeds as f64 {
-            return Err(ApiError::new(
-                StatusCode::UNPROCESSABLE_ENTITY,
-                "limit_exceeded",
-                format!(
-                    "{start}:{stop}:{step} holds {count} speeds, more than this server's limit of {max_speeds} per request; use a larger step"
-                ),
-            )
-            .at(
-                "speeds",
-                format!("at most {max_speeds} speeds per request"),
-            ));
-        }
-        return Ok(count);
+    let Ok(count) = whipple::advanced::sweep::SpeedGrid::count(start, stop, step) else {
+        return Ok(0.0);
+    };
+    if count > max_speeds as f64 {
+        return Err(ApiError::new(
+            StatusCode::UNPROCESSABLE_ENTITY,
+            "limit_exceeded",
+            format!(
+                "{start}:{stop}:{step} holds {count} speeds, more than this server's limit of {max_speeds} per request; use a larger step"
+            ),
+        )
+        .at(
+            "speeds",
+            format!("at most {max_speeds} speeds per request"),
+        ));
     }
-    Ok(0.0)
+    Ok(count)
 }
 
 async fn eigen(

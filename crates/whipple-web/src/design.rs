@@ -9,9 +9,9 @@ use axum::response::Response;
 use axum::Json;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use whipple::advanced::design::{Axis, DesignStatus, Shard, StudyOptions};
+use whipple::advanced::design::{DesignStatus, Shard, StudySettings};
 use whipple::advanced::modes::Mode;
-use whipple::Study;
+use whipple_front::design::{AxisSpec, DesignStudy};
 
 use crate::api::{bicycle, bicycle_json, compute_json, json_body, AppState, Budget, SpeedRange};
 use crate::error::ApiError;
@@ -35,8 +35,8 @@ pub(crate) struct DesignRequest {
 /// The answer: the axes and one array per quantity (null where absent or not computed).
 #[derive(Serialize)]
 pub(crate) struct DesignResponse {
-    x: Axis,
-    y: Option<Axis>,
+    x: AxisSpec,
+    y: Option<AxisSpec>,
     /// The base design's coordinates (user units), where the axes vary bicycle parameters.
     base: (Option<f64>, Option<f64>),
     nx: usize,
@@ -60,8 +60,8 @@ pub(crate) struct DesignResponse {
 }
 
 /// An axis of the request, an error in it naming its field (`x` or `y`).
-fn axis(spec: &str, bike: &whipple::Bicycle, field: &str) -> Result<Axis, ApiError> {
-    Axis::parse(spec, bike).map_err(|e| ApiError::from(e).in_field(field))
+fn axis(spec: &str, bike: &whipple::Bicycle, field: &str) -> Result<AxisSpec, ApiError> {
+    AxisSpec::parse(spec, bike).map_err(|e| ApiError::from(e).in_field(field))
 }
 
 /// The body of `POST /api/map/design`: a map's or study's axes and one design's row-major
@@ -88,8 +88,8 @@ pub(crate) async fn design_at(
         Some(spec) => Some(axis(spec, &bike, "y")?),
         None => None,
     };
-    let study = Study::new(bike, x, y, StudyOptions::default())?;
-    let design = study.bicycle_at(request.index)?;
+    let study = DesignStudy::new(bike, x, y, StudySettings::default())?;
+    let design = study.study.bicycle_at(request.index)?;
     Ok(Json(serde_json::json!({ "bike": bicycle_json(&design)? })))
 }
 
@@ -118,20 +118,20 @@ async fn run(
         None => None,
     };
     let (lo, hi) = SpeedRange::bounds(request.range);
-    let options = StudyOptions {
+    let options = StudySettings {
         range: (lo, hi),
         speed: request.speed,
         double_root: request.double_root,
     };
-    let study = Study::new(bike, x, y, options)?;
+    let study = DesignStudy::new(bike, x, y, options)?;
     let limit = state.limits.max_designs as u64;
-    if study.len() > limit {
+    if study.study.len() > limit {
         return Err(ApiError::new(
             StatusCode::UNPROCESSABLE_ENTITY,
             "limit_exceeded",
             format!(
                 "{} designs is more than this server's limit of {limit} per request; use fewer points",
-                study.len()
+                study.study.len()
             ),
         )
         .at("x", format!("at most {limit} designs per request")));
@@ -141,13 +141,13 @@ async fn run(
         Budget::Heavy,
         "ask for fewer designs",
         move |stop| {
-            let n = study.len() as usize;
+            let n = study.study.len() as usize;
             let mut r = DesignResponse {
                 x: study.x.clone(),
                 y: study.y.clone(),
                 base: study.base_point(),
-                nx: study.x.count,
-                ny: study.y.as_ref().map_or(1, |a| a.count),
+                nx: study.x.axis.count,
+                ny: study.y.as_ref().map_or(1, |a| a.axis.count),
                 status: Vec::with_capacity(n),
                 reasons: Vec::new(),
                 v_d: Vec::with_capacity(n),
@@ -163,7 +163,7 @@ async fn run(
                 max_real_mode: Vec::with_capacity(n),
             };
             let finite = |x: Option<f64>| x.filter(|v| v.is_finite());
-            study.run(Shard::WHOLE, &stop, |rows| {
+            study.study.run(Shard::WHOLE, &stop, |rows| {
                 for row in rows {
                     let q = &row.quantities;
                     let ok = row.status == DesignStatus::Ok;

@@ -89,7 +89,7 @@ impl ApiError {
 
 impl From<Error> for ApiError {
     fn from(error: Error) -> Self {
-        let message = error.to_string();
+        let message = whipple_front::message::message(&error);
         let unprocessable = StatusCode::UNPROCESSABLE_ENTITY;
         match error {
             Error::InvalidParameter { field, value, rule } => {
@@ -142,7 +142,7 @@ impl From<Error> for ApiError {
                 e.body.value = value.is_finite().then_some(value);
                 e
             }
-            Error::Strict { field, .. } => ApiError::new(unprocessable, "strict", message)
+            Error::WarningsRefused { field, .. } => ApiError::new(unprocessable, "strict", message)
                 .at(field, "a warning, with strict set"),
             // A user's numbers can drive any numerical failure: 422 naming it, never a 500.
             Error::NoConvergence { .. }

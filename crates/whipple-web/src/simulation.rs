@@ -11,12 +11,12 @@ use std::sync::Arc;
 use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use whipple::advanced::nonlinear::{
-    ContactForce, IntegratorKind, Outcome, Sample, SimulationRequest, TorqueInput,
-};
+use whipple::advanced::nonlinear::{ContactForce, Outcome, Sample};
 use whipple::advanced::turns::{held_turn, Held, SteadyTurn, TurnSettings};
 use whipple::BenchmarkParameters;
 use whipple::{simulate, InitialConditions, Model, SimulationSettings};
+use whipple_front::simulation::{IntegratorKind, SimulationRequest, TorqueInput};
+use whipple_front::units::radians;
 
 use crate::error::ApiError;
 use crate::Limits;
@@ -155,7 +155,7 @@ pub fn check(request: &SimulateRequest, limits: &Limits) -> Result<Plan, ApiErro
     let (initial, settings) = library.validate().map_err(library_error)?;
     let from_turn = request.from_turn.then(|| FromTurn {
         speed: request.speed,
-        lean: request.lean_deg.to_radians(),
+        lean: radians(request.lean_deg),
         steer_torque_given: request.steer_torque.is_some(),
         request: library,
     });

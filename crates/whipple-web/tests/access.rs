@@ -1,4 +1,4 @@
-//! Issue 26, item 15: which requests the local server accepts, through real HTTP on loopback.
+//! Which requests the local server accepts, through real HTTP on loopback.
 //! A web page on another site must not be able to drive it: a body that is not
 //! `application/json` gets 415 (a browser sends `text/plain` cross-origin without asking
 //! first), a Host that does not name this server gets 421 (a DNS-rebinding page's requests
@@ -84,7 +84,7 @@ fn kind_and_field(body: &Value) -> (String, String) {
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn issue_26_15_only_json_bodies_are_accepted() -> TestResult {
+async fn only_json_bodies_are_accepted() -> TestResult {
     let (address, _stop) = start(IpAddr::V4(Ipv4Addr::LOCALHOST)).await?;
     let host = address.to_string();
     let body = validate_body()?;
@@ -127,7 +127,7 @@ async fn issue_26_15_only_json_bodies_are_accepted() -> TestResult {
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn issue_26_15_only_hosts_naming_this_server_are_answered() -> TestResult {
+async fn only_hosts_naming_this_server_are_answered() -> TestResult {
     let (address, _stop) = start(IpAddr::V4(Ipv4Addr::LOCALHOST)).await?;
     let port = address.port();
     let json = ("Content-Type", "application/json");
@@ -189,7 +189,7 @@ async fn issue_26_15_only_hosts_naming_this_server_are_answered() -> TestResult 
 /// The host `serve` was told to bind is accepted as well as the loopback names (here
 /// 127.0.0.2, a loopback address that is not one of them).
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn issue_26_15_the_bound_host_is_answered() -> TestResult {
+async fn the_bound_host_is_answered() -> TestResult {
     let (address, _stop) = start(IpAddr::V4(Ipv4Addr::new(127, 0, 0, 2))).await?;
     let port = address.port();
     for (host, expected) in [
@@ -204,7 +204,7 @@ async fn issue_26_15_the_bound_host_is_answered() -> TestResult {
 }
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn issue_26_15_state_changing_requests_from_other_origins_are_refused() -> TestResult {
+async fn state_changing_requests_from_other_origins_are_refused() -> TestResult {
     let (address, _stop) = start(IpAddr::V4(Ipv4Addr::LOCALHOST)).await?;
     let port = address.port();
     let host = format!("127.0.0.1:{port}");

@@ -10,6 +10,7 @@ use serde_json::{json, Value};
 use tower::ServiceExt;
 use whipple::advanced::io::{write, Format};
 use whipple::presets;
+use whipple_reference::meijaard2007 as published;
 use whipple_web::{app, Limits};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
@@ -112,6 +113,12 @@ async fn presets_listed_and_fetched() -> TestResult {
     assert!(list.as_array().is_some_and(|a| a
         .iter()
         .any(|p| p["name"] == "schwinn-crown" && p["form"] == "jbike6")));
+    // Each preset's display title is the library's (the page's picker shows it).
+    for (served, preset) in list.as_array().ok_or("list")?.iter().zip(presets::PRESETS) {
+        assert_eq!(served["name"], preset.name);
+        assert_eq!(served["title"], preset.title);
+        assert!(!preset.title.is_empty(), "{} has no title", preset.name);
+    }
     let (status, crown) = get(&app, "/api/presets/schwinn-crown").await?;
     assert_eq!(status, StatusCode::OK);
     assert_eq!(crown, preset_json("schwinn-crown")?);
@@ -262,11 +269,19 @@ async fn eigen_sweep_and_critical_speeds() -> TestResult {
         assert_eq!(column["im"].as_array().map(Vec::len), Some(101));
     }
     let critical = &body["critical"];
-    assert!(approx(&critical["weave_speed"], 4.29238253634111, 1e-10));
-    assert!(approx(&critical["capsize_speed"], 6.02426201538837, 1e-10));
+    assert!(approx(
+        &critical["weave_speed"],
+        published::WEAVE_SPEED,
+        1e-10
+    ));
+    assert!(approx(
+        &critical["capsize_speed"],
+        published::CAPSIZE_SPEED,
+        1e-10
+    ));
     assert!(approx(
         &critical["stable_speed_ranges"][0][0],
-        4.29238253634111,
+        published::WEAVE_SPEED,
         1e-10
     ));
 
@@ -295,7 +310,11 @@ async fn speeds_endpoint() -> TestResult {
     )
     .await?;
     assert_eq!(status, StatusCode::OK);
-    assert!(approx(&body["capsize_speed"], 6.02426201538837, 1e-10));
+    assert!(approx(
+        &body["capsize_speed"],
+        published::CAPSIZE_SPEED,
+        1e-10
+    ));
     assert!(approx(&body["double_root_speed"], 0.684, 1e-3));
     let (status, body) = post(
         &app,
@@ -371,6 +390,17 @@ async fn out_of_range_speeds() -> TestResult {
     )
     .await?;
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    // A grid past any count f64 holds (0:1e300:1e-10) is over the server's limit, counted by
+    // the library without building it.
+    let (status, body) = post(
+        &app,
+        "/api/eigen",
+        &json!({"bike": bike, "speeds": {"start": 0, "stop": 1e300, "step": 1e-10}}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    assert_eq!(body["error"]["kind"], "limit_exceeded");
+    assert_eq!(body["error"]["field"], "speeds");
     Ok(())
 }
 
@@ -1081,7 +1111,7 @@ async fn simulation_refuses_bad_inputs_and_limits() -> TestResult {
     Ok(())
 }
 
-/// Issue 9: the parameter table is served whole, and the OpenAPI document's benchmark keys are
+/// The parameter table is served whole, and the OpenAPI document's benchmark keys are
 /// the table's.
 #[tokio::test]
 async fn the_parameter_table_is_served_and_matches_openapi(
@@ -1100,10 +1130,35 @@ async fn the_parameter_table_is_served_and_matches_openapi(
         .ok_or("required")?;
     let keys: Vec<&Value> = benchmark.iter().map(|p| &p["key"]).collect();
     assert_eq!(required.iter().collect::<Vec<_>>(), keys);
+    // Which JBike6 entries feed each benchmark key: every benchmark key has some, and each is
+    // a key of the JBike6 table (a misspelt one would flag nothing in the page's form).
+    let sources = body["jbike6_sources"].as_object().ok_or("jbike6_sources")?;
+    let jbike6_keys: Vec<&Value> = body["jbike6"]
+        .as_array()
+        .ok_or("jbike6")?
+        .iter()
+        .map(|p| &p["key"])
+        .collect();
+    assert_eq!(sources.len(), keys.len());
+    for key in &keys {
+        let key = key.as_str().ok_or("key")?;
+        let names = sources[key]
+            .as_array()
+            .ok_or(format!("no sources for {key}"))?;
+        assert!(!names.is_empty(), "{key}");
+        for name in names {
+            assert!(
+                jbike6_keys.contains(&name),
+                "{key} <- {name}: not a JBike6 key"
+            );
+        }
+    }
+    assert_eq!(sources["mB"], json!(["mrider", "mframe", "mrack"]));
+    assert_eq!(sources["IRyy"], json!(["Irearwheel(3)", "Drearwheel"]));
     Ok(())
 }
 
-/// Issue 11: sensitivities and sigmas over the API; warnings in validate; NaN refused by parse.
+/// Sensitivities and sigmas over the API; warnings in validate; NaN refused by parse.
 #[tokio::test]
 async fn sensitivity_warnings_and_nan() -> Result<(), Box<dyn std::error::Error>> {
     let app = app(Limits::default());
@@ -1302,11 +1357,11 @@ async fn a_duplicate_json_key_in_a_body_is_refused() -> TestResult {
     Ok(())
 }
 
-/// Issue 26: a step beyond RK4's stability bound for the fastest mode at the run's speed is a
+/// A step beyond RK4's stability bound for the fastest mode at the run's speed is a
 /// 422 naming `dt` and the step to use (it was a 200 with the outcome `fell`); a step inside
 /// it runs as before.
 #[tokio::test]
-async fn issue_26_a_step_too_large_is_422_naming_the_step_to_use() -> TestResult {
+async fn a_step_too_large_is_422_naming_the_step_to_use() -> TestResult {
     let app = app(Limits::default());
     let coarse = simulation(json!({"duration": 10.0, "dt": 0.25}))?;
     let (status, body) = post(&app, "/api/simulate", &coarse).await?;
@@ -1328,10 +1383,10 @@ async fn issue_26_a_step_too_large_is_422_naming_the_step_to_use() -> TestResult
     Ok(())
 }
 
-/// Issue 26: a turn whose rear normal force is negative (0.5 m at 5 m/s: −1448 N) was
+/// A turn whose rear normal force is negative (0.5 m at 5 m/s: −1448 N) was
 /// answered as a turn; a radius of 1e200 as a non-finite result. Both are 422 naming `radius`.
 #[tokio::test]
-async fn issue_26_turns_lifting_a_wheel_or_past_the_radius_bound_are_422() -> TestResult {
+async fn turns_lifting_a_wheel_or_past_the_radius_bound_are_422() -> TestResult {
     let app = app(Limits::default());
     let bike = preset_json("benchmark")?;
     let turn = |radius: f64| json!({"bike": bike.clone(), "speed": 5.0, "radius": radius});

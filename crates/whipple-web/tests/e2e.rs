@@ -17,11 +17,14 @@ use libtest_mimic::{Arguments, Failed, Trial};
 use whipple_web::{ServeOptions, Server};
 
 /// The browser scripts, each a test: (test name, script under `e2e/`).
-/// `page.mjs`: issue 14's checks (plots, links, modes, weight, accessibility, layouts; prints
+/// `page.mjs`: the page's checks (plots, links, modes, weight, accessibility, layouts; prints
 /// the navigation-to-plot time and the page's weight).
 const SCRIPTS: &[(&str, &str)] = &[
     ("page_in_headless_chromium", "test.mjs"),
-    ("page_issue_14_in_headless_chromium", "page.mjs"),
+    (
+        "page_plots_links_modes_layouts_in_headless_chromium",
+        "page.mjs",
+    ),
 ];
 
 /// One browser run must end within this.

@@ -1,4 +1,4 @@
-//! Issue 10, the server under hostile clients: slow and idle connections are closed, work runs
+//! The server under hostile clients: slow and idle connections are closed, work runs
 //! on the bounded computing pool, every error is JSON, and the OpenAPI document is valid 3.0.
 
 use std::time::{Duration, Instant};
@@ -57,7 +57,7 @@ async fn closed_within(
 
 /// One byte every 5 s held a connection for over 70 s: the headers must come within the limit.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn issue_10_a_client_trickling_its_headers_is_disconnected() -> TestResult {
+async fn a_client_trickling_its_headers_is_disconnected() -> TestResult {
     let (address, _stop) = start(Limits {
         header_timeout: Duration::from_millis(300),
         ..Limits::default()
@@ -84,7 +84,7 @@ async fn issue_10_a_client_trickling_its_headers_is_disconnected() -> TestResult
 
 /// A connection that sends nothing at all is closed too.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn issue_10_an_idle_connection_is_closed() -> TestResult {
+async fn an_idle_connection_is_closed() -> TestResult {
     let (address, _stop) = start(Limits {
         idle_timeout: Duration::from_millis(300),
         ..Limits::default()
@@ -165,7 +165,7 @@ async fn send(
 }
 
 #[tokio::test]
-async fn issue_10_an_oversized_body_is_413_in_json() -> TestResult {
+async fn an_oversized_body_is_413_in_json() -> TestResult {
     let router = app(Limits {
         max_body_bytes: 1000,
         ..Limits::default()
@@ -187,7 +187,7 @@ async fn issue_10_an_oversized_body_is_413_in_json() -> TestResult {
 
 /// `/api/presets/%ff` answered in plain text.
 #[tokio::test]
-async fn issue_10_a_preset_name_that_is_not_utf8_is_answered_in_json() -> TestResult {
+async fn a_preset_name_that_is_not_utf8_is_answered_in_json() -> TestResult {
     let router = app(Limits::default());
     let (status, answer) = send(&router, Method::GET, "/api/presets/%ff", String::new()).await?;
     assert_eq!(status, StatusCode::NOT_FOUND);
@@ -201,7 +201,7 @@ async fn issue_10_a_preset_name_that_is_not_utf8_is_answered_in_json() -> TestRe
 /// longer than the timer's 1 ms tick and a stalled test thread on a loaded machine (a
 /// current-thread runtime answered 422 about one run in four under a load average of 9).
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn issue_10_parsing_runs_on_the_computing_pool() -> TestResult {
+async fn parsing_runs_on_the_computing_pool() -> TestResult {
     let router = app(Limits {
         compute_timeout: Duration::from_micros(1),
         ..Limits::default()
@@ -290,7 +290,7 @@ fn check_schemas(node: &Value, at: &str, problems: &mut Vec<String>) {
 /// The document declared 3.0.3 but used 3.1's numeric `exclusiveMinimum` in five places, and
 /// did not say that a bicycle is `benchmark` *or* `jbike6`.
 #[tokio::test]
-async fn issue_10_the_openapi_document_is_valid_openapi_3_0() -> TestResult {
+async fn the_openapi_document_is_valid_openapi_3_0() -> TestResult {
     let router = app(Limits::default());
     let (status, doc) = send(&router, Method::GET, "/api/openapi.json", String::new()).await?;
     assert_eq!(status, StatusCode::OK);
@@ -341,11 +341,11 @@ async fn post_raw(
     Ok((status, retry_after, serde_json::from_str(content)?))
 }
 
-/// Issue 26, item 16: heavy work past its budget (one slot, no waiting line) is told `busy`
+/// Heavy work past its budget (one slot, no waiting line) is told `busy`
 /// at once, with Retry-After, while a small request beside it is answered: interactive work
 /// has slots of its own.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn issue_26_16_heavy_work_past_its_budget_is_busy_and_small_requests_are_not() -> TestResult {
+async fn heavy_work_past_its_budget_is_busy_and_small_requests_are_not() -> TestResult {
     let (address, _stop) = start(Limits {
         max_concurrent_computations: 1,
         max_waiting_heavy: 0,

@@ -1,5 +1,5 @@
 //! Bounded loads on loopback. 2,000 requests, 64 at a time, across the endpoints the page
-//! calls most (and a few simulations): every answer must be right. And (issue 26, item 16)
+//! calls most (and a few simulations): every answer must be right. And
 //! small requests while six clients loop design maps: none refused, none queued behind the
 //! maps. Each prints its figures (run with `--nocapture`; `--release` for those quoted in
 //! BENCHMARKS.md). The two run one after the other, not together.
@@ -121,7 +121,8 @@ const MAPS_PER_CLIENT: usize = 200;
 const PROBE_CLIENTS: usize = 2;
 const PROBES_PER_CLIENT: usize = 50;
 /// The bound on the small requests' p99: generous, a correctness bound, not a benchmark
-/// (before issue 26 they waited 8–9 s in the queue behind the maps, or got 503).
+/// (when the maps and the small requests shared one queue, the small ones waited 8–9 s behind
+/// the maps, or got 503).
 const P99_BOUND: Duration = Duration::from_secs(3);
 
 /// The `q` quantile (0–1) of sorted durations, nearest rank.
@@ -130,12 +131,12 @@ fn quantile(sorted: &[Duration], q: f64) -> Duration {
     sorted.get(rank - 1).copied().unwrap_or_default()
 }
 
-/// Issue 26, item 16: while six clients loop design maps, `/api/speeds` and
+/// While six clients loop design maps, `/api/speeds` and
 /// `/api/bike/validate` (about a millisecond of work each) are all answered, right, with a
 /// p99 latency below a few seconds; the maps may be told `busy` (503 with Retry-After) past
 /// their budget, never the small requests.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn issue_26_16_small_requests_stay_quick_while_maps_run() -> TestResult {
+async fn small_requests_stay_quick_while_maps_run() -> TestResult {
     let _alone = ONE_AT_A_TIME.lock().await;
     let server = Server::bind(&ServeOptions {
         port: 0,

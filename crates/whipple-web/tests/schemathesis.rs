@@ -1,7 +1,7 @@
-//! Issue 10: schemathesis (a schema-driven API fuzzer, from PyPI in a throw-away environment,
+//! Schemathesis (a schema-driven API fuzzer, from PyPI in a throw-away environment,
 //! never a dependency) against the real server, a bounded number of cases per operation: no
 //! 5xx, every status, content type and body as the OpenAPI document says, and no operation
-//! whose every generated request the server refused (issue 26, item 17).
+//! whose every generated request the server refused.
 //!
 //! The `schemathesis` (or `st`) executable is taken from `WHIPPLE_SCHEMATHESIS`. Skipped,
 //! loudly, when that is unset, unless `CI` is set (`.ci/run` installs it into a venv under
@@ -15,7 +15,7 @@ use whipple_web::{ServeOptions, Server};
 const EXAMPLES: &str = "50";
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
-async fn issue_10_schemathesis_finds_no_server_error_and_no_schema_mismatch() {
+async fn schemathesis_finds_no_server_error_and_no_schema_mismatch() {
     let Some(executable) = std::env::var_os("WHIPPLE_SCHEMATHESIS") else {
         let required = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "false");
         assert!(
@@ -79,7 +79,7 @@ async fn issue_10_schemathesis_finds_no_server_error_and_no_schema_mismatch() {
         "schemathesis found problems:\n{text}\n{}",
         String::from_utf8_lossy(&output.stderr)
     );
-    // Issue 26, item 17: the document says what the server enforces, so that what it
+    // The document says what the server enforces, so that what it
     // accepts is accepted: an operation where every request schemathesis made from the
     // document was refused (400/422) is a document that promises more than the server keeps.
     // Counted from the HAR report. (Schemathesis's own "mostly rejected generated data"

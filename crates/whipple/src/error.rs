@@ -114,9 +114,10 @@ pub enum Error {
         /// Simulation time \[s\].
         t: f64,
     },
-    /// `--strict` was asked for and the bicycle has warnings.
-    #[error("{count} warning(s) with --strict: {message}")]
-    Strict {
+    /// Warnings were to be refused ([`Checked::strict`](crate::advanced::parameters::Checked::strict)) and the bicycle has
+    /// some. A front end words it with the option that asked for it.
+    #[error("{count} warning(s) refused: {message}")]
+    WarningsRefused {
         /// The first field warned about.
         field: String,
         /// How many warnings.

@@ -56,7 +56,7 @@
 //! | what can go wrong | [`Error`] |
 //!
 //! Words: *validate* means checking input against rules ([`BenchmarkParameters::validate`],
-//! [`advanced::nonlinear::SimulationRequest::validate`]); comparing one model with another is
+//! [`SimulationSettings::validate`]); comparing one model with another is
 //! *compare* ([`advanced::comparison::compare_with_linear`]). Settings structs are named
 //! `…Settings`, each with a `Default`. The benchmark bicycle is
 //! [`BenchmarkParameters::meijaard2007`]; every named bicycle, that one included, is also found by
@@ -234,11 +234,11 @@ pub use nonlinear::SimulationSettings;
 /// in order, computed in parallel).
 ///
 /// ```
-/// use whipple::advanced::design::{Axis, Shard, StudyOptions};
+/// use whipple::advanced::design::{Axis, Parameter, Shard, StudySettings};
 /// use whipple::{presets, Study};
 /// let bike = presets::find("benchmark")?.bicycle();
-/// let x = Axis::parse("trail=0.05:0.1:3", &bike)?;
-/// let study = Study::new(bike, x, None, StudyOptions::default())?;
+/// let x = Axis::new(Parameter::Benchmark("c".into()), 0.05, 0.1, 3)?; // trail c [m]
+/// let study = Study::new(bike, x, None, StudySettings::default())?;
 /// let mut rows = Vec::new();
 /// study.run(Shard::WHOLE, &Default::default(), |chunk| { rows.extend_from_slice(chunk); Ok(()) })?;
 /// assert_eq!(rows.len(), 3);
@@ -268,10 +268,10 @@ pub mod advanced {
         /// Compares the non-linear model with the linear one over a sweep of speeds.
         ///
         /// ```
-        /// use whipple::advanced::comparison::{compare_with_linear, Linearization, StudySettings};
+        /// use whipple::advanced::comparison::{compare_with_linear, Linearization, ComparisonSettings};
         /// use whipple::BenchmarkParameters;
         /// let sweep = compare_with_linear(&BenchmarkParameters::meijaard2007(), &[2.0, 6.0],
-        ///                                 &[Linearization::Exact], &StudySettings::default())?;
+        ///                                 &[Linearization::Exact], &ComparisonSettings::default())?;
         /// assert!(sweep.methods[0].max_abs_diff.iter().all(|d| *d < 1e-11));
         /// # Ok::<(), whipple::Error>(())
         /// ```
@@ -289,13 +289,19 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::analysis::comparison::lean_steer_matrix;
+        /// Settings of the study's finite-difference linearization.
+        ///
+        /// ```
+        /// assert!(whipple::advanced::comparison::ComparisonSettings::default().projection.is_some());
+        /// ```
+        pub use crate::analysis::comparison::ComparisonSettings;
         /// The result of [`compare_with_linear`].
         ///
         /// ```
-        /// use whipple::advanced::comparison::{compare_with_linear, ComparisonSweep, Linearization, StudySettings};
+        /// use whipple::advanced::comparison::{compare_with_linear, ComparisonSweep, Linearization, ComparisonSettings};
         /// use whipple::BenchmarkParameters;
         /// let sweep: ComparisonSweep = compare_with_linear(&BenchmarkParameters::meijaard2007(), &[5.0],
-        ///                                                  &[Linearization::Exact], &StudySettings::default())?;
+        ///                                                  &[Linearization::Exact], &ComparisonSettings::default())?;
         /// assert!(sweep.method(Linearization::Exact).is_some());
         /// # Ok::<(), whipple::Error>(())
         /// ```
@@ -306,12 +312,6 @@ pub mod advanced {
         /// assert_eq!(whipple::advanced::comparison::Linearization::Exact.name(), "ad");
         /// ```
         pub use crate::analysis::comparison::Linearization;
-        /// Settings of the study's finite-difference linearization.
-        ///
-        /// ```
-        /// assert!(whipple::advanced::comparison::StudySettings::default().projection.is_some());
-        /// ```
-        pub use crate::analysis::comparison::StudySettings;
         pub use crate::analysis::comparison::{
             capsize_spike, compare_with_linear_until, double_root_conditioning,
             full_state_jacobian, full_state_jacobian_fd, general_eigenvalues,
@@ -322,7 +322,7 @@ pub mod advanced {
     #[doc = "Design studies over one or two parameters."]
     pub mod design {
         pub use crate::analysis::design::{
-            Axis, DesignRow, DesignStatus, Parameter, Shard, StudyOptions,
+            Axis, DesignRow, DesignStatus, Parameter, Shard, StudySettings, MAX_AXIS_POINTS,
         };
     }
     #[doc = "Eigenvalues and eigenvectors of the linear model at one speed."]
@@ -356,7 +356,7 @@ pub mod advanced {
         /// assert!(Integrator::Rk4 { dt: 0.0 }.validate().is_err());
         /// ```
         pub use crate::integrate::Integrator;
-        pub use crate::integrate::{Dopri5Settings, OdeSystem, Stepper};
+        pub use crate::integrate::{Dopri5Settings, OdeSystem, Stepper, DEFAULT_DT, DEFAULT_RTOL};
     }
     #[doc = "Parameter files from and to text: TOML, JSON, JBike6's `.m`, BicycleParameters' and HumanControl's `.txt`, YAML."]
     pub mod io {
@@ -449,23 +449,16 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::nonlinear::Simulation;
-        /// A simulation as a person asks for it (degrees as typed), checked by one set of rules.
-        ///
-        /// ```
-        /// let (initial, settings) = whipple::advanced::nonlinear::SimulationRequest::new(4.6, 5.0).validate()?;
-        /// assert_eq!((initial.speed, settings.duration), (4.6, 5.0));
-        /// # Ok::<(), whipple::Error>(())
-        /// ```
-        pub use crate::nonlinear::SimulationRequest;
         pub use crate::nonlinear::{
-            check_rk4_step, fastest_mode, ContactForce, Inputs, IntegratorKind, Progress,
+            check_rk4_step, fastest_mode, samples_kept, ContactForce, Inputs, Progress,
             ProjectionMethod, ProjectionSettings, State, StateView, TorqueExpression, TorqueFn,
-            TorqueInput, Wheel, BODY_NAMES, FRONT_WHEEL, MAX_EXPRESSION_DEPTH,
-            MAX_EXPRESSION_LENGTH, REAR_FRAME, REAR_WHEEL, STATE_LEN,
+            Wheel, BODY_NAMES, DEFAULT_FALL_ANGLE, FRONT_WHEEL, MAX_EXPRESSION_DEPTH,
+            MAX_EXPRESSION_LENGTH, MAX_SAMPLES, MAX_STEPS, REAR_FRAME, REAR_WHEEL, STATE_LEN,
         };
     }
     #[doc = "Bicycle descriptions: the benchmark and JBike6 forms, checks and their notices."]
     pub mod parameters {
+        pub use crate::parameters::jbike6::BENCHMARK_FROM_JBIKE6;
         /// The form a bicycle was described in.
         ///
         /// ```

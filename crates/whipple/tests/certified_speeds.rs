@@ -1,24 +1,30 @@
-//! The certified critical speeds (issue 10, "wrong answers given without a word"): regression
-//! tests named after each misbehaviour, and property tests against dense eigenvalue scans.
+//! The certified critical speeds, never a wrong answer given without a word: regression
+//! tests named after each misbehaviour they guard against, and property tests against dense eigenvalue scans.
 
 use std::sync::atomic::AtomicBool;
 
 use approx::assert_abs_diff_eq;
 use proptest::prelude::*;
-use whipple::advanced::design::{Axis, DesignStatus, Shard, StudyOptions};
+use whipple::advanced::design::{Axis, DesignStatus, Parameter, Shard, StudySettings};
 use whipple::advanced::parameters::Description;
 use whipple::advanced::{eigen, stability};
 use whipple::presets;
 use whipple::Canonical;
 use whipple::Study;
 use whipple::{BenchmarkParameters, Bicycle, Error, Result};
+use whipple_reference::meijaard2007 as published;
 
 fn preset(name: &str) -> Result<Canonical> {
     Canonical::new(&presets::find(name)?.bicycle().benchmark()?)
 }
 
-/// Meijaard et al. 2007, Table 2 (doi:10.1098/rspa.2007.1857), on the whole half-line.
-const TABLE_2: (f64, f64, f64) = (0.68428307889246, 4.29238253634111, 6.02426201538837);
+/// Meijaard et al. 2007, Table 2 (doi:10.1098/rspa.2007.1857): (v_d, v_w, v_c), on the whole
+/// half-line.
+const TABLE_2: (f64, f64, f64) = (
+    published::DOUBLE_ROOT_SPEED,
+    published::WEAVE_SPEED,
+    published::CAPSIZE_SPEED,
+);
 
 /// The grid scan of 4,000 cells missed the benchmark's weave and capsize speeds on 0..20000 and
 /// 0..1e5 and reported "self-stable nowhere".
@@ -466,9 +472,9 @@ proptest! {
         cells in proptest::collection::vec((0usize..41, 0usize..31), 8),
     ) {
         let bike = presets::find("benchmark").map_err(|e| TestCaseError::fail(e.to_string()))?.bicycle();
-        let x = Axis::parse(&format!("trail={}:{}:41", trail.0, trail.1), &bike).map_err(|e| TestCaseError::fail(e.to_string()))?;
-        let y = Axis::parse(&format!("head_angle_deg={}:{}:31", head.0, head.1), &bike).map_err(|e| TestCaseError::fail(e.to_string()))?;
-        let study = Study::new(bike, x.clone(), Some(y.clone()), StudyOptions::default()).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let x = Axis::new(Parameter::Benchmark("c".into()), trail.0, trail.1, 41).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let y = Axis::scaled(Parameter::Benchmark("head_angle".into()), head.0, head.1, 31, 1f64.to_radians()).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let study = Study::new(bike, x.clone(), Some(y.clone()), StudySettings::default()).map_err(|e| TestCaseError::fail(e.to_string()))?;
         for (ix, iy) in cells {
             let row = study.design((iy * 41 + ix) as u64);
             let mut b = BenchmarkParameters::meijaard2007();
@@ -499,9 +505,9 @@ proptest! {
 fn shards_reassemble_the_whole_study() -> Result<()> {
     let bike: Bicycle = presets::find("schwinn-crown")?.bicycle();
     assert!(matches!(bike.description, Description::Jbike6(_)));
-    let x = Axis::parse("trail=0:0.2:23", &bike)?;
-    let y = Axis::parse("ycmrider=0.8:1.4:7", &bike)?;
-    let study = Study::new(bike, x, Some(y), StudyOptions::default())?;
+    let x = Axis::new(Parameter::Jbike6("trail".into()), 0.0, 0.2, 23)?;
+    let y = Axis::new(Parameter::Jbike6("ycmrider".into()), 0.8, 1.4, 7)?;
+    let study = Study::new(bike, x, Some(y), StudySettings::default())?;
     let stop = AtomicBool::new(false);
     let mut whole = Vec::new();
     study.run(Shard::WHOLE, &stop, |rows| {
@@ -526,9 +532,9 @@ fn shards_reassemble_the_whole_study() -> Result<()> {
 #[test]
 fn a_designs_bicycle_is_the_one_computed() -> Result<()> {
     let bike: Bicycle = presets::find("schwinn-crown")?.bicycle();
-    let x = Axis::parse("trail=0:0.2:23", &bike)?;
-    let y = Axis::parse("ycmrider=0.8:1.4:7", &bike)?;
-    let study = Study::new(bike, x, Some(y), StudyOptions::default())?;
+    let x = Axis::new(Parameter::Jbike6("trail".into()), 0.0, 0.2, 23)?;
+    let y = Axis::new(Parameter::Jbike6("ycmrider".into()), 0.8, 1.4, 7)?;
+    let study = Study::new(bike, x, Some(y), StudySettings::default())?;
     let index = 5 * 23 + 9;
     let design = study.bicycle_at(index)?;
     let Description::Jbike6(j) = &design.description else {
@@ -548,42 +554,38 @@ fn a_designs_bicycle_is_the_one_computed() -> Result<()> {
     Ok(())
 }
 
-/// An axis of a JBike6-form bicycle may be named by its TOML path as well as its `.m` key:
-/// `rider.ycm` is `ycmrider`, `rider.I[1]` is `Irider(1)`, `rider.alpha_deg` is
-/// `alphaIrider_deg`; the study computes the same rows either way.
+/// A parameter of a JBike6-form bicycle may be named by its TOML path as well as its `.m` key:
+/// `rider.ycm` is `ycmrider`, `rider.I[1]` is `Irider(1)`, `rider.alpha` is `alphaIrider`; the
+/// study computes the same rows either way.
 #[test]
-fn jbike6_axes_take_toml_paths() -> Result<()> {
+fn jbike6_parameters_take_toml_paths() -> Result<()> {
     let bike: Bicycle = presets::find("schwinn-crown")?.bicycle();
-    for (path, key) in [
-        ("rider.ycm=0.8:1.4:7", "ycmrider=0.8:1.4:7"),
-        ("rider.I[1]=5:15:3", "Irider(1)=5:15:3"),
-        ("rider.alpha_deg=-20:20:5", "alphaIrider_deg=-20:20:5"),
+    for (path, key, (start, stop, count)) in [
+        ("rider.ycm", "ycmrider", (0.8, 1.4, 7)),
+        ("rider.I[1]", "Irider(1)", (5.0, 15.0, 3)),
+        ("rider.alpha", "alphaIrider", (-0.35, 0.35, 5)),
     ] {
-        let by_path = Axis::parse(path, &bike)?;
-        let by_key = Axis::parse(key, &bike)?;
-        assert_eq!(by_path.parameter, by_key.parameter, "{path}");
-        assert_eq!(by_path.degrees, by_key.degrees, "{path}");
-        let rows = |axis: Axis| -> Result<Vec<Option<f64>>> {
-            let study = Study::new(bike.clone(), axis, None, StudyOptions::default())?;
-            Ok((0..study.len())
-                .map(|i| study.design(i).quantities.weave_speed)
-                .collect())
+        let by_path = Parameter::named(path, &bike);
+        let by_key = Parameter::named(key, &bike);
+        assert_eq!(by_path, by_key, "{path}");
+        let Some(parameter) = by_path else {
+            panic!("{path} names no parameter of the Crown");
         };
-        let (a, b) = (rows(by_path)?, rows(by_key)?);
-        assert_eq!(a, b, "{path}");
+        let study = Study::new(
+            bike.clone(),
+            Axis::new(parameter, start, stop, count)?,
+            None,
+            StudySettings::default(),
+        )?;
+        let speeds: Vec<Option<f64>> = (0..study.len())
+            .map(|i| study.design(i).quantities.weave_speed)
+            .collect();
         assert!(
-            a.iter().any(Option::is_some),
+            speeds.iter().any(Option::is_some),
             "{path}: no weave speed at all"
         );
     }
-    let m = Axis::parse("rider.height=1:2:3", &bike)
-        .err()
-        .map(|e| e.to_string())
-        .unwrap_or_default();
-    assert!(
-        m.contains("rider.height") && m.contains("TOML paths"),
-        "{m}"
-    );
+    assert_eq!(Parameter::named("rider.height", &bike), None);
     Ok(())
 }
 
@@ -591,8 +593,8 @@ fn jbike6_axes_take_toml_paths() -> Result<()> {
 #[test]
 fn invalid_designs_are_marked_not_computed() -> Result<()> {
     let bike = presets::find("benchmark")?.bicycle();
-    let x = Axis::parse("mB=-10:10:3", &bike)?;
-    let study = Study::new(bike, x, None, StudyOptions::default())?;
+    let x = Axis::new(Parameter::Benchmark("mB".into()), -10.0, 10.0, 3)?;
+    let study = Study::new(bike, x, None, StudySettings::default())?;
     let first = study.design(0);
     assert_eq!(first.status, DesignStatus::Invalid);
     assert!(first.reason.as_deref().unwrap_or("").contains("mB"));

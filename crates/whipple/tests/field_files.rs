@@ -129,7 +129,7 @@ fn every_field_file_matches_bicycleparameters() -> TestResult {
     }
     assert_eq!(compared, 32, "files compared with BicycleParameters");
     // The measured bicycles whose tensors break the triangle inequality are warned about,
-    // not refused (issue 11): Browser and Yellow among them.
+    // not refused: Browser and Yellow among them.
     assert!(
         warned
             .iter()
@@ -179,7 +179,7 @@ fn every_field_file_round_trips_through_every_writer() -> TestResult {
     Ok(())
 }
 
-/// Issue 11: the sensitivity of v_w to trail for the benchmark bicycle agrees with a central
+/// The sensitivity of v_w to trail for the benchmark bicycle agrees with a central
 /// difference to 1e-8 relative.
 #[test]
 fn weave_speed_sensitivity_to_trail_matches_central_difference() -> TestResult {
@@ -265,7 +265,7 @@ impl Normal {
     }
 }
 
-/// Issue 11: the first-order σ of v_w of a measured bicycle (Fisher, BicycleParameters'
+/// The first-order σ of v_w of a measured bicycle (Fisher, BicycleParameters'
 /// measured sigmas) agrees with the spread of Monte-Carlo samples within its sampling error.
 #[test]
 fn weave_speed_sigma_agrees_with_monte_carlo() -> TestResult {

@@ -1,4 +1,4 @@
-//! Messages that name the right thing (issue 10) and parsers that never panic (property tests):
+//! Messages that name the right thing and parsers that never panic (property tests):
 //! every reader's error names a field, a line or the format; the writers keep every digit and
 //! cannot be broken by a name.
 
@@ -36,9 +36,9 @@ fn crown_m() -> String {
     .unwrap_or_default()
 }
 
-/// Issue 10: JBike6-form inputs are reported under the names the user wrote.
+/// JBike6-form inputs are reported under the names the user wrote.
 #[test]
-fn issue_10_jbike6_errors_name_what_the_user_wrote() {
+fn jbike6_errors_name_what_the_user_wrote() {
     for (from, to, name) in [
         ("wheelbase = ", "wheelbase = 0.0 #", "wheelbase"),
         ("gravity = ", "gravity = 0.0 #", "gravity"),
@@ -69,9 +69,9 @@ fn issue_10_jbike6_errors_name_what_the_user_wrote() {
     assert!(!m.contains("IRyy"), "{m}");
 }
 
-/// Issue 10: a zero mass with non-zero inertia is refused, naming the body.
+/// A zero mass with non-zero inertia is refused, naming the body.
 #[test]
-fn issue_10_zero_mass_with_inertia_is_refused_naming_the_body() {
+fn zero_mass_with_inertia_is_refused_naming_the_body() {
     let mut bike = BenchmarkParameters::meijaard2007();
     bike.m_r = 0.0;
     let m = message(bike.validate());
@@ -88,9 +88,9 @@ fn issue_10_zero_mass_with_inertia_is_refused_naming_the_body() {
     assert!(m.contains("rear rack") && m.contains("mrack"), "{m}");
 }
 
-/// Issue 10: overflow names the field; long numbers are cut in messages.
+/// Overflow names the field; long numbers are cut in messages.
 #[test]
-fn issue_10_overflow_names_the_field_and_numbers_are_short() {
+fn overflow_names_the_field_and_numbers_are_short() {
     let mut bike = BenchmarkParameters::meijaard2007();
     bike.m_b = 1e300;
     let m = message(bike.validate());
@@ -101,10 +101,10 @@ fn issue_10_overflow_names_the_field_and_numbers_are_short() {
     assert!(m.len() < 400, "{} characters", m.len());
 }
 
-/// Issue 10: semantic errors are not "syntax error at line 0, column 0"; `[[benchmark]]` gets
+/// Semantic errors are not "syntax error at line 0, column 0"; `[[benchmark]]` gets
 /// a clear message; extra elements of an inertia array are refused.
 #[test]
-fn issue_10_semantic_errors_are_labelled_as_such() {
+fn semantic_errors_are_labelled_as_such() {
     let m = message(parse("name = \"x\"\n", Format::Toml));
     assert!(!m.contains("line 0") && m.contains("benchmark"), "{m}");
     let m = message(parse("[[benchmark]]\nw = 1.0\n", Format::Toml));
@@ -120,9 +120,9 @@ fn issue_10_semantic_errors_are_labelled_as_such() {
     );
 }
 
-/// Issue 10: `.m` column vectors read, matrices refused by name, `...` continuations joined.
+/// `.m` column vectors read, matrices refused by name, `...` continuations joined.
 #[test]
-fn issue_10_matlab_columns_matrices_and_continuations() -> Result<(), Error> {
+fn matlab_columns_matrices_and_continuations() -> Result<(), Error> {
     let text = crown_m();
     let line = text
         .lines()
@@ -159,10 +159,10 @@ fn issue_10_matlab_columns_matrices_and_continuations() -> Result<(), Error> {
     Ok(())
 }
 
-/// Issue 10 and 11: a UTF-8 byte-order mark, CRLF line endings and no final newline are read in
+/// A UTF-8 byte-order mark, CRLF line endings and no final newline are read in
 /// every format.
 #[test]
-fn issue_11_files_as_their_owners_wrote_them() -> Result<(), Error> {
+fn files_as_their_owners_wrote_them() -> Result<(), Error> {
     let bike = presets::find("benchmark")?.bicycle();
     let crown = presets::find("schwinn-crown")?.bicycle();
     for (format, _, _) in FORMATS {
@@ -182,9 +182,9 @@ fn issue_11_files_as_their_owners_wrote_them() -> Result<(), Error> {
     Ok(())
 }
 
-/// Issue 10: writers keep every digit and a name cannot inject lines or break TOML.
+/// Writers keep every digit and a name cannot inject lines or break TOML.
 #[test]
-fn issue_10_writers_keep_every_digit_and_escape_names() -> Result<(), Error> {
+fn writers_keep_every_digit_and_escape_names() -> Result<(), Error> {
     let mut crown = presets::find("schwinn-crown")?.bicycle();
     if let Description::Jbike6(p) = &mut crown.description {
         p.trail = 0.0909681234567;
@@ -202,10 +202,10 @@ fn issue_10_writers_keep_every_digit_and_escape_names() -> Result<(), Error> {
     Ok(())
 }
 
-/// Issue 10: a NaN or an infinity is refused by every reader (the web API's parse no longer
+/// A NaN or an infinity is refused by every reader (the web API's parse no longer
 /// answers it as `null`).
 #[test]
-fn issue_10_non_finite_numbers_are_refused_by_every_reader() {
+fn non_finite_numbers_are_refused_by_every_reader() {
     let bike = presets::find("benchmark")
         .map(|p| p.bicycle())
         .unwrap_or_default();
@@ -363,9 +363,9 @@ fn handlebar_and_fork_combine_by_the_parallel_axis_theorem() -> Result<(), Error
     Ok(())
 }
 
-/// Issue 11: keys of other models are never dropped silently; left-right asymmetry refused.
+/// Keys of other models are never dropped silently; left-right asymmetry refused.
 #[test]
-fn issue_11_other_keys_are_reported_or_refused() -> Result<(), Error> {
+fn other_keys_are_reported_or_refused() -> Result<(), Error> {
     let base = write(
         &presets::find("benchmark")?.bicycle(),
         Format::HumanControlTxt,

@@ -79,7 +79,7 @@ fn inertia_tensors_must_be_positive_semi_definite() {
 
 #[test]
 fn principal_moments_must_obey_the_triangle_inequality() {
-    // Issue 11: a warning (measured tensors break it within their error), not an error.
+    // A warning (measured tensors break it within their error), not an error.
     let mut b = benchmark();
     b.i_ryy = 0.2; // > 2 * 0.0603
     let warnings = b.check().unwrap_or_default();
@@ -138,7 +138,7 @@ fn jbike6_rules_are_checked_before_conversion() {
         .contains("mbasket"));
     j = presets::schwinn_crown_jbike6();
     j.rider.inertia = [10.0, 1.0, 12.0];
-    // Issue 11: a warning under JBike6's name, not an error.
+    // A warning under JBike6's name, not an error.
     let (_, warnings) = j.to_benchmark_checked().unwrap_or_else(|e| panic!("{e}"));
     let m = warnings.iter().map(|w| w.to_string()).collect::<String>();
     assert!(m.contains("Irider") && m.contains("triangle"), "{m}");
@@ -367,18 +367,18 @@ fn overlapping_wheels_are_warned_about() {
         .is_ok_and(|n| n.iter().any(|n| n.message.contains("wheels overlap"))));
 }
 
-/// Issue 26 item 14: the comparison of the models takes at most the library's one limit of
+/// The comparison of the models takes at most the library's one limit of
 /// speeds (the command line's `validate` and Python's `compare` both use it), refused before
 /// any work; a stop flag ends it early.
 #[test]
 fn the_comparison_takes_at_most_its_limit_of_speeds_and_stops_when_asked() {
     use std::sync::atomic::AtomicBool;
-    use whipple::advanced::comparison::{compare_with_linear, Linearization, StudySettings};
+    use whipple::advanced::comparison::{compare_with_linear, ComparisonSettings, Linearization};
     use whipple::advanced::comparison::{compare_with_linear_until, MAX_COMPARED_SPEEDS};
 
     let speeds = vec![1.0; MAX_COMPARED_SPEEDS + 1];
     let methods = [Linearization::Exact];
-    let settings = StudySettings::default();
+    let settings = ComparisonSettings::default();
     match compare_with_linear(&benchmark(), &speeds, &methods, &settings) {
         Err(Error::LimitExceeded { what, rule }) => {
             assert_eq!(what, "speeds");

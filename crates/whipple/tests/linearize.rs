@@ -6,7 +6,7 @@
 use nalgebra::{DMatrix, Vector4};
 use whipple::advanced::comparison::{
     full_state_jacobian, full_state_jacobian_fd, general_eigenvalues, lean_steer_eigenvalues,
-    lean_steer_matrix, max_abs_diff, pick, zero_cluster, StudySettings,
+    lean_steer_matrix, max_abs_diff, pick, zero_cluster, ComparisonSettings,
 };
 use whipple::advanced::eigen;
 use whipple::advanced::linear::StateSpace;
@@ -103,7 +103,7 @@ fn finite_differences_stay_within_their_measured_bound() -> Result<()> {
             (vc - 0.01, 3e-6),
             (vc + 0.01, 3e-6),
         ] {
-            let fd = full_state_jacobian_fd(&model, v, &StudySettings::default())?;
+            let fd = full_state_jacobian_fd(&model, v, &ComparisonSettings::default())?;
             let reference = eigen::eigenvalues(&canonical, v)?;
             let picked = pick(&reference, &general_eigenvalues(&fd.jacobian)?)?;
             let d = max_abs_diff(&picked, &reference);
@@ -198,9 +198,9 @@ fn full_state_jacobian_contains_the_linear_eigenvalues() -> Result<()> {
     let canonical = Canonical::new(&bike)?;
     for v in [1.0, 4.6] {
         let exact = full_state_jacobian(&model, v)?;
-        let no_projection = StudySettings {
+        let no_projection = ComparisonSettings {
             projection: None,
-            ..StudySettings::default()
+            ..ComparisonSettings::default()
         };
         let fd = full_state_jacobian_fd(&model, v, &no_projection)?.jacobian;
         assert!((fd - exact).amax() < 1e-7 * exact.amax());

@@ -912,7 +912,7 @@ fn two_mass_skate_runs_with_its_rear_skate_pulled_down() -> Result<()> {
     Ok(())
 }
 
-/// Issue 26: `simulate --speed 4.6 --lean-rate 0.5 --duration 10 --dt 0.25` gave "fell" (the
+/// `simulate --speed 4.6 --lean-rate 0.5 --duration 10 --dt 0.25` gave "fell" (the
 /// energy grown 326-fold). A step beyond RK4's stability bound for the fastest mode of the
 /// linearized bicycle at the run's speed is refused before any step, with the step to use.
 #[test]

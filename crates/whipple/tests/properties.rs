@@ -1,4 +1,4 @@
-//! Issue 10, property tests of the torque expressions: any text is parsed or refused on one
+//! Property tests of the torque expressions: any text is parsed or refused on one
 //! line, never a panic; generated expressions evaluate as Rust's arithmetic does. (The parsers
 //! and writers of bicycle files have theirs in `file_messages.rs` and `round_trip.rs`.) The
 //! same inputs the fuzz targets in `fuzz/` explore for hours, a few hundred cases here.
@@ -44,7 +44,7 @@ proptest! {
 /// A syntax error in a long one-line file echoed the whole line: the message stays short. Every
 /// format listed must refuse the line (a format that accepted it would leave nothing checked).
 #[test]
-fn issue_10_a_syntax_error_in_a_long_line_gives_a_short_message() {
+fn a_syntax_error_in_a_long_line_gives_a_short_message() {
     let long = format!("name = \"{}\" x", "a".repeat(1_000_000));
     for format in [Format::Toml, Format::Json, Format::Jbike6M] {
         match parse(&long, format) {
@@ -63,7 +63,7 @@ fn issue_10_a_syntax_error_in_a_long_line_gives_a_short_message() {
 
 /// Hostile lengths and nesting are refused with the limit named, without deep recursion.
 #[test]
-fn issue_10_torque_expressions_are_bounded() {
+fn torque_expressions_are_bounded() {
     let long = "1+".repeat(MAX_EXPRESSION_LENGTH) + "1";
     let err = TorqueExpression::parse(&long)
         .expect_err("too long")

@@ -1,5 +1,6 @@
-//! Published values reproduced. Each test cites its source; the numbers live here, next to the
-//! test, copied from the publications.
+//! Published values reproduced. Each test cites its source; the numbers live in the
+//! `whipple-reference` crate (the one copy the workspace's tests share), copied from the
+//! publications with their citations.
 
 use approx::assert_abs_diff_eq;
 use nalgebra::Matrix2;
@@ -8,6 +9,11 @@ use whipple::advanced::modes::Mode;
 use whipple::presets;
 use whipple::Canonical;
 use whipple::{BenchmarkParameters, Result};
+use whipple_reference::meijaard2007 as published;
+
+fn matrix(rows: [[f64; 2]; 2]) -> Matrix2<f64> {
+    Matrix2::new(rows[0][0], rows[0][1], rows[1][0], rows[1][1])
+}
 
 /// Meijaard, Papadopoulos, Ruina & Schwab 2007, Proc. R. Soc. A 463:1955–1982, §5
 /// (doi:10.1098/rspa.2007.1857). The published entries are the exact values rounded to 14
@@ -15,20 +21,12 @@ use whipple::{BenchmarkParameters, Result};
 #[test]
 fn canonical_matrices_match_meijaard_2007() -> Result<()> {
     let c = Canonical::new(&BenchmarkParameters::meijaard2007())?;
-    let m = Matrix2::new(
-        80.81722,
-        2.31941332208709,
-        2.31941332208709,
-        0.29784188199686,
+    let (m, c1, k0, k2) = (
+        matrix(published::M),
+        matrix(published::C1),
+        matrix(published::K0),
+        matrix(published::K2),
     );
-    let c1 = Matrix2::new(0.0, 33.86641391492494, -0.85035641456978, 1.6854039739756);
-    let k0 = Matrix2::new(
-        -80.95,
-        -2.59951685249872,
-        -2.59951685249872,
-        -0.80329488458618,
-    );
-    let k2 = Matrix2::new(0.0, 76.59734589573222, 0.0, 2.65431523794604);
     assert_abs_diff_eq!(c.m, m, epsilon = 1e-13);
     assert_abs_diff_eq!(c.c1, c1, epsilon = 1e-13);
     assert_abs_diff_eq!(c.k0, k0, epsilon = 1e-13);
@@ -36,103 +34,22 @@ fn canonical_matrices_match_meijaard_2007() -> Result<()> {
     Ok(())
 }
 
-/// Meijaard et al. 2007, Table 2: (v, weave re, weave im, capsize, castering); the table
-/// carries round-off of up to about 6e-13.
-const TABLE_2: [(f64, f64, f64, f64, f64); 10] = [
-    (
-        1.0,
-        3.5269617099007,
-        0.8077402751993,
-        -3.13423125066578,
-        -7.11008014637442,
-    ),
-    (
-        2.0,
-        2.68234517512745,
-        1.68066296590675,
-        -3.07158645641514,
-        -8.67387984831735,
-    ),
-    (
-        3.0,
-        1.70675605663975,
-        2.31582447384325,
-        -2.63366137253667,
-        -10.3510146724592,
-    ),
-    (
-        4.0,
-        0.41325331521125,
-        3.07910818603206,
-        -1.42944427361326,
-        -12.1586142657645,
-    ),
-    (
-        5.0,
-        -0.77534188219585,
-        4.46486771378823,
-        -0.32286642900409,
-        -14.0783896927982,
-    ),
-    (
-        6.0,
-        -1.52644486584142,
-        5.87673060598709,
-        -0.0040669007697,
-        -16.0853712309803,
-    ),
-    (
-        7.0,
-        -2.13875644258362,
-        7.19525913329805,
-        0.10268170574766,
-        -18.15788466125262,
-    ),
-    (
-        8.0,
-        -2.69348683581097,
-        8.46037971396931,
-        0.14327879765713,
-        -20.27940894394569,
-    ),
-    (
-        9.0,
-        -3.21675402252485,
-        9.69377351531791,
-        0.15790184030917,
-        -22.43788559040858,
-    ),
-    (
-        10.0,
-        -3.72016840437287,
-        10.90681139476287,
-        0.16105338653172,
-        -24.62459635017404,
-    ),
-];
-
 /// Meijaard et al. 2007, Table 2, eigenvalues at 0 … 10 m/s, to 1e-12.
 #[test]
 fn eigenvalues_match_meijaard_2007_table_2() -> Result<()> {
     let c = Canonical::new(&BenchmarkParameters::meijaard2007())?;
     let at_rest = eigen::eigenvalues(&c, 0.0)?;
-    let published = [
-        5.53094371765393,
-        3.13164324790656,
-        -3.13164324790656,
-        -5.53094371765393,
-    ];
-    for (l, p) in at_rest.iter().zip(published) {
+    for (l, p) in at_rest.iter().zip(published::EIGENVALUES_AT_REST) {
         assert_abs_diff_eq!(l.re, p, epsilon = 1e-12);
         assert_eq!(l.im, 0.0);
     }
-    let speeds: Vec<f64> = TABLE_2.iter().map(|row| row.0).collect();
+    let speeds: Vec<f64> = published::EIGENVALUES.iter().map(|row| row.0).collect();
     let s = whipple::eigen_sweep(&c, &speeds)?;
     assert_eq!(
         s.modes,
         [Mode::Weave, Mode::Weave, Mode::Capsize, Mode::Castering]
     );
-    for (row, values) in TABLE_2.iter().zip(&s.eigenvalues) {
+    for (row, values) in published::EIGENVALUES.iter().zip(&s.eigenvalues) {
         let (v, re, im, capsize, castering) = *row;
         let direct = eigen::eigenvalues(&c, v)?;
         assert!(direct.iter().all(|d| values.contains(d)), "v = {v}");
@@ -153,24 +70,36 @@ fn critical_speeds_match_meijaard_2007() -> Result<()> {
     let c = Canonical::new(&BenchmarkParameters::meijaard2007())?;
     let s = whipple::critical_speeds(&c, 0.0, 10.0)?;
     let get = |x: Option<f64>| x.expect("the benchmark bicycle has every critical speed");
-    assert_abs_diff_eq!(get(s.double_root_speed), 0.68428307889246, epsilon = 1e-12);
+    assert_abs_diff_eq!(
+        get(s.double_root_speed),
+        published::DOUBLE_ROOT_SPEED,
+        epsilon = 1e-12
+    );
     assert_abs_diff_eq!(
         get(s.double_root_eigenvalue),
-        3.7829040512932,
+        published::DOUBLE_ROOT_EIGENVALUE,
         epsilon = 1e-9
     );
-    assert_abs_diff_eq!(get(s.weave_speed), 4.29238253634111, epsilon = 1e-12);
-    assert_abs_diff_eq!(get(s.weave_frequency), 3.43503384866144, epsilon = 1e-12);
-    assert_abs_diff_eq!(get(s.capsize_speed), 6.02426201538837, epsilon = 1e-12);
+    assert_abs_diff_eq!(get(s.weave_speed), published::WEAVE_SPEED, epsilon = 1e-12);
+    assert_abs_diff_eq!(
+        get(s.weave_frequency),
+        published::WEAVE_FREQUENCY,
+        epsilon = 1e-12
+    );
+    assert_abs_diff_eq!(
+        get(s.capsize_speed),
+        published::CAPSIZE_SPEED,
+        epsilon = 1e-12
+    );
     assert_eq!(s.stable_speed_ranges.len(), 1);
     assert_abs_diff_eq!(
         s.stable_speed_ranges[0].0,
-        4.29238253634111,
+        published::WEAVE_SPEED,
         epsilon = 1e-12
     );
     assert_abs_diff_eq!(
         s.stable_speed_ranges[0].1,
-        6.02426201538837,
+        published::CAPSIZE_SPEED,
         epsilon = 1e-12
     );
     Ok(())

@@ -1,4 +1,4 @@
-//! Steady turns of the non-linear bicycle (issue 15): residuals, the forward-speed equation,
+//! Steady turns of the non-linear bicycle: residuals, the forward-speed equation,
 //! symmetry, contact-force balance, the small-lean limit against the linear model, the branch
 //! of hands-free turns from straight running, stability, continuation, and simulations started
 //! on a turn.
@@ -433,7 +433,7 @@ fn perturbations_grow_or_decay_at_the_eigenvalue_rate() -> Result<()> {
     Ok(())
 }
 
-/// Issue 26: a 0.5 m circle at 5 m/s solved with the rear normal force at −1448 N and was
+/// A 0.5 m circle at 5 m/s solved with the rear normal force at −1448 N and was
 /// returned as a turn; the ground would have to pull the wheel down. Refused, naming the wheel
 /// and the force.
 #[test]
@@ -454,7 +454,7 @@ fn a_turn_that_pulls_a_wheel_down_is_refused() {
     assert!(turn.contact.iter().all(|c| c.normal > 0.0));
 }
 
-/// Issue 26: `--radius 1e200` gave "a computed result is not a finite number". Past
+/// `--radius 1e200` gave "a computed result is not a finite number". Past
 /// `MAX_RADIUS` the radius is refused, naming it and the bound; at the bound the turn is
 /// computed, finite, and is straight running to round-off.
 #[test]

@@ -1,4 +1,5 @@
 // The page's only contact with the server: the endpoints of /api/openapi.json.
+import { during } from "./work.js";
 
 /** An error answered by the API: {kind, message, field, rule} plus the HTTP status. */
 export class ApiError extends Error {
@@ -11,7 +12,12 @@ export class ApiError extends Error {
   }
 }
 
-async function call(method, path, body) {
+/** One request, counted as work under way until its answer has been handled ([during]). */
+function call(method, path, body) {
+  return during(() => request(method, path, body));
+}
+
+async function request(method, path, body) {
   let response;
   try {
     response = await fetch(path, {

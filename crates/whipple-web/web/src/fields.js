@@ -126,11 +126,13 @@ function shortDescription(text) {
 
 /**
  * Fills every row's `unit` and `hint` (and each cell's `description`) from the library's
- * parameter table, the body of GET /api/parameters ({benchmark: [...], jbike6: [...]}, each entry
- * {key, unit, description, ...}). Returns the `lib` names the table does not know (none, unless
- * the page and the server disagree).
+ * parameter table, the body of GET /api/parameters ({benchmark: [...], jbike6: [...],
+ * jbike6_sources: {key: [...]}}, each entry {key, unit, description, ...}), and
+ * [JBIKE6_SOURCES]. Returns the `lib` names the table does not know (none, unless the page and
+ * the server disagree).
  */
 export function applyParameterTable(table) {
+  Object.assign(JBIKE6_SOURCES, table.jbike6_sources ?? {});
   const byKey = new Map([...(table.benchmark ?? []), ...(table.jbike6 ?? [])].map((p) => [p.key, p]));
   const unknown = [];
   for (const group of [...JBIKE6_GROUPS, ...BENCHMARK_GROUPS]) {
@@ -164,20 +166,7 @@ export function setPath(obj, path, value) {
 
 /**
  * Where a rule of the benchmark form, checked after JBike6's bodies are combined, comes from in
- * the JBike6 form: the fields to flag for a benchmark name in an error.
+ * the JBike6 form: the fields to flag for a benchmark name in an error. Filled by
+ * [applyParameterTable] from the library's table (`jbike6_sources` of GET /api/parameters).
  */
-export const JBIKE6_SOURCES = {
-  w: ["wheelbase"], c: ["trail"], lam: ["head_angle"], g: ["gravity"],
-  rR: ["Drearwheel"], mR: ["mrearwheel"], IRxx: ["Irearwheel(1)", "Irearwheel(2)"], IRyy: ["Irearwheel(3)", "Drearwheel"],
-  rF: ["Dfrontwheel"], mF: ["mfrontwheel"], IFxx: ["Ifrontwheel(1)", "Ifrontwheel(2)"], IFyy: ["Ifrontwheel(3)", "Dfrontwheel"],
-  ...Object.fromEntries(["xB", "zB", "mB", "IBxx", "IByy", "IBzz", "IBxz"].map((k) => [k, ["mrider", "mframe", "mrack"]])),
-  ...Object.fromEntries(["xH", "zH", "mH", "IHxx", "IHyy", "IHzz", "IHxz"].map((k) => [k, ["mfork", "mbasket"]])),
-};
-
-/** Display names of the presets (the API lists their file names and summaries). */
-export const PRESET_TITLES = {
-  benchmark: "Benchmark bicycle (Meijaard et al. 2007)",
-  "schwinn-crown": "Schwinn Crown (JBike6 default)",
-  "two-mass-skate": "Two-mass skate (Kooijman et al. 2011)",
-  "browser-jason": "Batavus Browser with rider Jason (Moore 2012)",
-};
+export const JBIKE6_SOURCES = {};

@@ -6,9 +6,10 @@
 
 import "./style.css";
 import { api } from "./api.js";
+import { begin, during } from "./work.js";
 import { listDesigns, saveDesign, deleteDesign, findDesign } from "./store.js";
 import { Editor, parseNumber } from "./editor.js";
-import { setPath, applyParameterTable, JBIKE6_SOURCES, JBIKE6_GROUPS, BENCHMARK_GROUPS, PRESET_TITLES } from "./fields.js";
+import { setPath, applyParameterTable, JBIKE6_SOURCES, JBIKE6_GROUPS, BENCHMARK_GROUPS } from "./fields.js";
 import { drawSideView } from "./sideview.js";
 import { EigenPlot, LocusPlot, COMPARE_COLOURS } from "./plot.js";
 import { drawCritical } from "./critical.js";
@@ -112,8 +113,9 @@ function quiet(source) {
 
 // ---- picker -------------------------------------------------------------------------------
 
+/** A preset's display title, as the library names it (GET /api/presets). */
 function presetTitle(name) {
-  return PRESET_TITLES[name] ?? name;
+  return state.presets.find((p) => p.name === name)?.title ?? name;
 }
 
 function fillPickers() {
@@ -298,20 +300,27 @@ function yLimit() {
 }
 
 let timer = 0;
+/** Releases the scheduled recompute from the work under way (work.js) once it has started. */
+let scheduled = null;
 function schedule() {
   clearTimeout(timer);
-  timer = setTimeout(() => {
-    timer = 0;
-    recompute();
-  }, 120);
+  scheduled ??= begin();
+  timer = setTimeout(runScheduled, 120);
+}
+
+function runScheduled() {
+  timer = 0;
+  const end = scheduled;
+  scheduled = null;
+  recompute();
+  end?.();
 }
 
 /** Runs a scheduled recompute now, so that its message comes before, not after, the next. */
 function flushScheduled() {
   if (!timer) return;
   clearTimeout(timer);
-  timer = 0;
-  recompute();
+  runScheduled();
 }
 
 /** Why the results shown do not match the form, or null when they do. */
@@ -593,14 +602,14 @@ async function applyUrl() {
   }
 }
 
-window.addEventListener("popstate", () => applyUrl());
+window.addEventListener("popstate", () => during(applyUrl));
 
 // ---- controls -----------------------------------------------------------------------------
 
-$("bike-select").addEventListener("change", async (e) => {
+$("bike-select").addEventListener("change", (e) => during(async () => {
   await select(e.target.value);
   remember(true);
-});
+}));
 $("compare-select").addEventListener("change", (e) => {
   const key = e.target.value;
   if (!key) state.compare = [];
@@ -693,7 +702,10 @@ $("copy-link").addEventListener("click", async () => {
 });
 
 $("open-file").addEventListener("click", () => $("file-input").click());
-$("file-input").addEventListener("change", async (e) => {
+$("file-input").addEventListener("change", (e) => during(() => openFile(e)));
+
+/** Reads the file chosen into My designs, or the one it already is there. */
+async function openFile(e) {
   const file = e.target.files?.[0];
   e.target.value = "";
   if (!file) return;
@@ -723,7 +735,7 @@ $("file-input").addEventListener("change", async (e) => {
   } catch (err) {
     say(`${file.name}: ${err.message}`, "error");
   }
-});
+}
 
 const exportName = (what) => `${slug(currentLabel())}-${what}`;
 $("eigen-csv").addEventListener("click", () => {

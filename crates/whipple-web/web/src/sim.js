@@ -5,6 +5,7 @@
 // state (/api/linear/response); the time series export as CSV.
 
 import { api } from "./api.js";
+import { during } from "./work.js";
 import { parseNumber } from "./editor.js";
 import { fixed, html, num, slug, download } from "./format.js";
 import { TimePlot, TrackPlot } from "./simplots.js";
@@ -97,7 +98,8 @@ export class SimPanel {
   async ensureView() {
     if (this.view || this.viewError) return this.view;
     try {
-      const { SimView } = await import("./view3d.js");
+      // Counted as work under way (work.js) until the view is made.
+      const { SimView } = await during(() => import("./view3d.js"));
       this.view = this.view ?? new SimView($("sim-view"));
     } catch (e) {
       this.viewError = e;

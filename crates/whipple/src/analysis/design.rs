@@ -23,14 +23,14 @@ use super::modes::Mode;
 use super::stability::{self, summary};
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, CharacteristicPolynomial, SpeedPolynomials};
-use crate::parameters::table::{parameters, Form};
+use crate::parameters::table::{parameters, Form, ANGLE_UNIT};
 use crate::parameters::{Bicycle, Description};
 
 /// The most designs one study may hold (a 100,000 × 100,000 map).
 pub(crate) const MAX_DESIGNS: u64 = 10_000_000_000;
 
 /// The most points on one axis.
-pub(crate) const MAX_AXIS_POINTS: usize = 10_000_000;
+pub const MAX_AXIS_POINTS: usize = 10_000_000;
 
 /// What an axis varies.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -48,26 +48,24 @@ pub enum Parameter {
 }
 
 /// One axis of a study: a parameter over `count` evenly spaced values from `start` to `stop`
-/// (both included), in the user's units (degrees where the name ends in `_deg`).
+/// (both included). The grid is linear in the unit the values are given in, `scale` SI units
+/// (1 when they are SI; a front end taking an angle in degrees gives π/180): the design at
+/// point `i` has the parameter at `scale · value(i)` in SI units.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Axis {
-    /// The name as the user wrote it (`trail`, `head_angle_deg`, `mrider`, `speed`).
-    pub name: String,
     /// What it varies.
     pub parameter: Parameter,
-    /// First value, user units.
+    /// First value, in units of `scale`.
     pub start: f64,
-    /// Last value, user units.
+    /// Last value, in units of `scale`.
     pub stop: f64,
     /// Number of values (≥ 1; with 1 the axis holds `start` only).
     pub count: usize,
-    /// Whether the user's units are degrees (the name ends in `_deg`).
-    pub degrees: bool,
+    /// SI units per unit of `start` and `stop` (1 for SI values).
+    pub scale: f64,
 }
 
-const BENCHMARK_ANGLES: [&str; 2] = ["lam", "head_angle"];
-
-/// Benchmark-form names the user may write for the keys (aliases of the paper's symbols).
+/// Benchmark-form names that may stand for the keys (aliases of the paper's symbols).
 fn benchmark_alias(name: &str) -> &str {
     match name {
         "wheelbase" => "w",
@@ -78,129 +76,117 @@ fn benchmark_alias(name: &str) -> &str {
     }
 }
 
-fn unknown(name: &str, known: String) -> Error {
-    Error::InvalidArgument {
-        what: "axis",
-        rule: format!("`{name}` is not a parameter of this bicycle (known: {known})"),
+impl Parameter {
+    /// The parameter of `base` named `name`: a benchmark key or its alias (`trail` for `c`),
+    /// `head_angle`, `wheel_radius`; a JBike6 `.m` key or TOML path (`rider.ycm` for
+    /// `ycmrider`), `wheel_diameter`; `speed` or `v`. `None` when the base's form has no such
+    /// parameter.
+    ///
+    /// ```
+    /// use whipple::advanced::design::Parameter;
+    /// use whipple::presets;
+    /// let bike = presets::find("benchmark")?.bicycle();
+    /// assert_eq!(Parameter::named("trail", &bike), Some(Parameter::Benchmark("c".into())));
+    /// assert_eq!(Parameter::named("mrider", &bike), None);
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn named(name: &str, base: &Bicycle) -> Option<Parameter> {
+        if name == "speed" || name == "v" {
+            return Some(Parameter::Speed);
+        }
+        match &base.description {
+            Description::Benchmark(b) => {
+                let key = benchmark_alias(name);
+                let known = b.fields().iter().any(|(k, _)| *k == key)
+                    || key == "head_angle"
+                    || key == "wheel_radius";
+                known.then(|| Parameter::Benchmark(key.to_string()))
+            }
+            Description::Jbike6(j) => {
+                // A TOML path (`rider.ycm`, `rider.I[1]`) names the same parameter as its `.m`
+                // key (`ycmrider`, `Irider(1)`).
+                let key = parameters(Form::Jbike6)
+                    .iter()
+                    .find(|p| p.path == name)
+                    .map_or(name, |p| p.key);
+                (j.get(key).is_some() || key == "wheel_diameter")
+                    .then(|| Parameter::Jbike6(key.to_string()))
+            }
+        }
+    }
+
+    /// The SI unit of the parameter, from the parameter table (`rad`, `kg m^2`, `m`); `m/s` for
+    /// the speed, `rad` for the benchmark form's derived `head_angle`, `m` for the wheel
+    /// aliases.
+    pub fn unit(&self) -> &'static str {
+        let (form, key) = match self {
+            Parameter::Speed => return "m/s",
+            Parameter::Benchmark(key) => (Form::Benchmark, key.as_str()),
+            Parameter::Jbike6(key) => (Form::Jbike6, key.as_str()),
+        };
+        match (form, key) {
+            (Form::Benchmark, "head_angle") => "rad",
+            (Form::Benchmark, "wheel_radius") | (Form::Jbike6, "wheel_diameter") => "m",
+            _ => parameters(form)
+                .iter()
+                .find(|p| p.key == key)
+                .map_or("", |p| p.unit),
+        }
+    }
+
+    /// Whether the parameter is an angle (its unit is the radian).
+    pub fn is_angle(&self) -> bool {
+        self.unit() == ANGLE_UNIT
     }
 }
 
 impl Axis {
-    /// Parses `NAME=START:STOP:COUNT` for a base bicycle (the name must exist in its form).
+    /// An axis of SI values: `count` points from `start` to `stop`; both finite, `count` in
+    /// 1..=[`MAX_AXIS_POINTS`].
     ///
     /// ```
-    /// use whipple::advanced::design::Axis;
-    /// use whipple::presets;
-    /// let crown = presets::find("schwinn-crown")?.bicycle();
-    /// let axis = Axis::parse("head_angle_deg=60:80:401", &crown)?;
-    /// assert!(axis.degrees && axis.count == 401 && (axis.value(200) - 70.0).abs() < 1e-12);
+    /// use whipple::advanced::design::{Axis, Parameter};
+    /// let trail = Axis::new(Parameter::Benchmark("c".into()), 0.0, 0.2, 5)?;
+    /// assert_eq!(trail.si_value(2), 0.1);
     /// # Ok::<(), whipple::Error>(())
     /// ```
-    pub fn parse(spec: &str, base: &Bicycle) -> Result<Axis> {
+    pub fn new(parameter: Parameter, start: f64, stop: f64, count: usize) -> Result<Axis> {
+        Axis::scaled(parameter, start, stop, count, 1.0)
+    }
+
+    /// An axis whose values are given in a unit of `scale` SI units (π/180 for degrees); the
+    /// same rules as [`Axis::new`], and a positive finite scale.
+    pub fn scaled(
+        parameter: Parameter,
+        start: f64,
+        stop: f64,
+        count: usize,
+        scale: f64,
+    ) -> Result<Axis> {
         let bad = |rule: String| Error::InvalidArgument { what: "axis", rule };
-        let Some((name, grid)) = spec.split_once('=') else {
-            return Err(bad(format!(
-                "expects NAME=START:STOP:COUNT (for example trail=0:0.2:401), got `{spec}`"
-            )));
-        };
-        let name = name.trim();
-        let parts: Vec<&str> = grid.split(':').collect();
-        if parts.len() != 3 {
-            return Err(bad(format!(
-                "`{spec}`: expects START:STOP:COUNT after `{name}=`"
-            )));
-        }
-        let number = |t: &str| -> Result<f64> {
-            let x: f64 = t
-                .trim()
-                .parse()
-                .map_err(|_| bad(format!("`{spec}`: `{t}` is not a number")))?;
-            if x.is_finite() {
-                Ok(x)
-            } else {
-                Err(bad(format!("`{spec}`: `{t}` is not a finite number")))
+        for x in [start, stop] {
+            if !x.is_finite() {
+                return Err(bad(format!("{x} is not a finite number")));
             }
-        };
-        let (start, stop) = (number(parts[0])?, number(parts[1])?);
-        let count: usize = parts[2].trim().parse().map_err(|_| {
-            bad(format!(
-                "`{spec}`: COUNT `{}` must be a whole number ≥ 1",
-                parts[2]
-            ))
-        })?;
+        }
         if count == 0 || count > MAX_AXIS_POINTS {
             return Err(bad(format!(
-                "`{spec}`: COUNT must lie in 1..={MAX_AXIS_POINTS}, got {count}"
+                "COUNT must lie in 1..={MAX_AXIS_POINTS}, got {count}"
             )));
         }
-        let (stem, degrees) = match name.strip_suffix("_deg") {
-            Some(stem) => (stem, true),
-            None => (name, false),
-        };
-        let parameter = if stem == "speed" || stem == "v" {
-            if degrees {
-                return Err(bad("speed has no `_deg` form".into()));
-            }
-            Parameter::Speed
-        } else {
-            match &base.description {
-                Description::Benchmark(b) => {
-                    let key = benchmark_alias(stem);
-                    let known = b.fields().iter().any(|(k, _)| *k == key)
-                        || key == "head_angle"
-                        || key == "wheel_radius";
-                    if !known {
-                        return Err(unknown(
-                            name,
-                            "the benchmark keys w, c, lam, g, rR, mR, IRxx, IRyy, xB, zB, mB, \
-                             IBxx, IByy, IBzz, IBxz, xH, zH, mH, IHxx, IHyy, IHzz, IHxz, rF, mF, \
-                             IFxx, IFyy; wheelbase, trail, steer_axis_tilt, head_angle, gravity, \
-                             wheel_radius; speed; _deg after an angle"
-                                .into(),
-                        ));
-                    }
-                    if degrees && !BENCHMARK_ANGLES.contains(&key) {
-                        return Err(bad(format!("`{name}`: `{stem}` is not an angle")));
-                    }
-                    Parameter::Benchmark(key.to_string())
-                }
-                Description::Jbike6(j) => {
-                    // A TOML path (`rider.ycm`, `rider.I[1]`) names the same parameter as its
-                    // `.m` key (`ycmrider`, `Irider(1)`).
-                    let stem = parameters(Form::Jbike6)
-                        .iter()
-                        .find(|p| p.path == stem)
-                        .map_or(stem, |p| p.key);
-                    if j.get(stem).is_none() && stem != "wheel_diameter" {
-                        let names: Vec<String> = j.fields().into_iter().map(|(n, _)| n).collect();
-                        return Err(unknown(
-                            name,
-                            format!(
-                                "{}, wheel_diameter (or their TOML paths: rider.m, rider.xcm, \
-                                 rider.I[1], ...); speed; _deg after an angle",
-                                names.join(", ")
-                            ),
-                        ));
-                    }
-                    let is_angle = stem == "head_angle" || stem.starts_with("alphaI");
-                    if degrees && !is_angle {
-                        return Err(bad(format!("`{name}`: `{stem}` is not an angle")));
-                    }
-                    Parameter::Jbike6(stem.to_string())
-                }
-            }
-        };
+        if !(scale.is_finite() && scale > 0.0) {
+            return Err(bad(format!("the scale must be positive, got {scale}")));
+        }
         Ok(Axis {
-            name: name.to_string(),
             parameter,
             start,
             stop,
             count,
-            degrees,
+            scale,
         })
     }
 
-    /// The i-th value in the user's units.
+    /// The i-th value, in units of `scale`.
     #[inline]
     pub fn value(&self, i: usize) -> f64 {
         if self.count <= 1 {
@@ -215,41 +201,14 @@ impl Axis {
     /// The i-th value in SI units (radians for an angle).
     #[inline]
     pub fn si_value(&self, i: usize) -> f64 {
-        let x = self.value(i);
-        if self.degrees {
-            x.to_radians()
-        } else {
-            x
-        }
-    }
-
-    /// The unit of the user's values, for axis labels.
-    pub fn unit(&self) -> &'static str {
-        if self.degrees {
-            return "deg";
-        }
-        let stem = match &self.parameter {
-            Parameter::Speed => return "m/s",
-            Parameter::Benchmark(k) | Parameter::Jbike6(k) => k.as_str(),
-        };
-        if stem == "lam" || stem == "head_angle" || stem.starts_with("alphaI") {
-            "rad"
-        } else if stem == "g" || stem == "gravity" {
-            "m/s²"
-        } else if stem.starts_with('I') {
-            "kg m²"
-        } else if stem.starts_with('m') {
-            "kg"
-        } else {
-            "m"
-        }
+        self.value(i) * self.scale
     }
 }
 
 /// Puts an axis's value `x` (SI units) into a description: by the parameter table's key
 /// ([`crate::parameters::BenchmarkParameters::set`], [`crate::parameters::Jbike6Parameters::set`]), or an alias that sets two
 /// parameters (`wheel_radius`, `wheel_diameter`) or a derived one (`head_angle` of the benchmark
-/// form). The name was checked when the axis was parsed.
+/// form). The parameter exists in the description's form ([`Parameter::named`]).
 fn set_parameter(description: &mut Description, parameter: &Parameter, x: f64) {
     match (parameter, description) {
         (Parameter::Benchmark(key), Description::Benchmark(b)) => match key.as_str() {
@@ -326,7 +285,7 @@ pub enum DesignStatus {
 /// `None` where the quantity does not exist (no weave speed in the range) or was not asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct DesignQuantities {
-    /// v_d (only when [`StudyOptions::double_root`] is set).
+    /// v_d (only when [`StudySettings::double_root`] is set).
     pub double_root_speed: Option<f64>,
     /// v_w.
     pub weave_speed: Option<f64>,
@@ -377,9 +336,9 @@ pub struct DesignRow {
     pub ix: usize,
     /// Index along y (0 for a one-parameter study).
     pub iy: usize,
-    /// x in the user's units.
+    /// x in the axis's units (those of its `start` and `stop`).
     pub x: f64,
-    /// y in the user's units (NaN-free: 0 for a one-parameter study).
+    /// y in the axis's units (NaN-free: 0 for a one-parameter study).
     pub y: f64,
     /// Computed, invalid, or accuracy lost.
     pub status: DesignStatus,
@@ -391,7 +350,7 @@ pub struct DesignRow {
 
 /// What to compute for every design.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct StudyOptions {
+pub struct StudySettings {
     /// The speed range the critical speeds and stable ranges are read on [m/s] (default
     /// [0, +∞)).
     pub range: (f64, f64),
@@ -401,9 +360,9 @@ pub struct StudyOptions {
     pub double_root: bool,
 }
 
-impl Default for StudyOptions {
+impl Default for StudySettings {
     fn default() -> Self {
-        StudyOptions {
+        StudySettings {
             range: (0.0, f64::INFINITY),
             speed: None,
             double_root: false,
@@ -422,7 +381,7 @@ pub struct Study {
     /// The second axis, for a map.
     pub y: Option<Axis>,
     /// What to compute.
-    pub options: StudyOptions,
+    pub options: StudySettings,
 }
 
 /// Designs computed per parallel chunk (bounds memory: a few MB of rows).
@@ -432,33 +391,25 @@ impl Study {
     /// A study; checks the sizes and the options.
     ///
     /// ```
-    /// use whipple::advanced::design::{Axis, StudyOptions, Shard};
+    /// use whipple::advanced::design::{Axis, Parameter, StudySettings, Shard};
     /// use whipple::Study;
     /// use whipple::presets;
     /// let bike = presets::find("benchmark")?.bicycle();
-    /// let x = Axis::parse("trail=0:0.2:5", &bike)?;
-    /// let study = Study::new(bike, x, None, StudyOptions::default())?;
+    /// let x = Axis::new(Parameter::Benchmark("c".into()), 0.0, 0.2, 5)?;
+    /// let study = Study::new(bike, x, None, StudySettings::default())?;
     /// let mut rows = Vec::new();
     /// study.run(Shard::WHOLE, &Default::default(), |chunk| { rows.extend_from_slice(chunk); Ok(()) })?;
     /// assert_eq!(rows.len(), 5);
     /// assert!((rows[2].quantities.weave_speed.unwrap() - 4.6).abs() < 1.0); // c = 0.1 m
     /// # Ok::<(), whipple::Error>(())
     /// ```
-    pub fn new(base: Bicycle, x: Axis, y: Option<Axis>, options: StudyOptions) -> Result<Study> {
+    pub fn new(base: Bicycle, x: Axis, y: Option<Axis>, options: StudySettings) -> Result<Study> {
         stability::check_range(options.range.0, options.range.1)?;
         if let Some(v) = options.speed {
             if !v.is_finite() {
                 return Err(Error::InvalidArgument {
                     what: "speed",
                     rule: format!("must be a finite number, got {v}"),
-                });
-            }
-        }
-        if let Some(y) = &y {
-            if y.name == x.name {
-                return Err(Error::InvalidArgument {
-                    what: "axis",
-                    rule: format!("x and y both vary `{}`", x.name),
                 });
             }
         }
@@ -489,18 +440,18 @@ impl Study {
         self.len() == 0
     }
 
-    /// The base design's coordinates on the axes (user units), where the axis varies a
+    /// The base design's coordinates on the axes in SI units, where the axis varies a
     /// parameter of the bicycle (speed axes give `None`, and so does an alias of two parameters
     /// that the base gives two values: `wheel_radius` of a bicycle with wheels of two sizes).
     ///
     /// ```
-    /// use whipple::advanced::design::{Axis, StudyOptions};
+    /// use whipple::advanced::design::{Axis, Parameter, StudySettings};
     /// use whipple::Study;
     /// use whipple::presets;
     /// let bike = presets::find("benchmark")?.bicycle(); // rR = 0.3 m, rF = 0.35 m
-    /// let trail = Axis::parse("trail=0:0.2:5", &bike)?;
-    /// let radius = Axis::parse("wheel_radius=0.2:0.5:4", &bike)?;
-    /// let study = Study::new(bike, trail, Some(radius), StudyOptions::default())?;
+    /// let trail = Axis::new(Parameter::Benchmark("c".into()), 0.0, 0.2, 5)?;
+    /// let radius = Axis::new(Parameter::Benchmark("wheel_radius".into()), 0.2, 0.5, 4)?;
+    /// let study = Study::new(bike, trail, Some(radius), StudySettings::default())?;
     /// assert_eq!(study.base_point(), (Some(0.08), None));
     /// # Ok::<(), whipple::Error>(())
     /// ```
@@ -524,7 +475,7 @@ impl Study {
                 },
                 _ => return None,
             };
-            Some(if a.degrees { si.to_degrees() } else { si })
+            Some(si)
         };
         (at(&self.x), self.y.as_ref().and_then(at))
     }
@@ -659,7 +610,7 @@ fn canonical_of(d: &Description) -> Result<Canonical> {
 pub(crate) fn analyse(
     description: &Description,
     speed: Option<f64>,
-    options: &StudyOptions,
+    options: &StudySettings,
 ) -> Result<DesignQuantities> {
     let canonical = canonical_of(description)?;
     let sp = SpeedPolynomials::new(&canonical)?;

@@ -33,6 +33,36 @@ pub(crate) const MAX_GRID_SPEEDS: f64 = 1e15;
 impl SpeedGrid {
     /// The grid START:STOP:STEP: finite numbers, STEP > 0, STOP ≥ START.
     pub fn new(start: f64, stop: f64, step: f64) -> Result<Self> {
+        let count = Self::count(start, stop, step)?;
+        // An infinite count (a span past f64's range over the step) is refused too.
+        if count.is_nan() || count > MAX_GRID_SPEEDS {
+            return Err(Error::InvalidArgument {
+                what: "speeds",
+                rule: format!(
+                    "{start}:{stop}:{step} holds {count:e} speeds, more than any sweep can take"
+                ),
+            });
+        }
+        let intervals = count - 1.0;
+        Ok(SpeedGrid {
+            start,
+            stop,
+            step,
+            intervals: intervals as u64,
+        })
+    }
+
+    /// How many speeds START:STOP:STEP holds, as a float, without building the grid (so a
+    /// server can refuse a grid over its limit before any work): the count [`SpeedGrid::len`]
+    /// gives, however large. The same checks as [`SpeedGrid::new`] but no upper bound.
+    ///
+    /// ```
+    /// use whipple::advanced::sweep::SpeedGrid;
+    /// assert_eq!(SpeedGrid::count(0.0, 10.0, 0.01)?, 1001.0);
+    /// assert!(SpeedGrid::count(0.0, 1e300, 1e-10)?.is_infinite());
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn count(start: f64, stop: f64, step: f64) -> Result<f64> {
         if !(start.is_finite() && stop.is_finite() && step.is_finite()) {
             return Err(Error::InvalidArgument {
                 what: "speeds",
@@ -51,23 +81,8 @@ impl SpeedGrid {
                 rule: format!("STOP ({stop}) must not be less than START ({start})"),
             });
         }
-        let intervals = ((stop - start) / step * (1.0 + 1e-12) + 1e-9).floor();
-        // Also refuses a NaN count (`!(x <= max)` is true for NaN).
-        if intervals.is_nan() || intervals + 1.0 > MAX_GRID_SPEEDS {
-            return Err(Error::InvalidArgument {
-                what: "speeds",
-                rule: format!(
-                    "{start}:{stop}:{step} holds {:e} speeds, more than any sweep can take",
-                    intervals + 1.0
-                ),
-            });
-        }
-        Ok(SpeedGrid {
-            start,
-            stop,
-            step,
-            intervals: intervals as u64,
-        })
+        // STOP counts when it lies on the grid to within round-off.
+        Ok(((stop - start) / step * (1.0 + 1e-12) + 1e-9).floor() + 1.0)
     }
 
     /// How many speeds the grid holds.
@@ -183,8 +198,9 @@ pub fn eigen_sweep(canonical: &Canonical, speeds: &[f64]) -> Result<EigenSweep> 
 /// A sweep of any length in bounded memory: [`SweepPlan::new`] runs it once to track and label
 /// the modes (what the columns are is known before the first row), [`SweepPlan::rows`] runs it
 /// again and hands each speed's eigenvalues, in the column order of [`SweepPlan::modes`], to a
-/// callback. Twice the work of [`eigen_sweep`], none of its memory; the rows are the same,
-/// bit for bit.
+/// callback. [`eigen_sweep`] is this plan with its rows collected into a vector: the same two
+/// passes and the same rows, bit for bit, but here no row is kept, so a sweep of any length
+/// takes bounded memory.
 ///
 /// ```
 /// use whipple::BenchmarkParameters;

@@ -30,9 +30,9 @@ pub(crate) use dopri5::DenseOutput;
 pub use dopri5::Dopri5Settings;
 
 /// The RK4 step when none is given \[s\] (the study's).
-pub(crate) const DEFAULT_DT: f64 = 1e-3;
+pub const DEFAULT_DT: f64 = 1e-3;
 /// The adaptive integrator's relative tolerance when none is given.
-pub(crate) const DEFAULT_RTOL: f64 = 1e-8;
+pub const DEFAULT_RTOL: f64 = 1e-8;
 
 /// The largest |λ·dt| RK4 is given for a mode λ of the system it integrates. RK4's stability
 /// region (|1 + z + z²/2 + z³/6 + z⁴/24| ≤ 1, z = λ·dt) reaches 2.785 along the negative real

@@ -676,10 +676,10 @@ mod tests {
         Ok(())
     }
 
-    /// Issue 10: `1e3*t` and `2.5e-1*sin(3*t)` were refused with the expression library's
+    /// `1e3*t` and `2.5e-1*sin(3*t)` were refused with the expression library's
     /// internal message ("we have 1 ops and 3 node").
     #[test]
-    fn issue_10_torque_expressions_take_scientific_notation() -> Result<()> {
+    fn torque_expressions_take_scientific_notation() -> Result<()> {
         let s = StateView::default();
         assert_eq!(TorqueExpression::parse("1e3*t")?.eval(2.0, &s), 2000.0);
         let x = TorqueExpression::parse("2.5e-1*sin(3*t)")?.eval(0.5, &s);

@@ -35,7 +35,7 @@
 //! | `reference.rs` | the dense 45 × 45 reference solve that checks [`Model::forward`] |
 //! | `projection.rs` | positions and velocities back onto the constraints |
 //! | `reduced.rs` | the model on the linear model's state [φ, δ, φ̇, δ̇] and in spin-free speeds |
-//! | `settings.rs`, `outcome.rs`, `simulate.rs`, `expression.rs` | a simulation's rules, its results, the run itself, rider torques as expressions |
+//! | `settings.rs`, `outcome.rs`, `simulate.rs`, `expression.rs` | a simulation's settings and bounds, its results, the run itself, rider torques as expressions |
 
 mod assembly;
 mod bodies;
@@ -72,7 +72,9 @@ pub use model::Model;
 pub use outcome::{Outcome, Progress, Sample, Simulation, Wheel};
 pub use projection::{ProjectionMethod, ProjectionSettings};
 pub(crate) use reduced::{FullStateField, LeanSteerField};
-pub use settings::{IntegratorKind, SimulationRequest, SimulationSettings, TorqueFn, TorqueInput};
+pub use settings::{
+    samples_kept, SimulationSettings, TorqueFn, DEFAULT_FALL_ANGLE, MAX_SAMPLES, MAX_STEPS,
+};
 pub use simulate::{check_rk4_step, fastest_mode, simulate};
 pub use state::{State, StateView, STATE_LEN};
 pub(crate) use state::{BODY_PITCH, BODY_YAW};

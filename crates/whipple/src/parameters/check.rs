@@ -1,7 +1,8 @@
 //! What a check of a bicycle says besides refusing it: warnings (a measured tensor that breaks
 //! the triangle inequality, a centre of mass below the ground, redundant geometry that disagrees)
 //! and notes (a key of another model that the Whipple model does not use). A warning never
-//! stops a computation whose equations stay well defined; `--strict` makes it an error.
+//! stops a computation whose equations stay well defined; a strict reading
+//! ([`strict`]) makes it an error.
 
 use serde::Serialize;
 
@@ -13,7 +14,7 @@ use crate::error::{Error, Result};
 pub enum Severity {
     /// For information (a key not used by the Whipple model, a redundant value that agrees).
     Note,
-    /// Something a measured bicycle may well have but that deserves a look; `--strict` refuses it.
+    /// Something a measured bicycle may well have but that deserves a look; a strict reading refuses it.
     Warning,
 }
 
@@ -81,12 +82,13 @@ impl std::fmt::Display for Notice {
     }
 }
 
-/// Turns the warnings among `notices` into an error (notes pass): what `--strict` asks for.
+/// Turns the warnings among `notices` into an error (notes pass): what a strict reading asks
+/// for.
 pub(crate) fn strict(notices: &[Notice]) -> Result<()> {
     let warnings: Vec<&Notice> = notices.iter().filter(|n| n.is_warning()).collect();
     match warnings.first() {
         None => Ok(()),
-        Some(first) => Err(Error::Strict {
+        Some(first) => Err(Error::WarningsRefused {
             field: first.field.clone(),
             count: warnings.len(),
             message: warnings

@@ -837,6 +837,51 @@ fn rear_body<T: RealField + Copy>(b: &Jbike6RearBody<T>) -> PlaneBody<T> {
     PlaneBody::jbike6(b.m, b.xcm, b.ycm, b.inertia, b.alpha)
 }
 
+const REAR_BODY_MASSES: &[&str] = &["mrider", "mframe", "mrack"];
+const FRONT_FRAME_MASSES: &[&str] = &["mfork", "mbasket"];
+
+/// For each benchmark key (in the order of Meijaard 2007 Table 1, then g), the JBike6 entries a
+/// form flags when a rule on that key fails for a bicycle given in JBike6's form: the entry it
+/// is converted from (`w` from `wheelbase`, `rR` from `Drearwheel`); for a wheel's moments of
+/// inertia, the entries a rule on them involves (`IRxx`: `Irearwheel(1)` and `Irearwheel(2)`,
+/// the two diameters; `IRyy`: `Irearwheel(3)` and the diameter); for the combined rear body
+/// `B` and front frame `H`, each combined body's mass, standing for all its entries. The web
+/// page reads this from `GET /api/parameters`.
+///
+/// ```
+/// use whipple::advanced::parameters::BENCHMARK_FROM_JBIKE6;
+/// let (_, sources) = BENCHMARK_FROM_JBIKE6.iter().find(|(key, _)| *key == "mH").unwrap();
+/// assert_eq!(*sources, ["mfork", "mbasket"]);
+/// ```
+pub const BENCHMARK_FROM_JBIKE6: [(&str, &[&str]); 26] = [
+    ("w", &["wheelbase"]),
+    ("c", &["trail"]),
+    ("lam", &["head_angle"]),
+    ("g", &["gravity"]),
+    ("rR", &["Drearwheel"]),
+    ("mR", &["mrearwheel"]),
+    ("IRxx", &["Irearwheel(1)", "Irearwheel(2)"]),
+    ("IRyy", &["Irearwheel(3)", "Drearwheel"]),
+    ("xB", REAR_BODY_MASSES),
+    ("zB", REAR_BODY_MASSES),
+    ("mB", REAR_BODY_MASSES),
+    ("IBxx", REAR_BODY_MASSES),
+    ("IByy", REAR_BODY_MASSES),
+    ("IBzz", REAR_BODY_MASSES),
+    ("IBxz", REAR_BODY_MASSES),
+    ("xH", FRONT_FRAME_MASSES),
+    ("zH", FRONT_FRAME_MASSES),
+    ("mH", FRONT_FRAME_MASSES),
+    ("IHxx", FRONT_FRAME_MASSES),
+    ("IHyy", FRONT_FRAME_MASSES),
+    ("IHzz", FRONT_FRAME_MASSES),
+    ("IHxz", FRONT_FRAME_MASSES),
+    ("rF", &["Dfrontwheel"]),
+    ("mF", &["mfrontwheel"]),
+    ("IFxx", &["Ifrontwheel(1)", "Ifrontwheel(2)"]),
+    ("IFyy", &["Ifrontwheel(3)", "Dfrontwheel"]),
+];
+
 /// The JBike6 names behind a benchmark key, for messages about a converted bicycle.
 fn jbike6_names(benchmark_key: &str) -> &'static str {
     match benchmark_key {

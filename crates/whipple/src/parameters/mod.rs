@@ -105,7 +105,7 @@ pub struct Checked {
 }
 
 impl Checked {
-    /// Fails on any warning (notes pass): `--strict`.
+    /// Fails on any warning (notes pass): a strict reading ([`crate::Error::WarningsRefused`]).
     pub fn strict(self) -> Result<Self> {
         check::strict(&self.notices)?;
         Ok(self)

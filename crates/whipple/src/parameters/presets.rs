@@ -11,6 +11,8 @@ use crate::error::{Error, Result};
 pub struct Preset {
     /// The name used on the command line (`--bike NAME`).
     pub name: &'static str,
+    /// The name a reader knows it by, with its source in short (the web page's picker).
+    pub title: &'static str,
     /// One line on what the bicycle is.
     pub summary: &'static str,
     /// Where the numbers come from.
@@ -199,24 +201,28 @@ pub fn schwinn_crown_jbike6() -> Jbike6Parameters {
 pub const PRESETS: &[Preset] = &[
     Preset {
         name: "benchmark",
+        title: "Benchmark bicycle (Meijaard et al. 2007)",
         summary: "the benchmark bicycle with rider of Meijaard et al. 2007",
         source: "Meijaard, Papadopoulos, Ruina & Schwab 2007, Proc. R. Soc. A 463:1955-1982, Table 1 (doi:10.1098/rspa.2007.1857)",
         description: || Description::Benchmark(BenchmarkParameters::meijaard2007()),
     },
     Preset {
         name: "schwinn-crown",
+        title: "Schwinn Crown (JBike6 default)",
         summary: "JBike6's default bike (JBike6 form: rider, frame, rack, fork, basket)",
         source: "Dressel, Benchmarking a Fully Non-Linear Bicycle Model with JBike6, Cornell University (2003-2015); JBike6, Schwab & Papadopoulos 2003",
         description: || Description::Jbike6(schwinn_crown_jbike6()),
     },
     Preset {
         name: "two-mass-skate",
+        title: "Two-mass skate (Kooijman et al. 2011)",
         summary: "two point masses on skates: self-stable without gyroscopic or trail effects",
         source: "Kooijman, Meijaard, Papadopoulos, Ruina & Schwab 2011, Science 332:339-342 (doi:10.1126/science.1201959); digits as transcribed in BicycleParameters data/bicycles/Tms",
         description: || Description::Benchmark(two_mass_skate()),
     },
     Preset {
         name: "browser-jason",
+        title: "Batavus Browser with rider Jason (Moore 2012)",
         summary: "a measured Batavus Browser city bicycle with its rider Jason (72 kg) seated rigidly",
         source: "Moore 2012, Human Control of a Bicycle, PhD dissertation, UC Davis; digits of HumanControl parameters/BrowserPar.txt = BicycleParameters meijaard2007_browser_jason",
         description: || Description::Benchmark(browser_jason()),

@@ -38,7 +38,16 @@ pub struct ParameterInfo {
     pub linear: bool,
 }
 
+/// The unit of every angle in the table (and of every angle inside the library).
+pub(crate) const ANGLE_UNIT: &str = "rad";
+
 impl ParameterInfo {
+    /// Whether the parameter is an angle (its unit is `"rad"`): the one a front end may
+    /// take in degrees.
+    pub fn is_angle(&self) -> bool {
+        self.unit == ANGLE_UNIT
+    }
+
     /// `description [unit]`, as the TOML writer's comments and tables print it.
     pub fn doc(&self) -> String {
         if self.unit.is_empty() {

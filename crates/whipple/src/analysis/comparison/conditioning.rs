@@ -7,7 +7,7 @@ use nalgebra::{Complex, DMatrix, SMatrix};
 
 use super::jacobians::{full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix};
 use super::picking::{faer_failure, general_eigenvalues, max_abs_diff, pick};
-use super::{ComparisonSweep, FullJacobian, Linearization, StudySettings};
+use super::{ComparisonSettings, ComparisonSweep, FullJacobian, Linearization};
 use crate::analysis::eigen::{eigenvalues, Complex64};
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, StateSpace};
@@ -232,7 +232,7 @@ pub fn capsize_spike(bike: &BenchmarkParameters, capsize_speed: f64) -> Result<V
             .copied()
             .unwrap_or_default();
         let exact = full_state_jacobian(&model, v)?;
-        let fd = full_state_jacobian_fd(&model, v, &StudySettings::default())?.jacobian;
+        let fd = full_state_jacobian_fd(&model, v, &ComparisonSettings::default())?.jacobian;
         for (jacobian, j) in [
             (Linearization::FullStateExact, exact),
             (Linearization::FiniteDifferences, fd),

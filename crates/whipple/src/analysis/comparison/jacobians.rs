@@ -17,7 +17,7 @@ pub(crate) type FullJacobian = SMatrix<f64, STATE_LEN, STATE_LEN>;
 
 /// Settings of the study's finite-difference method.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StudySettings {
+pub struct ComparisonSettings {
     /// Step decimation (default [`FdSettings::default`]).
     pub fd: FdSettings,
     /// Projection of every perturbed state onto the constraints before its derivative is
@@ -27,9 +27,9 @@ pub struct StudySettings {
     pub projection: Option<ProjectionSettings>,
 }
 
-impl Default for StudySettings {
+impl Default for ComparisonSettings {
     fn default() -> Self {
-        StudySettings {
+        ComparisonSettings {
             fd: FdSettings::default(),
             projection: Some(ProjectionSettings {
                 method: ProjectionMethod::LeastNorm,
@@ -72,11 +72,11 @@ pub fn full_state_jacobian(model: &Model, speed: f64) -> Result<FullJacobian> {
 }
 
 /// The full-state Jacobian by the study's method: central differences with step decimation,
-/// each perturbed state projected onto the constraints (see [`StudySettings`]).
+/// each perturbed state projected onto the constraints (see [`ComparisonSettings`]).
 pub fn full_state_jacobian_fd(
     model: &Model,
     speed: f64,
-    params: &StudySettings,
+    params: &ComparisonSettings,
 ) -> Result<FdJacobian<STATE_LEN>> {
     crate::analysis::eigen::check_speed(speed)?;
     let y0 = spin_free_vector(&upright_state(model, speed)?);

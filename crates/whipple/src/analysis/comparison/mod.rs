@@ -50,7 +50,7 @@ pub use conditioning::{capsize_spike, double_root_conditioning, zero_cluster};
 pub(crate) use conditioning::{CAPSIZE_HALF_WIDTH, DOUBLE_ROOT_HALF_WIDTH};
 pub(crate) use jacobians::FullJacobian;
 pub use jacobians::{
-    full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix, StudySettings,
+    full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix, ComparisonSettings,
 };
 pub use picking::{general_eigenvalues, lean_steer_eigenvalues, max_abs_diff, pick};
 
@@ -108,7 +108,7 @@ pub(crate) fn compare_at(
     speed: f64,
     linear: &[Complex64; 4],
     method: Linearization,
-    study: &StudySettings,
+    study: &ComparisonSettings,
 ) -> Result<Comparison> {
     match method {
         Linearization::Exact => {
@@ -178,10 +178,10 @@ pub const MAX_COMPARED_SPEEDS: usize = 100_000;
 /// benchmark, redone.
 ///
 /// ```
-/// use whipple::advanced::comparison::{compare_with_linear, Linearization, StudySettings};
+/// use whipple::advanced::comparison::{compare_with_linear, Linearization, ComparisonSettings};
 /// use whipple::BenchmarkParameters;
 /// let sweep = compare_with_linear(&BenchmarkParameters::meijaard2007(), &[1.0, 5.0],
-///                                 &[Linearization::Exact], &StudySettings::default())?;
+///                                 &[Linearization::Exact], &ComparisonSettings::default())?;
 /// assert!(sweep.methods[0].max_abs_diff.iter().all(|d| *d < 1e-11));
 /// # Ok::<(), whipple::Error>(())
 /// ```
@@ -191,7 +191,7 @@ pub fn compare_with_linear(
     bike: &BenchmarkParameters,
     speeds: &[f64],
     methods: &[Linearization],
-    study: &StudySettings,
+    study: &ComparisonSettings,
 ) -> Result<ComparisonSweep> {
     compare_with_linear_until(bike, speeds, methods, study, &AtomicBool::new(false))
 }
@@ -202,7 +202,7 @@ pub fn compare_with_linear_until(
     bike: &BenchmarkParameters,
     speeds: &[f64],
     methods: &[Linearization],
-    study: &StudySettings,
+    study: &ComparisonSettings,
     stop: &AtomicBool,
 ) -> Result<ComparisonSweep> {
     if speeds.len() > MAX_COMPARED_SPEEDS {

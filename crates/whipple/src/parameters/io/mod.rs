@@ -69,14 +69,29 @@ pub const FORMATS: [(Format, &str, &str); 6] = [
 ];
 
 impl Format {
+    /// The file name extensions of the format, without the dot (`toml`; `yml` and `yaml`; `txt`
+    /// for both text formats of the field, which the content tells apart).
+    pub fn extensions(self) -> &'static [&'static str] {
+        match self {
+            Format::Toml => &["toml"],
+            Format::Json => &["json"],
+            Format::Jbike6M => &["m"],
+            Format::BicycleParametersTxt | Format::HumanControlTxt => &["txt"],
+            Format::Yaml => &["yml", "yaml"],
+        }
+    }
+
     /// The format that a file name's extension names (`.toml`, `.json`, `.m`, `.yml`, `.yaml`),
-    /// if any; `.txt` needs the content too (see [`Format::detect`]).
+    /// if any: an extension of one format only ([`Format::extensions`]); `.txt` needs the
+    /// content too (see [`Format::detect`]).
     pub fn from_extension(extension: &str) -> Option<Format> {
-        match extension.to_ascii_lowercase().as_str() {
-            "toml" => Some(Format::Toml),
-            "json" => Some(Format::Json),
-            "m" => Some(Format::Jbike6M),
-            "yml" | "yaml" => Some(Format::Yaml),
+        let mut named = FORMATS.iter().map(|(f, _, _)| *f).filter(|f| {
+            f.extensions()
+                .iter()
+                .any(|e| e.eq_ignore_ascii_case(extension))
+        });
+        match (named.next(), named.next()) {
+            (Some(format), None) => Some(format),
             _ => None,
         }
     }

@@ -1,0 +1,443 @@
+//! Design axes as people type them, `NAME=START:STOP:COUNT` (`trail=0:0.2:401`,
+//! `head_angle_deg=60:80:401`), into the library's typed [`Axis`] (a [`Parameter`] over a
+//! linear grid whose SI values the study computes with), and a [`DesignStudy`]: the library's
+//! [`Study`] with its axes as they were typed, for headers, labels and answers. Which names
+//! exist and what unit each has is read from the library ([`Parameter::named`],
+//! [`Parameter::unit`], which read the parameter table); only the syntax and the degrees are
+//! this module's.
+
+use serde::ser::SerializeStruct;
+use serde::{Serialize, Serializer};
+use whipple::advanced::design::{Axis, Parameter, StudySettings, MAX_AXIS_POINTS};
+use whipple::advanced::parameters::Description;
+use whipple::Study;
+use whipple::{Bicycle, Error, Result};
+
+use crate::units::{self, RADIANS_PER_DEGREE};
+
+/// An axis as the user typed it: the name as written (`head_angle_deg`), whether its values are
+/// degrees, and the library's axis (whose `start`, `stop` and values are in the user's units,
+/// `scale` taking them to SI).
+#[derive(Debug, Clone, PartialEq)]
+pub struct AxisSpec {
+    /// The name as the user wrote it (`trail`, `head_angle_deg`, `mrider`, `speed`).
+    pub name: String,
+    /// Whether the user's values are degrees (the name ends in `_deg`).
+    pub degrees: bool,
+    /// The parameter and its grid.
+    pub axis: Axis,
+}
+
+/// The answers' layout of an axis: `name`, `parameter`, `start`, `stop`, `count`, `degrees`.
+impl Serialize for AxisSpec {
+    fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+        let mut s = serializer.serialize_struct("Axis", 6)?;
+        s.serialize_field("name", &self.name)?;
+        s.serialize_field("parameter", &self.axis.parameter)?;
+        s.serialize_field("start", &self.axis.start)?;
+        s.serialize_field("stop", &self.axis.stop)?;
+        s.serialize_field("count", &self.axis.count)?;
+        s.serialize_field("degrees", &self.degrees)?;
+        s.end()
+    }
+}
+
+fn unknown(name: &str, known: String) -> Error {
+    Error::InvalidArgument {
+        what: "axis",
+        rule: format!("`{name}` is not a parameter of this bicycle (known: {known})"),
+    }
+}
+
+/// The names a base bicycle's axes may take, for the message naming an unknown one.
+fn known_names(base: &Bicycle) -> String {
+    match &base.description {
+        Description::Benchmark(_) => {
+            "the benchmark keys w, c, lam, g, rR, mR, IRxx, IRyy, xB, zB, \
+                                      mB, IBxx, IByy, IBzz, IBxz, xH, zH, mH, IHxx, IHyy, IHzz, \
+                                      IHxz, rF, mF, IFxx, IFyy; wheelbase, trail, \
+                                      steer_axis_tilt, head_angle, gravity, wheel_radius; speed; \
+                                      _deg after an angle"
+                .into()
+        }
+        Description::Jbike6(j) => {
+            let names: Vec<String> = j.fields().into_iter().map(|(n, _)| n).collect();
+            format!(
+                "{}, wheel_diameter (or their TOML paths: rider.m, rider.xcm, rider.I[1], ...); \
+                 speed; _deg after an angle",
+                names.join(", ")
+            )
+        }
+    }
+}
+
+impl AxisSpec {
+    /// Parses `NAME=START:STOP:COUNT` for a base bicycle: the name must exist in its form
+    /// (a key, an alias such as `trail`, a JBike6 TOML path, or `speed`), `_deg` only after an
+    /// angle (a parameter whose unit in the table is the radian), START and STOP finite
+    /// numbers, COUNT a whole number in 1..=[`MAX_AXIS_POINTS`]. An error names the spec as
+    /// typed (`Error::InvalidArgument { what: "axis", .. }`).
+    ///
+    /// ```
+    /// use whipple_front::design::AxisSpec;
+    /// use whipple::presets;
+    /// let crown = presets::find("schwinn-crown")?.bicycle();
+    /// let axis = AxisSpec::parse("head_angle_deg=60:80:401", &crown)?;
+    /// assert!(axis.degrees && axis.axis.count == 401 && (axis.value(200) - 70.0).abs() < 1e-12);
+    /// assert_eq!(axis.unit(), "deg");
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn parse(spec: &str, base: &Bicycle) -> Result<AxisSpec> {
+        let bad = |rule: String| Error::InvalidArgument { what: "axis", rule };
+        let Some((name, grid)) = spec.split_once('=') else {
+            return Err(bad(format!(
+                "expects NAME=START:STOP:COUNT (for example trail=0:0.2:401), got `{spec}`"
+            )));
+        };
+        let name = name.trim();
+        let parts: Vec<&str> = grid.split(':').collect();
+        let [start, stop, count] = parts[..] else {
+            return Err(bad(format!(
+                "`{spec}`: expects START:STOP:COUNT after `{name}=`"
+            )));
+        };
+        let number = |t: &str| -> Result<f64> {
+            let x: f64 = t
+                .trim()
+                .parse()
+                .map_err(|_| bad(format!("`{spec}`: `{t}` is not a number")))?;
+            if x.is_finite() {
+                Ok(x)
+            } else {
+                Err(bad(format!("`{spec}`: `{t}` is not a finite number")))
+            }
+        };
+        let (start, stop) = (number(start)?, number(stop)?);
+        let count: usize = count.trim().parse().map_err(|_| {
+            bad(format!(
+                "`{spec}`: COUNT `{count}` must be a whole number ≥ 1"
+            ))
+        })?;
+        if count == 0 || count > MAX_AXIS_POINTS {
+            return Err(bad(format!(
+                "`{spec}`: COUNT must lie in 1..={MAX_AXIS_POINTS}, got {count}"
+            )));
+        }
+        let (stem, degrees) = units::strip_degrees(name);
+        let Some(parameter) = Parameter::named(stem, base) else {
+            return Err(unknown(name, known_names(base)));
+        };
+        if degrees {
+            if parameter == Parameter::Speed {
+                return Err(bad("speed has no `_deg` form".into()));
+            }
+            if !parameter.is_angle() {
+                return Err(bad(format!("`{name}`: `{stem}` is not an angle")));
+            }
+        }
+        let scale = if degrees { RADIANS_PER_DEGREE } else { 1.0 };
+        Ok(AxisSpec {
+            name: name.to_string(),
+            degrees,
+            axis: Axis::scaled(parameter, start, stop, count, scale)?,
+        })
+    }
+
+    /// The i-th value in the user's units.
+    #[inline]
+    pub fn value(&self, i: usize) -> f64 {
+        self.axis.value(i)
+    }
+
+    /// The unit of the user's values, for labels: `deg` for an angle typed in degrees,
+    /// otherwise the parameter table's unit as printed (`m`, `kg`, `kg m²`, `rad`, `m/s²`,
+    /// `m/s` for the speed).
+    pub fn unit(&self) -> &'static str {
+        if self.degrees {
+            "deg"
+        } else {
+            units::display(self.axis.parameter.unit())
+        }
+    }
+
+    /// An SI value of the axis's parameter in the user's units (degrees for a `_deg` axis).
+    pub fn from_si(&self, si: f64) -> f64 {
+        if self.degrees {
+            units::degrees(si)
+        } else {
+            si
+        }
+    }
+}
+
+/// A study with its axes as typed: the library's [`Study`] (which computes the rows) and the
+/// names and units the answers show.
+#[derive(Debug, Clone)]
+pub struct DesignStudy {
+    /// The study the library runs.
+    pub study: Study,
+    /// The first axis as typed.
+    pub x: AxisSpec,
+    /// The second axis as typed, for a map.
+    pub y: Option<AxisSpec>,
+}
+
+impl DesignStudy {
+    /// A study of `base` over the typed axes: the library's rules for the options and sizes
+    /// ([`Study::new`]), and two axes of different names.
+    pub fn new(
+        base: Bicycle,
+        x: AxisSpec,
+        y: Option<AxisSpec>,
+        options: StudySettings,
+    ) -> Result<DesignStudy> {
+        // The options' rules come first, then the names, then the size (in that order the
+        // library checked them when it held the names).
+        Study::new(base.clone(), x.axis.clone(), None, options)?;
+        if let Some(y) = &y {
+            if y.name == x.name {
+                return Err(Error::InvalidArgument {
+                    what: "axis",
+                    rule: format!("x and y both vary `{}`", x.name),
+                });
+            }
+        }
+        let study = Study::new(
+            base,
+            x.axis.clone(),
+            y.as_ref().map(|y| y.axis.clone()),
+            options,
+        )?;
+        Ok(DesignStudy { study, x, y })
+    }
+
+    /// The base design's coordinates on the axes in the user's units, where the axis varies a
+    /// parameter of the bicycle ([`Study::base_point`]).
+    ///
+    /// ```
+    /// use whipple::advanced::design::StudySettings;
+    /// use whipple::presets;
+    /// use whipple_front::design::{AxisSpec, DesignStudy};
+    /// let bike = presets::find("benchmark")?.bicycle(); // λ = π/10: a head angle of 72°
+    /// let x = AxisSpec::parse("trail=0:0.2:5", &bike)?;
+    /// let y = AxisSpec::parse("head_angle_deg=60:80:5", &bike)?;
+    /// let study = DesignStudy::new(bike, x, Some(y), StudySettings::default())?;
+    /// let (c, head) = study.base_point();
+    /// assert_eq!(c, Some(0.08));
+    /// assert!((head.unwrap_or(0.0) - 72.0).abs() < 1e-12);
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn base_point(&self) -> (Option<f64>, Option<f64>) {
+        let (x, y) = self.study.base_point();
+        (
+            x.map(|x| self.x.from_si(x)),
+            y.zip(self.y.as_ref()).map(|(y, axis)| axis.from_si(y)),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use whipple::presets;
+
+    fn bike(name: &str) -> Bicycle {
+        match presets::find(name) {
+            Ok(preset) => preset.bicycle(),
+            Err(e) => panic!("{e}"),
+        }
+    }
+
+    fn rule(spec: &str, base: &Bicycle) -> String {
+        match AxisSpec::parse(spec, base) {
+            Err(Error::InvalidArgument { what: "axis", rule }) => rule,
+            other => panic!("{spec}: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_spec_gives_the_parameter_and_its_grid() -> Result<()> {
+        let benchmark = bike("benchmark");
+        let trail = AxisSpec::parse(" trail = 0 : 0.2 : 5", &benchmark)?;
+        assert_eq!(trail.name, "trail");
+        assert_eq!(trail.axis.parameter, Parameter::Benchmark("c".into()));
+        assert_eq!(
+            (trail.axis.start, trail.axis.stop, trail.axis.count),
+            (0.0, 0.2, 5)
+        );
+        assert_eq!(trail.value(4), 0.2);
+        assert_eq!(trail.axis.si_value(2), 0.1);
+        let speed = AxisSpec::parse("v=1:10:10", &benchmark)?;
+        assert_eq!(
+            (speed.axis.parameter.clone(), speed.unit()),
+            (Parameter::Speed, "m/s")
+        );
+        let one = AxisSpec::parse("mB=85:90:1", &benchmark)?;
+        assert_eq!((one.value(0), one.value(7)), (85.0, 85.0));
+        Ok(())
+    }
+
+    /// Units come from the parameter table: an angle in degrees (its SI values in radians), an
+    /// inertia in kg m², a length in m, a mass in kg, gravity in m/s².
+    #[test]
+    fn units_are_read_from_the_parameter_table() -> Result<()> {
+        let benchmark = bike("benchmark");
+        let head = AxisSpec::parse("head_angle_deg=60:80:3", &benchmark)?;
+        assert!(head.degrees);
+        assert_eq!(head.unit(), "deg");
+        assert_eq!(head.value(1), 70.0);
+        assert_eq!(
+            head.axis.si_value(1).to_bits(),
+            70f64.to_radians().to_bits()
+        );
+        let lam = AxisSpec::parse("lam=0.1:0.3:3", &benchmark)?;
+        assert_eq!((lam.unit(), lam.degrees), ("rad", false));
+        for (spec, unit) in [
+            ("IBxx=5:15:3", "kg m²"),
+            ("w=0.9:1.1:3", "m"),
+            ("wheel_radius=0.3:0.4:3", "m"),
+            ("mB=80:90:3", "kg"),
+            ("gravity=9:10:3", "m/s²"),
+        ] {
+            let axis = AxisSpec::parse(spec, &benchmark)?;
+            assert_eq!(axis.unit(), unit, "{spec}");
+            assert_eq!(axis.axis.si_value(1), axis.value(1), "{spec}: SI as typed");
+        }
+        let crown = bike("schwinn-crown");
+        for (spec, unit) in [
+            ("Irider(1)=5:15:3", "kg m²"),
+            ("rider.I[1]=5:15:3", "kg m²"),
+            ("mrider=60:90:3", "kg"),
+            ("Drearwheel=0.6:0.7:3", "m"),
+            ("wheel_diameter=0.6:0.7:3", "m"),
+            ("alphaIrider=-0.3:0.3:3", "rad"),
+            ("rider.alpha_deg=-20:20:5", "deg"),
+        ] {
+            assert_eq!(AxisSpec::parse(spec, &crown)?.unit(), unit, "{spec}");
+        }
+        Ok(())
+    }
+
+    /// Every parameter of both tables: `_deg` is taken exactly where the table's unit is the
+    /// radian.
+    #[test]
+    fn degrees_only_after_an_angle_of_the_table() {
+        use whipple::advanced::table::{parameters, Form};
+        for (form, preset) in [
+            (Form::Benchmark, "benchmark"),
+            (Form::Jbike6, "schwinn-crown"),
+        ] {
+            let base = bike(preset);
+            for p in parameters(form) {
+                let parsed = AxisSpec::parse(&format!("{}_deg=1:2:2", p.key), &base);
+                assert_eq!(parsed.is_ok(), p.is_angle(), "{}", p.key);
+            }
+        }
+    }
+
+    #[test]
+    fn bad_specs_are_refused_naming_the_spec() {
+        let benchmark = bike("benchmark");
+        for (spec, words) in [
+            (
+                "trail",
+                "expects NAME=START:STOP:COUNT (for example trail=0:0.2:401), got `trail`",
+            ),
+            (
+                "trail=0:1",
+                "`trail=0:1`: expects START:STOP:COUNT after `trail=`",
+            ),
+            ("trail=0:x:3", "`trail=0:x:3`: `x` is not a number"),
+            (
+                "trail=0:inf:3",
+                "`trail=0:inf:3`: `inf` is not a finite number",
+            ),
+            (
+                "trail=0:1:-3",
+                "`trail=0:1:-3`: COUNT `-3` must be a whole number ≥ 1",
+            ),
+            (
+                "trail=0:1:0",
+                "`trail=0:1:0`: COUNT must lie in 1..=10000000, got 0",
+            ),
+            ("trail_deg=0:1:3", "`trail_deg`: `trail` is not an angle"),
+            ("IBxx_deg=0:1:3", "`IBxx_deg`: `IBxx` is not an angle"),
+            ("speed_deg=0:1:3", "speed has no `_deg` form"),
+        ] {
+            assert_eq!(rule(spec, &benchmark), words, "{spec}");
+        }
+        let unknown = rule("mrider=60:90:3", &benchmark);
+        assert!(
+            unknown.starts_with(
+                "`mrider` is not a parameter of this bicycle (known: the benchmark keys w, c,"
+            ),
+            "{unknown}"
+        );
+        let crown = bike("schwinn-crown");
+        let unknown = rule("rider.height=1:2:3", &crown);
+        assert!(
+            unknown.contains("`rider.height`") && unknown.contains("TOML paths"),
+            "{unknown}"
+        );
+    }
+
+    /// The same parameter by its TOML path and by its `.m` key, in degrees too.
+    #[test]
+    fn jbike6_axes_take_toml_paths() -> Result<()> {
+        let crown = bike("schwinn-crown");
+        for (path, key) in [
+            ("rider.ycm=0.8:1.4:7", "ycmrider=0.8:1.4:7"),
+            ("rider.I[1]=5:15:3", "Irider(1)=5:15:3"),
+            ("rider.alpha_deg=-20:20:5", "alphaIrider_deg=-20:20:5"),
+        ] {
+            let (by_path, by_key) = (
+                AxisSpec::parse(path, &crown)?,
+                AxisSpec::parse(key, &crown)?,
+            );
+            assert_eq!(by_path.axis, by_key.axis, "{path}");
+            assert_eq!(by_path.degrees, by_key.degrees, "{path}");
+        }
+        Ok(())
+    }
+
+    #[test]
+    fn a_study_refuses_one_name_twice_and_gives_the_base_as_typed() -> Result<()> {
+        let benchmark = bike("benchmark");
+        let x = AxisSpec::parse("trail=0:0.2:3", &benchmark)?;
+        match DesignStudy::new(
+            benchmark.clone(),
+            x.clone(),
+            Some(x.clone()),
+            StudySettings::default(),
+        ) {
+            Err(Error::InvalidArgument { what: "axis", rule }) => {
+                assert_eq!(rule, "x and y both vary `trail`")
+            }
+            other => panic!("{other:?}"),
+        }
+        let v = AxisSpec::parse("speed=1:10:3", &benchmark)?;
+        let study = DesignStudy::new(benchmark, x, Some(v), StudySettings::default())?;
+        assert_eq!(study.base_point(), (Some(0.08), None));
+        Ok(())
+    }
+
+    /// The answers' layout of an axis is the one the command line and the server have always
+    /// written.
+    #[test]
+    fn an_axis_serializes_as_typed() -> Result<()> {
+        let axis = AxisSpec::parse("head_angle_deg=60:80:3", &bike("benchmark"))?;
+        let json = serde_json_text(&axis);
+        assert_eq!(
+            json,
+            r#"{"name":"head_angle_deg","parameter":{"kind":"benchmark","name":"head_angle"},"start":60.0,"stop":80.0,"count":3,"degrees":true}"#
+        );
+        Ok(())
+    }
+
+    fn serde_json_text(axis: &AxisSpec) -> String {
+        match serde_json::to_string(axis) {
+            Ok(text) => text,
+            Err(e) => panic!("{e}"),
+        }
+    }
+}
