@@ -65,6 +65,7 @@
 #![warn(unreachable_pub)]
 mod analysis;
 mod error;
+mod expression;
 mod integrate;
 mod linear;
 mod nonlinear;

@@ -35,14 +35,13 @@
 //! | `reference.rs` | the dense 45 × 45 reference solve that checks [`Model::forward`] |
 //! | `projection.rs` | positions and velocities back onto the constraints |
 //! | `reduced.rs` | the model on the linear model's state [φ, δ, φ̇, δ̇] and in spin-free speeds |
-//! | `settings.rs`, `outcome.rs`, `simulate.rs`, `expression.rs` | a simulation's settings and bounds, its results, the run itself, rider torques as expressions |
+//! | `settings.rs`, `outcome.rs`, `simulate.rs` | a simulation's settings and bounds, its results, the run itself (rider torques as expressions are the crate's `expression.rs`, shared with the parameter files' values) |
 
 mod assembly;
 mod bodies;
 mod configuration;
 mod constraints;
 mod contact;
-mod expression;
 mod forward;
 mod initial;
 mod joints;
@@ -61,8 +60,7 @@ mod state;
 mod topology;
 mod tree;
 
-pub(crate) use expression::evaluate_constant;
-pub use expression::{
+pub use crate::expression::{
     TorqueExpression, MAX_DEPTH as MAX_EXPRESSION_DEPTH, MAX_LENGTH as MAX_EXPRESSION_LENGTH,
 };
 pub(crate) use forward::StateRates;

@@ -135,7 +135,7 @@ pub(crate) fn parse(text: &str, format: Format) -> Result<Bicycle> {
                         && !value_text.to_ascii_lowercase().contains("inf")
                         && !value_text.to_ascii_lowercase().contains("nan")
                     {
-                        crate::nonlinear::evaluate_constant(value_text).map_err(|e| {
+                        crate::expression::evaluate_constant(value_text).map_err(|e| {
                             at(format!(
                                 "`{}` is neither a number nor an expression whipple can evaluate ({e})",
                                 shorten(value_text, 40)

@@ -1,6 +1,6 @@
 //! Rider torques written as expressions of time and the state, such as `0.5*sin(2*t)`,
 //! `1e3*t` or `10*lean + 20*lean_rate`: parsed once, checked for unknown names, and turned into
-//! a [`TorqueFn`] for [`super::SimulationSettings`]. The command line and the web API read the
+//! a [`TorqueFn`] for [`crate::nonlinear::SimulationSettings`]. The command line and the web API read the
 //! same language.
 //!
 //! The language: numbers in decimal or scientific notation (`2`, `0.5`, `.5`, `2.5e-1`,
@@ -25,9 +25,9 @@
 //! # Ok::<(), whipple::Error>(())
 //! ```
 
-use super::settings::TorqueFn;
-use super::state::StateView;
 use crate::error::{Error, Result};
+use crate::nonlinear::StateView;
+use crate::nonlinear::TorqueFn;
 
 /// The names an expression may use: time t \[s\], the lean, steer and yaw angles \[rad\], their
 /// rates [rad/s] and the forward speed [m/s].
