@@ -5,11 +5,11 @@
 use std::sync::OnceLock;
 
 use axum::body::Body;
-use axum::http::{header, Method, Request};
+use axum::http::{Method, Request, header};
 use http_body_util::BodyExt;
 use libfuzzer_sys::fuzz_target;
 use tower::ServiceExt;
-use whipple_web::{app, Limits};
+use whipple_web::{Limits, app};
 
 const ROUTES: [&str; 9] = [
     "/api/bike/validate",

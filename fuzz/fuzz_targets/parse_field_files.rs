@@ -4,7 +4,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use whipple::advanced::io::{parse, write, Format};
+use whipple::advanced::io::{Format, parse, write};
 
 const FIELD_FORMATS: [Format; 3] = [
     Format::BicycleParametersTxt,

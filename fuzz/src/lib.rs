@@ -1,6 +1,6 @@
 //! What the parse targets share: any text read as a parameter file in one format.
 
-use whipple::advanced::io::{parse, write, Format};
+use whipple::advanced::io::{Format, parse, write};
 
 /// Reads `data` (when it is UTF-8) as a parameter file in `format`: never a panic; an error
 /// has a message; a bicycle read writes to TOML and JSON and each reads back to the same text.

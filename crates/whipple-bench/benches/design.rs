@@ -7,11 +7,11 @@
 
 use std::hint::black_box;
 
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use whipple::advanced::design::StudySettings;
-use whipple::presets;
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use whipple::Canonical;
 use whipple::Study;
+use whipple::advanced::design::StudySettings;
+use whipple::presets;
 use whipple_front::design::AxisSpec;
 
 fn study(preset: &str, x: &str, y: &str) -> Study {

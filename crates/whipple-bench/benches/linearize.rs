@@ -4,12 +4,12 @@
 
 use std::hint::black_box;
 
-use criterion::{criterion_group, criterion_main, Criterion};
-use whipple::advanced::comparison::{
-    full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix, ComparisonSettings,
-};
+use criterion::{Criterion, criterion_group, criterion_main};
 use whipple::BenchmarkParameters;
 use whipple::Model;
+use whipple::advanced::comparison::{
+    ComparisonSettings, full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix,
+};
 
 fn linearize(c: &mut Criterion) {
     let model =

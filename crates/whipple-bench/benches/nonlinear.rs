@@ -3,10 +3,10 @@
 
 use std::hint::black_box;
 
-use criterion::{criterion_group, criterion_main, Criterion};
-use whipple::advanced::nonlinear::Inputs;
+use criterion::{Criterion, criterion_group, criterion_main};
 use whipple::BenchmarkParameters;
-use whipple::{simulate, InitialConditions, Model, SimulationSettings};
+use whipple::advanced::nonlinear::Inputs;
+use whipple::{InitialConditions, Model, SimulationSettings, simulate};
 
 fn forward(c: &mut Criterion) {
     let model =

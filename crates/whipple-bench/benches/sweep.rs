@@ -4,11 +4,11 @@
 
 use std::hint::black_box;
 
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use whipple::advanced::eigen;
-use whipple::advanced::linear::{CharacteristicPolynomial, StateSpace};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use whipple::BenchmarkParameters;
 use whipple::Canonical;
+use whipple::advanced::eigen;
+use whipple::advanced::linear::{CharacteristicPolynomial, StateSpace};
 
 fn benches(c: &mut Criterion) {
     let canonical =

@@ -4,12 +4,12 @@
 
 use std::hint::black_box;
 
-use criterion::{criterion_group, criterion_main, Criterion};
-use whipple::advanced::turns::{
-    branch_family, branch_from_straight, held_turn, stability, FamilySettings, Held, TurnSettings,
-};
+use criterion::{Criterion, criterion_group, criterion_main};
 use whipple::BenchmarkParameters;
 use whipple::Model;
+use whipple::advanced::turns::{
+    FamilySettings, Held, TurnSettings, branch_family, branch_from_straight, held_turn, stability,
+};
 
 fn turns(c: &mut Criterion) {
     let model =

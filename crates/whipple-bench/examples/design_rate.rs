@@ -5,9 +5,9 @@
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
+use whipple::Study;
 use whipple::advanced::design::{Shard, StudySettings};
 use whipple::presets;
-use whipple::Study;
 use whipple_front::design::AxisSpec;
 
 fn main() -> Result<(), whipple::Error> {

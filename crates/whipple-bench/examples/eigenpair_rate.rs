@@ -4,10 +4,10 @@
 
 use std::time::Instant;
 
-use whipple::advanced::eigen::eigenpairs_with;
-use whipple::advanced::linear::{CharacteristicPolynomial, SpeedPolynomials};
 use whipple::BenchmarkParameters;
 use whipple::Canonical;
+use whipple::advanced::eigen::eigenpairs_with;
+use whipple::advanced::linear::{CharacteristicPolynomial, SpeedPolynomials};
 
 fn main() -> Result<(), whipple::Error> {
     let n: usize = std::env::args()

@@ -14,9 +14,9 @@
 
 use std::hint::black_box;
 
-use whipple::advanced::nonlinear::Inputs;
 use whipple::BenchmarkParameters;
-use whipple::{simulate, InitialConditions, Model, SimulationSettings};
+use whipple::advanced::nonlinear::Inputs;
+use whipple::{InitialConditions, Model, SimulationSettings, simulate};
 
 fn main() -> Result<(), whipple::Error> {
     let what = std::env::args().nth(1).unwrap_or_else(|| "simulate".into());

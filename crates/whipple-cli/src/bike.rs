@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use anyhow::{anyhow, bail, Context, Result};
-use whipple::advanced::io::{parse, Format, FORMATS, MAX_FILE_BYTES};
+use anyhow::{Context, Result, anyhow, bail};
+use whipple::advanced::io::{FORMATS, Format, MAX_FILE_BYTES, parse};
 use whipple::advanced::parameters::Notice;
 use whipple::presets;
 use whipple::{BenchmarkParameters, Bicycle, Error};

@@ -3,20 +3,20 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result, bail};
 use nalgebra::Matrix2;
 use serde_json::json;
-use whipple::advanced::io::{write, Format};
+use whipple::Bicycle;
+use whipple::Canonical;
+use whipple::advanced::io::{Format, write};
 use whipple::advanced::parameters::Description;
 use whipple::advanced::sensitivity;
 use whipple::advanced::sweep;
 use whipple::advanced::table::key_doc;
 use whipple::presets::PRESETS;
-use whipple::Bicycle;
-use whipple::Canonical;
 
-use crate::bike::{load, LoadedBike, RunContext};
-use crate::output::{self, number, parse_triple, print_stdout, Sink, Target};
+use crate::bike::{LoadedBike, RunContext, load};
+use crate::output::{self, Sink, Target, number, parse_triple, print_stdout};
 use crate::{FileFormat, TableFormat, TextFormat};
 
 /// Prints `text` to standard output or writes it whole to `out` (checked before the work).
@@ -548,7 +548,9 @@ pub fn sensitivity(
             format!("{}\n", serde_json::to_string_pretty(&doc)?)
         }
         TableFormat::Csv => {
-            let mut t = String::from("key,unit,value,d_weave_speed,d_capsize_speed,d_stable_width,e_weave_speed,e_capsize_speed,e_stable_width,d_weave_real,d_capsize_real\n");
+            let mut t = String::from(
+                "key,unit,value,d_weave_speed,d_capsize_speed,d_stable_width,e_weave_speed,e_capsize_speed,e_stable_width,d_weave_real,d_capsize_real\n",
+            );
             for p in &s.parameters {
                 writeln!(
                     t,

@@ -7,13 +7,13 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{Context, Result, anyhow, bail};
 use rayon::prelude::*;
 use whipple::advanced::design::{DesignRow, DesignStatus, Parameter, Shard, StudySettings};
 use whipple_front::design::{AxisSpec, DesignStudy};
-use whipple_report::{design_map, design_study, MapData, StudyData};
+use whipple_report::{MapData, StudyData, design_map, design_study};
 
-use crate::bike::{load, RunContext};
+use crate::bike::{RunContext, load};
 use crate::output;
 use crate::speeds::parse_range;
 

@@ -8,8 +8,8 @@
 //! handler, so it may take locks and touch files. `whipple serve` keeps tokio's handling of
 //! Ctrl-C (it writes no files) and does not install this one.
 
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::OnceLock;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
 use signal_hook::iterator::Signals;
@@ -22,24 +22,26 @@ static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 /// files may stay), which is said on standard error.
 pub fn install() {
     static INSTALLED: OnceLock<()> = OnceLock::new();
-    INSTALLED.get_or_init(|| {
-        match Signals::new([SIGINT, SIGTERM, SIGHUP]) {
-            Ok(mut signals) => {
-                let spawned = std::thread::Builder::new()
-                    .name("whipple-signals".into())
-                    .spawn(move || {
-                        if let Some(signal) = signals.forever().next() {
-                            INTERRUPTED.store(true, Ordering::SeqCst);
-                            crate::output::abandon_and_exit(signal, name(signal));
-                        }
-                    });
-                if let Err(e) = spawned {
-                    eprintln!("warning: no signal handler ({e}): an interrupted run may leave temporary files");
-                }
+    INSTALLED.get_or_init(|| match Signals::new([SIGINT, SIGTERM, SIGHUP]) {
+        Ok(mut signals) => {
+            let spawned = std::thread::Builder::new()
+                .name("whipple-signals".into())
+                .spawn(move || {
+                    if let Some(signal) = signals.forever().next() {
+                        INTERRUPTED.store(true, Ordering::SeqCst);
+                        crate::output::abandon_and_exit(signal, name(signal));
+                    }
+                });
+            if let Err(e) = spawned {
+                eprintln!(
+                    "warning: no signal handler ({e}): an interrupted run may leave temporary files"
+                );
             }
-            Err(e) => {
-                eprintln!("warning: no signal handler ({e}): an interrupted run may leave temporary files");
-            }
+        }
+        Err(e) => {
+            eprintln!(
+                "warning: no signal handler ({e}): an interrupted run may leave temporary files"
+            );
         }
     });
     INTERRUPTED.store(false, Ordering::SeqCst);

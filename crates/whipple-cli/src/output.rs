@@ -32,7 +32,7 @@ use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{Context, Result, anyhow, bail};
 
 /// How many symbolic links are followed before giving up (as the kernel's `ELOOP`).
 const MAX_LINKS: usize = 40;
@@ -723,7 +723,7 @@ impl ReportDir {
                         return Err(fail(format!(
                             "the directory {} does not exist",
                             parent.display()
-                        )))
+                        )));
                     }
                 }
                 {

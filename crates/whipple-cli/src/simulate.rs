@@ -6,19 +6,19 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use serde_json::json;
 use whipple::advanced::nonlinear::{Outcome, Sample, Simulation};
-use whipple::{simulate, InitialConditions, Model, SimulationSettings};
+use whipple::{InitialConditions, Model, SimulationSettings, simulate};
 use whipple_front::simulation::{IntegratorKind, SimulationRequest, TorqueInput};
 use whipple_front::units::degrees;
 
-use whipple::advanced::turns::{held_turn, Held, SteadyTurn, TurnSettings};
+use whipple::advanced::turns::{Held, SteadyTurn, TurnSettings, held_turn};
 
-use crate::bike::{load, LoadedBike, RunContext};
-use crate::output::{self, number, Sink};
 use crate::TableFormat;
+use crate::bike::{LoadedBike, RunContext, load};
+use crate::output::{self, Sink, number};
 
 /// The integrators on offer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]

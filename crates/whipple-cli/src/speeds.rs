@@ -3,16 +3,16 @@
 
 use std::fmt::Write as _;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result, bail};
 use serde_json::json;
+use whipple::CriticalSpeeds;
 use whipple::advanced::sensitivity;
 use whipple::advanced::sensitivity::CriticalSpeedsSigma;
-use whipple::CriticalSpeeds;
 
-use crate::bike::{load, RunContext};
+use crate::TextFormat;
+use crate::bike::{RunContext, load};
 use crate::commands::{emit, optional, with_sigma};
 use crate::output::number;
-use crate::TextFormat;
 
 /// Parses `LO:HI` where either end may be `inf` (or left empty: `4:` is every speed from 4 m/s
 /// up, `:10` every speed up to 10 m/s).

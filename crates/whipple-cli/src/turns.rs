@@ -3,20 +3,20 @@
 
 use std::fmt::Write as _;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::Args;
 use serde_json::json;
-use whipple::advanced::turns::{
-    hands_free_families, hands_free_turns_at_speed, held_turn, stability, Family, FamilySettings,
-    Held, Stability, SteadyTurn, TurnSettings,
-};
 use whipple::Model;
+use whipple::advanced::turns::{
+    Family, FamilySettings, Held, Stability, SteadyTurn, TurnSettings, hands_free_families,
+    hands_free_turns_at_speed, held_turn, stability,
+};
 
-use crate::bike::{load, LoadedBike, RunContext};
+use crate::TextFormat;
+use crate::bike::{LoadedBike, RunContext, load};
 use crate::commands::emit;
 use crate::output::{number, table_and_plot};
 use crate::speeds::parse_range;
-use crate::TextFormat;
 
 /// Arguments of `whipple turn`.
 #[derive(Args, Debug)]
@@ -158,7 +158,9 @@ pub fn turn_text(turn: &SteadyTurn, stab: &Result<Stability, String>) -> Result<
     writeln!(
         t,
         "  residuals             lean {:.1e} rad/s^2, steer {:.1e} rad/s^2, forward speed {:.1e} m/s^2 (not solved for: it vanishes by itself)",
-        turn.residuals.lean_acceleration, turn.residuals.steer_acceleration, turn.residuals.speed_rate
+        turn.residuals.lean_acceleration,
+        turn.residuals.steer_acceleration,
+        turn.residuals.speed_rate
     )?;
     match stab {
         Ok(s) => {
@@ -211,8 +213,10 @@ pub fn turn(cx: &RunContext, args: &TurnArgs) -> Result<()> {
         _ => bail!("give one of --lean, --steer, --radius or --hands-free"),
     };
     let turns: Vec<SteadyTurn> = match given {
-        Some(g) => vec![held_turn(&model, args.speed, g, &settings)
-            .with_context(|| format!("steady turn of {}", bike.label))?],
+        Some(g) => vec![
+            held_turn(&model, args.speed, g, &settings)
+                .with_context(|| format!("steady turn of {}", bike.label))?,
+        ],
         None => {
             let families = hands_free_families(&model, &FamilySettings::default())
                 .with_context(|| format!("hands-free turns of {}", bike.label))?;
@@ -349,7 +353,10 @@ fn summary(label: &str, families: &[Family], lo: f64, hi: f64) -> Result<String>
         number(lo)?,
         number(hi)?
     )?;
-    writeln!(t, "  (the first leaves straight running; the others were found by a grid scan of lean and steer, which can miss a family that crosses no grid line)")?;
+    writeln!(
+        t,
+        "  (the first leaves straight running; the others were found by a grid scan of lean and steer, which can miss a family that crosses no grid line)"
+    )?;
     for (i, f) in families.iter().enumerate() {
         let pts: Vec<_> = f
             .points

@@ -10,15 +10,15 @@ use anyhow::{Context, Result};
 use clap::ValueEnum;
 use serde_json::json;
 use whipple::advanced::comparison::{
-    capsize_spike, compare_with_linear, double_root_conditioning, ComparisonSettings,
-    ComparisonSweep, Linearization, LinearizationSweep, MAX_COMPARED_SPEEDS,
+    ComparisonSettings, ComparisonSweep, Linearization, LinearizationSweep, MAX_COMPARED_SPEEDS,
+    capsize_spike, compare_with_linear, double_root_conditioning,
 };
 use whipple::advanced::eigen::Complex64;
 use whipple::advanced::sweep;
-use whipple_report::{line_plot, xy_log_plot, Dash, Figure, Marker, Series, XyPlotOptions};
+use whipple_report::{Dash, Figure, Marker, Series, XyPlotOptions, line_plot, xy_log_plot};
 
-use crate::bike::{load, LoadedBike, RunContext};
-use crate::output::{self, number, parse_triple, Finished, ReportDir};
+use crate::bike::{LoadedBike, RunContext, load};
+use crate::output::{self, Finished, ReportDir, number, parse_triple};
 
 /// Which linearizations to compare with the linear model.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]

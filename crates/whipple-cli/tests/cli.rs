@@ -424,9 +424,11 @@ fn simulate_shows_the_weave_decaying_inside_the_stable_range() {
         rows.iter().all(|r| (r[9] - e0).abs() < 1e-6),
         "energy is conserved"
     );
-    assert!(std::fs::read_to_string(&plot)
-        .expect("plot")
-        .contains("<svg"));
+    assert!(
+        std::fs::read_to_string(&plot)
+            .expect("plot")
+            .contains("<svg")
+    );
 }
 
 /// At 3 m/s, below the weave speed, the same kick grows until the bicycle falls.

@@ -72,9 +72,11 @@ fn sensitivity_table_csv_json_and_tornado() {
         "--plot",
         &png.to_string_lossy(),
     ]));
-    assert!(std::fs::metadata(&png)
-        .map(|m| m.len() > 1000)
-        .unwrap_or(false));
+    assert!(
+        std::fs::metadata(&png)
+            .map(|m| m.len() > 1000)
+            .unwrap_or(false)
+    );
 }
 
 #[test]

@@ -324,7 +324,7 @@ fn critical_speeds_are_those_of_forward_riding() {
 /// to print "self-stable nowhere" beside a "not decided" interval that holds the range.
 #[test]
 fn an_undecided_interval_is_never_contradicted() {
-    use whipple::advanced::io::{write, Format};
+    use whipple::advanced::io::{Format, write};
     use whipple::critical_speeds;
     use whipple::{BenchmarkParameters, Bicycle, Canonical};
     let width = |c: f64| -> Option<(f64, usize)> {

@@ -25,10 +25,12 @@ fn dev_full_is_an_error_naming_the_option() {
     assert!(err.contains("--out /dev/full"), "{err}");
     // /dev/full is still the device.
     use std::os::unix::fs::FileTypeExt;
-    assert!(fs::metadata("/dev/full")
-        .expect("/dev/full")
-        .file_type()
-        .is_char_device());
+    assert!(
+        fs::metadata("/dev/full")
+            .expect("/dev/full")
+            .file_type()
+            .is_char_device()
+    );
 }
 
 #[test]
@@ -38,10 +40,12 @@ fn dev_null_is_written_in_place_and_stays_a_device() {
         return;
     }
     stdout(&eig_with(&["--out", "/dev/null"]));
-    assert!(fs::metadata("/dev/null")
-        .expect("/dev/null")
-        .file_type()
-        .is_char_device());
+    assert!(
+        fs::metadata("/dev/null")
+            .expect("/dev/null")
+            .file_type()
+            .is_char_device()
+    );
 }
 
 #[test]
@@ -111,10 +115,12 @@ fn a_symlink_stays_a_link_and_its_target_is_written() {
         "--out",
         link.to_str().expect("utf-8"),
     ]));
-    assert!(fs::symlink_metadata(&link)
-        .expect("link")
-        .file_type()
-        .is_symlink());
+    assert!(
+        fs::symlink_metadata(&link)
+            .expect("link")
+            .file_type()
+            .is_symlink()
+    );
     let text = fs::read_to_string(&real).expect("read");
     assert!(text.starts_with("v,re1,im1"), "{text}");
 }

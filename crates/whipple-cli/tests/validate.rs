@@ -40,9 +40,11 @@ fn validate_csv_has_the_documented_header_and_round_off_differences() {
         assert!(row[17] < 1e-11, "{row:?}");
     }
     // Meijaard et al. 2007, Table 2 at 5 m/s: the capsize eigenvalue.
-    assert!(rows[4][1..9]
-        .chunks(2)
-        .any(|z| (z[0] + 0.32286642900409).abs() < 1e-12 && z[1] == 0.0));
+    assert!(
+        rows[4][1..9]
+            .chunks(2)
+            .any(|z| (z[0] + 0.32286642900409).abs() < 1e-12 && z[1] == 0.0)
+    );
 }
 
 #[test]

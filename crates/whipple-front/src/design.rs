@@ -8,9 +8,9 @@
 
 use serde::ser::SerializeStruct;
 use serde::{Serialize, Serializer};
-use whipple::advanced::design::{Axis, Parameter, StudySettings, MAX_AXIS_POINTS};
-use whipple::advanced::parameters::Description;
 use whipple::Study;
+use whipple::advanced::design::{Axis, MAX_AXIS_POINTS, Parameter, StudySettings};
+use whipple::advanced::parameters::Description;
 use whipple::{Bicycle, Error, Result};
 
 use crate::units::{self, RADIANS_PER_DEGREE};
@@ -162,11 +162,7 @@ impl AxisSpec {
 
     /// An SI value of the axis's parameter in the user's units (degrees for a `_deg` axis).
     pub fn from_si(&self, si: f64) -> f64 {
-        if self.degrees {
-            units::degrees(si)
-        } else {
-            si
-        }
+        if self.degrees { units::degrees(si) } else { si }
     }
 }
 
@@ -322,7 +318,7 @@ mod tests {
     /// radian.
     #[test]
     fn degrees_only_after_an_angle_of_the_table() {
-        use whipple::advanced::table::{parameters, Form};
+        use whipple::advanced::table::{Form, parameters};
         for (form, preset) in [
             (Form::Benchmark, "benchmark"),
             (Form::Jbike6, "schwinn-crown"),

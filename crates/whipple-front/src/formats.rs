@@ -2,7 +2,7 @@
 //! library's one list ([`whipple::advanced::io::FORMATS`] and [`Format::extensions`]), never
 //! restated.
 
-use whipple::advanced::io::{Format, FORMATS};
+use whipple::advanced::io::{FORMATS, Format};
 
 /// The formats' names, in the library's order, comma separated: `toml, json, m, bp-txt,
 /// hc-txt, yaml`.

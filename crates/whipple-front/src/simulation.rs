@@ -6,9 +6,9 @@
 //! [`SimulationSettings`]. Every front end calls it; none re-checks anything.
 
 use serde::Deserialize;
-use whipple::advanced::integrate::{Integrator, DEFAULT_DT, DEFAULT_RTOL};
+use whipple::advanced::integrate::{DEFAULT_DT, DEFAULT_RTOL, Integrator};
 use whipple::advanced::nonlinear::{
-    samples_kept, Sample, StateView, TorqueExpression, TorqueFn, MAX_SAMPLES, MAX_STEPS,
+    MAX_SAMPLES, MAX_STEPS, Sample, StateView, TorqueExpression, TorqueFn, samples_kept,
 };
 use whipple::{Error, Result};
 use whipple::{InitialConditions, SimulationSettings};
@@ -232,7 +232,8 @@ impl SimulationRequest {
                             rule: format!(
                                 "{steps} steps would keep {kept} samples, more than the limit of {MAX_SAMPLES} (a sample is {} bytes and about 400 as text: the limit keeps a run within about {:.1} GiB); keep one sample in {needed} steps or more, or use a larger dt or a shorter duration",
                                 std::mem::size_of::<Sample>(),
-                                MAX_SAMPLES as f64 * (std::mem::size_of::<Sample>() + 400) as f64 / (1u64 << 30) as f64
+                                MAX_SAMPLES as f64 * (std::mem::size_of::<Sample>() + 400) as f64
+                                    / (1u64 << 30) as f64
                             ),
                         });
                     }

@@ -8,9 +8,9 @@ use nalgebra::Vector3;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use whipple::advanced::nonlinear::{rotation, Inputs, State, REAR_FRAME, REAR_WHEEL};
 use whipple::Error;
 use whipple::Model;
+use whipple::advanced::nonlinear::{Inputs, REAR_FRAME, REAR_WHEEL, State, rotation};
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;

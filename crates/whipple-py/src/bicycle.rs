@@ -307,7 +307,7 @@ pub fn parameter_table(form: &str) -> PyResult<Vec<TableRow>> {
         other => {
             return Err(pyo3::exceptions::PyValueError::new_err(format!(
                 "unknown form `{other}` (benchmark or jbike6)"
-            )))
+            )));
         }
     };
     Ok(table::parameters(form)

@@ -11,7 +11,7 @@ use whipple_front::design::{AxisSpec, DesignStudy};
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
-use crate::guard::{interruptible, memory_error, reserve, stopped, SHORT};
+use crate::guard::{SHORT, interruptible, memory_error, reserve, stopped};
 
 fn axis_dict<'py>(py: Python<'py>, axis: &AxisSpec) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);

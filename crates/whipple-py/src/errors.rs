@@ -2,10 +2,10 @@
 //! can inherit from `ValueError`, `LookupError`, `ArithmeticError` as Python users expect);
 //! here each `whipple::Error` variant is mapped to one of them with its fields as attributes.
 
+use pyo3::IntoPyObjectExt;
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use pyo3::IntoPyObjectExt;
 use whipple::Error;
 
 /// The exception class of that name from `whipple._errors`.

@@ -9,8 +9,8 @@ use numpy::{Complex64 as NpComplex, PyArray1, PyArray2, PyArrayMethods, PyReadon
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
-use whipple::advanced::comparison::{compare_with_linear_until, MAX_COMPARED_SPEEDS};
-use whipple::advanced::comparison::{lean_steer_matrix, ComparisonSettings, Linearization};
+use whipple::advanced::comparison::{ComparisonSettings, Linearization, lean_steer_matrix};
+use whipple::advanced::comparison::{MAX_COMPARED_SPEEDS, compare_with_linear_until};
 use whipple::advanced::eigen::eigenpairs_with;
 use whipple::advanced::linear::StateSpace;
 use whipple::advanced::linear::{CharacteristicPolynomial, SpeedPolynomials};
@@ -23,7 +23,7 @@ use whipple::{Canonical, Error, Model};
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
 use crate::guard::{
-    estimate, grow, interruptible, is_stopped, memory_error, reserve, stopped, SHORT,
+    SHORT, estimate, grow, interruptible, is_stopped, memory_error, reserve, stopped,
 };
 
 fn matrix2<'py>(py: Python<'py>, m: &Matrix2<f64>) -> PyResult<Bound<'py, PyArray2<f64>>> {
@@ -509,7 +509,7 @@ impl NativeBicycle {
                         what: "methods",
                         rule: format!("unknown method `{name}` (ad, fd, ad_full)"),
                     })
-                    .py_err(py)
+                    .py_err(py);
                 }
             }
         }

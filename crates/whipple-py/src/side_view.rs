@@ -3,7 +3,7 @@
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use whipple::advanced::side_view::{side_view, Part};
+use whipple::advanced::side_view::{Part, side_view};
 
 use crate::bicycle::NativeBicycle;
 

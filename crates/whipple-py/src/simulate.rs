@@ -8,10 +8,10 @@ use std::sync::{Arc, Mutex};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use whipple::advanced::nonlinear::{Sample, StateView, TorqueFn, BODY_NAMES};
-use whipple::advanced::turns::{held_turn, Held, TurnSettings};
 use whipple::Error;
-use whipple::{simulate, Model};
+use whipple::advanced::nonlinear::{BODY_NAMES, Sample, StateView, TorqueFn};
+use whipple::advanced::turns::{Held, TurnSettings, held_turn};
+use whipple::{Model, simulate};
 use whipple_front::simulation::{IntegratorKind, SimulationRequest, TorqueInput};
 use whipple_front::units::degrees;
 
@@ -40,16 +40,17 @@ fn torque(
     }
     match value.extract::<f64>() {
         Ok(x) => Ok(Torque::Input(TorqueInput::Constant(x))),
-        Err(_) => {
-            Err(Error::InvalidArgument {
-                what: field,
-                rule: format!(
+        Err(_) => Err(Error::InvalidArgument {
+            what: field,
+            rule: format!(
                 "must be a number, an expression string or a callable f(t, state) -> float, got {}",
-                value.get_type().name().map_or_else(|_| "?".to_string(), |n| n.to_string())
+                value
+                    .get_type()
+                    .name()
+                    .map_or_else(|_| "?".to_string(), |n| n.to_string())
             ),
-            })
-            .py_err(py)
-        }
+        })
+        .py_err(py),
     }
 }
 
@@ -165,7 +166,7 @@ impl NativeBicycle {
                     what: "integrator",
                     rule: format!("must be 'rk4' or 'adaptive', got {other:?}"),
                 })
-                .py_err(py)
+                .py_err(py);
             }
         };
         let steer_torque_given = steer_torque.is_some_and(|v| !v.is_none());

@@ -5,13 +5,13 @@
 use numpy::{Complex64, PyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use whipple::advanced::turns::{
-    branch_from_straight, hands_free_families, hands_free_turn_near, hands_free_turns_at_speed,
-    held_turn, stability, Family, FamilyPoint, FamilySettings, Held, Stability, SteadyTurn,
-    TurnSettings,
-};
 use whipple::Error;
 use whipple::Model;
+use whipple::advanced::turns::{
+    Family, FamilyPoint, FamilySettings, Held, Stability, SteadyTurn, TurnSettings,
+    branch_from_straight, hands_free_families, hands_free_turn_near, hands_free_turns_at_speed,
+    held_turn, stability,
+};
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
@@ -174,7 +174,7 @@ impl NativeBicycle {
                     what: "lean",
                     rule: "give exactly one of lean, steer, radius (or hands_free=True)".into(),
                 })
-                .py_err(py)
+                .py_err(py);
             }
         };
         let model = self.model(py)?;

@@ -3,9 +3,9 @@
 
 use std::path::PathBuf;
 
-use whipple::presets;
 use whipple::Canonical;
-use whipple_report::{eigen_comparison_plot, eigen_plot, BikeEigen, EigenPlotOptions, Format};
+use whipple::presets;
+use whipple_report::{BikeEigen, EigenPlotOptions, Format, eigen_comparison_plot, eigen_plot};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = std::env::args()

@@ -11,7 +11,7 @@ use std::cell::Cell;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::draw::{house_mesh, text, tick, BLUE, DARK, GREEN, LIGHT, VERMILLION};
+use crate::draw::{BLUE, DARK, GREEN, LIGHT, VERMILLION, house_mesh, text, tick};
 use crate::error::{Error, Result};
 use crate::figure::{Content, Figure, OrDraw};
 

@@ -7,9 +7,9 @@ use plotters::coord::{CoordTranslate, Shift};
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
-use crate::clip::{clip_polyline, Rect};
+use crate::clip::{Rect, clip_polyline};
 use crate::error::Result;
-use crate::figure::{OrDraw, FONT};
+use crate::figure::{FONT, OrDraw};
 
 /// Okabe–Ito colours (distinguishable with the common colour-vision deficiencies).
 pub(crate) const BLUE: RGBColor = RGBColor(0, 114, 178);

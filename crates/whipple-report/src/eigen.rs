@@ -5,14 +5,14 @@
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
-use whipple::advanced::modes::Mode;
 use whipple::CriticalSpeeds;
 use whipple::EigenSweep;
+use whipple::advanced::modes::Mode;
 
 use crate::clip::Rect;
 use crate::draw::{
-    draw_clipped, draw_legend, fixed, house_mesh, label_markers, text, tick, Dash, Swatch, BLUE,
-    DARK, GREEN, GREY, VERMILLION,
+    BLUE, DARK, Dash, GREEN, GREY, Swatch, VERMILLION, draw_clipped, draw_legend, fixed,
+    house_mesh, label_markers, text, tick,
 };
 use crate::error::{Error, Result};
 use crate::figure::{Content, Figure, OrDraw};

@@ -37,16 +37,16 @@ mod tornado;
 mod turns;
 mod xy;
 
-pub use design::{design_map, design_study, MapData, StudyData};
+pub use design::{MapData, StudyData, design_map, design_study};
 pub use draw::Dash;
-pub use eigen::{eigen_comparison_plot, eigen_plot, mode_colour, BikeEigen, EigenPlotOptions};
+pub use eigen::{BikeEigen, EigenPlotOptions, eigen_comparison_plot, eigen_plot, mode_colour};
 pub use error::{Error, Result};
 pub use figure::{Figure, Format};
 pub use side_view::side_view;
 pub use table::{
-    eigen_csv, eigen_csv_row, eigen_table, eigen_table_header, eigen_table_row, EIGEN_CSV_HEADER,
+    EIGEN_CSV_HEADER, eigen_csv, eigen_csv_row, eigen_table, eigen_table_header, eigen_table_row,
 };
-pub use time_series::{time_series_plot, SimulationSeries};
-pub use tornado::{tornado_plot, Bar};
-pub use turns::{turns_plot, HeldCurve, TurnPoint, TurnsData};
-pub use xy::{line_plot, xy_log_plot, Marker, Series, XyPlotOptions};
+pub use time_series::{SimulationSeries, time_series_plot};
+pub use tornado::{Bar, tornado_plot};
+pub use turns::{HeldCurve, TurnPoint, TurnsData, turns_plot};
+pub use xy::{Marker, Series, XyPlotOptions, line_plot, xy_log_plot};

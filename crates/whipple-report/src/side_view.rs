@@ -7,11 +7,11 @@
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use whipple::BenchmarkParameters;
 use whipple::advanced::parameters::Jbike6Parameters;
 use whipple::advanced::side_view::{Part, SideView};
-use whipple::BenchmarkParameters;
 
-use crate::draw::{place, text, Placed, BLUE, DARK, GREY, VERMILLION};
+use crate::draw::{BLUE, DARK, GREY, Placed, VERMILLION, place, text};
 use crate::error::Result;
 use crate::figure::{Content, Figure, OrDraw};
 

@@ -1,8 +1,8 @@
 //! Tables of eigenvalues: CSV for files, fixed-width text for the terminal.
 
+use whipple::EigenSweep;
 use whipple::advanced::eigen::Complex64;
 use whipple::advanced::modes::Mode;
-use whipple::EigenSweep;
 
 /// The eigenvalue sweep as CSV: header `v,re1,im1,re2,im2,re3,im3,re4,im4`, one row per speed,
 /// columns in the sweep's mode order, numbers in Rust's shortest round-trip form (`{}` of f64).
@@ -81,9 +81,9 @@ pub fn eigen_table_row(v: f64, values: &[Complex64; 4]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use whipple::eigen_sweep;
     use whipple::BenchmarkParameters;
     use whipple::Canonical;
+    use whipple::eigen_sweep;
 
     #[test]
     fn csv_header_and_round_trip() -> Result<(), whipple::Error> {

@@ -7,7 +7,7 @@ use plotters::prelude::*;
 
 use crate::clip::Rect;
 use crate::draw::{
-    draw_clipped, house_mesh, label_markers, text, tick, Dash, BLUE, DARK, GREEN, GREY, VERMILLION,
+    BLUE, DARK, Dash, GREEN, GREY, VERMILLION, draw_clipped, house_mesh, label_markers, text, tick,
 };
 use crate::error::{Error, Result};
 use crate::figure::{Content, Figure, OrDraw};

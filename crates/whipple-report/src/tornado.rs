@@ -4,7 +4,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::draw::{house_mesh, text, tick, BLUE, DARK, VERMILLION};
+use crate::draw::{BLUE, DARK, VERMILLION, house_mesh, text, tick};
 use crate::error::{Error, Result};
 use crate::figure::{Content, Figure, OrDraw};
 

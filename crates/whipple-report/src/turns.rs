@@ -6,7 +6,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::clip::Rect;
-use crate::draw::{draw_clipped, draw_legend, text, Dash, Swatch, CYCLE, DARK, LIGHT};
+use crate::draw::{CYCLE, DARK, Dash, LIGHT, Swatch, draw_clipped, draw_legend, text};
 use crate::error::{Error, Result};
 use crate::figure::{Content, Figure, OrDraw};
 use crate::xy::span;

@@ -5,9 +5,9 @@ use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 
-use crate::clip::{clip_polyline, Rect};
+use crate::clip::{Rect, clip_polyline};
 use crate::draw::{
-    draw_clipped, draw_legend, draw_run, house_mesh, label_markers, text, Dash, Swatch, CYCLE, DARK,
+    CYCLE, DARK, Dash, Swatch, draw_clipped, draw_legend, draw_run, house_mesh, label_markers, text,
 };
 use crate::error::{Error, Result};
 use crate::figure::{Content, Figure, OrDraw};

@@ -1,13 +1,13 @@
 //! Rendering tests: every figure renders to non-empty SVG and PNG with the expected text.
 
-use whipple::presets;
 use whipple::Canonical;
-use whipple::{critical_speeds, CriticalSpeeds};
-use whipple::{eigen_sweep, speed_grid, EigenSweep};
+use whipple::presets;
+use whipple::{CriticalSpeeds, critical_speeds};
+use whipple::{EigenSweep, eigen_sweep, speed_grid};
 use whipple_report::{
-    eigen_comparison_plot, eigen_plot, line_plot, side_view, time_series_plot, xy_log_plot,
     BikeEigen, EigenPlotOptions, Error, Figure, Format, Marker, Series, SimulationSeries,
-    XyPlotOptions,
+    XyPlotOptions, eigen_comparison_plot, eigen_plot, line_plot, side_view, time_series_plot,
+    xy_log_plot,
 };
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;

@@ -17,7 +17,7 @@
 
 use std::net::{IpAddr, Ipv4Addr, Ipv6Addr};
 
-use axum::http::{header, HeaderMap, HeaderValue, Method, StatusCode};
+use axum::http::{HeaderMap, HeaderValue, Method, StatusCode, header};
 
 use crate::error::ApiError;
 
@@ -151,11 +151,7 @@ fn check_origin(headers: &HeaderMap, host: Option<&Authority>) -> Result<(), Api
     let same = host.is_some_and(|h| {
         h.host == origin.host && h.port.unwrap_or(80) == origin.port.unwrap_or(80)
     });
-    if same {
-        Ok(())
-    } else {
-        Err(refuse())
-    }
+    if same { Ok(()) } else { Err(refuse()) }
 }
 
 /// Whether a Content-Type value is `application/json`, with a `charset`, if any, of `utf-8`.

@@ -5,13 +5,13 @@
 //! `whipple::advanced::io`, so the API, the CLI and the files agree on every key and rule.
 
 use std::net::{IpAddr, Ipv4Addr};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use axum::body::Bytes;
 use axum::extract::rejection::{BytesRejection, PathRejection};
 use axum::extract::{DefaultBodyLimit, Path, Request, State};
-use axum::http::{header, HeaderValue, StatusCode};
+use axum::http::{HeaderValue, StatusCode, header};
 use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
@@ -20,6 +20,8 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use tokio::sync::{OwnedSemaphorePermit, Semaphore, TryAcquireError};
+use whipple::Bicycle;
+use whipple::Canonical;
 use whipple::advanced::io;
 use whipple::advanced::io::Format;
 use whipple::advanced::parameters::Description;
@@ -29,16 +31,14 @@ use whipple::advanced::table;
 use whipple::advanced::table::{Form, ParameterInfo};
 use whipple::presets;
 use whipple::presets::PRESETS;
-use whipple::Bicycle;
-use whipple::Canonical;
-use whipple::{critical_speeds, CriticalSpeeds};
+use whipple::{CriticalSpeeds, critical_speeds};
 use whipple::{eigen_sweep, speed_grid};
 
-use crate::error::{quoted_field, ApiError};
-use crate::geometry::{side_view, SideView};
+use crate::error::{ApiError, quoted_field};
+use crate::geometry::{SideView, side_view};
 use crate::modes::{self as mode_api, ModesRequest, ModesResponse, ResponseRequest};
 use crate::simulation::{self, SimulateRequest};
-use crate::{assets, Limits};
+use crate::{Limits, assets};
 
 /// The OpenAPI 3 description of every `/api` route (served at `/api/openapi.json`).
 pub const OPENAPI: &str = include_str!("openapi.json");
@@ -280,7 +280,7 @@ async fn slot(state: &AppState, budget: Budget) -> Result<OwnedSemaphorePermit, 
     match slots.clone().try_acquire_owned() {
         Ok(permit) => return Ok(permit),
         Err(TryAcquireError::Closed) => {
-            return Err(ApiError::internal("the computing pool is closed"))
+            return Err(ApiError::internal("the computing pool is closed"));
         }
         Err(TryAcquireError::NoPermits) => {}
     }

@@ -8,7 +8,7 @@
 //! which costs a 304 when nothing changed.
 
 use axum::extract::Path;
-use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
+use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::response::{IntoResponse, Response};
 
 /// One embedded file, in its three encodings.
@@ -232,9 +232,11 @@ mod tests {
             + named.iter().map(|a| a.brotli.len()).sum::<usize>();
         assert!(initial < 100_000, "initial page {initial} bytes compressed");
         // three.js is not part of it but is there for the 3-D views.
-        assert!(ASSETS
-            .iter()
-            .any(|a| a.name.starts_with("view3d-") && a.identity.len() > 300_000));
+        assert!(
+            ASSETS
+                .iter()
+                .any(|a| a.name.starts_with("view3d-") && a.identity.len() > 300_000)
+        );
         for a in ASSETS {
             assert!(
                 a.gzip.len() < a.identity.len() && a.brotli.len() < a.identity.len(),
@@ -263,8 +265,8 @@ mod tests {
     /// Through the router: brotli when accepted, gzip for older clients, the bytes as they are
     /// otherwise; a year's caching for hashed names, revalidation for the page; 304 on a match.
     #[tokio::test]
-    async fn assets_are_served_compressed_cached_and_revalidated(
-    ) -> Result<(), Box<dyn std::error::Error>> {
+    async fn assets_are_served_compressed_cached_and_revalidated()
+    -> Result<(), Box<dyn std::error::Error>> {
         use http_body_util::BodyExt;
         let script = ASSETS
             .iter()
@@ -280,9 +282,11 @@ mod tests {
             h[header::CACHE_CONTROL],
             "public, max-age=31536000, immutable"
         );
-        assert!(h[header::CONTENT_TYPE]
-            .to_str()?
-            .starts_with("text/javascript"));
+        assert!(
+            h[header::CONTENT_TYPE]
+                .to_str()?
+                .starts_with("text/javascript")
+        );
         let tag = h[header::ETAG].to_str()?.to_string();
         let body = br.into_body().collect().await?.to_bytes();
         assert_eq!(&body[..], script.brotli);
@@ -302,9 +306,11 @@ mod tests {
 
         let page = get("/", &[("accept-encoding", "br")]).await?;
         assert_eq!(page.headers()[header::CACHE_CONTROL], "no-cache");
-        assert!(page.headers()[header::CONTENT_SECURITY_POLICY]
-            .to_str()?
-            .contains("script-src 'self'"));
+        assert!(
+            page.headers()[header::CONTENT_SECURITY_POLICY]
+                .to_str()?
+                .contains("script-src 'self'")
+        );
         let tag = page.headers()[header::ETAG].to_str()?.to_string();
         let again = get("/", &[("accept-encoding", "br"), ("if-none-match", &tag)]).await?;
         assert_eq!(again.status(), StatusCode::NOT_MODIFIED);

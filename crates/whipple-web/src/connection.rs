@@ -20,7 +20,7 @@ use tokio::net::{TcpListener, TcpStream};
 use tokio::sync::Semaphore;
 use tokio::time::{Instant, Sleep};
 
-use crate::{app_bound_to, Limits};
+use crate::{Limits, app_bound_to};
 
 /// Serves `listener` until `shutdown` completes, then lets the connections under way finish
 /// for at most the request timeout.

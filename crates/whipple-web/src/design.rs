@@ -1,19 +1,19 @@
 //! `/api/map` and `/api/study`: design studies computed by `whipple::advanced::design` within
 //! the server's limits, answered as columns (one array per quantity, row-major).
 
+use axum::Json;
 use axum::body::Bytes;
-use axum::extract::rejection::BytesRejection;
 use axum::extract::State;
+use axum::extract::rejection::BytesRejection;
 use axum::http::StatusCode;
 use axum::response::Response;
-use axum::Json;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use whipple::advanced::design::{DesignStatus, Shard, StudySettings};
 use whipple::advanced::modes::Mode;
 use whipple_front::design::{AxisSpec, DesignStudy};
 
-use crate::api::{bicycle, bicycle_json, compute_json, json_body, AppState, Budget, SpeedRange};
+use crate::api::{AppState, Budget, SpeedRange, bicycle, bicycle_json, compute_json, json_body};
 use crate::error::ApiError;
 
 /// A map or study request: axes as `NAME=START:STOP:COUNT`, as in the CLI.

@@ -7,12 +7,12 @@ use axum::http::StatusCode;
 use nalgebra::Vector4;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
+use whipple::Canonical;
 use whipple::advanced::linear::StateSpace;
 use whipple::advanced::modes::mode_shapes;
-use whipple::Canonical;
 
-use crate::error::ApiError;
 use crate::Limits;
+use crate::error::ApiError;
 
 /// The body of `POST /api/modes`.
 #[derive(Deserialize, Debug)]
@@ -228,10 +228,10 @@ mod tests {
     use axum::body::Body;
     use axum::http::{Request, StatusCode};
     use http_body_util::BodyExt;
-    use serde_json::{json, Value};
+    use serde_json::{Value, json};
     use tower::ServiceExt;
 
-    use crate::{app, Limits};
+    use crate::{Limits, app};
 
     async fn post(
         path: &str,

@@ -5,21 +5,21 @@
 //! (`max_sim_duration`) and the number of integration steps (`max_sim_steps`, which bounds
 //! both the time and the memory of a run, since the library keeps one sample per step).
 
-use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 
 use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use whipple::advanced::nonlinear::{ContactForce, Outcome, Sample};
-use whipple::advanced::turns::{held_turn, Held, SteadyTurn, TurnSettings};
 use whipple::BenchmarkParameters;
-use whipple::{simulate, InitialConditions, Model, SimulationSettings};
+use whipple::advanced::nonlinear::{ContactForce, Outcome, Sample};
+use whipple::advanced::turns::{Held, SteadyTurn, TurnSettings, held_turn};
+use whipple::{InitialConditions, Model, SimulationSettings, simulate};
 use whipple_front::simulation::{IntegratorKind, SimulationRequest, TorqueInput};
 use whipple_front::units::radians;
 
-use crate::error::ApiError;
 use crate::Limits;
+use crate::error::ApiError;
 
 /// Frames per simulated second sent back (the page plays them at 1x, 0.5x or 2x).
 pub const FRAME_RATE: f64 = 60.0;
@@ -297,9 +297,9 @@ fn describe(outcome: &Outcome, duration: f64, max_steps: usize) -> OutcomeJson {
         Outcome::StepSizeTooSmall { .. } => format!(
             "{outcome:.2} (or it reached this server's limit of {max_steps} steps); loosen rtol or simulate a shorter time"
         ),
-        Outcome::Stopped { .. } => format!(
-            "{outcome:.2}: nobody waits for the result any more (time up or client gone)"
-        ),
+        Outcome::Stopped { .. } => {
+            format!("{outcome:.2}: nobody waits for the result any more (time up or client gone)")
+        }
         _ => format!("{outcome:.2}"),
     };
     OutcomeJson {

@@ -1,17 +1,17 @@
 //! `POST /api/turn`: one held steady turn of the non-linear bicycle, the steer torque that holds
 //! it and its stability (`whipple::advanced::turns`, what `whipple turn` prints).
 
-use axum::body::Bytes;
-use axum::extract::rejection::BytesRejection;
-use axum::extract::State;
-use axum::http::StatusCode;
 use axum::Json;
+use axum::body::Bytes;
+use axum::extract::State;
+use axum::extract::rejection::BytesRejection;
+use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use whipple::advanced::turns::{held_turn, stability, Held, Stability, SteadyTurn, TurnSettings};
 use whipple::Model;
+use whipple::advanced::turns::{Held, Stability, SteadyTurn, TurnSettings, held_turn, stability};
 
-use crate::api::{bicycle, compute, json_body, AppState, Budget};
+use crate::api::{AppState, Budget, bicycle, compute, json_body};
 use crate::error::ApiError;
 
 /// The body of `POST /api/turn`: the speed of the rear contact and exactly one of the lean, the
@@ -66,7 +66,7 @@ pub(crate) async fn turn(
                 "invalid_argument",
                 "give exactly one of `lean_deg`, `steer_deg` or `radius`",
             )
-            .at("lean_deg", "exactly one of lean_deg, steer_deg, radius"))
+            .at("lean_deg", "exactly one of lean_deg, steer_deg, radius"));
         }
     };
     let speed = request.speed;

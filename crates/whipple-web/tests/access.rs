@@ -7,10 +7,10 @@
 use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::time::Duration;
 
-use serde_json::{json, Value};
+use serde_json::{Value, json};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
-use whipple::advanced::io::{write, Format};
+use whipple::advanced::io::{Format, write};
 use whipple::presets;
 use whipple_web::{ServeOptions, Server};
 

@@ -2,16 +2,16 @@
 
 use std::time::Duration;
 
-use axum::body::Body;
-use axum::http::{header, Method, Request, StatusCode};
 use axum::Router;
+use axum::body::Body;
+use axum::http::{Method, Request, StatusCode, header};
 use http_body_util::BodyExt;
-use serde_json::{json, Value};
+use serde_json::{Value, json};
 use tower::ServiceExt;
-use whipple::advanced::io::{write, Format};
+use whipple::advanced::io::{Format, write};
 use whipple::presets;
 use whipple_reference::meijaard2007 as published;
-use whipple_web::{app, Limits};
+use whipple_web::{Limits, app};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
@@ -110,9 +110,10 @@ async fn presets_listed_and_fetched() -> TestResult {
         .map(|a| a.iter().filter_map(|p| p["name"].as_str()).collect())
         .unwrap_or_default();
     assert_eq!(names.len(), presets::PRESETS.len());
-    assert!(list.as_array().is_some_and(|a| a
-        .iter()
-        .any(|p| p["name"] == "schwinn-crown" && p["form"] == "jbike6")));
+    assert!(list.as_array().is_some_and(|a| {
+        a.iter()
+            .any(|p| p["name"] == "schwinn-crown" && p["form"] == "jbike6")
+    }));
     // Each preset's display title is the library's (the page's picker shows it).
     for (served, preset) in list.as_array().ok_or("list")?.iter().zip(presets::PRESETS) {
         assert_eq!(served["name"], preset.name);
@@ -125,9 +126,11 @@ async fn presets_listed_and_fetched() -> TestResult {
     let (status, error) = get(&app, "/api/presets/penny-farthing").await?;
     assert_eq!(status, StatusCode::NOT_FOUND);
     assert_eq!(error["error"]["kind"], "unknown_preset");
-    assert!(error["error"]["message"]
-        .as_str()
-        .is_some_and(|m| m.contains("schwinn-crown")));
+    assert!(
+        error["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("schwinn-crown"))
+    );
     Ok(())
 }
 
@@ -203,9 +206,11 @@ async fn invalid_values_name_the_field_and_rule() -> TestResult {
     both["jbike6"] = preset_json("schwinn-crown")?["jbike6"].clone();
     let (status, body) = post(&app, "/api/bike/validate", &json!({ "bike": both })).await?;
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
-    assert!(body["error"]["message"]
-        .as_str()
-        .is_some_and(|m| m.contains("not both")));
+    assert!(
+        body["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("not both"))
+    );
     Ok(())
 }
 
@@ -350,9 +355,11 @@ async fn out_of_range_speeds() -> TestResult {
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
     assert_eq!(body["error"]["kind"], "limit_exceeded");
     assert_eq!(body["error"]["field"], "speeds");
-    assert!(body["error"]["message"]
-        .as_str()
-        .is_some_and(|m| m.contains("100000")));
+    assert!(
+        body["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("100000"))
+    );
     // One over the default limit (0:10:1e-4 holds 100,001 speeds) is refused before any work.
     let (status, body) = post(
         &app,
@@ -492,9 +499,11 @@ async fn slow_computations_time_out() -> TestResult {
     let (status, body) = post(&app, "/api/eigen", &heavy()?).await?;
     assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE);
     assert_eq!(body["error"]["kind"], "timeout");
-    assert!(body["error"]["message"]
-        .as_str()
-        .is_some_and(|m| m.contains("fewer speeds")));
+    assert!(
+        body["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("fewer speeds"))
+    );
     Ok(())
 }
 
@@ -578,12 +587,16 @@ async fn simulation_runs_and_sends_frames() -> TestResult {
         peak(150, 181),
         peak(0, 60)
     );
-    assert!(frames[180]["rear_contact"][0]
-        .as_f64()
-        .is_some_and(|x| x > 13.0));
-    assert!(frames[90]["rear_force"]["normal"]
-        .as_f64()
-        .is_some_and(|n| n > 0.0));
+    assert!(
+        frames[180]["rear_contact"][0]
+            .as_f64()
+            .is_some_and(|x| x > 13.0)
+    );
+    assert!(
+        frames[90]["rear_force"]["normal"]
+            .as_f64()
+            .is_some_and(|n| n > 0.0)
+    );
     assert!(approx(&body["geometry"]["rear_wheel_radius"], 0.3, 1e-12));
     assert!(approx(&body["geometry"]["masses"][1], 85.0, 1e-12));
     // The adaptive integrator gives the same motion.
@@ -829,9 +842,11 @@ async fn simulation_reports_a_fall() -> TestResult {
         approx(&last["t"], 1.604, 1e-9),
         "the last frame is the event's step"
     );
-    assert!(last["rear_force"]["normal"]
-        .as_f64()
-        .is_some_and(|n| n < 0.0));
+    assert!(
+        last["rear_force"]["normal"]
+            .as_f64()
+            .is_some_and(|n| n < 0.0)
+    );
     Ok(())
 }
 
@@ -882,9 +897,11 @@ async fn simulation_failures_are_reported() -> TestResult {
     assert_eq!(body["outcome"]["kind"], "step_limit", "{}", body["outcome"]);
     let t = body["outcome"]["t"].as_f64().ok_or("t")?;
     assert!(t > 0.0 && t < 2.0, "{t}");
-    assert!(body["outcome"]["message"]
-        .as_str()
-        .is_some_and(|m| m.contains("limit of 30 steps")));
+    assert!(
+        body["outcome"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("limit of 30 steps"))
+    );
     // A lean a hair's breadth from 90 degrees: the start cannot be projected onto the
     // constraints.
     let (status, body) = post(
@@ -895,9 +912,11 @@ async fn simulation_failures_are_reported() -> TestResult {
     .await?;
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
     assert_eq!(body["error"]["kind"], "numerical");
-    assert!(body["error"]["message"]
-        .as_str()
-        .is_some_and(|m| m.contains("projection diverged")));
+    assert!(
+        body["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("projection diverged"))
+    );
     Ok(())
 }
 
@@ -1096,26 +1115,30 @@ async fn simulation_refuses_bad_inputs_and_limits() -> TestResult {
     });
     let (status, body) = post(&small, "/api/simulate", &simulation(json!({}))?).await?;
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
-    assert!(body["error"]["message"]
-        .as_str()
-        .is_some_and(|m| m.contains("limit of 1 s")));
+    assert!(
+        body["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("limit of 1 s"))
+    );
     let slow = whipple_web::app(Limits {
         compute_timeout: Duration::from_micros(1),
         ..Limits::default()
     });
     let (status, body) = post(&slow, "/api/simulate", &simulation(json!({}))?).await?;
     assert_eq!(status, StatusCode::SERVICE_UNAVAILABLE);
-    assert!(body["error"]["message"]
-        .as_str()
-        .is_some_and(|m| m.contains("shorter time")));
+    assert!(
+        body["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("shorter time"))
+    );
     Ok(())
 }
 
 /// The parameter table is served whole, and the OpenAPI document's benchmark keys are
 /// the table's.
 #[tokio::test]
-async fn the_parameter_table_is_served_and_matches_openapi(
-) -> Result<(), Box<dyn std::error::Error>> {
+async fn the_parameter_table_is_served_and_matches_openapi()
+-> Result<(), Box<dyn std::error::Error>> {
     let app = app(Limits::default());
     let (status, body) = get(&app, "/api/parameters").await?;
     assert_eq!(status, StatusCode::OK);

@@ -4,13 +4,13 @@
 use std::time::{Duration, Instant};
 
 use axum::body::Body;
-use axum::http::{header, Method, Request, StatusCode};
+use axum::http::{Method, Request, StatusCode, header};
 use http_body_util::BodyExt;
-use serde_json::{json, Value};
+use serde_json::{Value, json};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 use tokio::net::TcpStream;
 use tower::ServiceExt;
-use whipple_web::{app, Limits, ServeOptions, Server};
+use whipple_web::{Limits, ServeOptions, Server, app};
 
 type TestResult = Result<(), Box<dyn std::error::Error + Send + Sync>>;
 
@@ -294,9 +294,11 @@ async fn the_openapi_document_is_valid_openapi_3_0() -> TestResult {
     let router = app(Limits::default());
     let (status, doc) = send(&router, Method::GET, "/api/openapi.json", String::new()).await?;
     assert_eq!(status, StatusCode::OK);
-    assert!(doc["openapi"]
-        .as_str()
-        .is_some_and(|v| v.starts_with("3.0.")));
+    assert!(
+        doc["openapi"]
+            .as_str()
+            .is_some_and(|v| v.starts_with("3.0."))
+    );
     for key in ["info", "paths", "components"] {
         assert!(doc.get(key).is_some(), "no {key}");
     }

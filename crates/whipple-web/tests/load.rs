@@ -4,8 +4,8 @@
 //! maps. Each prints its figures (run with `--nocapture`; `--release` for those quoted in
 //! BENCHMARKS.md). The two run one after the other, not together.
 
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
 use axum::body::Bytes;
@@ -13,9 +13,9 @@ use http_body_util::{BodyExt, Full};
 use hyper::{Method, Request, StatusCode};
 use hyper_util::client::legacy::Client;
 use hyper_util::rt::TokioExecutor;
-use serde_json::{json, Value};
+use serde_json::{Value, json};
 use tokio::sync::Semaphore;
-use whipple::advanced::io::{write, Format};
+use whipple::advanced::io::{Format, write};
 use whipple::presets;
 use whipple_web::{ServeOptions, Server};
 
@@ -219,7 +219,7 @@ async fn small_requests_stay_quick_while_maps_run() -> TestResult {
                             "a map got {other}: {}",
                             String::from_utf8_lossy(&bytes[..bytes.len().min(300)])
                         )
-                        .into())
+                        .into());
                     }
                 }
             }

@@ -5,8 +5,8 @@
 
 use whipple::speed_grid;
 use whipple::{
-    critical_speeds, eigen_sweep, simulate, BenchmarkParameters, Canonical, InitialConditions,
-    Model, SimulationSettings,
+    BenchmarkParameters, Canonical, InitialConditions, Model, SimulationSettings, critical_speeds,
+    eigen_sweep, simulate,
 };
 
 fn main() -> whipple::Result<()> {

@@ -99,9 +99,7 @@ pub enum Error {
     },
     /// Newton iteration of the non-linear model's positions onto its holonomic constraints did
     /// not reach its tolerance within its iteration bound (or its linear system was singular).
-    #[error(
-        "constraint projection diverged after {iterations} iterations (residual {residual:e})"
-    )]
+    #[error("constraint projection diverged after {iterations} iterations (residual {residual:e})")]
     ProjectionDiverged {
         /// Newton iterations made.
         iterations: usize,

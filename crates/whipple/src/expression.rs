@@ -410,7 +410,7 @@ impl<'a> Parser<'a> {
             Token::Symbol(c) => {
                 return Err(format!(
                     "`{c}` at column {column} where a number, a name or `(` was expected"
-                ))
+                ));
             }
             Token::Name(name) => {
                 let call = self.peek_symbol('(');
@@ -521,11 +521,7 @@ fn run(program: &[Op], stack: &mut Vec<f64>, variables: &[f64]) -> f64 {
         stack.push(x);
     }
     // A well-formed program leaves exactly one value.
-    if stack.len() == 1 {
-        stack[0]
-    } else {
-        f64::NAN
-    }
+    if stack.len() == 1 { stack[0] } else { f64::NAN }
 }
 
 /// Why a text is not an expression of a dialect.

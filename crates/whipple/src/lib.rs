@@ -266,6 +266,29 @@ pub mod advanced {
     pub use crate::error::shorten;
     #[doc = "The non-linear model against the linear one (Dressel's benchmark)."]
     pub mod comparison {
+        /// Settings of the study's finite-difference linearization.
+        ///
+        /// ```
+        /// assert!(whipple::advanced::comparison::ComparisonSettings::default().projection.is_some());
+        /// ```
+        pub use crate::analysis::comparison::ComparisonSettings;
+        /// The result of [`compare_with_linear`].
+        ///
+        /// ```
+        /// use whipple::advanced::comparison::{compare_with_linear, ComparisonSweep, Linearization, ComparisonSettings};
+        /// use whipple::BenchmarkParameters;
+        /// let sweep: ComparisonSweep = compare_with_linear(&BenchmarkParameters::meijaard2007(), &[5.0],
+        ///                                                  &[Linearization::Exact], &ComparisonSettings::default())?;
+        /// assert!(sweep.method(Linearization::Exact).is_some());
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::analysis::comparison::ComparisonSweep;
+        /// A way to linearize the non-linear model: the study's differences, exact, exact full state.
+        ///
+        /// ```
+        /// assert_eq!(whipple::advanced::comparison::Linearization::Exact.name(), "ad");
+        /// ```
+        pub use crate::analysis::comparison::Linearization;
         /// Compares the non-linear model with the linear one over a sweep of speeds.
         ///
         /// ```
@@ -290,44 +313,27 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::analysis::comparison::lean_steer_matrix;
-        /// Settings of the study's finite-difference linearization.
-        ///
-        /// ```
-        /// assert!(whipple::advanced::comparison::ComparisonSettings::default().projection.is_some());
-        /// ```
-        pub use crate::analysis::comparison::ComparisonSettings;
-        /// The result of [`compare_with_linear`].
-        ///
-        /// ```
-        /// use whipple::advanced::comparison::{compare_with_linear, ComparisonSweep, Linearization, ComparisonSettings};
-        /// use whipple::BenchmarkParameters;
-        /// let sweep: ComparisonSweep = compare_with_linear(&BenchmarkParameters::meijaard2007(), &[5.0],
-        ///                                                  &[Linearization::Exact], &ComparisonSettings::default())?;
-        /// assert!(sweep.method(Linearization::Exact).is_some());
-        /// # Ok::<(), whipple::Error>(())
-        /// ```
-        pub use crate::analysis::comparison::ComparisonSweep;
-        /// A way to linearize the non-linear model: the study's differences, exact, exact full state.
-        ///
-        /// ```
-        /// assert_eq!(whipple::advanced::comparison::Linearization::Exact.name(), "ad");
-        /// ```
-        pub use crate::analysis::comparison::Linearization;
         pub use crate::analysis::comparison::{
-            capsize_spike, compare_with_linear_until, double_root_conditioning,
-            full_state_jacobian, full_state_jacobian_fd, general_eigenvalues,
-            lean_steer_eigenvalues, max_abs_diff, pick, zero_cluster, LinearizationSweep,
-            MAX_COMPARED_SPEEDS,
+            LinearizationSweep, MAX_COMPARED_SPEEDS, capsize_spike, compare_with_linear_until,
+            double_root_conditioning, full_state_jacobian, full_state_jacobian_fd,
+            general_eigenvalues, lean_steer_eigenvalues, max_abs_diff, pick, zero_cluster,
         };
     }
     #[doc = "Design studies over one or two parameters."]
     pub mod design {
         pub use crate::analysis::design::{
-            Axis, DesignRow, DesignStatus, Parameter, Shard, StudySettings, MAX_AXIS_POINTS,
+            Axis, DesignRow, DesignStatus, MAX_AXIS_POINTS, Parameter, Shard, StudySettings,
         };
     }
     #[doc = "Eigenvalues and eigenvectors of the linear model at one speed."]
     pub mod eigen {
+        /// A complex number of f64 (an eigenvalue).
+        ///
+        /// ```
+        /// let z = whipple::advanced::eigen::Complex64::new(-0.5, 3.0);
+        /// assert_eq!(z.conj().im, -3.0);
+        /// ```
+        pub use crate::analysis::eigen::Complex64;
         /// The four eigenvalues of the linearized model at one speed.
         ///
         /// ```
@@ -338,13 +344,6 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::analysis::eigen::eigenvalues;
-        /// A complex number of f64 (an eigenvalue).
-        ///
-        /// ```
-        /// let z = whipple::advanced::eigen::Complex64::new(-0.5, 3.0);
-        /// assert_eq!(z.conj().im, -3.0);
-        /// ```
-        pub use crate::analysis::eigen::Complex64;
         pub use crate::analysis::eigen::{eigenpairs, eigenpairs_with, quartic_roots};
     }
     #[doc = "Integration of ODEs: RK4 and Dormand–Prince 5(4)."]
@@ -357,7 +356,7 @@ pub mod advanced {
         /// assert!(Integrator::Rk4 { dt: 0.0 }.validate().is_err());
         /// ```
         pub use crate::integrate::Integrator;
-        pub use crate::integrate::{Dopri5Settings, OdeSystem, Stepper, DEFAULT_DT, DEFAULT_RTOL};
+        pub use crate::integrate::{DEFAULT_DT, DEFAULT_RTOL, Dopri5Settings, OdeSystem, Stepper};
     }
     #[doc = "Parameter files from and to text: TOML, JSON, JBike6's `.m`, BicycleParameters' and HumanControl's `.txt`, YAML."]
     pub mod io {
@@ -368,8 +367,8 @@ pub mod advanced {
         /// ```
         pub use crate::parameters::io::Format;
         pub use crate::parameters::io::{
-            json_slice_without_duplicates, json_without_duplicates, parse, write, FORMATS,
-            MAX_FILE_BYTES,
+            FORMATS, MAX_FILE_BYTES, json_slice_without_duplicates, json_without_duplicates, parse,
+            write,
         };
     }
     #[doc = "The linearized model: canonical matrices, state space, characteristic polynomial."]
@@ -399,12 +398,11 @@ pub mod advanced {
     #[doc = "Jacobians of any vector field: exact (dual numbers) and by central differences."]
     pub mod linearize {
         pub use crate::analysis::linearize::{
-            central_differences, jacobian, FdSettings, VectorField,
+            FdSettings, VectorField, central_differences, jacobian,
         };
     }
     #[doc = "Modes: tracking, labels (weave, capsize, castering) and mode shapes."]
     pub mod modes {
-        pub use crate::analysis::modes::mode_shapes;
         /// The name of a tracked mode: weave, capsize, castering, or unclassified.
         ///
         /// ```
@@ -415,10 +413,10 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::analysis::modes::Mode;
+        pub use crate::analysis::modes::mode_shapes;
     }
     #[doc = "The non-linear multibody bicycle: states, forward dynamics, simulation and its settings."]
     pub mod nonlinear {
-        pub use crate::nonlinear::rotation;
         /// How a simulation ended.
         ///
         /// ```
@@ -450,16 +448,17 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::nonlinear::Simulation;
+        pub use crate::nonlinear::rotation;
         pub use crate::nonlinear::{
-            check_rk4_step, fastest_mode, samples_kept, ContactForce, Inputs, Progress,
-            ProjectionMethod, ProjectionSettings, State, StateView, TorqueExpression, TorqueFn,
-            Wheel, BODY_NAMES, DEFAULT_FALL_ANGLE, FRONT_WHEEL, MAX_EXPRESSION_DEPTH,
-            MAX_EXPRESSION_LENGTH, MAX_SAMPLES, MAX_STEPS, REAR_FRAME, REAR_WHEEL, STATE_LEN,
+            BODY_NAMES, ContactForce, DEFAULT_FALL_ANGLE, FRONT_WHEEL, Inputs,
+            MAX_EXPRESSION_DEPTH, MAX_EXPRESSION_LENGTH, MAX_SAMPLES, MAX_STEPS, Progress,
+            ProjectionMethod, ProjectionSettings, REAR_FRAME, REAR_WHEEL, STATE_LEN, State,
+            StateView, TorqueExpression, TorqueFn, Wheel, check_rk4_step, fastest_mode,
+            samples_kept,
         };
     }
     #[doc = "Bicycle descriptions: the benchmark and JBike6 forms, checks and their notices."]
     pub mod parameters {
-        pub use crate::parameters::jbike6::BENCHMARK_FROM_JBIKE6;
         /// The form a bicycle was described in.
         ///
         /// ```
@@ -477,26 +476,27 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::parameters::Jbike6Parameters;
+        pub use crate::parameters::jbike6::BENCHMARK_FROM_JBIKE6;
         pub use crate::parameters::{Checked, Notice, Severity};
     }
     #[doc = "Certified real roots of low-degree polynomials."]
     pub mod roots {
-        pub use crate::analysis::roots::{real_roots, BoundedPolynomial, RealRoot};
+        pub use crate::analysis::roots::{BoundedPolynomial, RealRoot, real_roots};
     }
     #[doc = "Exact derivatives by dual numbers: sensitivities and first-order σ."]
     pub mod sensitivity {
         pub use crate::analysis::sensitivity::{
-            critical_speeds_sigma, eigenvalue_sigmas, sensitivities, with_parameter,
             CriticalSpeedsSigma, ParameterDerivatives, ParameterSensitivity, Sensitivities,
+            critical_speeds_sigma, eigenvalue_sigmas, sensitivities, with_parameter,
         };
     }
     #[doc = "Where the parts of the drawn bicycle are (JBike6's side view)."]
     pub mod side_view {
-        pub use crate::side_view::{side_view, Ellipse, Part, Point, SideView};
+        pub use crate::side_view::{Ellipse, Part, Point, SideView, side_view};
     }
     #[doc = "Certified critical speeds and self-stable ranges."]
     pub mod stability {
-        pub use crate::analysis::stability::{summary, CrossingKind};
+        pub use crate::analysis::stability::{CrossingKind, summary};
     }
     #[doc = "Speed grids and eigenvalue sweeps."]
     pub mod sweep {
@@ -504,14 +504,14 @@ pub mod advanced {
     }
     #[doc = "The one parameter table: names, keys, symbols, units and meanings of every parameter."]
     pub mod table {
-        pub use crate::parameters::table::{index_of, key_doc, parameters, Form, ParameterInfo};
+        pub use crate::parameters::table::{Form, ParameterInfo, index_of, key_doc, parameters};
     }
     #[doc = "Steady turns of the non-linear model: held and hands-free."]
     pub mod turns {
         pub use crate::analysis::turns::{
-            branch_family, branch_from_straight, hands_free_families, hands_free_turn_near,
-            hands_free_turns_at_speed, held_turn, stability, turn_jacobian, Family, FamilyEnd,
-            FamilyPoint, FamilySettings, Held, Stability, SteadyTurn, TurnSettings, MAX_RADIUS,
+            Family, FamilyEnd, FamilyPoint, FamilySettings, Held, MAX_RADIUS, Stability,
+            SteadyTurn, TurnSettings, branch_family, branch_from_straight, hands_free_families,
+            hands_free_turn_near, hands_free_turns_at_speed, held_turn, stability, turn_jacobian,
         };
     }
 }

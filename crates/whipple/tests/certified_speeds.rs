@@ -5,12 +5,12 @@ use std::sync::atomic::AtomicBool;
 
 use approx::assert_abs_diff_eq;
 use proptest::prelude::*;
+use whipple::Canonical;
+use whipple::Study;
 use whipple::advanced::design::{Axis, DesignStatus, Parameter, Shard, StudySettings};
 use whipple::advanced::parameters::Description;
 use whipple::advanced::{eigen, stability};
 use whipple::presets;
-use whipple::Canonical;
-use whipple::Study;
 use whipple::{BenchmarkParameters, Bicycle, Error, Result};
 use whipple_reference::meijaard2007 as published;
 

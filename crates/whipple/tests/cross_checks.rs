@@ -3,11 +3,11 @@
 //! critical speeds against the eigenvalues on either side of them.
 
 use faer::Mat;
+use whipple::Canonical;
 use whipple::advanced::eigen;
 use whipple::advanced::linear::StateSpace;
 use whipple::presets;
 use whipple::presets::PRESETS;
-use whipple::Canonical;
 use whipple::{BenchmarkParameters, Result};
 
 fn faer_eigenvalues(a: &nalgebra::Matrix4<f64>) -> Vec<(f64, f64)> {

@@ -9,8 +9,8 @@ use whipple::advanced::integrate::{Dopri5Settings, Integrator};
 use whipple::advanced::nonlinear::{
     Inputs, Outcome, ProjectionMethod, ProjectionSettings, Simulation, State, StateView, TorqueFn,
 };
-use whipple::{simulate, InitialConditions, Model, SimulationSettings};
 use whipple::{BenchmarkParameters, Error, Result};
+use whipple::{InitialConditions, Model, SimulationSettings, simulate};
 
 fn benchmark() -> Result<Model> {
     Model::new(&BenchmarkParameters::meijaard2007())
@@ -30,10 +30,11 @@ fn assert_samples_kept(run: &Simulation, last_t: f64) {
     assert_eq!(run.samples.len(), run.steps + 1, "one sample per step");
     let last = run.samples.last().expect("the initial sample at least");
     assert!((last.t - last_t).abs() < 1e-12, "last sample at {}", last.t);
-    assert!(run
-        .samples
-        .windows(2)
-        .all(|w| w[1].t > w[0].t && w[1].lean.is_finite() && w[1].rear.normal.is_finite()));
+    assert!(
+        run.samples
+            .windows(2)
+            .all(|w| w[1].t > w[0].t && w[1].lean.is_finite() && w[1].rear.normal.is_finite())
+    );
     assert_eq!(run.final_state.lean(), last.lean);
 }
 

@@ -5,16 +5,16 @@
 
 use std::path::{Path, PathBuf};
 
-use whipple::advanced::io::{parse, write, Format};
-use whipple::advanced::parameters::Severity;
-use whipple::advanced::sensitivity::{
-    critical_speeds_sigma, sensitivities, with_parameter, ParameterDerivatives,
-};
-use whipple::critical_speeds;
-use whipple::presets;
 use whipple::Bicycle;
 use whipple::Canonical;
 use whipple::Error;
+use whipple::advanced::io::{Format, parse, write};
+use whipple::advanced::parameters::Severity;
+use whipple::advanced::sensitivity::{
+    ParameterDerivatives, critical_speeds_sigma, sensitivities, with_parameter,
+};
+use whipple::critical_speeds;
+use whipple::presets;
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 
@@ -299,7 +299,9 @@ fn weave_speed_sigma_agrees_with_monte_carlo() -> TestResult {
         (mean - first_order.speeds.weave_speed.ok_or("v_w")?).abs()
             < 4.0 * sigma / (n as f64).sqrt() + 0.01 * sigma
     );
-    eprintln!("Fisher v_w σ: first order {sigma:.6}, Monte Carlo {std:.6} (n = {n}, standard error {standard_error:.6})");
+    eprintln!(
+        "Fisher v_w σ: first order {sigma:.6}, Monte Carlo {std:.6} (n = {n}, standard error {standard_error:.6})"
+    );
     Ok(())
 }
 

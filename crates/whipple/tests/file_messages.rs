@@ -3,10 +3,10 @@
 //! cannot be broken by a name.
 
 use proptest::prelude::*;
-use whipple::advanced::io::{parse, write, Format, FORMATS};
+use whipple::Bicycle;
+use whipple::advanced::io::{FORMATS, Format, parse, write};
 use whipple::advanced::parameters::Description;
 use whipple::presets;
-use whipple::Bicycle;
 use whipple::{BenchmarkParameters, Error};
 
 fn message<T: std::fmt::Debug>(r: Result<T, Error>) -> String {

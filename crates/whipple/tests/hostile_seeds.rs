@@ -7,7 +7,7 @@
 use std::fs;
 use std::path::PathBuf;
 
-use whipple::advanced::io::{parse, write, Format};
+use whipple::advanced::io::{Format, parse, write};
 
 fn seeds(target: &str) -> Vec<(String, Vec<u8>)> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))

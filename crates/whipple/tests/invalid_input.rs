@@ -1,7 +1,7 @@
 //! One test per class of bad input: each is refused with an error naming the field, the value
 //! and the rule, and nothing panics.
 
-use whipple::advanced::io::{parse, Format};
+use whipple::advanced::io::{Format, parse};
 use whipple::presets;
 use whipple::speed_grid;
 use whipple::{BenchmarkParameters, Error};
@@ -117,11 +117,12 @@ fn a_singular_mass_matrix_is_refused() {
 fn jbike6_rules_are_checked_before_conversion() {
     let mut j = presets::schwinn_crown_jbike6();
     j.head_angle = 0.0;
-    assert!(j
-        .to_benchmark()
-        .unwrap_err()
-        .to_string()
-        .contains("head_angle"));
+    assert!(
+        j.to_benchmark()
+            .unwrap_err()
+            .to_string()
+            .contains("head_angle")
+    );
     j = presets::schwinn_crown_jbike6();
     j.front_wheel.inertia = [0.08, 0.09, 0.17];
     let m = j.to_benchmark().unwrap_err().to_string();
@@ -131,11 +132,12 @@ fn jbike6_rules_are_checked_before_conversion() {
     );
     j = presets::schwinn_crown_jbike6();
     j.basket.m = -1.5;
-    assert!(j
-        .to_benchmark()
-        .unwrap_err()
-        .to_string()
-        .contains("mbasket"));
+    assert!(
+        j.to_benchmark()
+            .unwrap_err()
+            .to_string()
+            .contains("mbasket")
+    );
     j = presets::schwinn_crown_jbike6();
     j.rider.inertia = [10.0, 1.0, 12.0];
     // A warning under JBike6's name, not an error.
@@ -362,9 +364,11 @@ fn overlapping_wheels_are_warned_about() {
     touching.w = 1.0;
     assert!(touching.check().is_ok_and(|n| n.is_empty()));
     touching.w = 0.999;
-    assert!(touching
-        .check()
-        .is_ok_and(|n| n.iter().any(|n| n.message.contains("wheels overlap"))));
+    assert!(
+        touching
+            .check()
+            .is_ok_and(|n| n.iter().any(|n| n.message.contains("wheels overlap")))
+    );
 }
 
 /// The comparison of the models takes at most the library's one limit of
@@ -373,8 +377,8 @@ fn overlapping_wheels_are_warned_about() {
 #[test]
 fn the_comparison_takes_at_most_its_limit_of_speeds_and_stops_when_asked() {
     use std::sync::atomic::AtomicBool;
-    use whipple::advanced::comparison::{compare_with_linear, ComparisonSettings, Linearization};
-    use whipple::advanced::comparison::{compare_with_linear_until, MAX_COMPARED_SPEEDS};
+    use whipple::advanced::comparison::{ComparisonSettings, Linearization, compare_with_linear};
+    use whipple::advanced::comparison::{MAX_COMPARED_SPEEDS, compare_with_linear_until};
 
     let speeds = vec![1.0; MAX_COMPARED_SPEEDS + 1];
     let methods = [Linearization::Exact];

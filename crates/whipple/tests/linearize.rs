@@ -4,16 +4,16 @@
 //! field against time derivatives of the full state; the zero cluster behind the capsize spike.
 
 use nalgebra::{DMatrix, Vector4};
+use whipple::Canonical;
+use whipple::Model;
 use whipple::advanced::comparison::{
-    full_state_jacobian, full_state_jacobian_fd, general_eigenvalues, lean_steer_eigenvalues,
-    lean_steer_matrix, max_abs_diff, pick, zero_cluster, ComparisonSettings,
+    ComparisonSettings, full_state_jacobian, full_state_jacobian_fd, general_eigenvalues,
+    lean_steer_eigenvalues, lean_steer_matrix, max_abs_diff, pick, zero_cluster,
 };
 use whipple::advanced::eigen;
 use whipple::advanced::linear::StateSpace;
 use whipple::advanced::nonlinear::Inputs;
 use whipple::presets::PRESETS;
-use whipple::Canonical;
-use whipple::Model;
 use whipple::{BenchmarkParameters, Result};
 
 fn all_bikes() -> Result<Vec<(&'static str, BenchmarkParameters)>> {

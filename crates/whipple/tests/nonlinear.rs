@@ -5,16 +5,16 @@ use std::f64::consts::PI;
 
 use nalgebra::{DMatrix, DVector, Matrix4, SVector, Vector3};
 use num_dual::Dual64;
+use whipple::Canonical;
 use whipple::advanced::eigen;
 use whipple::advanced::integrate::{Dopri5Settings, Integrator};
 use whipple::advanced::nonlinear::{
-    rotation, Inputs, Outcome, Progress, ProjectionMethod, ProjectionSettings, State, Wheel,
-    REAR_FRAME, REAR_WHEEL, STATE_LEN,
+    Inputs, Outcome, Progress, ProjectionMethod, ProjectionSettings, REAR_FRAME, REAR_WHEEL,
+    STATE_LEN, State, Wheel, rotation,
 };
 use whipple::presets;
-use whipple::Canonical;
-use whipple::{simulate, InitialConditions, Model, SimulationSettings};
 use whipple::{BenchmarkParameters, Result};
+use whipple::{InitialConditions, Model, SimulationSettings, simulate};
 
 /// Basu-Mandal, Chatterjee & Papadopoulos 2007, Proc. R. Soc. A 463:1983–2003, Table 1: a
 /// general state of the benchmark bicycle and its accelerations from the fully non-linear
@@ -486,8 +486,8 @@ fn weave_settings(integrator: Integrator, duration: f64) -> SimulationSettings {
 /// before its next step with the samples so far.
 #[test]
 fn a_run_stops_when_asked() -> Result<()> {
-    use std::sync::atomic::{AtomicBool, Ordering};
     use std::sync::Arc;
+    use std::sync::atomic::{AtomicBool, Ordering};
     let (model, start) = kicked_benchmark(4.6)?;
     let stop = Arc::new(AtomicBool::new(false));
     let flag = stop.clone();

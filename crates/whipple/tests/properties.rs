@@ -4,9 +4,9 @@
 //! same inputs the fuzz targets in `fuzz/` explore for hours, a few hundred cases here.
 
 use proptest::prelude::*;
-use whipple::advanced::io::{parse, Format};
+use whipple::advanced::io::{Format, parse};
 use whipple::advanced::nonlinear::{
-    StateView, TorqueExpression, MAX_EXPRESSION_DEPTH, MAX_EXPRESSION_LENGTH,
+    MAX_EXPRESSION_DEPTH, MAX_EXPRESSION_LENGTH, StateView, TorqueExpression,
 };
 
 proptest! {

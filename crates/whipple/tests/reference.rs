@@ -4,10 +4,10 @@
 
 use approx::assert_abs_diff_eq;
 use nalgebra::Matrix2;
+use whipple::Canonical;
 use whipple::advanced::eigen;
 use whipple::advanced::modes::Mode;
 use whipple::presets;
-use whipple::Canonical;
 use whipple::{BenchmarkParameters, Result};
 use whipple_reference::meijaard2007 as published;
 

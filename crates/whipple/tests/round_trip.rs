@@ -4,7 +4,7 @@
 //! bicycles in both forms.
 
 use proptest::prelude::*;
-use whipple::advanced::io::{parse, write, Format};
+use whipple::advanced::io::{Format, parse, write};
 use whipple::advanced::parameters::{Description, Jbike6Parameters};
 use whipple::presets::PRESETS;
 use whipple::{BenchmarkParameters, Bicycle};

@@ -9,11 +9,11 @@
 
 use serde_json::Value;
 use whipple::advanced::integrate::{Dopri5Settings, Integrator};
-use whipple::advanced::io::{parse, Format};
+use whipple::advanced::io::{Format, parse};
 use whipple::advanced::nonlinear::{Outcome, Sample, TorqueExpression};
 use whipple::presets;
-use whipple::{simulate, InitialConditions, Model, SimulationSettings};
 use whipple::{BenchmarkParameters, Result};
+use whipple::{InitialConditions, Model, SimulationSettings, simulate};
 
 const REFERENCES: &str = include_str!("data/references.json");
 
@@ -244,7 +244,9 @@ fn the_rider_torques_are_applied_as_the_reference_applies_them() -> Result<()> {
     let mut no_steer = scenario.clone();
     no_steer["torques"]["steer"] = Value::from("0");
     let (steer_dropped, _) = rk4_difference(&no_steer, 1e-3)?;
-    println!("with torques {with:.1e}; lean torque flipped {lean_flipped:.1e}; steer torque dropped {steer_dropped:.1e}");
+    println!(
+        "with torques {with:.1e}; lean torque flipped {lean_flipped:.1e}; steer torque dropped {steer_dropped:.1e}"
+    );
     assert!(with < 5e-10);
     assert!(lean_flipped > 1e-3 && steer_dropped > 1e-3);
     Ok(())

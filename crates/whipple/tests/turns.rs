@@ -4,16 +4,16 @@
 //! on a turn.
 
 use nalgebra::{SVector, Vector3};
+use whipple::Canonical;
 use whipple::advanced::eigen;
 use whipple::advanced::integrate::{Dopri5Settings, Integrator};
-use whipple::advanced::nonlinear::{Simulation, FRONT_WHEEL};
+use whipple::advanced::nonlinear::{FRONT_WHEEL, Simulation};
 use whipple::advanced::turns::{
-    branch_family, branch_from_straight, hands_free_turn_near, held_turn, stability, turn_jacobian,
-    FamilyEnd, FamilySettings, Held, SteadyTurn, TurnSettings,
+    FamilyEnd, FamilySettings, Held, SteadyTurn, TurnSettings, branch_family, branch_from_straight,
+    hands_free_turn_near, held_turn, stability, turn_jacobian,
 };
-use whipple::Canonical;
-use whipple::{simulate, InitialConditions, Model, SimulationSettings};
 use whipple::{BenchmarkParameters, Error, Result};
+use whipple::{InitialConditions, Model, SimulationSettings, simulate};
 
 fn benchmark() -> Model {
     Model::new(&BenchmarkParameters::meijaard2007()).expect("the benchmark bicycle")
@@ -305,10 +305,15 @@ fn hands_free_families_are_found() -> Result<()> {
         });
         println!(
             "  {} points, end {:?}, speeds {lo:.3}..{hi:.3}, lean {:.2}°..{:.2}°, steer {:.2}°..{:.2}°, stable points {}",
-            p.len(), f.end,
-            p[0].turn.lean.to_degrees(), p[p.len() - 1].turn.lean.to_degrees(),
-            p[0].turn.steer.to_degrees(), p[p.len() - 1].turn.steer.to_degrees(),
-            p.iter().filter(|q| q.stability.as_ref().is_some_and(|s| s.stable)).count()
+            p.len(),
+            f.end,
+            p[0].turn.lean.to_degrees(),
+            p[p.len() - 1].turn.lean.to_degrees(),
+            p[0].turn.steer.to_degrees(),
+            p[p.len() - 1].turn.steer.to_degrees(),
+            p.iter()
+                .filter(|q| q.stability.as_ref().is_some_and(|s| s.stable))
+                .count()
         );
         for q in p {
             let r = q.turn.residuals;

@@ -23,7 +23,7 @@ use super::modes::Mode;
 use super::stability::{self, summary};
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, CharacteristicPolynomial, SpeedPolynomials};
-use crate::parameters::table::{parameters, Form, ANGLE_UNIT};
+use crate::parameters::table::{ANGLE_UNIT, Form, parameters};
 use crate::parameters::{Bicycle, Description};
 
 /// The most designs one study may hold (a 100,000 × 100,000 map).

@@ -456,11 +456,7 @@ pub fn eigenpairs_with(
             x = x.map(|z| z.unscale(scale));
             let (imax, _) = x.iter().enumerate().fold((0, 0.0), |(bi, bn), (i, z)| {
                 let n = z.norm_sqr();
-                if n > bn {
-                    (i, n)
-                } else {
-                    (bi, bn)
-                }
+                if n > bn { (i, n) } else { (bi, bn) }
             });
             let pivot = x[imax];
             let norm = x.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();

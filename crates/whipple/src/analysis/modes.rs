@@ -11,8 +11,8 @@
 
 use serde::Serialize;
 
-use super::eigen::{eigenpairs, Complex64, EigenPair};
-use super::sweep::{eigen_sweep, speed_grid, EigenSweep};
+use super::eigen::{Complex64, EigenPair, eigenpairs};
+use super::sweep::{EigenSweep, eigen_sweep, speed_grid};
 use crate::error::{Error, Result};
 use crate::linear::Canonical;
 

@@ -27,13 +27,13 @@ use nalgebra::Matrix2;
 use num_dual::Dual64;
 use serde::Serialize;
 
-use super::eigen::{eigenvalues, horner, Complex64};
+use super::eigen::{Complex64, eigenvalues, horner};
 use super::modes::Mode;
-use super::stability::{critical_speeds, CriticalSpeeds};
+use super::stability::{CriticalSpeeds, critical_speeds};
 use super::sweep::{eigen_sweep, speed_grid};
 use crate::error::{Error, Result};
 use crate::linear::Canonical;
-use crate::parameters::table::{parameters, Form, ParameterInfo};
+use crate::parameters::table::{Form, ParameterInfo, parameters};
 use crate::parameters::{BenchmarkParameters, Bicycle, Description, Jbike6Parameters};
 
 /// The canonical matrices of a bicycle and their exact derivatives with respect to each

@@ -30,7 +30,7 @@ use serde::ser::SerializeSeq;
 use serde::{Serialize, Serializer};
 
 use super::eigen::quartic_roots;
-use super::roots::{real_roots, RealRoot, RealRoots, UNIT_ROUNDOFF};
+use super::roots::{RealRoot, RealRoots, UNIT_ROUNDOFF, real_roots};
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, SpeedPolynomials};
 
@@ -439,11 +439,7 @@ fn enclosure(g: &Group, sqrt_g: f64) -> (f64, f64) {
             return y;
         }
         let pad = 4.0 * UNIT_ROUNDOFF * y.abs();
-        if up {
-            y + pad
-        } else {
-            y - pad
-        }
+        if up { y + pad } else { y - pad }
     };
     (widen(g.lo, false), widen(g.hi, true))
 }

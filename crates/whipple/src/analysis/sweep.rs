@@ -1,6 +1,6 @@
 //! Speed sweeps: eigenvalues at many speeds, modes tracked and labelled.
 
-use super::eigen::{certified_roots, quartic_roots, Complex64};
+use super::eigen::{Complex64, certified_roots, quartic_roots};
 use super::modes::{Mode, Tracker, Votes};
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, CharacteristicPolynomial};

@@ -40,12 +40,12 @@ use serde::Serialize;
 
 use crate::analysis::comparison::general_eigenvalues;
 use crate::analysis::eigen::Complex64;
-use crate::analysis::linearize::{jacobian, VectorField};
+use crate::analysis::linearize::{VectorField, jacobian};
 use crate::error::{Error, Result};
 use crate::linear::Canonical;
 use crate::nonlinear::{
-    ContactForce, InitialConditions, Inputs, Model, State, StateRates, BODIES, BODY_YAW,
-    REAR_FRAME, REAR_WHEEL,
+    BODIES, BODY_YAW, ContactForce, InitialConditions, Inputs, Model, REAR_FRAME, REAR_WHEEL,
+    State, StateRates,
 };
 
 #[inline]

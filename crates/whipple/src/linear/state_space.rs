@@ -130,8 +130,8 @@ fn inverse(m: &Matrix2<f64>) -> Result<Matrix2<f64>> {
 #[cfg(test)]
 mod free_response_tests {
     use super::*;
-    use crate::analysis::eigen::eigenpairs;
     use crate::BenchmarkParameters;
+    use crate::analysis::eigen::eigenpairs;
 
     /// Started on a real mode's eigenvector, the free response is that vector times e^{λt}
     /// (A·v = λ·v), and the real part of a complex mode rotates as Re(v e^{λt}).
@@ -167,9 +167,10 @@ mod free_response_tests {
         let x0 = Vector4::new(0.01, 0.0, 0.0, 0.0);
         assert!(ss.free_response(&x0, 0.0, 10).is_err());
         assert!(ss.free_response(&x0, f64::NAN, 10).is_err());
-        assert!(ss
-            .free_response(&Vector4::new(f64::NAN, 0.0, 0.0, 0.0), 0.01, 10)
-            .is_err());
+        assert!(
+            ss.free_response(&Vector4::new(f64::NAN, 0.0, 0.0, 0.0), 0.01, 10)
+                .is_err()
+        );
         // At 1 m/s the capsize-like mode grows by e^{~3 t}: past f64 long before 1e5 s.
         assert!(matches!(
             ss.free_response(&x0, 100.0, 1000),

@@ -7,6 +7,7 @@
 use nalgebra::{Matrix3, RealField, SVector, Vector3};
 use num_dual::Dual64;
 
+use super::Model;
 use super::outcome::Sample;
 use super::rotation;
 use super::state::COORDINATES;
@@ -14,7 +15,6 @@ use super::topology::{
     FRONT_CONTACT, FRONT_FRAME, FRONT_HUB, FRONT_WHEEL, REAR_CONTACT, REAR_FRAME, REAR_HUB,
     REAR_WHEEL, STEER_JOINT,
 };
-use super::Model;
 use crate::error::{Error, Result};
 
 /// Poses of the two frames and the two hubs (world axes).

@@ -8,15 +8,15 @@
 
 use nalgebra::{RealField, SMatrix, SVector};
 
+use super::Model;
 use super::contact::{LATERAL, LONGITUDINAL, NORMAL};
 use super::poses::Poses;
 use super::rotation;
-use super::state::{State, COORDINATES, SPEEDS};
+use super::state::{COORDINATES, SPEEDS, State};
 use super::topology::{
-    height_row, joint_row, lateral_row, longitudinal_row, BODIES, HOLONOMIC_ROWS, JOINT_ROWS,
-    VELOCITY_ROWS,
+    BODIES, HOLONOMIC_ROWS, JOINT_ROWS, VELOCITY_ROWS, height_row, joint_row, lateral_row,
+    longitudinal_row,
 };
-use super::Model;
 
 /// Constraint residuals of a state.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -27,17 +27,17 @@
 
 use nalgebra::{Matrix3, RealField, SMatrix, SVector, Vector3};
 
-use super::assembly::{symmetrize, Reduced};
+use super::Model;
+use super::assembly::{Reduced, symmetrize};
 use super::contact::{ContactFrame, LATERAL, LONGITUDINAL, NORMAL};
 use super::poses::{Angles, Poses};
 use super::rotation;
 use super::saddle;
-use super::state::{State, COORDINATES, SPEEDS, STATE_LEN};
+use super::state::{COORDINATES, SPEEDS, STATE_LEN, State};
 use super::topology::{
     BODIES, CONTACT_COUNT, FRONT_CONTACT, FRONT_FRAME, REAR_CONTACT, REAR_FRAME,
 };
-use super::tree::{speeds_of, Tree};
-use super::Model;
+use super::tree::{Tree, speeds_of};
 use crate::error::{Error, Result};
 
 /// Applied forces per body: world force, body-axes torque.

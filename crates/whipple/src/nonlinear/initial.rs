@@ -5,11 +5,11 @@
 
 use nalgebra::{RealField, SMatrix, SVector, Vector3};
 
+use super::Model;
 use super::poses::Poses;
 use super::state::State;
 use super::topology::{FRAME_RATE, REAR_FRAME, TREE, TREE_STEER_RATE};
 use super::tree::speeds_of;
-use super::Model;
 use crate::error::{Error, Result};
 
 /// A few numbers from which [`Model::initial_state`] builds a consistent state. Angles in

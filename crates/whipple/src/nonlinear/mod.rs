@@ -61,7 +61,7 @@ mod topology;
 mod tree;
 
 pub use crate::expression::{
-    TorqueExpression, MAX_DEPTH as MAX_EXPRESSION_DEPTH, MAX_LENGTH as MAX_EXPRESSION_LENGTH,
+    MAX_DEPTH as MAX_EXPRESSION_DEPTH, MAX_LENGTH as MAX_EXPRESSION_LENGTH, TorqueExpression,
 };
 pub(crate) use forward::StateRates;
 pub use forward::{ContactForce, Inputs};
@@ -71,10 +71,10 @@ pub use outcome::{Outcome, Progress, Sample, Simulation, Wheel};
 pub use projection::{ProjectionMethod, ProjectionSettings};
 pub(crate) use reduced::{FullStateField, LeanSteerField};
 pub use settings::{
-    samples_kept, SimulationSettings, TorqueFn, DEFAULT_FALL_ANGLE, MAX_SAMPLES, MAX_STEPS,
+    DEFAULT_FALL_ANGLE, MAX_SAMPLES, MAX_STEPS, SimulationSettings, TorqueFn, samples_kept,
 };
 pub use simulate::{check_rk4_step, fastest_mode, simulate};
-pub use state::{State, StateView, STATE_LEN};
 pub(crate) use state::{BODY_PITCH, BODY_YAW};
+pub use state::{STATE_LEN, State, StateView};
 pub(crate) use topology::BODIES;
 pub use topology::{BODY_NAMES, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};

@@ -8,7 +8,7 @@ use super::bodies::{Bodies, Geometry};
 use super::contact::KnifeEdge;
 use super::joints::Revolute;
 use super::topology::{
-    JointKind, JointSpec, CONTACTS, CONTACT_COUNT, FRONT_WHEEL, JOINTS, JOINT_COUNT, REAR_WHEEL,
+    CONTACT_COUNT, CONTACTS, FRONT_WHEEL, JOINT_COUNT, JOINTS, JointKind, JointSpec, REAR_WHEEL,
 };
 use crate::error::Result;
 use crate::parameters::BenchmarkParameters;

@@ -16,16 +16,16 @@
 use nalgebra::{Matrix3, SMatrix, SVector};
 use num_dual::Dual64;
 
-use super::assembly::{symmetrize, Reduced};
+use super::Model;
+use super::assembly::{Reduced, symmetrize};
 use super::poses::Poses;
 use super::saddle;
-use super::state::{State, BODY_LEAN, BODY_PITCH, BODY_YAW, COORDINATES, SPEEDS};
+use super::state::{BODY_LEAN, BODY_PITCH, BODY_YAW, COORDINATES, SPEEDS, State};
 use super::topology::{
-    row_bodies, BODIES, FRONT_CONTACT, FRONT_FRAME, FRONT_WHEEL, HOLONOMIC_ROWS, REAR_CONTACT,
-    REAR_FRAME, REAR_WHEEL,
+    BODIES, FRONT_CONTACT, FRONT_FRAME, FRONT_WHEEL, HOLONOMIC_ROWS, REAR_CONTACT, REAR_FRAME,
+    REAR_WHEEL, row_bodies,
 };
 use super::tree::speeds_of;
-use super::Model;
 use crate::error::{Error, Result};
 
 /// How positions are brought back onto the holonomic constraints.

@@ -4,12 +4,12 @@
 use nalgebra::{RealField, SVector, Vector3};
 use num_dual::Dual64;
 
+use super::Model;
 use super::forward::StateRates;
 use super::outcome::Sample;
 use super::poses::Poses;
-use super::state::{BodyPose, State, StateView, BODY_PITCH, COORDINATES};
+use super::state::{BODY_PITCH, BodyPose, COORDINATES, State, StateView};
 use super::topology::{BODIES, FRONT_FRAME, REAR_FRAME, REAR_WHEEL};
-use super::Model;
 
 impl Model {
     /// Total mechanical energy, kinetic plus gravitational potential (zero at ground level) \[J\].

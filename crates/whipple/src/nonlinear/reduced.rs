@@ -18,14 +18,14 @@
 use nalgebra::{Matrix3, RealField, SMatrix, SVector, Vector3, Vector4};
 use num_dual::Dual64;
 
+use super::Model;
 use super::forward::{Inputs, StateRates};
 use super::initial::solve_tree_speeds;
 use super::poses::Poses;
 use super::rotation;
-use super::state::{State, BODY_PITCH, COORDINATES, STATE_LEN};
+use super::state::{BODY_PITCH, COORDINATES, STATE_LEN, State};
 use super::topology::{FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL, TREE};
 use super::tree::speeds_of;
-use super::Model;
 use crate::analysis::linearize::VectorField;
 use crate::error::{Error, Result};
 

@@ -5,12 +5,12 @@
 
 use nalgebra::{DMatrix, DVector, SVector, Vector3};
 
-use super::constraints::contact_destinations;
-use super::forward::{coordinate_rates, Inputs, StateRates};
-use super::poses::{Angles, Poses};
-use super::state::{State, SPEEDS};
-use super::topology::{BODIES, VELOCITY_ROWS};
 use super::Model;
+use super::constraints::contact_destinations;
+use super::forward::{Inputs, StateRates, coordinate_rates};
+use super::poses::{Angles, Poses};
+use super::state::{SPEEDS, State};
+use super::topology::{BODIES, VELOCITY_ROWS};
 use crate::error::{Error, Result};
 
 impl Model {

@@ -5,8 +5,8 @@
 //! crate's, which checks it into these settings.
 
 use std::fmt;
-use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
+use std::sync::atomic::AtomicBool;
 
 use super::projection::ProjectionSettings;
 use super::state::StateView;
@@ -124,7 +124,9 @@ impl SimulationSettings {
         if !(a > 0.0 && a < std::f64::consts::FRAC_PI_2) {
             return Err(Error::InvalidArgument {
                 what: "fall_angle",
-                rule: format!("must lie strictly between 0 and pi/2 rad (the orientation angles are singular at pi/2), got {a}"),
+                rule: format!(
+                    "must lie strictly between 0 and pi/2 rad (the orientation angles are singular at pi/2), got {a}"
+                ),
             });
         }
         let p = &self.projection;

@@ -18,17 +18,17 @@ use std::sync::atomic::Ordering;
 
 use nalgebra::SVector;
 
+use super::Model;
 use super::forward::{Inputs, StateRates};
 use super::outcome::{Outcome, Progress, RunExtremes, Sample, Simulation, Wheel};
 use super::poses::Poses;
 use super::settings::{SimulationSettings, TorqueFn};
-use super::state::{State, STATE_LEN};
-use super::Model;
+use super::state::{STATE_LEN, State};
 use crate::analysis::eigen::{self, Complex64};
-use crate::error::{short_number, Error, Result};
+use crate::error::{Error, Result, short_number};
 use crate::integrate::{
-    round_down_125, DenseOutput, Integrator, OdeSystem, Step, StepFailure, Stepper,
-    RK4_ACCURATE_RADIUS, RK4_STABLE_RADIUS,
+    DenseOutput, Integrator, OdeSystem, RK4_ACCURATE_RADIUS, RK4_STABLE_RADIUS, Step, StepFailure,
+    Stepper, round_down_125,
 };
 use crate::linear::Canonical;
 
@@ -85,11 +85,7 @@ impl BicycleOde<'_> {
         let steer = self.steer_torque.map_or(0.0, |f| f(t, &view));
         let lean = self.lean_torque.map_or(0.0, |f| f(t, &view));
         let power = steer * view.steer_rate + lean * view.lean_rate;
-        if power.is_finite() {
-            power
-        } else {
-            0.0
-        }
+        if power.is_finite() { power } else { 0.0 }
     }
 }
 

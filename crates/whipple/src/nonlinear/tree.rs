@@ -11,15 +11,15 @@
 
 use nalgebra::{Matrix3, RealField, SMatrix, SVector, Vector3};
 
+use super::Model;
 use super::poses::Poses;
 use super::rotation;
 use super::state::{COORDINATES, SPEEDS};
 use super::topology::{
-    rolling, BODIES, FRAME_RATE, FRONT_FRAME, FRONT_HUB, FRONT_SPIN, FRONT_WHEEL, HUB_VELOCITY,
+    BODIES, FRAME_RATE, FRONT_FRAME, FRONT_HUB, FRONT_SPIN, FRONT_WHEEL, HUB_VELOCITY,
     REAR_CONTACT, REAR_FRAME, REAR_HUB, REAR_SPIN, REAR_WHEEL, ROLLING_TREE, STEER_JOINT, TREE,
-    TREE_STEER_RATE,
+    TREE_STEER_RATE, rolling,
 };
-use super::Model;
 
 /// The tree map u_i = J_i w, u̇_i = J_i ẇ + c_i, and the tree-consistent speeds.
 ///

@@ -3,9 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::check::{percent, Notice};
+use super::check::{Notice, percent};
 use super::table::{Form, ParameterInfo};
-use crate::error::{short_number, Error, Result};
+use crate::error::{Error, Result, short_number};
 
 /// The benchmark form's parameters, one row each: field, file key, symbol, unit, whether the
 /// linear model sees it, description. The struct, its serde names, its field list and

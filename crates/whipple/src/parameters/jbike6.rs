@@ -13,10 +13,10 @@
 use nalgebra::RealField;
 use serde::{Deserialize, Serialize};
 
-use super::benchmark::{principal_moments, zero_mass_inertia, BenchmarkParameters};
+use super::benchmark::{BenchmarkParameters, principal_moments, zero_mass_inertia};
 use super::check::Notice;
 use super::table::{Form, ParameterInfo};
-use crate::error::{short_number, Error, Result};
+use crate::error::{Error, Result, short_number};
 
 /// JBike6's default gravitational acceleration [m/s²] (standard gravity).
 pub(crate) const JBIKE6_GRAVITY: f64 = 9.80665;

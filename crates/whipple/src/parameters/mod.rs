@@ -12,12 +12,12 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-pub use benchmark::BenchmarkParameters;
 pub(crate) use benchmark::BENCHMARK_TABLE;
+pub use benchmark::BenchmarkParameters;
 pub use check::{Notice, Severity};
 pub use jbike6::Jbike6Parameters;
 pub(crate) use jbike6::{
-    Jbike6FrontBody, Jbike6RearBody, Jbike6Wheel, JBIKE6_GRAVITY, JBIKE6_TABLE,
+    JBIKE6_GRAVITY, JBIKE6_TABLE, Jbike6FrontBody, Jbike6RearBody, Jbike6Wheel,
 };
 pub(crate) use table::Form;
 pub(crate) use table::ParameterInfo;

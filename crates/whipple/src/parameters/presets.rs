@@ -1,8 +1,8 @@
 //! Named bicycles from the literature: the one home of published parameter values.
 
 use super::{
-    BenchmarkParameters, Bicycle, Description, Jbike6FrontBody, Jbike6Parameters, Jbike6RearBody,
-    Jbike6Wheel, JBIKE6_GRAVITY,
+    BenchmarkParameters, Bicycle, Description, JBIKE6_GRAVITY, Jbike6FrontBody, Jbike6Parameters,
+    Jbike6RearBody, Jbike6Wheel,
 };
 use crate::error::{Error, Result};
 

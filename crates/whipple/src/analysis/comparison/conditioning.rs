@@ -8,7 +8,7 @@ use nalgebra::{Complex, DMatrix, SMatrix};
 use super::jacobians::{full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix};
 use super::picking::{faer_failure, general_eigenvalues, max_abs_diff, pick};
 use super::{ComparisonSettings, ComparisonSweep, FullJacobian, Linearization};
-use crate::analysis::eigen::{eigenvalues, Complex64};
+use crate::analysis::eigen::{Complex64, eigenvalues};
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, StateSpace};
 use crate::nonlinear::{Model, STATE_LEN};

@@ -4,12 +4,12 @@
 
 use nalgebra::{Matrix4, SMatrix, SVector, Vector4};
 
-use crate::analysis::linearize::{central_differences, jacobian, FdJacobian, FdSettings};
+use crate::analysis::linearize::{FdJacobian, FdSettings, central_differences, jacobian};
 use crate::error::Result;
 use crate::nonlinear::reduced::{spin_free_derivative, spin_free_vector, state_from_spin_free};
 use crate::nonlinear::{
     FullStateField, InitialConditions, Inputs, LeanSteerField, Model, ProjectionMethod,
-    ProjectionSettings, State, STATE_LEN,
+    ProjectionSettings, STATE_LEN, State,
 };
 
 /// The full-state Jacobian (48 × 48).

@@ -39,18 +39,18 @@ mod picking;
 
 use crate::analysis::eigen::Complex64;
 use crate::analysis::modes::Mode;
-use crate::analysis::stability::{critical_speeds, CriticalSpeeds};
+use crate::analysis::stability::{CriticalSpeeds, critical_speeds};
 use crate::analysis::sweep::eigen_sweep;
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, StateSpace};
 use crate::nonlinear::Model;
 use crate::parameters::BenchmarkParameters;
 
-pub use conditioning::{capsize_spike, double_root_conditioning, zero_cluster};
 pub(crate) use conditioning::{CAPSIZE_HALF_WIDTH, DOUBLE_ROOT_HALF_WIDTH};
+pub use conditioning::{capsize_spike, double_root_conditioning, zero_cluster};
 pub(crate) use jacobians::FullJacobian;
 pub use jacobians::{
-    full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix, ComparisonSettings,
+    ComparisonSettings, full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix,
 };
 pub use picking::{general_eigenvalues, lean_steer_eigenvalues, max_abs_diff, pick};
 

@@ -5,7 +5,7 @@
 
 use nalgebra::{Complex, Matrix4, SMatrix};
 
-use crate::analysis::eigen::{quartic_roots, Complex64};
+use crate::analysis::eigen::{Complex64, quartic_roots};
 use crate::error::{Error, Result};
 
 /// The four eigenvalues of a lean–steer state matrix A = [[0, I], [X, Y]] as the roots of

@@ -21,12 +21,12 @@
 //!   fork (S) measured apart; together they are the front frame H, which is built from them
 //!   when absent and checked against them when given.
 
-use super::{error_at, parse_number, rounding_allowance, Format};
-use crate::error::{shorten, Result};
-use crate::parameters::check::{percent, Notice};
+use super::{Format, error_at, parse_number, rounding_allowance};
+use crate::error::{Result, shorten};
+use crate::parameters::check::{Notice, percent};
 use crate::parameters::jbike6::PlaneBody;
-use crate::parameters::table::{index_of, Form};
-use crate::parameters::{BenchmarkParameters, Bicycle, Description, Extra, BENCHMARK_TABLE};
+use crate::parameters::table::{Form, index_of};
+use crate::parameters::{BENCHMARK_TABLE, BenchmarkParameters, Bicycle, Description, Extra};
 
 /// One value read from a file.
 #[derive(Debug, Clone)]
@@ -80,7 +80,7 @@ pub(crate) fn parse(text: &str, format: Format) -> Result<Bicycle> {
                             "expected `key = value`, found `{}`",
                             shorten(code.trim(), 60)
                         ),
-                    ))
+                    ));
                 }
             },
         };
@@ -286,18 +286,42 @@ fn is_raw_measurement(key: &str) -> bool {
 /// The meaning of a key that is not a benchmark parameter, for notes and for writing it back.
 pub(crate) fn extra_meaning(key: &str) -> Option<&'static str> {
     Some(match key {
-        "v" => "forward speed the file's owner evaluated the model at [m/s]; whipple takes speeds as arguments (--speed, --speeds, --range)",
-        "d1" => "Moore 2012's rear offset: rear wheel centre to the steer axis [m], redundant with w, c, lam, rR",
-        "d3" => "Moore 2012's fork offset: front wheel centre to the steer axis [m], redundant with c, lam, rF",
-        "xcl" | "zcl" => "location of the point where Moore 2012's lateral-force input acts, in benchmark axes [m]; not used by the Whipple model",
-        "ds1" | "ds3" => "location of an accelerometer from the steer axis [m] (BicycleParameters); not used by the Whipple model",
-        "yB" | "yH" => "lateral offset of a centre of mass [m]; zero in the left-right symmetric model",
-        "IBxy" | "IByz" | "IHxy" | "IHyz" => "product of inertia with the lateral axis [kg m^2]; zero in the left-right symmetric model",
-        "IRzz" => "rear wheel's second diametral moment [kg m^2]; equals IRxx for an axisymmetric wheel",
-        "IFzz" => "front wheel's second diametral moment [kg m^2]; equals IFxx for an axisymmetric wheel",
-        k if SPLIT_FORK.contains(&k) && k.contains('G') => "handlebar G measured apart from the fork (BicycleParameters); with the fork S it makes the front frame H",
-        k if SPLIT_FORK.contains(&k) => "fork S measured apart from the handlebar (BicycleParameters); with the handlebar G it makes the front frame H",
-        "parameterization" | "parameters" | "rider" | "description" => "YAML metadata of a BicycleParameters parameter set",
+        "v" => {
+            "forward speed the file's owner evaluated the model at [m/s]; whipple takes speeds as arguments (--speed, --speeds, --range)"
+        }
+        "d1" => {
+            "Moore 2012's rear offset: rear wheel centre to the steer axis [m], redundant with w, c, lam, rR"
+        }
+        "d3" => {
+            "Moore 2012's fork offset: front wheel centre to the steer axis [m], redundant with c, lam, rF"
+        }
+        "xcl" | "zcl" => {
+            "location of the point where Moore 2012's lateral-force input acts, in benchmark axes [m]; not used by the Whipple model"
+        }
+        "ds1" | "ds3" => {
+            "location of an accelerometer from the steer axis [m] (BicycleParameters); not used by the Whipple model"
+        }
+        "yB" | "yH" => {
+            "lateral offset of a centre of mass [m]; zero in the left-right symmetric model"
+        }
+        "IBxy" | "IByz" | "IHxy" | "IHyz" => {
+            "product of inertia with the lateral axis [kg m^2]; zero in the left-right symmetric model"
+        }
+        "IRzz" => {
+            "rear wheel's second diametral moment [kg m^2]; equals IRxx for an axisymmetric wheel"
+        }
+        "IFzz" => {
+            "front wheel's second diametral moment [kg m^2]; equals IFxx for an axisymmetric wheel"
+        }
+        k if SPLIT_FORK.contains(&k) && k.contains('G') => {
+            "handlebar G measured apart from the fork (BicycleParameters); with the fork S it makes the front frame H"
+        }
+        k if SPLIT_FORK.contains(&k) => {
+            "fork S measured apart from the handlebar (BicycleParameters); with the handlebar G it makes the front frame H"
+        }
+        "parameterization" | "parameters" | "rider" | "description" => {
+            "YAML metadata of a BicycleParameters parameter set"
+        }
         _ => return None,
     })
 }

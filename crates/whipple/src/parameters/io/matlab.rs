@@ -3,10 +3,10 @@
 
 use std::collections::HashMap;
 
-use super::{error_at, parse_number, Format};
-use crate::error::{shorten, Result};
+use super::{Format, error_at, parse_number};
+use crate::error::{Result, shorten};
 use crate::parameters::{
-    Jbike6FrontBody, Jbike6Parameters, Jbike6RearBody, Jbike6Wheel, JBIKE6_GRAVITY, JBIKE6_TABLE,
+    JBIKE6_GRAVITY, JBIKE6_TABLE, Jbike6FrontBody, Jbike6Parameters, Jbike6RearBody, Jbike6Wheel,
 };
 
 const F: Format = Format::Jbike6M;
@@ -196,15 +196,15 @@ pub(crate) fn parse_jbike6_m(text: &str) -> Result<Jbike6Parameters> {
                 return Err(at(format!(
                     "`{key}` needs three numbers [I11 I22 Izz], found {}",
                     v.len()
-                )))
+                )));
             }
             (MValue::Scalar(_), true) => {
                 return Err(at(format!(
                     "`{key}` needs three numbers in brackets: [I11 I22 Izz]"
-                )))
+                )));
             }
             (MValue::Vector(_), false) => {
-                return Err(at(format!("`{key}` is a single number, not a list")))
+                return Err(at(format!("`{key}` is a single number, not a list")));
             }
             _ => {}
         }

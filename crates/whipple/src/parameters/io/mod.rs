@@ -23,7 +23,7 @@ mod yaml;
 pub use json::{json_slice_without_duplicates, json_without_duplicates};
 
 use super::Bicycle;
-use crate::error::{shorten, Error, Result};
+use crate::error::{Error, Result, shorten};
 
 /// A file format for bicycle descriptions.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -5,12 +5,12 @@
 use std::collections::BTreeMap;
 
 use super::keyvalue::extra_meaning;
-use super::{error_at, line_column, parse_number, Format};
-use crate::error::{shorten, Result};
+use super::{Format, error_at, line_column, parse_number};
+use crate::error::{Result, shorten};
 use crate::parameters::table::Form;
 use crate::parameters::{
-    BenchmarkParameters, Bicycle, Description, Extra, Jbike6Parameters, Notice, BENCHMARK_TABLE,
-    JBIKE6_GRAVITY, JBIKE6_TABLE,
+    BENCHMARK_TABLE, BenchmarkParameters, Bicycle, Description, Extra, JBIKE6_GRAVITY,
+    JBIKE6_TABLE, Jbike6Parameters, Notice,
 };
 
 /// A value with its position (line and column 1-based; 0 when unknown).
@@ -235,7 +235,7 @@ impl Reader {
                     0,
                     Some("benchmark"),
                     "missing the bicycle: a `benchmark` table or a `jbike6` table",
-                ))
+                ));
             }
         }
         Ok(bike)

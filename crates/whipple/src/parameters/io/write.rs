@@ -4,7 +4,7 @@
 use super::Format;
 use crate::error::{Error, Result};
 use crate::parameters::{
-    Bicycle, Description, Extra, ParameterInfo, BENCHMARK_TABLE, JBIKE6_TABLE,
+    BENCHMARK_TABLE, Bicycle, Description, Extra, JBIKE6_TABLE, ParameterInfo,
 };
 
 pub(crate) fn write(bike: &Bicycle, format: Format) -> Result<String> {

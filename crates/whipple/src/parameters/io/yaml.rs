@@ -6,9 +6,9 @@
 //! read here (mappings by indentation, plain and quoted scalars, block scalars, comments);
 //! anything else gets a message naming its line.
 
-use super::keyvalue::{assemble, Entry};
-use super::{error_at, parse_number, rounding_allowance, Format};
-use crate::error::{shorten, Result};
+use super::keyvalue::{Entry, assemble};
+use super::{Format, error_at, parse_number, rounding_allowance};
+use crate::error::{Result, shorten};
 use crate::parameters::Extra;
 
 const F: Format = Format::Yaml;
@@ -33,7 +33,7 @@ fn strip_comment(line: &str) -> &str {
             (None, b'"' | b'\'') => quote = Some(b),
             (Some(q), c) if c == q => quote = None,
             (None, b'#') if i == 0 || bytes[i - 1] == b' ' || bytes[i - 1] == b'\t' => {
-                return &line[..i]
+                return &line[..i];
             }
             _ => {}
         }
@@ -158,7 +158,7 @@ pub(crate) fn parse(text: &str) -> Result<crate::parameters::Bicycle> {
                     indent + 1,
                     Some(&key),
                     "unexpected indentation: only `values:` and `sigma:` hold indented keys",
-                ))
+                ));
             }
         }
     }
@@ -204,7 +204,7 @@ pub(crate) fn parse(text: &str) -> Result<crate::parameters::Bicycle> {
                              parameters, rider, description, values (and whipple's sigma)",
                             shorten(key, 40)
                         ),
-                    ))
+                    ));
                 }
             }
         }
@@ -238,7 +238,7 @@ pub(crate) fn parse(text: &str) -> Result<crate::parameters::Bicycle> {
                         "`sigma` names `{}`, which `values` does not hold",
                         shorten(key, 40)
                     ),
-                ))
+                ));
             }
         }
     }
