@@ -8,10 +8,9 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use whipple::Canonical;
-use whipple::Study;
 use whipple::advanced::design::StudySettings;
 use whipple::presets;
+use whipple::{Canonical, Study};
 use whipple_front::design::AxisSpec;
 
 fn study(preset: &str, x: &str, y: &str) -> Study {

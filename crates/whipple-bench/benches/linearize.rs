@@ -5,11 +5,10 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use whipple::BenchmarkParameters;
-use whipple::Model;
 use whipple::advanced::comparison::{
     ComparisonSettings, full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix,
 };
+use whipple::{BenchmarkParameters, Model};
 
 fn linearize(c: &mut Criterion) {
     let model =

@@ -5,10 +5,9 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use whipple::BenchmarkParameters;
-use whipple::Canonical;
 use whipple::advanced::eigen;
 use whipple::advanced::linear::{CharacteristicPolynomial, StateSpace};
+use whipple::{BenchmarkParameters, Canonical};
 
 fn benches(c: &mut Criterion) {
     let canonical =

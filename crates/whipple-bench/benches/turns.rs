@@ -5,11 +5,10 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use whipple::BenchmarkParameters;
-use whipple::Model;
 use whipple::advanced::turns::{
     FamilySettings, Held, TurnSettings, branch_family, branch_from_straight, held_turn, stability,
 };
+use whipple::{BenchmarkParameters, Model};
 
 fn turns(c: &mut Criterion) {
     let model =

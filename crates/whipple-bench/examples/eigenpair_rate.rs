@@ -4,10 +4,9 @@
 
 use std::time::Instant;
 
-use whipple::BenchmarkParameters;
-use whipple::Canonical;
 use whipple::advanced::eigen::eigenpairs_with;
 use whipple::advanced::linear::{CharacteristicPolynomial, SpeedPolynomials};
+use whipple::{BenchmarkParameters, Canonical};
 
 fn main() -> Result<(), whipple::Error> {
     let n: usize = std::env::args()

@@ -6,8 +6,7 @@ use std::path::Path;
 use anyhow::{Context, Result, anyhow, bail};
 use whipple::advanced::io::{FORMATS, Format, MAX_FILE_BYTES, parse};
 use whipple::advanced::parameters::Notice;
-use whipple::presets;
-use whipple::{BenchmarkParameters, Bicycle, Error};
+use whipple::{BenchmarkParameters, Bicycle, Error, presets};
 
 /// What one run of the command was asked besides its subcommand: the global options, passed
 /// to every command that reads a bicycle. Never kept in a global: runs may share a process

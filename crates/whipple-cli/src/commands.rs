@@ -6,14 +6,13 @@ use std::path::Path;
 use anyhow::{Context, Result, bail};
 use nalgebra::Matrix2;
 use serde_json::json;
-use whipple::Bicycle;
-use whipple::Canonical;
 use whipple::advanced::io::{Format, write};
 use whipple::advanced::parameters::Description;
 use whipple::advanced::sensitivity;
 use whipple::advanced::sweep;
 use whipple::advanced::table::key_doc;
 use whipple::presets::PRESETS;
+use whipple::{Bicycle, Canonical};
 
 use crate::bike::{LoadedBike, RunContext, load};
 use crate::output::{self, Sink, Target, number, parse_triple, print_stdout};

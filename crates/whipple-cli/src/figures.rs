@@ -3,8 +3,7 @@
 use std::path::Path;
 
 use anyhow::{Context, Result};
-use whipple::CriticalSpeeds;
-use whipple::EigenSweep;
+use whipple::{CriticalSpeeds, EigenSweep};
 use whipple_report::{EigenPlotOptions, Figure};
 
 use crate::bike::LoadedBike;

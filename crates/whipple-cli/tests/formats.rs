@@ -6,8 +6,7 @@
 mod common;
 
 use common::{scratch, stderr_of_failure, stdout, whipple};
-use whipple::Canonical;
-use whipple::presets;
+use whipple::{Canonical, presets};
 
 /// The default `eig` table: a header naming the modes in the documented column order, one row
 /// per speed, Meijaard et al. 2007's Table 2 to the ten decimals printed.

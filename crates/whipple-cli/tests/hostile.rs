@@ -325,8 +325,7 @@ fn critical_speeds_are_those_of_forward_riding() {
 #[test]
 fn an_undecided_interval_is_never_contradicted() {
     use whipple::advanced::io::{Format, write};
-    use whipple::critical_speeds;
-    use whipple::{BenchmarkParameters, Bicycle, Canonical};
+    use whipple::{BenchmarkParameters, Bicycle, Canonical, critical_speeds};
     let width = |c: f64| -> Option<(f64, usize)> {
         let mut b = BenchmarkParameters::meijaard2007();
         b.c = c;

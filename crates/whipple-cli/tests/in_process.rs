@@ -16,8 +16,8 @@ fn data(path: &str) -> String {
     )
 }
 
-/// The benchmark bicycle written as TOML at `path`, by the command run in-process.
-fn write_benchmark_toml(path: &std::path::Path) {
+/// `whipple convert --bike benchmark --to toml --out PATH`, run in-process: its exit status.
+fn convert_benchmark_to_toml(path: &std::path::Path) -> i32 {
     let out = path.to_string_lossy();
     let args = [
         "whipple",
@@ -29,7 +29,12 @@ fn write_benchmark_toml(path: &std::path::Path) {
         "--out",
         &out,
     ];
-    assert_eq!(whipple_cli::main_with_args(args), 0);
+    whipple_cli::main_with_args(args)
+}
+
+/// The benchmark bicycle written as TOML at `path`, by the command run in-process.
+fn write_benchmark_toml(path: &std::path::Path) {
+    assert_eq!(convert_benchmark_to_toml(path), 0);
 }
 
 /// Four kinds of run, started together many times: `--strict` on a bicycle with a warning
@@ -114,19 +119,8 @@ fn concurrent_runs_keep_their_own_inputs() {
             let mut wrong = Vec::new();
             for round in 0..ROUNDS {
                 let out = dir.join(format!("beside-{round}.toml"));
-                let out = out.to_string_lossy().into_owned();
-                let args = [
-                    "whipple",
-                    "convert",
-                    "--bike",
-                    "benchmark",
-                    "--to",
-                    "toml",
-                    "--out",
-                    &out,
-                ];
                 barrier.wait();
-                if whipple_cli::main_with_args(args) != 0 {
+                if convert_benchmark_to_toml(&out) != 0 {
                     wrong.push(round);
                 }
             }

@@ -10,8 +10,7 @@ use whipple::advanced::integrate::{DEFAULT_DT, DEFAULT_RTOL, Integrator};
 use whipple::advanced::nonlinear::{
     MAX_SAMPLES, MAX_STEPS, Sample, StateView, TorqueExpression, TorqueFn, samples_kept,
 };
-use whipple::{Error, Result};
-use whipple::{InitialConditions, SimulationSettings};
+use whipple::{Error, InitialConditions, Result, SimulationSettings};
 
 use crate::units::radians;
 

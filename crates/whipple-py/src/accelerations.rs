@@ -8,9 +8,8 @@ use nalgebra::Vector3;
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use whipple::Error;
-use whipple::Model;
 use whipple::advanced::nonlinear::{Inputs, REAR_FRAME, REAR_WHEEL, State, rotation};
+use whipple::{Error, Model};
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;

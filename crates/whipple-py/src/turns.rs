@@ -5,13 +5,12 @@
 use numpy::{Complex64, PyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use whipple::Error;
-use whipple::Model;
 use whipple::advanced::turns::{
     Family, FamilyPoint, FamilySettings, Held, Stability, SteadyTurn, TurnSettings,
     branch_from_straight, hands_free_families, hands_free_turn_near, hands_free_turns_at_speed,
     held_turn, stability,
 };
+use whipple::{Error, Model};
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;

@@ -3,8 +3,7 @@
 
 use std::path::PathBuf;
 
-use whipple::Canonical;
-use whipple::presets;
+use whipple::{Canonical, presets};
 use whipple_report::{BikeEigen, EigenPlotOptions, Format, eigen_comparison_plot, eigen_plot};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

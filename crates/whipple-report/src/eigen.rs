@@ -5,9 +5,8 @@
 use plotters::coord::Shift;
 use plotters::element::DashedPathElement;
 use plotters::prelude::*;
-use whipple::CriticalSpeeds;
-use whipple::EigenSweep;
 use whipple::advanced::modes::Mode;
+use whipple::{CriticalSpeeds, EigenSweep};
 
 use crate::clip::Rect;
 use crate::draw::{
@@ -121,8 +120,7 @@ fn check_range(what: &'static str, (lo, hi): (f64, f64)) -> Result<()> {
 ///
 /// ```
 /// use whipple::advanced::{stability, sweep};
-/// use whipple::Canonical;
-/// use whipple::BenchmarkParameters;
+/// use whipple::{Canonical, BenchmarkParameters};
 /// use whipple_report::{eigen_plot, EigenPlotOptions};
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007()).unwrap();
 /// let s = whipple::eigen_sweep(&canonical, &whipple::speed_grid(0.0, 10.0, 0.05).unwrap()).unwrap();

@@ -168,8 +168,7 @@ impl Figure {
     ///
     /// ```
     /// use whipple::advanced::{stability, sweep};
-    /// use whipple::Canonical;
-    /// use whipple::BenchmarkParameters;
+    /// use whipple::{Canonical, BenchmarkParameters};
     /// use whipple_report::{eigen_plot, EigenPlotOptions, Format};
     /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007()).unwrap();
     /// let s = whipple::eigen_sweep(&canonical, &whipple::speed_grid(0.0, 10.0, 0.1).unwrap()).unwrap();

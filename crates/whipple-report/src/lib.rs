@@ -9,8 +9,7 @@
 //!
 //! ```
 //! use whipple::advanced::{stability, sweep};
-//! use whipple::Canonical;
-//! use whipple::BenchmarkParameters;
+//! use whipple::{Canonical, BenchmarkParameters};
 //! use whipple_report::{eigen_csv, eigen_plot, EigenPlotOptions, Format};
 //!
 //! let canonical = Canonical::new(&BenchmarkParameters::meijaard2007()).unwrap();

@@ -9,8 +9,7 @@ use whipple::advanced::modes::Mode;
 ///
 /// ```
 /// use whipple::advanced::sweep;
-/// use whipple::Canonical;
-/// use whipple::BenchmarkParameters;
+/// use whipple::{Canonical, BenchmarkParameters};
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007()).unwrap();
 /// let s = whipple::eigen_sweep(&canonical, &[0.0, 5.0]).unwrap();
 /// let csv = whipple_report::eigen_csv(&s);
@@ -81,9 +80,7 @@ pub fn eigen_table_row(v: f64, values: &[Complex64; 4]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use whipple::BenchmarkParameters;
-    use whipple::Canonical;
-    use whipple::eigen_sweep;
+    use whipple::{BenchmarkParameters, Canonical, eigen_sweep};
 
     #[test]
     fn csv_header_and_round_trip() -> Result<(), whipple::Error> {

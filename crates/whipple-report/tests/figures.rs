@@ -1,9 +1,8 @@
 //! Rendering tests: every figure renders to non-empty SVG and PNG with the expected text.
 
-use whipple::Canonical;
-use whipple::presets;
-use whipple::{CriticalSpeeds, critical_speeds};
-use whipple::{EigenSweep, eigen_sweep, speed_grid};
+use whipple::{
+    Canonical, CriticalSpeeds, EigenSweep, critical_speeds, eigen_sweep, presets, speed_grid,
+};
 use whipple_report::{
     BikeEigen, EigenPlotOptions, Error, Figure, Format, Marker, Series, SimulationSeries,
     XyPlotOptions, eigen_comparison_plot, eigen_plot, line_plot, side_view, time_series_plot,

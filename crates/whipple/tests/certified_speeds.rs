@@ -5,13 +5,11 @@ use std::sync::atomic::AtomicBool;
 
 use approx::assert_abs_diff_eq;
 use proptest::prelude::*;
-use whipple::Canonical;
-use whipple::Study;
 use whipple::advanced::design::{Axis, DesignStatus, Parameter, Shard, StudySettings};
 use whipple::advanced::parameters::Description;
 use whipple::advanced::{eigen, stability};
-use whipple::presets;
-use whipple::{BenchmarkParameters, Bicycle, Error, Result};
+use whipple::{BenchmarkParameters, Bicycle, Error, Result, presets};
+use whipple::{Canonical, Study};
 use whipple_reference::meijaard2007 as published;
 
 fn preset(name: &str) -> Result<Canonical> {

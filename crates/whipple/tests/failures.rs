@@ -9,8 +9,9 @@ use whipple::advanced::integrate::{Dopri5Settings, Integrator};
 use whipple::advanced::nonlinear::{
     Inputs, Outcome, ProjectionMethod, ProjectionSettings, Simulation, State, StateView, TorqueFn,
 };
-use whipple::{BenchmarkParameters, Error, Result};
-use whipple::{InitialConditions, Model, SimulationSettings, simulate};
+use whipple::{
+    BenchmarkParameters, Error, InitialConditions, Model, Result, SimulationSettings, simulate,
+};
 
 fn benchmark() -> Result<Model> {
     Model::new(&BenchmarkParameters::meijaard2007())

@@ -5,16 +5,13 @@
 
 use std::path::{Path, PathBuf};
 
-use whipple::Bicycle;
-use whipple::Canonical;
-use whipple::Error;
 use whipple::advanced::io::{Format, parse, write};
 use whipple::advanced::parameters::Severity;
 use whipple::advanced::sensitivity::{
     ParameterDerivatives, critical_speeds_sigma, sensitivities, with_parameter,
 };
-use whipple::critical_speeds;
-use whipple::presets;
+use whipple::{Bicycle, Canonical, Error};
+use whipple::{critical_speeds, presets};
 
 type TestResult = Result<(), Box<dyn std::error::Error>>;
 

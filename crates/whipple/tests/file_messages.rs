@@ -6,8 +6,7 @@ use proptest::prelude::*;
 use whipple::Bicycle;
 use whipple::advanced::io::{FORMATS, Format, parse, write};
 use whipple::advanced::parameters::Description;
-use whipple::presets;
-use whipple::{BenchmarkParameters, Error};
+use whipple::{BenchmarkParameters, Error, presets};
 
 fn message<T: std::fmt::Debug>(r: Result<T, Error>) -> String {
     match r {

@@ -2,9 +2,7 @@
 //! and the rule, and nothing panics.
 
 use whipple::advanced::io::{Format, parse};
-use whipple::presets;
-use whipple::speed_grid;
-use whipple::{BenchmarkParameters, Error};
+use whipple::{BenchmarkParameters, Error, presets, speed_grid};
 
 fn benchmark() -> BenchmarkParameters {
     BenchmarkParameters::meijaard2007()

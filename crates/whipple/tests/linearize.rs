@@ -4,8 +4,6 @@
 //! field against time derivatives of the full state; the zero cluster behind the capsize spike.
 
 use nalgebra::{DMatrix, Vector4};
-use whipple::Canonical;
-use whipple::Model;
 use whipple::advanced::comparison::{
     ComparisonSettings, full_state_jacobian, full_state_jacobian_fd, general_eigenvalues,
     lean_steer_eigenvalues, lean_steer_matrix, max_abs_diff, pick, zero_cluster,
@@ -15,6 +13,7 @@ use whipple::advanced::linear::StateSpace;
 use whipple::advanced::nonlinear::Inputs;
 use whipple::presets::PRESETS;
 use whipple::{BenchmarkParameters, Result};
+use whipple::{Canonical, Model};
 
 fn all_bikes() -> Result<Vec<(&'static str, BenchmarkParameters)>> {
     PRESETS

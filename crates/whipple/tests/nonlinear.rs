@@ -12,9 +12,9 @@ use whipple::advanced::nonlinear::{
     Inputs, Outcome, Progress, ProjectionMethod, ProjectionSettings, REAR_FRAME, REAR_WHEEL,
     STATE_LEN, State, Wheel, rotation,
 };
-use whipple::presets;
-use whipple::{BenchmarkParameters, Result};
-use whipple::{InitialConditions, Model, SimulationSettings, simulate};
+use whipple::{
+    BenchmarkParameters, InitialConditions, Model, Result, SimulationSettings, presets, simulate,
+};
 
 /// Basu-Mandal, Chatterjee & Papadopoulos 2007, Proc. R. Soc. A 463:1983–2003, Table 1: a
 /// general state of the benchmark bicycle and its accelerations from the fully non-linear

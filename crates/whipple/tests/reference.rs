@@ -7,8 +7,7 @@ use nalgebra::Matrix2;
 use whipple::Canonical;
 use whipple::advanced::eigen;
 use whipple::advanced::modes::Mode;
-use whipple::presets;
-use whipple::{BenchmarkParameters, Result};
+use whipple::{BenchmarkParameters, Result, presets};
 use whipple_reference::meijaard2007 as published;
 
 fn matrix(rows: [[f64; 2]; 2]) -> Matrix2<f64> {

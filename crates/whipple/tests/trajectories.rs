@@ -11,9 +11,9 @@ use serde_json::Value;
 use whipple::advanced::integrate::{Dopri5Settings, Integrator};
 use whipple::advanced::io::{Format, parse};
 use whipple::advanced::nonlinear::{Outcome, Sample, TorqueExpression};
-use whipple::presets;
-use whipple::{BenchmarkParameters, Result};
-use whipple::{InitialConditions, Model, SimulationSettings, simulate};
+use whipple::{
+    BenchmarkParameters, InitialConditions, Model, Result, SimulationSettings, presets, simulate,
+};
 
 const REFERENCES: &str = include_str!("data/references.json");
 

@@ -12,8 +12,9 @@ use whipple::advanced::turns::{
     FamilyEnd, FamilySettings, Held, SteadyTurn, TurnSettings, branch_family, branch_from_straight,
     hands_free_turn_near, held_turn, stability, turn_jacobian,
 };
-use whipple::{BenchmarkParameters, Error, Result};
-use whipple::{InitialConditions, Model, SimulationSettings, simulate};
+use whipple::{
+    BenchmarkParameters, Error, InitialConditions, Model, Result, SimulationSettings, simulate,
+};
 
 fn benchmark() -> Model {
     Model::new(&BenchmarkParameters::meijaard2007()).expect("the benchmark bicycle")

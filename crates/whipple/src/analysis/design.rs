@@ -392,8 +392,7 @@ impl Study {
     ///
     /// ```
     /// use whipple::advanced::design::{Axis, Parameter, StudySettings, Shard};
-    /// use whipple::Study;
-    /// use whipple::presets;
+    /// use whipple::{Study, presets};
     /// let bike = presets::find("benchmark")?.bicycle();
     /// let x = Axis::new(Parameter::Benchmark("c".into()), 0.0, 0.2, 5)?;
     /// let study = Study::new(bike, x, None, StudySettings::default())?;
@@ -446,8 +445,7 @@ impl Study {
     ///
     /// ```
     /// use whipple::advanced::design::{Axis, Parameter, StudySettings};
-    /// use whipple::Study;
-    /// use whipple::presets;
+    /// use whipple::{Study, presets};
     /// let bike = presets::find("benchmark")?.bicycle(); // rR = 0.3 m, rF = 0.35 m
     /// let trail = Axis::new(Parameter::Benchmark("c".into()), 0.0, 0.2, 5)?;
     /// let radius = Axis::new(Parameter::Benchmark("wheel_radius".into()), 0.2, 0.5, 4)?;

@@ -374,8 +374,7 @@ fn tidy(mut z: [Complex64; 4]) -> [Complex64; 4] {
 /// The four eigenvalues of A(v), sorted by decreasing real part.
 ///
 /// ```
-/// use whipple::BenchmarkParameters;
-/// use whipple::Canonical;
+/// use whipple::{BenchmarkParameters, Canonical};
 /// use whipple::advanced::eigen;
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
 /// let lambdas = eigen::eigenvalues(&canonical, 5.0)?;

@@ -192,8 +192,7 @@ pub struct ModeShape {
 ///
 /// ```
 /// use whipple::advanced::modes::{mode_shapes, Mode};
-/// use whipple::BenchmarkParameters;
-/// use whipple::Canonical;
+/// use whipple::{BenchmarkParameters, Canonical};
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
 /// let shapes = mode_shapes(&canonical, 5.0)?;
 /// assert_eq!(shapes.iter().filter(|s| s.mode == Mode::Weave).count(), 2);

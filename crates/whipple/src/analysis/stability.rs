@@ -562,8 +562,7 @@ impl Structure {
 /// needs it: no allocation, no eigenvalue computation.
 ///
 /// ```
-/// use whipple::BenchmarkParameters;
-/// use whipple::Canonical;
+/// use whipple::{BenchmarkParameters, Canonical};
 /// use whipple::advanced::linear::SpeedPolynomials;
 /// use whipple::advanced::stability::summary;
 /// let sp = SpeedPolynomials::new(&Canonical::new(&BenchmarkParameters::meijaard2007())?)?;
@@ -625,8 +624,7 @@ pub fn summary(sp: &SpeedPolynomials, lo: f64, hi: f64) -> Result<StabilitySumma
 /// `f64::NEG_INFINITY`): the answer is certified on the whole range, however large.
 ///
 /// ```
-/// use whipple::BenchmarkParameters;
-/// use whipple::Canonical;
+/// use whipple::{BenchmarkParameters, Canonical};
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
 /// let speeds = whipple::critical_speeds(&canonical, 0.0, f64::INFINITY)?;
 /// assert!((speeds.weave_speed.unwrap() - 4.29238253634111).abs() < 1e-12);

@@ -173,9 +173,7 @@ const MAX_EXTRA_SPEEDS: f64 = 2_000_000.0;
 /// one would be. The whole sweep is held in memory; [`SweepPlan`] streams it row by row.
 ///
 /// ```
-/// use whipple::BenchmarkParameters;
-/// use whipple::Canonical;
-/// use whipple::{eigen_sweep, speed_grid};
+/// use whipple::{BenchmarkParameters, Canonical, eigen_sweep, speed_grid};
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
 /// let s = eigen_sweep(&canonical, &speed_grid(0.0, 10.0, 0.1)?)?;
 /// assert_eq!(s.modes[2], whipple::advanced::modes::Mode::Capsize);
@@ -203,8 +201,7 @@ pub fn eigen_sweep(canonical: &Canonical, speeds: &[f64]) -> Result<EigenSweep> 
 /// takes bounded memory.
 ///
 /// ```
-/// use whipple::BenchmarkParameters;
-/// use whipple::Canonical;
+/// use whipple::{BenchmarkParameters, Canonical};
 /// use whipple::advanced::sweep::{SpeedGrid, SweepPlan};
 /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
 /// let grid = SpeedGrid::new(0.0, 10.0, 0.01)?;

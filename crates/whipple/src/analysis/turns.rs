@@ -24,8 +24,7 @@
 //!   ([`branch_from_straight`]).
 //!
 //! ```
-//! use whipple::BenchmarkParameters;
-//! use whipple::Model;
+//! use whipple::{BenchmarkParameters, Model};
 //! use whipple::advanced::turns::{held_turn, Held, TurnSettings};
 //! let model = Model::new(&BenchmarkParameters::meijaard2007())?;
 //! let turn = held_turn(&model, 5.0, Held::Lean(11.5f64.to_radians()), &TurnSettings::default())?;

@@ -135,8 +135,7 @@ impl Canonical {
     /// The canonical matrices of a bicycle, after validating its parameters.
     ///
     /// ```
-    /// use whipple::BenchmarkParameters;
-    /// use whipple::Canonical;
+    /// use whipple::{BenchmarkParameters, Canonical};
     /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
     /// assert!((canonical.m[(0, 0)] - 80.81722).abs() < 1e-12);
     /// # Ok::<(), whipple::Error>(())

@@ -463,8 +463,7 @@ impl SpeedPolynomials {
     /// not certainly positive (lost to cancellation).
     ///
     /// ```
-    /// use whipple::BenchmarkParameters;
-    /// use whipple::Canonical;
+    /// use whipple::{BenchmarkParameters, Canonical};
     /// use whipple::advanced::linear::SpeedPolynomials;
     /// let p = SpeedPolynomials::new(&Canonical::new(&BenchmarkParameters::meijaard2007())?)?;
     /// // The capsize speed is the positive root of a₀(u), u = v²/g.

@@ -30,8 +30,7 @@ impl StateSpace {
     /// A and B at forward speed `speed` (any finite value; negative is riding backwards).
     ///
     /// ```
-    /// use whipple::BenchmarkParameters;
-    /// use whipple::Canonical;
+    /// use whipple::{BenchmarkParameters, Canonical};
     /// use whipple::advanced::linear::StateSpace;
     /// let canonical = Canonical::new(&BenchmarkParameters::meijaard2007())?;
     /// let ss = StateSpace::new(&canonical, 5.0)?;
@@ -68,8 +67,7 @@ impl StateSpace {
     ///
     /// ```
     /// use nalgebra::Vector4;
-    /// use whipple::BenchmarkParameters;
-    /// use whipple::Canonical;
+    /// use whipple::{BenchmarkParameters, Canonical};
     /// use whipple::advanced::linear::StateSpace;
     /// let ss = StateSpace::new(&Canonical::new(&BenchmarkParameters::meijaard2007())?, 5.0)?;
     /// let x = ss.free_response(&Vector4::new(0.0, 0.0, 0.5, 0.0), 0.01, 1000)?;

@@ -4,8 +4,7 @@
 //! holonomic + 4 non-holonomic), Newton–Euler dynamics with Lagrange multipliers.
 //!
 //! ```
-//! use whipple::BenchmarkParameters;
-//! use whipple::{InitialConditions, Model};
+//! use whipple::{BenchmarkParameters, InitialConditions, Model};
 //! use whipple::advanced::nonlinear::Inputs;
 //! let model = Model::new(&BenchmarkParameters::meijaard2007())?;
 //! let state = model.initial_state(&InitialConditions {

@@ -119,8 +119,7 @@ impl Model {
     /// order) in a state: origin (centre of mass) and rotation matrix, world axes.
     ///
     /// ```
-    /// use whipple::BenchmarkParameters;
-    /// use whipple::{InitialConditions, Model};
+    /// use whipple::{BenchmarkParameters, InitialConditions, Model};
     /// use whipple::advanced::nonlinear::REAR_FRAME;
     /// let bike = BenchmarkParameters::meijaard2007();
     /// let model = Model::new(&bike)?;

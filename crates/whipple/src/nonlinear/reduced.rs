@@ -157,8 +157,7 @@ impl Model {
     ///
     /// ```
     /// use nalgebra::Vector4;
-    /// use whipple::BenchmarkParameters;
-    /// use whipple::Model;
+    /// use whipple::{BenchmarkParameters, Model};
     /// let model = Model::new(&BenchmarkParameters::meijaard2007())?;
     /// let f = model.lean_steer_field(&Vector4::new(0.01, 0.0, 0.0, 0.0), 4.6)?;
     /// assert!(f[2] > 0.0); // leaning right, it falls further right
