@@ -362,39 +362,46 @@ async fn heavy_work_past_its_budget_is_busy_and_small_requests_are_not() -> Test
     let map = json!({"bike": bike, "x": "trail=-0.05:0.2:500", "y": "head_angle_deg=60:85:500"})
         .to_string();
     let small = json!({ "bike": bike }).to_string();
-    // A map takes the one heavy slot; a second one, sent while the first is under way, is
-    // refused. Bounded: a few attempts, in case a map ends before the second is sent.
+    // Two maps race for the one heavy slot: whichever arrives second, while the other is
+    // under way, is refused at once. The small request goes out while the winner still
+    // holds the slot. Bounded: a few attempts, in case one map ended before the other came.
     let mut refused = None;
     for _ in 0..5 {
-        let first = tokio::spawn({
+        let mut one = tokio::spawn({
             let map = map.clone();
             async move { post_raw(address, "/api/map", &map).await }
         });
-        while !first.is_finished() {
-            let (status, retry_after, body) = post_raw(address, "/api/map", &map).await?;
-            if status == 503 {
-                // The small request while the heavy slot is still taken.
-                let (small_status, _, small_body) =
-                    post_raw(address, "/api/bike/validate", &small).await?;
-                refused = Some((
-                    retry_after,
-                    body,
-                    small_status,
-                    small_body,
-                    first.is_finished(),
-                ));
+        let mut other = tokio::spawn({
+            let map = map.clone();
+            async move { post_raw(address, "/api/map", &map).await }
+        });
+        let (first_answer, running) = tokio::select! {
+            answer = &mut one => (answer??, other),
+            answer = &mut other => (answer??, one),
+        };
+        let (status, retry_after, body) = first_answer;
+        if status == 503 {
+            // The small request only counts while the winner still holds the slot.
+            let small_answer = if running.is_finished() {
+                None
+            } else {
+                Some(post_raw(address, "/api/bike/validate", &small).await?)
+            };
+            let still_running = !running.is_finished();
+            let (winner_status, _, _) = running.await??;
+            assert_eq!(winner_status, 200);
+            if let (Some((small_status, _, small_body)), true) = (small_answer, still_running) {
+                refused = Some((retry_after, body, small_status, small_body));
                 break;
             }
-        }
-        // The first map is answered (200), or was itself the one refused (503) when the
-        // second got there first.
-        let (status, _, _) = first.await??;
-        assert!(status == 200 || status == 503, "{status}");
-        if refused.as_ref().is_some_and(|r| !r.4) {
-            break;
+        } else {
+            // Both were answered: the first ended before the second arrived.
+            assert_eq!(status, 200, "{body}");
+            let (other_status, _, _) = running.await??;
+            assert!(other_status == 200 || other_status == 503, "{other_status}");
         }
     }
-    let (retry_after, body, small_status, small_body, _) =
+    let (retry_after, body, small_status, small_body) =
         refused.ok_or("no second map was ever refused while the first ran")?;
     assert_eq!(body["error"]["kind"], "busy", "{body}");
     assert_eq!(retry_after.as_deref(), Some("2"), "{body}");
