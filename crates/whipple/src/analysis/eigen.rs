@@ -12,6 +12,9 @@ use nalgebra::{Complex, Vector2, Vector4};
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, CharacteristicPolynomial};
 
+pub(crate) use super::roots::horner;
+use super::roots::{Unpaired, aberth, pair_conjugates};
+
 /// A complex number of f64.
 pub type Complex64 = Complex<f64>;
 
@@ -108,23 +111,6 @@ pub(crate) fn certified_roots(
         }
     }
     Ok(roots)
-}
-
-/// Upper bound on the polishing iterations (each converges cubically; near a double root,
-/// linearly, where the accuracy is limited by the problem itself).
-const MAX_POLISH_ITERATIONS: usize = 60;
-
-/// p(z) and p'(z) of the quartic with coefficients `a` (lowest power first), by Horner's
-/// scheme.
-pub(crate) fn horner(a: &[f64; 5], z: Complex64) -> (Complex64, Complex64) {
-    // p and p' together, highest power first.
-    let mut p = Complex64::new(a[4], 0.0);
-    let mut dp = Complex64::new(0.0, 0.0);
-    for k in (0..4).rev() {
-        dp = dp * z + p;
-        p = p * z + a[k];
-    }
-    (p, dp)
 }
 
 /// The largest real root of t³ + b t² + c t + d.
@@ -250,13 +236,23 @@ pub fn quartic_roots(a: &[f64; 5]) -> Result<[Complex64; 4]> {
             }
         }
     }
-    polish(&monic, &mut z);
+    aberth(&monic, &mut z);
     if z.iter().any(|r| !(r.re.is_finite() && r.im.is_finite())) {
         return Err(Error::NonFinite {
             context: format!("roots of the characteristic polynomial {a:?}"),
         });
     }
-    let mut z = tidy(z);
+    // Real where the imaginary part is round-off of the largest root.
+    let scale = z
+        .iter()
+        .fold(0.0f64, |m, r| m.max(r.norm_sqr()))
+        .sqrt()
+        .max(1e-300);
+    pair_conjugates(
+        &mut z,
+        |r| r.im.abs() <= 8.0 * f64::EPSILON * scale,
+        Unpaired::Kept,
+    );
     refine_real(a, &mut z);
     Ok(z)
 }
@@ -283,92 +279,6 @@ fn refine_real(a: &[f64; 5], z: &mut [Complex64; 4]) {
         root.re = x;
     }
     z.sort_by(|x, y| y.re.total_cmp(&x.re).then(y.im.total_cmp(&x.im)));
-}
-
-/// Aberth–Ehrlich iterations until the corrections reach round-off, a bounded number of times.
-///
-/// Near a simple root the iteration converges cubically: after a relative correction δ the
-/// remaining error is about δ³ / g², g being the root's relative distance to its nearest
-/// neighbour. So the iteration stops as soon as that estimate falls below the round-off ε for
-/// every root; near a (nearly) double root, where convergence is only linear, it goes on until
-/// the corrections stop shrinking.
-fn polish(monic: &[f64; 5], z: &mut [Complex64; 4]) {
-    let mut previous = f64::INFINITY;
-    for _ in 0..MAX_POLISH_ITERATIONS {
-        let mut largest = 0.0f64;
-        let mut converged = true;
-        for i in 0..4 {
-            let (p, dp) = horner(monic, z[i]);
-            if p.norm_sqr() == 0.0 {
-                continue;
-            }
-            let newton = p / dp;
-            let mut repulsion = Complex64::new(0.0, 0.0);
-            let mut gap2 = f64::INFINITY;
-            for (j, zj) in z.iter().enumerate() {
-                if j != i {
-                    let d = z[i] - zj;
-                    repulsion += d.inv();
-                    gap2 = gap2.min(d.norm_sqr());
-                }
-            }
-            let step = newton / (Complex64::new(1.0, 0.0) - newton * repulsion);
-            if !(step.re.is_finite() && step.im.is_finite()) {
-                continue;
-            }
-            z[i] -= step;
-            // Squared relative sizes, to stay clear of the slow `hypot`.
-            let size2 = z[i].norm_sqr().max(f64::MIN_POSITIVE);
-            let delta2 = step.norm_sqr() / size2;
-            let gap2 = gap2 / size2;
-            largest = largest.max(delta2.sqrt());
-            // δ > 4ε and δ³ > ε g², compared squared.
-            if delta2 > 16.0 * f64::EPSILON * f64::EPSILON
-                && delta2 * delta2 * delta2 > f64::EPSILON * f64::EPSILON * gap2 * gap2
-            {
-                converged = false;
-            }
-        }
-        if converged || (largest >= previous && largest < 1e-9) {
-            break;
-        }
-        previous = largest;
-    }
-}
-
-/// Sort, and make complex pairs exact conjugates and near-real roots real.
-fn tidy(mut z: [Complex64; 4]) -> [Complex64; 4] {
-    let scale = z
-        .iter()
-        .fold(0.0f64, |m, r| m.max(r.norm_sqr()))
-        .sqrt()
-        .max(1e-300);
-    for r in z.iter_mut() {
-        if r.im.abs() <= 8.0 * f64::EPSILON * scale {
-            r.im = 0.0;
-        }
-    }
-    // Pair each root of positive imaginary part with its nearest conjugate partner.
-    for i in 0..4 {
-        if z[i].im <= 0.0 {
-            continue;
-        }
-        let partner = (0..4)
-            .filter(|&j| j != i && z[j].im < 0.0)
-            .min_by(|&j, &k| {
-                let dj = (z[j] - z[i].conj()).norm_sqr();
-                let dk = (z[k] - z[i].conj()).norm_sqr();
-                dj.total_cmp(&dk)
-            });
-        if let Some(j) = partner {
-            let re = 0.5 * (z[i].re + z[j].re);
-            let im = 0.5 * (z[i].im - z[j].im);
-            z[i] = Complex64::new(re, im);
-            z[j] = Complex64::new(re, -im);
-        }
-    }
-    z.sort_by(|x, y| y.re.total_cmp(&x.re).then(y.im.total_cmp(&x.im)));
-    z
 }
 
 /// The four eigenvalues of A(v), sorted by decreasing real part.

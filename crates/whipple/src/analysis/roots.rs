@@ -1,5 +1,6 @@
 //! Certified real roots of low-degree real polynomials whose coefficients are known only to
-//! within stated bounds, and a bounded Brent root finder.
+//! within stated bounds, and the one Aberth–Ehrlich iteration and conjugate pairing that every
+//! polynomial of the crate (this module's and the eigenvalues' quartic) is solved with.
 //!
 //! # The method
 //!
@@ -27,6 +28,9 @@
 //! they are. What is certified is the statement for the true coefficients within the bounds.
 
 use crate::error::{Error, Result};
+
+/// A complex number of f64.
+type Complex64 = nalgebra::Complex<f64>;
 
 /// The largest degree [`real_roots`] handles.
 pub(crate) const MAX_DEGREE: usize = 6;
@@ -258,69 +262,154 @@ impl RealRoots {
     }
 }
 
-type C = (f64, f64);
-
-#[inline]
-fn cmul(a: C, b: C) -> C {
-    (a.0 * b.0 - a.1 * b.1, a.0 * b.1 + a.1 * b.0)
-}
-
-#[inline]
-fn cdiv(a: C, b: C) -> C {
-    let d = b.0 * b.0 + b.1 * b.1;
-    ((a.0 * b.0 + a.1 * b.1) / d, (a.1 * b.0 - a.0 * b.1) / d)
-}
-
-#[inline]
-fn cabs(a: C) -> f64 {
-    a.0.hypot(a.1)
-}
-
-/// q(z) and q'(z) by Horner, and Σ|cₖ||z|ᵏ for the round-off bound.
-#[inline]
-fn horner_c(c: &[f64], z: C) -> (C, C, f64) {
-    let az = cabs(z);
-    let n = c.len();
-    let mut p = (c[n - 1], 0.0);
-    let mut dp = (0.0, 0.0);
-    let mut size = c[n - 1].abs();
-    for k in (0..n - 1).rev() {
-        dp = cmul(dp, z);
-        dp.0 += p.0;
-        dp.1 += p.1;
-        p = cmul(p, z);
-        p.0 += c[k];
-        size = size * az + c[k].abs();
-    }
-    (p, dp, size)
-}
-
-/// Bound on iterations of the Aberth–Ehrlich method (cubic convergence; it stops long before).
+/// Bound on the Aberth–Ehrlich iterations (each converges cubically near a simple root; near
+/// a double root linearly, where the accuracy is limited by the problem itself, and the
+/// iteration stops when its corrections stop shrinking).
 const MAX_ABERTH_ITERATIONS: usize = 80;
 
-/// Approximations of all roots of the polynomial with coefficients `c` (lowest first, c[n] ≠ 0).
-fn approximate(c: &[f64], z: &mut [C]) {
+/// p(z) and p'(z) of Σ `c[k]` zᵏ (lowest power first, at least one coefficient) by Horner's
+/// scheme.
+pub(crate) fn horner(c: &[f64], z: Complex64) -> (Complex64, Complex64) {
+    let n = c.len();
+    let mut p = Complex64::new(c[n - 1], 0.0);
+    let mut dp = Complex64::new(0.0, 0.0);
+    for k in (0..n - 1).rev() {
+        dp = dp * z + p;
+        p = p * z + c[k];
+    }
+    (p, dp)
+}
+
+/// Aberth–Ehrlich iterations on all the roots `z` of Σ `c[k]` xᵏ (lowest power first,
+/// `z.len()` = the degree) from the approximations in `z`, until the corrections reach
+/// round-off, a bounded number of times.
+///
+/// Near a simple root the iteration converges cubically: after a relative correction δ the
+/// remaining error is about δ³ / g², g being the root's relative distance to its nearest
+/// neighbour. So the iteration stops as soon as that estimate falls below the round-off ε for
+/// every root; near a (nearly) double root, where convergence is only linear, it goes on until
+/// the corrections stop shrinking.
+pub(crate) fn aberth(c: &[f64], z: &mut [Complex64]) {
+    let mut previous = f64::INFINITY;
+    for _ in 0..MAX_ABERTH_ITERATIONS {
+        let mut largest = 0.0f64;
+        let mut converged = true;
+        for i in 0..z.len() {
+            let (p, dp) = horner(c, z[i]);
+            if p.norm_sqr() == 0.0 {
+                continue;
+            }
+            let newton = p / dp;
+            let mut repulsion = Complex64::new(0.0, 0.0);
+            let mut gap2 = f64::INFINITY;
+            for (j, zj) in z.iter().enumerate() {
+                if j != i {
+                    let d = z[i] - zj;
+                    repulsion += d.inv();
+                    gap2 = gap2.min(d.norm_sqr());
+                }
+            }
+            let step = newton / (Complex64::new(1.0, 0.0) - newton * repulsion);
+            if !(step.re.is_finite() && step.im.is_finite()) {
+                continue;
+            }
+            z[i] -= step;
+            // Squared relative sizes, to stay clear of the slow `hypot`.
+            let size2 = z[i].norm_sqr().max(f64::MIN_POSITIVE);
+            let delta2 = step.norm_sqr() / size2;
+            let gap2 = gap2 / size2;
+            largest = largest.max(delta2.sqrt());
+            // δ > 4ε and δ³ > ε g², compared squared.
+            if delta2 > 16.0 * f64::EPSILON * f64::EPSILON
+                && delta2 * delta2 * delta2 > f64::EPSILON * f64::EPSILON * gap2 * gap2
+            {
+                converged = false;
+            }
+        }
+        if converged || (largest >= previous && largest < 1e-9) {
+            break;
+        }
+        previous = largest;
+    }
+}
+
+/// What [`pair_conjugates`] does with an approximation left without a conjugate partner.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Unpaired {
+    /// Made real: the certification's discs must be symmetric about the real axis.
+    MadeReal,
+    /// Kept as it is: near a double root an approximation a little off the axis beside a real
+    /// one keeps |p′| away from zero, which the eigenvalues' own error bound divides by.
+    Kept,
+}
+
+/// The roots of a real polynomial are real or come in conjugate pairs, and its computed
+/// approximations are made so: those `is_real` calls real lose their imaginary part; each of
+/// positive imaginary part is paired with the nearest unpaired one of negative imaginary part
+/// (the pair becomes their conjugate mean); any left unpaired is treated as `unpaired` says.
+pub(crate) fn pair_conjugates(
+    z: &mut [Complex64],
+    is_real: impl Fn(Complex64) -> bool,
+    unpaired: Unpaired,
+) {
+    for zi in z.iter_mut() {
+        if is_real(*zi) {
+            zi.im = 0.0;
+        }
+    }
+    let n = z.len();
+    let mut paired = [false; MAX_DEGREE];
+    for i in 0..n {
+        if paired[i] || z[i].im <= 0.0 {
+            continue;
+        }
+        let partner = (0..n)
+            .filter(|&j| j != i && !paired[j] && z[j].im < 0.0)
+            .min_by(|&j, &k| {
+                let dj = (z[j] - z[i].conj()).norm_sqr();
+                let dk = (z[k] - z[i].conj()).norm_sqr();
+                dj.total_cmp(&dk)
+            });
+        if let Some(j) = partner {
+            let re = 0.5 * (z[i].re + z[j].re);
+            let im = 0.5 * (z[i].im - z[j].im);
+            z[i] = Complex64::new(re, im);
+            z[j] = Complex64::new(re, -im);
+            paired[i] = true;
+            paired[j] = true;
+        }
+    }
+    for (zi, &done) in z.iter_mut().zip(&paired) {
+        if !done && unpaired == Unpaired::MadeReal {
+            zi.im = 0.0;
+        }
+    }
+}
+
+/// Approximations of all roots of the polynomial with coefficients `c` (lowest first,
+/// c[n] ≠ 0): in closed form up to degree 2, by [`aberth`] from a circle beyond.
+fn approximate(c: &[f64], z: &mut [Complex64]) {
     let n = c.len() - 1;
     match n {
         0 => {}
-        1 => z[0] = (-c[0] / c[1], 0.0),
+        1 => z[0] = Complex64::new(-c[0] / c[1], 0.0),
         2 => {
             let (a, b, cc) = (c[2], c[1], c[0]);
             let disc = b * b - 4.0 * a * cc;
             if disc >= 0.0 {
                 let s = -0.5 * (b + disc.sqrt().copysign(b));
                 if s == 0.0 {
-                    z[0] = (0.0, 0.0);
-                    z[1] = (0.0, 0.0);
+                    z[0] = Complex64::new(0.0, 0.0);
+                    z[1] = Complex64::new(0.0, 0.0);
                 } else {
-                    z[0] = (s / a, 0.0);
-                    z[1] = (cc / s, 0.0);
+                    z[0] = Complex64::new(s / a, 0.0);
+                    z[1] = Complex64::new(cc / s, 0.0);
                 }
             } else {
                 let re = -b / (2.0 * a);
                 let im = (-disc).sqrt() / (2.0 * a).abs();
-                z[0] = (re, im);
-                z[1] = (re, -im);
+                z[0] = Complex64::new(re, im);
+                z[1] = Complex64::new(re, -im);
             }
         }
         _ => {
@@ -337,92 +426,23 @@ fn approximate(c: &[f64], z: &mut [C]) {
             }
             for (k, zk) in z.iter_mut().enumerate().take(n) {
                 let angle = 0.4 + std::f64::consts::TAU * k as f64 / n as f64;
-                *zk = (radius * angle.cos(), radius * angle.sin());
+                *zk = Complex64::new(radius * angle.cos(), radius * angle.sin());
             }
-            for _ in 0..MAX_ABERTH_ITERATIONS {
-                let mut moved = false;
-                for i in 0..n {
-                    let (p, dp, _) = horner_c(c, z[i]);
-                    if p.0 == 0.0 && p.1 == 0.0 {
-                        continue;
-                    }
-                    let newton = cdiv(p, dp);
-                    let mut repulsion = (0.0, 0.0);
-                    for j in 0..n {
-                        if j != i {
-                            let d = (z[i].0 - z[j].0, z[i].1 - z[j].1);
-                            let inv = cdiv((1.0, 0.0), d);
-                            repulsion.0 += inv.0;
-                            repulsion.1 += inv.1;
-                        }
-                    }
-                    let nr = cmul(newton, repulsion);
-                    let step = cdiv(newton, (1.0 - nr.0, -nr.1));
-                    if !(step.0.is_finite() && step.1.is_finite()) {
-                        continue;
-                    }
-                    z[i].0 -= step.0;
-                    z[i].1 -= step.1;
-                    if cabs(step) > 4.0 * f64::EPSILON * cabs(z[i]) {
-                        moved = true;
-                    }
-                }
-                if !moved {
-                    break;
-                }
-            }
+            aberth(c, &mut z[..n]);
         }
     }
 }
 
-/// Makes near-real approximations real and pairs the others as exact conjugates, so that the
-/// discs are symmetric about the real axis.
-fn tidy(z: &mut [C]) {
-    let n = z.len();
-    for zi in z.iter_mut() {
-        if zi.1.abs() <= 1e-9 * zi.0.abs() {
-            zi.1 = 0.0;
-        }
-    }
-    let mut paired = [false; MAX_DEGREE];
-    for i in 0..n {
-        if paired[i] || z[i].1 <= 0.0 {
-            continue;
-        }
-        let mut best = None;
-        let mut best_d = f64::INFINITY;
-        for j in 0..n {
-            if j != i && !paired[j] && z[j].1 < 0.0 {
-                let d = (z[j].0 - z[i].0).abs() + (z[j].1 + z[i].1).abs();
-                if d < best_d {
-                    best_d = d;
-                    best = Some(j);
-                }
-            }
-        }
-        match best {
-            Some(j) => {
-                let re = 0.5 * (z[i].0 + z[j].0);
-                let im = 0.5 * (z[i].1 - z[j].1);
-                z[i] = (re, im);
-                z[j] = (re, -im);
-                paired[i] = true;
-                paired[j] = true;
-            }
-            None => z[i].1 = 0.0,
-        }
-    }
-    for i in 0..n {
-        if !paired[i] && z[i].1 != 0.0 {
-            z[i].1 = 0.0;
-        }
-    }
-    // Coincident approximations would make the corrections infinite: separate them.
-    for i in 0..n {
+/// Makes near-real approximations real and pairs the others as exact conjugates
+/// ([`pair_conjugates`]), so that the discs are symmetric about the real axis, and separates
+/// coincident approximations (their discs' radii would be infinite).
+fn tidy(z: &mut [Complex64]) {
+    pair_conjugates(z, |x| x.im.abs() <= 1e-9 * x.re.abs(), Unpaired::MadeReal);
+    for i in 0..z.len() {
         for j in 0..i {
             if z[i] == z[j] {
-                let s = z[i].0.abs().max(z[i].1.abs()).max(f64::MIN_POSITIVE);
-                z[i].0 += 1e-12 * s;
+                let s = z[i].re.abs().max(z[i].im.abs()).max(f64::MIN_POSITIVE);
+                z[i].re += 1e-12 * s;
             }
         }
     }
@@ -460,23 +480,25 @@ fn polish_real(c: &[f64], mut x: f64, lo: f64, hi: f64) -> f64 {
 /// exactly zero), sorted; returns how many were written.
 fn certify(c: &[f64], e: &[f64], roots: &mut [RealRoot; MAX_DEGREE]) -> usize {
     let d = c.len() - 1;
-    let mut z = [(0.0, 0.0); MAX_DEGREE];
+    let mut z = [Complex64::new(0.0, 0.0); MAX_DEGREE];
     approximate(c, &mut z[..d]);
     tidy(&mut z[..d]);
     // Upper bounds on the disc radii n |wᵢ|.
     let lead_lower = (c[d].abs() - e[d]) * (1.0 - 2.0 * UNIT_ROUNDOFF);
     let mut radius = [0.0f64; MAX_DEGREE];
     for i in 0..d {
-        let (p, _, size) = horner_c(c, z[i]);
-        let az = cabs(z[i]);
+        let (p, _) = horner(c, z[i]);
+        let az = z[i].norm();
+        // Σ|cₖ||z|ᵏ, for the bound on Horner's round-off.
+        let size = c.iter().rev().fold(0.0, |acc, &ck| acc * az + ck.abs());
         let slack = e.iter().rev().fold(0.0, |acc, &ek| acc * az + ek);
         let eval_error = 8.0 * (d + 1) as f64 * UNIT_ROUNDOFF * size;
         let numerator =
-            (cabs(p) + eval_error + slack) * (1.0 + 8.0 * UNIT_ROUNDOFF) + TINY * (1.0 + az);
+            (p.norm() + eval_error + slack) * (1.0 + 8.0 * UNIT_ROUNDOFF) + TINY * (1.0 + az);
         let mut denominator = lead_lower;
         for j in 0..d {
             if j != i {
-                denominator *= cabs((z[i].0 - z[j].0, z[i].1 - z[j].1));
+                denominator *= (z[i] - z[j]).norm();
             }
         }
         denominator *= 1.0 - 4.0 * (d + 1) as f64 * UNIT_ROUNDOFF;
@@ -496,7 +518,7 @@ fn certify(c: &[f64], e: &[f64], roots: &mut [RealRoot; MAX_DEGREE]) -> usize {
         let mut changed = false;
         for i in 0..d {
             for j in 0..i {
-                let gap = cabs((z[i].0 - z[j].0, z[i].1 - z[j].1));
+                let gap = (z[i] - z[j]).norm();
                 if gap <= radius[i] + radius[j] && component[i] != component[j] {
                     let (a, b) = (
                         component[i].min(component[j]),
@@ -526,7 +548,7 @@ fn certify(c: &[f64], e: &[f64], roots: &mut [RealRoot; MAX_DEGREE]) -> usize {
         let mut lo = f64::INFINITY;
         let mut hi = f64::NEG_INFINITY;
         for i in members.clone() {
-            let (x, y, r) = (z[i].0, z[i].1.abs(), radius[i]);
+            let (x, y, r) = (z[i].re, z[i].im.abs(), radius[i]);
             if y <= r {
                 let half = if r.is_finite() {
                     ((r - y) * (r + y)).sqrt()
@@ -542,8 +564,8 @@ fn certify(c: &[f64], e: &[f64], roots: &mut [RealRoot; MAX_DEGREE]) -> usize {
         }
         if size == 1 {
             let i = members.clone().next().unwrap_or(0);
-            if z[i].1 == 0.0 {
-                let value = polish_real(c, z[i].0, lo, hi);
+            if z[i].im == 0.0 {
+                let value = polish_real(c, z[i].re, lo, hi);
                 roots[count] = RealRoot::Simple { value, lo, hi };
                 count += 1;
                 continue;
