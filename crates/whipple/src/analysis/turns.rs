@@ -33,7 +33,7 @@
 //! # Ok::<(), whipple::Error>(())
 //! ```
 
-use nalgebra::{DMatrix, DVector, Matrix2x3, RealField, SMatrix, SVector, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix2x3, RealField, SMatrix, SVector, Vector3, Vector4};
 use num_dual::Dual64;
 use serde::Serialize;
 
@@ -249,7 +249,7 @@ fn evaluate<T: RealField + Copy>(
     speed: T,
     torque: T,
 ) -> Result<Evaluation<T>> {
-    let unit = model.manifold_state(lean, steer, [T::one(), T::zero(), T::zero()])?;
+    let unit = model.reduced_state(&Vector4::new(lean, steer, T::zero(), T::zero()), T::one())?;
     // The rear contact's velocity for a unit hub speed: the contact point is fixed in the rear
     // frame, which turns about the vertical at ψ̇ (φ̇ = 0 and the pitch is constant).
     let omega = frame_rate_world(model, &unit);
@@ -697,7 +697,9 @@ pub(crate) struct TurnField<'a> {
 
 impl VectorField<5> for TurnField<'_> {
     fn eval<T: RealField + Copy>(&self, x: &SVector<T, 5>) -> Result<SVector<T, 5>> {
-        let state = self.model.manifold_state(x[0], x[1], [x[4], x[2], x[3]])?;
+        let state = self
+            .model
+            .reduced_state(&Vector4::new(x[0], x[1], x[2], x[3]), x[4])?;
         let d = self.model.forward(
             &state,
             &Inputs {

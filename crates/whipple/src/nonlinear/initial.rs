@@ -109,32 +109,52 @@ pub(crate) fn solve_tree_speeds<T: RealField + Copy>(
 
 impl Model {
     /// A state that satisfies all constraints, built from a few numbers: the pitch of the rear
-    /// frame by Newton iteration on the front contact height, every other coordinate from the
-    /// joints, and the dependent speeds from the velocity constraints given speed, lean rate
-    /// and steer rate. Wheel rotation angles start at zero.
+    /// frame by Newton iteration on the front contact height ([`Model::pitch_for`]), and the
+    /// rest by [`Model::consistent_state`]. Wheel rotation angles start at zero.
     pub fn initial_state(&self, ic: &InitialConditions) -> Result<State<f64>> {
         ic.validate()?;
         let pitch = self.pitch_for(ic.lean, ic.steer, 0.0)?;
-        let q = self.configuration(
-            [ic.yaw, ic.lean, pitch],
-            ic.steer,
-            [0.0, 0.0],
+        self.consistent_state(
+            [ic.yaw, ic.lean, ic.steer],
             [ic.rear_contact_x, ic.rear_contact_y],
+            pitch,
+            [ic.speed, ic.lean_rate, ic.steer_rate],
+        )
+        .ok_or_else(|| Error::InvalidArgument {
+            what: "initial conditions",
+            rule: "speed, lean rate and steer rate do not determine the motion in this \
+                   configuration (singular velocity constraints)"
+                .into(),
+        })
+    }
+
+    /// The one builder of a consistent state, in any scalar: at yaw ψ, lean φ and steer δ
+    /// (`angles`), the rear contact at `rear_contact` (x, y) and a pitch that puts the front
+    /// wheel down, every other coordinate from the joints (wheel angles zero), and the nine
+    /// tree speeds from the six contact rows with the forward speed (the rear hub's velocity
+    /// along the heading), lean rate and steer rate. None when the velocity constraints are
+    /// singular there.
+    pub(crate) fn consistent_state<T: RealField + Copy>(
+        &self,
+        [yaw, lean, steer]: [T; 3],
+        rear_contact: [T; 2],
+        pitch: T,
+        speed_and_rates: [T; 3],
+    ) -> Option<State<T>> {
+        let q = self.configuration(
+            [yaw, lean, pitch],
+            steer,
+            [T::zero(), T::zero()],
+            rear_contact,
         );
         let poses = Poses::new(&q);
         let (tree, _) = self.tree(&poses, &SVector::zeros());
         let jac = tree.jacobians();
         let (g, _) = self.contact_rows(&poses, &tree, &jac, &tree.bias);
         let heading =
-            poses.rot[REAR_FRAME].transpose() * Vector3::new(ic.yaw.cos(), ic.yaw.sin(), 0.0);
-        let w = solve_tree_speeds(&g, &heading, pitch, [ic.speed, ic.lean_rate, ic.steer_rate])
-            .ok_or_else(|| Error::InvalidArgument {
-                what: "initial conditions",
-                rule: "speed, lean rate and steer rate do not determine the motion in this \
-                       configuration (singular velocity constraints)"
-                    .into(),
-            })?;
-        Ok(State {
+            poses.rot[REAR_FRAME].transpose() * Vector3::new(yaw.cos(), yaw.sin(), T::zero());
+        let w = solve_tree_speeds(&g, &heading, pitch, speed_and_rates)?;
+        Some(State {
             q,
             u: speeds_of(&jac, &w),
         })

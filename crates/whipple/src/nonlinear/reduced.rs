@@ -15,22 +15,16 @@
 //! vanish for every v at x = 0), and the speed's own rate is even in x, so it decouples at first
 //! order.
 
-use nalgebra::{Matrix3, RealField, SMatrix, SVector, Vector3, Vector4};
-use num_dual::Dual64;
+use nalgebra::{Matrix3, RealField, SVector, Vector3, Vector4};
 
 use super::Model;
 use super::forward::{Inputs, StateRates};
-use super::initial::solve_tree_speeds;
 use super::poses::Poses;
 use super::rotation;
 use super::state::{BODY_PITCH, COORDINATES, STATE_LEN, State};
-use super::topology::{FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL, TREE};
-use super::tree::speeds_of;
+use super::topology::{FRONT_FRAME, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};
 use crate::analysis::linearize::VectorField;
 use crate::error::{Error, Result};
-
-/// Chord iterations allowed for the pitch of a reduced state.
-const PITCH_ITERATIONS: usize = 50;
 
 #[inline]
 fn c<T: RealField + Copy>(x: f64) -> T {
@@ -39,111 +33,27 @@ fn c<T: RealField + Copy>(x: f64) -> T {
 
 impl Model {
     /// The full consistent state with lean, steer, lean rate and steer rate `x = [φ, δ, φ̇, δ̇]`
-    /// and forward speed `speed`, heading along +x from the origin, wheel angles zero.
+    /// and forward speed `speed`, heading along +x from the origin, wheel angles zero (with
+    /// zero rates, a steady turn's state), for any lean and steer at which the front wheel can
+    /// touch the ground.
     ///
-    /// The rear frame's pitch is found by chord iterations `θ ← θ − h(θ)/h'(θ₀)` on the front
-    /// contact height h, with h' taken once at upright (θ₀); for dual numbers the first step
-    /// already carries the exact derivative ∂θ/∂x = −(∂h/∂θ)⁻¹ ∂h/∂x (the implicit function
-    /// theorem) and the further steps refine the value part only. Every other coordinate follows
-    /// from the joints; the nine tree speeds solve the six contact rows with the three given
-    /// speeds (LU, in the scalar type).
+    /// The rear frame's pitch is [`Model::ground_pitch`]'s from upright's (for dual numbers with
+    /// the exact derivative ∂θ/∂x = −(∂h/∂θ)⁻¹ ∂h/∂x of the implicit function theorem); every
+    /// other coordinate and speed is [`Model::consistent_state`]'s.
     pub fn reduced_state<T: RealField + Copy>(&self, x: &Vector4<T>, speed: T) -> Result<State<T>> {
         let [lean, steer, lean_rate, steer_rate] = [x[0], x[1], x[2], x[3]];
-        // Pitch at upright, and the front height's slope there.
-        let pitch0 = self.pitch_for(0.0, 0.0, 0.0)?;
-        let zero = Dual64::from_re(0.0);
-        let slope = self
-            .front_height([zero, zero, Dual64::new(pitch0, 1.0)], zero, [zero, zero])
-            .eps;
-        if !(slope.is_finite() && slope != 0.0) {
-            return Err(Error::SingularDynamics {
-                context: format!("the front contact height does not depend on pitch ({slope})"),
-            });
-        }
-        let mut pitch: T = c(pitch0);
-        let mut converged = false;
-        let mut residual = f64::INFINITY;
-        for _ in 0..PITCH_ITERATIONS {
-            let h = self.front_height([T::zero(), lean, pitch], steer, [T::zero(), T::zero()]);
-            let step = h / c(slope);
-            pitch -= step;
-            if !step.is_finite() {
-                break;
-            }
-            // Compared on the value part (dual numbers order by it).
-            let tiny: T = c(1e-15);
-            if step.abs() <= tiny * (T::one() + pitch.abs()) {
-                converged = true;
-                break;
-            }
-            residual = nalgebra::try_convert::<T, f64>(h.abs()).unwrap_or(f64::NAN);
-        }
-        if !converged {
-            return Err(Error::NoConvergence {
-                method: "chord iteration for the rear frame pitch of a reduced state",
-                iterations: PITCH_ITERATIONS,
-                residual,
-            });
-        }
-        self.state_at_pitch(lean, steer, pitch, [speed, lean_rate, steer_rate])
-    }
-
-    /// The full consistent state at lean φ, steer δ, forward speed v, lean rate φ̇ and steer rate
-    /// δ̇ (with zero rates, a steady turn's state), for any lean and steer at which the front
-    /// wheel can touch the ground: the pitch by [`Model::ground_pitch`] from upright's pitch
-    /// (for dual numbers with the exact derivative of the pitch). Heading along +x from the
-    /// origin, wheel angles zero. Unlike [`Model::reduced_state`] (chord steps with upright's
-    /// slope, fast near upright) it converges with the front wheel turned far round.
-    pub(crate) fn manifold_state<T: RealField + Copy>(
-        &self,
-        lean: T,
-        steer: T,
-        speed_and_rates: [T; 3],
-    ) -> Result<State<T>> {
         let upright = self.pitch_for(0.0, 0.0, 0.0)?;
         let pitch = self.ground_pitch(lean, steer, upright)?;
-        self.state_at_pitch(lean, steer, pitch, speed_and_rates)
-    }
-
-    /// The consistent state at lean, steer and a pitch that puts the front wheel down: every
-    /// other coordinate from the joints, the nine tree speeds from the six contact rows and the
-    /// forward speed, lean rate and steer rate.
-    fn state_at_pitch<T: RealField + Copy>(
-        &self,
-        lean: T,
-        steer: T,
-        pitch: T,
-        [speed, lean_rate, steer_rate]: [T; 3],
-    ) -> Result<State<T>> {
-        let q = self.configuration(
-            [T::zero(), lean, pitch],
-            steer,
+        self.consistent_state(
+            [T::zero(), lean, steer],
             [T::zero(), T::zero()],
-            [T::zero(), T::zero()],
-        );
-        let poses = Poses::new(&q);
-        let (tree, _) = self.tree(&poses, &SVector::zeros());
-        // The six contact rows in the nine tree speeds.
-        let mut g = SMatrix::<T, 6, TREE>::zeros();
-        let zero3 = Vector3::<T>::zeros();
-        for (i, contact) in self.contacts.iter().enumerate() {
-            let rows = contact.rows(&poses, &zero3, &zero3, &zero3);
-            g.fixed_rows_mut::<3>(3 * i).copy_from(
-                &(rows.wheel * tree.jac(contact.wheel) + rows.frame * tree.jac(contact.frame)),
-            );
-        }
-        // Forward speed: the rear hub velocity ν (rear frame axes) along the heading (+x).
-        let heading = poses.rot[REAR_FRAME].transpose() * Vector3::x();
-        let w = solve_tree_speeds(&g, &heading, pitch, [speed, lean_rate, steer_rate]).ok_or_else(
-            || Error::SingularDynamics {
-                context: "speed, lean rate and steer rate do not determine the motion of the \
-                          reduced state (singular velocity constraints)"
-                    .into(),
-            },
-        )?;
-        Ok(State {
-            q,
-            u: speeds_of(&tree.jacobians(), &w),
+            pitch,
+            [speed, lean_rate, steer_rate],
+        )
+        .ok_or_else(|| Error::SingularDynamics {
+            context: "speed, lean rate and steer rate do not determine the motion of the \
+                      reduced state (singular velocity constraints)"
+                .into(),
         })
     }
 
