@@ -172,6 +172,10 @@ fn located(error: Error, path: &Path, text: &str) -> anyhow::Error {
                 " ".repeat(caret)
             )
         }
-        _ => anyhow!("{}: {error}", path.display()),
+        _ => anyhow!(
+            "{}: {}",
+            path.display(),
+            whipple_front::message::message(&error)
+        ),
     }
 }

@@ -134,6 +134,9 @@ pub fn convert(
     let text = write(&bicycle, format).with_context(|| {
         if format == Format::Jbike6M && !keep_form {
             "--to m needs --keep-form (the benchmark form has no .m layout)".to_string()
+        } else if keep_form && bicycle.jbike6().is_some() {
+            "--keep-form keeps the JBike6 bodies: leave it out to write the benchmark form"
+                .to_string()
         } else {
             format!("writing {}", bike.label)
         }

@@ -367,8 +367,8 @@ pub mod advanced {
         /// ```
         pub use crate::parameters::io::Format;
         pub use crate::parameters::io::{
-            FORMATS, MAX_FILE_BYTES, json_slice_without_duplicates, json_without_duplicates, parse,
-            write,
+            FORMATS, MAX_FILE_BYTES, UNDETERMINED_FORMAT, json_slice_without_duplicates,
+            json_without_duplicates, parse, write,
         };
     }
     #[doc = "The linearized model: canonical matrices, state space, characteristic polynomial."]

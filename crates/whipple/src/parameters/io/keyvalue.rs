@@ -287,7 +287,7 @@ fn is_raw_measurement(key: &str) -> bool {
 pub(crate) fn extra_meaning(key: &str) -> Option<&'static str> {
     Some(match key {
         "v" => {
-            "forward speed the file's owner evaluated the model at [m/s]; whipple takes speeds as arguments (--speed, --speeds, --range)"
+            "forward speed the file's owner evaluated the model at [m/s]; whipple takes the speeds as arguments of each analysis"
         }
         "d1" => {
             "Moore 2012's rear offset: rear wheel centre to the steer axis [m], redundant with w, c, lam, rR"

@@ -154,14 +154,13 @@ impl Format {
                 .collect::<Vec<_>>()
                 .join("; ");
             Err(Error::Parse {
-                format: "parameter",
+                format: UNDETERMINED_FORMAT,
                 field: None,
                 line: 0,
                 column: 0,
                 message: format!(
-                    "cannot tell the format of {}: {why}. The formats are {list}. Name one \
-                     (the CLI's --bike-format, the web API's `format`) or give the file its \
-                     extension",
+                    "cannot tell the format of {}: {why}. The formats are {list}. Name one or \
+                     give the file its extension",
                     shorten(file_name, 80)
                 ),
             })
@@ -221,6 +220,10 @@ impl Format {
         Ok(Format::BicycleParametersTxt)
     }
 }
+
+/// The [`Error::Parse`] `format` of a file whose format could not be told (from its extension
+/// or its text): the front ends name their own way to give it.
+pub const UNDETERMINED_FORMAT: &str = "parameter";
 
 /// The largest parameter file read, in bytes (4 MiB): the field's files are a few kilobytes, and
 /// a reader of a file past this stops there (`--bike /dev/zero` would otherwise read until

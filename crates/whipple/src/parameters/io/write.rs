@@ -44,7 +44,7 @@ pub(crate) fn write(bike: &Bicycle, format: Format) -> Result<String> {
                 Description::Jbike6(_) => Err(Error::InvalidArgument {
                     what: "format",
                     rule: format!(
-                        "{} holds the benchmark form only: convert the JBike6 bodies first (without --keep-form)",
+                        "{} holds the benchmark form only: convert the JBike6 bodies to it first",
                         format.label()
                     ),
                 }),
