@@ -256,7 +256,7 @@ mod tests {
         let benchmark = bike("benchmark");
         let trail = AxisSpec::parse(" trail = 0 : 0.2 : 5", &benchmark)?;
         assert_eq!(trail.name, "trail");
-        assert_eq!(trail.axis.parameter, Parameter::Benchmark("c".into()));
+        assert_eq!(trail.axis.parameter, Parameter::find("c", &benchmark)?);
         assert_eq!(
             (trail.axis.start, trail.axis.stop, trail.axis.count),
             (0.0, 0.2, 5)

@@ -238,7 +238,7 @@ pub use nonlinear::SimulationSettings;
 /// use whipple::advanced::design::{Axis, Parameter, Shard, StudySettings};
 /// use whipple::{presets, Study};
 /// let bike = presets::find("benchmark")?.bicycle();
-/// let x = Axis::new(Parameter::Benchmark("c".into()), 0.05, 0.1, 3)?; // trail c [m]
+/// let x = Axis::new(Parameter::find("c", &bike)?, 0.05, 0.1, 3)?; // trail c [m]
 /// let study = Study::new(bike, x, None, StudySettings::default())?;
 /// let mut rows = Vec::new();
 /// study.run(Shard::WHOLE, &Default::default(), |chunk| { rows.extend_from_slice(chunk); Ok(()) })?;

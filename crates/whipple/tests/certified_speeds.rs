@@ -470,8 +470,8 @@ proptest! {
         cells in proptest::collection::vec((0usize..41, 0usize..31), 8),
     ) {
         let bike = presets::find("benchmark").map_err(|e| TestCaseError::fail(e.to_string()))?.bicycle();
-        let x = Axis::new(Parameter::Benchmark("c".into()), trail.0, trail.1, 41).map_err(|e| TestCaseError::fail(e.to_string()))?;
-        let y = Axis::scaled(Parameter::Benchmark("head_angle".into()), head.0, head.1, 31, 1f64.to_radians()).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let x = Axis::new(Parameter::find("c", &bike).map_err(|e| TestCaseError::fail(e.to_string()))?, trail.0, trail.1, 41).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        let y = Axis::scaled(Parameter::HeadAngle, head.0, head.1, 31, 1f64.to_radians()).map_err(|e| TestCaseError::fail(e.to_string()))?;
         let study = Study::new(bike, x.clone(), Some(y.clone()), StudySettings::default()).map_err(|e| TestCaseError::fail(e.to_string()))?;
         for (ix, iy) in cells {
             let row = study.design((iy * 41 + ix) as u64);
@@ -503,8 +503,8 @@ proptest! {
 fn shards_reassemble_the_whole_study() -> Result<()> {
     let bike: Bicycle = presets::find("schwinn-crown")?.bicycle();
     assert!(matches!(bike.description, Description::Jbike6(_)));
-    let x = Axis::new(Parameter::Jbike6("trail".into()), 0.0, 0.2, 23)?;
-    let y = Axis::new(Parameter::Jbike6("ycmrider".into()), 0.8, 1.4, 7)?;
+    let x = Axis::new(Parameter::find("trail", &bike)?, 0.0, 0.2, 23)?;
+    let y = Axis::new(Parameter::find("ycmrider", &bike)?, 0.8, 1.4, 7)?;
     let study = Study::new(bike, x, Some(y), StudySettings::default())?;
     let stop = AtomicBool::new(false);
     let mut whole = Vec::new();
@@ -530,8 +530,8 @@ fn shards_reassemble_the_whole_study() -> Result<()> {
 #[test]
 fn a_designs_bicycle_is_the_one_computed() -> Result<()> {
     let bike: Bicycle = presets::find("schwinn-crown")?.bicycle();
-    let x = Axis::new(Parameter::Jbike6("trail".into()), 0.0, 0.2, 23)?;
-    let y = Axis::new(Parameter::Jbike6("ycmrider".into()), 0.8, 1.4, 7)?;
+    let x = Axis::new(Parameter::find("trail", &bike)?, 0.0, 0.2, 23)?;
+    let y = Axis::new(Parameter::find("ycmrider", &bike)?, 0.8, 1.4, 7)?;
     let study = Study::new(bike, x, Some(y), StudySettings::default())?;
     let index = 5 * 23 + 9;
     let design = study.bicycle_at(index)?;
@@ -587,11 +587,61 @@ fn jbike6_parameters_take_toml_paths() -> Result<()> {
     Ok(())
 }
 
+/// An axis of one form over a base of the other is refused, naming the parameter and both
+/// forms (it once left every design equal to the base).
+#[test]
+fn an_axis_of_the_other_form_is_refused() -> Result<()> {
+    let benchmark = presets::find("benchmark")?.bicycle();
+    let crown = presets::find("schwinn-crown")?.bicycle();
+    for (base, parameter) in [
+        (crown.clone(), Parameter::find("c", &benchmark)?),
+        (crown, Parameter::WheelRadius),
+        (
+            benchmark.clone(),
+            Parameter::find("mrider", &presets::find("schwinn-crown")?.bicycle())?,
+        ),
+        (benchmark, Parameter::WheelDiameter),
+    ] {
+        let x = Axis::new(parameter, 0.1, 0.2, 3)?;
+        let Err(error) = Study::new(base, x, None, StudySettings::default()) else {
+            panic!("{} over the other form was accepted", parameter.name());
+        };
+        let text = error.to_string();
+        assert!(text.contains(&format!("`{}`", parameter.name())), "{text}");
+        assert!(
+            text.contains("JBike6 form") && text.contains("benchmark form"),
+            "{text}"
+        );
+    }
+    Ok(())
+}
+
+/// A parameter serializes as the answers have always shown it: its form and its key.
+#[test]
+fn parameters_serialize_as_form_and_key() -> Result<()> {
+    let bike = presets::find("benchmark")?.bicycle();
+    let json = |p: Parameter| serde_json::to_string(&p).unwrap_or_default();
+    assert_eq!(
+        json(Parameter::find("trail", &bike)?),
+        r#"{"kind":"benchmark","name":"c"}"#
+    );
+    assert_eq!(
+        json(Parameter::HeadAngle),
+        r#"{"kind":"benchmark","name":"head_angle"}"#
+    );
+    assert_eq!(
+        json(Parameter::WheelDiameter),
+        r#"{"kind":"jbike6","name":"wheel_diameter"}"#
+    );
+    assert_eq!(json(Parameter::Speed), r#"{"kind":"speed"}"#);
+    Ok(())
+}
+
 /// A design that breaks a rule is marked with the rule and never stops the study.
 #[test]
 fn invalid_designs_are_marked_not_computed() -> Result<()> {
     let bike = presets::find("benchmark")?.bicycle();
-    let x = Axis::new(Parameter::Benchmark("mB".into()), -10.0, 10.0, 3)?;
+    let x = Axis::new(Parameter::find("mB", &bike)?, -10.0, 10.0, 3)?;
     let study = Study::new(bike, x, None, StudySettings::default())?;
     let first = study.design(0);
     assert_eq!(first.status, DesignStatus::Invalid);

@@ -456,10 +456,18 @@ fn txt_values_evaluate_with_the_usual_precedence() -> Result<(), Error> {
 #[test]
 fn ambiguous_text_files_list_the_formats() {
     let m = message(Format::detect("bike.txt", "# only a comment\n"));
-    for name in ["bp-txt", "hc-txt", "yaml", "Name one or give the file its extension"] {
+    for name in [
+        "bp-txt",
+        "hc-txt",
+        "yaml",
+        "Name one or give the file its extension",
+    ] {
         assert!(m.contains(name), "{m}");
     }
-    assert!(!m.contains("--bike-format"), "the library names no option: {m}");
+    assert!(
+        !m.contains("--bike-format"),
+        "the library names no option: {m}"
+    );
 }
 
 /// Errors name a field, a line or the format: the condition every random file must meet.

@@ -23,7 +23,7 @@ use super::modes::Mode;
 use super::stability::{self, summary};
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, CharacteristicPolynomial, SpeedPolynomials};
-use crate::parameters::table::{ANGLE_UNIT, Form, parameters};
+use crate::parameters::table::{ANGLE_UNIT, Form, ParameterInfo, parameters};
 use crate::parameters::{Bicycle, Description};
 
 /// The most designs one study may hold (a 100,000 × 100,000 map).
@@ -32,19 +32,46 @@ pub(crate) const MAX_DESIGNS: u64 = 10_000_000_000;
 /// The most points on one axis.
 pub const MAX_AXIS_POINTS: usize = 10_000_000;
 
-/// What an axis varies.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(rename_all = "snake_case", tag = "kind", content = "name")]
+/// What an axis varies: a parameter of the table of the base's form, one of the aliases that
+/// stand for a derived parameter or two at once, or the speed. Typed: built from a name by
+/// [`Parameter::named`], which knows the table.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Parameter {
-    /// A benchmark parameter by its file key (`w`, `c`, `lam`, `g`, `rR`, `mB`, `IBxx`, …), or
-    /// `head_angle` (π/2 − λ) or `wheel_radius` (rR and rF together).
-    Benchmark(String),
-    /// A JBike6 parameter by its `.m` name (`wheelbase`, `head_angle`, `trail`, `gravity`,
-    /// `mrider`, `xcmrider`, `ycmrider`, `Irider(1)`, `alphaIrider`, `Drearwheel`, …), or
-    /// `wheel_diameter` (both wheels).
-    Jbike6(String),
+    /// A parameter of the table ([`crate::advanced::parameters::parameters`]) of either form:
+    /// a benchmark key (`w`, `c`, `lam`, `g`, `rR`, `mB`, `IBxx`, …) or a JBike6 `.m` key
+    /// (`wheelbase`, `head_angle`, `trail`, `gravity`, `mrider`, `Irider(1)`, `Drearwheel`, …).
+    Table(&'static ParameterInfo),
+    /// The benchmark form's head angle π/2 − λ (`head_angle`; the JBike6 form's own
+    /// `head_angle` is a table entry).
+    HeadAngle,
+    /// The benchmark form's two wheel radii rR and rF together (`wheel_radius`).
+    WheelRadius,
+    /// The JBike6 form's two wheel diameters together (`wheel_diameter`).
+    WheelDiameter,
     /// The forward speed v [m/s] at which the speed-dependent quantities are read.
     Speed,
+}
+
+/// The answers' layout of a parameter: `{"kind": "benchmark" | "jbike6", "name": key}`, or
+/// `{"kind": "speed"}`.
+impl Serialize for Parameter {
+    fn serialize<S: serde::Serializer>(
+        &self,
+        serializer: S,
+    ) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let (kind, name) = match self.form() {
+            Some(Form::Benchmark) => ("benchmark", Some(self.name())),
+            Some(Form::Jbike6) => ("jbike6", Some(self.name())),
+            None => ("speed", None),
+        };
+        let mut s = serializer.serialize_struct("Parameter", 1 + usize::from(name.is_some()))?;
+        s.serialize_field("kind", kind)?;
+        if let Some(name) = name {
+            s.serialize_field("name", name)?;
+        }
+        s.end()
+    }
 }
 
 /// One axis of a study: a parameter over `count` evenly spaced values from `start` to `stop`
@@ -63,6 +90,14 @@ pub struct Axis {
     pub count: usize,
     /// SI units per unit of `start` and `stop` (1 for SI values).
     pub scale: f64,
+}
+
+/// A form's name in messages.
+fn form_name(form: Form) -> &'static str {
+    match form {
+        Form::Benchmark => "benchmark",
+        Form::Jbike6 => "JBike6",
+    }
 }
 
 /// Benchmark-form names that may stand for the keys (aliases of the paper's symbols).
@@ -86,7 +121,8 @@ impl Parameter {
     /// use whipple::advanced::design::Parameter;
     /// use whipple::presets;
     /// let bike = presets::find("benchmark")?.bicycle();
-    /// assert_eq!(Parameter::named("trail", &bike), Some(Parameter::Benchmark("c".into())));
+    /// let Some(Parameter::Table(trail)) = Parameter::named("trail", &bike) else { panic!() };
+    /// assert_eq!((trail.key, trail.unit), ("c", "m"));
     /// assert_eq!(Parameter::named("mrider", &bike), None);
     /// # Ok::<(), whipple::Error>(())
     /// ```
@@ -94,43 +130,67 @@ impl Parameter {
         if name == "speed" || name == "v" {
             return Some(Parameter::Speed);
         }
-        match &base.description {
-            Description::Benchmark(b) => {
-                let key = benchmark_alias(name);
-                let known = b.fields().iter().any(|(k, _)| *k == key)
-                    || key == "head_angle"
-                    || key == "wheel_radius";
-                known.then(|| Parameter::Benchmark(key.to_string()))
+        let (form, key) = match &base.description {
+            Description::Benchmark(_) => match benchmark_alias(name) {
+                "head_angle" => return Some(Parameter::HeadAngle),
+                "wheel_radius" => return Some(Parameter::WheelRadius),
+                key => (Form::Benchmark, key),
+            },
+            // A TOML path (`rider.ycm`, `rider.I[1]`) names the same parameter as its `.m` key
+            // (`ycmrider`, `Irider(1)`).
+            Description::Jbike6(_) if name == "wheel_diameter" => {
+                return Some(Parameter::WheelDiameter);
             }
-            Description::Jbike6(j) => {
-                // A TOML path (`rider.ycm`, `rider.I[1]`) names the same parameter as its `.m`
-                // key (`ycmrider`, `Irider(1)`).
-                let key = parameters(Form::Jbike6)
-                    .iter()
-                    .find(|p| p.path == name)
-                    .map_or(name, |p| p.key);
-                (j.get(key).is_some() || key == "wheel_diameter")
-                    .then(|| Parameter::Jbike6(key.to_string()))
-            }
+            Description::Jbike6(_) => (Form::Jbike6, name),
+        };
+        parameters(form)
+            .iter()
+            .find(|p| p.key == key || (form == Form::Jbike6 && p.path == key))
+            .map(Parameter::Table)
+    }
+
+    /// [`Parameter::named`], or an error that names `name` and the base's form.
+    pub fn find(name: &str, base: &Bicycle) -> Result<Parameter> {
+        Parameter::named(name, base).ok_or_else(|| Error::InvalidArgument {
+            what: "axis",
+            rule: format!(
+                "the {} form has no parameter `{name}`",
+                form_name(base.description.form())
+            ),
+        })
+    }
+
+    /// The form whose descriptions it varies; `None` for the speed.
+    pub fn form(&self) -> Option<Form> {
+        match self {
+            Parameter::Table(info) => Some(info.form),
+            Parameter::HeadAngle | Parameter::WheelRadius => Some(Form::Benchmark),
+            Parameter::WheelDiameter => Some(Form::Jbike6),
+            Parameter::Speed => None,
+        }
+    }
+
+    /// Its name: the table's key (`c`, `mrider`), the alias (`head_angle`, `wheel_radius`,
+    /// `wheel_diameter`), or `speed`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Parameter::Table(info) => info.key,
+            Parameter::HeadAngle => "head_angle",
+            Parameter::WheelRadius => "wheel_radius",
+            Parameter::WheelDiameter => "wheel_diameter",
+            Parameter::Speed => "speed",
         }
     }
 
     /// The SI unit of the parameter, from the parameter table (`rad`, `kg m^2`, `m`); `m/s` for
-    /// the speed, `rad` for the benchmark form's derived `head_angle`, `m` for the wheel
+    /// the speed, `rad` for the benchmark form's derived head angle, `m` for the wheel
     /// aliases.
     pub fn unit(&self) -> &'static str {
-        let (form, key) = match self {
-            Parameter::Speed => return "m/s",
-            Parameter::Benchmark(key) => (Form::Benchmark, key.as_str()),
-            Parameter::Jbike6(key) => (Form::Jbike6, key.as_str()),
-        };
-        match (form, key) {
-            (Form::Benchmark, "head_angle") => "rad",
-            (Form::Benchmark, "wheel_radius") | (Form::Jbike6, "wheel_diameter") => "m",
-            _ => parameters(form)
-                .iter()
-                .find(|p| p.key == key)
-                .map_or("", |p| p.unit),
+        match self {
+            Parameter::Table(info) => info.unit,
+            Parameter::HeadAngle => ANGLE_UNIT,
+            Parameter::WheelRadius | Parameter::WheelDiameter => "m",
+            Parameter::Speed => "m/s",
         }
     }
 
@@ -146,7 +206,8 @@ impl Axis {
     ///
     /// ```
     /// use whipple::advanced::design::{Axis, Parameter};
-    /// let trail = Axis::new(Parameter::Benchmark("c".into()), 0.0, 0.2, 5)?;
+    /// let bike = whipple::presets::find("benchmark")?.bicycle();
+    /// let trail = Axis::new(Parameter::find("c", &bike)?, 0.0, 0.2, 5)?;
     /// assert_eq!(trail.si_value(2), 0.1);
     /// # Ok::<(), whipple::Error>(())
     /// ```
@@ -208,28 +269,26 @@ impl Axis {
 /// Puts an axis's value `x` (SI units) into a description: by the parameter table's key
 /// ([`crate::parameters::BenchmarkParameters::set`], [`crate::parameters::Jbike6Parameters::set`]), or an alias that sets two
 /// parameters (`wheel_radius`, `wheel_diameter`) or a derived one (`head_angle` of the benchmark
-/// form). The parameter exists in the description's form ([`Parameter::named`]).
+/// form). The parameter belongs to the description's form ([`Parameter::named`]).
 fn set_parameter(description: &mut Description, parameter: &Parameter, x: f64) {
     match (parameter, description) {
-        (Parameter::Benchmark(key), Description::Benchmark(b)) => match key.as_str() {
-            "head_angle" => b.lambda = std::f64::consts::FRAC_PI_2 - x,
-            "wheel_radius" => {
-                b.r_r = x;
-                b.r_f = x;
-            }
-            key => {
-                b.set(key, x);
-            }
-        },
-        (Parameter::Jbike6(name), Description::Jbike6(j)) => match name.as_str() {
-            "wheel_diameter" => {
-                j.rear_wheel.diameter = x;
-                j.front_wheel.diameter = x;
-            }
-            key => {
-                j.set(key, x);
-            }
-        },
+        (Parameter::Table(info), Description::Benchmark(b)) if info.form == Form::Benchmark => {
+            b.set(info.key, x);
+        }
+        (Parameter::Table(info), Description::Jbike6(j)) if info.form == Form::Jbike6 => {
+            j.set(info.key, x);
+        }
+        (Parameter::HeadAngle, Description::Benchmark(b)) => {
+            b.lambda = std::f64::consts::FRAC_PI_2 - x;
+        }
+        (Parameter::WheelRadius, Description::Benchmark(b)) => {
+            b.r_r = x;
+            b.r_f = x;
+        }
+        (Parameter::WheelDiameter, Description::Jbike6(j)) => {
+            j.rear_wheel.diameter = x;
+            j.front_wheel.diameter = x;
+        }
         _ => {}
     }
 }
@@ -394,7 +453,7 @@ impl Study {
     /// use whipple::advanced::design::{Axis, Parameter, StudySettings, Shard};
     /// use whipple::{Study, presets};
     /// let bike = presets::find("benchmark")?.bicycle();
-    /// let x = Axis::new(Parameter::Benchmark("c".into()), 0.0, 0.2, 5)?;
+    /// let x = Axis::new(Parameter::find("c", &bike)?, 0.0, 0.2, 5)?;
     /// let study = Study::new(bike, x, None, StudySettings::default())?;
     /// let mut rows = Vec::new();
     /// study.run(Shard::WHOLE, &Default::default(), |chunk| { rows.extend_from_slice(chunk); Ok(()) })?;
@@ -418,6 +477,22 @@ impl Study {
                 what: "axis",
                 rule: format!("{total} designs is more than the limit of {MAX_DESIGNS}"),
             });
+        }
+        // Each axis varies a parameter of the base's own form.
+        for axis in std::iter::once(&x).chain(y.as_ref()) {
+            if let Some(form) = axis.parameter.form() {
+                if form != base.description.form() {
+                    return Err(Error::InvalidArgument {
+                        what: "axis",
+                        rule: format!(
+                            "`{}` is a parameter of the {} form, and the base is in the {} form",
+                            axis.parameter.name(),
+                            form_name(form),
+                            form_name(base.description.form())
+                        ),
+                    });
+                }
+            }
         }
         // The base itself must be a valid bicycle.
         base.benchmark()?;
@@ -447,8 +522,8 @@ impl Study {
     /// use whipple::advanced::design::{Axis, Parameter, StudySettings};
     /// use whipple::{Study, presets};
     /// let bike = presets::find("benchmark")?.bicycle(); // rR = 0.3 m, rF = 0.35 m
-    /// let trail = Axis::new(Parameter::Benchmark("c".into()), 0.0, 0.2, 5)?;
-    /// let radius = Axis::new(Parameter::Benchmark("wheel_radius".into()), 0.2, 0.5, 4)?;
+    /// let trail = Axis::new(Parameter::find("c", &bike)?, 0.0, 0.2, 5)?;
+    /// let radius = Axis::new(Parameter::WheelRadius, 0.2, 0.5, 4)?;
     /// let study = Study::new(bike, trail, Some(radius), StudySettings::default())?;
     /// assert_eq!(study.base_point(), (Some(0.08), None));
     /// # Ok::<(), whipple::Error>(())
@@ -457,20 +532,18 @@ impl Study {
         let at = |a: &Axis| -> Option<f64> {
             let si = match (&a.parameter, &self.base.description) {
                 (Parameter::Speed, _) => return None,
-                (Parameter::Benchmark(k), Description::Benchmark(b)) => match k.as_str() {
-                    "head_angle" => std::f64::consts::FRAC_PI_2 - b.lambda,
-                    // The alias sets both radii: a base with two sizes is on no point of it.
-                    "wheel_radius" if b.r_r == b.r_f => b.r_r,
-                    "wheel_radius" => return None,
-                    key => b.get(key)?,
-                },
-                (Parameter::Jbike6(n), Description::Jbike6(j)) => match n.as_str() {
-                    "wheel_diameter" if j.rear_wheel.diameter == j.front_wheel.diameter => {
-                        j.rear_wheel.diameter
-                    }
-                    "wheel_diameter" => return None,
-                    name => j.get(name)?,
-                },
+                (Parameter::Table(info), Description::Benchmark(b)) => b.get(info.key)?,
+                (Parameter::Table(info), Description::Jbike6(j)) => j.get(info.key)?,
+                (Parameter::HeadAngle, Description::Benchmark(b)) => {
+                    std::f64::consts::FRAC_PI_2 - b.lambda
+                }
+                // The alias sets both radii: a base with two sizes is on no point of it.
+                (Parameter::WheelRadius, Description::Benchmark(b)) if b.r_r == b.r_f => b.r_r,
+                (Parameter::WheelDiameter, Description::Jbike6(j))
+                    if j.rear_wheel.diameter == j.front_wheel.diameter =>
+                {
+                    j.rear_wheel.diameter
+                }
                 _ => return None,
             };
             Some(si)
