@@ -41,6 +41,9 @@ pub enum Quantity {
     WeaveFrequency,
     /// The largest real part of the eigenvalues at --speed [1/s].
     MaxReal,
+    /// Self-stable at every speed of --band A:B: the smaller margin [m/s] by which the
+    /// self-stable range reaches past the band's ends (the designs that qualify outlined).
+    StableOver,
 }
 
 impl Quantity {
@@ -52,6 +55,7 @@ impl Quantity {
             Quantity::DoubleRootSpeed => "v_d",
             Quantity::WeaveFrequency => "weave_frequency",
             Quantity::MaxReal => "max_real",
+            Quantity::StableOver => "band_margin",
         }
     }
     fn label(self) -> &'static str {
@@ -62,6 +66,7 @@ impl Quantity {
             Quantity::DoubleRootSpeed => "double-root speed v_d [m/s]",
             Quantity::WeaveFrequency => "weave frequency at v_w [rad/s]",
             Quantity::MaxReal => "largest real part of the eigenvalues [1/s]",
+            Quantity::StableOver => "margin of self-stability over the band [m/s]",
         }
     }
     fn from_column(name: &str) -> Option<Quantity> {
@@ -72,17 +77,43 @@ impl Quantity {
             Quantity::DoubleRootSpeed,
             Quantity::WeaveFrequency,
             Quantity::MaxReal,
+            Quantity::StableOver,
         ]
         .into_iter()
         .find(|q| q.column() == name)
     }
+    /// Whether the map outlines design `row`: it has a self-stable range, or (stable-over) it
+    /// is self-stable over the band.
+    fn outlined(self, row: &DesignRow) -> bool {
+        match self {
+            Quantity::StableOver => row.quantities.stable_over == Some(true),
+            _ => row.quantities.stable,
+        }
+    }
+
+    /// The legend's two lines for the outline.
+    fn outline(self, band: Option<(f64, f64)>) -> [String; 2] {
+        match (self, band) {
+            (Quantity::StableOver, Some((a, b))) => [
+                "self-stable over".to_string(),
+                format!("{a}–{b} m/s (inside)"),
+            ],
+            _ => [
+                "self-stable range".to_string(),
+                "exists (inside)".to_string(),
+            ],
+        }
+    }
+
     fn of(self, row: &DesignRow) -> Option<f64> {
         let q = &row.quantities;
         if row.status != DesignStatus::Ok {
             return None;
         }
         match self {
-            Quantity::StableWidth => Some(q.stable_width),
+            // A design with no self-stable speed has no width: "none", never 0.
+            Quantity::StableWidth => q.stable.then_some(q.stable_width),
+            Quantity::StableOver => Some(q.band_margin_below?.min(q.band_margin_above?)),
             Quantity::WeaveSpeed => q.weave_speed,
             Quantity::CapsizeSpeed => q.capsize_speed,
             Quantity::DoubleRootSpeed => q.double_root_speed,
@@ -104,6 +135,11 @@ pub struct StudyArgs {
     /// Also compute the double-root speed v_d (about twice the time).
     #[arg(long)]
     pub double_root: bool,
+    /// A band of speeds A:B [m/s] inside the range: is each design self-stable at every speed
+    /// of it, and by what margin (the columns stable_over, band_margin_below and
+    /// band_margin_above; --quantity stable-over maps it).
+    #[arg(long, allow_hyphen_values = true)]
+    pub band: Option<String>,
     /// Output format of the rows.
     #[arg(long, value_enum, default_value = "csv")]
     pub format: DesignFormat,
@@ -133,6 +169,7 @@ impl StudyArgs {
             speed: self.speed,
             range: self.range.as_deref(),
             double_root: self.double_root,
+            band: self.band.as_deref(),
             format: self.format,
             out: self.out.as_deref(),
             plot,
@@ -150,6 +187,7 @@ pub struct DesignArgs<'a> {
     pub speed: Option<f64>,
     pub range: Option<&'a str>,
     pub double_root: bool,
+    pub band: Option<&'a str>,
     pub format: DesignFormat,
     pub out: Option<&'a Path>,
     pub plot: Option<&'a Path>,
@@ -160,7 +198,12 @@ pub struct DesignArgs<'a> {
 const MAX_PLOT_CELLS: u64 = 25_000_000;
 
 const COLUMNS: &str = "v_d,v_w,v_c,weave_frequency,stable,stable_width,stable_from,stable_to,\
-max_real,max_real_mode,unresolved,status,reason";
+max_real,max_real_mode,unresolved,";
+
+/// The columns of a study with a band (--band), between `unresolved` and `status`.
+const BAND_COLUMNS: &str = "stable_over,band_margin_below,band_margin_above,";
+
+const LAST_COLUMNS: &str = "status,reason";
 
 /// A number as the CSV holds it: shortest round-trip digits, `inf` for an unbounded end, empty
 /// for none (a NaN is never written).
@@ -184,7 +227,7 @@ fn csv_text(s: &str) -> String {
 
 /// One design as a CSV line, written straight into `out` (no text allocated per field: a map
 /// writes a million of them).
-fn csv_row(out: &mut String, r: &DesignRow, two: bool) {
+fn csv_row(out: &mut String, r: &DesignRow, two: bool, band: bool) {
     let q = &r.quantities;
     let _ = write!(out, "{},{},", r.index, r.ix);
     if two {
@@ -223,6 +266,17 @@ fn csv_row(out: &mut String, r: &DesignRow, two: bool) {
     out.push(',');
     flag(out, q.unresolved);
     out.push(',');
+    if band {
+        // Empty where undecided (round-off left speeds of the band open) or not computed.
+        if let Some(b) = q.stable_over {
+            out.push(if b { '1' } else { '0' });
+        }
+        out.push(',');
+        for x in [q.band_margin_below, q.band_margin_above] {
+            num(out, x);
+            out.push(',');
+        }
+    }
     out.push_str(match r.status {
         DesignStatus::Ok => "ok",
         DesignStatus::Invalid => "invalid",
@@ -245,6 +299,11 @@ fn study_line(label: &str, study: &DesignStudy) -> Result<String> {
         "double_root": options.double_root,
         "designs": study.study.len(),
     });
+    let mut doc = doc;
+    // Only a study with a band says so: the description of every other study is as it was.
+    if let (Some((a, b)), Some(map)) = (options.band, doc.as_object_mut()) {
+        map.insert("band".into(), serde_json::json!([a, b]));
+    }
     Ok(serde_json::to_string(&doc)?)
 }
 
@@ -260,6 +319,10 @@ fn header(study: &DesignStudy) -> String {
         let _ = write!(h, "{},", csv_text(&study.x.name));
     }
     h.push_str(COLUMNS);
+    if study.study.options.band.is_some() {
+        h.push_str(BAND_COLUMNS);
+    }
+    h.push_str(LAST_COLUMNS);
     h.push('\n');
     h
 }
@@ -323,10 +386,18 @@ pub fn run(cx: &RunContext, args: &DesignArgs<'_>) -> Result<()> {
     if args.quantity == Quantity::MaxReal && args.speed.is_none() && !speed_axis {
         bail!("--quantity max-real needs --speed V (or an axis named speed)");
     }
+    let band = match args.band {
+        Some(text) => Some(parse_range(text, "--band")?),
+        None => None,
+    };
+    if args.quantity == Quantity::StableOver && band.is_none() {
+        bail!("--quantity stable-over needs --band A:B (for example --band 4:8)");
+    }
     let options = StudySettings {
         range: (lo, hi),
         speed: args.speed,
         double_root: args.double_root || args.quantity == Quantity::DoubleRootSpeed,
+        band,
     };
     let study = DesignStudy::new(bike.bicycle.clone(), x, y, options)
         .with_context(|| format!("the study of {}", bike.label))?;
@@ -359,6 +430,7 @@ pub fn run(cx: &RunContext, args: &DesignArgs<'_>) -> Result<()> {
     }
     let label = bike.label.clone();
     let two = study.y.is_some();
+    let with_band = band.is_some();
     let mut sink = Sink::open(args.out, args.plot.is_some())?;
     let (first, end) = shard.indices(study.study.len());
     let mut head = String::new();
@@ -413,7 +485,7 @@ pub fn run(cx: &RunContext, args: &DesignArgs<'_>) -> Result<()> {
                 .map(|piece| {
                     let mut t = String::with_capacity(160 * piece.len());
                     for r in piece {
-                        csv_row(&mut t, r, two);
+                        csv_row(&mut t, r, two, with_band);
                     }
                     t
                 })
@@ -427,7 +499,7 @@ pub fn run(cx: &RunContext, args: &DesignArgs<'_>) -> Result<()> {
                 if written > 0 {
                     text.push_str(",\n");
                 }
-                text.push_str(&serde_json::to_string(&JsonRow(r)).map_err(|e| {
+                text.push_str(&serde_json::to_string(&JsonRow(r, with_band)).map_err(|e| {
                     whipple::Error::NonFinite {
                         context: e.to_string(),
                     }
@@ -437,7 +509,7 @@ pub fn run(cx: &RunContext, args: &DesignArgs<'_>) -> Result<()> {
             if keep {
                 if two {
                     values.push(args.quantity.of(r).unwrap_or(f64::NAN));
-                    stable.push(r.quantities.stable);
+                    stable.push(args.quantity.outlined(r));
                 } else {
                     study_rows.push(r.clone());
                 }
@@ -486,6 +558,7 @@ pub fn run(cx: &RunContext, args: &DesignArgs<'_>) -> Result<()> {
                 y: (y.axis.start, y.axis.stop, y.axis.count),
                 values,
                 stable,
+                outline: args.quantity.outline(band),
                 quantity: args.quantity.label().to_string(),
                 base: bx.zip(by),
             })?
@@ -531,8 +604,9 @@ fn study_figure(
     Ok(design_study(&data)?)
 }
 
-/// A row as JSON, with unbounded values as null and the quantities flattened.
-struct JsonRow<'a>(&'a DesignRow);
+/// A row as JSON, with unbounded values as null and the quantities flattened (and the band's
+/// answer where the study has a band).
+struct JsonRow<'a>(&'a DesignRow, bool);
 
 impl serde::Serialize for JsonRow<'_> {
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
@@ -563,6 +637,15 @@ impl serde::Serialize for JsonRow<'_> {
             m.serialize_entry("max_real", &f(q.max_real))?;
             m.serialize_entry("max_real_mode", &q.max_real_mode)?;
             m.serialize_entry("unresolved", &q.unresolved)?;
+            if self.1 {
+                m.serialize_entry("stable_over", &q.stable_over)?;
+                m.serialize_entry("band_margin_below", &f(q.band_margin_below))?;
+                m.serialize_entry("band_margin_above", &f(q.band_margin_above))?;
+                m.serialize_entry(
+                    "band_margin_above_unbounded",
+                    &(q.band_margin_above == Some(f64::INFINITY)),
+                )?;
+            }
         }
         m.end()
     }
@@ -688,7 +771,22 @@ pub fn merge(
     ))?;
     let columns: Vec<&str> = header_line.split(',').collect();
     let col = columns.iter().position(|c| *c == quantity.column());
-    let stable_col = columns.iter().position(|c| *c == "stable");
+    // The outline: designs with a self-stable range, or for stable-over those that qualify.
+    let stable_col = columns.iter().position(|c| {
+        *c == if quantity == Quantity::StableOver {
+            "stable_over"
+        } else {
+            "stable"
+        }
+    });
+    // stable-over's value is the smaller of the two margins.
+    let margins = (
+        columns.iter().position(|c| *c == "band_margin_below"),
+        columns.iter().position(|c| *c == "band_margin_above"),
+    );
+    if plot.is_some() && quantity == Quantity::StableOver && margins.0.is_none() {
+        bail!("--quantity stable-over needs shards computed with --band");
+    }
     let mut values = Vec::new();
     let mut stable = Vec::new();
     for p in &parts {
@@ -703,9 +801,14 @@ pub fn merge(
             if plot.is_some() {
                 let fields: Vec<&str> = l.split(',').collect();
                 let get = |c: Option<usize>| c.and_then(|c| fields.get(c)).copied().unwrap_or("");
-                values.push(match get(col) {
+                let value = |text: &str| match text {
                     "inf" => f64::INFINITY,
                     t => t.parse().unwrap_or(f64::NAN),
+                };
+                values.push(if quantity == Quantity::StableOver {
+                    value(get(margins.0)).min(value(get(margins.1)))
+                } else {
+                    value(get(col))
                 });
                 stable.push(get(stable_col) == "1");
             }
@@ -747,6 +850,11 @@ pub fn merge(
             y: (y.1, y.2, y.3),
             values,
             stable,
+            outline: quantity.outline(
+                d["band"]
+                    .as_array()
+                    .and_then(|b| Some((b.first()?.as_f64()?, b.get(1)?.as_f64()?))),
+            ),
             quantity: quantity.label().to_string(),
             base: None,
         })?;

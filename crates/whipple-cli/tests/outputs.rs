@@ -360,3 +360,107 @@ fn a_closed_stdout_ends_quietly() {
     assert!(output.status.success(), "{err}");
     assert!(err.is_empty(), "{err}");
 }
+
+/// The designer's question "self-stable from A to B?" (`--band`): the benchmark bicycle (its
+/// self-stable range 4.292… to 6.024… m/s, Meijaard et al. 2007) is self-stable over 4.5 to
+/// 5.5 m/s with those margins and not over 4 to 8; a sharded map with a band merges to the
+/// whole map bit for bit and draws the qualifying designs.
+#[test]
+fn a_band_answers_whether_each_design_is_self_stable_over_it() {
+    let (v_w, v_c) = (4.29238253634111, 6.02426201538837);
+    let row_of = |band: &str| -> Vec<String> {
+        let csv = stdout(&whipple(&[
+            "study",
+            "--bike",
+            "benchmark",
+            "--vary",
+            "trail=0.08:0.08:1",
+            "--band",
+            band,
+        ]));
+        let mut lines = csv.lines().skip(1);
+        let header: Vec<&str> = lines.next().expect("header").split(',').collect();
+        let row: Vec<&str> = lines.next().expect("a row").split(',').collect();
+        ["stable_over", "band_margin_below", "band_margin_above"]
+            .iter()
+            .map(|name| {
+                let k = header.iter().position(|h| h == name).expect("the column");
+                row[k].to_string()
+            })
+            .collect()
+    };
+    let inside = row_of("4.5:5.5");
+    assert_eq!(inside[0], "1");
+    let below: f64 = inside[1].parse().expect("a margin below");
+    let above: f64 = inside[2].parse().expect("a margin above");
+    assert!((below - (4.5 - v_w)).abs() < 1e-12, "{below}");
+    assert!((above - (v_c - 5.5)).abs() < 1e-12, "{above}");
+    assert_eq!(row_of("4:8"), ["0", "", ""]);
+
+    // Without a band the columns are as they were.
+    let plain = stdout(&whipple(&[
+        "study",
+        "--bike",
+        "benchmark",
+        "--vary",
+        "trail=0:0.1:2",
+    ]));
+    assert!(
+        !plain.contains("stable_over") && !plain.contains("band"),
+        "{plain}"
+    );
+
+    let dir = scratch("band-shards");
+    let map = |extra: &[&str]| {
+        let mut args = vec![
+            "map",
+            "--bike",
+            "benchmark",
+            "--x",
+            "trail=0:0.2:21",
+            "--y",
+            "w=0.9:1.2:13",
+            "--band",
+            "4.5:5.5",
+        ];
+        args.extend_from_slice(extra);
+        stdout(&whipple(&args))
+    };
+    let whole = map(&[]);
+    let mut shards = Vec::new();
+    for k in 0..3 {
+        let path = dir.join(format!("shard-{k}.csv"));
+        let shard = format!("{k}/3");
+        map(&["--shard", &shard, "--out", path.to_str().expect("utf-8")]);
+        shards.push(path.to_str().expect("utf-8").to_string());
+    }
+    let png = dir.join("band.png");
+    let mut args = vec!["merge"];
+    args.extend(shards.iter().map(String::as_str));
+    args.extend([
+        "--quantity",
+        "stable-over",
+        "--plot",
+        png.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(stdout(&whipple(&args)), whole);
+    assert!(fs::metadata(&png).expect("the plot").len() > 10_000);
+    assert!(
+        whole.lines().skip(2).any(|l| l.contains(",1,")),
+        "no design qualifies"
+    );
+
+    // stable-over without a band is refused before any work.
+    let err = stderr_of_failure(&whipple(&[
+        "map",
+        "--bike",
+        "benchmark",
+        "--x",
+        "trail=0:0.2:3",
+        "--y",
+        "w=1:1.1:2",
+        "--quantity",
+        "stable-over",
+    ]));
+    assert!(err.contains("--band"), "{err}");
+}

@@ -183,6 +183,7 @@ impl NativeBicycle {
             range: (lo, hi),
             speed,
             double_root,
+            band: None,
         };
         let study = DesignStudy::new(base, x_axis.clone(), y_axis.clone(), options).py_err(py)?;
         let total = study.study.len();

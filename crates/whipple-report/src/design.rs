@@ -31,8 +31,11 @@ pub struct MapData {
     pub y: (f64, f64, usize),
     /// The quantity at every design.
     pub values: Vec<f64>,
-    /// Whether each design has a self-stable range (its boundary is drawn).
+    /// Whether each design is inside the outline (has a self-stable range, say): its boundary
+    /// is drawn.
     pub stable: Vec<bool>,
+    /// The legend's two lines for the outline (`["self-stable range", "exists (inside)"]`).
+    pub outline: [String; 2],
     /// The colour bar's label with its unit.
     pub quantity: String,
     /// The base design (x, y), marked.
@@ -84,7 +87,8 @@ const MAX_CELLS: usize = 25_000_000;
 /// let values: Vec<f64> = (0..100).map(|k| k as f64).collect();
 /// let stable: Vec<bool> = (0..100).map(|k| k % 10 > 4).collect();
 /// let map = MapData { title: "t".into(), x_label: "x [m]".into(), y_label: "y [m]".into(),
-///     x: (0.0, 1.0, 10), y: (0.0, 1.0, 10), values, stable, quantity: "q [m/s]".into(),
+///     x: (0.0, 1.0, 10), y: (0.0, 1.0, 10), values, stable,
+///     outline: ["self-stable range".into(), "exists (inside)".into()], quantity: "q [m/s]".into(),
 ///     base: Some((0.5, 0.5)) };
 /// let png = design_map(&map)?.render(Format::Png)?;
 /// assert_eq!(&png[1..4], b"PNG");
@@ -397,13 +401,13 @@ impl MapFigure {
         ))
         .or_draw(FIGURE)?;
         bar.draw(&Text::new(
-            "self-stable range",
+            self.data.outline[0].as_str(),
             (34, y + 44),
             text(13.0, &DARK),
         ))
         .or_draw(FIGURE)?;
         bar.draw(&Text::new(
-            "exists (inside)",
+            self.data.outline[1].as_str(),
             (34, y + 60),
             text(13.0, &DARK),
         ))

@@ -30,6 +30,10 @@ pub(crate) struct DesignRequest {
     range: Option<SpeedRange>,
     #[serde(default)]
     double_root: bool,
+    /// A band of speeds [a, b] (m/s) inside the range: is each design self-stable at every
+    /// speed of it, and by what margin.
+    #[serde(default)]
+    band: Option<(f64, f64)>,
 }
 
 /// The answer: the axes and one array per quantity (null where absent or not computed).
@@ -57,6 +61,22 @@ pub(crate) struct DesignResponse {
     stable_to: Vec<Option<f64>>,
     max_real: Vec<Option<f64>>,
     max_real_mode: Vec<Option<Mode>>,
+    /// With a band only: self-stable at every speed of it (null where undecided or not
+    /// computed), the margins below and above it (null where not self-stable over it; the
+    /// margin above is null where unbounded too, see `band_margin_above_unbounded`), and the
+    /// smaller of the two.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    band: Option<(f64, f64)>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stable_over: Option<Vec<Option<bool>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    band_margin_below: Option<Vec<Option<f64>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    band_margin_above: Option<Vec<Option<f64>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    band_margin_above_unbounded: Option<Vec<bool>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    band_margin: Option<Vec<Option<f64>>>,
 }
 
 /// An axis of the request, an error in it naming its field (`x` or `y`).
@@ -122,6 +142,7 @@ async fn run(
         range: (lo, hi),
         speed: request.speed,
         double_root: request.double_root,
+        band: request.band,
     };
     let study = DesignStudy::new(bike, x, y, options)?;
     let limit = state.limits.max_designs as u64;
@@ -161,6 +182,12 @@ async fn run(
                 stable_to: Vec::with_capacity(n),
                 max_real: Vec::with_capacity(n),
                 max_real_mode: Vec::with_capacity(n),
+                band: options.band,
+                stable_over: options.band.map(|_| Vec::with_capacity(n)),
+                band_margin_below: options.band.map(|_| Vec::with_capacity(n)),
+                band_margin_above: options.band.map(|_| Vec::with_capacity(n)),
+                band_margin_above_unbounded: options.band.map(|_| Vec::with_capacity(n)),
+                band_margin: options.band.map(|_| Vec::with_capacity(n)),
             };
             let finite = |x: Option<f64>| x.filter(|v| v.is_finite());
             study.study.run(Shard::WHOLE, &stop, |rows| {
@@ -186,6 +213,23 @@ async fn run(
                     r.stable_to.push(finite(q.stable_to));
                     r.max_real.push(finite(q.max_real));
                     r.max_real_mode.push(q.max_real_mode);
+                    if let (Some(over), Some(below), Some(above), Some(unbounded), Some(margin)) = (
+                        r.stable_over.as_mut(),
+                        r.band_margin_below.as_mut(),
+                        r.band_margin_above.as_mut(),
+                        r.band_margin_above_unbounded.as_mut(),
+                        r.band_margin.as_mut(),
+                    ) {
+                        over.push(q.stable_over);
+                        below.push(finite(q.band_margin_below));
+                        above.push(finite(q.band_margin_above));
+                        unbounded.push(q.band_margin_above == Some(f64::INFINITY));
+                        margin.push(finite(
+                            q.band_margin_below
+                                .zip(q.band_margin_above)
+                                .map(|(a, b)| a.min(b)),
+                        ));
+                    }
                 }
                 Ok(())
             })?;

@@ -646,6 +646,51 @@ async fn a_map_cell_is_a_bicycle() -> TestResult {
     Ok(())
 }
 
+/// A map with a band answers "self-stable over [a, b]?" per design: at the benchmark's own
+/// design (trail 0.08 m, its range 4.292… to 6.024… m/s) yes over 4.5–5.5 with those margins;
+/// a band outside the range names `band`; without a band the answer has no band arrays.
+#[tokio::test]
+async fn a_map_with_a_band_answers_stable_over_it() -> TestResult {
+    let app = app(Limits::default());
+    let map = |band: Value, range: Value| -> Result<Value, Box<dyn std::error::Error>> {
+        let mut request = json!({
+            "bike": preset_json("benchmark")?,
+            "x": "trail=0.04:0.12:3",
+            "y": "w=1.02:1.02:1",
+        });
+        if let Some(object) = request.as_object_mut() {
+            if !band.is_null() {
+                object.insert("band".into(), band);
+            }
+            if !range.is_null() {
+                object.insert("range".into(), range);
+            }
+        }
+        Ok(request)
+    };
+    let (status, body) = post(&app, "/api/map", &map(json!([4.5, 5.5]), Value::Null)?).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert_eq!(body["band"], json!([4.5, 5.5]));
+    assert_eq!(body["stable_over"][1], true, "{body}");
+    assert!(approx(&body["band_margin_below"][1], 4.5 - 4.29238253634111, 1e-12));
+    assert!(approx(&body["band_margin_above"][1], 6.02426201538837 - 5.5, 1e-12));
+    assert!(approx(&body["band_margin"][1], 4.5 - 4.29238253634111, 1e-12));
+    assert_eq!(body["stable_over"][0], false, "trail 0.04 m: {body}");
+    assert!(body["band_margin"][0].is_null());
+    let (status, body) = post(
+        &app,
+        "/api/map",
+        &map(json!([4.0, 8.0]), json!({"lo": 0.0, "hi": 6.0}))?,
+    )
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{body}");
+    assert_eq!(body["error"]["field"], "band", "{body}");
+    let (status, body) = post(&app, "/api/map", &map(Value::Null, Value::Null)?).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert!(body.get("stable_over").is_none() && body.get("band").is_none(), "{body}");
+    Ok(())
+}
+
 /// The benchmark bicycle's held turn at 5 m/s and 11.5° of lean, as `whipple turn` prints it:
 /// steer 4.864°, a small counter-steering torque, rear radius 12.35 m, stable; the rear wheel
 /// turns at exactly v / r_R. A lean past 89° names `lean_deg`; two givens are refused.

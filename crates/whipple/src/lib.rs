@@ -496,7 +496,7 @@ pub mod advanced {
     }
     #[doc = "Certified critical speeds and self-stable ranges."]
     pub mod stability {
-        pub use crate::analysis::stability::{CrossingKind, summary};
+        pub use crate::analysis::stability::{BandAnswer, CrossingKind, StabilitySummary, summary};
     }
     #[doc = "Speed grids and eigenvalue sweeps."]
     pub mod sweep {

@@ -342,6 +342,8 @@ struct Outcomes {
     agreed: usize,
     /// Of those, how many have a self-stable range in the range searched.
     self_stable: usize,
+    /// Of those, how many are self-stable over the band drawn.
+    band_stable: usize,
     /// `AccuracyLost`: round-off does not allow a certified answer.
     accuracy_lost: Vec<(u64, String)>,
     /// Certified, but with speeds below [`RIDING`] that round-off could not classify.
@@ -409,12 +411,62 @@ fn random_bicycles_over_the_admissible_space_equal_a_dense_scan() -> Result<()> 
                 .push((seed, speeds.unresolved.clone()));
         }
         agrees_with_a_dense_scan(&c, lo, hi)?;
+        let ranges = &speeds.stable_speed_ranges;
+        // A band: inside the first self-stable range, or across its lower end, or anywhere.
+        let band = match ranges.first() {
+            Some(&(a, b)) => {
+                let w = b.min(a + 10.0) - a;
+                if draws.uniform(0.0, 1.0) < 0.5 {
+                    (a + 0.25 * w, a + 0.75 * w)
+                } else {
+                    ((a - 0.5 * w).max(lo), a + 0.5 * w)
+                }
+            }
+            None => (lo, (lo + draws.uniform(0.1, 10.0)).min(hi)),
+        };
         let summary = stability::summary(
             &whipple::advanced::linear::SpeedPolynomials::new(&c)?,
             lo,
             hi,
+            Some(band),
         )?;
-        let ranges = &speeds.stable_speed_ranges;
+        // The band's answer from critical_speeds' own ranges and unclassified speeds.
+        let Some(answer) = summary.band else {
+            panic!("seed {seed}: a band was asked for");
+        };
+        // A range's end at the searched range's end holds the band's end there.
+        let holding = ranges
+            .iter()
+            .find(|r| (r.0 < band.0 || r.0 == lo) && (band.1 < r.1 || r.1 == hi));
+        let open = speeds
+            .unresolved
+            .iter()
+            .any(|u| u.0 <= band.1 && band.0 <= u.1);
+        match holding {
+            Some(r) => {
+                assert_eq!(answer.stable, Some(true), "seed {seed}");
+                assert_eq!(answer.margin_below, Some(band.0 - r.0), "seed {seed}");
+                assert_eq!(answer.margin_above, Some(r.1 - band.1), "seed {seed}");
+                // Independently: every eigenvalue in the left half plane across the band.
+                for k in 0..=20 {
+                    let v = band.0 + (band.1 - band.0) * k as f64 / 20.0;
+                    if let Ok(values) = eigen::eigenvalues(&c, v) {
+                        assert!(values.iter().all(|l| l.re < 0.0), "seed {seed} at {v}");
+                    }
+                }
+                outcomes.band_stable += 1;
+            }
+            None => {
+                // critical_speeds' unclassified speeds include the double root's too, which
+                // leave the stability line decided: there the answer may be no as well.
+                if open {
+                    assert!(answer.stable != Some(true), "seed {seed}");
+                } else {
+                    assert_eq!(answer.stable, Some(false), "seed {seed}");
+                }
+                assert_eq!((answer.margin_below, answer.margin_above), (None, None));
+            }
+        }
         assert_eq!(summary.weave_speed, speeds.weave_speed, "seed {seed}");
         assert_eq!(
             summary.weave_frequency, speeds.weave_frequency,
@@ -453,6 +505,8 @@ fn random_bicycles_over_the_admissible_space_equal_a_dense_scan() -> Result<()> 
     );
     // Both verdicts occur: the draws are not all of the benchmark's kind.
     assert!(outcomes.self_stable > 0 && outcomes.self_stable < outcomes.agreed);
+    // And both answers over a band.
+    assert!(outcomes.band_stable > 0 && outcomes.band_stable < outcomes.agreed);
     // The draws reach the refused edges of the space, yet mostly land inside it.
     assert!(outcomes.refused > 0 && outcomes.refused < 2 * BICYCLES);
     Ok(())
@@ -478,7 +532,7 @@ proptest! {
             let mut b = BenchmarkParameters::meijaard2007();
             b.c = x.value(ix);
             b.lambda = std::f64::consts::FRAC_PI_2 - y.value(iy).to_radians();
-            let single = Canonical::new(&b).and_then(|c| stability::summary(&whipple::advanced::linear::SpeedPolynomials::new(&c)?, 0.0, f64::INFINITY).and(whipple::critical_speeds(&c, 0.0, f64::INFINITY)));
+            let single = Canonical::new(&b).and_then(|c| stability::summary(&whipple::advanced::linear::SpeedPolynomials::new(&c)?, 0.0, f64::INFINITY, None).and(whipple::critical_speeds(&c, 0.0, f64::INFINITY)));
             match single {
                 Ok(s) => {
                     prop_assert_eq!(row.status, DesignStatus::Ok);

@@ -368,6 +368,15 @@ pub struct DesignQuantities {
     pub max_real_mode: Option<Mode>,
     /// Whether some speeds in the range could not be classified (near-tangency).
     pub unresolved: bool,
+    /// Self-stable at every speed of [`StudySettings::band`]: yes, no, or `None` (no band
+    /// asked for, or undecided: round-off left speeds of the band unclassified, `unresolved`).
+    pub stable_over: Option<bool>,
+    /// How far the self-stable range reaches below the band's lower end [m/s] (when
+    /// `stable_over`).
+    pub band_margin_below: Option<f64>,
+    /// How far it reaches above the band's upper end [m/s] (+∞ when it has none; when
+    /// `stable_over`).
+    pub band_margin_above: Option<f64>,
 }
 
 impl DesignQuantities {
@@ -383,6 +392,9 @@ impl DesignQuantities {
         max_real: None,
         max_real_mode: None,
         unresolved: false,
+        stable_over: None,
+        band_margin_below: None,
+        band_margin_above: None,
     };
 }
 
@@ -417,6 +429,9 @@ pub struct StudySettings {
     pub speed: Option<f64>,
     /// Also compute v_d (costs about as much again as the rest).
     pub double_root: bool,
+    /// A band of speeds [a, b] inside `range` over which to ask "self-stable at every speed?"
+    /// ([`DesignQuantities::stable_over`] and the margins) [m/s].
+    pub band: Option<(f64, f64)>,
 }
 
 impl Default for StudySettings {
@@ -425,6 +440,7 @@ impl Default for StudySettings {
             range: (0.0, f64::INFINITY),
             speed: None,
             double_root: false,
+            band: None,
         }
     }
 }
@@ -463,6 +479,9 @@ impl Study {
     /// ```
     pub fn new(base: Bicycle, x: Axis, y: Option<Axis>, options: StudySettings) -> Result<Study> {
         stability::check_range(options.range.0, options.range.1)?;
+        if let Some(band) = options.band {
+            stability::check_band(band, options.range)?;
+        }
         if let Some(v) = options.speed {
             if !v.is_finite() {
                 return Err(Error::InvalidArgument {
@@ -686,7 +705,7 @@ pub(crate) fn analyse(
     let canonical = canonical_of(description)?;
     let sp = SpeedPolynomials::new(&canonical)?;
     let (lo, hi) = options.range;
-    let s = summary(&sp, lo, hi)?;
+    let s = summary(&sp, lo, hi, options.band)?;
     let mut q = DesignQuantities {
         double_root_speed: None,
         weave_speed: s.weave_speed,
@@ -699,6 +718,9 @@ pub(crate) fn analyse(
         max_real: None,
         max_real_mode: None,
         unresolved: s.unresolved,
+        stable_over: s.band.and_then(|b| b.stable),
+        band_margin_below: s.band.and_then(|b| b.margin_below),
+        band_margin_above: s.band.and_then(|b| b.margin_above),
     };
     if options.double_root {
         let c = stability::critical_speeds(&canonical, lo, hi)?;

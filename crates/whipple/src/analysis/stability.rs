@@ -465,6 +465,49 @@ pub struct StabilitySummary {
     /// Whether some speeds in the range could not be classified (see
     /// [`CriticalSpeeds::unresolved`]).
     pub unresolved: bool,
+    /// Whether it is self-stable over the band asked for, and by how much (`None` when no
+    /// band was asked for).
+    pub band: Option<BandAnswer>,
+}
+
+/// Whether a bicycle is self-stable at every speed of a band [a, b] (m/s): one self-stable
+/// range holds the whole band, its ends strictly outside it (or at the end of the range
+/// searched, where the margin is then measured to). Certified: yes or no only where the
+/// stability line is; undecided where round-off leaves speeds of the band unclassified and no
+/// self-stable range holds it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BandAnswer {
+    /// Yes, no, or `None` when undecided.
+    pub stable: Option<bool>,
+    /// How far the self-stable range reaches below a: a − its lower end [m/s] (when stable).
+    pub margin_below: Option<f64>,
+    /// How far it reaches above b: its upper end − b [m/s] (+∞ when it has none; when stable).
+    pub margin_above: Option<f64>,
+}
+
+impl BandAnswer {
+    /// The smaller margin [m/s]: how much the band could widen at its nearer end (when
+    /// stable).
+    pub fn margin(&self) -> Option<f64> {
+        Some(self.margin_below?.min(self.margin_above?))
+    }
+}
+
+/// Checks a band [a, b] of speeds inside the range [lo, hi]: finite, a < b.
+pub(crate) fn check_band((a, b): (f64, f64), (lo, hi): (f64, f64)) -> Result<()> {
+    if !(a.is_finite() && b.is_finite() && a < b) {
+        return Err(Error::InvalidArgument {
+            what: "band",
+            rule: format!("needs A < B, both finite, got {a}:{b}"),
+        });
+    }
+    if a < lo || b > hi {
+        return Err(Error::InvalidArgument {
+            what: "band",
+            rule: format!("{a}:{b} must lie inside the speed range {lo}:{hi}"),
+        });
+    }
+    Ok(())
 }
 
 fn check_enclosure(name: &str, v: f64, enc: (f64, f64)) -> Result<()> {
@@ -566,13 +609,30 @@ impl Structure {
 /// use whipple::advanced::linear::SpeedPolynomials;
 /// use whipple::advanced::stability::summary;
 /// let sp = SpeedPolynomials::new(&Canonical::new(&BenchmarkParameters::meijaard2007())?)?;
-/// let s = summary(&sp, 0.0, f64::INFINITY)?;
+/// let s = summary(&sp, 0.0, f64::INFINITY, Some((4.5, 5.5)))?;
 /// assert!((s.stable_width - (6.02426201538837 - 4.29238253634111)).abs() < 1e-12);
+/// let band = s.band.unwrap();
+/// assert_eq!(band.stable, Some(true)); // self-stable at every speed from 4.5 to 5.5 m/s
+/// assert!((band.margin_below.unwrap() - (4.5 - 4.29238253634111)).abs() < 1e-12);
+/// assert!((band.margin_above.unwrap() - (6.02426201538837 - 5.5)).abs() < 1e-12);
+/// let wide = summary(&sp, 0.0, f64::INFINITY, Some((4.0, 8.0)))?.band.unwrap();
+/// assert_eq!((wide.stable, wide.margin()), (Some(false), None));
 /// # Ok::<(), whipple::Error>(())
 /// ```
-pub fn summary(sp: &SpeedPolynomials, lo: f64, hi: f64) -> Result<StabilitySummary> {
+pub fn summary(
+    sp: &SpeedPolynomials,
+    lo: f64,
+    hi: f64,
+    band: Option<(f64, f64)>,
+) -> Result<StabilitySummary> {
     check_range(lo, hi)?;
+    if let Some(band) = band {
+        check_band(band, (lo, hi))?;
+    }
     let structure = Structure::stability(sp)?;
+    // The band: held by one self-stable range, or touched by speeds round-off left open.
+    let mut holding: Option<(f64, f64)> = None;
+    let mut band_unresolved = false;
     let mut out = StabilitySummary {
         weave_speed: None,
         weave_frequency: None,
@@ -582,6 +642,7 @@ pub fn summary(sp: &SpeedPolynomials, lo: f64, hi: f64) -> Result<StabilitySumma
         stable_width: 0.0,
         stable_ranges: 0,
         unresolved: false,
+        band: None,
     };
     let mut weave: Option<Crossing> = None;
     let mut capsize: Option<Crossing> = None;
@@ -594,8 +655,18 @@ pub fn summary(sp: &SpeedPolynomials, lo: f64, hi: f64) -> Result<StabilitySumma
                 out.stable_from = Some(a);
                 out.stable_to = Some(b);
             }
+            // An end of the range searched holds the band's end there (the self-stable range
+            // may go on beyond it).
+            if band.is_some_and(|(low, high)| (a < low || a == lo) && (high < b || b == hi)) {
+                holding = Some((a, b));
+            }
         }
-        Finding::Unresolved(..) => out.unresolved = true,
+        Finding::Unresolved(a, b) => {
+            out.unresolved = true;
+            if band.is_some_and(|(low, high)| a <= high && low <= b) {
+                band_unresolved = true;
+            }
+        }
         Finding::Crossing(c) => {
             if weave.is_none() && is_weave(&c) {
                 if failure.is_none() {
@@ -617,6 +688,20 @@ pub fn summary(sp: &SpeedPolynomials, lo: f64, hi: f64) -> Result<StabilitySumma
     out.weave_speed = weave.map(|c| c.speed);
     out.weave_frequency = weave.and_then(|c| c.frequency);
     out.capsize_speed = capsize.map(|c| c.speed);
+    out.band = band.map(|(low, high)| match holding {
+        Some((a, b)) => BandAnswer {
+            stable: Some(true),
+            margin_below: Some(low - a),
+            margin_above: Some(b - high),
+        },
+        // Every speed of the band is classified and no one self-stable range holds it: some
+        // speed of it is unstable or critical.
+        None => BandAnswer {
+            stable: (!band_unresolved).then_some(false),
+            margin_below: None,
+            margin_above: None,
+        },
+    });
     Ok(out)
 }
 
