@@ -265,7 +265,7 @@ mod tests {
         assert_eq!(trail.axis.si_value(2), 0.1);
         let speed = AxisSpec::parse("v=1:10:10", &benchmark)?;
         assert_eq!(
-            (speed.axis.parameter.clone(), speed.unit()),
+            (speed.axis.parameter, speed.unit()),
             (Parameter::Speed, "m/s")
         );
         let one = AxisSpec::parse("mB=85:90:1", &benchmark)?;
