@@ -704,6 +704,45 @@ await section("design map: a certified map over two parameters, read out under t
   check(studied.includes(`v_w ${vw} m/s, v_c ${vc} m/s; self-stable from ${vw} m/s to ${vc} m/s`), `the benchmark's own trail in the study: "${studied}"`);
 });
 
+await section("design map: self-stable over a band, the qualifying designs outlined", async () => {
+  await open("?bike=preset:benchmark&tab=map");
+  await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
+  const box = await page.getByTestId("map-canvas").boundingBox();
+  const area = JSON.parse(await page.getByTestId("map-canvas").getAttribute("data-area"));
+  const at = (ix, iy) => [box.x + area.x + ((ix + 0.5) / 51) * area.w, box.y + area.y + (1 - (iy + 0.5) / 51) * area.h];
+  // Asked without a band, the quantity is refused in the field, with no old map left standing.
+  await page.selectOption("[data-testid=map-quantity]", "band_margin");
+  const refused = await waitForText("map-message", (t) => /band/.test(t));
+  check((await page.getByTestId("map-band").evaluate((i) => i.classList.contains("invalid"))) && (await text("map-meta")) === "", `no band, no map: "${refused}"`);
+  // Over 4.5–5.5 m/s: the benchmark's own design (cell 26, 24; its range 4.292… to 6.024… m/s)
+  // qualifies with margins 0.2076 below and 0.5243 above.
+  await page.getByTestId("map-band").fill("4.5:5.5");
+  await page.getByTestId("map-run").click();
+  await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
+  await waitFor("the qualifying designs counted", async () => Number(await page.getByTestId("map-canvas").getAttribute("data-qualifying")) > 0);
+  await page.mouse.move(...at(26, 24));
+  const below = (4.5 - WEAVE_SPEED).toFixed(4);
+  const above = (CAPSIZE_SPEED - 5.5).toFixed(4);
+  const inside = await waitForText("map-readout", (t) => /self-stable over/.test(t));
+  check(inside.includes(`self-stable over 4.5–5.5 m/s, margins ${below} m/s below and ${above} m/s above`), `the benchmark over 4.5–5.5 m/s: "${inside}"`);
+  const legend = await text("map-legend");
+  check(/self-stable at every speed 4\.5–5\.5 m\/s/.test(legend) && /undecided/.test(legend), `the legend names the band: "${legend}"`);
+  check(/band:4\.5:5\.5/.test(decodeURIComponent(page.url())), `the band is in the link: ${page.url()}`);
+  // Over 4–8 m/s no design of this map qualifies (whipple map gives none either).
+  await page.getByTestId("map-band").fill("4:8");
+  await page.getByTestId("map-run").click();
+  await waitFor("the map over 4–8 m/s", async () => (await page.getByTestId("map-canvas").getAttribute("data-qualifying")) === "0");
+  await page.mouse.move(...at(26, 25));
+  await page.mouse.move(...at(26, 24));
+  const outside = await waitForText("map-readout", (t) => /over 4–8/.test(t));
+  check(outside.includes("trail = 0.08, head_angle_deg = 72: not self-stable over 4–8 m/s"), `the benchmark over 4–8 m/s: "${outside}"`);
+  // A band past the speeds asked for names the band's field.
+  await page.getByTestId("map-band").fill("8:4");
+  await page.getByTestId("map-run").click();
+  const reversed = await waitForText("map-message", (t) => /band/.test(t));
+  check(await page.getByTestId("map-band").evaluate((i) => i.classList.contains("invalid")), `a reversed band is refused in its field: "${reversed}"`);
+});
+
 await section("accessibility: axe-core finds nothing; headings", async () => {
   await open("?bike=preset:schwinn-crown");
   await page.evaluate(axeSource());

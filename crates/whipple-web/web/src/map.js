@@ -8,6 +8,21 @@
 import { api } from "./api.js";
 import { html, num, ramp, ticks, tickLabel, FONT } from "./format.js";
 
+/** Where v sits on a diverging scale over `range`: 0.5 at zero, 0 at the lowest value (when
+ *  negative), 1 at the highest (when positive). */
+function divergingPlace(v, [lo, hi]) {
+  if (v < 0) return lo < 0 ? 0.5 - 0.5 * Math.min(1, v / lo) : 0.5;
+  return hi > 0 ? 0.5 + 0.5 * Math.min(1, v / hi) : 0.5;
+}
+
+/** A diverging colour for f in [0, 1]: blue below the middle, white at it, red above. */
+function divergingRamp(f) {
+  const t = Math.max(0, Math.min(1, f));
+  const [from, to, u] = t < 0.5 ? [[37, 99, 235], [255, 255, 255], t / 0.5] : [[255, 255, 255], [220, 38, 38], (t - 0.5) / 0.5];
+  const c = from.map((x, k) => Math.round(x + (to[k] - x) * u));
+  return `rgb(${c[0]},${c[1]},${c[2]})`;
+}
+
 const $ = (id) => document.getElementById(id);
 
 /** The quantities a map can show: the response's arrays, how they read, their unit. */
@@ -17,12 +32,27 @@ export const MAP_QUANTITIES = {
   v_c: { words: "capsize speed v_c", unit: "m/s" },
   weave_frequency: { words: "weave frequency at v_w", unit: "rad/s" },
   max_real: { words: "largest real part at the speed", unit: "1/s" },
+  band_margin: { words: "self-stable over the band: the smaller margin", unit: "m/s" },
 };
+
+/** The band typed as A:B (m/s): [a, b], null when the field is empty, or an error's words. */
+export function parseBand(text) {
+  const t = text.trim();
+  if (t === "") return null;
+  const parts = t.split(":");
+  const [a, b] = parts.map((p) => Number(p.trim()));
+  if (parts.length !== 2 || parts.some((p) => p.trim() === "") || !Number.isFinite(a) || !Number.isFinite(b)) {
+    return { error: `the band is A:B in m/s (for example 4:8), not “${t}”` };
+  }
+  if (!(a < b)) return { error: `the band's A must be less than its B, got ${t}` };
+  return [a, b];
+}
 
 /** Colours of the cells that have no number on the scale. */
 const INVALID = "#e5e7eb";
 const UNBOUNDED = "#fca5a5";
 const NONE = "#ffffff";
+const UNDECIDED = "#fde68a";
 /** Pixels around the cells for the axes: left, bottom, top, right. */
 const MARGIN = { left: 52, bottom: 36, top: 8, right: 10 };
 
@@ -32,7 +62,14 @@ export function cell(answer, quantity, k) {
     const reason = answer.reasons.find((r) => r[0] === k)?.[1];
     return { kind: answer.status[k], reason: reason ?? answer.status[k] };
   }
+  // A design with no self-stable speed has no width: "none", as the legend says.
+  if (quantity === "stable_width" && !answer.stable[k]) return { kind: "none" };
   if (quantity === "stable_width" && answer.stable_unbounded[k]) return { kind: "unbounded" };
+  if (quantity === "band_margin") {
+    const over = answer.stable_over?.[k];
+    if (over === false) return { kind: "none" };
+    if (over !== true) return { kind: "undecided" };
+  }
   const value = answer[quantity]?.[k];
   return Number.isFinite(value) ? { kind: "value", value } : { kind: "none" };
 }
@@ -54,7 +91,10 @@ export class MapPanel {
       this.onChange();
     });
     $("map-quantity").addEventListener("change", () => {
-      this.draw();
+      // A band asked for now, or one the answer lacks: the map is computed again.
+      const wantsBand = $("map-quantity").value === "band_margin";
+      if (this.answer && wantsBand && !this.answer.band) this.compute();
+      else this.draw();
       this.onChange();
     });
     const canvas = $("map-canvas");
@@ -63,9 +103,11 @@ export class MapPanel {
     canvas.addEventListener("click", (e) => this.load(e));
   }
 
-  /** The inputs, for the link: {x, y, quantity, speed}. */
+  /** The inputs, for the link: {x, y, quantity, speed, band}. */
   inputs() {
-    return { x: $("map-x").value, y: $("map-y").value, quantity: $("map-quantity").value, speed: $("map-speed").value };
+    const inputs = { x: $("map-x").value, y: $("map-y").value, quantity: $("map-quantity").value, speed: $("map-speed").value };
+    if ($("map-band").value.trim()) inputs.band = $("map-band").value.trim();
+    return inputs;
   }
 
   setInputs(s) {
@@ -73,6 +115,7 @@ export class MapPanel {
     if (s.y) $("map-y").value = s.y;
     if (s.quantity && s.quantity in MAP_QUANTITIES) $("map-quantity").value = s.quantity;
     if (s.speed !== undefined) $("map-speed").value = s.speed;
+    if (s.band !== undefined) $("map-band").value = s.band;
   }
 
   /** Forgets the map (the bicycle changed): the tab computes it again when it opens. */
@@ -89,6 +132,24 @@ export class MapPanel {
     if (y) request.y = y;
     const speed = Number($("map-speed").value);
     if ($("map-speed").value.trim() !== "" && Number.isFinite(speed)) request.speed = speed;
+    const band = parseBand($("map-band").value);
+    const bandMissing = !band && $("map-quantity").value === "band_margin" && request.y;
+    if (band?.error || bandMissing) {
+      // Refused here, before any work: the field says why, and no old map stays as if it answered.
+      this.sequence = (this.sequence ?? 0) + 1;
+      this.answer = null;
+      this.key = null;
+      this.pending = false;
+      $("map-band").classList.add("invalid");
+      $("map-meta").textContent = "";
+      $("map-message").textContent = band?.error ?? "“self-stable over the band” needs a band A:B, for example 4:8";
+      $("map-message").hidden = false;
+      const canvas = $("map-canvas");
+      canvas.getContext("2d").clearRect(0, 0, canvas.width, canvas.height);
+      $("map-legend").replaceChildren();
+      return;
+    }
+    if (band) request.band = band;
     // The same question asked again (a redraw of the page) is not computed twice.
     const key = JSON.stringify(request);
     if (key === this.key && (this.answer || this.pending)) return;
@@ -96,7 +157,7 @@ export class MapPanel {
     this.key = key;
     this.pending = true;
     $("map-meta").textContent = "computing…";
-    for (const id of ["map-x", "map-y", "map-speed"]) $(id).classList.remove("invalid");
+    for (const id of ["map-x", "map-y", "map-speed", "map-band"]) $(id).classList.remove("invalid");
     const started = performance.now();
     try {
       const answer = await (request.y ? api.map(request) : api.study(request));
@@ -114,7 +175,7 @@ export class MapPanel {
       this.key = null;
       this.answer = null;
       $("map-meta").textContent = "";
-      const field = { x: "map-x", y: "map-y", speed: "map-speed" }[e.field];
+      const field = { x: "map-x", y: "map-y", speed: "map-speed", band: "map-band", range: "map-band" }[e.field];
       if (field) $(field).classList.add("invalid");
       $("map-message").textContent = e.message;
       $("map-message").hidden = false;
@@ -146,7 +207,11 @@ export class MapPanel {
     const { nx, ny } = a;
     const cells = Array.from({ length: nx * ny }, (_, k) => cell(a, quantity, k));
     const range = this.scale(cells.filter((c) => c.kind === "value").map((c) => c.value));
+    // The largest real part: a diverging scale, white at zero, each side to its own extreme
+    // (stable blue below, unstable red above), so that a faintly stable design still shows.
+    const diverging = quantity === "max_real" && range !== null;
     this.range = range;
+    const colourOf = (v) => (diverging ? divergingRamp(divergingPlace(v, range)) : ramp(range ? (v - range[0]) / (range[1] - range[0]) : 0.5));
     $("map-canvas").setAttribute("aria-label", `Design map: ${q.words} over ${a.x.name} and ${a.y.name}`);
     const host = $("map-plot");
     const width = Math.max(260, Math.min(host.clientWidth || 600, 900));
@@ -161,10 +226,33 @@ export class MapPanel {
       for (let ix = 0; ix < nx; ix++) {
         const c = cells[iy * nx + ix];
         g.fillStyle =
-          c.kind === "value" ? ramp(range ? (c.value - range[0]) / (range[1] - range[0]) : 0.5) : c.kind === "unbounded" ? UNBOUNDED : c.kind === "none" ? NONE : INVALID;
+          c.kind === "value" ? colourOf(c.value) : c.kind === "unbounded" ? UNBOUNDED : c.kind === "none" ? NONE : c.kind === "undecided" ? UNDECIDED : INVALID;
         // y up: the first row at the bottom.
         g.fillRect(area.x + Math.floor(ix * w), area.y + Math.floor(area.h - (iy + 1) * h), Math.ceil(w), Math.ceil(h));
       }
+    }
+    // The designs self-stable over the band, outlined: an edge wherever one qualifies and its
+    // neighbour (or the map's edge) does not.
+    if (quantity === "band_margin" && a.stable_over) {
+      const qualifies = (ix, iy) => ix >= 0 && iy >= 0 && ix < nx && iy < ny && a.status[iy * nx + ix] === "ok" && a.stable_over[iy * nx + ix] === true;
+      const px = (ix) => area.x + ix * w;
+      const py = (iy) => area.y + area.h - iy * h;
+      g.strokeStyle = "#111827";
+      g.lineWidth = 1.5;
+      g.beginPath();
+      for (let iy = 0; iy < ny; iy++) {
+        for (let ix = 0; ix < nx; ix++) {
+          if (!qualifies(ix, iy)) continue;
+          if (!qualifies(ix - 1, iy)) (g.moveTo(px(ix), py(iy)), g.lineTo(px(ix), py(iy + 1)));
+          if (!qualifies(ix + 1, iy)) (g.moveTo(px(ix + 1), py(iy)), g.lineTo(px(ix + 1), py(iy + 1)));
+          if (!qualifies(ix, iy - 1)) (g.moveTo(px(ix), py(iy)), g.lineTo(px(ix + 1), py(iy)));
+          if (!qualifies(ix, iy + 1)) (g.moveTo(px(ix), py(iy + 1)), g.lineTo(px(ix + 1), py(iy + 1)));
+        }
+      }
+      g.stroke();
+      $("map-canvas").dataset.qualifying = String(a.stable_over.filter((o, k) => o === true && a.status[k] === "ok").length);
+    } else {
+      delete $("map-canvas").dataset.qualifying;
     }
     // Axes: each cell centred on its grid value.
     const xAt = (v) => area.x + ((v - a.x.start) / (a.x.stop - a.x.start || 1)) * (area.w - w) + w / 2;
@@ -184,7 +272,7 @@ export class MapPanel {
     const counts = { ok: 0, invalid: 0, accuracy_lost: 0 };
     for (const s of a.status) counts[s] = (counts[s] ?? 0) + 1;
     $("map-meta").textContent = `${this.label()}: ${q.words} over ${nx} × ${ny} designs (${counts.ok} computed${counts.invalid ? `, ${counts.invalid} invalid` : ""}${counts.accuracy_lost ? `, ${counts.accuracy_lost} with accuracy lost` : ""}) in ${num(this.seconds ?? 0, 2)} s`;
-    this.drawLegend(q, range);
+    this.drawLegend(q, range, quantity, diverging);
     $("map-axes").textContent = `x: ${axisText(a.x)} · y: ${axisText(a.y)} · ○ the bicycle itself`;
   }
 
@@ -262,14 +350,34 @@ export class MapPanel {
     legend.replaceChildren(swatch("#2563eb", "weave speed v_w"), swatch("#dc2626", "capsize speed v_c"), swatch("rgba(16, 185, 129, 0.35)", "self-stable"));
   }
 
-  drawLegend(q, range) {
+  drawLegend(q, range, quantity, diverging) {
     const legend = $("map-legend");
     legend.replaceChildren();
     if (range) {
-      const bar = html("span", { class: "map-ramp", style: `background: linear-gradient(to right, ${[0, 0.25, 0.5, 0.75, 1].map(ramp).join(", ")})` });
+      // On the diverging scale the bar is linear in the value, its white stop at zero.
+      const stops = diverging
+        ? [0, 0.25, 0.5, 0.75, 1].map((f) => {
+            const v = range[0] + f * (range[1] - range[0]);
+            return `${divergingRamp(divergingPlace(v, range))} ${f * 100}%`;
+          })
+        : [0, 0.25, 0.5, 0.75, 1].map(ramp);
+      if (diverging && range[0] < 0 && range[1] > 0) stops.push(`${divergingRamp(0.5)} ${(-range[0] / (range[1] - range[0])) * 100}%`);
+      if (diverging) stops.sort((a, b) => parseFloat(a.split(") ")[1]) - parseFloat(b.split(") ")[1]));
+      const bar = html("span", { class: "map-ramp", style: `background: linear-gradient(to right, ${stops.join(", ")})` });
       legend.append(html("span", { text: `${num(range[0], 3)} ` }), bar, html("span", { text: ` ${num(range[1], 3)} ${q.unit}` }));
+      if (diverging) legend.append(html("span", { text: " (white: 0; stable below, unstable above)" }));
     }
     const swatch = (colour, text) => html("span", { class: "map-swatch" }, html("span", { class: "dot", style: `background:${colour}` }), html("span", { text }));
+    if (quantity === "band_margin" && this.answer?.band) {
+      const [lo, hi] = this.answer.band;
+      legend.append(
+        html("span", { class: "map-swatch" }, html("span", { class: "dot outline" }), html("span", { text: `self-stable at every speed ${num(lo, 4)}–${num(hi, 4)} m/s` })),
+        swatch(NONE, "none (not self-stable over the band)"),
+        swatch(UNDECIDED, "undecided (round-off)"),
+        swatch(INVALID, "invalid design"),
+      );
+      return;
+    }
     legend.append(swatch(NONE, "none (not self-stable)"), swatch(UNBOUNDED, "unbounded"), swatch(INVALID, "invalid design"));
   }
 
@@ -309,8 +417,19 @@ export class MapPanel {
     }
     const quantity = $("map-quantity").value;
     const c = cell(a, quantity, c0.iy * a.nx + c0.ix);
-    const value =
-      c.kind === "value" ? `${num(c.value, 4)} ${MAP_QUANTITIES[quantity].unit}` : c.kind === "unbounded" ? "unbounded" : c.kind === "none" ? "none" : `not computed: ${c.reason}`;
+    const k = c0.iy * a.nx + c0.ix;
+    let value =
+      c.kind === "value" ? `${num(c.value, 4)} ${MAP_QUANTITIES[quantity].unit}` : c.kind === "unbounded" ? "unbounded" : c.kind === "none" ? "none" : c.kind === "undecided" ? "undecided (round-off)" : `not computed: ${c.reason}`;
+    if (quantity === "band_margin" && a.band && a.status[k] === "ok") {
+      const band = `${num(a.band[0], 4)}–${num(a.band[1], 4)} m/s`;
+      const above = a.band_margin_above_unbounded[k] ? "∞" : `${num(a.band_margin_above[k], 4)} m/s`;
+      value =
+        a.stable_over[k] === true
+          ? `self-stable over ${band}, margins ${num(a.band_margin_below[k], 4)} m/s below and ${above} above`
+          : a.stable_over[k] === false
+            ? `not self-stable over ${band}`
+            : `undecided over ${band} (round-off leaves speeds of it unclassified)`;
+    }
     $("map-readout").textContent = `${c0.where}: ${value} (click to load this design)`;
   }
 
