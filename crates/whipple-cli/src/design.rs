@@ -559,6 +559,7 @@ pub fn run(cx: &RunContext, args: &DesignArgs<'_>) -> Result<()> {
                 values,
                 stable,
                 outline: args.quantity.outline(band),
+                diverging: args.quantity == Quantity::MaxReal,
                 quantity: args.quantity.label().to_string(),
                 base: bx.zip(by),
             })?
@@ -855,6 +856,7 @@ pub fn merge(
                     .as_array()
                     .and_then(|b| Some((b.first()?.as_f64()?, b.get(1)?.as_f64()?))),
             ),
+            diverging: quantity == Quantity::MaxReal,
             quantity: quantity.label().to_string(),
             base: None,
         })?;

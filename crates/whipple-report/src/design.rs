@@ -36,6 +36,9 @@ pub struct MapData {
     pub stable: Vec<bool>,
     /// The legend's two lines for the outline (`["self-stable range", "exists (inside)"]`).
     pub outline: [String; 2],
+    /// A diverging scale, white at zero (blue below, red above, each side to its own extreme;
+    /// for a signed quantity such as the largest real part), instead of the sequential one.
+    pub diverging: bool,
     /// The colour bar's label with its unit.
     pub quantity: String,
     /// The base design (x, y), marked.
@@ -88,7 +91,8 @@ const MAX_CELLS: usize = 25_000_000;
 /// let stable: Vec<bool> = (0..100).map(|k| k % 10 > 4).collect();
 /// let map = MapData { title: "t".into(), x_label: "x [m]".into(), y_label: "y [m]".into(),
 ///     x: (0.0, 1.0, 10), y: (0.0, 1.0, 10), values, stable,
-///     outline: ["self-stable range".into(), "exists (inside)".into()], quantity: "q [m/s]".into(),
+///     outline: ["self-stable range".into(), "exists (inside)".into()], diverging: false,
+///     quantity: "q [m/s]".into(),
 ///     base: Some((0.5, 0.5)) };
 /// let png = design_map(&map)?.render(Format::Png)?;
 /// assert_eq!(&png[1..4], b"PNG");
@@ -187,6 +191,34 @@ fn colour(t: f64) -> (u8, u8, u8) {
     (mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
+/// Where `v` sits on a diverging scale over [lo, hi]: 0.5 at zero, 0 at `lo` (when negative),
+/// 1 at `hi` (when positive).
+fn diverging_place(v: f64, (lo, hi): (f64, f64)) -> f64 {
+    if v < 0.0 {
+        if lo < 0.0 {
+            0.5 - 0.5 * (v / lo).min(1.0)
+        } else {
+            0.5
+        }
+    } else if hi > 0.0 {
+        0.5 + 0.5 * (v / hi).min(1.0)
+    } else {
+        0.5
+    }
+}
+
+/// Blue (0) through white (0.5) to red (1).
+fn diverging_colour(t: f64) -> (u8, u8, u8) {
+    let t = t.clamp(0.0, 1.0);
+    let (from, to, f) = if t < 0.5 {
+        ((37.0, 99.0, 235.0), (255.0, 255.0, 255.0), t / 0.5)
+    } else {
+        ((255.0, 255.0, 255.0), (220.0, 38.0, 38.0), (t - 0.5) / 0.5)
+    };
+    let mix = |p: f64, q: f64| (p + (q - p) * f).round() as u8;
+    (mix(from.0, to.0), mix(from.1, to.1), mix(from.2, to.2))
+}
+
 /// No value (invalid design, quantity absent).
 const NO_VALUE: (u8, u8, u8) = (215, 215, 215);
 /// Unbounded (+∞).
@@ -198,7 +230,11 @@ impl MapFigure {
             UNBOUNDED
         } else if v.is_finite() {
             let (lo, hi) = self.range;
-            colour((v - lo) / (hi - lo))
+            if self.data.diverging {
+                diverging_colour(diverging_place(v, self.range))
+            } else {
+                colour((v - lo) / (hi - lo))
+            }
         } else {
             NO_VALUE
         }
@@ -359,7 +395,11 @@ impl MapFigure {
         for k in 0..steps {
             let a = lo + (hi - lo) * k as f64 / steps as f64;
             let b = lo + (hi - lo) * (k + 1) as f64 / steps as f64;
-            let (r, g, bb) = colour((k as f64 + 0.5) / steps as f64);
+            let (r, g, bb) = if self.data.diverging {
+                diverging_colour(diverging_place(0.5 * (a + b), (lo, hi)))
+            } else {
+                colour((k as f64 + 0.5) / steps as f64)
+            };
             cb.draw_series(std::iter::once(Rectangle::new(
                 [(0.0, a), (1.0, b)],
                 RGBColor(r, g, bb).filled(),

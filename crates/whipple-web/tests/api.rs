@@ -672,9 +672,21 @@ async fn a_map_with_a_band_answers_stable_over_it() -> TestResult {
     assert_eq!(status, StatusCode::OK, "{body}");
     assert_eq!(body["band"], json!([4.5, 5.5]));
     assert_eq!(body["stable_over"][1], true, "{body}");
-    assert!(approx(&body["band_margin_below"][1], 4.5 - 4.29238253634111, 1e-12));
-    assert!(approx(&body["band_margin_above"][1], 6.02426201538837 - 5.5, 1e-12));
-    assert!(approx(&body["band_margin"][1], 4.5 - 4.29238253634111, 1e-12));
+    assert!(approx(
+        &body["band_margin_below"][1],
+        4.5 - 4.29238253634111,
+        1e-12
+    ));
+    assert!(approx(
+        &body["band_margin_above"][1],
+        6.02426201538837 - 5.5,
+        1e-12
+    ));
+    assert!(approx(
+        &body["band_margin"][1],
+        4.5 - 4.29238253634111,
+        1e-12
+    ));
     assert_eq!(body["stable_over"][0], false, "trail 0.04 m: {body}");
     assert!(body["band_margin"][0].is_null());
     let (status, body) = post(
@@ -687,7 +699,10 @@ async fn a_map_with_a_band_answers_stable_over_it() -> TestResult {
     assert_eq!(body["error"]["field"], "band", "{body}");
     let (status, body) = post(&app, "/api/map", &map(Value::Null, Value::Null)?).await?;
     assert_eq!(status, StatusCode::OK, "{body}");
-    assert!(body.get("stable_over").is_none() && body.get("band").is_none(), "{body}");
+    assert!(
+        body.get("stable_over").is_none() && body.get("band").is_none(),
+        "{body}"
+    );
     Ok(())
 }
 
