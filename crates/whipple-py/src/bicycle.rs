@@ -4,11 +4,10 @@
 use std::collections::BTreeMap;
 
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
 use whipple::advanced::io;
 use whipple::advanced::io::Format;
+use whipple::advanced::parameters::Checked;
 use whipple::advanced::parameters::Description;
-use whipple::advanced::parameters::{Checked, Severity};
 use whipple::advanced::table;
 use whipple::advanced::table::Form;
 use whipple::presets as library_presets;
@@ -182,24 +181,10 @@ impl NativeBicycle {
         self.bicycle.source.clone()
     }
 
-    /// The file's notes and the checks' warnings as dicts (severity, field, message,
-    /// violation_percent, affects).
-    fn notices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        let list = PyList::empty(py);
-        for n in &self.checked.notices {
-            let d = PyDict::new(py);
-            let severity = match n.severity {
-                Severity::Note => "note",
-                Severity::Warning => "warning",
-            };
-            d.set_item("severity", severity)?;
-            d.set_item("field", &n.field)?;
-            d.set_item("message", &n.message)?;
-            d.set_item("violation_percent", n.violation_percent)?;
-            d.set_item("affects", &n.affects)?;
-            list.append(d)?;
-        }
-        Ok(list)
+    /// The file's notes and the checks' warnings: the core's `Notice`s as dicts (severity,
+    /// field, message, violation_percent where one applies, affects).
+    fn notices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        crate::serialized(py, &self.checked.notices)
     }
 
     /// The keys of the file that are not Whipple parameters: (key, text, value, sigma, meaning).

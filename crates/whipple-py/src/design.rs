@@ -12,12 +12,14 @@ use whipple_front::design::{AxisSpec, DesignStudy};
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
 use crate::guard::{SHORT, interruptible, memory_error, reserve, stopped};
+use crate::serialized;
 
-fn axis_dict<'py>(py: Python<'py>, axis: &AxisSpec) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("name", &axis.name)?;
-    d.set_item("unit", axis.unit())?;
-    d.set_item("degrees", axis.degrees)?;
+/// An axis: the core's serialization of it (`name`, `parameter`, `start`, `stop`, `count`,
+/// `degrees`: the server's keys) with its `unit` and its `values` (numpy) beside.
+fn axis_dict<'py>(py: Python<'py>, axis: &AxisSpec) -> PyResult<Bound<'py, PyAny>> {
+    let d = serialized(py, axis)?;
+    let dict = d.cast::<PyDict>()?;
+    dict.set_item("unit", axis.unit())?;
     let count = axis.axis.count;
     let mut values = reserve(count, || {
         memory_error(
@@ -28,7 +30,7 @@ fn axis_dict<'py>(py: Python<'py>, axis: &AxisSpec) -> PyResult<Bound<'py, PyDic
         )
     })?;
     values.extend((0..count).map(|i| axis.value(i)));
-    d.set_item("values", PyArray1::from_vec(py, values))?;
+    dict.set_item("values", PyArray1::from_vec(py, values))?;
     Ok(d)
 }
 

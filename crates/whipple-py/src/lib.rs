@@ -16,6 +16,16 @@ mod turns;
 
 use pyo3::prelude::*;
 
+/// A core result as Python objects by its own serde derive, so its names are the core's (those
+/// of the server's JSON): structs as dicts, sequences as lists, tuples and arrays as tuples,
+/// `None` as None. Large numeric arrays are not built this way but as numpy arrays.
+pub(crate) fn serialized<'py, T: serde::Serialize + ?Sized>(
+    py: Python<'py>,
+    value: &T,
+) -> PyResult<Bound<'py, PyAny>> {
+    Ok(pythonize::pythonize(py, value)?)
+}
+
 /// The native module.
 #[pymodule]
 fn _whipple(m: &Bound<'_, PyModule>) -> PyResult<()> {

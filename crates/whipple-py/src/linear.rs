@@ -7,7 +7,7 @@ use std::sync::atomic::AtomicBool;
 use nalgebra::{Matrix2, Matrix4};
 use numpy::{Complex64 as NpComplex, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::PyDict;
 use rayon::prelude::*;
 use whipple::advanced::comparison::{ComparisonSettings, Linearization, lean_steer_matrix};
 use whipple::advanced::comparison::{MAX_COMPARED_SPEEDS, compare_with_linear_until};
@@ -16,7 +16,6 @@ use whipple::advanced::linear::StateSpace;
 use whipple::advanced::linear::{CharacteristicPolynomial, SpeedPolynomials};
 use whipple::advanced::sensitivity;
 use whipple::advanced::sensitivity::critical_speeds_sigma;
-use whipple::advanced::stability::CrossingKind;
 use whipple::advanced::sweep::SweepPlan;
 use whipple::{Canonical, Error, Model};
 
@@ -25,6 +24,7 @@ use crate::errors::IntoPy;
 use crate::guard::{
     SHORT, estimate, grow, interruptible, is_stopped, memory_error, reserve, stopped,
 };
+use crate::serialized;
 
 fn matrix2<'py>(py: Python<'py>, m: &Matrix2<f64>) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let rows = vec![vec![m[(0, 0)], m[(0, 1)]], vec![m[(1, 0)], m[(1, 1)]]];
@@ -124,10 +124,6 @@ type EigResult<'py> = (
     Bound<'py, PyAny>,
     Option<Vec<&'static str>>,
 );
-
-fn option_pair(x: f64) -> Option<f64> {
-    x.is_finite().then_some(x)
-}
 
 #[pymethods]
 impl NativeBicycle {
@@ -302,65 +298,34 @@ impl NativeBicycle {
         ))
     }
 
-    /// Critical speeds in [lo, hi] with first-order σ from the parameters' σ (a dict).
+    /// Critical speeds in [lo, hi] with first-order σ from the parameters' σ: the core's
+    /// `CriticalSpeedsSigma` as a dict (the keys of `whipple speeds --format json`); the σ are
+    /// None for a bicycle without uncertainties.
     #[pyo3(signature = (lo=0.0, hi=f64::INFINITY))]
     fn critical_speeds<'py>(
         &self,
         py: Python<'py>,
         lo: f64,
         hi: f64,
-    ) -> PyResult<Bound<'py, PyDict>> {
+    ) -> PyResult<Bound<'py, PyAny>> {
         let bicycle = self.bicycle.clone();
-        let s = py
+        let mut s = py
             .detach(|| critical_speeds_sigma(&bicycle, lo, hi))
             .py_err(py)?;
-        let uncertain = self.bicycle.has_uncertainty();
-        let sig = |x: Option<f64>| if uncertain { x } else { None };
-        let c = &s.speeds;
-        let d = PyDict::new(py);
-        d.set_item("range", (c.range.0, c.range.1))?;
-        d.set_item("v_d", c.double_root_speed)?;
-        d.set_item("double_root_eigenvalue", c.double_root_eigenvalue)?;
-        d.set_item("v_w", c.weave_speed)?;
-        d.set_item("weave_frequency", c.weave_frequency)?;
-        d.set_item("v_c", c.capsize_speed)?;
-        d.set_item("stable_ranges", c.stable_speed_ranges.clone())?;
-        d.set_item("v_d_sigma", sig(s.double_root_speed_sigma))?;
-        d.set_item("v_w_sigma", sig(s.weave_speed_sigma))?;
-        d.set_item("v_c_sigma", sig(s.capsize_speed_sigma))?;
-        let ranges_sigma: Vec<(Option<f64>, Option<f64>)> = s
-            .stable_speed_ranges_sigma
-            .iter()
-            .map(|&(a, b)| (sig(a), sig(b)))
-            .collect();
-        d.set_item("stable_ranges_sigma", ranges_sigma)?;
-        let crossings = PyList::empty(py);
-        for x in &c.crossings {
-            let e = PyDict::new(py);
-            e.set_item("speed", x.speed)?;
-            e.set_item("enclosure", x.enclosure)?;
-            e.set_item(
-                "kind",
-                match x.kind {
-                    CrossingKind::Real => "real",
-                    CrossingKind::Pair => "pair",
-                },
-            )?;
-            e.set_item("unstable_below", x.unstable_below)?;
-            e.set_item("unstable_above", x.unstable_above)?;
-            e.set_item("frequency", x.frequency)?;
-            crossings.append(e)?;
+        if !self.bicycle.has_uncertainty() {
+            s.double_root_speed_sigma = None;
+            s.weave_speed_sigma = None;
+            s.capsize_speed_sigma = None;
+            for ends in &mut s.stable_speed_ranges_sigma {
+                *ends = (None, None);
+            }
         }
-        d.set_item("crossings", crossings)?;
-        d.set_item("unresolved", c.unresolved.clone())?;
-        d.set_item("double_root_unavailable", c.double_root_unavailable.clone())?;
-        d.set_item("uncertain", uncertain)?;
-        Ok(d)
+        serialized(py, &s)
     }
 
     /// Exact sensitivities of v_w, v_c and the stable width to every parameter of the
     /// bicycle's own form over [lo, hi], and of the weave's and capsize's real parts at
-    /// `speed`: a dict of columns.
+    /// `speed`: the core's `Sensitivities` as a dict (`parameters` a list of records).
     #[pyo3(signature = (speed=None, lo=0.0, hi=f64::INFINITY))]
     fn sensitivities<'py>(
         &self,
@@ -368,66 +333,18 @@ impl NativeBicycle {
         speed: Option<f64>,
         lo: f64,
         hi: f64,
-    ) -> PyResult<Bound<'py, PyDict>> {
+    ) -> PyResult<Bound<'py, PyAny>> {
         let bicycle = self.bicycle.clone();
         let s = py
             .detach(|| sensitivity::sensitivities(&bicycle, lo, hi, speed))
             .py_err(py)?;
-        let d = PyDict::new(py);
-        let p = &s.parameters;
-        let nan = |x: Option<f64>| x.unwrap_or(f64::NAN);
-        let column = |f: &dyn Fn(&sensitivity::ParameterSensitivity) -> Option<f64>| -> Vec<f64> {
-            p.iter().map(|q| nan(f(q))).collect()
-        };
-        d.set_item("key", p.iter().map(|q| q.key).collect::<Vec<_>>())?;
-        d.set_item("symbol", p.iter().map(|q| q.symbol).collect::<Vec<_>>())?;
-        d.set_item("unit", p.iter().map(|q| q.unit).collect::<Vec<_>>())?;
-        d.set_item(
-            "description",
-            p.iter().map(|q| q.description).collect::<Vec<_>>(),
-        )?;
-        d.set_item("value", PyArray1::from_vec(py, column(&|q| Some(q.value))))?;
-        d.set_item("d_v_w", PyArray1::from_vec(py, column(&|q| q.weave_speed)))?;
-        d.set_item(
-            "d_v_c",
-            PyArray1::from_vec(py, column(&|q| q.capsize_speed)),
-        )?;
-        d.set_item(
-            "d_width",
-            PyArray1::from_vec(py, column(&|q| q.stable_width)),
-        )?;
-        d.set_item(
-            "elasticity_v_w",
-            PyArray1::from_vec(py, column(&|q| q.weave_speed_elasticity)),
-        )?;
-        d.set_item(
-            "elasticity_v_c",
-            PyArray1::from_vec(py, column(&|q| q.capsize_speed_elasticity)),
-        )?;
-        d.set_item(
-            "elasticity_width",
-            PyArray1::from_vec(py, column(&|q| q.stable_width_elasticity)),
-        )?;
-        d.set_item(
-            "d_weave_real",
-            PyArray1::from_vec(py, column(&|q| q.weave_real)),
-        )?;
-        d.set_item(
-            "d_capsize_real",
-            PyArray1::from_vec(py, column(&|q| q.capsize_real)),
-        )?;
-        d.set_item("form", self.form_name())?;
-        d.set_item("v_w", s.critical.weave_speed)?;
-        d.set_item("v_c", s.critical.capsize_speed)?;
-        d.set_item(
-            "stable_range",
-            s.stable_range
-                .map(|(a, b)| (a, option_pair(b).unwrap_or(f64::INFINITY))),
-        )?;
-        d.set_item("speed", s.speed)?;
-        d.set_item("weave_real", s.weave_real)?;
-        d.set_item("capsize_real", s.capsize_real)?;
-        Ok(d)
+        serialized(py, &s)
+    }
+
+    /// Whether any parameter carries a positive σ (then `critical_speeds` gives σ).
+    #[getter]
+    fn uncertain(&self) -> bool {
+        self.bicycle.has_uncertainty()
     }
 
     /// The non-linear model's own A(v) about upright straight running, exact (dual numbers):
@@ -548,14 +465,5 @@ impl NativeBicycle {
             d.set_item(m.method.name(), e)?;
         }
         Ok(d)
-    }
-}
-
-impl NativeBicycle {
-    fn form_name(&self) -> &'static str {
-        match self.bicycle.description.form() {
-            whipple::advanced::table::Form::Benchmark => "benchmark",
-            whipple::advanced::table::Form::Jbike6 => "jbike6",
-        }
     }
 }

@@ -1,8 +1,9 @@
 //! Steady turns of the non-linear bicycle from Python: the library's
 //! `analysis::turns` (held turns, their stability, the hands-free families and the branch from
-//! straight running) as dicts of plain values and numpy arrays. Nothing is solved here.
+//! straight running): a turn and its stability as the core's own structs serialized (the
+//! server's keys), the families' points as numpy arrays. Nothing is solved here.
 
-use numpy::{Complex64, PyArray1};
+use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use whipple::advanced::turns::{
@@ -14,65 +15,22 @@ use whipple::{Error, Model};
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
+use crate::serialized;
 
-/// One turn and its stability (or why it could not be decided) as a dict.
+/// One turn and its stability (or why it could not be decided): the core's `FamilyPoint` as a
+/// dict, `turn`, `stability` (or None) and `stability_error` (or None), the keys of the
+/// server's `/api/turn`.
 fn turn_dict<'py>(
     py: Python<'py>,
     turn: &SteadyTurn,
     stab: &Result<Stability, String>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("speed", turn.speed)?;
-    d.set_item("lean", turn.lean)?;
-    d.set_item("steer", turn.steer)?;
-    d.set_item("steer_torque", turn.steer_torque)?;
-    d.set_item("pitch", turn.pitch)?;
-    d.set_item("hub_speed", turn.hub_speed)?;
-    d.set_item("yaw_rate", turn.yaw_rate)?;
-    d.set_item("wheel_rates", (turn.wheel_rates[0], turn.wheel_rates[1]))?;
-    d.set_item("rear_radius", turn.rear_radius)?;
-    d.set_item("front_radius", turn.front_radius)?;
-    d.set_item("mass_centre_radius", turn.mass_centre_radius)?;
-    d.set_item("centre", turn.centre.map(|c| (c[0], c[1])))?;
-    d.set_item("lateral_acceleration", turn.lateral_acceleration)?;
-    let contacts = PyList::empty(py);
-    for c in &turn.contact {
-        let cd = PyDict::new(py);
-        cd.set_item("normal", c.normal)?;
-        cd.set_item("longitudinal", c.longitudinal)?;
-        cd.set_item("lateral", c.lateral)?;
-        cd.set_item("friction_ratio", c.friction_ratio)?;
-        contacts.append(cd)?;
-    }
-    d.set_item("contact", contacts)?;
-    let r = PyDict::new(py);
-    r.set_item("lean_acceleration", turn.residuals.lean_acceleration)?;
-    r.set_item("steer_acceleration", turn.residuals.steer_acceleration)?;
-    r.set_item("speed_rate", turn.residuals.speed_rate)?;
-    d.set_item("residuals", r)?;
-    d.set_item("iterations", turn.iterations)?;
-    match stab {
-        Ok(s) => {
-            let values: Vec<Complex64> = s
-                .eigenvalues
-                .iter()
-                .map(|z| Complex64::new(z.re, z.im))
-                .collect();
-            d.set_item("eigenvalues", PyArray1::from_vec(py, values))?;
-            d.set_item("family_eigenvalue", s.family_eigenvalue)?;
-            d.set_item("max_real", s.max_real)?;
-            d.set_item("stable", s.stable)?;
-            d.set_item("stability_error", py.None())?;
-        }
-        Err(e) => {
-            d.set_item("eigenvalues", py.None())?;
-            d.set_item("family_eigenvalue", py.None())?;
-            d.set_item("max_real", py.None())?;
-            d.set_item("stable", py.None())?;
-            d.set_item("stability_error", e)?;
-        }
-    }
-    Ok(d)
+) -> PyResult<Bound<'py, PyAny>> {
+    let point = FamilyPoint {
+        turn: *turn,
+        stability: stab.as_ref().ok().cloned(),
+        stability_error: stab.as_ref().err().cloned(),
+    };
+    serialized(py, &point)
 }
 
 /// A family's points up to `max_speed` (the tracing stops one step beyond it; the command line
@@ -125,24 +83,8 @@ fn family_dict<'py>(
     d.set_item("stable", PyArray1::from_vec(py, stable))?;
     d.set_item("decided", PyArray1::from_vec(py, decided))?;
     d.set_item("max_real", PyArray1::from_vec(py, max_real))?;
-    let end = serde_name(family.end);
-    d.set_item("end", end)?;
+    d.set_item("end", serialized(py, &family.end)?)?;
     Ok(d)
-}
-
-/// The snake_case name of a family's end (as the CLI's JSON writes it).
-fn serde_name(end: whipple::advanced::turns::FamilyEnd) -> &'static str {
-    use whipple::advanced::turns::FamilyEnd as E;
-    match end {
-        E::Fell => "fell",
-        E::MaxSpeed => "max_speed",
-        E::Standstill => "standstill",
-        E::SteerHalfTurn => "steer_half_turn",
-        E::Closed => "closed",
-        E::MaxPoints => "max_points",
-        E::StepTooSmall => "step_too_small",
-        E::Straight => "straight",
-    }
 }
 
 impl NativeBicycle {
@@ -163,7 +105,7 @@ impl NativeBicycle {
         lean: Option<f64>,
         steer: Option<f64>,
         radius: Option<f64>,
-    ) -> PyResult<Bound<'py, PyDict>> {
+    ) -> PyResult<Bound<'py, PyAny>> {
         let given = match (lean, steer, radius) {
             (Some(l), None, None) => Held::Lean(l),
             (None, Some(s), None) => Held::Steer(s),
@@ -252,16 +194,7 @@ impl NativeBicycle {
             list.append(family_dict(py, f, max_speed)?)?;
         }
         d.set_item("families", list)?;
-        match branch {
-            Some(b) => {
-                let bd = PyDict::new(py);
-                bd.set_item("speed", b.speed)?;
-                bd.set_item("steer_per_lean", b.steer_per_lean)?;
-                bd.set_item("iterations", b.iterations)?;
-                d.set_item("branch", bd)?;
-            }
-            None => d.set_item("branch", py.None())?,
-        }
+        d.set_item("branch", serialized(py, &branch)?)?;
         d.set_item("max_speed", max_speed)?;
         Ok(d)
     }

@@ -220,6 +220,14 @@ def test_sensitivities_against_central_difference(benchmark):
     down = benchmark.replace(c=0.08 - h).critical_speeds().v_w
     assert row["d_v_w"] == pytest.approx((up - down) / (2 * h), rel=1e-7)
     assert s.d_v_w.shape == (26,) and s.d_v_w.dtype == np.float64
+    # The columns are read from the library's records (the server's /api/sensitivity keys).
+    d = s.to_dict()
+    record = next(p for p in d["parameters"] if p["key"] == "c")
+    assert record["weave_speed"] == row["d_v_w"] and record["capsize_speed"] == row["d_v_c"]
+    assert record["weave_speed_elasticity"] == row["elasticity_v_w"]
+    assert d["critical"]["weave_speed"] == s.v_w == benchmark.critical_speeds().v_w
+    assert d["form"] == "benchmark" and d["speed"] == 5.0
+    assert s.stable_range == tuple(d["stable_range"])
 
 
 def test_gil_is_released_for_batches(benchmark):

@@ -50,6 +50,15 @@ def test_speeds_json(cli, bike):
     if "weave_speed_sigma" in doc:
         assert s.v_w_sigma == doc["weave_speed_sigma"]
         assert s.v_c_sigma == doc["capsize_speed_sigma"]
+    # to_dict() is the library's record itself: the CLI's (and the server's) keys and values;
+    # the σ are there always, None for a bicycle without uncertainties (the CLI leaves them out).
+    mine = json.loads(json.dumps(s.to_dict()))
+    theirs = {k: v for k, v in doc.items() if k not in ("bike", "warnings")}
+    if "weave_speed_sigma" not in doc:
+        for key in ("double_root_speed_sigma", "weave_speed_sigma", "capsize_speed_sigma"):
+            assert mine.pop(key) is None, key
+        assert all(ends == [None, None] for ends in mine.pop("stable_speed_ranges_sigma"))
+    assert mine == theirs
 
 
 def test_simulate_csv(cli, benchmark):

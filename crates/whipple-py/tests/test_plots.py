@@ -50,6 +50,10 @@ def test_side_view_plot(plt, benchmark, tmp_path):
     assert view["front_hub"] == (1.02, 0.35)
     assert view["total_mass"] == pytest.approx(94.0, abs=1e-12)
     assert len(view["frame_tubes"]) == 6
+    # The library's SideView's own field names; an ellipse as its record (semi_axes, angle).
+    ellipse = next(b["ellipse"] for b in view["bodies"] if b["ellipse"] is not None)
+    assert set(ellipse) == {"semi_axes", "angle"} and len(ellipse["semi_axes"]) == 2
+    assert [b["is_wheel"] for b in view["bodies"]][:2] == [True, True]
     ax = benchmark.plot_side_view()
     circles = [p for p in ax.patches if isinstance(p, Circle)]
     ellipses = [p for p in ax.patches if isinstance(p, Ellipse) and not isinstance(p, Circle)]

@@ -56,6 +56,10 @@ def test_turn_matches_cli_exactly(cli, benchmark):
     assert not t.hands_free and t.steer_torque != 0.0
     assert max(abs(x) for x in t.residuals.values()) < 1e-9
     assert "steer δ" in repr(t) and "<table>" in t._repr_html_()
+    # to_dict() is the library's record, keyed as the server's /api/turn.
+    d = t.to_dict()
+    assert set(d) == {"turn", "stability", "stability_error"} and d["stability_error"] is None
+    assert d["turn"]["steer_torque"] == t.steer_torque and d["stability"]["stable"] is t.stable
 
 
 def test_turn_by_steer_and_radius_agree_with_lean(benchmark):

@@ -190,7 +190,8 @@ class Bicycle:
     @property
     def notices(self) -> List[Dict[str, Any]]:
         """Warnings and notes from reading and checking it (dicts: severity, field, message,
-        violation_percent, affects)."""
+        violation_percent where one applies, affects: the server's and the command line's
+        JSON keys)."""
         return self._native.notices()
 
     @property
@@ -280,7 +281,8 @@ class Bicycle:
         m/s (by default all forward speeds), certified: found from the characteristic
         polynomial with root enclosures that cannot miss a root, polished to round-off. With
         σ where the bicycle's parameters carry uncertainties."""
-        return CriticalSpeeds(self._native.critical_speeds(float(lo), float(hi)), self.label)
+        return CriticalSpeeds(self._native.critical_speeds(float(lo), float(hi)), self.label,
+                              self._native.uncertain)
 
     def sensitivities(self, speed: Optional[float] = None, lo: float = 0.0,
                       hi: float = math.inf) -> Sensitivities:
@@ -429,7 +431,10 @@ class Bicycle:
     def side_view(self) -> Dict[str, Any]:
         """The side view's geometry (the library's ``side_view``; x forward from the rear
         contact, y up, metres): wheels, steer axis, trail, the stylized frame tubes
-        (``frame_tubes``, a drawing aid), each body's centre of mass and inertia ellipse."""
+        (``frame_tubes``, a drawing aid), each body's centre of mass and inertia ellipse
+        (``bodies``: ``part``, ``name``, ``mass``, ``centre``, ``ellipse`` as
+        ``{'semi_axes': (a, b), 'angle': rad}`` or ``None``, ``is_wheel``, ``is_front``). The
+        keys are the library's ``SideView``'s field names; points are ``(x, y)`` tuples."""
         return self._native.side_view()
 
     def plot_side_view(self, ax=None):

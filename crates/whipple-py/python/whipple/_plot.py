@@ -198,8 +198,9 @@ def plot_side_view(view: Any, label: str = "", ax=None):
     for body in view["bodies"]:
         colour = _GREY if body["is_wheel"] else (_CYCLE[0] if body["is_front"] else _CYCLE[1])
         cx, cy = body["centre"]
-        if body["ellipse"] is not None:
-            (a, b), angle = body["ellipse"]
+        ellipse = body["ellipse"]
+        if ellipse is not None:
+            (a, b), angle = ellipse["semi_axes"], ellipse["angle"]
             ax.add_patch(Ellipse((cx, cy), 2 * a, 2 * b, angle=np.degrees(angle), fill=True,
                                  fc=colour, alpha=0.18, ec=colour, lw=1.2, zorder=4))
         ax.plot(cx, cy, "o", color=colour, ms=6, mec="white", zorder=6)

@@ -52,6 +52,17 @@ def _pandas():
     return pandas
 
 
+def _end(x: Optional[float], open_end: float) -> float:
+    """An end of a range as the core serializes it (``None`` for an infinite end, as in the
+    server's JSON) as a number: ``open_end`` (``math.inf`` or ``-math.inf``) for ``None``."""
+    return open_end if x is None else x
+
+
+def _range(r: Sequence[Optional[float]]) -> Tuple[float, float]:
+    """A serialized range ``[lo, hi]`` (``None`` for no end) with ``±math.inf`` for the open ends."""
+    return (_end(r[0], -math.inf), _end(r[1], math.inf))
+
+
 class CriticalSpeeds:
     """The certified critical speeds of the linearized bicycle in a speed range.
 
@@ -69,35 +80,55 @@ class CriticalSpeeds:
     - ``crossings``: every speed where an eigenvalue crosses the imaginary axis (dicts);
     - ``unresolved``: intervals round-off could not classify (normally empty);
     - ``range``: the range searched.
+
+    ``to_dict()`` gives the library's own record, keyed as the server's ``/api/speeds`` JSON and
+    ``whipple speeds --format json`` (``weave_speed``, ``stable_speed_ranges``, …, and the σ as
+    ``weave_speed_sigma``, …), an open end of a range ``None``.
     """
 
-    def __init__(self, data: Dict[str, Any], label: str = "") -> None:
+    #: attribute ← the library's key (the one place the paper's symbols meet the record's names).
+    _NAMES = {
+        "v_d": "double_root_speed",
+        "double_root_eigenvalue": "double_root_eigenvalue",
+        "v_w": "weave_speed",
+        "weave_frequency": "weave_frequency",
+        "v_c": "capsize_speed",
+        "v_d_sigma": "double_root_speed_sigma",
+        "v_w_sigma": "weave_speed_sigma",
+        "v_c_sigma": "capsize_speed_sigma",
+    }
+
+    def __init__(self, data: Dict[str, Any], label: str = "", uncertain: bool = False) -> None:
         self._data = data
         self.label = label
-        self.range: Tuple[float, float] = tuple(data["range"])  # type: ignore[assignment]
-        self.v_d: Optional[float] = data["v_d"]
-        self.double_root_eigenvalue: Optional[float] = data["double_root_eigenvalue"]
-        self.v_w: Optional[float] = data["v_w"]
-        self.weave_frequency: Optional[float] = data["weave_frequency"]
-        self.v_c: Optional[float] = data["v_c"]
-        self.stable_ranges: List[Tuple[float, float]] = [tuple(r) for r in data["stable_ranges"]]  # type: ignore[misc]
-        self.v_d_sigma: Optional[float] = data["v_d_sigma"]
-        self.v_w_sigma: Optional[float] = data["v_w_sigma"]
-        self.v_c_sigma: Optional[float] = data["v_c_sigma"]
+        self.uncertain: bool = uncertain
+        for name, key in self._NAMES.items():
+            setattr(self, name, data[key])
+        self.v_d: Optional[float]
+        self.double_root_eigenvalue: Optional[float]
+        self.v_w: Optional[float]
+        self.weave_frequency: Optional[float]
+        self.v_c: Optional[float]
+        self.v_d_sigma: Optional[float]
+        self.v_w_sigma: Optional[float]
+        self.v_c_sigma: Optional[float]
+        self.range: Tuple[float, float] = _range(data["range"])
+        self.stable_ranges: List[Tuple[float, float]] = [_range(r) for r in data["stable_speed_ranges"]]
         self.stable_ranges_sigma: List[Tuple[Optional[float], Optional[float]]] = [
-            tuple(r) for r in data["stable_ranges_sigma"]  # type: ignore[misc]
+            tuple(r) for r in data["stable_speed_ranges_sigma"]  # type: ignore[misc]
         ]
         self.crossings: List[Dict[str, Any]] = data["crossings"]
-        self.unresolved: List[Tuple[float, float]] = [tuple(r) for r in data["unresolved"]]  # type: ignore[misc]
-        self.double_root_unavailable: Optional[str] = data["double_root_unavailable"]
-        self.uncertain: bool = data["uncertain"]
+        self.unresolved: List[Tuple[float, float]] = [_range(r) for r in data["unresolved"]]
+        self.double_root_unavailable: Optional[str] = data.get("double_root_unavailable")
 
     def is_stable(self, speed: float) -> bool:
         """True when ``speed`` lies in a self-stable range."""
         return any(lo < speed < hi for lo, hi in self.stable_ranges)
 
     def to_dict(self) -> Dict[str, Any]:
-        """Everything as a plain dict (ranges as tuples, ∞ as ``math.inf``)."""
+        """The library's record as a plain dict, keyed as the server's JSON (``weave_speed``,
+        ``stable_speed_ranges``, ``weave_speed_sigma``, …; an open end of a range ``None``,
+        ``double_root_unavailable`` only where v_d could not be given)."""
         return dict(self._data)
 
     def _rows(self) -> List[Tuple[str, str]]:
@@ -276,41 +307,73 @@ class Sensitivities:
     bicycle's own form: columns ``key``, ``symbol``, ``unit``, ``value``, ``d_v_w``, ``d_v_c``,
     ``d_width`` (∂/∂p in m/s per unit of p), ``elasticity_v_w``, ``elasticity_v_c``,
     ``elasticity_width`` (∂ln v/∂ln p) and, at ``speed``, ``d_weave_real``, ``d_capsize_real``
-    (∂ Re λ/∂p). NaN where a quantity does not exist (no capsize speed in the range, say)."""
+    (∂ Re λ/∂p). NaN where a quantity does not exist (no capsize speed in the range, say).
 
-    _COLUMNS = ["key", "symbol", "unit", "description", "value", "d_v_w", "d_v_c", "d_width",
-                "elasticity_v_w", "elasticity_v_c", "elasticity_width", "d_weave_real",
-                "d_capsize_real"]
+    ``to_dict()`` gives the library's own record, keyed as the server's ``/api/sensitivity``
+    JSON: ``form``, ``critical`` (the critical speeds' record), ``stable_range``, ``speed``,
+    ``weave_real``, ``capsize_real`` and ``parameters``, one record per parameter (``key``, …,
+    ``weave_speed``, ``capsize_speed``, ``stable_width``, ``weave_speed_elasticity``, …)."""
+
+    #: column ← the key of a parameter's record (the one place the paper's symbols meet the
+    #: record's names).
+    _FIELDS = {
+        "key": "key",
+        "symbol": "symbol",
+        "unit": "unit",
+        "description": "description",
+        "value": "value",
+        "d_v_w": "weave_speed",
+        "d_v_c": "capsize_speed",
+        "d_width": "stable_width",
+        "elasticity_v_w": "weave_speed_elasticity",
+        "elasticity_v_c": "capsize_speed_elasticity",
+        "elasticity_width": "stable_width_elasticity",
+        "d_weave_real": "weave_real",
+        "d_capsize_real": "capsize_real",
+    }
+    _COLUMNS = list(_FIELDS)
+    _TEXT = ("key", "symbol", "unit", "description")
 
     def __init__(self, data: Dict[str, Any]) -> None:
         self._data = data
-        for name in self._COLUMNS:
-            setattr(self, name, data[name])
+        rows = data["parameters"]
+        self._columns: Dict[str, Any] = {}
+        for name, field in self._FIELDS.items():
+            values = [row[field] for row in rows]
+            column = values if name in self._TEXT else np.array(
+                [np.nan if x is None else x for x in values], dtype=float)
+            self._columns[name] = column
+            setattr(self, name, column)
         self.form: str = data["form"]
-        self.v_w: Optional[float] = data["v_w"]
-        self.v_c: Optional[float] = data["v_c"]
-        self.stable_range = data["stable_range"]
+        self.v_w: Optional[float] = data["critical"]["weave_speed"]
+        self.v_c: Optional[float] = data["critical"]["capsize_speed"]
+        stable = data["stable_range"]
+        self.stable_range: Optional[Tuple[float, float]] = _range(stable) if stable is not None else None
         self.speed: Optional[float] = data["speed"]
         self.weave_real: Optional[float] = data["weave_real"]
         self.capsize_real: Optional[float] = data["capsize_real"]
 
     def __getitem__(self, key: str) -> Dict[str, Any]:
-        """The row of one parameter (``s['c']``)."""
-        keys = list(self._data["key"])
+        """The row of one parameter (``s['c']``), in the columns' names."""
+        keys = list(self._columns["key"])
         if key not in keys:
             raise KeyError(key)
         i = keys.index(key)
-        return {name: (self._data[name][i]) for name in self._COLUMNS}
+        return {name: self._columns[name][i] for name in self._COLUMNS}
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The library's record as a plain dict, keyed as the server's JSON (see the class)."""
+        return dict(self._data)
 
     def to_pandas(self):
         """The table as a DataFrame indexed by parameter key."""
         pd = _pandas()
-        return pd.DataFrame({n: self._data[n] for n in self._COLUMNS}).set_index("key")
+        return pd.DataFrame({n: self._columns[n] for n in self._COLUMNS}).set_index("key")
 
     def __repr__(self) -> str:
         lines = [f"Sensitivities ({self.form} form; v_w = {_num(self.v_w)} m/s, v_c = {_num(self.v_c)} m/s)",
                  f"  {'key':<12}{'dv_w/dp':>14}{'dv_c/dp':>14}{'elast. v_w':>12}{'elast. v_c':>12}"]
-        for i, key in enumerate(self._data["key"]):
+        for i, key in enumerate(self._columns["key"]):
             lines.append(
                 f"  {key:<12}{self.d_v_w[i] + 0.0:>14.5g}{self.d_v_c[i] + 0.0:>14.5g}"
                 f"{self.elasticity_v_w[i] + 0.0:>12.4g}{self.elasticity_v_c[i] + 0.0:>12.4g}"

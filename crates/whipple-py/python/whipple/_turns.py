@@ -61,30 +61,40 @@ class SteadyTurn:
     """
 
     def __init__(self, data: Dict[str, Any], label: str = "") -> None:
+        # The library's record, keyed as the server's /api/turn: `turn` (the turn's fields,
+        # read by their own names), `stability` (None when not decided) and `stability_error`.
         self._data = data
         self.label = label
-        self.speed: float = data["speed"]
-        self.hub_speed: float = data["hub_speed"]
-        self.lean: float = data["lean"]
-        self.steer: float = data["steer"]
-        self.pitch: float = data["pitch"]
-        self.steer_torque: float = data["steer_torque"]
-        self.yaw_rate: float = data["yaw_rate"]
-        self.wheel_rates: Tuple[float, float] = tuple(data["wheel_rates"])  # type: ignore[assignment]
-        self.rear_radius: Optional[float] = data["rear_radius"]
-        self.front_radius: Optional[float] = data["front_radius"]
-        self.mass_centre_radius: Optional[float] = data["mass_centre_radius"]
-        self.centre: Optional[Tuple[float, float]] = (tuple(data["centre"])  # type: ignore[assignment]
-                                                      if data["centre"] is not None else None)
-        self.lateral_acceleration: float = data["lateral_acceleration"]
+        turn = data["turn"]
+        self.speed: float = turn["speed"]
+        self.hub_speed: float = turn["hub_speed"]
+        self.lean: float = turn["lean"]
+        self.steer: float = turn["steer"]
+        self.pitch: float = turn["pitch"]
+        self.steer_torque: float = turn["steer_torque"]
+        self.yaw_rate: float = turn["yaw_rate"]
+        self.wheel_rates: Tuple[float, float] = tuple(turn["wheel_rates"])  # type: ignore[assignment]
+        self.rear_radius: Optional[float] = turn["rear_radius"]
+        self.front_radius: Optional[float] = turn["front_radius"]
+        self.mass_centre_radius: Optional[float] = turn["mass_centre_radius"]
+        self.centre: Optional[Tuple[float, float]] = (tuple(turn["centre"])  # type: ignore[assignment]
+                                                      if turn["centre"] is not None else None)
+        self.lateral_acceleration: float = turn["lateral_acceleration"]
         self.contact: Tuple[WheelContact, WheelContact] = tuple(  # type: ignore[assignment]
-            WheelContact(c) for c in data["contact"])
-        self.residuals: Dict[str, float] = dict(data["residuals"])
-        self.iterations: int = data["iterations"]
-        self.eigenvalues: Optional[np.ndarray] = data["eigenvalues"]
-        self.family_eigenvalue: Optional[float] = data["family_eigenvalue"]
-        self.max_real: Optional[float] = data["max_real"]
-        self.stable: Optional[bool] = data["stable"]
+            WheelContact(c) for c in turn["contact"])
+        self.residuals: Dict[str, float] = dict(turn["residuals"])
+        self.iterations: int = turn["iterations"]
+        stability = data["stability"]
+        self.eigenvalues: Optional[np.ndarray] = None
+        self.family_eigenvalue: Optional[float] = None
+        self.max_real: Optional[float] = None
+        self.stable: Optional[bool] = None
+        if stability is not None:
+            self.eigenvalues = np.array([complex(z["re"], z["im"]) for z in stability["eigenvalues"]],
+                                        dtype=complex)
+            self.family_eigenvalue = stability["family_eigenvalue"]
+            self.max_real = stability["max_real"]
+            self.stable = stability["stable"]
         self.stability_error: Optional[str] = data["stability_error"]
 
     @property
@@ -93,10 +103,11 @@ class SteadyTurn:
         return self.steer_torque == 0.0
 
     def to_dict(self) -> Dict[str, Any]:
-        """Everything as a plain dict (contacts as dicts)."""
-        d = dict(self._data)
-        d["contact"] = [dict(c) for c in self._data["contact"]]
-        return d
+        """The library's record as a plain dict, keyed as the server's ``/api/turn`` JSON:
+        ``turn`` (``speed``, ``lean``, …, ``contact`` as two dicts, ``residuals``),
+        ``stability`` (``eigenvalues`` as ``{'re', 'im'}`` dicts, ``family_eigenvalue``,
+        ``max_real``, ``stable``; ``None`` when not decided) and ``stability_error``."""
+        return dict(self._data)
 
     def _rows(self) -> List[Tuple[str, str]]:
         def deg(x: float) -> str:

@@ -306,7 +306,9 @@ impl ParameterDerivatives {
 /// is not differentiable).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CriticalSpeedsSigma {
-    /// The critical speeds themselves.
+    /// The critical speeds themselves (serialized in line: one object with the σ fields, as
+    /// `whipple speeds --format json` writes it).
+    #[serde(flatten)]
     pub speeds: CriticalSpeeds,
     /// σ of v_d [m/s].
     pub double_root_speed_sigma: Option<f64>,
@@ -428,7 +430,9 @@ pub struct Sensitivities {
     pub form: Form,
     /// The base design's critical speeds.
     pub critical: CriticalSpeeds,
-    /// The first stable range (lo, hi), whose width is differentiated.
+    /// The first stable range (lo, hi), whose width is differentiated (hi = +∞, written
+    /// `null`, when it has no upper end).
+    #[serde(serialize_with = "crate::analysis::stability::serialize_option_range")]
     pub stable_range: Option<(f64, f64)>,
     /// The speed for the eigenvalue real parts, if asked.
     pub speed: Option<f64>,
@@ -563,4 +567,44 @@ pub fn with_parameter(bike: &Bicycle, key: &str, value: f64) -> Option<Bicycle> 
         description,
         ..bike.clone()
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::parameters::presets;
+
+    /// The critical speeds with σ serialize as one object (the speeds' fields and the σ beside
+    /// them, as `whipple speeds --format json` writes them), and an open end of a range as
+    /// `null` wherever a range is written.
+    #[test]
+    fn sigma_and_sensitivities_serialize_with_the_speeds_names() -> Result<()> {
+        let mut bike = presets::find("benchmark")?.bicycle();
+        bike.sigma.insert("c".into(), 0.001);
+        let json = |v: serde_json::Result<serde_json::Value>| v.expect("serializable");
+        let s = json(serde_json::to_value(critical_speeds_sigma(
+            &bike,
+            0.0,
+            f64::INFINITY,
+        )?));
+        for key in [
+            "weave_speed",
+            "stable_speed_ranges",
+            "weave_speed_sigma",
+            "range",
+        ] {
+            assert!(s.get(key).is_some(), "{key} in {s}");
+        }
+        assert!(s.get("speeds").is_none());
+        assert_eq!(s["range"][1], serde_json::Value::Null);
+        let t = json(serde_json::to_value(sensitivities(
+            &bike,
+            0.0,
+            f64::INFINITY,
+            None,
+        )?));
+        assert_eq!(t["stable_range"], s["stable_speed_ranges"][0]);
+        assert_eq!(t["critical"]["weave_speed"], s["weave_speed"]);
+        Ok(())
+    }
 }

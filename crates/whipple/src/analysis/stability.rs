@@ -114,6 +114,15 @@ fn serialize_range<S: Serializer>(r: &(f64, f64), s: S) -> Result<S::Ok, S::Erro
     (json_end(r.0), json_end(r.1)).serialize(s)
 }
 
+/// An optional range as [`CriticalSpeeds`]' ranges are written: an infinite end as `null`
+/// (what serde_json writes for it anyway; other serializers, Python's among them, get `None`).
+pub(crate) fn serialize_option_range<S: Serializer>(
+    r: &Option<(f64, f64)>,
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    r.map(|r| (json_end(r.0), json_end(r.1))).serialize(s)
+}
+
 fn serialize_ranges<S: Serializer>(ranges: &[(f64, f64)], s: S) -> Result<S::Ok, S::Error> {
     let mut seq = s.serialize_seq(Some(ranges.len()))?;
     for r in ranges {
