@@ -51,6 +51,17 @@ const QUANTITY_NAMES: [&str; 8] = [
 const BYTES_PER_DESIGN: usize = 8 * 8 + 2 + 1;
 const BYTES_PER_COORDINATES: usize = 5 * 8;
 
+/// The band's columns (with a band only), in this order.
+const BAND_NAMES: [&str; 4] = [
+    "stable_over",
+    "band_margin_below",
+    "band_margin_above",
+    "band_margin",
+];
+
+/// Bytes a design takes in the band's columns.
+const BYTES_PER_BAND: usize = 4 * 8;
+
 /// A shard's columns, reserved whole before the first design is computed.
 struct Columns {
     index: Vec<u64>,
@@ -65,16 +76,20 @@ struct Columns {
     quantities: [Vec<f64>; 8],
     stable: Vec<bool>,
     unresolved: Vec<bool>,
+    /// With a band: stable over it (1, 0, NaN where undecided or not computed), the margins
+    /// below and above it and the smaller of the two (NaN where not stable over it).
+    band: Option<[Vec<f64>; 4]>,
 }
 
 impl Columns {
-    fn new(count: usize, coordinates: bool) -> PyResult<Columns> {
+    fn new(count: usize, coordinates: bool, band: bool) -> PyResult<Columns> {
         let per = BYTES_PER_DESIGN
             + if coordinates {
                 BYTES_PER_COORDINATES
             } else {
                 0
-            };
+            }
+            + if band { BYTES_PER_BAND } else { 0 };
         let too_big = || {
             memory_error(
                 "design_map",
@@ -105,6 +120,16 @@ impl Columns {
             ],
             stable: reserve(count, too_big)?,
             unresolved: reserve(count, too_big)?,
+            band: if band {
+                Some([
+                    reserve(count, too_big)?,
+                    reserve(count, too_big)?,
+                    reserve(count, too_big)?,
+                    reserve(count, too_big)?,
+                ])
+            } else {
+                None
+            },
         })
     }
 
@@ -147,6 +172,22 @@ impl Columns {
         }
         self.stable.push(q.stable);
         self.unresolved.push(q.unresolved);
+        if let Some(band) = &mut self.band {
+            let over = q.stable_over.map_or(f64::NAN, |b| if b { 1.0 } else { 0.0 });
+            let margin = q
+                .band_margin_below
+                .zip(q.band_margin_above)
+                .map(|(a, b)| a.min(b));
+            let values = [
+                over,
+                nan(q.band_margin_below),
+                nan(q.band_margin_above),
+                nan(margin),
+            ];
+            for (column, value) in band.iter_mut().zip(values) {
+                column.push(value);
+            }
+        }
         true
     }
 }
@@ -157,9 +198,10 @@ impl NativeBicycle {
     /// `trail=-0.05:0.25:100`, `head_angle_deg=60:85:100`), shard `shard_index` of
     /// `shard_count`, computed in parallel with the GIL released (Ctrl-C honoured): a dict of
     /// columns in design order (the designs `start..start + count`) and the axes;
-    /// `coordinates` adds each design's index, ix, iy, x and y.
+    /// `coordinates` adds each design's index, ix, iy, x and y; `band` (a, b) the columns of
+    /// "self-stable at every speed of it?" and the margins.
     #[pyo3(signature = (x, y=None, lo=0.0, hi=f64::INFINITY, speed=None, double_root=false,
-                        shard_index=0, shard_count=1, coordinates=true))]
+                        shard_index=0, shard_count=1, coordinates=true, band=None))]
     #[allow(clippy::too_many_arguments)]
     fn design<'py>(
         &self,
@@ -173,6 +215,7 @@ impl NativeBicycle {
         shard_index: u64,
         shard_count: u64,
         coordinates: bool,
+        band: Option<(f64, f64)>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let base = self.bicycle.clone();
         let x_axis = AxisSpec::parse(x, &base).py_err(py)?;
@@ -185,14 +228,14 @@ impl NativeBicycle {
             range: (lo, hi),
             speed,
             double_root,
-            band: None,
+            band,
         };
         let study = DesignStudy::new(base, x_axis.clone(), y_axis.clone(), options).py_err(py)?;
         let total = study.study.len();
         let base_point = study.base_point();
         let (first, end) = shard.indices(total);
         let count = usize::try_from(end - first).unwrap_or(usize::MAX);
-        let mut columns = Columns::new(count, coordinates)?;
+        let mut columns = Columns::new(count, coordinates, band.is_some())?;
         let mut full = false;
         let outcome = interruptible(py, count <= SHORT, |stop| {
             study.study.run(shard, stop, |chunk| {
@@ -244,6 +287,12 @@ impl NativeBicycle {
         }
         d.set_item("stable", PyArray1::from_vec(py, c.stable))?;
         d.set_item("unresolved", PyArray1::from_vec(py, c.unresolved))?;
+        d.set_item("band", band)?;
+        if let Some(columns) = c.band {
+            for (name, column) in BAND_NAMES.iter().zip(columns) {
+                d.set_item(name, PyArray1::from_vec(py, column))?;
+            }
+        }
         Ok(d)
     }
 }

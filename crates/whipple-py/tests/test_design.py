@@ -76,3 +76,29 @@ def test_dask_local_cluster(benchmark):
     whole = benchmark.design_map("c=0.0:0.2:11", "w=0.9:1.2:9")
     for name in ("v_w", "v_c", "stable_width", "max_real"):
         assert np.array_equal(getattr(whole, name), getattr(spread, name), equal_nan=True)
+
+
+def test_a_band_asks_self_stable_over_it(benchmark):
+    """The designer's question over a band: the benchmark's own design (its self-stable range
+    4.292… to 6.024… m/s, Meijaard et al. 2007) is self-stable over 4.5–5.5 m/s with those
+    margins, and no design of this map over 4–8; shards with a band assemble to the whole."""
+    from reference import CAPSIZE_SPEED, WEAVE_SPEED
+
+    m = benchmark.design_map("c=0.04:0.12:3", "w=1.02:1.02:1", band=(4.5, 5.5))
+    assert m.band == (4.5, 5.5)
+    assert m.stable_over[0, 1] == 1.0 and m.stable_over[0, 0] == 0.0
+    assert abs(m.band_margin_below[0, 1] - (4.5 - WEAVE_SPEED)) < 1e-12
+    assert abs(m.band_margin_above[0, 1] - (CAPSIZE_SPEED - 5.5)) < 1e-12
+    assert m.band_margin[0, 1] == min(m.band_margin_below[0, 1], m.band_margin_above[0, 1])
+    assert np.isnan(m.band_margin[0, 0])
+    wide = benchmark.design_map("c=-0.05:0.2:11", "head_angle_deg=60:85:11", band=(4, 8))
+    assert not (wide.stable_over == 1.0).any()
+    parts = [benchmark.design_map("c=0.0:0.2:7", "w=0.9:1.2:5", band=(4.5, 5.5), shard=(k, 3))
+             for k in range(3)]
+    whole = benchmark.design_map("c=0.0:0.2:7", "w=0.9:1.2:5", band=(4.5, 5.5))
+    again = whipple.DesignMap(parts)
+    assert np.array_equal(whole.band_margin, again.band_margin, equal_nan=True)
+    plain = benchmark.design_map("c=0.0:0.2:3")
+    assert plain.band is None and "stable_over" not in plain.quantities
+    with pytest.raises(whipple.ArgumentError, match="band"):
+        benchmark.design_map("c=0.0:0.2:3", band=(8, 4))

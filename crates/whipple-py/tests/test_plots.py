@@ -8,6 +8,8 @@ import pytest
 
 from conftest import optional
 
+import whipple
+
 
 @pytest.fixture(scope="module")
 def plt():
@@ -107,6 +109,23 @@ def test_design_map_plot(plt, benchmark, tmp_path):
     assert stars and (stars[0].get_xdata()[0], stars[0].get_ydata()[0]) == (0.08, 1.02)
     assert ax.get_xlabel() == "c [m]" and ax.get_ylabel() == "w [m]"
     ax.figure.savefig(tmp_path / "map.png")
+
+
+def test_band_map_plot(plt, benchmark, tmp_path):
+    """stable_over: the smaller margin, the qualifying designs outlined and named by the band;
+    max_real on a diverging scale centred on zero; without a band stable_over is refused."""
+    m = benchmark.design_map("c=-0.05:0.2:26", "head_angle_deg=60:85:26", band=(4.5, 5.5), speed=5)
+    ax = m.plot(quantity="stable_over")
+    labels = ax.get_legend_handles_labels()[1]
+    assert "self-stable at every speed 4.5–5.5 m/s" in labels
+    mesh = [c for c in ax.collections if c.__class__.__name__ == "QuadMesh"][0]
+    assert "over the band" in mesh.colorbar.ax.get_ylabel()
+    ax.figure.savefig(tmp_path / "band.png")
+    ax = m.plot(quantity="max_real")
+    mesh = [c for c in ax.collections if c.__class__.__name__ == "QuadMesh"][-1]
+    assert mesh.norm.__class__.__name__ == "TwoSlopeNorm" and mesh.norm.vcenter == 0.0
+    with pytest.raises(whipple.ArgumentError, match="band"):
+        benchmark.design_map("c=0.0:0.2:3", "w=0.9:1.1:3").plot(quantity="stable_over")
 
 
 def test_study_plot(plt, benchmark, tmp_path):

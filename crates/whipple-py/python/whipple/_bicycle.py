@@ -293,21 +293,27 @@ class Bicycle:
 
     def design_map(self, x: str, y: Optional[str] = None, *, lo: float = 0.0,
                    hi: float = math.inf, speed: Optional[float] = None,
-                   double_root: bool = False, shard: Tuple[int, int] = (0, 1)) -> "DesignMap":
+                   double_root: bool = False, shard: Tuple[int, int] = (0, 1),
+                   band: Optional[Tuple[float, float]] = None) -> "DesignMap":
         """The critical speeds over a grid of designs around this bicycle (the command line's
         ``whipple map``): axes as ``'trail=-0.05:0.25:100'``, ``'head_angle_deg=60:85:100'``
         (any parameter of the bicycle's form or a derived one, ``speed``), critical speeds read
         on [lo, hi], ``max_real`` at ``speed``; ``double_root`` adds v_d. In parallel with the
-        GIL released. ``shard=(k, n)`` computes only part k of n and returns its columns (a
-        dict; ``whipple.DesignMap(parts)`` assembles them, :func:`whipple.design_map_dask`
-        does it on a Dask cluster)."""
+        GIL released. ``band=(a, b)`` [m/s] asks, for every design, whether it is self-stable at
+        every speed from a to b and by what margin (``stable_over``, ``band_margin_below``,
+        ``band_margin_above``, ``band_margin``; ``plot(quantity='stable_over')``).
+        ``shard=(k, n)`` computes only part k of n and returns its columns (a dict;
+        ``whipple.DesignMap(parts)`` assembles them, :func:`whipple.design_map_dask` does it on
+        a Dask cluster)."""
         from ._design import DesignMap, part
 
         whole = tuple(shard) == (0, 1)
         # The whole map needs no coordinate columns (its designs are the grid in order).
         columns = part(self._native.design(x, y, lo=float(lo), hi=float(hi), speed=speed,
                                            double_root=double_root, shard_index=shard[0],
-                                           shard_count=shard[1], coordinates=not whole))
+                                           shard_count=shard[1], coordinates=not whole,
+                                           band=None if band is None else
+                                           (float(band[0]), float(band[1]))))
         return DesignMap([columns]) if whole else columns
 
     def __reduce__(self):

@@ -4,7 +4,7 @@ cluster with :func:`design_map_dask`."""
 
 from __future__ import annotations
 
-from typing import Any, Dict, List, Optional, Sequence
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -13,6 +13,11 @@ STATUS = np.array(["ok", "invalid", "accuracy_lost"], dtype=object)
 QUANTITIES = ("v_d", "v_w", "v_c", "weave_frequency", "stable_width", "stable_from",
               "stable_to", "max_real", "stable", "unresolved")
 
+#: The quantities of a map with a band (``band=(a, b)``): ``stable_over`` (1.0 where
+#: self-stable at every speed of the band, 0.0 where not, NaN where undecided or not computed),
+#: the margins by which the self-stable range reaches past the band's ends and the smaller one.
+BAND_QUANTITIES = ("stable_over", "band_margin_below", "band_margin_above", "band_margin")
+
 
 class DesignMap:
     """A study of a base bicycle over axis ``x`` (and ``y``): for every design its v_d (when
@@ -20,7 +25,9 @@ class DesignMap:
     self-stable range), max Re λ at ``speed``, ``stable`` and ``unresolved`` flags, as arrays of
     shape (ny, nx) (or (nx,) for one axis), NaN where a quantity does not exist or the design is
     refused (``status`` says why: ``ok``, ``invalid``, ``accuracy_lost``; ``reason`` the words).
-    ``x``, ``y``: the axes' values in the user's units (``x_name``, ``x_unit``)."""
+    ``x``, ``y``: the axes' values in the user's units (``x_name``, ``x_unit``). With a band
+    (``band``, (a, b) m/s): ``stable_over`` (1.0 self-stable at every speed of it, 0.0 not, NaN
+    undecided), ``band_margin_below``, ``band_margin_above`` and ``band_margin`` (the smaller)."""
 
     def __init__(self, parts: Sequence[Dict[str, Any]]) -> None:
         first = parts[0]
@@ -51,7 +58,11 @@ class DesignMap:
                 return np.asarray(parts[0][name]).reshape(shape)
             return np.concatenate([p[name] for p in parts]).reshape(shape)
 
-        self.quantities: Dict[str, np.ndarray] = {name: column(name) for name in QUANTITIES}
+        #: The band asked for, (a, b) m/s, or None.
+        self.band: Optional[Tuple[float, float]] = (tuple(first["band"])  # type: ignore[assignment]
+                                                    if first.get("band") is not None else None)
+        names = QUANTITIES + (BAND_QUANTITIES if self.band is not None else ())
+        self.quantities: Dict[str, np.ndarray] = {name: column(name) for name in names}
         #: Why each design has no numbers: ``'ok'``, ``'invalid'``, ``'accuracy_lost'`` (an
         #: object array whose cells share the three strings).
         self.status: np.ndarray = column("status")
@@ -77,9 +88,10 @@ class DesignMap:
 
     def plot(self, ax=None, quantity: str = "stable_width"):
         """The command line's figures: over two axes a heat map of ``quantity`` (``'v_w'``,
-        ``'v_c'``, ``'v_d'``, ``'stable_width'``, ``'weave_frequency'``, ``'max_real'``) with
+        ``'v_c'``, ``'v_d'``, ``'stable_width'``, ``'weave_frequency'``, ``'max_real'`` on a
+        diverging scale white at zero, ``'stable_over'``: the smaller margin, with a band) with
         a colour bar and its unit, the boundary of the designs that have a self-stable range
-        and the base design marked; over one axis v_w and v_c against the parameter with the
+        (with ``'stable_over'``: of those self-stable over the band) and the base design marked; over one axis v_w and v_c against the parameter with the
         self-stable band shaded. Needs matplotlib; returns the axis."""
         from ._plot import plot_design_map
 

@@ -226,6 +226,7 @@ _QUANTITY_LABELS = {
     "v_d": "double-root speed v_d [m/s]",
     "weave_frequency": "weave frequency at v_w [rad/s]",
     "max_real": "largest real part of the eigenvalues [1/s]",
+    "stable_over": "margin of self-stability over the band [m/s]",
 }
 
 
@@ -262,20 +263,42 @@ def plot_design_map(design: Any, ax=None, quantity: str = "stable_width"):
         ax.grid(True, color="0.93")
         ax.legend(loc="best", fontsize="small")
         return ax
-    values = np.where(design.status == "ok", design.quantities[quantity], np.nan).astype(float)
+    band = getattr(design, "band", None)
+    if quantity == "stable_over" and band is None:
+        from ._errors import ArgumentError
+
+        raise ArgumentError("quantity 'stable_over' needs a map computed with band=(a, b)",
+                            field="quantity", value=quantity, rule="compute the map with band=(a, b)")
+    source = design.quantities["band_margin" if quantity == "stable_over" else quantity]
+    if quantity == "stable_width":
+        # A design with no self-stable speed has no width: none, never 0.
+        source = np.where(design.stable, source, np.nan)
+    values = np.where(design.status == "ok", source, np.nan).astype(float)
     finite = values[np.isfinite(values)]
     # As the command line: the colour scale spans the 1st to 99th percentile.
     vmin, vmax = (np.percentile(finite, [1, 99]) if finite.size else (0.0, 1.0))
     if vmin == vmax:
         vmin, vmax = vmin - 0.5, vmax + 0.5
-    mesh = ax.pcolormesh(design.x, design.y, values, shading="nearest", cmap="viridis",
-                         vmin=vmin, vmax=vmax)
+    if quantity == "max_real" and vmin < 0.0 < vmax:
+        # Diverging, white at zero, each side to its own extreme.
+        from matplotlib.colors import TwoSlopeNorm
+
+        mesh = ax.pcolormesh(design.x, design.y, values, shading="nearest", cmap="RdBu_r",
+                             norm=TwoSlopeNorm(vcenter=0.0, vmin=vmin, vmax=vmax))
+    else:
+        mesh = ax.pcolormesh(design.x, design.y, values, shading="nearest", cmap="viridis",
+                             vmin=vmin, vmax=vmax)
     bar = ax.figure.colorbar(mesh, ax=ax, extend="both")
     bar.set_label(_QUANTITY_LABELS[quantity])
-    stable = design.stable.astype(float)
-    if stable.min() < 0.5 < stable.max():
-        ax.contour(design.x, design.y, stable, levels=[0.5], colors="white", linewidths=1.8)
-        ax.plot([], [], color="white", lw=1.8, label="boundary of a self-stable range")
+    if quantity == "stable_over":
+        inside = np.where(design.status == "ok", design.stable_over == 1.0, False).astype(float)
+        label = f"self-stable at every speed {band[0]:g}–{band[1]:g} m/s"
+    else:
+        inside = design.stable.astype(float)
+        label = "boundary of a self-stable range"
+    if inside.min() < 0.5 < inside.max():
+        ax.contour(design.x, design.y, inside, levels=[0.5], colors="white", linewidths=1.8)
+        ax.plot([], [], color="white", lw=1.8, label=label)
     if design.base_x is not None and design.base_y is not None:
         ax.plot(design.base_x, design.base_y, marker="*", ms=16, color="white", mec=_DARK,
                 ls="none", label="base design")

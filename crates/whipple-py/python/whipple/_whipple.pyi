@@ -55,7 +55,8 @@ class NativeBicycle:
     def design(self, x: str, y: Optional[str] = None, lo: float = 0.0, hi: float = ...,
                speed: Optional[float] = None, double_root: bool = False,
                shard_index: int = 0, shard_count: int = 1,
-               coordinates: bool = True) -> Dict[str, Any]: ...
+               coordinates: bool = True,
+               band: Optional[Tuple[float, float]] = None) -> Dict[str, Any]: ...
     def held_turn(self, speed: float, lean: Optional[float] = None,
                   steer: Optional[float] = None,
                   radius: Optional[float] = None) -> Dict[str, Any]: ...
