@@ -173,7 +173,9 @@ impl Columns {
         self.stable.push(q.stable);
         self.unresolved.push(q.unresolved);
         if let Some(band) = &mut self.band {
-            let over = q.stable_over.map_or(f64::NAN, |b| if b { 1.0 } else { 0.0 });
+            let over = q
+                .stable_over
+                .map_or(f64::NAN, |b| if b { 1.0 } else { 0.0 });
             let margin = q
                 .band_margin_below
                 .zip(q.band_margin_above)

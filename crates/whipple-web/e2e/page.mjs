@@ -7,7 +7,7 @@
 // Prints the navigation-to-plot time and the page's weight as the browser received it.
 import { launch } from "./browser.mjs";
 import { CAPSIZE_SPEED, WEAVE_AT_5, WEAVE_SPEED, asShown } from "./reference.mjs";
-import { readFileSync, writeFileSync, mkdtempSync, rmSync, existsSync } from "node:fs";
+import { readFileSync, readdirSync, writeFileSync, mkdtempSync, rmSync, existsSync } from "node:fs";
 import { createRequire } from "node:module";
 import { join, resolve } from "node:path";
 import { tmpdir } from "node:os";
@@ -27,10 +27,11 @@ const only = process.env.E2E_ONLY ? new RegExp(process.env.E2E_ONLY) : null;
 
 let checks = 0;
 const failures = [];
-function check(condition, what) {
+/** A check that must hold; `quiet` ones (one of many alike) are counted, not printed. */
+function check(condition, what, { quiet = false } = {}) {
   if (!condition) throw new Error(`check failed: ${what}`);
   checks += 1;
-  console.log(`  ok ${checks}: ${what}`);
+  if (!quiet) console.log(`  ok ${checks}: ${what}`);
 }
 
 function axeSource() {
@@ -633,6 +634,60 @@ await section("a measured bicycle's warning beside its field (BicycleParameters'
   const others = await page.$$eval(".row-warning", (ws) => ws.filter((w) => w.textContent).length);
   check(others === 1, `and nowhere else (${others} field)`);
   check(/\d/.test(await text("capsize-speed")), `the bicycle is computed all the same: v_c ${await text("capsize-speed")}`);
+});
+
+await section("measured files: every field shows its value and σ, kept through an edit and a save", async () => {
+  const folder = fileURLToPath(new URL("../../whipple/tests/data/bicycleparameters/", import.meta.url));
+  // Every bicycle BicycleParameters ships (JasonBrowser is a rider alone, not a bicycle).
+  const files = readdirSync(folder).filter((f) => f.endsWith("Benchmark.txt") && !f.startsWith("JasonBrowser")).sort();
+  const DEG = 180 / Math.PI;
+  let fields = 0;
+  let sigmas = 0;
+  for (const file of files) {
+    await open("?bike=preset:benchmark");
+    await page.setInputFiles("#file-input", join(folder, file));
+    await waitFor(`${file} in the editor`, async () => (await page.inputValue("#design-name")).startsWith(file.replace(/\.txt$/, "")), 15_000);
+    await settled();
+    const shown = await page.$$eval("#editor-body input", (is) => Object.fromEntries(is.map((i) => [i.dataset.testid, i.value])));
+    for (const line of readFileSync(join(folder, file), "utf8").split("\n")) {
+      const m = /^\s*(\w+)\s*=\s*([-+0-9.eE]+)(?:\+\/-([-+0-9.eE]+))?/.exec(line);
+      if (!m || !(`param-${m[1]}` in shown)) continue;
+      const angle = m[1] === "lam";
+      const [value, sigma] = [Number(m[2]), m[3] === undefined ? null : Number(m[3])].map((x) => (x !== null && angle ? x * DEG : x));
+      const field = Number(shown[`param-${m[1]}`]);
+      check(Math.abs(field - value) <= 1e-9 * Math.max(1, Math.abs(value)), `${file}: ${m[1]} shows ${value} (“${shown[`param-${m[1]}`]}”)`, { quiet: true });
+      fields += 1;
+      if (sigma !== null) {
+        const s = Number(shown[`sigma-${m[1]}`]);
+        check(Math.abs(s - sigma) <= 1e-9 * Math.max(1e-3, Math.abs(sigma)), `${file}: σ of ${m[1]} shows ${sigma} (“${shown[`sigma-${m[1]}`]}”)`, { quiet: true });
+        sigmas += 1;
+      } else {
+        check(!(`sigma-${m[1]}` in shown), `${file}: ${m[1]} has no σ field (none measured)`, { quiet: true });
+      }
+    }
+  }
+  check(fields >= 12 * 26 && sigmas >= 11 * 25, `${files.length} files: ${fields} fields showed their value, ${sigmas} their σ`);
+  // Fisher: an edit keeps every σ, the table reads v ± σ, and the saved TOML has every σ.
+  await open("?bike=preset:benchmark");
+  await page.setInputFiles("#file-input", join(folder, "FisherBenchmark.txt"));
+  await waitFor("Fisher in the editor", async () => (await page.inputValue("#design-name")).startsWith("FisherBenchmark"), 15_000);
+  await settled();
+  const before = await text("weave-speed");
+  check(/^\d+\.\d{4} ± \d/.test(before), `v_w ± σ in the table: "${before}"`);
+  check(/ ± /.test(await text("stable-ranges")), `the self-stable range's ends ± σ: "${await text("stable-ranges")}"`);
+  await page.getByTestId("param-mB").fill("5");
+  await waitForText("weave-speed", (t) => t !== before && / ± /.test(t));
+  check((await page.inputValue("[data-testid=sigma-mB]")) === "0.02", "the edited mass keeps its σ (0.02 kg)");
+  await page.getByTestId("sigma-mB").fill("0.05");
+  await settled();
+  const saved = await downloadOf(() => page.click("#save-toml"));
+  const measured = saved.text.split("\n").filter((l) => /^\w+ = \{ value = /.test(l));
+  check(measured.length === 26 && /^mB = \{ value = 5, sigma = 0\.05 \}/m.test(saved.text), `the saved TOML keeps every σ (${measured.length} of 26), the edited mass with its new σ: ${saved.text.match(/^mB = .*$/m)?.[0]}`);
+  // Typing back the value shown clears "modified".
+  await page.getByTestId("param-mB").fill("4.5");
+  await page.getByTestId("sigma-mB").fill("0.02");
+  await settled();
+  check(await page.locator("#modified").isHidden(), "retyping the shown values leaves the bicycle unmodified");
 });
 
 await section("sensitivity: exact elasticities as a tornado and a table", async () => {

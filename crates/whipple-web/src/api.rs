@@ -686,7 +686,16 @@ struct EigenResponse {
     name: Option<String>,
     speeds: Vec<f64>,
     eigenvalues: Vec<EigenColumn>,
-    critical: Option<CriticalSpeeds>,
+    critical: Option<Critical>,
+}
+
+/// The critical speeds, with their σ (`*_sigma`, `stable_speed_ranges_sigma`) in line for a
+/// bicycle whose parameters carry standard deviations.
+#[derive(Serialize)]
+#[serde(untagged)]
+enum Critical {
+    Plain(CriticalSpeeds),
+    WithSigma(sensitivity::CriticalSpeedsSigma),
 }
 
 /// Sweeps of at most this many speeds (the page's plot asks for a few hundred as one types)
@@ -740,10 +749,14 @@ async fn eigen(
             speeds.first().copied().unwrap_or(grid.start),
             speeds.last().copied().unwrap_or(grid.stop),
         );
-        let critical = if hi > lo {
-            Some(critical_speeds(&canonical, lo, hi)?)
-        } else {
+        let critical = if hi <= lo {
             None
+        } else if bike.has_uncertainty() {
+            Some(Critical::WithSigma(sensitivity::critical_speeds_sigma(
+                &bike, lo, hi,
+            )?))
+        } else {
+            Some(Critical::Plain(critical_speeds(&canonical, lo, hi)?))
         };
         let eigenvalues = (0..4)
             .map(|k| EigenColumn {

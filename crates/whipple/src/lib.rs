@@ -322,7 +322,8 @@ pub mod advanced {
     #[doc = "Design studies over one or two parameters."]
     pub mod design {
         pub use crate::analysis::design::{
-            Axis, DesignRow, DesignStatus, MAX_AXIS_POINTS, Parameter, Shard, StudySettings,
+            Axis, DesignQuantities, DesignRow, DesignStatus, MAX_AXIS_POINTS, Parameter, Shard,
+            StudySettings,
         };
     }
     #[doc = "Eigenvalues and eigenvectors of the linear model at one speed."]

@@ -25,8 +25,13 @@ function undecided(c) {
   return u.map(([a, b]) => (b === null || b >= 1e300 ? `above ${fixed(a, 3)}` : `${fixed(a, 3)} – ${fixed(b, 3)}`)).join(", ");
 }
 
-function speed(v, eigen, mode, range, c) {
-  if (v !== null && v !== undefined) return fixed(v, 4);
+/** " ± σ" where the bicycle's parameters carry standard deviations ("" otherwise). */
+function pm(sigma) {
+  return Number.isFinite(sigma) && sigma > 0 ? ` ± ${num(sigma, 2)}` : "";
+}
+
+function speed(v, eigen, mode, range, c, sigma) {
+  if (v !== null && v !== undefined) return `${fixed(v, 4)}${pm(sigma)}`;
   // Where the certificate could not decide, "none" would contradict it.
   const open = undecided(c);
   if (open) return `undecided in ${open}`;
@@ -37,21 +42,32 @@ function speed(v, eigen, mode, range, c) {
   return `none in${where}`;
 }
 
+/** The library's words for a speed round-off could not certify: its enclosure, marked. */
+function notCertified(reason) {
+  const at = /\[([^,\]]+),\s*([^\]]+)\]/.exec(reason);
+  const [a, b] = at ? [Number(at[1]), Number(at[2])] : [];
+  return Number.isFinite(a) && Number.isFinite(b) ? `not certified: in [${num(a, 8)}, ${num(b, 8)}]` : "not certified (round-off)";
+}
+
 function ranges(c) {
   if (!c) return "–";
   const open = undecided(c);
   if (c.stable_speed_ranges.length === 0) return open ? `undecided in ${open}; nowhere else` : "nowhere";
   return c.stable_speed_ranges
-    .map(([a, b]) => `${fixed(a, 3)} – ${fixed(b, 3)}${b >= c.range[1] ? "+" : ""}`)
+    .map(([a, b], k) => {
+      const [sa, sb] = c.stable_speed_ranges_sigma?.[k] ?? [];
+      return `${fixed(a, 3)}${pm(sa)} – ${fixed(b, 3)}${pm(sb)}${b >= c.range[1] ? "+" : ""}`;
+    })
     .join(", ");
 }
 
 /** Fills `container` with the table for `designs` ([{label, eigen}], the first edited). */
 export function drawCritical(container, designs, { stale = false } = {}) {
   const rows = [
-    ["weave", "v_w", (c, e) => speed(c?.weave_speed, e, "weave", c?.range, c), "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
-    ["capsize", "v_c", (c, e) => speed(c?.capsize_speed, e, "capsize", c?.range, c), "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
-    ["double root", "v_d", (c) => speed(c?.double_root_speed, null, null, c?.range, c), "double-root-speed", "two real eigenvalues meet and become the weave pair", "#9ca3af"],
+    ["weave", "v_w", (c, e) => speed(c?.weave_speed, e, "weave", c?.range, c, c?.weave_speed_sigma), "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
+    ["capsize", "v_c", (c, e) => speed(c?.capsize_speed, e, "capsize", c?.range, c, c?.capsize_speed_sigma), "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
+    // Where round-off cannot certify v_d the library says where it lies: never "none".
+    ["double root", "v_d", (c) => (c?.double_root_unavailable ? notCertified(c.double_root_unavailable) : speed(c?.double_root_speed, null, null, c?.range, c, c?.double_root_speed_sigma)), "double-root-speed", "two real eigenvalues meet and become the weave pair", "#9ca3af"],
     ["ω at v_w", "rad/s", (c) => (c?.weave_frequency == null ? "–" : fixed(c.weave_frequency, 3)), "weave-frequency", "the weave's angular frequency |Im λ| at v_w", null],
     ["self-stable", "", (c) => ranges(c), "stable-ranges", "all eigenvalues have negative real parts", "#86efac"],
   ];
@@ -66,7 +82,8 @@ export function drawCritical(container, designs, { stale = false } = {}) {
     tr.append(html("th", { scope: "row", class: "what" }, dot, html("span", { text: name }), symbol ? html("span", { class: "symbol", text: ` ${symbol}` }) : ""));
     designs.forEach((d, k) => {
       const c = d.eigen?.critical ?? null;
-      tr.append(html("td", { class: `value${k ? " secondary" : ""}`, "data-testid": k === 0 ? id : k === 1 ? `compare-${id}` : `compare${k}-${id}`, text: value(c, d.eigen) }));
+      const why = id === "double-root-speed" ? c?.double_root_unavailable ?? null : null;
+      tr.append(html("td", { class: `value${k ? " secondary" : ""}${why ? " uncertified" : ""}`, title: why, "data-testid": k === 0 ? id : k === 1 ? `compare-${id}` : `compare${k}-${id}`, text: value(c, d.eigen) }));
     });
     body.append(tr);
   }

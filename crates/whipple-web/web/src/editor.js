@@ -14,13 +14,19 @@ export function parseNumber(text) {
   return Number.isFinite(x) ? x : null;
 }
 
+/** The number of a field: itself, or the value of a measured {value, sigma}. */
+export function valueOf(raw) {
+  return raw !== null && typeof raw === "object" ? raw.value : raw;
+}
+
 /** What is wrong with text that is not a number. */
 function notANumber(text) {
   return text.trim() === "" ? "empty: type a number" : "not a number";
 }
 
 export class Editor {
-  /** `onInput(path, value)` is called for every valid number typed (angles in radians);
+  /** `onInput(path, value, part)` is called for every valid number typed (angles in radians;
+   * `part` "value", or "sigma" for the σ of a measured value);
    * `onLocal()` whenever a field starts or stops holding text that is not a number. */
   constructor(container, onInput, onLocal = () => {}) {
     this.container = container;
@@ -55,7 +61,11 @@ export class Editor {
     const hint = html("div", { class: "row-hint", "data-testid": `hint-${cells[0].lib}` });
     const warning = html("div", { class: "row-warning", "data-testid": `warning-${cells[0].lib}`, role: "status" });
     for (const cell of cells) {
-      const value = getPath(values, cell.path);
+      // A measured value is {value, sigma} (BicycleParameters' `value+/-sigma`): the value in
+      // its field, σ in one beside it, both kept through edits.
+      const raw = getPath(values, cell.path);
+      const measured = raw !== null && typeof raw === "object";
+      const value = measured ? raw.value : raw;
       const input = html("input", {
         id: `in-${cell.lib}`,
         type: "text",
@@ -78,29 +88,62 @@ export class Editor {
       input.title = spec.triple ? `${cell.label}: ${description}` : description;
       input.dataset.what = `${group} ${spec.label}${spec.triple ? ` ${cell.label}` : ""}`;
       input.dataset.last = input.value;
-      if (!readOnly) {
-        input.addEventListener("input", () => {
-          const x = parseNumber(input.value);
-          const wasLocal = input.classList.contains("local");
-          if (x === null) {
-            this.markLocal(input, notANumber(input.value));
-            if (!wasLocal) this.onLocal();
-            return;
-          }
-          this.unmarkLocal(input);
-          if (spec.angle) this.suggestDegrees(spec, input, x, hint);
-          this.onInput(cell.path, spec.angle ? x / DEG : x);
-          if (wasLocal) this.onLocal();
-        });
-      }
+      if (!readOnly) this.listen(input, spec, cell, "value", value, hint);
       this.inputs.push(input);
-      boxes.append(input);
+      if (!measured) {
+        boxes.append(input);
+        continue;
+      }
+      const sigmaShown = spec.angle ? Number((raw.sigma * DEG).toPrecision(8)) : raw.sigma;
+      const sigma = html("input", {
+        id: `sigma-${cell.lib}`,
+        class: "sigma",
+        type: "text",
+        inputmode: "decimal",
+        spellcheck: "false",
+        autocomplete: "off",
+        "data-lib": `${cell.lib}.sigma`,
+        "data-testid": `sigma-${cell.lib}`,
+        "aria-label": `standard deviation σ of ${group}: ${spec.hint}${spec.triple ? ` ${cell.label}` : ""} [${spec.unit}]`,
+        title: `σ: the standard deviation of the measured value [${spec.unit}]`,
+        readonly: readOnly,
+      });
+      sigma.value = inputText(sigmaShown);
+      sigma.dataset.what = `σ of ${group} ${spec.label}${spec.triple ? ` ${cell.label}` : ""}`;
+      if (!readOnly) this.listen(sigma, spec, cell, "sigma", raw.sigma, null);
+      this.inputs.push(sigma);
+      boxes.append(html("span", { class: "measured" }, input, html("span", { class: "pm", text: "±" }), sigma));
     }
     row.append(boxes);
     row.append(html("span", { class: "unit", text: spec.unit }));
-    if (spec.angle) row.append(html("span", { class: "deg", text: Number.isFinite(getPath(values, spec.path)) ? `${num(getPath(values, spec.path), 5)} rad` : "" }));
+    const radians = valueOf(getPath(values, spec.path));
+    if (spec.angle) row.append(html("span", { class: "deg", text: Number.isFinite(radians) ? `${num(radians, 5)} rad` : "" }));
     row.append(error, hint, warning);
     return row;
+  }
+
+  /**
+   * Sends what is typed into `input` (the `part`, "value" or "sigma", of the field at
+   * `cell.path`): a number, or the field marked as holding text. Typing back the text shown
+   * sends the value exactly as it was (not its rounded display), so that nothing reads as
+   * modified.
+   */
+  listen(input, spec, cell, part, exact, hint) {
+    const shown = input.value.trim();
+    input.addEventListener("input", () => {
+      const x = parseNumber(input.value);
+      const wasLocal = input.classList.contains("local");
+      if (x === null) {
+        this.markLocal(input, notANumber(input.value));
+        if (!wasLocal) this.onLocal();
+        return;
+      }
+      this.unmarkLocal(input);
+      if (spec.angle && hint) this.suggestDegrees(spec, input, x, hint);
+      const typed = spec.angle ? x / DEG : x;
+      this.onInput(cell.path, input.value.trim() === shown && Number.isFinite(exact) ? exact : typed, part);
+      if (wasLocal) this.onLocal();
+    });
   }
 
   /**

@@ -9,7 +9,7 @@ import { api } from "./api.js";
 import { begin, during } from "./work.js";
 import { listDesigns, saveDesign, deleteDesign, findDesign } from "./store.js";
 import { Editor, parseNumber } from "./editor.js";
-import { setPath, applyParameterTable, JBIKE6_SOURCES, JBIKE6_GROUPS, BENCHMARK_GROUPS } from "./fields.js";
+import { getPath, setPath, applyParameterTable, JBIKE6_SOURCES, JBIKE6_GROUPS, BENCHMARK_GROUPS } from "./fields.js";
 import { drawSideView } from "./sideview.js";
 import { EigenPlot, LocusPlot, COMPARE_COLOURS } from "./plot.js";
 import { drawCritical } from "./critical.js";
@@ -45,10 +45,13 @@ const state = {
 
 const editor = new Editor(
   $("editor-body"),
-  (path, value) => {
+  (path, value, part = "value") => {
     const table = state.bike.jbike6 ? (state.form === "jbike6" ? state.bike.jbike6 : null) : state.bike.benchmark;
     if (!table) return;
-    setPath(table, path, value);
+    // A measured value keeps its σ when the value is edited, and its value when σ is.
+    const current = getPath(table, path);
+    if (current !== null && typeof current === "object") current[part] = value;
+    else if (part === "value") setPath(table, path, value);
     updateModified();
     schedule();
     remember(false);

@@ -37,7 +37,7 @@ pub const MAX_AXIS_POINTS: usize = 10_000_000;
 /// [`Parameter::named`], which knows the table.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Parameter {
-    /// A parameter of the table ([`crate::advanced::parameters::parameters`]) of either form:
+    /// A parameter of the table ([`crate::advanced::table::parameters`]) of either form:
     /// a benchmark key (`w`, `c`, `lam`, `g`, `rR`, `mB`, `IBxx`, …) or a JBike6 `.m` key
     /// (`wheelbase`, `head_angle`, `trail`, `gravity`, `mrider`, `Irider(1)`, `Drearwheel`, …).
     Table(&'static ParameterInfo),

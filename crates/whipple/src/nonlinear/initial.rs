@@ -110,7 +110,7 @@ pub(crate) fn solve_tree_speeds<T: RealField + Copy>(
 impl Model {
     /// A state that satisfies all constraints, built from a few numbers: the pitch of the rear
     /// frame by Newton iteration on the front contact height ([`Model::pitch_for`]), and the
-    /// rest by [`Model::consistent_state`]. Wheel rotation angles start at zero.
+    /// rest by `Model::consistent_state`. Wheel rotation angles start at zero.
     pub fn initial_state(&self, ic: &InitialConditions) -> Result<State<f64>> {
         ic.validate()?;
         let pitch = self.pitch_for(ic.lean, ic.steer, 0.0)?;

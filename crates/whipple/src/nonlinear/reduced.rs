@@ -37,9 +37,9 @@ impl Model {
     /// zero rates, a steady turn's state), for any lean and steer at which the front wheel can
     /// touch the ground.
     ///
-    /// The rear frame's pitch is [`Model::ground_pitch`]'s from upright's (for dual numbers with
+    /// The rear frame's pitch is `Model::ground_pitch`'s from upright's (for dual numbers with
     /// the exact derivative ∂θ/∂x = −(∂h/∂θ)⁻¹ ∂h/∂x of the implicit function theorem); every
-    /// other coordinate and speed is [`Model::consistent_state`]'s.
+    /// other coordinate and speed is `Model::consistent_state`'s.
     pub fn reduced_state<T: RealField + Copy>(&self, x: &Vector4<T>, speed: T) -> Result<State<T>> {
         let [lean, steer, lean_rate, steer_rate] = [x[0], x[1], x[2], x[3]];
         let upright = self.pitch_for(0.0, 0.0, 0.0)?;
