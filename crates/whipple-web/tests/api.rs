@@ -646,6 +646,49 @@ async fn a_map_cell_is_a_bicycle() -> TestResult {
     Ok(())
 }
 
+/// A bicycle whose parameters carry σ gets the critical speeds with their σ beside (what the
+/// page's table shows as v ± σ), the same numbers as `critical_speeds_sigma`; one without σ
+/// gets no σ fields.
+#[tokio::test]
+async fn the_eigenvalues_answer_carries_the_critical_speeds_sigma() -> TestResult {
+    let app = app(Limits::default());
+    let mut bike = preset_json("benchmark")?;
+    bike["benchmark"]["c"] = json!({"value": 0.08, "sigma": 0.002});
+    let speeds = json!({"start": 0, "stop": 10, "step": 0.5});
+    let (status, body) = post(&app, "/api/eigen", &json!({"bike": bike, "speeds": speeds})).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    let mut library = presets::find("benchmark")?.bicycle();
+    library.sigma.insert("c".into(), 0.002);
+    let expected = whipple::advanced::sensitivity::critical_speeds_sigma(&library, 0.0, 10.0)?;
+    let critical = &body["critical"];
+    assert!(
+        approx(&critical["weave_speed"], 4.29238253634111, 1e-12),
+        "{critical}"
+    );
+    let sigma = expected.weave_speed_sigma.ok_or("σ of v_w")?;
+    assert!(
+        sigma > 0.0 && approx(&critical["weave_speed_sigma"], sigma, 1e-15),
+        "{critical}"
+    );
+    assert_eq!(
+        critical["stable_speed_ranges_sigma"]
+            .as_array()
+            .map(Vec::len),
+        Some(1)
+    );
+    let (_, plain) = post(
+        &app,
+        "/api/eigen",
+        &json!({"bike": preset_json("benchmark")?, "speeds": speeds}),
+    )
+    .await?;
+    assert!(
+        plain["critical"].get("weave_speed_sigma").is_none(),
+        "{plain}"
+    );
+    Ok(())
+}
+
 /// A map with a band answers "self-stable over [a, b]?" per design: at the benchmark's own
 /// design (trail 0.08 m, its range 4.292… to 6.024… m/s) yes over 4.5–5.5 with those margins;
 /// a band outside the range names `band`; without a band the answer has no band arrays.
