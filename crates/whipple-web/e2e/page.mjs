@@ -636,6 +636,23 @@ await section("a measured bicycle's warning beside its field (BicycleParameters'
   check(/\d/.test(await text("capsize-speed")), `the bicycle is computed all the same: v_c ${await text("capsize-speed")}`);
 });
 
+await section("an invalid speed range veils the results and the header says so", async () => {
+  await open("?bike=preset:benchmark");
+  const veiled = async () => (await page.locator("[data-testid=eigen-plot] [data-testid=stale-veil]").count()) === 1 && (await page.locator("#critical table.stale").count()) === 1;
+  for (const [field, typed, what] of [["#v-step", "0", "a step of 0"], ["#v-stop", "-5", "a reversed range"], ["#v-stop", "1e6", "a million speeds"], ["#v-step", "x", "a step that is not a number"]]) {
+    await open("?bike=preset:benchmark");
+    await page.fill(field, typed);
+    await page.press(field, "Enter");
+    await waitFor(`${what}: the results veiled`, veiled);
+    const meta = await text("critical-meta");
+    check(/not recomputed: the speeds are/.test(meta), `${what}: veiled, the header says why: "${meta}"`);
+  }
+  await page.fill("#v-step", "0.01");
+  await page.press("#v-step", "Enter");
+  await waitFor("mended: the veil lifted", async () => !(await veiled()));
+  check(/^linear model, 0 – 10 m\/s$/.test(await text("critical-meta")), `mended, the header names the speeds again: "${await text("critical-meta")}"`);
+});
+
 await section("measured files: every field shows its value and σ, kept through an edit and a save", async () => {
   const folder = fileURLToPath(new URL("../../whipple/tests/data/bicycleparameters/", import.meta.url));
   // Every bicycle BicycleParameters ships (JasonBrowser is a rider alone, not a bicycle).

@@ -62,7 +62,7 @@ function ranges(c) {
 }
 
 /** Fills `container` with the table for `designs` ([{label, eigen}], the first edited). */
-export function drawCritical(container, designs, { stale = false } = {}) {
+export function drawCritical(container, designs, { stale = false, reason = null } = {}) {
   const rows = [
     ["weave", "v_w", (c, e) => speed(c?.weave_speed, e, "weave", c?.range, c, c?.weave_speed_sigma), "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
     ["capsize", "v_c", (c, e) => speed(c?.capsize_speed, e, "capsize", c?.range, c, c?.capsize_speed_sigma), "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
@@ -90,7 +90,8 @@ export function drawCritical(container, designs, { stale = false } = {}) {
   table.append(body);
   const range = designs[0].eigen?.critical?.range;
   const meta = document.getElementById("critical-meta");
-  if (meta) meta.textContent = range ? `linear model, ${num(range[0])} – ${num(range[1])} m/s` : "";
+  // The header says what the fields say: veiled results are named as the last ones computed.
+  if (meta) meta.textContent = range ? `linear model, ${num(range[0])} – ${num(range[1])} m/s${stale ? ` (${reason ?? "not recomputed"}; last computed)` : ""}` : "";
   const open = designs[0].eigen?.critical?.stable_speed_ranges.some(([, b]) => b >= range[1]);
   const note = html("p", { class: "note", text: range ? (open ? "“+”: still stable at the end of the plotted speeds." : "") : "Give a speed range to find the critical speeds." });
   container.replaceChildren(html("div", { class: "table-scroll" }, table), note);

@@ -38,6 +38,7 @@ const state = {
   eigen: null,
   valid: true,
   lastError: null,
+  speedsError: null, // why the eigenvalues shown are not those of the speeds asked for
   compare: [], // [{key, bike, eigen, validated, label}]
   view: "eigen",
   restoring: false,
@@ -331,6 +332,7 @@ function staleReason() {
   const local = editor.localErrors();
   if (local.length) return `not recomputed: ${local.map((l) => l.what).join(", ")} ${local.length > 1 ? "are" : "is"} not a number`;
   if (!state.valid) return "not recomputed: the parameters are invalid";
+  if (state.speedsError) return `not recomputed: ${state.speedsError}`;
   return null;
 }
 
@@ -372,6 +374,9 @@ async function recompute() {
     for (const id of ["v-start", "v-stop", "v-step"]) if (parseNumber($(id).value) === null) $(id).classList.add("invalid");
     $("eigen-message").textContent = "The speeds must be numbers.";
     $("eigen-message").hidden = false;
+    // The results of the last speeds stay, veiled: they are not those the fields ask for.
+    state.speedsError = "the speeds are not numbers";
+    drawAll();
     return;
   }
   const bike = clone(state.bike);
@@ -406,9 +411,13 @@ async function recompute() {
     $("eigen-message").textContent = error.message;
     $("eigen-message").hidden = false;
     quiet("bike");
+    // The eigenvalues and critical speeds shown are of the last request that succeeded: veiled.
+    state.speedsError = error.field === "speeds" || error.field === "range" ? "the speeds are invalid" : "the eigenvalues could not be computed";
     drawSide();
+    drawAll();
     return;
   }
+  state.speedsError = null;
   $("eigen-message").hidden = true;
   quiet("bike");
   state.eigen = eigen.value;
@@ -486,7 +495,7 @@ function drawAll() {
   const stale = staleReason();
   if (state.view === "eigen") plot.update(designs, { ylim: yLimit(), stale });
   if (state.view === "locus") locus.update(designs, { ylim: yLimit(), stale });
-  drawCritical($("critical"), designs, { stale: Boolean(stale) });
+  drawCritical($("critical"), designs, { stale: Boolean(stale), reason: stale });
 }
 
 // ---- bottom panel: eigenvalues, root locus, modes, simulation -------------------------------
