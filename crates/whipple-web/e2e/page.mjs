@@ -495,6 +495,14 @@ await section("compare: three designs at once", async () => {
   const csv = await downloadOf(() => page.click("#eigen-csv"));
   check(/schwinn-crown/.test(csv.name) && /compared: .*Benchmark.*Browser/.test(csv.text.split("\n")[0]), `the CSV is named after the bike (${csv.name}) and names the compared designs`);
   check(/re1_weave/.test(csv.text.split("\n")[1]) && /castering/.test(csv.text.split("\n")[1]), `its header has the mode names: ${csv.text.split("\n")[1].slice(0, 70)}…`);
+  // An edited design beside its original: two names, not one.
+  await open("?bike=preset:benchmark");
+  await page.getByTestId("compare-select").selectOption("preset:benchmark");
+  await waitForText("compare-capsize-speed", (t) => t.startsWith(asShown(CAPSIZE_SPEED)));
+  await page.getByTestId("param-c").fill("0.1");
+  await waitForText("capsize-speed", (t) => !t.startsWith(asShown(CAPSIZE_SPEED)));
+  const heads = await page.$$eval("#critical thead th", (ths) => ths.slice(1).map((t) => t.textContent));
+  check(heads.length === 2 && heads[0] !== heads[1] && /\(edited\)$/.test(heads[0]), `the edited copy is named apart from its original: ${heads.join(" | ")}`);
 });
 
 await section("a link reproduces the state; back and forward work", async () => {

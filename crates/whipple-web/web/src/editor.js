@@ -116,8 +116,10 @@ export class Editor {
     }
     row.append(boxes);
     row.append(html("span", { class: "unit", text: spec.unit }));
-    const radians = valueOf(getPath(values, spec.path));
-    if (spec.angle) row.append(html("span", { class: "deg", text: Number.isFinite(radians) ? `${num(radians, 5)} rad` : "" }));
+    if (spec.angle) {
+      const radians = valueOf(getPath(values, spec.path));
+      row.append(html("span", { class: "deg", text: Number.isFinite(radians) ? `${num(radians, 5)} rad` : "" }));
+    }
     row.append(error, hint, warning);
     return row;
   }

@@ -484,7 +484,9 @@ function drawSide() {
 }
 
 function designsShown() {
-  const primary = { label: currentLabel(), eigen: state.eigen };
+  // An edited design is named so: beside the design it was edited from, two columns and two
+  // curves would otherwise carry one name.
+  const primary = { label: isModified() ? `${currentLabel()} (edited)` : currentLabel(), eigen: state.eigen };
   return [primary, ...state.compare.filter((c) => c.eigen).map((c) => ({ label: c.label, eigen: c.eigen }))];
 }
 
