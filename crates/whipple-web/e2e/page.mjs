@@ -644,6 +644,30 @@ await section("a measured bicycle's warning beside its field (BicycleParameters'
   check(/\d/.test(await text("capsize-speed")), `the bicycle is computed all the same: v_c ${await text("capsize-speed")}`);
 });
 
+await section("each request once: a first load, a switch, the benchmark form of a JBike6 bicycle", async () => {
+  const asked = [];
+  const listen = (r) => r.url().includes("/api/") && asked.push(`${r.method()} ${new URL(r.url()).pathname}`);
+  page.on("request", listen);
+  try {
+    await open("?bike=preset:benchmark");
+    const count = (what) => asked.filter((a) => a === what).length;
+    check(count("POST /api/bike/validate") === 1 && count("POST /api/eigen") === 1, `the first load asks once each: ${asked.join(", ")}`);
+    asked.length = 0;
+    await pick("preset:schwinn-crown");
+    await settled();
+    check(count("POST /api/bike/validate") === 1 && count("POST /api/eigen") === 1, `a switch asks once each: ${asked.join(", ")}`);
+    asked.length = 0;
+    await page.click("#tab-benchmark");
+    await settled();
+    // Settled means nothing in flight or scheduled (work.js): the converted form once asked
+    // again after every answer and never settled.
+    await nextFrame();
+    check(asked.length === 0 && (await page.getAttribute("body", "data-pending")) === "0", `the benchmark form of the Crown asks nothing, and keeps quiet: ${asked.join(", ") || "none"}`);
+  } finally {
+    page.off("request", listen);
+  }
+});
+
 await section("an invalid speed range veils the results and the header says so", async () => {
   await open("?bike=preset:benchmark");
   const veiled = async () => (await page.locator("[data-testid=eigen-plot] [data-testid=stale-veil]").count()) === 1 && (await page.locator("#critical table.stale").count()) === 1;

@@ -105,8 +105,78 @@ pub fn app_bound_to(limits: Limits, bound: IpAddr) -> Router {
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .layer(DefaultBodyLimit::max(limits.max_body_bytes))
+        .layer(middleware::from_fn(compress_json))
         .layer(middleware::from_fn_with_state(state.clone(), guard))
         .with_state(state)
+}
+
+/// JSON answers past this many bytes are sent gzip-compressed to a client that accepts it.
+const COMPRESS_FROM_BYTES: usize = 1024;
+
+/// JSON answers past this many bytes are compressed on the blocking pool, not on the runtime.
+const COMPRESS_ASIDE_FROM_BYTES: usize = 256 * 1024;
+
+/// Sends a JSON answer gzip-compressed (fast level: a design map's columns shrink about three
+/// times) where the request accepts gzip and the answer is long enough to gain from it; the
+/// page's first load asked for 279 KB of JSON uncompressed.
+async fn compress_json(request: Request, next: Next) -> Response {
+    let gzip = crate::assets::accepts_gzip(
+        request
+            .headers()
+            .get(header::ACCEPT_ENCODING)
+            .and_then(|v| v.to_str().ok()),
+    );
+    let response = next.run(request).await;
+    let is_json = response
+        .headers()
+        .get(header::CONTENT_TYPE)
+        .and_then(|v| v.to_str().ok())
+        .is_some_and(|t| t.starts_with("application/json"));
+    if !gzip || !is_json || response.headers().contains_key(header::CONTENT_ENCODING) {
+        return response;
+    }
+    let (mut parts, body) = response.into_parts();
+    // The answers are built whole in memory (compute_json); nothing is streamed here.
+    let Ok(bytes) = axum::body::to_bytes(body, usize::MAX).await else {
+        return ApiError::internal("the answer could not be read back for compression")
+            .into_response();
+    };
+    parts
+        .headers
+        .insert(header::VARY, HeaderValue::from_static("accept-encoding"));
+    if bytes.len() < COMPRESS_FROM_BYTES {
+        return Response::from_parts(parts, axum::body::Body::from(bytes));
+    }
+    let length = bytes.len();
+    let compress = move || -> std::io::Result<Vec<u8>> {
+        use std::io::Write;
+        let mut encoder = flate2::write::GzEncoder::new(
+            Vec::with_capacity(bytes.len() / 4),
+            flate2::Compression::fast(),
+        );
+        encoder.write_all(&bytes)?;
+        encoder.finish()
+    };
+    let compressed = if length < COMPRESS_ASIDE_FROM_BYTES {
+        compress()
+    } else {
+        match tokio::task::spawn_blocking(compress).await {
+            Ok(result) => result,
+            Err(e) => Err(std::io::Error::other(e.to_string())),
+        }
+    };
+    match compressed {
+        Ok(body) => {
+            parts.headers.remove(header::CONTENT_LENGTH);
+            parts
+                .headers
+                .insert(header::CONTENT_ENCODING, HeaderValue::from_static("gzip"));
+            Response::from_parts(parts, axum::body::Body::from(body))
+        }
+        Err(e) => {
+            ApiError::internal(format!("the answer could not be compressed: {e}")).into_response()
+        }
+    }
 }
 
 /// Refuses requests from elsewhere (Host 421, Origin 403, Content-Type 415: see `access`),

@@ -51,9 +51,20 @@ impl Coding {
     }
 }
 
+/// Whether an `Accept-Encoding` header accepts gzip (named, or through `*`, and not refused
+/// with `q=0`): the coding of the API's JSON answers.
+pub(crate) fn accepts_gzip(accept: Option<&str>) -> bool {
+    negotiate_among(accept, false) == Coding::Gzip
+}
+
 /// The coding to answer with for an `Accept-Encoding` header (RFC 9110 §12.5.3): brotli, then
 /// gzip, each unless refused with `q=0`; `*` stands for any coding not named.
 fn negotiate(accept: Option<&str>) -> Coding {
+    negotiate_among(accept, true)
+}
+
+/// [`negotiate`], brotli offered or not.
+fn negotiate_among(accept: Option<&str>, offer_brotli: bool) -> Coding {
     let Some(accept) = accept else {
         return Coding::Identity;
     };
@@ -79,7 +90,7 @@ fn negotiate(accept: Option<&str>) -> Coding {
             _ => {}
         }
     }
-    if brotli.or(any) == Some(true) {
+    if offer_brotli && brotli.or(any) == Some(true) {
         Coding::Brotli
     } else if gzip.or(any) == Some(true) {
         Coding::Gzip

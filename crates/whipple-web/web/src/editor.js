@@ -37,6 +37,10 @@ export class Editor {
 
   /** Draws the form for `form` ("jbike6" or "benchmark") from `values` (that layout's table). */
   render(form, values, { readOnly = false, note = null } = {}) {
+    // Drawing anew clears the fields holding text: that is news only where some did (told to
+    // every render, it made each one ask for a recompute: two of each request on a switch, and
+    // an endless round on the benchmark form of a JBike6 bicycle, which redraws after each).
+    const hadLocal = this.inputs.some((i) => i.classList.contains("local"));
     this.container.replaceChildren();
     this.inputs = [];
     if (note) this.container.append(note);
@@ -49,7 +53,7 @@ export class Editor {
       details.append(grid);
       this.container.append(details);
     }
-    this.onLocal();
+    if (hadLocal) this.onLocal();
   }
 
   row(spec, values, readOnly, group) {
