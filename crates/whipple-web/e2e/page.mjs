@@ -246,6 +246,9 @@ await section("saving with text in a field is refused", async () => {
   await page.click("#save-design");
   await settled();
   check(await page.evaluate(() => (JSON.parse(localStorage.getItem("whipple.designs.v1") ?? "[]")).length === 0) && /not saved/i.test(await text("message")), "Save to my designs refuses too");
+  await page.click("#copy-link");
+  await settled();
+  check(/not saved.*as a link/i.test(await text("message")), `Copy link refuses too (the link would hold the last number): "${await text("message")}"`);
   // Typed and clicked in one task, so the recompute the keystroke scheduled is still pending
   // at the click: the refusal must not be replaced by it afterwards.
   await page.evaluate(() => {
@@ -302,9 +305,15 @@ await section("opening the same file twice makes one design", async () => {
   await page.waitForFunction(() => document.querySelector("#bike-select").value.startsWith("design:"));
   await page.setInputFiles("#file-input", file);
   await settled();
-  rmSync(dir, { recursive: true, force: true });
   const names = await page.evaluate(() => JSON.parse(localStorage.getItem("whipple.designs.v1")).map((d) => d.name));
   check(names.filter((n) => n === "opened twice").length === 1, `one design after two opens: ${JSON.stringify(names)}`);
+  // A file whose format cannot be told is named in the message, with the way to name one.
+  const odd = join(dir, "notes.txt");
+  writeFileSync(odd, "just some words\nand more\n");
+  await page.setInputFiles("#file-input", odd);
+  const said = await waitForText("message", (t) => /cannot tell/.test(t));
+  check(/cannot tell the format of notes\.txt/.test(said) && /`format`/.test(said), `an unknown file is named: "${said.slice(0, 140)}…"`);
+  rmSync(dir, { recursive: true, force: true });
 });
 
 await section("a refused simulation says what the plots still show", async () => {

@@ -43,7 +43,8 @@ export const api = {
   validate: (bike) => call("POST", "/api/bike/validate", { bike }),
   eigen: (bike, speeds) => call("POST", "/api/eigen", { bike, speeds }),
   toml: (bike) => call("POST", "/api/bike/toml", { bike }),
-  parse: (text, format) => call("POST", "/api/bike/parse", { text, format }),
+  /** A file's text in `format` (or "auto": told from `fileName` and the text). */
+  parse: (text, format, fileName) => call("POST", "/api/bike/parse", { text, format, file_name: fileName }),
   /** `request`: {bike, speed, lean_deg, steer_deg, lean_rate, steer_rate, duration, ...}. */
   simulate: (request) => call("POST", "/api/simulate", request),
   /** A design map: `request` {bike, x, y, speed?} with axes NAME=START:STOP:COUNT. */

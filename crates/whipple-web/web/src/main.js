@@ -706,6 +706,8 @@ $("save-toml").addEventListener("click", async () => {
 });
 
 $("copy-link").addEventListener("click", async () => {
+  // As Save: a link would hold the last number, not the text in the field.
+  if (refuseSave("as a link")) return;
   remember(false);
   try {
     await navigator.clipboard.writeText(location.href);
@@ -727,7 +729,7 @@ async function openFile(e) {
   // BicycleParameters' and HumanControl's .txt and YAML files are told apart by the server.
   const format = ext === "json" ? "json" : ext === "m" ? "m" : ext === "toml" ? "toml" : "auto";
   try {
-    const { bike } = await api.parse(await file.text(), format);
+    const { bike } = await api.parse(await file.text(), format, file.name);
     bike.name = bike.name ?? file.name.replace(/\.[^.]*$/, "");
     const designs = listDesigns();
     // The same file opened twice is the same design; another bicycle of the same name gets a
