@@ -386,3 +386,23 @@ fn an_undecided_interval_is_never_contradicted() {
     // checks nothing.
     assert!(undecided > 0, "no design was undecided");
 }
+
+/// A simulation at 1e308 m/s was refused as "singular velocity constraints", which sent the
+/// user looking at the bicycle: it is the speed's size that overflows, and the message says so.
+#[test]
+fn a_simulation_at_an_absurd_speed_names_the_speed() {
+    let err = stderr_of_failure(&whipple(&[
+        "simulate",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "1e308",
+        "--duration",
+        "1",
+    ]));
+    assert!(
+        err.contains("speed 1e308 m/s") && err.contains("too large for double precision"),
+        "{err}"
+    );
+    assert!(!err.contains("singular"), "{err}");
+}

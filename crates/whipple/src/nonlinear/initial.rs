@@ -114,17 +114,37 @@ impl Model {
     pub fn initial_state(&self, ic: &InitialConditions) -> Result<State<f64>> {
         ic.validate()?;
         let pitch = self.pitch_for(ic.lean, ic.steer, 0.0)?;
-        self.consistent_state(
-            [ic.yaw, ic.lean, ic.steer],
-            [ic.rear_contact_x, ic.rear_contact_y],
-            pitch,
-            [ic.speed, ic.lean_rate, ic.steer_rate],
-        )
-        .ok_or_else(|| Error::InvalidArgument {
-            what: "initial conditions",
-            rule: "speed, lean rate and steer rate do not determine the motion in this \
-                   configuration (singular velocity constraints)"
-                .into(),
+        let at = |speed_and_rates: [f64; 3]| {
+            self.consistent_state(
+                [ic.yaw, ic.lean, ic.steer],
+                [ic.rear_contact_x, ic.rear_contact_y],
+                pitch,
+                speed_and_rates,
+            )
+        };
+        at([ic.speed, ic.lean_rate, ic.steer_rate]).ok_or_else(|| {
+            // Solvable at a unit speed: it is the size of the numbers that failed (1e308 m/s
+            // overflows the solve), not the constraints.
+            if at([1.0, 0.0, 0.0]).is_some() {
+                Error::InvalidArgument {
+                    what: "initial conditions",
+                    rule: format!(
+                        "the speed and rates (speed {} m/s, lean rate {} rad/s, steer rate {} \
+                         rad/s) are too large for double precision: the velocity constraints \
+                         overflow",
+                        crate::error::short_number(ic.speed),
+                        crate::error::short_number(ic.lean_rate),
+                        crate::error::short_number(ic.steer_rate)
+                    ),
+                }
+            } else {
+                Error::InvalidArgument {
+                    what: "initial conditions",
+                    rule: "speed, lean rate and steer rate do not determine the motion in this \
+                           configuration (singular velocity constraints)"
+                        .into(),
+                }
+            }
         })
     }
 
