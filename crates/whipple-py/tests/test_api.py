@@ -75,6 +75,16 @@ def test_eig_scalar(benchmark):
     assert e.speeds == 5.0
 
 
+def test_a_2d_speeds_array_is_refused(benchmark):
+    """A (2, 3) array was flattened silently and came back as six rows."""
+    speeds = np.array([[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]])
+    for call in (benchmark.eig, benchmark.state_space):
+        with pytest.raises(whipple.ArgumentError, match=r"shape \(2, 3\)") as error:
+            call(speeds)
+        assert error.value.field == "speeds"
+    assert benchmark.eig(speeds.ravel()).values.shape == (6, 4)
+
+
 def test_to_dict_round_trip(benchmark):
     d = benchmark.to_dict()
     assert tuple(d) == whipple.BENCHMARK_KEYS and len(d) == 26

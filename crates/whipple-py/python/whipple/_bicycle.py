@@ -27,8 +27,16 @@ BENCHMARK_KEYS: Tuple[str, ...] = tuple(row[0] for row in _whipple.parameter_tab
 
 
 def _speeds(v: Any) -> Tuple[np.ndarray, bool]:
-    """Speeds as a contiguous 1-D float array, and whether a scalar was given."""
+    """Speeds as a contiguous 1-D float array, and whether a scalar was given. A 2-D (or
+    deeper) array is refused: flattened, its results would come back in a shape the caller
+    did not give."""
     arr = np.asarray(v, dtype=np.float64)
+    if arr.ndim > 1:
+        from ._errors import ArgumentError
+
+        raise ArgumentError(f"speeds must be a number or a 1-D array, got an array of shape {arr.shape}",
+                            field="speeds", value=None,
+                            rule="a number or a 1-D array (use .ravel() to flatten it yourself)")
     scalar = arr.ndim == 0
     return np.ascontiguousarray(arr.reshape(-1)), scalar
 
