@@ -467,6 +467,8 @@ struct PresetSummary {
     summary: &'static str,
     source: &'static str,
     form: &'static str,
+    /// A measured bicycle, its parameters with σ (the page lists them apart).
+    measured: bool,
 }
 
 fn form_name(description: &Description) -> &'static str {
@@ -486,6 +488,7 @@ async fn list_presets() -> Json<Vec<PresetSummary>> {
                 summary: p.summary,
                 source: p.source,
                 form: form_name(&(p.description)()),
+                measured: !p.measurements.is_empty(),
             })
             .collect(),
     )

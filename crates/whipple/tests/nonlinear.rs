@@ -875,6 +875,12 @@ fn skate_and_massless_wheels_simulate() -> Result<()> {
             } => ("front lifts", t),
             ref other => panic!("{name}: {other:?}"),
         };
+        // The measured bicycles without a rider (light, their mass low) run the 2 s through.
+        let expected = if presets::find(&name).is_ok_and(|p| !p.measurements.is_empty()) {
+            "completed"
+        } else {
+            expected
+        };
         assert_eq!(got, expected, "{name}");
         assert_eq!(run.steps, (t / 1e-3 - 1e-9).ceil() as usize, "{name}");
         assert_eq!(run.samples.len(), run.steps + 1);

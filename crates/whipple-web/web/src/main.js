@@ -127,9 +127,12 @@ function fillPickers() {
   for (const select of [$("bike-select"), $("compare-select")]) {
     select.replaceChildren();
     if (select.id === "compare-select") select.append(html("option", { value: "", text: state.compare.length ? "— add a design, or clear all —" : "— add a design —" }));
+    // The literature's bicycles, then the measured ones (BicycleParameters' data set, with σ).
     const presets = html("optgroup", { label: "Presets" });
-    for (const p of state.presets) presets.append(html("option", { value: `preset:${p.name}`, text: presetTitle(p.name), title: `${p.summary} (${p.source})` }));
+    const measured = html("optgroup", { label: "Measured bicycles (Moore 2012, with σ)" });
+    for (const p of state.presets) (p.measured ? measured : presets).append(html("option", { value: `preset:${p.name}`, text: presetTitle(p.name), title: `${p.summary} (${p.source})` }));
     select.append(presets);
+    if (measured.children.length) select.append(measured);
     const mine = html("optgroup", { label: designs.length ? "My designs" : "My designs (none saved yet)" });
     for (const d of designs) mine.append(html("option", { value: `design:${d.id}`, text: d.name }));
     select.append(mine);
