@@ -370,7 +370,9 @@ await section("the simulation starts on a held steady turn, with its torque and 
 await section("the speed hint follows the bicycle", async () => {
   await open("?bike=preset:schwinn-crown");
   await page.getByTestId("tab-sim").click();
+  check(/v set to its middle/.test(await text("sim-speed-hint")), `before typing, the hint says v was set: "${await text("sim-speed-hint")}"`);
   await page.fill("#sim-speed", "6");
+  check(!/v set to its middle/.test(await text("sim-speed-hint")), `once a speed is typed, it no longer does: "${await text("sim-speed-hint")}"`);
   await pick("preset:benchmark");
   await waitForText("capsize-speed", (t) => t.startsWith(asShown(CAPSIZE_SPEED)));
   const hint = await waitForText("sim-speed-hint", (t) => t.length > 0);

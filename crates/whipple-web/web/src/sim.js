@@ -74,6 +74,8 @@ export class SimPanel {
     });
     $("sim-speed").addEventListener("input", () => {
       this.speedEdited = true;
+      // The hint no longer says the speed was set for the user.
+      this.hint();
       this.noteSpeed();
     });
     $("sim-play").addEventListener("click", () => (this.playing ? this.pause() : this.play()));
@@ -114,16 +116,25 @@ export class SimPanel {
    */
   suggestSpeed(critical, label) {
     const range = critical?.stable_speed_ranges?.[0];
-    const name = label ? `${label}: ` : "";
     if (!this.speedEdited) {
       const v = range ? 0.5 * (range[0] + range[1]) : 5;
       $("sim-speed").value = String(Math.round(v * 100) / 100);
     }
+    this.suggested = { critical, label };
+    this.hint();
+    this.noteSpeed();
+  }
+
+  /** Where the bicycle is self-stable, and whether v was set to the middle of it for the user. */
+  hint() {
+    if (!this.suggested) return;
+    const { critical, label } = this.suggested;
+    const range = critical?.stable_speed_ranges?.[0];
+    const name = label ? `${label}: ` : "";
     const where = range
       ? `self-stable ${fixed(range[0], 2)}–${fixed(range[1], 2)} m/s${this.speedEdited ? "" : " (v set to its middle)"}`
       : `no self-stable speed in ${fixed(critical?.range?.[0] ?? 0, 1)}–${fixed(critical?.range?.[1] ?? 10, 1)} m/s`;
     $("sim-speed-hint").textContent = `${name}${where}`;
-    this.noteSpeed();
   }
 
   /** A word under a negative speed: the bicycle then rides backwards. */
