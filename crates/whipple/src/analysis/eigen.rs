@@ -18,6 +18,14 @@ use super::roots::{Unpaired, aberth, pair_conjugates};
 /// A complex number of f64.
 pub type Complex64 = Complex<f64>;
 
+/// The coefficients a₀ … a₄ in short, for messages.
+fn coefficient_list(a: &[f64; 5]) -> String {
+    a.iter()
+        .map(|x| crate::error::short_number(*x))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 fn complex_text(z: Complex64) -> String {
     use crate::error::short_number;
     if z.im == 0.0 {
@@ -214,7 +222,11 @@ fn ferrari(b: f64, c: f64, d: f64, e: f64) -> [Complex64; 4] {
 pub fn quartic_roots(a: &[f64; 5]) -> Result<[Complex64; 4]> {
     if a.iter().any(|x| !x.is_finite()) || a[4] == 0.0 {
         return Err(Error::NonFinite {
-            context: format!("characteristic polynomial coefficients {a:?}"),
+            context: format!(
+                "the characteristic polynomial's coefficients ({}): a parameter or the speed is \
+                 too large for double precision",
+                coefficient_list(a)
+            ),
         });
     }
     let monic = [a[0] / a[4], a[1] / a[4], a[2] / a[4], a[3] / a[4], 1.0];
@@ -239,7 +251,11 @@ pub fn quartic_roots(a: &[f64; 5]) -> Result<[Complex64; 4]> {
     aberth(&monic, &mut z);
     if z.iter().any(|r| !(r.re.is_finite() && r.im.is_finite())) {
         return Err(Error::NonFinite {
-            context: format!("roots of the characteristic polynomial {a:?}"),
+            context: format!(
+                "the roots of the characteristic polynomial ({}): its coefficients' scales are \
+                 too far apart for double precision",
+                coefficient_list(a)
+            ),
         });
     }
     // Real where the imaginary part is round-off of the largest root.
