@@ -19,14 +19,17 @@ function loadPlaywright() {
 
 export const CHROMIUM = process.env.CHROMIUM ?? "/usr/bin/chromium";
 
-/** Starts headless Chromium with a fresh profile; returns {browser, close}. */
-export async function launch() {
+/** Starts headless Chromium with a fresh profile; returns {browser, close}. `phone`: a touch
+ *  screen of 390 × 844 (a phone's), touch events on. */
+export async function launch({ phone = false } = {}) {
   const { chromium } = loadPlaywright();
   const profile = mkdtempSync(join(tmpdir(), "whipple-e2e-"));
   const context = await chromium.launchPersistentContext(profile, {
     executablePath: CHROMIUM,
     headless: true,
-    viewport: { width: 1440, height: 900 },
+    viewport: phone ? { width: 390, height: 844 } : { width: 1440, height: 900 },
+    hasTouch: phone,
+    isMobile: phone,
     deviceScaleFactor: 1,
     acceptDownloads: true,
     timeout: 30_000,

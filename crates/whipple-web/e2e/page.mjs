@@ -655,6 +655,62 @@ await section("a measured bicycle's warning beside its field (BicycleParameters'
   check(/\d/.test(await text("capsize-speed")), `the bicycle is computed all the same: v_c ${await text("capsize-speed")}`);
 });
 
+await section("phones (390 × 844, touch): a swipe on a plot scrolls the page, a tap reads out, a map cell asks before loading", async () => {
+  const phone = await launch({ phone: true });
+  try {
+    const p = phone.context.pages()[0] ?? (await phone.context.newPage());
+    await p.goto(new URL("?bike=preset:benchmark", url).href);
+    await p.waitForSelector("body[data-ready=true]", { timeout: 20_000 });
+    await p.waitForSelector("body[data-pending='0']", { state: "attached", timeout: 30_000 });
+    const plot = p.getByTestId("eigen-plot");
+    await plot.scrollIntoViewIfNeeded();
+    const box = await plot.boundingBox();
+    const view = async () => p.$$eval("[data-testid=eigen-plot] svg > g[fill] > text", (ts) => ts.map((t) => t.textContent).join(" "));
+    const ticks = await view();
+    // A one-finger swipe up that starts on the plot: the page scrolls, the plot does not pan.
+    const cdp = await phone.context.newCDPSession(p);
+    const before = await p.evaluate(() => window.scrollY);
+    const x = box.x + box.width / 2;
+    const y = box.y + box.height / 2;
+    await cdp.send("Input.dispatchTouchEvent", { type: "touchStart", touchPoints: [{ x, y }] });
+    for (let k = 1; k <= 8; k++) await cdp.send("Input.dispatchTouchEvent", { type: "touchMove", touchPoints: [{ x, y: y - 25 * k }] });
+    await cdp.send("Input.dispatchTouchEvent", { type: "touchEnd", touchPoints: [] });
+    await p.waitForFunction((b) => window.scrollY > b, before, { timeout: 5_000 });
+    check((await view()) === ticks, `a swipe on the plot scrolled the page (${before} → ${await p.evaluate(() => window.scrollY)} px) and left the plot's view alone`);
+    // A tap on the plot reads out there.
+    const box2 = await plot.boundingBox();
+    await p.touchscreen.tap(box2.x + box2.width * 0.5, box2.y + box2.height * 0.4);
+    await p.waitForFunction(() => {
+      const tip = document.querySelector("[data-testid=eigen-plot] [data-testid=plot-tooltip]");
+      return tip && !tip.hidden && tip.textContent.length > 0;
+    }, null, { timeout: 5_000 });
+    check(true, `a tap on the plot shows its read-out: "${await p.locator("[data-testid=eigen-plot] [data-testid=plot-tooltip]").textContent()}"`);
+    // The map: a tap reads the cell out and offers to load it; the bicycle stays until asked.
+    await p.goto(new URL("?bike=preset:benchmark&tab=map", url).href);
+    await p.waitForSelector("body[data-ready=true]", { timeout: 20_000 });
+    await p.waitForFunction(() => /designs/.test(document.querySelector("[data-testid=map-meta]")?.textContent ?? ""), null, { timeout: 20_000 });
+    const canvas = p.getByTestId("map-canvas");
+    // The whole map on the screen: a tap outside the viewport lands elsewhere.
+    await canvas.evaluate((c) => c.scrollIntoView({ block: "start" }));
+    await p.evaluate(() => new Promise((done) => requestAnimationFrame(() => done())));
+    const cb = await canvas.boundingBox();
+    const area = JSON.parse(await canvas.getAttribute("data-area"));
+    // The canvas may be drawn narrower than its own size on a phone (max-width: 100%).
+    const scale = cb.width / parseFloat(await canvas.evaluate((c) => c.style.width));
+    await p.touchscreen.tap(cb.x + scale * (area.x + (30.5 / 51) * area.w), cb.y + scale * (area.y + (1 - 20.5 / 51) * area.h));
+    await p.getByTestId("map-load").waitFor({ timeout: 5_000 });
+    const readout = (await p.getByTestId("map-readout").textContent()) ?? "";
+    check(/trail = 0\.1, head_angle_deg = 70/.test(readout) && (await p.inputValue("[data-testid=param-c]")) === "0.08", `a tap reads the cell out and loads nothing yet: "${readout}"`);
+    await p.getByTestId("map-load").tap();
+    await p.waitForFunction(() => document.querySelector("[data-testid=param-c]").value === "0.1", null, { timeout: 10_000 }).catch(async (e) => {
+      throw new Error(`${e.message}; message: ${await p.locator("#message").textContent()}; map message: ${await p.getByTestId("map-message").textContent()}; c = ${await p.inputValue("[data-testid=param-c]")}`);
+    });
+    check(true, "“Load this design” loads the tapped cell (trail 0.1 m)");
+  } finally {
+    await phone.close();
+  }
+});
+
 await section("each request once: a first load, a switch, the benchmark form of a JBike6 bicycle", async () => {
   const asked = [];
   const listen = (r) => r.url().includes("/api/") && asked.push(`${r.method()} ${new URL(r.url()).pathname}`);

@@ -2,6 +2,7 @@
 // that a figure exports as SVG or PNG), and the ways to explore it:
 //   wheel            zoom about the pointer (shift: horizontal only)
 //   drag             pan;  shift-drag, or drag with "Box zoom" on: zoom to the box drawn
+//   one finger       (touch screens) scrolls the page as anywhere else; a tap reads out there
 //   two fingers      pinch to zoom, drag to pan (touch screens)
 //   double-click     back to the full view;  "Autoscale": fit the vertical axis to what is seen
 //   keyboard         (the plot takes focus) ←/→ step the read-out through the data, shift+←/→
@@ -152,6 +153,12 @@ export class Chart {
       const p = this.local(e);
       if (!this.inPlot(p)) return;
       pointers.set(e.pointerId, p);
+      // One finger is the page's (it scrolls: touch-action pan-y) or a tap for a read-out; a
+      // swipe that began on a plot used to pan the plot and trap the page.
+      if (e.pointerType === "touch" && pointers.size === 1) {
+        drag = { kind: "tap", start: p, last: p, moved: false };
+        return;
+      }
       el.setPointerCapture?.(e.pointerId);
       if (pointers.size === 2) {
         const [a, b] = [...pointers.values()];
@@ -164,7 +171,10 @@ export class Chart {
     el.addEventListener("pointermove", (e) => {
       const p = this.local(e);
       if (pointers.has(e.pointerId)) pointers.set(e.pointerId, p);
-      if (drag?.kind === "pan") {
+      if (drag?.kind === "tap") {
+        if (Math.abs(p.px - drag.start.px) + Math.abs(p.py - drag.start.py) > 8) drag.moved = true;
+        drag.last = p;
+      } else if (drag?.kind === "pan") {
         if (Math.abs(p.px - drag.start.px) + Math.abs(p.py - drag.start.py) > 3) drag.moved = true;
         if (drag.moved) this.pan(p.px - drag.last.px, p.py - drag.last.py);
         drag.last = p;
@@ -191,6 +201,10 @@ export class Chart {
     });
     const end = (e) => {
       pointers.delete(e.pointerId);
+      if (drag?.kind === "tap" && !drag.moved && e.type === "pointerup") {
+        this.hover = drag.start;
+        this.read();
+      }
       if (drag?.kind === "box") {
         this.box.hidden = true;
         const a = this.toData(drag.start), b = this.toData(drag.last);

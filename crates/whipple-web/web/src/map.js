@@ -99,8 +99,20 @@ export class MapPanel {
     });
     const canvas = $("map-canvas");
     canvas.addEventListener("mousemove", (e) => this.hover(e));
-    canvas.addEventListener("mouseleave", () => ($("map-readout").textContent = ""));
-    canvas.addEventListener("click", (e) => this.load(e));
+    // A mouse leaving clears the read-out; after a tap (its emulated mouse leaves as the finger
+    // goes to the "Load this design" button) the read-out and its button stay.
+    canvas.addEventListener("mouseleave", () => {
+      if (this.lastPointer !== "touch") $("map-readout").textContent = "";
+    });
+    // A mouse click loads the design at once; a tap (a phone) reads the cell out and offers
+    // to load it: a tap is how a phone reads a cell, and it should not replace the bicycle.
+    // The cell under the finger as it lifts: by the click that follows, the read-out written
+    // meanwhile may have moved the page.
+    canvas.addEventListener("pointerup", (e) => {
+      this.lastPointer = e.pointerType;
+      this.tapped = e.pointerType === "touch" ? this.cellAt(e) : null;
+    });
+    canvas.addEventListener("click", (e) => (this.lastPointer === "touch" ? this.offer(e) : this.load(e)));
   }
 
   /** The inputs, for the link: {x, y, quantity, speed, band}. */
@@ -385,10 +397,13 @@ export class MapPanel {
   cellAt(e) {
     const a = this.answer;
     if (!a || !this.area) return null;
-    const box = $("map-canvas").getBoundingClientRect();
+    const canvas = $("map-canvas");
+    const box = canvas.getBoundingClientRect();
     const area = this.area;
-    const fx = (e.clientX - box.left - area.x) / area.w;
-    const fy = 1 - (e.clientY - box.top - area.y) / area.h;
+    // Drawn narrower than its own size (a phone: max-width 100%), the canvas is scaled.
+    const scale = box.width / (parseFloat(canvas.style.width) || box.width);
+    const fx = ((e.clientX - box.left) / scale - area.x) / area.w;
+    const fy = 1 - ((e.clientY - box.top) / scale - area.y) / area.h;
     if (fx < 0 || fx > 1 || fy < 0 || fy > 1) return null;
     const at = (axis, i) => (axis.count > 1 ? axis.start + ((axis.stop - axis.start) * i) / (axis.count - 1) : axis.start);
     if (!a.y) {
@@ -402,8 +417,12 @@ export class MapPanel {
   }
 
   hover(e) {
+    this.readCell(this.cellAt(e));
+  }
+
+  /** The read-out of cell `c0` (from cellAt), or none. */
+  readCell(c0) {
     const a = this.answer;
-    const c0 = this.cellAt(e);
     if (!c0) {
       $("map-readout").textContent = "";
       return;
@@ -433,10 +452,23 @@ export class MapPanel {
     $("map-readout").textContent = `${c0.where}: ${value} (click to load this design)`;
   }
 
+  /** A tap on a cell: its read-out, and a button that loads that design. */
+  offer(e) {
+    const c0 = this.tapped ?? this.cellAt(e);
+    if (!c0 || !this.answer) return;
+    this.readCell(c0);
+    const readout = $("map-readout");
+    readout.textContent = readout.textContent.replace(/ \(click to load this design\)$/, "");
+    if (this.answer.status[c0.iy * this.answer.nx + c0.ix] === "invalid") return;
+    const button = html("button", { type: "button", class: "btn tiny", text: "Load this design", "data-testid": "map-load" });
+    button.addEventListener("click", () => this.load(e, c0));
+    readout.append(" ", button);
+  }
+
   /** A click on a cell: that design (the server sets the axes' parameters) into the editor. */
-  async load(e) {
+  async load(e, cell = null) {
     const a = this.answer;
-    const c0 = this.cellAt(e);
+    const c0 = cell ?? this.cellAt(e);
     if (!c0 || a.status[c0.iy * a.nx + c0.ix] === "invalid") return;
     try {
       const request = { bike: this.bike(), x: this.asked.x, index: c0.iy * a.nx + c0.ix };
