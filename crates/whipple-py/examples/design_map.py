@@ -31,16 +31,16 @@ print(f"widest self-stable range: {np.nanmax(grid.stable_width):.3f} m/s")
 
 # %% Figures (matplotlib)
 try:
-    import matplotlib  # noqa: F401  (the figures need it; in Jupyter they also show inline)
+    import matplotlib.pyplot as plt  # the figures need matplotlib (in Jupyter they show inline)
 
     ax = study.plot()
     ax.set_title("benchmark bicycle: critical speeds against the trail")
-    ax.figure.savefig(os.path.join(out, "design-study.png"), dpi=110)
+    plt.savefig(os.path.join(out, "design-study.png"), dpi=110)
     ax = grid.plot(quantity="stable_width")
     ax.set_title("benchmark bicycle: width of the self-stable range")
-    ax.figure.savefig(os.path.join(out, "design-map.png"), dpi=110)
+    plt.savefig(os.path.join(out, "design-map.png"), dpi=110)
     ax = bike.plot_side_view()
-    ax.figure.savefig(os.path.join(out, "side-view.png"), dpi=110)
+    plt.savefig(os.path.join(out, "side-view.png"), dpi=110)
     for name in ("design-study.png", "design-map.png", "side-view.png"):
         print("wrote", os.path.join(out, name))
 except ImportError:

@@ -20,7 +20,7 @@ print("hands free:", free.outcome)
 
 
 # %% A rider in Python: steer torque from lean and lean rate
-def rider(t, state):
+def rider(t: float, state: dict[str, float]) -> float:
     return 10.0 * state["lean"] + 20.0 * state["lean_rate"]
 
 
@@ -29,10 +29,10 @@ print("with the rider:", held.outcome, f"(largest lean after 5 s: {np.degrees(np
 
 # %% Plot (matplotlib) and a table (pandas)
 try:
-    import matplotlib  # noqa: F401  (the figures need it; in Jupyter they also show inline)
+    import matplotlib.pyplot as plt  # the figures need matplotlib (in Jupyter they show inline)
 
-    left, _ = held.plot()
-    left.figure.savefig(os.path.join(out, "rider.png"), dpi=120)
+    held.plot()
+    plt.savefig(os.path.join(out, "rider.png"), dpi=120)
     print("wrote", os.path.join(out, "rider.png"))
 except ImportError:
     print("matplotlib is not installed: no figure")

@@ -36,7 +36,7 @@ except whipple.NoSteadyTurnError as error:
 turns = bike.turns(max_speed=12.0)
 print(turns)
 print("capsize speed of the linear model:", bike.critical_speeds().v_c, "m/s")
-for t in bike.turn(8.0, hands_free=True):
+for t in bike.hands_free_turns(8.0):
     print(f"hands-free at 8 m/s: lean {math.degrees(t.lean):+.3f} deg, steer "
           f"{math.degrees(t.steer):+.3f} deg, radius {t.rear_radius:+.3f} m, "
           f"{'stable' if t.stable else 'unstable'}")
@@ -48,10 +48,10 @@ print("lean drift over 2 s:", float(np.max(np.abs(run.lean - turn.lean))), "rad"
 
 # %% Figures (matplotlib)
 try:
-    import matplotlib  # noqa: F401  (the figures need it; in Jupyter they also show inline)
+    import matplotlib.pyplot as plt  # the figures need matplotlib (in Jupyter they show inline)
 
     axes = turns.plot()
-    axes[0][0].figure.savefig(os.path.join(out, "turns.png"), dpi=110)
+    plt.savefig(os.path.join(out, "turns.png"), dpi=110)
     print("wrote", os.path.join(out, "turns.png"))
 except ImportError:
     print("matplotlib is not installed: no figure")

@@ -34,14 +34,15 @@ def test_refused_designs_say_why(benchmark):
 
 def test_shards_assemble_to_the_whole(benchmark):
     whole = benchmark.design_map("c=0.0:0.2:7", "w=0.9:1.2:5")
-    parts = [benchmark.design_map("c=0.0:0.2:7", "w=0.9:1.2:5", shard=(k, 3)) for k in range(3)]
+    parts = [benchmark.design_map_shard("c=0.0:0.2:7", "w=0.9:1.2:5", shard=(k, 3))
+             for k in range(3)]
     again = whipple.DesignMap(parts)
     for name in ("v_w", "v_c", "stable_width"):
         assert np.array_equal(getattr(whole, name), getattr(again, name), equal_nan=True)
     with pytest.raises(ValueError, match="missing"):
         whipple.DesignMap(parts[:2])
     with pytest.raises(whipple.ArgumentError):
-        benchmark.design_map("c=0.0:0.2:7", shard=(3, 3))
+        benchmark.design_map_shard("c=0.0:0.2:7", shard=(3, 3))
 
 
 def test_jbike6_axes_by_toml_path():
@@ -93,7 +94,8 @@ def test_a_band_asks_self_stable_over_it(benchmark):
     assert np.isnan(m.band_margin[0, 0])
     wide = benchmark.design_map("c=-0.05:0.2:11", "head_angle_deg=60:85:11", band=(4, 8))
     assert not (wide.stable_over == 1.0).any()
-    parts = [benchmark.design_map("c=0.0:0.2:7", "w=0.9:1.2:5", band=(4.5, 5.5), shard=(k, 3))
+    parts = [benchmark.design_map_shard("c=0.0:0.2:7", "w=0.9:1.2:5", band=(4.5, 5.5),
+                                       shard=(k, 3))
              for k in range(3)]
     whole = benchmark.design_map("c=0.0:0.2:7", "w=0.9:1.2:5", band=(4.5, 5.5))
     again = whipple.DesignMap(parts)

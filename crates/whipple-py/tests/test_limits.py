@@ -48,7 +48,7 @@ def child(code: str, cap: bool = False) -> subprocess.Popen:
     ("bike.nonlinear_state_matrix(np.zeros(10**8))", "nonlinear_state_matrix: 100000000 speeds"),
     ("bike.design_map('c=0.0:0.2:100000', 'w=0.9:1.2:100000')",
      "design_map: 10000000000 designs need 670000000000 bytes"),
-    ("bike.design_map('c=0.0:0.2:100000', 'w=0.9:1.2:100000', shard=(0, 2))",
+    ("bike.design_map_shard('c=0.0:0.2:100000', 'w=0.9:1.2:100000', shard=(0, 2))",
      "design_map: 5000000000 designs need 535000000000 bytes"),
 ])
 def test_too_large_raises_memory_error_under_a_cap(call, says):

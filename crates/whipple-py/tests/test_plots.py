@@ -1,7 +1,10 @@
 """The figures draw (Agg backend) and hold what they show: the steady-turn families, the side
-view, a design map and a one-parameter study."""
+view, a design map and a one-parameter study, the eigenvalues of several bicycles overlaid, the
+mode shapes against speed and the phasors at one speed. The figures go to a scratch directory,
+or to $WHIPPLE_PLOTS_OUT to look at them."""
 
 import math
+import os
 
 import numpy as np
 import pytest
@@ -145,3 +148,137 @@ def test_unknown_quantity(plt, benchmark):
 
     with pytest.raises(whipple.ArgumentError):
         benchmark.design_map("c=0.0:0.2:3", "w=0.9:1.1:3").plot(quantity="nope")
+
+
+def _out(tmp_path):
+    out = os.environ.get("WHIPPLE_PLOTS_OUT")
+    if out:
+        os.makedirs(out, exist_ok=True)
+        return out
+    return str(tmp_path)
+
+
+def _drawn(ax):
+    """The lines that hold data (not the legend's entries nor the zero line)."""
+    return [ln for ln in ax.lines if len(ln.get_xdata()) > 1 and ln.get_gid() != "whipple-zero"]
+
+
+SPEEDS = np.linspace(0.0, 10.0, 201)
+
+
+def test_eigenvalues_of_several_bicycles_overlaid(plt, benchmark, tmp_path):
+    longer = benchmark.replace(c=0.12)
+    ax = whipple.plot_eigenvalues([benchmark, longer], SPEEDS, labels=["benchmark", "trail 12 cm"])
+    lines = _drawn(ax)
+    e = benchmark.eig(SPEEDS)
+    oscillating = sum(bool(np.any(e.values[:, k].imag > 0)) for k in range(4))
+    per_bicycle = 4 + oscillating
+    assert oscillating >= 1 and len(lines) == 2 * per_bicycle
+    # One colour per bicycle, one line style per mode.
+    colours = [ln.get_color() for ln in lines]
+    assert len(set(colours[:per_bicycle])) == 1 and len(set(colours[per_bicycle:])) == 1
+    assert colours[0] != colours[-1]
+    styles = {ln.get_linestyle() for ln in lines[:per_bicycle]}
+    assert styles == {"-", "--", ":"}
+    # The real parts drawn are the eigenvalues, column by column.
+    assert np.array_equal(lines[0].get_ydata(), e.values[:, 0].real)
+    texts = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert texts == ["benchmark", "trail 12 cm", "weave", "capsize", "castering", "thin: |Im λ|"]
+    assert ax.get_xlabel() == "speed v [m/s]" and ax.get_ylabel() == "eigenvalue λ [1/s]"
+    assert "benchmark" in ax.get_title() and "trail 12 cm" in ax.get_title()
+    ax.set_ylim(-10, 10)
+    ax.figure.savefig(os.path.join(_out(tmp_path), "eigenvalues-overlaid.png"), dpi=110)
+    with pytest.raises(whipple.ArgumentError):
+        whipple.plot_eigenvalues([benchmark, longer], SPEEDS, labels=["one"])
+
+
+def test_eigen_plot_label_title_ax(plt, benchmark):
+    fig, ax = plt.subplots()
+    e = benchmark.eig(SPEEDS)
+    assert e.label == "benchmark"
+    assert e.plot(ax=ax, label="A", title="two bicycles") is ax
+    benchmark.replace(mB=100.0).eig(SPEEDS).plot(ax=ax, label="B", imaginary=False)
+    texts = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert texts[:2] == ["A", "B"] and texts.count("weave") == 1
+    assert ax.get_title() == "two bicycles"
+    # Without a label, one figure as before: a colour per mode, Re solid and |Im| dashed.
+    alone = e.plot()
+    labels = alone.get_legend_handles_labels()[1]
+    assert "weave Re λ" in labels and "capsize Re λ" in labels
+
+
+def test_mode_shapes_are_normalized(benchmark):
+    e = benchmark.eig(SPEEDS)
+    lean, steer = e.mode_shapes()
+    assert lean.shape == steer.shape == (len(SPEEDS), 4)
+    largest = np.maximum(np.abs(lean), np.abs(steer))
+    assert np.allclose(largest, 1.0, rtol=0, atol=1e-12)
+    assert np.all(np.abs(lean.imag) <= 1e-12) and np.all(lean.real >= 0)
+    # Where lean dominates the eigenvector, its normalized magnitude is 1.
+    raw = np.abs(e.vectors[:, 0, :]) >= np.abs(e.vectors[:, 1, :])
+    assert raw.any() and (~raw).any()
+    assert np.allclose(np.abs(lean[raw]), 1.0, rtol=0, atol=1e-12)
+    assert np.allclose(np.abs(steer[~raw]), 1.0, rtol=0, atol=1e-12)
+    # The ratio steer / lean is the eigenvector's own.
+    ratio = e.vectors[:, 1, :] / e.vectors[:, 0, :]
+    assert np.allclose(steer / lean, ratio, rtol=1e-12, atol=0)
+    one = benchmark.eig(5.0)
+    assert one.mode_shapes()[0].shape == (4,)
+
+
+def test_mode_shapes_plot(plt, benchmark, tmp_path):
+    e = benchmark.eig(SPEEDS)
+    axes = e.plot_vectors()
+    assert np.shape(axes) == (2, 3)
+    assert [a.get_title() for a in axes[0]] == ["weave", "capsize", "castering"]
+    for top, bottom in zip(axes[0], axes[1]):
+        assert [ln.get_label() for ln in top.lines] == ["lean |φ|", "steer |δ|"]
+        assert len(bottom.lines) == 1
+        assert bottom.get_ylabel() == "phase of δ relative to φ [deg]"
+        assert bottom.get_xlabel() == "speed v [m/s]"
+        assert top.get_ylabel() == "magnitude (larger = 1)"
+        mags = np.array([ln.get_ydata() for ln in top.lines])
+        assert np.allclose(mags.max(axis=0), 1.0, atol=1e-12)
+    axes[0][0].figure.savefig(os.path.join(_out(tmp_path), "mode-shapes.png"), dpi=110)
+    with pytest.raises(whipple.ArgumentError, match="tracked"):
+        benchmark.eig(SPEEDS, tracked=False).plot_vectors()
+
+
+def test_weave_shape_against_numpy(plt, benchmark):
+    """The weave's steer/lean ratio drawn at 5 m/s is numpy.linalg.eig's of A(5) to 1e-9."""
+    v = 5.0
+    w, vectors = np.linalg.eig(benchmark.state_space(v)[0])
+    k = int(np.argmax(w.imag))  # the weave with Im λ > 0 (the other modes are real here)
+    expected = vectors[1, k] / vectors[0, k]
+    e = benchmark.eig(SPEEDS)
+    i = int(np.argmin(np.abs(SPEEDS - v)))
+    assert SPEEDS[i] == v
+    axes = e.plot_vectors()
+    top, bottom = axes[0][0], axes[1][0]
+    lean_mag, steer_mag = (ln.get_ydata()[i] for ln in top.lines)
+    phase = np.radians(bottom.lines[0].get_ydata()[i])
+    assert abs(steer_mag / lean_mag - abs(expected)) <= 1e-9 * abs(expected)
+    assert abs(phase - np.angle(expected)) <= 1e-9
+    # The phasors at that speed: the arrows end at the normalized components.
+    phasors = e.plot_phasors(v)
+    assert len(phasors) == 3
+    arrows = [t for t in phasors[0].texts if getattr(t, "arrow_patch", None) is not None]
+    (lx, ly), (sx, sy) = (a.xy for a in arrows)
+    assert ly == 0.0 and lx > 0
+    assert abs(complex(sx, sy) / complex(lx, ly) - expected) <= 1e-9 * abs(expected)
+    assert max(abs(complex(lx, ly)), abs(complex(sx, sy))) == pytest.approx(1.0, abs=1e-12)
+    assert phasors[0].get_title().startswith("weave: λ = ")
+    assert phasors[0].get_legend_handles_labels()[1] == ["lean φ", "steer δ"]
+
+
+def test_phasors_plot(plt, benchmark, tmp_path):
+    axes = benchmark.eig(SPEEDS).plot_phasors(4.0)
+    assert [a.get_title().split(":")[0] for a in axes] == ["weave", "capsize", "castering"]
+    for a in axes:
+        assert a.get_xlabel() == "real part" and a.get_ylabel() == "imaginary part"
+        assert len([t for t in a.texts if getattr(t, "arrow_patch", None) is not None]) == 2
+    axes[0].figure.savefig(os.path.join(_out(tmp_path), "phasors.png"), dpi=110)
+    # One speed needs no argument; several do.
+    assert len(benchmark.eig(6.0).plot_phasors()) == 3
+    with pytest.raises(whipple.ArgumentError, match="speed"):
+        benchmark.eig(SPEEDS).plot_phasors()

@@ -117,7 +117,7 @@ def test_families_branch_at_the_capsize_speed(benchmark, turns):
 
 
 def test_hands_free_turns_at_a_speed(benchmark, turns):
-    found = benchmark.turn(8.0, hands_free=True)
+    found = benchmark.hands_free_turns(8.0)
     assert found, "the benchmark bicycle has hands-free turns at 8 m/s"
     for t in found:
         assert t.hands_free and t.speed == pytest.approx(8.0, abs=1e-12)
@@ -128,7 +128,7 @@ def test_hands_free_turns_at_a_speed(benchmark, turns):
     assert len(rights) == len(lefts)
     for r in rights:
         assert any(abs(l.lean + r.lean) < 1e-9 and abs(l.steer + r.steer) < 1e-9 for l in lefts)
-    # Every crossing of 8 m/s by a family traced as `turn(hands_free=True)` traces them (to
+    # Every crossing of 8 m/s by a family traced as `hands_free_turns` traces them (to
     # 20 m/s), interpolated between its points, is near one of the turns found (they are those
     # crossings, polished), and each turn found is near a crossing.
     crossings = 0
@@ -183,7 +183,6 @@ def test_huge_radius_is_refused_naming_the_bound(benchmark):
     (dict(lean=math.radians(95)), "lean"),
     (dict(radius=0.0), "radius"),
     (dict(steer=4.0), "steer"),
-    (dict(lean=0.1, hands_free=True), "lean"),
 ])
 def test_bad_turn_arguments(benchmark, kwargs, field):
     with pytest.raises(whipple.ArgumentError) as info:

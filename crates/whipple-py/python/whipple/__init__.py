@@ -18,6 +18,7 @@ from ._errors import (AccuracyLostError, ArgumentError, LimitError, NoSteadyTurn
                       NumericalError, ParameterError, ParameterWarning, ParseError, StrictError,
                       UnknownPresetError, WhippleError)
 from ._design import DesignMap, design_map_dask
+from ._plot import plot_eigenvalues
 from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulation
 from ._turns import SteadyTurn, TurnFamily, Turns, WheelContact
 
@@ -26,7 +27,7 @@ __version__ = _whipple.__version__
 __all__ = [
     "Bicycle", "CriticalSpeeds", "Eigen", "Simulation", "Sensitivities", "Comparison",
     "SteadyTurn", "Turns", "TurnFamily", "WheelContact",
-    "DesignMap", "design_map_dask", "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
+    "DesignMap", "design_map_dask", "plot_eigenvalues", "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
     "WhippleError", "ParameterError", "StrictError", "ParseError", "UnknownPresetError",
     "ArgumentError", "LimitError", "NumericalError", "AccuracyLostError", "NoSteadyTurnError",
     "ParameterWarning",

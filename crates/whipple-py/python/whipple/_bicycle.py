@@ -17,6 +17,8 @@ from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulati
 from ._turns import SteadyTurn, Turns
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
     from ._design import DesignMap
 
 Torque = Union[None, float, str, Callable[[float, Dict[str, float]], float]]
@@ -282,7 +284,7 @@ class Bicycle:
         benchmark). Unpacks as ``values, vectors = bike.eig(v)``."""
         speeds, scalar = _speeds(v)
         values, vectors, modes = self._native.eig(speeds, tracked, parallel)
-        return Eigen(speeds, values, vectors, modes, scalar)
+        return Eigen(speeds, values, vectors, modes, scalar, self.label)
 
     def critical_speeds(self, lo: float = 0.0, hi: float = math.inf) -> CriticalSpeeds:
         """The double-root, weave and capsize speeds and every self-stable range in [lo, hi]
@@ -301,30 +303,42 @@ class Bicycle:
 
     def design_map(self, x: str, y: Optional[str] = None, *, lo: float = 0.0,
                    hi: float = math.inf, speed: Optional[float] = None,
-                   double_root: bool = False, shard: Tuple[int, int] = (0, 1),
+                   double_root: bool = False,
                    band: Optional[Tuple[float, float]] = None) -> "DesignMap":
         """The critical speeds over a grid of designs around this bicycle (the command line's
         ``whipple map``): axes as ``'trail=-0.05:0.25:100'``, ``'head_angle_deg=60:85:100'``
-        (any parameter of the bicycle's form or a derived one, ``speed``), critical speeds read
-        on [lo, hi], ``max_real`` at ``speed``; ``double_root`` adds v_d. In parallel with the
-        GIL released. ``band=(a, b)`` [m/s] asks, for every design, whether it is self-stable at
-        every speed from a to b and by what margin (``stable_over``, ``band_margin_below``,
-        ``band_margin_above``, ``band_margin``; ``plot(quantity='stable_over')``).
-        ``shard=(k, n)`` computes only part k of n and returns its columns (a dict;
-        ``whipple.DesignMap(parts)`` assembles them, :func:`whipple.design_map_dask` does it on
-        a Dask cluster)."""
+        (any parameter of the bicycle's form or a derived one, ``speed``), critical speeds [m/s]
+        read on [lo, hi] m/s, ``max_real`` [1/s] at ``speed`` [m/s]; ``double_root`` adds v_d.
+        In parallel with the GIL released. ``band=(a, b)`` [m/s] asks, for every design, whether
+        it is self-stable at every speed from a to b and by what margin (``stable_over``,
+        ``band_margin_below``, ``band_margin_above``, ``band_margin``;
+        ``plot(quantity='stable_over')``). Part of a map: :meth:`design_map_shard`."""
         from ._design import DesignMap, part
 
-        whole = tuple(shard) == (0, 1)
         # The whole map needs no coordinate columns (its designs are the grid in order).
-        columns = part(self._native.design(x, y, lo=float(lo), hi=float(hi), speed=speed,
-                                           double_root=double_root, shard_index=shard[0],
-                                           shard_count=shard[1], coordinates=not whole,
-                                           band=None if band is None else
-                                           (float(band[0]), float(band[1]))))
-        return DesignMap([columns]) if whole else columns
+        return DesignMap([part(self._native.design(
+            x, y, lo=float(lo), hi=float(hi), speed=speed, double_root=double_root,
+            shard_index=0, shard_count=1, coordinates=False,
+            band=None if band is None else (float(band[0]), float(band[1]))))])
 
-    def __reduce__(self):
+    def design_map_shard(self, x: str, y: Optional[str] = None, *, shard: Tuple[int, int],
+                         lo: float = 0.0, hi: float = math.inf, speed: Optional[float] = None,
+                         double_root: bool = False,
+                         band: Optional[Tuple[float, float]] = None) -> Dict[str, Any]:
+        """Part k of n of :meth:`design_map`'s map (``shard=(k, n)``, 0 ≤ k < n; the same other
+        arguments and units): the columns of the designs ``start`` to ``start + count``
+        (row-major) as a dict of arrays, with ``index``, ``ix``, ``iy``, ``x`` and ``y`` for
+        each. ``whipple.DesignMap(parts)`` assembles the n parts into the map, bit for bit;
+        :func:`whipple.design_map_dask` does it on a Dask cluster."""
+        from ._design import part
+
+        k, n = shard
+        return part(self._native.design(
+            x, y, lo=float(lo), hi=float(hi), speed=speed, double_root=double_root,
+            shard_index=int(k), shard_count=int(n), coordinates=True,
+            band=None if band is None else (float(band[0]), float(band[1]))))
+
+    def __reduce__(self) -> Tuple[Callable[[str], "Bicycle"], Tuple[str]]:
         # Pickled as its TOML text (every number round-trips): for multiprocessing and Dask.
         return (_from_toml, (self.to_text("toml"),))
 
@@ -372,14 +386,12 @@ class Bicycle:
         return Simulation(data, self.label)
 
     def turn(self, speed: float, *, lean: Optional[float] = None, steer: Optional[float] = None,
-             radius: Optional[float] = None,
-             hands_free: bool = False) -> Union[SteadyTurn, List[SteadyTurn]]:
+             radius: Optional[float] = None) -> SteadyTurn:
         """The steady turn of the non-linear bicycle at ``speed`` (the rear contact's, m/s) with
         exactly one of ``lean`` or ``steer`` [rad, right positive] or ``radius`` [m, of the rear
-        contact's circle, positive right, negative left] given, and the steer torque that holds
-        it, with its stability (``whipple turn``). Found on the branch that grows out of
-        straight running. ``hands_free=True`` instead gives every hands-free turn (no steer
-        torque) at that speed on the families :meth:`turns` traces, both leans, as a list.
+        contact's circle, positive right, negative left] given, and the steer torque [N m] that
+        holds it, with its stability (``whipple turn``). Found on the branch that grows out of
+        straight running. The hands-free turns at a speed: :meth:`hands_free_turns`.
 
         :class:`whipple.NoSteadyTurnError` (``field`` the argument given) when there is no such
         turn, or when the ground would have to pull a wheel down (a negative normal force: the
@@ -387,14 +399,8 @@ class Bicycle:
         for an unusable speed, lean, steer or radius (``radius`` at most 1e9 m in size)."""
         given = [name for name, x in (("lean", lean), ("steer", steer), ("radius", radius))
                  if x is not None]
-        if hands_free:
-            if given:
-                raise ArgumentError(f"hands_free=True takes no {given[0]}: the turns' leans "
-                                    "follow from the speed", field=given[0], value=None,
-                                    rule="give one of lean, steer, radius or hands_free=True")
-            return [SteadyTurn(t, self.label) for t in self._native.hands_free_turns(float(speed))]
         if len(given) != 1:
-            raise ArgumentError("give exactly one of lean, steer, radius (or hands_free=True)",
+            raise ArgumentError("give exactly one of lean, steer, radius",
                                 field="lean" if not given else given[1], value=None,
                                 rule="exactly one of lean, steer, radius")
         try:
@@ -406,6 +412,12 @@ class Bicycle:
             error.field = given[0]
             raise
         return SteadyTurn(data, self.label)
+
+    def hands_free_turns(self, speed: float) -> List[SteadyTurn]:
+        """Every hands-free steady turn (no steer torque) at ``speed`` (the rear contact's, m/s)
+        on the families :meth:`turns` traces, leaning right and left, polished; an empty list
+        where there is none. :class:`whipple.ArgumentError` for an unusable speed."""
+        return [SteadyTurn(t, self.label) for t in self._native.hands_free_turns(float(speed))]
 
     def turns(self, max_speed: float = 20.0) -> Turns:
         """The families of hands-free steady turns up to ``max_speed`` [m/s] (``whipple
@@ -451,7 +463,7 @@ class Bicycle:
         keys are the library's ``SideView``'s field names; points are ``(x, y)`` tuples."""
         return self._native.side_view()
 
-    def plot_side_view(self, ax=None):
+    def plot_side_view(self, ax: Optional["Axes"] = None) -> "Axes":
         """The side view drawn to scale (the command line's side-view figure): ground, wheels,
         fork and steer axis with the trail, frame tubes, saddle and handlebar, every body's
         centre of mass with its inertia ellipse and the total centre of mass. Needs matplotlib;

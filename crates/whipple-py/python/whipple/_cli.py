@@ -9,7 +9,7 @@ import sys
 from . import _whipple
 
 
-def main():
+def main() -> None:
     """Runs ``whipple`` with ``sys.argv`` and exits with its status."""
     argv = ["whipple", *sys.argv[1:]]
     sys.stdout.flush()

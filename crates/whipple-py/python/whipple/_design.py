@@ -4,9 +4,13 @@ cluster with :func:`design_map_dask`."""
 
 from __future__ import annotations
 
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
+
+if TYPE_CHECKING:
+    import xarray
+    from matplotlib.axes import Axes
 
 STATUS = np.array(["ok", "invalid", "accuracy_lost"], dtype=object)
 
@@ -74,7 +78,7 @@ class DesignMap:
             return q[name]
         raise AttributeError(name)
 
-    def to_xarray(self):
+    def to_xarray(self) -> "xarray.Dataset":
         """An ``xarray.Dataset`` with the axes as coordinates (needs xarray)."""
         import xarray as xr
 
@@ -86,7 +90,7 @@ class DesignMap:
         data["status"] = (dims, self.status.astype(str))
         return xr.Dataset(data, coords=coords)
 
-    def plot(self, ax=None, quantity: str = "stable_width"):
+    def plot(self, ax: Optional["Axes"] = None, quantity: str = "stable_width") -> "Axes":
         """The command line's figures: over two axes a heat map of ``quantity`` (``'v_w'``,
         ``'v_c'``, ``'v_d'``, ``'stable_width'``, ``'weave_frequency'``, ``'max_real'`` on a
         diverging scale white at zero, ``'stable_over'``: the smaller margin, with a band) with
@@ -106,7 +110,8 @@ class DesignMap:
 
 def design_map_dask(bike: Any, x: str, y: Optional[str] = None, *, client: Any,
                     shards: Optional[int] = None, **options: Any) -> DesignMap:
-    """The same map as ``bike.design_map(x, y, **options)``, its shards computed as tasks of a
+    """The same map as ``bike.design_map(x, y, **options)``, its shards
+    (``bike.design_map_shard(x, y, shard=(k, n), **options)``) computed as tasks of a
     ``dask.distributed`` ``client`` (one per shard; by default two per worker thread) and
     assembled in order. Each task rebuilds the bicycle from its TOML text, so the workers need
     only ``whipple`` installed; the numbers are those of the single-process map, bit for bit."""
@@ -119,11 +124,11 @@ def design_map_dask(bike: Any, x: str, y: Optional[str] = None, *, client: Any,
     return DesignMap(client.gather(futures))
 
 
-def _shard(text: str, x: str, y: Optional[str], k: int, n: int, options: Dict[str, Any]):
+def _shard(text: str, x: str, y: Optional[str], k: int, n: int,
+           options: Dict[str, Any]) -> Dict[str, Any]:
     from ._bicycle import Bicycle
 
-    native = Bicycle.from_text(text, "toml")._native
-    return part(native.design(x, y, shard_index=k, shard_count=n, **options))
+    return Bicycle.from_text(text, "toml").design_map_shard(x, y, shard=(k, n), **options)
 
 
 def part(native: Dict[str, Any]) -> Dict[str, Any]:

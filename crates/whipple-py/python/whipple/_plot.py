@@ -4,9 +4,14 @@ steady-turn families, the side view, and design maps."""
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any, List, Optional, Sequence, Tuple
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from ._bicycle import Bicycle
 
 # The command line's colours per mode (whipple-report).
 _MODE_COLOURS = {"weave": "#1f77b4", "capsize": "#d62728", "castering": "#2ca02c"}
@@ -20,29 +25,224 @@ def _pyplot():
     return plt
 
 
-def plot_eigen(eigen: Any, ax=None, imaginary: bool = True):
-    """Re λ (solid) and |Im λ| (dashed) against speed, one colour per mode; the axis."""
+#: Line styles per mode where several bicycles share one figure (colour then names the bicycle).
+_MODE_STYLES = {"weave": "-", "capsize": "--", "castering": ":"}
+
+
+def _mode_names(eigen: Any) -> List[str]:
+    return list(eigen.modes) if eigen.modes else [f"eigenvalue {k + 1}" for k in range(4)]
+
+
+def plot_eigen(eigen: Any, ax=None, imaginary: bool = True, label: Optional[str] = None,
+               title: Optional[str] = None, color: Optional[str] = None):
+    """Re λ and |Im λ| [1/s] against speed [m/s]. Alone: one colour per mode, Re solid, |Im|
+    dashed. With ``label`` or ``color``: one bicycle among several on ``ax`` (its colour, a
+    line style per mode, Re bold, |Im| thin) and a legend of bicycles and modes. The axis."""
     plt = _pyplot()
     if ax is None:
         _, ax = plt.subplots(figsize=(8, 5), constrained_layout=True)
     v = np.atleast_1d(eigen.speeds)
     values = np.atleast_2d(eigen.values)
-    modes = eigen.modes or [f"eigenvalue {k + 1}" for k in range(4)]
-    shown = set()
-    for k in range(values.shape[1]):
-        colour = _MODE_COLOURS.get(modes[k], None)
-        label = None if modes[k] in shown else f"{modes[k]} Re λ"
-        shown.add(modes[k])
-        ax.plot(v, values[:, k].real, color=colour, lw=1.6, label=label)
-        if imaginary and np.any(values[:, k].imag > 0):
-            ax.plot(v, np.abs(values[:, k].imag), color=colour, lw=1.0, ls="--",
-                    label=f"{modes[k]} |Im λ|")
-    ax.axhline(0.0, color="0.3", lw=0.8)
+    modes = _mode_names(eigen)
+    overlay = label is not None or color is not None
+    if overlay:
+        _plot_eigen_overlaid(ax, v, values, modes, imaginary, label, color)
+    else:
+        shown = set()
+        for k in range(values.shape[1]):
+            colour = _MODE_COLOURS.get(modes[k], None)
+            name = None if modes[k] in shown else f"{modes[k]} Re λ"
+            shown.add(modes[k])
+            ax.plot(v, values[:, k].real, color=colour, lw=1.6, label=name)
+            if imaginary and np.any(values[:, k].imag > 0):
+                ax.plot(v, np.abs(values[:, k].imag), color=colour, lw=1.0, ls="--",
+                        label=f"{modes[k]} |Im λ|")
+        ax.legend(loc="best", fontsize="small")
+    if not any(line.get_gid() == "whipple-zero" for line in ax.lines):
+        ax.axhline(0.0, color="0.3", lw=0.8, gid="whipple-zero")
     ax.set_xlabel("speed v [m/s]")
     ax.set_ylabel("eigenvalue λ [1/s]")
     ax.grid(True, color="0.9")
-    ax.legend(loc="best", fontsize="small")
+    if title is not None:
+        ax.set_title(title)
     return ax
+
+
+def _plot_eigen_overlaid(ax, v, values, modes, imaginary, label, color):
+    """One bicycle's eigenvalues on an axis shared with others; the legend lists the bicycles
+    (by colour) and then the modes (by line style), from gid-tagged entries without data."""
+    bicycles = [line for line in ax.lines if line.get_gid() == "whipple-bicycle"]
+    if color is None:
+        used = {line.get_color() for line in bicycles}
+        free = [c for c in _CYCLE if c not in used]
+        color = free[0] if free else _CYCLE[len(bicycles) % len(_CYCLE)]
+    drew_imaginary = False
+    for k in range(values.shape[1]):
+        style = _MODE_STYLES.get(modes[k], "-.")
+        ax.plot(v, values[:, k].real, color=color, ls=style, lw=1.8)
+        if imaginary and np.any(values[:, k].imag > 0):
+            ax.plot(v, np.abs(values[:, k].imag), color=color, ls=style, lw=0.8, alpha=0.7)
+            drew_imaginary = True
+    ax.plot([], [], color=color, lw=1.8, label=label or f"bicycle {len(bicycles) + 1}",
+            gid="whipple-bicycle")
+    named = {line.get_label() for line in ax.lines if line.get_gid() == "whipple-mode"}
+    for mode in dict.fromkeys(modes):
+        if mode not in named:
+            ax.plot([], [], color=_DARK, ls=_MODE_STYLES.get(mode, "-."), lw=1.8, label=mode,
+                    gid="whipple-mode")
+    if drew_imaginary and not any(line.get_gid() == "whipple-imaginary" for line in ax.lines):
+        ax.plot([], [], color=_DARK, lw=0.8, alpha=0.7, label="thin: |Im λ|",
+                gid="whipple-imaginary")
+    order = {"whipple-bicycle": 0, "whipple-mode": 1, "whipple-imaginary": 2}
+    entries = sorted((line for line in ax.lines if line.get_gid() in order),
+                     key=lambda line: order[line.get_gid()])
+    ax.legend(entries, [line.get_label() for line in entries], loc="best", fontsize="small")
+
+
+def plot_eigenvalues(bicycles: Sequence["Bicycle"], speeds: Any, ax: Optional["Axes"] = None,
+                     *, labels: Optional[Sequence[str]] = None, imaginary: bool = True,
+                     title: Optional[str] = None) -> "Axes":
+    """The eigenvalues [1/s] of several bicycles against speed [m/s] in one figure, to compare
+    them (as BicycleParameters' ``compare_bicycles``): one colour per bicycle, one line style
+    per mode (weave solid, capsize dashed, castering dotted), Re λ bold and |Im λ| thin, a
+    legend naming the bicycles (``labels``, else their names) and the modes. Needs
+    matplotlib; returns the axis."""
+    plt = _pyplot()
+    bicycles = list(bicycles)
+    if labels is not None and len(labels) != len(bicycles):
+        from ._errors import ArgumentError
+
+        raise ArgumentError(f"{len(labels)} labels for {len(bicycles)} bicycles",
+                            field="labels", value=None, rule="one label per bicycle")
+    if ax is None:
+        _, ax = plt.subplots(figsize=(9, 5.5), constrained_layout=True)
+    for i, bike in enumerate(bicycles):
+        name = labels[i] if labels is not None else bike.label
+        bike.eig(speeds).plot(ax=ax, imaginary=imaginary, label=name)
+    ax.set_title(title if title is not None else
+                 "eigenvalues against speed: " + ", ".join(
+                     labels if labels is not None else [b.label for b in bicycles]))
+    return ax
+
+
+def _shown_columns(eigen: Any) -> Tuple[List[str], np.ndarray]:
+    """The modes (each once, in column order) and, per speed and mode, the column drawn: of
+    columns sharing a label (the weave's pair) the one with the larger Im λ, or where both are
+    real the larger Re λ. ``(modes, columns)`` with ``columns`` (n, len(modes)) int."""
+    values = np.atleast_2d(eigen.values)
+    names = _mode_names(eigen)
+    modes = list(dict.fromkeys(names))
+    picked = np.empty((values.shape[0], len(modes)), dtype=int)
+    for j, mode in enumerate(modes):
+        cols = np.array([k for k, name in enumerate(names) if name == mode])
+        sub = values[:, cols]
+        real = np.all(sub.imag == sub.imag[:, :1], axis=1)
+        best = np.where(real, np.argmax(sub.real, axis=1), np.argmax(sub.imag, axis=1))
+        picked[:, j] = cols[best]
+    return modes, picked
+
+
+def plot_mode_shapes(eigen: Any, axes=None, title: Optional[str] = None):
+    """Magnitude of the normalized lean and steer components and the phase of steer relative
+    to lean [deg] against speed [m/s], one column per mode; the (2, modes) axes."""
+    plt = _pyplot()
+    if eigen.modes is None:
+        from ._errors import ArgumentError
+
+        raise ArgumentError("mode shapes need the tracked modes: compute them with eig(v) "
+                            "(tracked=True, the default)", field="tracked", value=False,
+                            rule="tracked=True")
+    v = np.atleast_1d(eigen.speeds)
+    lean, steer = eigen.mode_shapes()
+    lean, steer = np.atleast_2d(lean), np.atleast_2d(steer)
+    modes, picked = _shown_columns(eigen)
+    if axes is None:
+        fig, axes = plt.subplots(2, len(modes), figsize=(4.2 * len(modes), 6.5), sharex=True,
+                                 squeeze=False, constrained_layout=True)
+        fig.suptitle(title if title is not None else
+                     f"{eigen.label or 'bicycle'}: mode shapes against speed")
+    rows = np.arange(len(v))
+    for j, mode in enumerate(modes):
+        top, bottom = axes[0][j], axes[1][j]
+        phi = lean[rows, picked[:, j]]
+        delta = steer[rows, picked[:, j]]
+        colour = _MODE_COLOURS.get(mode, _DARK)
+        top.plot(v, np.abs(phi), color=colour, lw=1.8, label="lean |φ|")
+        top.plot(v, np.abs(delta), color=colour, lw=1.4, ls="--", label="steer |δ|")
+        top.set_ylim(0.0, 1.05)
+        top.set_title(mode)
+        top.set_ylabel("magnitude (larger = 1)")
+        top.grid(True, color="0.9")
+        top.legend(loc="best", fontsize="small")
+        bottom.plot(v, np.degrees(np.angle(delta)), color=colour, lw=1.4, ls="--",
+                    label="steer δ relative to lean φ")
+        bottom.set_ylim(-185.0, 185.0)
+        bottom.set_yticks([-180, -90, 0, 90, 180])
+        bottom.set_xlabel("speed v [m/s]")
+        bottom.set_ylabel("phase of δ relative to φ [deg]")
+        bottom.grid(True, color="0.9")
+    return axes
+
+
+def plot_phasors(eigen: Any, speed: Optional[float] = None, axes=None,
+                 title: Optional[str] = None):
+    """Each mode's normalized lean and steer components at one speed as arrows in the complex
+    plane, one axis per mode; the axes."""
+    plt = _pyplot()
+    from ._errors import ArgumentError
+
+    if eigen.modes is None:
+        raise ArgumentError("phasors need the tracked modes: compute them with eig(v) "
+                            "(tracked=True, the default)", field="tracked", value=False,
+                            rule="tracked=True")
+    v = np.atleast_1d(eigen.speeds)
+    if speed is None:
+        if len(v) != 1:
+            raise ArgumentError(f"these eigenvalues are at {len(v)} speeds: name the one to "
+                                "draw (plot_phasors(speed))", field="speed", value=None,
+                                rule="a speed [m/s] when the results hold several")
+        i = 0
+    else:
+        if not np.isfinite(speed):
+            raise ArgumentError(f"speed must be finite, got {speed!r}", field="speed",
+                                value=speed, rule="a finite speed [m/s]")
+        i = int(np.argmin(np.abs(v - float(speed))))
+    values = np.atleast_2d(eigen.values)
+    lean, steer = eigen.mode_shapes()
+    lean, steer = np.atleast_2d(lean), np.atleast_2d(steer)
+    modes, picked = _shown_columns(eigen)
+    if axes is None:
+        fig, axes = plt.subplots(1, len(modes), figsize=(3.8 * len(modes), 4.2), squeeze=False,
+                                 constrained_layout=True)
+        axes = list(axes[0])
+        fig.suptitle(title if title is not None else
+                     f"{eigen.label or 'bicycle'}: eigenvectors at v = {v[i]:.4g} m/s")
+    else:
+        axes = list(axes)
+    circle = np.exp(1j * np.linspace(0.0, 2.0 * np.pi, 181))
+    for j, mode in enumerate(modes):
+        ax = axes[j]
+        k = picked[i, j]
+        ax.plot(circle.real, circle.imag, color="0.8", lw=0.8)
+        for z, name, colour in ((lean[i, k], "lean φ", _CYCLE[0]),
+                                (steer[i, k], "steer δ", _CYCLE[1])):
+            ax.annotate("", xy=(z.real, z.imag), xytext=(0.0, 0.0),
+                        arrowprops=dict(arrowstyle="-|>", color=colour, lw=2.0,
+                                        shrinkA=0, shrinkB=0))
+            ax.plot([z.real], [z.imag], "o", color=colour, ms=4, label=name)
+        lam = values[i, k]
+        shown = (f"{lam.real:.3g}" if lam.imag == 0 else
+                 f"{lam.real:.3g} {'+' if lam.imag > 0 else '−'} {abs(lam.imag):.3g}j")
+        ax.set_title(f"{mode}: λ = {shown} 1/s", fontsize="medium")
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        ax.axvline(0.0, color="0.6", lw=0.6)
+        ax.set_xlim(-1.15, 1.15)
+        ax.set_ylim(-1.15, 1.15)
+        ax.set_aspect("equal")
+        ax.set_xlabel("real part")
+        ax.set_ylabel("imaginary part")
+        ax.legend(loc="lower left", fontsize="small")
+    return axes
 
 
 def plot_simulation(run: Any, ax=None):

@@ -6,9 +6,13 @@ from __future__ import annotations
 
 import html
 import math
-from typing import Any, Dict, Iterator, List, Optional, Sequence, Tuple
+from typing import TYPE_CHECKING, Any, Dict, Iterator, List, Optional, Sequence, Tuple
 
 import numpy as np
+
+if TYPE_CHECKING:
+    import pandas
+    from matplotlib.axes import Axes
 
 
 def _num(x: Optional[float], digits: int = 6) -> str:
@@ -44,7 +48,7 @@ def _html_table(rows: Sequence[Tuple[str, str]], caption: str = "") -> str:
     return f"<table>{cap}{body}</table>"
 
 
-def _pandas():
+def _pandas() -> Any:
     try:
         import pandas
     except ImportError as error:  # pragma: no cover - depends on the environment
@@ -185,11 +189,13 @@ class Eigen:
     """
 
     def __init__(self, speeds: np.ndarray, values: np.ndarray, vectors: np.ndarray,
-                 modes: Optional[List[str]], scalar: bool) -> None:
+                 modes: Optional[List[str]], scalar: bool, label: str = "") -> None:
         self.speeds = speeds
         self.values = values
         self.vectors = vectors
         self.modes = modes
+        #: The bicycle's name (the legend's entry when several bicycles share a figure).
+        self.label = label
         self._scalar = scalar
         if scalar:
             self.values = values[0]
@@ -202,7 +208,7 @@ class Eigen:
     def __len__(self) -> int:
         return 2
 
-    def to_pandas(self):
+    def to_pandas(self) -> "pandas.DataFrame":
         """A DataFrame indexed by speed with columns ``re1, im1, …, re4, im4`` (the command
         line's ``eig`` CSV) and the modes in ``df.attrs['modes']``."""
         pd = _pandas()
@@ -215,12 +221,67 @@ class Eigen:
         df.attrs["modes"] = self.modes
         return df
 
-    def plot(self, ax=None, imaginary: bool = True):
-        """Real parts (solid) and |imaginary| parts (dashed) against speed, as the command
-        line's ``eig --plot``. Needs matplotlib (``pip install whipple[plot]``)."""
+    def mode_shapes(self) -> Tuple[np.ndarray, np.ndarray]:
+        """The lean and steer components of every eigenvector, normalized for comparison: each
+        eigenvector ``vectors[i, :, k]`` is scaled so that the larger of its |φ| and |δ| is 1
+        and its lean φ is real and non-negative (phase 0). Returns ``(lean, steer)``, each
+        complex of the shape of ``values`` ((n, 4), or (4,) at one speed), dimensionless (lean
+        and steer in radians per radian of the larger): ``abs(steer)`` is the steer amplitude
+        and ``np.angle(steer)`` [rad] the phase of steer relative to lean. The native
+        eigenvectors are used as they are; only this scale is applied."""
+        vectors = np.asarray(self.vectors)
+        lean = vectors[..., 0, :]
+        steer = vectors[..., 1, :]
+        largest = np.maximum(np.abs(lean), np.abs(steer))
+        # Lean's phase is the reference; a mode without lean (|φ| = 0) keeps steer's phase.
+        has_lean = np.abs(lean) > 0
+        reference = np.where(has_lean, lean, steer)
+        rotation = np.exp(-1j * np.angle(reference))
+        scale = np.where(largest > 0, 1.0 / np.where(largest > 0, largest, 1.0), 0.0)
+        # Lean rotated onto the positive real axis exactly (its imaginary part 0, not round-off).
+        shown_lean = np.where(has_lean, np.abs(lean), lean * rotation) * scale + 0j
+        return shown_lean, steer * rotation * scale
+
+    def plot(self, ax: Optional["Axes"] = None, imaginary: bool = True, *,
+             label: Optional[str] = None, title: Optional[str] = None,
+             color: Optional[str] = None) -> "Axes":
+        """Real parts and |imaginary| parts [1/s] against speed [m/s], as the command line's
+        ``eig --plot``: one colour per mode, Re λ solid, |Im λ| dashed.
+
+        With ``label`` (a bicycle's name) or ``color``, the figure is one of several bicycles
+        overlaid on one ``ax``: this bicycle in one colour (``color``, else the next of the
+        palette not yet used on ``ax``), one line style per mode (weave solid, capsize dashed,
+        castering dotted), Re λ bold and |Im λ| thin; the legend names every bicycle drawn on
+        ``ax`` and every mode. ``title`` sets the axis' title. Needs matplotlib
+        (``pip install whipple[plot]``); returns the axis. :func:`whipple.plot_eigenvalues`
+        draws several bicycles at once."""
         from ._plot import plot_eigen
 
-        return plot_eigen(self, ax=ax, imaginary=imaginary)
+        return plot_eigen(self, ax=ax, imaginary=imaginary, label=label, title=title,
+                          color=color)
+
+    def plot_vectors(self, axes: Any = None, *, title: Optional[str] = None) -> np.ndarray:
+        """Mode shapes against speed [m/s], one column of axes per mode (weave, capsize,
+        castering): above, the magnitudes |φ| and |δ| of the lean and steer components of the
+        eigenvector normalized as :meth:`mode_shapes` does (the larger is 1); below, the phase
+        of steer relative to lean [deg]. Of the weave's conjugate pair the eigenvalue with
+        Im λ ≥ 0 is drawn (the other's phase is its negative). Needs the tracked modes (the
+        default of ``Bicycle.eig``) and matplotlib; returns the (2, number of modes) array of
+        axes. ``axes``: such an array to draw into."""
+        from ._plot import plot_mode_shapes
+
+        return plot_mode_shapes(self, axes=axes, title=title)
+
+    def plot_phasors(self, speed: Optional[float] = None, axes: Optional[Sequence["Axes"]] = None,
+                     *, title: Optional[str] = None) -> List["Axes"]:
+        """The lean and steer components of each mode's eigenvector at one speed as arrows in
+        the complex plane (normalized as :meth:`mode_shapes` does: the larger has length 1,
+        lean points along the positive real axis), one axis per mode, the eigenvalue [1/s] in
+        its title. ``speed`` [m/s]: the speed of these results nearest to it (``None``: the one
+        speed of a scalar ``eig``). Needs matplotlib; returns the axes (one per mode)."""
+        from ._plot import plot_phasors
+
+        return plot_phasors(self, speed=speed, axes=axes, title=title)
 
     def __repr__(self) -> str:
         shape = np.shape(self.values)
@@ -270,7 +331,7 @@ class Simulation:
     def __len__(self) -> int:
         return len(self.columns["t"])
 
-    def to_pandas(self):
+    def to_pandas(self) -> "pandas.DataFrame":
         """The samples as a DataFrame (one column per array, ``t`` included), the outcome in
         ``df.attrs['outcome']``."""
         pd = _pandas()
@@ -278,7 +339,7 @@ class Simulation:
         df.attrs["outcome"] = self.outcome
         return df
 
-    def plot(self, ax=None):
+    def plot(self, ax: Optional[Sequence["Axes"]] = None) -> Tuple["Axes", "Axes"]:
         """Lean, steer and speed against time and the ground track, as the command line's
         ``simulate --plot``. Needs matplotlib."""
         from ._plot import plot_simulation
@@ -334,6 +395,21 @@ class Sensitivities:
     _COLUMNS = list(_FIELDS)
     _TEXT = ("key", "symbol", "unit", "description")
 
+    # The columns, one entry per parameter (set from _FIELDS in __init__).
+    key: List[str]
+    symbol: List[str]
+    unit: List[str]
+    description: List[str]
+    value: np.ndarray
+    d_v_w: np.ndarray
+    d_v_c: np.ndarray
+    d_width: np.ndarray
+    elasticity_v_w: np.ndarray
+    elasticity_v_c: np.ndarray
+    elasticity_width: np.ndarray
+    d_weave_real: np.ndarray
+    d_capsize_real: np.ndarray
+
     def __init__(self, data: Dict[str, Any]) -> None:
         self._data = data
         rows = data["parameters"]
@@ -365,7 +441,7 @@ class Sensitivities:
         """The library's record as a plain dict, keyed as the server's JSON (see the class)."""
         return dict(self._data)
 
-    def to_pandas(self):
+    def to_pandas(self) -> "pandas.DataFrame":
         """The table as a DataFrame indexed by parameter key."""
         pd = _pandas()
         return pd.DataFrame({n: self._columns[n] for n in self._COLUMNS}).set_index("key")

@@ -6,9 +6,12 @@ positive; radii positive for right turns)."""
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import TYPE_CHECKING, Any, Dict, Iterator, List, Optional, Sequence, Tuple
 
 import numpy as np
+
+if TYPE_CHECKING:
+    import pandas
 
 from ._results import _html_table, _num
 
@@ -205,7 +208,7 @@ class TurnFamily:
             out.append((run[0], run[1]))
         return out
 
-    def to_pandas(self):
+    def to_pandas(self) -> "pandas.DataFrame":
         """The points as a DataFrame."""
         from ._results import _pandas
 
@@ -239,14 +242,14 @@ class Turns:
     def __len__(self) -> int:
         return len(self.families)
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator[TurnFamily]:
         return iter(self.families)
 
     def __getitem__(self, k: int) -> TurnFamily:
         return self.families[k]
 
-    def plot(self, ax=None, held_speeds: Sequence[float] = (3.0, 5.0, 7.0),
-             max_radius: float = 30.0):
+    def plot(self, ax: Any = None, held_speeds: Sequence[float] = (3.0, 5.0, 7.0),
+             max_radius: float = 30.0) -> np.ndarray:
         """The figure of ``whipple turns --plot``: lean, steer and rear contact radius of every
         family against speed, stable parts bold, and the steer torque that holds a turn against
         its lateral acceleration at ``held_speeds`` (leans 0.5°…30°; none drawn when empty).
