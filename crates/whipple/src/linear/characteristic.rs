@@ -101,33 +101,6 @@ impl CharacteristicPolynomial {
         }
         a
     }
-
-    /// The derivative of each coefficient with respect to v, lowest power of λ first.
-    pub fn d_dv(&self, v: f64) -> [f64; DEGREE + 1] {
-        let mut a = [0.0; DEGREE + 1];
-        for (k, row) in self.coefficients.iter().enumerate() {
-            a[k] = row
-                .iter()
-                .enumerate()
-                .skip(1)
-                .rev()
-                .fold(0.0, |acc, (j, &c)| acc * v + j as f64 * c);
-        }
-        a
-    }
-
-    /// The third Hurwitz determinant Δ₃ = a₃a₂a₁ − a₄a₁² − a₀a₃² at speed v. With a₄ > 0, all
-    /// four eigenvalues have negative real parts exactly when a₀, a₁, a₃ and Δ₃ are positive;
-    /// Δ₃ vanishes where a complex pair crosses the imaginary axis.
-    pub fn hurwitz_delta3(&self, v: f64) -> f64 {
-        let a = self.at_speed(v);
-        hurwitz_delta3(&a)
-    }
-}
-
-/// Δ₃ of a quartic with coefficients `a` (lowest power first).
-pub(crate) fn hurwitz_delta3(a: &[f64; 5]) -> f64 {
-    a[3] * a[2] * a[1] - a[4] * a[1] * a[1] - a[0] * a[3] * a[3]
 }
 
 /// A value with what an a-priori round-off bound needs: the computed value, the same circuit
