@@ -711,6 +711,28 @@ await section("phones (390 × 844, touch): a swipe on a plot scrolls the page, a
   }
 });
 
+await section("a link to an opened file, opened in a fresh browser, names the design in the picker", async () => {
+  await open("?bike=preset:benchmark");
+  const folder = fileURLToPath(new URL("../../whipple/tests/data/bicycleparameters/", import.meta.url));
+  await page.setInputFiles("#file-input", join(folder, "FisherBenchmark.txt"));
+  await waitFor("Fisher in the editor", async () => (await page.inputValue("#design-name")).startsWith("FisherBenchmark"), 15_000);
+  await settled();
+  const link = page.url();
+  const fresh = await launch();
+  try {
+    const p = fresh.context.pages()[0] ?? (await fresh.context.newPage());
+    await p.goto(link);
+    await p.waitForSelector("body[data-ready=true]", { timeout: 20_000 });
+    await p.waitForSelector("body[data-pending='0']", { state: "attached", timeout: 30_000 });
+    const shown = await p.$eval("#bike-select", (s) => s.selectedOptions[0]?.textContent ?? "");
+    check(shown === "FisherBenchmark (not saved here)", `the picker names the linked design: "${shown}"`);
+    const vw = (await p.getByTestId("weave-speed").textContent()) ?? "";
+    check(/ ± /.test(vw), `and its σ came with it: v_w ${vw}`);
+  } finally {
+    await fresh.close();
+  }
+});
+
 await section("each request once: a first load, a switch, the benchmark form of a JBike6 bicycle", async () => {
   const asked = [];
   const listen = (r) => r.url().includes("/api/") && asked.push(`${r.method()} ${new URL(r.url()).pathname}`);

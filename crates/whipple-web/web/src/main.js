@@ -137,7 +137,15 @@ function fillPickers() {
     for (const d of designs) mine.append(html("option", { value: `design:${d.id}`, text: d.name }));
     select.append(mine);
   }
-  $("bike-select").value = state.key;
+  // A design that came with a link (not in this browser's designs): listed as such, so that
+  // the picker names what is shown instead of standing empty.
+  const picker = $("bike-select");
+  if (state.key && state.bike && ![...picker.options].some((o) => o.value === state.key)) {
+    const linked = html("optgroup", { label: "From the link" });
+    linked.append(html("option", { value: state.key, text: `${state.bike.name || "a design"} (not saved here)`, "data-testid": "linked-option" }));
+    picker.append(linked);
+  }
+  picker.value = state.key;
   $("compare-select").value = "";
   drawCompareList();
 }
