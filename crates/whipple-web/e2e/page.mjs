@@ -571,6 +571,13 @@ await section("modes: in words, animated, and played in 3-D", async () => {
   // Shown to two digits: "oscillates every 1.4 s, decays by half in 0.89 s".
   check(weave === `weave: oscillates every ${Number(period.toPrecision(2))} s, decays by half in ${Number(half.toPrecision(2))} s`, `"${weave}" (Meijaard 2007: period ${period.toFixed(3)} s, half-life ${half.toFixed(3)} s)`);
   check(/capsize: does not oscillate, decays by half in/.test(await text("mode-words-capsize")), `"${await text("mode-words-capsize")}"`);
+  // An invalid bicycle leaves the last modes on screen veiled, and the header says so.
+  await page.getByTestId("param-mB").fill("-1");
+  await waitFor("the modes veiled", async () => (await page.getByTestId("mode-list").getAttribute("class")).includes("stale"));
+  check(/not recomputed: the parameters are invalid; last computed/.test(await text("mode-meta")), `an invalid bicycle veils the modes: "${await text("mode-meta")}"`);
+  await page.getByTestId("param-mB").fill("85");
+  await waitFor("the veil lifted", async () => !(await page.getByTestId("mode-list").getAttribute("class")).includes("stale"));
+  check(!/not recomputed/.test(await text("mode-meta")), `mended, the modes are current again: "${await text("mode-meta")}"`);
   await page.getByTestId("mode-weave").click();
   await page.getByTestId("mode-anim").waitFor({ state: "visible" });
   // The read-out is written on the first animation frame, which a loaded machine may delay.

@@ -339,11 +339,11 @@ function flushScheduled() {
 }
 
 /** Why the results shown do not match the form, or null when they do. */
-function staleReason() {
+function staleReason({ speeds = true } = {}) {
   const local = editor.localErrors();
   if (local.length) return `not recomputed: ${local.map((l) => l.what).join(", ")} ${local.length > 1 ? "are" : "is"} not a number`;
   if (!state.valid) return "not recomputed: the parameters are invalid";
-  if (state.speedsError) return `not recomputed: ${state.speedsError}`;
+  if (speeds && state.speedsError) return `not recomputed: ${state.speedsError}`;
   return null;
 }
 
@@ -503,6 +503,8 @@ function designsShown() {
 
 function drawAll() {
   drawSide();
+  // The modes shown are those of the last valid bicycle: veiled while the form is not.
+  modes.veil(staleReason({ speeds: false }));
   if (!state.eigen) return;
   const designs = designsShown();
   const stale = staleReason();

@@ -126,6 +126,20 @@ export class ModesPanel {
     }
   }
 
+  /**
+   * Veils the modes shown when they are not those of the form (`reason`: why, or null when
+   * they are): an invalid bicycle, or text in a field, keeps the last modes on screen as such.
+   */
+  veil(reason) {
+    const list = $("mode-list");
+    list.classList.toggle("stale", Boolean(reason));
+    list.dataset.stale = reason ?? "";
+    const meta = $("mode-meta");
+    const base = meta.dataset.base ?? meta.textContent;
+    meta.dataset.base = base;
+    meta.textContent = reason && base ? `${base} (${reason}; last computed)` : base;
+  }
+
   /** Lists the modes computed at speed `v` (the request's, not the field's, which may be edited since). */
   render(v) {
     const list = $("mode-list");
@@ -144,6 +158,8 @@ export class ModesPanel {
       list.append(item);
     }
     $("mode-meta").textContent = `${this.label()} at ${num(v)} m/s (linear model)`;
+    $("mode-meta").dataset.base = $("mode-meta").textContent;
+    this.veil(null);
   }
 
   choose(m) {
