@@ -505,7 +505,8 @@ await section("compare: three designs at once", async () => {
   check((await page.locator("[data-testid=eigen-plot] [data-testid=compare-curve]").count()) === 8, "two compared designs draw four eigenvalue tracks each");
   const csv = await downloadOf(() => page.click("#eigen-csv"));
   check(/schwinn-crown/.test(csv.name) && /compared: .*Benchmark.*Browser/.test(csv.text.split("\n")[0]), `the CSV is named after the bike (${csv.name}) and names the compared designs`);
-  check(/re1_weave/.test(csv.text.split("\n")[1]) && /castering/.test(csv.text.split("\n")[1]), `its header has the mode names: ${csv.text.split("\n")[1].slice(0, 70)}…`);
+  const header = csv.text.split("\n").find((l) => !l.startsWith("#")) ?? "";
+  check(/re1_weave/.test(header) && /castering/.test(header), `its header has the mode names: ${header.slice(0, 70)}…`);
   // An edited design beside its original: two names, not one.
   await open("?bike=preset:benchmark");
   await page.getByTestId("compare-select").selectOption("preset:benchmark");
@@ -824,6 +825,10 @@ await section("measured files: every field shows its value and σ, kept through 
   const before = await text("weave-speed");
   check(/^\d+\.\d{4} ± \d/.test(before), `v_w ± σ in the table: "${before}"`);
   check(/ ± /.test(await text("stable-ranges")), `the self-stable range's ends ± σ: "${await text("stable-ranges")}"`);
+  const marks = await page.$$eval("[data-testid=eigen-plot] svg text", (ts) => ts.map((t) => t.textContent).filter((t) => /^v_[wc] /.test(t)));
+  check(marks.length === 2 && marks.every((t) => / ± /.test(t)) && (await page.locator("[data-testid=eigen-plot] [data-testid=sigma-band]").count()) >= 2, `the plot's markers read v ± σ with the band shaded: ${marks.join(", ")}`);
+  const fisherCsv = await downloadOf(() => page.click("#eigen-csv"));
+  check(/^# FisherBenchmark: .*v_w = [\d.]+ ± [\d.e-]+ m\/s/m.test(fisherCsv.text), `the CSV's header gives v ± σ: ${fisherCsv.text.split("\n")[1]}`);
   await page.getByTestId("param-mB").fill("5");
   await waitForText("weave-speed", (t) => t !== before && / ± /.test(t));
   check((await page.inputValue("[data-testid=sigma-mB]")) === "0.02", "the edited mass keeps its σ (0.02 kg)");

@@ -143,8 +143,11 @@ try {
   const csvText = readFileSync(await csv.path(), "utf8").split("\n");
   // A first line naming the designs, the CLI's columns with the mode names, then the
   // compared design's columns.
-  check(csvText[0].startsWith("# ") && csvText[1].startsWith("v,re1_weave,im1_weave,re2_weave,im2_weave,re3_capsize,im3_capsize,re4_castering,im4_castering,"), `the CSV export names the designs and the modes: ${csvText[1].slice(0, 60)}…`);
-  check(csvText.filter(Boolean).length === 1003, "and one row per speed (1001)");
+  // Comment lines first: the designs, then each one's critical speeds.
+  const head = csvText.find((l) => !l.startsWith("#")) ?? "";
+  check(csvText[0].startsWith("# ") && head.startsWith("v,re1_weave,im1_weave,re2_weave,im2_weave,re3_capsize,im3_capsize,re4_castering,im4_castering,"), `the CSV export names the designs and the modes: ${head.slice(0, 60)}…`);
+  check(csvText.some((l) => /^# .*: .*v_w = [\d.]+ m\/s/.test(l)), `and each design's critical speeds: ${csvText[1]}`);
+  check(csvText.filter((l) => l && !l.startsWith("#")).length === 1002, "and one row per speed (1001)");
   const [png] = await Promise.all([page.waitForEvent("download"), page.click("#eigen-png")]);
   check(readFileSync(await png.path()).subarray(1, 4).toString() === "PNG", "the plot exports as PNG");
   const [svgFile] = await Promise.all([page.waitForEvent("download"), page.click("#eigen-svg")]);

@@ -779,8 +779,17 @@ $("eigen-csv").addEventListener("click", () => {
       columns.push([d, c]);
     });
   });
+  // The critical speeds of each design in the header, ± σ where its parameters carry σ.
+  const speedsOf = (d) => {
+    const c = d.eigen.critical;
+    if (!c) return null;
+    const one = (name, v, sigma) => (v === null || v === undefined ? null : `${name} = ${v}${Number.isFinite(sigma) && sigma > 0 ? ` ± ${sigma}` : ""} m/s`);
+    const parts = [one("v_d", c.double_root_speed, c.double_root_speed_sigma), one("v_w", c.weave_speed, c.weave_speed_sigma), one("v_c", c.capsize_speed, c.capsize_speed_sigma)].filter(Boolean);
+    return parts.length ? `# ${d.label}: ${parts.join(", ")}` : null;
+  };
   const lines = [
     `# whipple eigenvalues [1/s] against speed v [m/s] of ${designs[0].label}${designs.length > 1 ? `; compared: ${designs.slice(1).map((d) => d.label).join(", ")}` : ""}`,
+    ...designs.map(speedsOf).filter(Boolean),
     header.join(","),
   ];
   state.eigen.speeds.forEach((v, i) => {

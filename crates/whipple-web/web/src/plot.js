@@ -135,10 +135,16 @@ export class EigenPlot extends Chart {
 
     const marks = svg("g", { "font-size": 11 });
     const placed = [];
-    const mark = (v, label, colour, row, dash) => {
+    const mark = (v, label, colour, row, dash, sigma = null) => {
       if (v === null || v === undefined || v < f.x0 || v > f.x1) return;
+      // A measured bicycle's speed with its σ, and the band ±σ shaded about the line.
+      const spread = Number.isFinite(sigma) && sigma > 0;
+      if (spread) {
+        const [a, b] = [X(Math.max(f.x0, v - sigma)), X(Math.min(f.x1, v + sigma))];
+        marks.append(svg("rect", { x: a, y: top, width: Math.max(0, b - a), height: ph, fill: colour, "fill-opacity": 0.1, "data-testid": "sigma-band" }));
+      }
       marks.append(svg("line", { x1: X(v), y1: top, x2: X(v), y2: top + ph, stroke: colour, "stroke-width": 1.2, "stroke-dasharray": dash }));
-      const text = `${label} ${fixed(v, 3)}`;
+      const text = `${label} ${fixed(v, 3)}${spread ? ` ± ${num(sigma, 2)}` : ""}`;
       const w = text.length * 6.2 + 8;
       const tx = X(v) + w + 4 > left + pw ? X(v) - w - 3 : X(v) + 3;
       // Labels that would overlap go one row further in.
@@ -153,13 +159,13 @@ export class EigenPlot extends Chart {
       const c = d.eigen.critical;
       if (!c) return;
       const colour = COMPARE_COLOURS[k % COMPARE_COLOURS.length];
-      mark(c.weave_speed, "v_w", colour, -1 - k, "4 3");
-      mark(c.capsize_speed, "v_c", colour, -1 - k, "4 3");
+      mark(c.weave_speed, "v_w", colour, -1 - k, "4 3", c.weave_speed_sigma);
+      mark(c.capsize_speed, "v_c", colour, -1 - k, "4 3", c.capsize_speed_sigma);
     });
     if (crit) {
-      mark(crit.double_root_speed, "v_d", "#4b5563", 0, "2 3");
-      mark(crit.weave_speed, "v_w", MODE_COLOURS.weave, 0, "6 3");
-      mark(crit.capsize_speed, "v_c", MODE_COLOURS.capsize, 0, "6 3");
+      mark(crit.double_root_speed, "v_d", "#4b5563", 0, "2 3", crit.double_root_speed_sigma);
+      mark(crit.weave_speed, "v_w", MODE_COLOURS.weave, 0, "6 3", crit.weave_speed_sigma);
+      mark(crit.capsize_speed, "v_c", MODE_COLOURS.capsize, 0, "6 3", crit.capsize_speed_sigma);
     }
     root.append(marks);
 
