@@ -117,6 +117,7 @@ fn request(args: &SimulateArgs) -> SimulationRequest {
         fall_angle_deg: args.fall_angle,
         stop_on_lift_off: !args.ignore_lift_off,
         max_steps: None,
+        host_max_steps: None,
         sample_every: args.every,
     }
 }

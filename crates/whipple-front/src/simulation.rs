@@ -118,6 +118,10 @@ pub struct SimulationRequest {
     /// ([`Error::LimitExceeded`]), the adaptive integrator stops there (outcome
     /// [`whipple::advanced::nonlinear::Outcome::StepSizeTooSmall`]). `None`: [`MAX_STEPS`].
     pub max_steps: Option<usize>,
+    /// A limit on the steps the host running the request sets (a server's own budget), which
+    /// the person asking cannot change: a request past it is refused naming `dt`, not
+    /// `max_steps`. `None`: no limit beyond [`Self::max_steps`].
+    pub host_max_steps: Option<usize>,
     /// Keep one sample in this many steps (default 1: every step); the samples kept are
     /// bounded by [`MAX_SAMPLES`].
     pub sample_every: usize,
@@ -142,6 +146,7 @@ impl SimulationRequest {
             fall_angle_deg: DEFAULT_FALL_ANGLE_DEG,
             stop_on_lift_off: true,
             max_steps: None,
+            host_max_steps: None,
             sample_every: 1,
         }
     }
@@ -212,14 +217,25 @@ impl SimulationRequest {
                     );
                 }
                 let integrator = Integrator::Rk4 { dt };
-                let limit = self.max_steps.unwrap_or(MAX_STEPS);
+                let limit = self.step_limit();
                 if let Some(steps) = integrator.fixed_steps(duration) {
                     if steps > limit {
+                        // The limit the user set is the field at fault; the default one and
+                        // the host's are met by choosing dt.
+                        let user_limit = self.max_steps.is_some_and(|m| m <= limit);
+                        let (what, advice) = if user_limit {
+                            (
+                                "max_steps",
+                                "raise max_steps, use a larger dt or a shorter duration",
+                            )
+                        } else {
+                            ("dt", "use a larger dt or a shorter duration")
+                        };
                         return Err(Error::LimitExceeded {
-                            what: "dt",
+                            what,
                             rule: format!(
-                                "{duration:?} s in steps of {dt:?} s takes {steps} integration steps, more than the limit of {limit} (the work it bounds is about {:.0} minutes at 20 µs a step); use a larger dt or a shorter duration",
-                                limit as f64 * 20e-6 / 60.0
+                                "{duration:?} s in steps of {dt:?} s takes {steps} integration steps, more than the limit of {limit} (the work it bounds is {} at 20 µs a step); {advice}",
+                                work_time(limit)
                             ),
                         });
                     }
@@ -258,8 +274,7 @@ impl SimulationRequest {
                 match Integrator::adaptive(rtol) {
                     Integrator::Dopri5(mut settings) => {
                         settings.max_steps = self
-                            .max_steps
-                            .unwrap_or(MAX_STEPS)
+                            .step_limit()
                             .min((MAX_SAMPLES - 2).saturating_mul(every));
                         Integrator::Dopri5(settings)
                     }
@@ -291,9 +306,66 @@ impl SimulationRequest {
     }
 }
 
+impl SimulationRequest {
+    /// The most steps the run may take: the user's `max_steps` (or [`MAX_STEPS`]), within the
+    /// host's limit.
+    fn step_limit(&self) -> usize {
+        self.max_steps
+            .unwrap_or(MAX_STEPS)
+            .min(self.host_max_steps.unwrap_or(usize::MAX))
+    }
+}
+
+/// The work of `steps` integration steps at about 20 µs each, in words ("about 2 ms",
+/// "about 40 s", "about 7 minutes").
+fn work_time(steps: usize) -> String {
+    let seconds = steps as f64 * 20e-6;
+    if seconds < 1.0 {
+        format!("about {:.1} ms", seconds * 1e3)
+    } else if seconds < 120.0 {
+        format!("about {:.0} s", seconds)
+    } else {
+        format!("about {:.0} minutes", seconds / 60.0)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The work of a step limit in words: milliseconds, seconds or minutes, never "0 minutes".
+    #[test]
+    fn work_time_reads_in_a_sensible_unit() {
+        assert_eq!(work_time(100), "about 2.0 ms");
+        assert_eq!(work_time(1_000_000), "about 20 s");
+        assert_eq!(work_time(20_000_000), "about 7 minutes");
+    }
+
+    /// A step limit the user set is named `max_steps`; a host's limit (a server's budget, which
+    /// the user cannot change) is met by choosing `dt`, and names it.
+    #[test]
+    fn a_step_limit_names_the_field_the_user_can_change() {
+        let long = |max_steps, host_max_steps| SimulationRequest {
+            dt: Some(1e-3),
+            max_steps,
+            host_max_steps,
+            ..SimulationRequest::new(4.6, 10.0)
+        };
+        let (what, rule) = rule_of(long(Some(1000), None));
+        assert_eq!(what, "max_steps", "{rule}");
+        assert!(
+            rule.contains("raise max_steps") && rule.contains("about 20.0 ms"),
+            "{rule}"
+        );
+        let (what, rule) = rule_of(long(None, Some(1000)));
+        assert_eq!(what, "dt", "{rule}");
+        assert!(!rule.contains("max_steps"), "{rule}");
+        let (what, _) = rule_of(long(Some(500), Some(1000)));
+        assert_eq!(what, "max_steps");
+        let (what, _) = rule_of(long(Some(5000), Some(1000)));
+        assert_eq!(what, "dt");
+        assert!(long(Some(20_000), Some(20_000)).validate().is_ok());
+    }
 
     fn rule_of(request: SimulationRequest) -> (&'static str, String) {
         match request.validate() {

@@ -213,6 +213,7 @@ impl NativeBicycle {
             fall_angle_deg,
             stop_on_lift_off,
             max_steps,
+            host_max_steps: None,
             sample_every: every,
         };
         if let Some(turn) = &turn {

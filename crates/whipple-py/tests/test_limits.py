@@ -174,3 +174,13 @@ def test_compare_takes_at_most_the_limit_of_speeds(benchmark):
         pytest.fail("compare of 100001 speeds still running after 60 s")
     assert "refused: v: 100001 speeds is more than the limit of 100000" in out, (out, err)
     assert len(benchmark.compare(np.linspace(1.0, 2.0, 3)).speeds) == 3
+
+
+def test_a_max_steps_set_too_low_names_max_steps_and_a_sensible_time(benchmark):
+    """max_steps=100 for a 1 s run at 1 ms steps named `dt` and "about 0 minutes"."""
+    with pytest.raises(whipple.LimitError) as error:
+        benchmark.simulate(5.0, 1.0, max_steps=100)
+    assert error.value.field == "max_steps"
+    message = str(error.value)
+    assert "about 2.0 ms" in message and "raise max_steps" in message, message
+    assert "0 minutes" not in message

@@ -143,7 +143,7 @@ pub fn check(request: &SimulateRequest, limits: &Limits) -> Result<Plan, ApiErro
         rtol: request.rtol,
         steer_torque: request.steer_torque.clone().unwrap_or_default(),
         lean_torque: request.lean_torque.clone(),
-        max_steps: Some(limits.max_sim_steps),
+        host_max_steps: Some(limits.max_sim_steps),
         ..SimulationRequest::new(request.speed, duration)
     };
     if request.from_turn && request.steer_deg != 0.0 {
