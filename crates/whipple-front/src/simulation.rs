@@ -304,9 +304,7 @@ impl SimulationRequest {
         settings.validate()?;
         Ok((initial, settings))
     }
-}
 
-impl SimulationRequest {
     /// The most steps the run may take: the user's `max_steps` (or [`MAX_STEPS`]), within the
     /// host's limit.
     fn step_limit(&self) -> usize {
@@ -316,7 +314,7 @@ impl SimulationRequest {
     }
 }
 
-/// The work of `steps` integration steps at about 20 µs each, in words ("about 2 ms",
+/// The work of `steps` integration steps at about 20 µs each, in words ("about 2.0 ms",
 /// "about 40 s", "about 7 minutes").
 fn work_time(steps: usize) -> String {
     let seconds = steps as f64 * 20e-6;
