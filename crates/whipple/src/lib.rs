@@ -372,7 +372,7 @@ pub mod advanced {
             json_without_duplicates, parse, write,
         };
     }
-    #[doc = "The linearized model: canonical matrices, state space, characteristic polynomial."]
+    #[doc = "The linearized model: canonical matrices, state space, characteristic polynomial, the linear system with named inputs and outputs, transfer functions."]
     pub mod linear {
         /// The characteristic polynomial p(λ, v) = det(M λ² + v C₁ λ + g K₀ + v² K₂).
         ///
@@ -384,6 +384,25 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::linear::CharacteristicPolynomial;
+        /// The bicycle as a linear system ẋ = A x + B u, y = C x + D u at a speed, with named
+        /// states (lean, steer, their rates, and on request yaw, the rear contact, the wheel
+        /// angles), inputs (lean and steer torque, a lateral force) and outputs; its transfer
+        /// functions exactly from the polynomial matrix.
+        ///
+        /// ```
+        /// use whipple::BenchmarkParameters;
+        /// use whipple::advanced::linear::{Input, LinearSystem, Output, StateVariable, SystemRequest};
+        /// let request = SystemRequest {
+        ///     states: vec![],
+        ///     inputs: vec![Input::SteerTorque],
+        ///     outputs: vec![Output::State(StateVariable::Lean)],
+        /// };
+        /// let system = LinearSystem::new(&BenchmarkParameters::meijaard2007(), 3.0, &request)?;
+        /// let g = system.transfer_function(0, 0)?;
+        /// assert_eq!(g.poles().len(), 4);
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::linear::LinearSystem;
         pub use crate::linear::SpeedPolynomials;
         /// The state-space form ẋ = A x + B u at a speed, x = [φ, δ, φ̇, δ̇].
         ///
@@ -395,6 +414,10 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::linear::StateSpace;
+        pub use crate::linear::{
+            FrequencyResponse, Input, MAX_SIGNALS, Output, StateVariable, SystemRequest,
+            TransferFunction, origin_zero_speeds,
+        };
     }
     #[doc = "Jacobians of any vector field: exact (dual numbers) and by central differences."]
     pub mod linearize {
