@@ -463,3 +463,26 @@ fn bad_requests_name_their_field() -> Result<()> {
     ));
     Ok(())
 }
+
+/// Rows that are derivatives of others: the yaw rate output is A's row of ψ, and the rear
+/// contact's lateral acceleration is the derivative of ẏ = (A x)_y along ẋ = A x + B u, that
+/// is (A A)_y (with B's rows of ψ and y zero, no input enters) — the identity ÿ = v ψ̇.
+#[test]
+fn derived_output_rows() -> Result<()> {
+    for speed in [0.0, 2.0, 6.0] {
+        let system = LinearSystem::new(&bike(), speed, &everything())?;
+        let (a, b, c) = (system.a(), system.b(), system.c());
+        let index = |s| system.state_index(s).expect("requested");
+        let (yaw, y) = (
+            index(StateVariable::Yaw),
+            index(StateVariable::RearContactY),
+        );
+        let a2 = a * a;
+        for j in 0..system.states().len() {
+            assert_eq!(c[(8, j)], a[(yaw, j)], "ψ̇ at v = {speed}");
+            assert!((c[(12, j)] - a2[(y, j)]).abs() <= 1e-15 * (1.0 + a2[(y, j)].abs()));
+        }
+        assert!(b.row(yaw).iter().chain(b.row(y).iter()).all(|x| *x == 0.0));
+    }
+    Ok(())
+}
