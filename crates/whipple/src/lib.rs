@@ -44,6 +44,7 @@
 //! |---|---|
 //! | describe a bicycle: benchmark form, JBike6's form, presets, files | [`presets`], [`advanced::parameters`], [`advanced::io`], [`advanced::table`] |
 //! | get the linearized equations M q̈ + v C₁ q̇ + (g K₀ + v² K₂) q = f, A(v), p(λ, v) | [`Canonical`], [`advanced::linear`] |
+//! | the bicycle as a linear system (named states, inputs, outputs; A, B, C, D), transfer functions, poles and zeros, frequency response | [`advanced::linear::LinearSystem`] |
 //! | eigenvalues, eigenvectors, modes, speed sweeps | [`eigen_sweep`], [`advanced::eigen`], [`advanced::modes`], [`advanced::sweep`] |
 //! | critical speeds and self-stable ranges, their σ and sensitivities | [`critical_speeds`], [`advanced::stability`], [`advanced::sensitivity`] |
 //! | design studies over one or two parameters | [`Study`], [`advanced::design`] |
