@@ -69,7 +69,7 @@ fn readout(model: &Model, speed: f64, j: usize, locals: &[Vector3<f64>; 2]) -> R
 
 fn close(a: f64, b: f64, what: &str) {
     assert!(
-        (a - b).abs() <= 1e-10 * (1.0 + b.abs()),
+        (a - b).abs() <= 1e-12 * (1.0 + b.abs()),
         "{what}: linear system {a} vs non-linear model {b}"
     );
 }
