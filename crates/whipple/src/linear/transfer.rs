@@ -16,6 +16,11 @@
 //! coefficient within round-off of that sum is an exact cancellation and is dropped (the s²
 //! terms of the front contact's position cancel so), and a factor s common to the numerator
 //! and the integrators is cancelled.
+//!
+//! States are resolved as polynomials on φ and δ from A's rows, which holds for the bicycle's
+//! states (the ignorable coordinates are pure integrators). A state with dynamics of its own
+//! (a rider model's, to come) will bring its own polynomial rows; until then such a row is
+//! refused with an error naming `states`, never answered wrongly.
 
 use nalgebra::DMatrix;
 
