@@ -44,6 +44,7 @@
 //! |---|---|
 //! | describe a bicycle: benchmark form, JBike6's form, presets, files | [`presets`], [`advanced::parameters`], [`advanced::io`], [`advanced::table`] |
 //! | get the linearized equations M q̈ + v C₁ q̇ + (g K₀ + v² K₂) q = f, A(v), p(λ, v) | [`Canonical`], [`advanced::linear`] |
+//! | the bicycle as a linear system (named states, inputs, outputs; A, B, C, D), transfer functions, poles and zeros, frequency response | [`advanced::linear::LinearSystem`] |
 //! | eigenvalues, eigenvectors, modes, speed sweeps | [`eigen_sweep`], [`advanced::eigen`], [`advanced::modes`], [`advanced::sweep`] |
 //! | critical speeds and self-stable ranges, their σ and sensitivities | [`critical_speeds`], [`advanced::stability`], [`advanced::sensitivity`] |
 //! | design studies over one or two parameters | [`Study`], [`advanced::design`] |
@@ -372,7 +373,7 @@ pub mod advanced {
             json_without_duplicates, parse, write,
         };
     }
-    #[doc = "The linearized model: canonical matrices, state space, characteristic polynomial."]
+    #[doc = "The linearized model: canonical matrices, state space, characteristic polynomial, the linear system with named inputs and outputs, transfer functions."]
     pub mod linear {
         /// The characteristic polynomial p(λ, v) = det(M λ² + v C₁ λ + g K₀ + v² K₂).
         ///
@@ -384,6 +385,25 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::linear::CharacteristicPolynomial;
+        /// The bicycle as a linear system ẋ = A x + B u, y = C x + D u at a speed, with named
+        /// states (lean, steer, their rates, and on request yaw, the rear contact, the wheel
+        /// angles), inputs (lean and steer torque, a lateral force) and outputs; its transfer
+        /// functions exactly from the polynomial matrix.
+        ///
+        /// ```
+        /// use whipple::BenchmarkParameters;
+        /// use whipple::advanced::linear::{Input, LinearSystem, Output, StateVariable, SystemRequest};
+        /// let request = SystemRequest {
+        ///     states: vec![],
+        ///     inputs: vec![Input::SteerTorque],
+        ///     outputs: vec![Output::State(StateVariable::Lean)],
+        /// };
+        /// let system = LinearSystem::new(&BenchmarkParameters::meijaard2007(), 3.0, &request)?;
+        /// let g = system.transfer_function(0, 0)?;
+        /// assert_eq!(g.poles().len(), 4);
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::linear::LinearSystem;
         pub use crate::linear::SpeedPolynomials;
         /// The state-space form ẋ = A x + B u at a speed, x = [φ, δ, φ̇, δ̇].
         ///
@@ -395,6 +415,10 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::linear::StateSpace;
+        pub use crate::linear::{
+            FrequencyResponse, Input, MAX_SIGNALS, Output, StateVariable, SystemRequest,
+            TransferFunction, origin_zero_speeds,
+        };
     }
     #[doc = "Jacobians of any vector field: exact (dual numbers) and by central differences."]
     pub mod linearize {

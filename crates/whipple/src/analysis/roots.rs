@@ -388,7 +388,7 @@ pub(crate) fn pair_conjugates(
 
 /// Approximations of all roots of the polynomial with coefficients `c` (lowest first,
 /// c[n] ≠ 0): in closed form up to degree 2, by [`aberth`] from a circle beyond.
-fn approximate(c: &[f64], z: &mut [Complex64]) {
+pub(crate) fn approximate(c: &[f64], z: &mut [Complex64]) {
     let n = c.len() - 1;
     match n {
         0 => {}

@@ -1,10 +1,15 @@
-//! The linearized Whipple bicycle (Meijaard et al. 2007): canonical matrices, state space and
-//! characteristic polynomial.
+//! The linearized Whipple bicycle (Meijaard et al. 2007): canonical matrices, state space,
+//! characteristic polynomial, and the bicycle as a linear system with named inputs and outputs
+//! and its transfer functions.
 
 mod canonical;
 mod characteristic;
 mod state_space;
+mod system;
+mod transfer;
 
 pub use canonical::Canonical;
 pub use characteristic::{CharacteristicPolynomial, SpeedPolynomials};
 pub use state_space::StateSpace;
+pub use system::{Input, LinearSystem, MAX_SIGNALS, Output, StateVariable, SystemRequest};
+pub use transfer::{FrequencyResponse, TransferFunction, origin_zero_speeds};

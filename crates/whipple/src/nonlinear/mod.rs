@@ -76,4 +76,6 @@ pub use simulate::{check_rk4_step, fastest_mode, simulate};
 pub(crate) use state::{BODY_PITCH, BODY_YAW};
 pub use state::{STATE_LEN, State, StateView};
 pub(crate) use topology::BODIES;
+#[cfg(test)]
+pub(crate) use topology::FRONT_FRAME;
 pub use topology::{BODY_NAMES, FRONT_WHEEL, REAR_FRAME, REAR_WHEEL};

@@ -81,6 +81,21 @@ impl Model {
         self.contacts.map(|c| c.point(&poses))
     }
 
+    /// Where a point fixed in body `body` is in the configuration `q` (world axes): `local` is
+    /// the point in the body's own axes relative to its centre of mass (for a point at p in a
+    /// reference pose of the body, Rᵀ (p − centre)). Any scalar, so dual numbers carry its
+    /// exact derivatives.
+    #[cfg(test)]
+    pub(crate) fn body_point<T: RealField + Copy>(
+        q: &SVector<T, COORDINATES>,
+        body: usize,
+        local: &Vector3<f64>,
+    ) -> Vector3<T> {
+        let poses = Poses::new(q);
+        let local: Vector3<T> = local.cast();
+        poses.pos[body] + poses.rot[body] * local
+    }
+
     /// All named quantities of a state.
     pub fn observe(&self, state: &State<f64>) -> StateView {
         self.observe_at(&Poses::new(&state.q), state)
