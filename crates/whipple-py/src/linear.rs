@@ -16,7 +16,7 @@ use whipple::advanced::linear::StateSpace;
 use whipple::advanced::linear::{CharacteristicPolynomial, SpeedPolynomials};
 use whipple::advanced::sensitivity;
 use whipple::advanced::sensitivity::critical_speeds_sigma;
-use whipple::advanced::sweep::SweepPlan;
+use whipple::advanced::sweep::track_modes;
 use whipple::{Canonical, Error, Model};
 
 use crate::bicycle::NativeBicycle;
@@ -51,10 +51,19 @@ impl NativeBicycle {
     }
 }
 
+/// Speeds computed one after another by each parallel task: enough that rayon's cost per task
+/// (about a microsecond) is amortized even for A(v) and B(v) (tens of nanoseconds a speed).
+const BLOCK: usize = 1024;
+
+/// Fewer speeds than this are computed on the calling thread even when `parallel` is asked
+/// (measured, BENCHMARKS.md: below it waking the second core costs more than it saves).
+const PARALLEL_FROM: usize = 4 * BLOCK;
+
 /// Fills `a` (`wa` numbers a speed) and `b` (`wb` a speed, or none when `wb` is 0) speed by
-/// speed with `f(speed, a_row, b_row)`, in parallel or in order, checking `stop` before each
-/// speed; the first error in speed order is returned (a parallel failure is redone in order
-/// to find it, as the serial path reports it).
+/// speed with `f(speed, a_row, b_row)`, in parallel blocks of [`BLOCK`] speeds (each block's
+/// rows a disjoint slice of the buffers) from [`PARALLEL_FROM`] speeds on, or in order,
+/// checking `stop` before each speed; the first error in speed order is returned (a parallel
+/// failure is redone in order to find it, as the serial path reports it).
 #[allow(clippy::too_many_arguments)]
 fn fill_rows<T: Send>(
     speeds: &[f64],
@@ -66,38 +75,39 @@ fn fill_rows<T: Send>(
     stop: &AtomicBool,
     f: impl Fn(usize, &mut [T], &mut [T]) -> Result<(), Error> + Sync,
 ) -> Result<(), Error> {
-    let one = |i: usize, x: &mut [T], y: &mut [T]| {
-        if is_stopped(stop) {
-            return Err(stopped());
+    let wa = wa.max(1);
+    let block = |first: usize, x: &mut [T], y: &mut [T]| -> Result<(), Error> {
+        for (k, row) in x.chunks_mut(wa).enumerate() {
+            if is_stopped(stop) {
+                return Err(stopped());
+            }
+            let other = if wb == 0 {
+                &mut []
+            } else {
+                &mut y[k * wb..(k + 1) * wb]
+            };
+            f(first + k, row, other)?;
         }
-        f(i, x, y)
+        Ok(())
     };
-    let mut none: [T; 0] = [];
+    let parallel = parallel && speeds.len() >= PARALLEL_FROM;
     let failed = parallel && {
-        let rows_a = a.par_chunks_mut(wa.max(1));
+        let blocks_a = a.par_chunks_mut(wa * BLOCK);
         if wb == 0 {
-            rows_a
+            blocks_a
                 .enumerate()
-                .try_for_each(|(i, x)| one(i, x, &mut []))
+                .try_for_each(|(k, x)| block(k * BLOCK, x, &mut []))
                 .is_err()
         } else {
-            rows_a
-                .zip(b.par_chunks_mut(wb))
+            blocks_a
+                .zip(b.par_chunks_mut(wb * BLOCK))
                 .enumerate()
-                .try_for_each(|(i, (x, y))| one(i, x, y))
+                .try_for_each(|(k, (x, y))| block(k * BLOCK, x, y))
                 .is_err()
         }
     };
     if !parallel || failed {
-        for i in 0..speeds.len() {
-            let x = &mut a[i * wa..(i + 1) * wa];
-            let y = if wb == 0 {
-                &mut none[..]
-            } else {
-                &mut b[i * wb..(i + 1) * wb]
-            };
-            one(i, x, y)?;
-        }
+        block(0, a, b)?;
     }
     Ok(())
 }
@@ -190,8 +200,9 @@ impl NativeBicycle {
     ) -> PyResult<EigResult<'py>> {
         let c = self.canonical_matrices(py)?;
         // Values (4) and vectors (16) of 16 bytes a speed and the speed copied; tracked, the
-        // sorted order (8), the sorted speeds (8) and the tracked values (64) besides.
-        let per_speed = 20 * 16 + 8 + if tracked { 80 } else { 0 };
+        // sorted order (8), the sorted speeds (8) and the columns' order (4, twice when the
+        // speeds are not sorted) besides.
+        let per_speed = 20 * 16 + 8 + if tracked { 24 } else { 0 };
         let speeds = speeds_of("eig", &speeds, per_speed)?;
         let n = speeds.len();
         let too_big = || memory_error("eig", n as u128, "speeds", estimate(n, per_speed));
@@ -201,53 +212,25 @@ impl NativeBicycle {
         let zero = NpComplex::new(0.0, 0.0);
         let mut values = reserve(n.saturating_mul(4), too_big)?;
         let mut vectors = reserve(n.saturating_mul(16), too_big)?;
-        // Tracked: the sweep over the speeds sorted gives each speed's eigenvalues in mode
-        // order; `targets[i]` is speed i's.
-        let (mut sorted, mut grid, mut targets) = if tracked && n > 0 {
-            (
-                reserve::<usize>(n, too_big)?,
-                reserve::<f64>(n, too_big)?,
-                reserve(n, too_big)?,
-            )
-        } else {
-            (Vec::new(), Vec::new(), Vec::new())
-        };
+        let unsorted = speeds.windows(2).any(|w| w[0].total_cmp(&w[1]).is_gt());
+        // Tracked: the core follows the modes over the speeds sorted (`grid`, speed
+        // `sorted[k]` at `grid[k]`) through the eigenvalues computed here and gives, for each
+        // speed, which eigenvalue goes to which column (`columns`, by speed).
+        let mut sorted = Vec::new();
+        let mut grid = Vec::new();
+        let mut columns = Vec::new();
+        let mut by_speed = Vec::new();
+        if tracked && n > 0 {
+            columns = reserve::<[u8; 4]>(n, too_big)?;
+            if unsorted {
+                sorted = reserve::<usize>(n, too_big)?;
+                grid = reserve::<f64>(n, too_big)?;
+                by_speed = reserve::<[u8; 4]>(n, too_big)?;
+            }
+        }
         let labels = interruptible(py, n <= SHORT, |stop| {
             grow(&mut values, n * 4, zero, stop)?;
             grow(&mut vectors, n * 16, zero, stop)?;
-            let modes = if tracked && n > 0 {
-                grow(
-                    &mut targets,
-                    n,
-                    [whipple::advanced::eigen::Complex64::new(0.0, 0.0); 4],
-                    stop,
-                )?;
-                sorted.extend(0..n);
-                // Speeds are most often given in order: then nothing to sort.
-                if speeds.windows(2).any(|w| w[0].total_cmp(&w[1]).is_gt()) {
-                    sorted.par_sort_by(|&i, &j| speeds[i].total_cmp(&speeds[j]));
-                }
-                grid.extend(sorted.iter().map(|&i| speeds[i]));
-                // The speeds end early when stopped: the plan is then dropped unused.
-                let walk = grid.iter().copied().take_while(|_| !is_stopped(stop));
-                let plan = SweepPlan::new(&c, walk)?;
-                let mut k = 0;
-                plan.rows(|_, row| {
-                    if is_stopped(stop) {
-                        return Err(stopped());
-                    }
-                    targets[sorted[k]] = *row;
-                    k += 1;
-                    Ok::<(), Error>(())
-                })?;
-                if is_stopped(stop) {
-                    return Err(stopped());
-                }
-                Some(plan.modes())
-            } else {
-                None
-            };
-            let targets = &targets;
             // Each speed's eigenpairs written straight into the two output buffers (no
             // array of pairs in between: at 10⁶ speeds that was 320 MB copied once more).
             fill_rows(
@@ -260,35 +243,74 @@ impl NativeBicycle {
                 stop,
                 |i, values, vectors| {
                     let pairs = eigenpairs_with(&c, &poly, speeds[i])?;
-                    let mut order = [0, 1, 2, 3];
-                    if modes.is_some() {
-                        let mut taken = [false; 4];
-                        for (col, target) in targets[i].iter().enumerate() {
-                            let best = (0..4)
-                                .filter(|&p| !taken[p])
-                                .min_by(|&p, &q| {
-                                    let dp = (pairs[p].value - target).norm_sqr();
-                                    let dq = (pairs[q].value - target).norm_sqr();
-                                    dp.total_cmp(&dq)
-                                })
-                                .unwrap_or(col);
-                            taken[best] = true;
-                            order[col] = best;
-                        }
-                    }
-                    for (col, &k) in order.iter().enumerate() {
-                        values[col] = complex(pairs[k].value);
+                    for (col, pair) in pairs.iter().enumerate() {
+                        values[col] = complex(pair.value);
                         for row in 0..4 {
-                            vectors[4 * row + col] = complex(pairs[k].vector[row]);
+                            vectors[4 * row + col] = complex(pair.vector[row]);
                         }
                     }
                     Ok(())
                 },
             )?;
-            Ok::<_, Error>(modes)
+            if !tracked || n == 0 {
+                return Ok::<_, Error>(None);
+            }
+            grow(&mut columns, n, [0u8; 4], stop)?;
+            let (order, walk): (&[usize], &[f64]) = if unsorted {
+                sorted.extend(0..n);
+                sorted.par_sort_by(|&i, &j| speeds[i].total_cmp(&speeds[j]));
+                grid.extend(sorted.iter().map(|&i| speeds[i]));
+                (&sorted, &grid)
+            } else {
+                (&[], &speeds)
+            };
+            let found = &values;
+            // The eigenvalues of the k-th sorted speed, as the core computed them.
+            let roots = |k: usize| {
+                let i = if unsorted { order[k] } else { k };
+                let row = &found[4 * i..4 * i + 4];
+                Ok(std::array::from_fn(|j| {
+                    whipple::advanced::eigen::Complex64::new(row[j].re, row[j].im)
+                }))
+            };
+            let modes = track_modes(&c, walk, roots, &mut columns, parallel, stop)?;
+            let columns = if unsorted {
+                grow(&mut by_speed, n, [0u8; 4], stop)?;
+                for (k, &i) in order.iter().enumerate() {
+                    by_speed[i] = columns[k];
+                }
+                &by_speed
+            } else {
+                &columns
+            };
+            // Each speed's values and vectors put in the columns' order, in place.
+            fill_rows(
+                &speeds,
+                &mut values,
+                4,
+                &mut vectors,
+                16,
+                parallel,
+                stop,
+                |i, values, vectors| {
+                    let take = columns[i].map(usize::from);
+                    let was: [NpComplex; 4] = std::array::from_fn(|j| values[j]);
+                    for (col, &k) in take.iter().enumerate() {
+                        values[col] = was[k];
+                    }
+                    for row in vectors.chunks_mut(4) {
+                        let was: [NpComplex; 4] = std::array::from_fn(|j| row[j]);
+                        for (col, &k) in take.iter().enumerate() {
+                            row[col] = was[k];
+                        }
+                    }
+                    Ok(())
+                },
+            )?;
+            Ok(Some(modes))
         })?
         .py_err(py)?;
-        drop((sorted, grid, targets));
+        drop((sorted, grid, columns, by_speed));
         let labels: Option<Vec<&'static str>> =
             labels.map(|m| m.iter().map(|m| m.name()).collect());
         Ok((

@@ -502,6 +502,7 @@ pub mod advanced {
     #[doc = "Speed grids and eigenvalue sweeps."]
     pub mod sweep {
         pub use crate::analysis::sweep::{SpeedGrid, SweepPlan};
+        pub use crate::analysis::track::track_modes;
     }
     #[doc = "The one parameter table: names, keys, symbols, units and meanings of every parameter."]
     pub mod table {
