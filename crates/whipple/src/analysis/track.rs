@@ -321,8 +321,8 @@ mod tests {
     use crate::analysis::eigen::eigenvalues;
     use crate::analysis::stability::critical_speeds;
     use crate::analysis::sweep::eigen_sweep;
-    use crate::parameters::presets::PRESETS;
     use crate::parameters::BenchmarkParameters;
+    use crate::parameters::presets::PRESETS;
 
     fn bits(z: Complex64) -> (u64, u64) {
         (z.re.to_bits(), z.im.to_bits())
@@ -407,16 +407,44 @@ mod tests {
         let c = benchmark();
         // Far apart: the intermediate speeds are tracked through, in the overlaps too.
         let coarse: Vec<f64> = (0..41).map(|i| i as f64 * 0.25).collect();
-        same_as_serial(&c, &coarse, Chunking { chunk: 3, overlap: 2 });
+        same_as_serial(
+            &c,
+            &coarse,
+            Chunking {
+                chunk: 3,
+                overlap: 2,
+            },
+        );
         let descending: Vec<f64> = (0..3000).rev().map(|i| i as f64 * 0.003).collect();
-        same_as_serial(&c, &descending, Chunking { chunk: 128, overlap: 8 });
+        same_as_serial(
+            &c,
+            &descending,
+            Chunking {
+                chunk: 128,
+                overlap: 8,
+            },
+        );
         for n in 0..5 {
             let few: Vec<f64> = (0..n).map(|i| 4.0 + i as f64).collect();
-            same_as_serial(&c, &few, Chunking { chunk: 2, overlap: 2 });
+            same_as_serial(
+                &c,
+                &few,
+                Chunking {
+                    chunk: 2,
+                    overlap: 2,
+                },
+            );
         }
         // A speed where round-off forbids eigenvalues: the same error as the serial sweep.
         let far = [1.0, 2.0, 1e17];
-        same_as_serial(&c, &far, Chunking { chunk: 2, overlap: 2 });
+        same_as_serial(
+            &c,
+            &far,
+            Chunking {
+                chunk: 2,
+                overlap: 2,
+            },
+        );
     }
 
     #[test]
@@ -454,8 +482,20 @@ mod tests {
         assert_eq!((a, &serial), (b, &parallel));
         stop.store(true, Ordering::Relaxed);
         let e = track_modes(&c, &speeds, roots, &mut parallel, true, &stop);
-        assert!(matches!(e, Err(Error::InvalidArgument { what: "stopped", .. })));
+        assert!(matches!(
+            e,
+            Err(Error::InvalidArgument {
+                what: "stopped",
+                ..
+            })
+        ));
         let short = track_modes(&c, &speeds, roots, &mut serial[..3], true, &stop);
-        assert!(matches!(short, Err(Error::InvalidArgument { what: "columns", .. })));
+        assert!(matches!(
+            short,
+            Err(Error::InvalidArgument {
+                what: "columns",
+                ..
+            })
+        ));
     }
 }
