@@ -11,7 +11,7 @@ use pyo3::types::PyDict;
 use rayon::prelude::*;
 use whipple::advanced::comparison::{ComparisonSettings, Linearization, lean_steer_matrix};
 use whipple::advanced::comparison::{MAX_COMPARED_SPEEDS, compare_with_linear_until};
-use whipple::advanced::eigen::eigenpairs_with;
+use whipple::advanced::eigen::{eigenvalues_with, eigenvector};
 use whipple::advanced::linear::StateSpace;
 use whipple::advanced::linear::{CharacteristicPolynomial, SpeedPolynomials};
 use whipple::advanced::sensitivity;
@@ -43,6 +43,10 @@ fn shaped<'py, T: numpy::Element>(
 
 fn complex(z: whipple::advanced::eigen::Complex64) -> NpComplex {
     NpComplex::new(z.re, z.im)
+}
+
+fn core_complex(z: NpComplex) -> whipple::advanced::eigen::Complex64 {
+    whipple::advanced::eigen::Complex64::new(z.re, z.im)
 }
 
 impl NativeBicycle {
@@ -231,59 +235,54 @@ impl NativeBicycle {
         let labels = interruptible(py, n <= SHORT, |stop| {
             grow(&mut values, n * 4, zero, stop)?;
             grow(&mut vectors, n * 16, zero, stop)?;
-            // Each speed's eigenpairs written straight into the two output buffers (no
-            // array of pairs in between: at 10⁶ speeds that was 320 MB copied once more).
+            // Each speed's eigenvalues, then (once the columns are known) its eigenvectors,
+            // written straight into the output buffers (no array of pairs in between: at 10⁶
+            // speeds that was 320 MB copied once more; nor the vectors moved into the columns'
+            // order afterwards).
             fill_rows(
                 &speeds,
                 &mut values,
                 4,
-                &mut vectors,
-                16,
+                &mut [],
+                0,
                 parallel,
                 stop,
-                |i, values, vectors| {
-                    let pairs = eigenpairs_with(&c, &poly, speeds[i])?;
-                    for (col, pair) in pairs.iter().enumerate() {
-                        values[col] = complex(pair.value);
-                        for row in 0..4 {
-                            vectors[4 * row + col] = complex(pair.vector[row]);
-                        }
+                |i, row, _| {
+                    let found = eigenvalues_with(&poly, speeds[i])?;
+                    for (out, value) in row.iter_mut().zip(found) {
+                        *out = complex(value);
                     }
                     Ok(())
                 },
             )?;
-            if !tracked || n == 0 {
-                return Ok::<_, Error>(None);
-            }
-            grow(&mut columns, n, [0u8; 4], stop)?;
-            let (order, walk): (&[usize], &[f64]) = if unsorted {
-                sorted.extend(0..n);
-                sorted.par_sort_by(|&i, &j| speeds[i].total_cmp(&speeds[j]));
-                grid.extend(sorted.iter().map(|&i| speeds[i]));
-                (&sorted, &grid)
-            } else {
-                (&[], &speeds)
-            };
-            let found = &values;
-            // The eigenvalues of the k-th sorted speed, as the core computed them.
-            let roots = |k: usize| {
-                let i = if unsorted { order[k] } else { k };
-                let row = &found[4 * i..4 * i + 4];
-                Ok(std::array::from_fn(|j| {
-                    whipple::advanced::eigen::Complex64::new(row[j].re, row[j].im)
-                }))
-            };
-            let modes = track_modes(&c, walk, roots, &mut columns, parallel, stop)?;
-            let columns = if unsorted {
-                grow(&mut by_speed, n, [0u8; 4], stop)?;
-                for (k, &i) in order.iter().enumerate() {
-                    by_speed[i] = columns[k];
+            let modes = if tracked && n > 0 {
+                grow(&mut columns, n, [0u8; 4], stop)?;
+                let (order, walk): (&[usize], &[f64]) = if unsorted {
+                    sorted.extend(0..n);
+                    sorted.par_sort_by(|&i, &j| speeds[i].total_cmp(&speeds[j]));
+                    grid.extend(sorted.iter().map(|&i| speeds[i]));
+                    (&sorted, &grid)
+                } else {
+                    (&[], &speeds)
+                };
+                let found = &values;
+                // The eigenvalues of the k-th sorted speed, as the core computed them.
+                let roots = |k: usize| {
+                    let i = if unsorted { order[k] } else { k };
+                    Ok(std::array::from_fn(|j| core_complex(found[4 * i + j])))
+                };
+                let modes = track_modes(&c, walk, roots, &mut columns, parallel, stop)?;
+                if unsorted {
+                    grow(&mut by_speed, n, [0u8; 4], stop)?;
+                    for (k, &i) in order.iter().enumerate() {
+                        by_speed[i] = columns[k];
+                    }
                 }
-                &by_speed
+                Some(modes)
             } else {
-                &columns
+                None
             };
-            // Each speed's values and vectors put in the columns' order, in place.
+            let columns: &[[u8; 4]] = if unsorted { &by_speed } else { &columns };
             fill_rows(
                 &speeds,
                 &mut values,
@@ -293,21 +292,22 @@ impl NativeBicycle {
                 parallel,
                 stop,
                 |i, values, vectors| {
-                    let take = columns[i].map(usize::from);
-                    let was: [NpComplex; 4] = std::array::from_fn(|j| values[j]);
-                    for (col, &k) in take.iter().enumerate() {
-                        values[col] = was[k];
+                    if modes.is_some() {
+                        let was: [NpComplex; 4] = std::array::from_fn(|j| values[j]);
+                        for (out, k) in values.iter_mut().zip(columns[i]) {
+                            *out = was[usize::from(k)];
+                        }
                     }
-                    for row in vectors.chunks_mut(4) {
-                        let was: [NpComplex; 4] = std::array::from_fn(|j| row[j]);
-                        for (col, &k) in take.iter().enumerate() {
-                            row[col] = was[k];
+                    for (col, value) in values.iter().enumerate() {
+                        let x = eigenvector(&c, speeds[i], core_complex(*value));
+                        for row in 0..4 {
+                            vectors[4 * row + col] = complex(x[row]);
                         }
                     }
                     Ok(())
                 },
             )?;
-            Ok(Some(modes))
+            Ok::<_, Error>(modes)
         })?
         .py_err(py)?;
         drop((sorted, grid, columns, by_speed));

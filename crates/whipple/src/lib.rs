@@ -345,7 +345,9 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::analysis::eigen::eigenvalues;
-        pub use crate::analysis::eigen::{eigenpairs, eigenpairs_with, quartic_roots};
+        pub use crate::analysis::eigen::{
+            eigenpairs, eigenpairs_with, eigenvalues_with, eigenvector, quartic_roots,
+        };
     }
     #[doc = "Integration of ODEs: RK4 and Dormand–Prince 5(4)."]
     pub mod integrate {
