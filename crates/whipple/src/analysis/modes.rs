@@ -102,10 +102,13 @@ impl Tracker {
         let mut best = PERMUTATIONS[0];
         let mut best_cost = f64::INFINITY;
         let mut second_cost = f64::INFINITY;
+        // The sixteen squared distances once; each permutation sums four of them, in the
+        // order of the columns.
+        let distance: [[f64; 4]; 4] = std::array::from_fn(|k| {
+            std::array::from_fn(|j| (current[j] - predicted[k]).norm_sqr())
+        });
         for perm in PERMUTATIONS.iter() {
-            let cost: f64 = (0..4)
-                .map(|k| (current[perm[k]] - predicted[k]).norm_sqr())
-                .sum();
+            let cost: f64 = (0..4).map(|k| distance[k][perm[k]]).sum();
             if cost < best_cost {
                 second_cost = best_cost;
                 best_cost = cost;
@@ -147,11 +150,23 @@ impl Tracker {
 
 /// The structural labels at one speed, when it shows the benchmark's pattern.
 fn vote(values: &[Complex64; 4]) -> Option<[Mode; 4]> {
-    let complex: Vec<usize> = (0..4).filter(|&k| values[k].im != 0.0).collect();
-    if complex.len() != 2 {
+    // The columns of complex and of real eigenvalues, each in column order (no allocation:
+    // this runs at every speed of a sweep).
+    let mut complex = [0usize; 4];
+    let mut real = [0usize; 4];
+    let (mut nc, mut nr) = (0, 0);
+    for (k, value) in values.iter().enumerate() {
+        if value.im != 0.0 {
+            complex[nc] = k;
+            nc += 1;
+        } else {
+            real[nr] = k;
+            nr += 1;
+        }
+    }
+    if nc != 2 {
         return None;
     }
-    let real: Vec<usize> = (0..4).filter(|&k| values[k].im == 0.0).collect();
     let mut labels = [Mode::Unclassified; 4];
     labels[complex[0]] = Mode::Weave;
     labels[complex[1]] = Mode::Weave;
