@@ -84,11 +84,7 @@ pub(crate) fn certified_roots(
     // The bicycle's own rate scale at rest (a Cauchy-type bound of the quartic at v = 0: the
     // rates of falling over, in 1/s), of which a millionth of a millionth is the absolute
     // accuracy asked of a root near zero (the capsize root at v_c).
-    let rest = poly.at_speed(0.0);
-    let rate = (0..4)
-        .map(|k| (rest[k] / rest[4]).abs().powf(1.0 / (4 - k) as f64))
-        .fold(0.0f64, f64::max);
-    let floor = 1e-12 * rate;
+    let floor = 1e-12 * poly.rest_rate();
     for z in &roots {
         let (p, dp) = horner(&a, *z);
         let size = z.norm();
