@@ -399,6 +399,18 @@ mod tests {
                 let joins = same_as_serial(&c, &speeds, Chunking { chunk, overlap: 4 });
                 assert!(joins.matched > 0, "{}: {joins:?}", preset.name);
             }
+            // A chunk starting right at each of its critical speeds.
+            let s = critical_speeds(&c, 0.0, 10.0).expect("critical speeds");
+            let chunking = Chunking {
+                chunk: 250,
+                overlap: OVERLAP,
+            };
+            for at in [s.double_root_speed, s.weave_speed, s.capsize_speed]
+                .into_iter()
+                .flatten()
+            {
+                same_as_serial(&c, &grid_through(at, 1000, 2000, 1e-4), chunking);
+            }
         }
     }
 
