@@ -234,27 +234,38 @@ impl NativeBicycle {
         }
         let labels = interruptible(py, n <= SHORT, |stop| {
             grow(&mut values, n * 4, zero, stop)?;
-            grow(&mut vectors, n * 16, zero, stop)?;
             // Each speed's eigenvalues, then (once the columns are known) its eigenvectors,
             // written straight into the output buffers (no array of pairs in between: at 10⁶
             // speeds that was 320 MB copied once more; nor the vectors moved into the columns'
             // order afterwards).
-            fill_rows(
-                &speeds,
-                &mut values,
-                4,
-                &mut [],
-                0,
-                parallel,
-                stop,
-                |i, row, _| {
-                    let found = eigenvalues_with(&poly, speeds[i])?;
-                    for (out, value) in row.iter_mut().zip(found) {
-                        *out = complex(value);
-                    }
-                    Ok(())
-                },
-            )?;
+            // In parallel, the vectors' buffer (256 MB at 10⁶ speeds) is zeroed meanwhile:
+            // memory-bound work beside the eigenvalues' arithmetic.
+            let mut zero_vectors = || grow(&mut vectors, n * 16, zero, stop);
+            let mut find_values = || {
+                fill_rows(
+                    &speeds,
+                    &mut values,
+                    4,
+                    &mut [],
+                    0,
+                    parallel,
+                    stop,
+                    |i, row, _| {
+                        let found = eigenvalues_with(&poly, speeds[i])?;
+                        for (out, value) in row.iter_mut().zip(found) {
+                            *out = complex(value);
+                        }
+                        Ok(())
+                    },
+                )
+            };
+            let (zeroed, found) = if parallel {
+                rayon::join(zero_vectors, find_values)
+            } else {
+                (zero_vectors(), find_values())
+            };
+            found?;
+            zeroed?;
             let modes = if tracked && n > 0 {
                 grow(&mut columns, n, [0u8; 4], stop)?;
                 let (order, walk): (&[usize], &[f64]) = if unsorted {
