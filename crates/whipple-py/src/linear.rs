@@ -238,7 +238,8 @@ impl NativeBicycle {
             // written straight into the output buffers (no array of pairs in between: at 10⁶
             // speeds that was 320 MB copied once more; nor the vectors moved into the columns'
             // order afterwards).
-            // In parallel, the vectors' buffer (256 MB at 10⁶ speeds) is zeroed meanwhile:
+            // In parallel (from `PARALLEL_FROM` speeds: waking a second thread costs a few µs),
+            // the vectors' buffer (256 MB at 10⁶ speeds) is zeroed meanwhile:
             // memory-bound work beside the eigenvalues' arithmetic.
             let mut zero_vectors = || grow(&mut vectors, n * 16, zero, stop);
             let mut find_values = || {
@@ -259,7 +260,7 @@ impl NativeBicycle {
                     },
                 )
             };
-            let (zeroed, found) = if parallel {
+            let (zeroed, found) = if parallel && n >= PARALLEL_FROM {
                 rayon::join(zero_vectors, find_values)
             } else {
                 (zero_vectors(), find_values())
