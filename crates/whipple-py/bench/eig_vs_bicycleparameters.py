@@ -12,6 +12,7 @@ model of bench/pydy_whipple.py (Kane's equations in sympy, compiled by PyDy's Cy
 integrated by the same fixed-step RK4 in a Python loop, as a PyDy user would): that script's
 derivation and compilation take a minute or two and are not timed."""
 
+import importlib.util
 import os
 import shutil
 import sys
@@ -57,19 +58,37 @@ def main():
     v_bp = np.linspace(0.0, 10.0, n_bp)
     v_w = np.linspace(0.0, 10.0, n_whipple)
     t_bp = best(lambda: theirs.eig(v_bp), repeat=1)
-    t_tracked = best(lambda: ours.eig(v_w))
-    t_untracked = best(lambda: ours.eig(v_w, tracked=False))
-    t_one = best(lambda: ours.eig(v_w, tracked=False, parallel=False))
-    t_ss = best(lambda: ours.state_space(v_w))
+    # BicycleParameters' batched path (numpy's eig over all speeds at once), when this release
+    # has it: bench/bicycleparameters_sweep.py's call.
+    spec = importlib.util.spec_from_file_location(
+        "bicycleparameters_sweep", ROOT / "bench" / "bicycleparameters_sweep.py")
+    sweep = importlib.util.module_from_spec(spec)
+    try:
+        spec.loader.exec_module(sweep)
+        t_calc = best(lambda: sweep.model_calc_eigen(v_bp), repeat=1)
+    except Exception as error:  # the model API has changed between releases
+        print(f"Meijaard2007Model.calc_eigen unavailable ({error})")
+        t_calc = None
+    runs = (
+        ("whipple eig (tracked, labelled)", lambda: ours.eig(v_w)),
+        ("whipple eig (tracked, 1 core)", lambda: ours.eig(v_w, parallel=False)),
+        ("whipple eig (tracked=False)", lambda: ours.eig(v_w, tracked=False)),
+        ("whipple eig (tracked=False, 1 core)", lambda: ours.eig(v_w, tracked=False, parallel=False)),
+        ("whipple state_space (A, B)", lambda: ours.state_space(v_w)),
+        ("whipple state_space (A, B), 1 core", lambda: ours.state_space(v_w, parallel=False)),
+    )
+    times = [(name, best(f)) for name, f in runs]
     rate = lambda n, t: n / t
     r_bp = rate(n_bp, t_bp)
     print(f"machine: {os.cpu_count()} cores; numpy {np.__version__}; bicycleparameters {bp.__version__}; whipple {whipple.__version__}")
     print(f"BicycleParameters Bicycle.eig         {n_bp:>9} speeds  {t_bp:8.3f} s  {r_bp:12.0f} speeds/s  1.0x")
-    for name, n, t in (("whipple eig (tracked, labelled)", n_whipple, t_tracked),
-                       ("whipple eig (tracked=False)", n_whipple, t_untracked),
-                       ("whipple eig (tracked=False, 1 core)", n_whipple, t_one),
-                       ("whipple state_space (A, B)", n_whipple, t_ss)):
-        print(f"{name:<37} {n:>9} speeds  {t:8.3f} s  {rate(n, t):12.0f} speeds/s  {rate(n, t) / r_bp:.0f}x")
+    r_calc = None
+    if t_calc is not None:
+        r_calc = rate(n_bp, t_calc)
+        print(f"BicycleParameters calc_eigen          {n_bp:>9} speeds  {t_calc:8.3f} s  {r_calc:12.0f} speeds/s  {r_calc / r_bp:.1f}x")
+    for name, t in times:
+        against = f"  {rate(n_whipple, t) / r_calc:.0f}x calc_eigen" if r_calc else ""
+        print(f"{name:<37} {n_whipple:>9} speeds  {t:8.3f} s  {rate(n_whipple, t):12.0f} speeds/s  {rate(n_whipple, t) / r_bp:.0f}x{against}")
     t_sim = best(lambda: ours.simulate(4.6, 10.0, lean_rate=0.5), repeat=3)
     t_sim_py = best(lambda: ours.simulate(4.6, 10.0, lean_rate=0.5,
                                           steer_torque=lambda t, s: 0.0), repeat=3)
@@ -80,7 +99,6 @@ def main():
 
 def pydy_simulation(t_whipple):
     """The same 10 s motion with PyDy's generated model, when PyDy is installed."""
-    import importlib.util
 
     try:
         import pydy  # noqa: F401

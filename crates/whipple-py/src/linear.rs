@@ -11,12 +11,12 @@ use pyo3::types::PyDict;
 use rayon::prelude::*;
 use whipple::advanced::comparison::{ComparisonSettings, Linearization, lean_steer_matrix};
 use whipple::advanced::comparison::{MAX_COMPARED_SPEEDS, compare_with_linear_until};
-use whipple::advanced::eigen::eigenpairs_with;
+use whipple::advanced::eigen::{eigenvalues_with, eigenvector};
 use whipple::advanced::linear::StateSpace;
 use whipple::advanced::linear::{CharacteristicPolynomial, SpeedPolynomials};
 use whipple::advanced::sensitivity;
 use whipple::advanced::sensitivity::critical_speeds_sigma;
-use whipple::advanced::sweep::SweepPlan;
+use whipple::advanced::sweep::track_modes;
 use whipple::{Canonical, Error, Model};
 
 use crate::bicycle::NativeBicycle;
@@ -45,16 +45,29 @@ fn complex(z: whipple::advanced::eigen::Complex64) -> NpComplex {
     NpComplex::new(z.re, z.im)
 }
 
+fn core_complex(z: NpComplex) -> whipple::advanced::eigen::Complex64 {
+    whipple::advanced::eigen::Complex64::new(z.re, z.im)
+}
+
 impl NativeBicycle {
     fn canonical_matrices(&self, py: Python<'_>) -> PyResult<Canonical> {
         Canonical::new(&self.checked.benchmark).py_err(py)
     }
 }
 
+/// Speeds computed one after another by each parallel task: enough that rayon's cost per task
+/// (about a microsecond) is amortized even for A(v) and B(v) (tens of nanoseconds a speed).
+const BLOCK: usize = 1024;
+
+/// Fewer speeds than this are computed on the calling thread even when `parallel` is asked
+/// (measured, BENCHMARKS.md: below it waking the second core costs more than it saves).
+const PARALLEL_FROM: usize = 4 * BLOCK;
+
 /// Fills `a` (`wa` numbers a speed) and `b` (`wb` a speed, or none when `wb` is 0) speed by
-/// speed with `f(speed, a_row, b_row)`, in parallel or in order, checking `stop` before each
-/// speed; the first error in speed order is returned (a parallel failure is redone in order
-/// to find it, as the serial path reports it).
+/// speed with `f(speed, a_row, b_row)`, in parallel blocks of [`BLOCK`] speeds (each block's
+/// rows a disjoint slice of the buffers) from [`PARALLEL_FROM`] speeds on, or in order,
+/// checking `stop` before each speed; the first error in speed order is returned (a parallel
+/// failure is redone in order to find it, as the serial path reports it).
 #[allow(clippy::too_many_arguments)]
 fn fill_rows<T: Send>(
     speeds: &[f64],
@@ -66,38 +79,39 @@ fn fill_rows<T: Send>(
     stop: &AtomicBool,
     f: impl Fn(usize, &mut [T], &mut [T]) -> Result<(), Error> + Sync,
 ) -> Result<(), Error> {
-    let one = |i: usize, x: &mut [T], y: &mut [T]| {
-        if is_stopped(stop) {
-            return Err(stopped());
+    let wa = wa.max(1);
+    let block = |first: usize, x: &mut [T], y: &mut [T]| -> Result<(), Error> {
+        for (k, row) in x.chunks_mut(wa).enumerate() {
+            if is_stopped(stop) {
+                return Err(stopped());
+            }
+            let other = if wb == 0 {
+                &mut []
+            } else {
+                &mut y[k * wb..(k + 1) * wb]
+            };
+            f(first + k, row, other)?;
         }
-        f(i, x, y)
+        Ok(())
     };
-    let mut none: [T; 0] = [];
+    let parallel = parallel && speeds.len() >= PARALLEL_FROM;
     let failed = parallel && {
-        let rows_a = a.par_chunks_mut(wa.max(1));
+        let blocks_a = a.par_chunks_mut(wa * BLOCK);
         if wb == 0 {
-            rows_a
+            blocks_a
                 .enumerate()
-                .try_for_each(|(i, x)| one(i, x, &mut []))
+                .try_for_each(|(k, x)| block(k * BLOCK, x, &mut []))
                 .is_err()
         } else {
-            rows_a
-                .zip(b.par_chunks_mut(wb))
+            blocks_a
+                .zip(b.par_chunks_mut(wb * BLOCK))
                 .enumerate()
-                .try_for_each(|(i, (x, y))| one(i, x, y))
+                .try_for_each(|(k, (x, y))| block(k * BLOCK, x, y))
                 .is_err()
         }
     };
     if !parallel || failed {
-        for i in 0..speeds.len() {
-            let x = &mut a[i * wa..(i + 1) * wa];
-            let y = if wb == 0 {
-                &mut none[..]
-            } else {
-                &mut b[i * wb..(i + 1) * wb]
-            };
-            one(i, x, y)?;
-        }
+        block(0, a, b)?;
     }
     Ok(())
 }
@@ -190,8 +204,9 @@ impl NativeBicycle {
     ) -> PyResult<EigResult<'py>> {
         let c = self.canonical_matrices(py)?;
         // Values (4) and vectors (16) of 16 bytes a speed and the speed copied; tracked, the
-        // sorted order (8), the sorted speeds (8) and the tracked values (64) besides.
-        let per_speed = 20 * 16 + 8 + if tracked { 80 } else { 0 };
+        // sorted order (8), the sorted speeds (8) and the columns' order (4, twice when the
+        // speeds are not sorted) besides.
+        let per_speed = 20 * 16 + 8 + if tracked { 24 } else { 0 };
         let speeds = speeds_of("eig", &speeds, per_speed)?;
         let n = speeds.len();
         let too_big = || memory_error("eig", n as u128, "speeds", estimate(n, per_speed));
@@ -201,55 +216,85 @@ impl NativeBicycle {
         let zero = NpComplex::new(0.0, 0.0);
         let mut values = reserve(n.saturating_mul(4), too_big)?;
         let mut vectors = reserve(n.saturating_mul(16), too_big)?;
-        // Tracked: the sweep over the speeds sorted gives each speed's eigenvalues in mode
-        // order; `targets[i]` is speed i's.
-        let (mut sorted, mut grid, mut targets) = if tracked && n > 0 {
-            (
-                reserve::<usize>(n, too_big)?,
-                reserve::<f64>(n, too_big)?,
-                reserve(n, too_big)?,
-            )
-        } else {
-            (Vec::new(), Vec::new(), Vec::new())
-        };
+        let unsorted = speeds.windows(2).any(|w| w[0].total_cmp(&w[1]).is_gt());
+        // Tracked: the core follows the modes over the speeds sorted (`grid`, speed
+        // `sorted[k]` at `grid[k]`) through the eigenvalues computed here and gives, for each
+        // speed, which eigenvalue goes to which column (`columns`, by speed).
+        let mut sorted = Vec::new();
+        let mut grid = Vec::new();
+        let mut columns = Vec::new();
+        let mut by_speed = Vec::new();
+        if tracked && n > 0 {
+            columns = reserve::<[u8; 4]>(n, too_big)?;
+            if unsorted {
+                sorted = reserve::<usize>(n, too_big)?;
+                grid = reserve::<f64>(n, too_big)?;
+                by_speed = reserve::<[u8; 4]>(n, too_big)?;
+            }
+        }
         let labels = interruptible(py, n <= SHORT, |stop| {
             grow(&mut values, n * 4, zero, stop)?;
-            grow(&mut vectors, n * 16, zero, stop)?;
-            let modes = if tracked && n > 0 {
-                grow(
-                    &mut targets,
-                    n,
-                    [whipple::advanced::eigen::Complex64::new(0.0, 0.0); 4],
+            // Each speed's eigenvalues, then (once the columns are known) its eigenvectors,
+            // written straight into the output buffers (no array of pairs in between: at 10⁶
+            // speeds that was 320 MB copied once more; nor the vectors moved into the columns'
+            // order afterwards).
+            // In parallel (from `PARALLEL_FROM` speeds: waking a second thread costs a few µs),
+            // the vectors' buffer (256 MB at 10⁶ speeds) is zeroed meanwhile:
+            // memory-bound work beside the eigenvalues' arithmetic.
+            let mut zero_vectors = || grow(&mut vectors, n * 16, zero, stop);
+            let mut find_values = || {
+                fill_rows(
+                    &speeds,
+                    &mut values,
+                    4,
+                    &mut [],
+                    0,
+                    parallel,
                     stop,
-                )?;
-                sorted.extend(0..n);
-                // Speeds are most often given in order: then nothing to sort.
-                if speeds.windows(2).any(|w| w[0].total_cmp(&w[1]).is_gt()) {
+                    |i, row, _| {
+                        let found = eigenvalues_with(&poly, speeds[i])?;
+                        for (out, value) in row.iter_mut().zip(found) {
+                            *out = complex(value);
+                        }
+                        Ok(())
+                    },
+                )
+            };
+            let (zeroed, found) = if parallel && n >= PARALLEL_FROM {
+                rayon::join(zero_vectors, find_values)
+            } else {
+                (zero_vectors(), find_values())
+            };
+            found?;
+            zeroed?;
+            let modes = if tracked && n > 0 {
+                grow(&mut columns, n, [0u8; 4], stop)?;
+                let (order, walk): (&[usize], &[f64]) = if unsorted {
+                    sorted.extend(0..n);
                     sorted.par_sort_by(|&i, &j| speeds[i].total_cmp(&speeds[j]));
-                }
-                grid.extend(sorted.iter().map(|&i| speeds[i]));
-                // The speeds end early when stopped: the plan is then dropped unused.
-                let walk = grid.iter().copied().take_while(|_| !is_stopped(stop));
-                let plan = SweepPlan::new(&c, walk)?;
-                let mut k = 0;
-                plan.rows(|_, row| {
-                    if is_stopped(stop) {
-                        return Err(stopped());
+                    grid.extend(sorted.iter().map(|&i| speeds[i]));
+                    (&sorted, &grid)
+                } else {
+                    (&[], &speeds)
+                };
+                let found = &values;
+                // The eigenvalues of the k-th sorted speed, as the core computed them.
+                let roots = |k: usize| {
+                    let i = if unsorted { order[k] } else { k };
+                    Ok(std::array::from_fn(|j| core_complex(found[4 * i + j])))
+                };
+                let modes = track_modes(&c, walk, roots, &mut columns, parallel, stop)?;
+                if unsorted {
+                    grow(&mut by_speed, n, [0u8; 4], stop)?;
+                    for (k, &i) in order.iter().enumerate() {
+                        by_speed[i] = columns[k];
                     }
-                    targets[sorted[k]] = *row;
-                    k += 1;
-                    Ok::<(), Error>(())
-                })?;
-                if is_stopped(stop) {
-                    return Err(stopped());
                 }
-                Some(plan.modes())
+                Some(modes)
             } else {
                 None
             };
-            let targets = &targets;
-            // Each speed's eigenpairs written straight into the two output buffers (no
-            // array of pairs in between: at 10⁶ speeds that was 320 MB copied once more).
+            let columns: &[[u8; 4]] = if unsorted { &by_speed } else { &columns };
             fill_rows(
                 &speeds,
                 &mut values,
@@ -259,27 +304,16 @@ impl NativeBicycle {
                 parallel,
                 stop,
                 |i, values, vectors| {
-                    let pairs = eigenpairs_with(&c, &poly, speeds[i])?;
-                    let mut order = [0, 1, 2, 3];
                     if modes.is_some() {
-                        let mut taken = [false; 4];
-                        for (col, target) in targets[i].iter().enumerate() {
-                            let best = (0..4)
-                                .filter(|&p| !taken[p])
-                                .min_by(|&p, &q| {
-                                    let dp = (pairs[p].value - target).norm_sqr();
-                                    let dq = (pairs[q].value - target).norm_sqr();
-                                    dp.total_cmp(&dq)
-                                })
-                                .unwrap_or(col);
-                            taken[best] = true;
-                            order[col] = best;
+                        let was: [NpComplex; 4] = std::array::from_fn(|j| values[j]);
+                        for (out, k) in values.iter_mut().zip(columns[i]) {
+                            *out = was[usize::from(k)];
                         }
                     }
-                    for (col, &k) in order.iter().enumerate() {
-                        values[col] = complex(pairs[k].value);
+                    for (col, value) in values.iter().enumerate() {
+                        let x = eigenvector(&c, speeds[i], core_complex(*value));
                         for row in 0..4 {
-                            vectors[4 * row + col] = complex(pairs[k].vector[row]);
+                            vectors[4 * row + col] = complex(x[row]);
                         }
                     }
                     Ok(())
@@ -288,7 +322,7 @@ impl NativeBicycle {
             Ok::<_, Error>(modes)
         })?
         .py_err(py)?;
-        drop((sorted, grid, targets));
+        drop((sorted, grid, columns, by_speed));
         let labels: Option<Vec<&'static str>> =
             labels.map(|m| m.iter().map(|m| m.name()).collect());
         Ok((

@@ -69,6 +69,29 @@ def test_eig_unsorted_speeds_follow_their_speed(benchmark):
     assert np.all(np.diff(untracked.values.real, axis=1) <= 0)
 
 
+@pytest.mark.parametrize("name", ["benchmark", "browser", "fisher", "rigid", "yellowrev"])
+def test_tracked_eig_in_parallel_equals_serial(name):
+    """Tracked in parallel (the core tracks chunks of the speeds on their own and joins them
+    where they overlap) gives the serial tracking's columns, labels and numbers bit for bit, on
+    grids through the double-root, weave and capsize speeds (each on the grid), ascending,
+    descending and shuffled, fine and coarse; each row holds the untracked row's eigenvalues."""
+    bike = whipple.Bicycle.preset(name)
+    s = bike.critical_speeds(0.0, 10.0)
+    critical = [s.v_d, s.v_w, s.v_c]
+    critical = [v for v in critical if v is not None]
+    fine = np.sort(np.concatenate([np.linspace(0.0, 10.0, 60_000), critical]))
+    near = np.concatenate([np.linspace(v - 1e-3, v + 1e-3, 20_001) for v in critical])
+    shuffled = np.random.default_rng(28).permutation(fine)
+    for v in (fine, fine[::-1], near, shuffled, np.linspace(0.0, 10.0, 41)):
+        together = bike.eig(v)
+        alone = bike.eig(v, parallel=False)
+        assert together.modes == alone.modes == ["weave", "weave", "capsize", "castering"]
+        assert np.array_equal(together.values, alone.values)
+        assert np.array_equal(together.vectors, alone.vectors)
+        untracked = bike.eig(v, tracked=False)
+        assert np.array_equal(np.sort_complex(together.values), np.sort_complex(untracked.values))
+
+
 def test_eig_scalar(benchmark):
     e = benchmark.eig(5.0)
     assert e.values.shape == (4,) and e.vectors.shape == (4, 4)

@@ -346,7 +346,9 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::analysis::eigen::eigenvalues;
-        pub use crate::analysis::eigen::{eigenpairs, eigenpairs_with, quartic_roots};
+        pub use crate::analysis::eigen::{
+            eigenpairs, eigenpairs_with, eigenvalues_with, eigenvector, quartic_roots,
+        };
     }
     #[doc = "Integration of ODEs: RK4 and Dormand–Prince 5(4)."]
     pub mod integrate {
@@ -526,6 +528,7 @@ pub mod advanced {
     #[doc = "Speed grids and eigenvalue sweeps."]
     pub mod sweep {
         pub use crate::analysis::sweep::{SpeedGrid, SweepPlan};
+        pub use crate::analysis::track::track_modes;
     }
     #[doc = "The one parameter table: names, keys, symbols, units and meanings of every parameter."]
     pub mod table {

@@ -281,7 +281,9 @@ class Bicycle:
         complex, ``vectors`` (n, 4, 4) complex with ``vectors[i, :, k]`` belonging to
         ``values[i, k]``. Tracked (the default): each column follows one mode over the speeds
         (sorted internally), labelled in ``modes`` (weave, weave, capsize, castering for the
-        benchmark). Unpacks as ``values, vectors = bike.eig(v)``."""
+        benchmark). ``parallel`` (from a few thousand speeds on): on every core with the GIL
+        released, the tracking too (in chunks joined where they overlap); the same numbers, bit
+        for bit, as ``parallel=False``. Unpacks as ``values, vectors = bike.eig(v)``."""
         speeds, scalar = _speeds(v)
         values, vectors, modes = self._native.eig(speeds, tracked, parallel)
         return Eigen(speeds, values, vectors, modes, scalar, self.label)

@@ -84,11 +84,7 @@ pub(crate) fn certified_roots(
     // The bicycle's own rate scale at rest (a Cauchy-type bound of the quartic at v = 0: the
     // rates of falling over, in 1/s), of which a millionth of a millionth is the absolute
     // accuracy asked of a root near zero (the capsize root at v_c).
-    let rest = poly.at_speed(0.0);
-    let rate = (0..4)
-        .map(|k| (rest[k] / rest[4]).abs().powf(1.0 / (4 - k) as f64))
-        .fold(0.0f64, f64::max);
-    let floor = 1e-12 * rate;
+    let floor = 1e-12 * poly.rest_rate();
     for z in &roots {
         let (p, dp) = horner(&a, *z);
         let size = z.norm();
@@ -350,50 +346,66 @@ pub fn eigenpairs_with(
     speed: f64,
 ) -> Result<[EigenPair; 4]> {
     let values = certified_roots(poly, speed)?;
+    Ok(values.map(|value| EigenPair {
+        value,
+        vector: eigenvector(canonical, speed, value),
+    }))
+}
+
+/// The eigenvalues of [`eigenpairs_with`] alone (its checks are the caller's; the same
+/// numbers, in the same order, as [`eigenvalues`]), for a batch that computes the vectors
+/// later ([`eigenvector`]).
+pub fn eigenvalues_with(poly: &CharacteristicPolynomial, speed: f64) -> Result<[Complex64; 4]> {
+    certified_roots(poly, speed)
+}
+
+/// The eigenvector of A(v) for its eigenvalue `value` at `speed`, as [`eigenpairs`] gives it
+/// (x = [q; λ q], unit length, largest component real and positive), bit for bit.
+///
+/// ```
+/// use whipple::advanced::eigen::{eigenpairs, eigenvector};
+/// use whipple::{BenchmarkParameters, Canonical};
+/// let c = Canonical::new(&BenchmarkParameters::meijaard2007())?;
+/// let pairs = eigenpairs(&c, 5.0)?;
+/// assert_eq!(eigenvector(&c, 5.0, pairs[2].value), pairs[2].vector);
+/// # Ok::<(), whipple::Error>(())
+/// ```
+pub fn eigenvector(canonical: &Canonical, speed: f64, value: Complex64) -> Vector4<Complex64> {
     let k = canonical.k0 * canonical.g + canonical.k2 * (speed * speed);
     let c = canonical.c1 * speed;
-    let pair = |value: Complex64| {
-        let at = |i: usize, j: usize| {
-            value * value * canonical.m[(i, j)] + value * c[(i, j)] + k[(i, j)]
-        };
-        // A null vector of the 2×2 matrix P(λ): orthogonal to its larger row.
-        let rows = [(at(0, 0), at(0, 1)), (at(1, 0), at(1, 1))];
-        let (r0, r1) = if rows[0].0.norm_sqr() + rows[0].1.norm_sqr()
-            >= rows[1].0.norm_sqr() + rows[1].1.norm_sqr()
-        {
-            rows[0]
-        } else {
-            rows[1]
-        };
-        let q = if r0.norm() == 0.0 && r1.norm() == 0.0 {
-            Vector2::new(Complex64::new(1.0, 0.0), Complex64::new(0.0, 0.0))
-        } else {
-            Vector2::new(-r1, r0)
-        };
-        let mut x = Vector4::new(q[0], q[1], value * q[0], value * q[1]);
-        // Squared moduli (no `hypot`: this runs for every speed of a sweep), rescaled first by
-        // the largest |component| so that they can neither overflow nor underflow.
-        let scale = x
-            .iter()
-            .map(|z| z.re.abs().max(z.im.abs()))
-            .fold(0.0, f64::max);
-        if scale > 0.0 && scale.is_finite() {
-            x = x.map(|z| z.unscale(scale));
-            let (imax, _) = x.iter().enumerate().fold((0, 0.0), |(bi, bn), (i, z)| {
-                let n = z.norm_sqr();
-                if n > bn { (i, n) } else { (bi, bn) }
-            });
-            let pivot = x[imax];
-            let norm = x.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
-            let phase = pivot.conj() / (pivot.norm_sqr().sqrt() * norm);
-            x *= phase;
-        }
-        EigenPair { value, vector: x }
+    let at =
+        |i: usize, j: usize| value * value * canonical.m[(i, j)] + value * c[(i, j)] + k[(i, j)];
+    // A null vector of the 2×2 matrix P(λ): orthogonal to its larger row.
+    let rows = [(at(0, 0), at(0, 1)), (at(1, 0), at(1, 1))];
+    let (r0, r1) = if rows[0].0.norm_sqr() + rows[0].1.norm_sqr()
+        >= rows[1].0.norm_sqr() + rows[1].1.norm_sqr()
+    {
+        rows[0]
+    } else {
+        rows[1]
     };
-    Ok([
-        pair(values[0]),
-        pair(values[1]),
-        pair(values[2]),
-        pair(values[3]),
-    ])
+    let q = if r0.norm() == 0.0 && r1.norm() == 0.0 {
+        Vector2::new(Complex64::new(1.0, 0.0), Complex64::new(0.0, 0.0))
+    } else {
+        Vector2::new(-r1, r0)
+    };
+    let mut x = Vector4::new(q[0], q[1], value * q[0], value * q[1]);
+    // Squared moduli (no `hypot`: this runs for every speed of a sweep), rescaled first by
+    // the largest |component| so that they can neither overflow nor underflow.
+    let scale = x
+        .iter()
+        .map(|z| z.re.abs().max(z.im.abs()))
+        .fold(0.0, f64::max);
+    if scale > 0.0 && scale.is_finite() {
+        x = x.map(|z| z.unscale(scale));
+        let (imax, _) = x.iter().enumerate().fold((0, 0.0), |(bi, bn), (i, z)| {
+            let n = z.norm_sqr();
+            if n > bn { (i, n) } else { (bi, bn) }
+        });
+        let pivot = x[imax];
+        let norm = x.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
+        let phase = pivot.conj() / (pivot.norm_sqr().sqrt() * norm);
+        x *= phase;
+    }
+    x
 }

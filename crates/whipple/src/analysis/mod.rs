@@ -10,4 +10,5 @@ pub(crate) mod roots;
 pub(crate) mod sensitivity;
 pub(crate) mod stability;
 pub(crate) mod sweep;
+pub(crate) mod track;
 pub(crate) mod turns;

@@ -80,39 +80,93 @@ pub(crate) struct Tracker {
 impl Tracker {
     /// The eigenvalues `current` reordered to continue the tracks.
     pub(crate) fn next(&mut self, current: [Complex64; 4]) -> [Complex64; 4] {
+        let (perm, _) = self.step(current);
+        perm.map(|k| current[k])
+    }
+
+    /// As [`Tracker::next`], giving the match instead (tracked column k continues with
+    /// `current[perm[k]]`) and whether it was decisive: every other permutation cost more than
+    /// the chosen one by far more than round-off in summing the four distances in another
+    /// order, so a tracker holding the same tracks in another column order makes the same
+    /// match (what joining chunks tracked in parallel relies on, `analysis::track`). The first
+    /// two speeds (no extrapolation yet) count as not decisive.
+    pub(crate) fn step(&mut self, current: [Complex64; 4]) -> ([usize; 4], bool) {
         let Some(previous) = self.previous else {
             self.previous = Some(current);
-            return current;
+            return ([0, 1, 2, 3], false);
         };
-        let predicted: [Complex64; 4] = match self.before {
-            Some(before) => std::array::from_fn(|k| previous[k] * 2.0 - before[k]),
-            None => previous,
+        let (predicted, extrapolated): ([Complex64; 4], bool) = match self.before {
+            Some(before) => (std::array::from_fn(|k| previous[k] * 2.0 - before[k]), true),
+            None => (previous, false),
         };
         let mut best = PERMUTATIONS[0];
         let mut best_cost = f64::INFINITY;
+        let mut second_cost = f64::INFINITY;
+        // The sixteen squared distances once; each permutation sums four of them, in the
+        // order of the columns.
+        let distance: [[f64; 4]; 4] = std::array::from_fn(|k| {
+            std::array::from_fn(|j| (current[j] - predicted[k]).norm_sqr())
+        });
         for perm in PERMUTATIONS.iter() {
-            let cost: f64 = (0..4)
-                .map(|k| (current[perm[k]] - predicted[k]).norm_sqr())
-                .sum();
+            let cost: f64 = (0..4).map(|k| distance[k][perm[k]]).sum();
             if cost < best_cost {
+                second_cost = best_cost;
                 best_cost = cost;
                 best = *perm;
+            } else if cost < second_cost {
+                second_cost = cost;
             }
         }
+        // A sum of four non-negative terms is exact to 3 units of round-off in any order; a
+        // margin of 1e-12 of the cost is thousands of times that.
+        let decisive = extrapolated
+            && best_cost.is_finite()
+            && second_cost.is_finite()
+            && second_cost - best_cost > 1e-12 * second_cost;
         let tracked = std::array::from_fn(|k| current[best[k]]);
         self.before = Some(previous);
         self.previous = Some(tracked);
-        tracked
+        (best, decisive)
+    }
+
+    /// Whether a speed was tracked (the next one is matched to it).
+    pub(crate) fn started(&self) -> bool {
+        self.previous.is_some()
+    }
+
+    /// The tracked eigenvalues at the last two speeds (the last first), once two were seen.
+    pub(crate) fn state(&self) -> Option<([Complex64; 4], [Complex64; 4])> {
+        Some((self.previous?, self.before?))
+    }
+
+    /// The same tracks with column k taken from column `from[k]` of this tracker.
+    pub(crate) fn relabelled(&self, from: [usize; 4]) -> Tracker {
+        Tracker {
+            previous: self.previous.map(|p| from.map(|k| p[k])),
+            before: self.before.map(|b| from.map(|k| b[k])),
+        }
     }
 }
 
 /// The structural labels at one speed, when it shows the benchmark's pattern.
 fn vote(values: &[Complex64; 4]) -> Option<[Mode; 4]> {
-    let complex: Vec<usize> = (0..4).filter(|&k| values[k].im != 0.0).collect();
-    if complex.len() != 2 {
+    // The columns of complex and of real eigenvalues, each in column order (no allocation:
+    // this runs at every speed of a sweep).
+    let mut complex = [0usize; 4];
+    let mut real = [0usize; 4];
+    let (mut nc, mut nr) = (0, 0);
+    for (k, value) in values.iter().enumerate() {
+        if value.im != 0.0 {
+            complex[nc] = k;
+            nc += 1;
+        } else {
+            real[nr] = k;
+            nr += 1;
+        }
+    }
+    if nc != 2 {
         return None;
     }
-    let real: Vec<usize> = (0..4).filter(|&k| values[k].im == 0.0).collect();
     let mut labels = [Mode::Unclassified; 4];
     labels[complex[0]] = Mode::Weave;
     labels[complex[1]] = Mode::Weave;
@@ -145,11 +199,30 @@ const LABELS: [Mode; 3] = [Mode::Weave, Mode::Capsize, Mode::Castering];
 impl Votes {
     /// Counts the votes of one speed's tracked eigenvalues.
     pub(crate) fn add(&mut self, values: &[Complex64; 4]) {
-        if let Some(labels) = vote(values) {
-            for (column, label) in self.votes.iter_mut().zip(labels) {
-                if let Some(m) = LABELS.iter().position(|&m| m == label) {
-                    column[m] += 1;
-                }
+        self.add_checked(values);
+    }
+
+    /// As [`Votes::add`]; false when the votes depend on the column order (two real
+    /// eigenvalues of equal real part beside the pair: which is capsize is then decided by
+    /// position).
+    pub(crate) fn add_checked(&mut self, values: &[Complex64; 4]) -> bool {
+        let Some(labels) = vote(values) else {
+            return true;
+        };
+        for (column, label) in self.votes.iter_mut().zip(labels) {
+            if let Some(m) = LABELS.iter().position(|&m| m == label) {
+                column[m] += 1;
+            }
+        }
+        let mut real = values.iter().filter(|z| z.im == 0.0);
+        !matches!((real.next(), real.next()), (Some(a), Some(b)) if a.re == b.re)
+    }
+
+    /// Adds `other`'s votes, its column `from[k]` counted for column k.
+    pub(crate) fn merge(&mut self, other: &Votes, from: [usize; 4]) {
+        for (column, k) in self.votes.iter_mut().zip(from) {
+            for (mine, theirs) in column.iter_mut().zip(other.votes[k]) {
+                *mine += theirs;
             }
         }
     }

@@ -230,6 +230,69 @@ fn wanted(a: f64, b: f64) -> f64 {
         .min(MAX_SUBSTEPS as f64)
 }
 
+/// The eigenvalues at the intermediate speeds tracked through between the requested speeds
+/// `p` and `v` (none when they are close), in order.
+pub(crate) fn between<E: From<Error>>(
+    poly: &CharacteristicPolynomial,
+    p: f64,
+    v: f64,
+    share: f64,
+    mut each: impl FnMut([Complex64; 4]) -> std::result::Result<(), E>,
+) -> std::result::Result<(), E> {
+    let substeps = (wanted(p, v) * share).floor() as usize;
+    for k in 1..substeps {
+        let u = p + (v - p) * k as f64 / substeps as f64;
+        each(quartic_roots(&poly.at_speed(u))?)?;
+    }
+    Ok(())
+}
+
+/// Checks that every speed is finite and gives the fraction of the wanted intermediate speeds
+/// a sweep over them takes (≤ 1, at most `MAX_EXTRA_SPEEDS` in all).
+pub(crate) fn checked_share(speeds: impl Iterator<Item = f64>) -> Result<f64> {
+    let mut total = 0.0;
+    let mut previous: Option<f64> = None;
+    for v in speeds {
+        if !v.is_finite() {
+            return Err(Error::InvalidArgument {
+                what: "speeds",
+                rule: format!("every speed must be finite, got {v}"),
+            });
+        }
+        if let Some(p) = previous {
+            total += wanted(p, v);
+        }
+        previous = Some(v);
+    }
+    Ok(if total > MAX_EXTRA_SPEEDS {
+        MAX_EXTRA_SPEEDS / total
+    } else {
+        1.0
+    })
+}
+
+/// The reported columns from the tracked ones' labels: weave, weave, capsize, castering, then
+/// unclassified, ties by decreasing real part at the first speed (`first`); reported column k
+/// is tracked column `order[k]`.
+pub(crate) fn column_order(labels: [Mode; 4], first: Option<[Complex64; 4]>) -> [usize; 4] {
+    let mut order = [0usize, 1, 2, 3];
+    order.sort_by(|&i, &j| {
+        mode_rank(labels[i])
+            .cmp(&mode_rank(labels[j]))
+            .then_with(|| match first {
+                Some(f) => f[j].re.total_cmp(&f[i].re),
+                None => std::cmp::Ordering::Equal,
+            })
+    });
+    order
+}
+
+/// Whether the reported weave pair `a`, `b` is to be swapped (the eigenvalue of positive
+/// imaginary part, or the larger real one, first).
+pub(crate) fn weave_swapped(a: Complex64, b: Complex64) -> bool {
+    b.im > a.im || (b.im == a.im && b.re > a.re)
+}
+
 /// Runs the tracking over `speeds` and calls `each(reported, tracked eigenvalues)` at every
 /// speed visited, intermediate ones included (`reported` false).
 fn visit<I, E>(
@@ -246,12 +309,7 @@ where
     let mut previous: Option<f64> = None;
     for v in speeds {
         if let Some(p) = previous {
-            let substeps = (wanted(p, v) * share).floor() as usize;
-            for k in 1..substeps {
-                let u = p + (v - p) * k as f64 / substeps as f64;
-                let values = tracker.next(quartic_roots(&poly.at_speed(u))?);
-                each(None, &values)?;
-            }
+            between(poly, p, v, share, |roots| each(None, &tracker.next(roots)))?;
         }
         let values = tracker.next(certified_roots(poly, v)?);
         each(Some(v), &values)?;
@@ -264,25 +322,7 @@ impl<I: Iterator<Item = f64> + Clone> SweepPlan<I> {
     /// Checks the speeds (every one finite), then sweeps them once to track and label the
     /// modes.
     pub fn new(canonical: &Canonical, speeds: I) -> Result<Self> {
-        let mut total = 0.0;
-        let mut previous: Option<f64> = None;
-        for v in speeds.clone() {
-            if !v.is_finite() {
-                return Err(Error::InvalidArgument {
-                    what: "speeds",
-                    rule: format!("every speed must be finite, got {v}"),
-                });
-            }
-            if let Some(p) = previous {
-                total += wanted(p, v);
-            }
-            previous = Some(v);
-        }
-        let share = if total > MAX_EXTRA_SPEEDS {
-            MAX_EXTRA_SPEEDS / total
-        } else {
-            1.0
-        };
+        let share = checked_share(speeds.clone())?;
         // Refuses matrices whose characteristic polynomial double precision cannot form
         // (overflow, a determinant of M lost to cancellation) instead of sweeping garbage.
         crate::linear::SpeedPolynomials::new(canonical)?;
@@ -297,15 +337,7 @@ impl<I: Iterator<Item = f64> + Clone> SweepPlan<I> {
             Ok::<(), Error>(())
         })?;
         let labels = votes.labels();
-        let mut order = [0usize, 1, 2, 3];
-        order.sort_by(|&i, &j| {
-            mode_rank(labels[i])
-                .cmp(&mode_rank(labels[j]))
-                .then_with(|| match first {
-                    Some(f) => f[j].re.total_cmp(&f[i].re),
-                    None => std::cmp::Ordering::Equal,
-                })
-        });
+        let order = column_order(labels, first);
         Ok(SweepPlan {
             poly,
             speeds,
@@ -341,7 +373,7 @@ impl<I: Iterator<Item = f64> + Clone> SweepPlan<I> {
                 let mut reordered: [Complex64; 4] = self.order.map(|k| values[k]);
                 if weave_pair {
                     let (a, b) = (reordered[0], reordered[1]);
-                    if b.im > a.im || (b.im == a.im && b.re > a.re) {
+                    if weave_swapped(a, b) {
                         reordered[0] = b;
                         reordered[1] = a;
                     }

@@ -22,6 +22,8 @@ pub struct CharacteristicPolynomial {
     /// what bounds the round-off in `coefficients` and in [`Self::at_speed`]
     /// ([`Self::error_bounds`]).
     magnitudes: [[f64; DEGREE + 1]; DEGREE + 1],
+    /// The bicycle's own rate scale at rest [1/s] ([`Self::rest_rate`]), formed once.
+    rest_rate: f64,
 }
 
 type Bivariate = [[f64; DEGREE + 1]; DEGREE + 1];
@@ -69,10 +71,27 @@ impl CharacteristicPolynomial {
                 magnitudes[k][j] = d_abs[k][j] + o_abs[k][j];
             }
         }
-        CharacteristicPolynomial {
+        let mut poly = CharacteristicPolynomial {
             coefficients,
             magnitudes,
-        }
+            rest_rate: 0.0,
+        };
+        let rest = poly.at_speed(0.0);
+        poly.rest_rate = (0..DEGREE)
+            .map(|k| {
+                (rest[k] / rest[DEGREE])
+                    .abs()
+                    .powf(1.0 / (DEGREE - k) as f64)
+            })
+            .fold(0.0f64, f64::max);
+        poly
+    }
+
+    /// The bicycle's own rate scale at rest [1/s]: a Cauchy-type bound of the quartic at v = 0
+    /// (the rates of falling over), max over k of |aₖ / a₄|^(1/(4−k)); formed with the
+    /// polynomial, not at every speed of a sweep.
+    pub(crate) fn rest_rate(&self) -> f64 {
+        self.rest_rate
     }
 
     /// Bounds on the round-off in each coefficient of [`Self::at_speed`] (lowest power of λ
