@@ -23,6 +23,8 @@ fn speeds_print_the_uncertainty_of_a_measured_bicycle() {
         out.contains("weave speed v_w        3.7981 ± 0.0764 m/s"),
         "{out}"
     );
+    // Named as BicycleParameters names it, without the parameter set's suffix (issue 28).
+    assert!(out.starts_with("Fisher: critical speeds"), "{out}");
     let json: serde_json::Value = serde_json::from_str(&stdout(&whipple(&[
         "speeds",
         "--bike",

@@ -79,10 +79,7 @@ impl NativeBicycle {
         .py_err(py)?;
         let mut bicycle = io::parse(text, format).py_err(py)?;
         if bicycle.name.is_none() {
-            let stem = std::path::Path::new(file_name)
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned());
-            bicycle.name = stem.filter(|s| !s.is_empty());
+            bicycle.name = io::name_from_file_name(file_name, format);
         }
         Self::new(py, bicycle, strict)
     }

@@ -369,7 +369,7 @@ pub mod advanced {
         pub use crate::parameters::io::Format;
         pub use crate::parameters::io::{
             FORMATS, MAX_FILE_BYTES, UNDETERMINED_FORMAT, json_slice_without_duplicates,
-            json_without_duplicates, parse, write,
+            json_without_duplicates, name_from_file_name, parse, write,
         };
     }
     #[doc = "The linearized model: canonical matrices, state space, characteristic polynomial."]
