@@ -323,7 +323,7 @@ pub mod advanced {
     pub mod design {
         pub use crate::analysis::design::{
             Axis, DesignQuantities, DesignRow, DesignStatus, MAX_AXIS_POINTS, Parameter, Shard,
-            StudySettings,
+            StudySettings, aliases,
         };
     }
     #[doc = "Eigenvalues and eigenvectors of the linear model at one speed."]

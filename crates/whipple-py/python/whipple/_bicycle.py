@@ -231,8 +231,18 @@ class Bicycle:
         return self._native.write(format)
 
     def replace(self, **changes: float) -> "Bicycle":
-        """A copy with parameters of its own form changed: ``bike.replace(c=0.09, mB=90.0)``
-        (JBike6 keys such as ``wheelbase`` for a JBike6-form bicycle)."""
+        """A copy with parameters changed, by the names :meth:`design_map`'s axes take (the
+        command line's ``--x``/``--y`` names): a key of the bicycle's form (``c``, ``mB``,
+        ``lam``, ``rR``; JBike6 keys such as ``wheelbase`` or ``mrider`` and TOML paths such as
+        ``rider.m`` for a JBike6-form bicycle), or an alias (``trail``, ``wheelbase``,
+        ``head_angle``, ``steer_axis_tilt``, ``gravity``, ``wheel_radius``; ``wheel_diameter``),
+        in SI units, or in degrees with ``_deg`` after an angle::
+
+            bike.replace(trail=0.09, head_angle_deg=70.0, mB=90.0)
+
+        The σ of the parameters changed are dropped, and the copy's name ends in
+        ``(edited)``. A name the bicycle does not have raises :class:`ParameterError` listing
+        the names it takes."""
         native = self._native.replace([(k, float(v)) for k, v in changes.items()])
         return type(self)._wrap(native)
 
