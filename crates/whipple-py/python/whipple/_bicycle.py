@@ -364,7 +364,10 @@ class Bicycle:
         """Simulates the non-linear multibody bicycle (four rigid bodies, knife-edge wheels,
         projected onto the constraints after each step) from upright running at ``speed``
         [m/s] with initial ``lean``, ``steer`` [rad], ``lean_rate``, ``steer_rate`` [rad/s],
-        for ``duration`` [s].
+        for ``duration`` [s]. ``speed`` is the rear hub's forward speed (the rear wheel
+        centre's velocity along the rear frame's heading: the model's own speed coordinate,
+        the ``speed`` column of the result); in a turn it differs from the rear contact's speed
+        that :meth:`turn` takes (``SteadyTurn.hub_speed`` gives one from the other).
 
         ``integrator``: ``'rk4'`` with step ``dt`` (default 1 ms) or ``'adaptive'``
         (Dormand–Prince 5(4)) with relative tolerance ``rtol`` (default 1e-8). Rider torques
