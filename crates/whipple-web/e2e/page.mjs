@@ -792,7 +792,8 @@ await section("measured files: every field shows its value and σ, kept through 
   for (const file of files) {
     await open("?bike=preset:benchmark");
     await page.setInputFiles("#file-input", join(folder, file));
-    await waitFor(`${file} in the editor`, async () => (await page.inputValue("#design-name")).startsWith(file.replace(/\.txt$/, "")), 15_000);
+    // Named as BicycleParameters names it, without the parameter set's suffix.
+    await waitFor(`${file} in the editor`, async () => (await page.inputValue("#design-name")).startsWith(file.replace(/Benchmark\.txt$/, "")), 15_000);
     await settled();
     const shown = await page.$$eval("#editor-body input", (is) => Object.fromEntries(is.map((i) => [i.dataset.testid, i.value])));
     for (const line of readFileSync(join(folder, file), "utf8").split("\n")) {
