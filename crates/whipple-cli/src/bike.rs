@@ -86,7 +86,7 @@ pub fn load(cx: &RunContext, arg: &str) -> Result<LoadedBike> {
             };
             let mut bicycle = parse(&text, format).map_err(|e| located(e, path, &text))?;
             if bicycle.name.is_none() {
-                bicycle.name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
+                bicycle.name = whipple::advanced::io::name_from_file_name(&name, format);
             }
             let label = bicycle.name.clone().unwrap_or_else(|| arg.to_string());
             (label, bicycle)

@@ -23,6 +23,8 @@ fn speeds_print_the_uncertainty_of_a_measured_bicycle() {
         out.contains("weave speed v_w        3.7981 ± 0.0764 m/s"),
         "{out}"
     );
+    // Named as BicycleParameters names it, without the parameter set's suffix (issue 28).
+    assert!(out.starts_with("Fisher: critical speeds"), "{out}");
     let json: serde_json::Value = serde_json::from_str(&stdout(&whipple(&[
         "speeds",
         "--bike",
@@ -128,4 +130,52 @@ fn field_formats_convert_and_read_back() {
         err.contains("--bike-format") && err.contains("hc-txt"),
         "{err}"
     );
+}
+
+/// Issue 28, item 14: a σ of 1e300 (a slip of the pen in a measured file) printed "± inf" in
+/// `whipple speeds`, and the JSON output refused it. The propagated σ is now a scaled norm (no
+/// overflow where the true value is finite), and a σ of a speed larger than the speed itself,
+/// or past the largest double, is refused in both outputs with the parameter named as the file
+/// writes it (`mB`) and its σ.
+#[test]
+fn issue_28_an_absurd_sigma_is_refused_naming_the_field_never_printed_as_inf() {
+    let fisher = std::fs::read_to_string(data("bicycleparameters/FisherBenchmark.txt"))
+        .expect("the Fisher file");
+    let dir = scratch("absurd-sigma");
+    for (line, sigma, field) in [
+        ("mB = 4.5+/-0.02", "mB = 4.5+/-1e300", "`mB` = 1e300"),
+        // ∂v/∂IBxx · σ is itself past f64::MAX.
+        (
+            "IBxx = 0.2825+/-0.00127383578938",
+            "IBxx = 0.2825+/-1.7e308",
+            "`IBxx` = 1.7e308",
+        ),
+    ] {
+        assert!(fisher.contains(line), "{line}");
+        let path = dir.join("AbsurdBenchmark.txt");
+        std::fs::write(&path, fisher.replace(line, sigma)).expect("write");
+        let bike = path.to_string_lossy().into_owned();
+        for format in ["table", "json"] {
+            let err = stderr_of_failure(&whipple(&["speeds", "--bike", &bike, "--format", format]));
+            assert!(
+                err.contains(field)
+                    && err.contains("standard deviation")
+                    && err.contains("σ of v_"),
+                "{format}: {err}"
+            );
+            assert!(
+                !err.contains("inf") && !err.contains("NaN"),
+                "{format}: {err}"
+            );
+        }
+    }
+    // A large but sane σ (a tenth of the mass) still prints.
+    let path = dir.join("WideBenchmark.txt");
+    std::fs::write(&path, fisher.replace("mB = 4.5+/-0.02", "mB = 4.5+/-0.45")).expect("write");
+    let out = stdout(&whipple(&["speeds", "--bike", &path.to_string_lossy()]));
+    assert!(
+        out.contains("weave speed v_w") && out.contains(" ± "),
+        "{out}"
+    );
+    assert!(!out.contains("inf"), "{out}");
 }

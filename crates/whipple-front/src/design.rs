@@ -9,8 +9,8 @@
 use serde::ser::SerializeStruct;
 use serde::{Serialize, Serializer};
 use whipple::Study;
-use whipple::advanced::design::{Axis, MAX_AXIS_POINTS, Parameter, StudySettings};
-use whipple::advanced::parameters::Description;
+use whipple::advanced::design::{Axis, MAX_AXIS_POINTS, Parameter, StudySettings, aliases};
+use whipple::advanced::table::{Form, parameters};
 use whipple::{Bicycle, Error, Result};
 
 use crate::units::{self, RADIANS_PER_DEGREE};
@@ -42,34 +42,113 @@ impl Serialize for AxisSpec {
     }
 }
 
-fn unknown(name: &str, known: String) -> Error {
-    Error::InvalidArgument {
-        what: "axis",
-        rule: format!("`{name}` is not a parameter of this bicycle (known: {known})"),
+/// The names a base bicycle's parameters may take, for the message naming an unknown one: its
+/// form's table keys and the library's aliases ([`aliases`]), `speed` where it is accepted.
+fn known_names(base: &Bicycle, speed: bool) -> String {
+    let form = base.description.form();
+    let keys: Vec<&str> = parameters(form).iter().map(|p| p.key).collect();
+    let speed = if speed { "; speed" } else { "" };
+    match form {
+        Form::Benchmark => format!(
+            "the benchmark keys {}; {}{speed}; _deg after an angle",
+            keys.join(", "),
+            aliases(form).join(", ")
+        ),
+        Form::Jbike6 => format!(
+            "{}, {} (or their TOML paths: rider.m, rider.xcm, rider.I[1], ...){speed}; _deg \
+             after an angle",
+            keys.join(", "),
+            aliases(form).join(", ")
+        ),
     }
 }
 
-/// The names a base bicycle's axes may take, for the message naming an unknown one.
-fn known_names(base: &Bicycle) -> String {
-    match &base.description {
-        Description::Benchmark(_) => {
-            "the benchmark keys w, c, lam, g, rR, mR, IRxx, IRyy, xB, zB, \
-                                      mB, IBxx, IByy, IBzz, IBxz, xH, zH, mH, IHxx, IHyy, IHzz, \
-                                      IHxz, rF, mF, IFxx, IFyy; wheelbase, trail, \
-                                      steer_axis_tilt, head_angle, gravity, wheel_radius; speed; \
-                                      _deg after an angle"
-                .into()
+/// A parameter's name as people type it (`trail`, `head_angle_deg`, `c`, `rider.m`,
+/// `speed`): the library's [`Parameter`] of `base`'s form ([`Parameter::named`]) and whether
+/// its values are degrees (`_deg`, only after an angle). The error is the rule broken, naming
+/// the name as typed; `speed` says whether the speed is a name here.
+fn resolve(
+    name: &str,
+    base: &Bicycle,
+    speed: bool,
+) -> std::result::Result<(Parameter, bool), String> {
+    let (stem, degrees) = units::strip_degrees(name);
+    let parameter = match Parameter::named(stem, base) {
+        Some(Parameter::Speed) if !speed => None,
+        other => other,
+    };
+    let Some(parameter) = parameter else {
+        return Err(format!(
+            "`{name}` is not a parameter of this bicycle (known: {})",
+            known_names(base, speed)
+        ));
+    };
+    if degrees {
+        if parameter == Parameter::Speed {
+            return Err("speed has no `_deg` form".into());
         }
-        Description::Jbike6(j) => {
-            let names: Vec<String> = j.fields().into_iter().map(|(n, _)| n).collect();
-            format!(
-                "{}, wheel_diameter (or their TOML paths: rider.m, rider.xcm, rider.I[1], ...); \
-                 speed; _deg after an angle",
-                names.join(", ")
-            )
+        if !parameter.is_angle() {
+            return Err(format!("`{name}`: `{stem}` is not an angle"));
         }
     }
+    Ok((parameter, degrees))
 }
+
+/// The bicycle with parameters changed by the names a design axis takes (a table key such as
+/// `c` or `mB`, an alias such as `trail` or `head_angle`, `wheel_radius`, a JBike6 `.m` key or
+/// TOML path, `_deg` after an angle for a value in degrees), in the order given: the values set
+/// in SI units ([`Parameter::set`]), the σ of the keys they set dropped, and the name marked
+/// ` (edited)` (as the page names an edited design) unless it already is. A name the base's
+/// form does not have, the speed, or `_deg` after what is not an angle is
+/// [`Error::InvalidParameter`] naming it as typed, with the names accepted.
+///
+/// ```
+/// use whipple::presets;
+/// use whipple_front::design::replace;
+/// let crown = presets::find("schwinn-crown")?.bicycle();
+/// let steeper = replace(&crown, &[("head_angle_deg".into(), 72.0), ("trail".into(), 0.05)])?;
+/// assert_eq!(steeper.name.as_deref(), Some("schwinn-crown (edited)"));
+/// let benchmark = replace(&presets::find("benchmark")?.bicycle(), &[("trail".into(), 0.09)])?;
+/// assert_eq!(benchmark.description.values()[1], 0.09);
+/// assert!(replace(&benchmark, &[("speed".into(), 5.0)]).is_err());
+/// # Ok::<(), whipple::Error>(())
+/// ```
+pub fn replace(base: &Bicycle, changes: &[(String, f64)]) -> Result<Bicycle> {
+    let mut bicycle = base.clone();
+    for (name, value) in changes {
+        let refuse = |rule: String| Error::InvalidParameter {
+            field: name.clone(),
+            value: *value,
+            rule,
+        };
+        let (parameter, degrees) = resolve(name.trim(), base, false).map_err(refuse)?;
+        let si = if degrees {
+            value * RADIANS_PER_DEGREE
+        } else {
+            *value
+        };
+        if !parameter.set(&mut bicycle.description, si) {
+            return Err(refuse(format!(
+                "not a parameter of this bicycle (known: {})",
+                known_names(base, false)
+            )));
+        }
+        for key in parameter.keys() {
+            bicycle.sigma.remove(*key);
+        }
+    }
+    bicycle.name = bicycle.name.map(|name| {
+        if name.ends_with(EDITED) {
+            name
+        } else {
+            format!("{name}{EDITED}")
+        }
+    });
+    Ok(bicycle)
+}
+
+/// What an edited bicycle's name ends with (the page's compare names an edited design so).
+pub const EDITED: &str = " (edited)";
 
 impl AxisSpec {
     /// Parses `NAME=START:STOP:COUNT` for a base bicycle: the name must exist in its form
@@ -123,18 +202,7 @@ impl AxisSpec {
                 "`{spec}`: COUNT must lie in 1..={MAX_AXIS_POINTS}, got {count}"
             )));
         }
-        let (stem, degrees) = units::strip_degrees(name);
-        let Some(parameter) = Parameter::named(stem, base) else {
-            return Err(unknown(name, known_names(base)));
-        };
-        if degrees {
-            if parameter == Parameter::Speed {
-                return Err(bad("speed has no `_deg` form".into()));
-            }
-            if !parameter.is_angle() {
-                return Err(bad(format!("`{name}`: `{stem}` is not an angle")));
-            }
-        }
+        let (parameter, degrees) = resolve(name, base, true).map_err(bad)?;
         let scale = if degrees { RADIANS_PER_DEGREE } else { 1.0 };
         Ok(AxisSpec {
             name: name.to_string(),

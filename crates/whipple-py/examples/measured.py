@@ -1,25 +1,21 @@
 # %% [markdown]
 # # A measured bicycle with its uncertainty
-# BicycleParameters' Fisher (Moore 2012; `FisherBenchmark.txt` from BicycleParameters' data set,
-# shipped with whipple's tests) carries a standard deviation on every measured parameter:
-# whipple propagates it to the critical speeds (first order, exact derivatives) and says which
-# parameter matters most.
+# BicycleParameters' Fisher (Moore 2012), shipped with whipple as the preset `fisher`: its
+# values and the standard deviation of every measured parameter, to every digit of
+# BicycleParameters' own data, so this runs anywhere the package is installed. whipple
+# propagates the σ to the critical speeds (first order, exact derivatives) and says which
+# parameter matters most. A file of your own reads the same way:
+# `whipple.Bicycle.from_file("FisherBenchmark.txt")` (a file is named without the
+# parameter set's suffix: `Fisher`).
 
 # %%
-import os
-from pathlib import Path
-
 import whipple
 
-# The file is in the clone: found from this script's folder, or (in Jupyter, which has no
-# __file__) from the working directory, whether that is the examples folder or the clone's root.
-here = Path(__file__).resolve().parent if "__file__" in globals() else Path.cwd()
-data = Path("crates", "whipple", "tests", "data", "bicycleparameters", "FisherBenchmark.txt")
-path = next((d / data for d in (here, *here.parents) if (d / data).is_file()), None)
-if path is None:
-    raise SystemExit(f"{data} not found above {here}: run this example inside a whipple clone")
-fisher = whipple.Bicycle.from_file(path)
+fisher = whipple.Bicycle.preset("fisher")
 print(fisher)
+print("source:", fisher.source)
+print(f"{len(fisher.sigma)} parameters carry a σ, for example c = "
+      f"{fisher.to_dict()['c']:.6g} ± {fisher.sigma['c']:.3g} m")
 print(fisher.critical_speeds())
 
 # %% Which parameter moves the weave speed most (elasticities, ∂ln v_w / ∂ln p)
@@ -27,3 +23,7 @@ s = fisher.sensitivities()
 order = sorted(range(len(s.key)), key=lambda i: -abs(s.elasticity_v_w[i]))
 for i in order[:5]:
     print(f"{s.key[i]:>5} ({s.symbol[i]}): dv_w/dp = {s.d_v_w[i]:+.4g} m/s per {s.unit[i] or 'unit'}, elasticity {s.elasticity_v_w[i]:+.3f}")
+
+# %% A design change by the names a design map takes: a longer trail, in the map's units
+longer = fisher.replace(trail=0.09, head_angle_deg=70.0)
+print(longer.name, longer.critical_speeds())

@@ -7,7 +7,6 @@ use pyo3::prelude::*;
 use whipple::advanced::io;
 use whipple::advanced::io::Format;
 use whipple::advanced::parameters::Checked;
-use whipple::advanced::parameters::Description;
 use whipple::advanced::table;
 use whipple::advanced::table::Form;
 use whipple::presets as library_presets;
@@ -79,10 +78,7 @@ impl NativeBicycle {
         .py_err(py)?;
         let mut bicycle = io::parse(text, format).py_err(py)?;
         if bicycle.name.is_none() {
-            let stem = std::path::Path::new(file_name)
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned());
-            bicycle.name = stem.filter(|s| !s.is_empty());
+            bicycle.name = io::name_from_file_name(file_name, format);
         }
         Self::new(py, bicycle, strict)
     }
@@ -218,45 +214,12 @@ impl NativeBicycle {
         io::write(&self.bicycle, format).py_err(py)
     }
 
-    /// The same bicycle with some parameters of its own form changed ((key, value) pairs), and
-    /// their standard deviations dropped.
+    /// The same bicycle with some parameters changed ((name, value) pairs), by the names a
+    /// design axis takes (whipple-front's `design::replace`: keys, aliases such as `trail`,
+    /// `_deg` after an angle), their standard deviations dropped, named `… (edited)`.
     fn replace(&self, py: Python<'_>, changes: Vec<(String, f64)>) -> PyResult<Self> {
-        let mut bicycle = self.bicycle.clone();
-        let form = bicycle.description.form();
-        let mut values = bicycle.description.values();
-        for (key, value) in &changes {
-            let Some(i) = table::index_of(form, key) else {
-                let known: Vec<&str> = table::parameters(form).iter().map(|p| p.key).collect();
-                return Err(Error::InvalidParameter {
-                    field: key.clone(),
-                    value: *value,
-                    rule: format!(
-                        "not a parameter of the {} form (known: {})",
-                        self.form(),
-                        known.join(", ")
-                    ),
-                })
-                .py_err(py);
-            };
-            values[i] = *value;
-            bicycle.sigma.remove(key);
-        }
-        bicycle.description =
-            match bicycle.description {
-                Description::Benchmark(_) => Description::Benchmark(
-                    whipple::BenchmarkParameters::from_array(values.try_into().map_err(|_| {
-                        pyo3::exceptions::PyRuntimeError::new_err("parameter count")
-                    })?),
-                ),
-                Description::Jbike6(_) => Description::Jbike6(
-                    whipple::advanced::parameters::Jbike6Parameters::from_array(
-                        values.try_into().map_err(|_| {
-                            pyo3::exceptions::PyRuntimeError::new_err("parameter count")
-                        })?,
-                    ),
-                ),
-            };
-        // Notes of the file (unused keys) stay; the checks' warnings are redone.
+        let mut bicycle = whipple_front::design::replace(&self.bicycle, &changes).py_err(py)?;
+        // The checks' warnings are redone on the new values.
         bicycle.notices.clear();
         Self::new(py, bicycle, false)
     }

@@ -203,7 +203,7 @@ def test_from_file_detects_the_format(tmp_path, benchmark):
     bp = tmp_path / "FisherBenchmark.txt"
     bp.write_bytes((DATA / "bicycleparameters" / "FisherBenchmark.txt").read_bytes())
     fisher = whipple.Bicycle.from_file(bp)
-    assert fisher.name == "FisherBenchmark" and fisher.sigma["IBxx"] > 0
+    assert fisher.name == "Fisher" and fisher.sigma["IBxx"] > 0
 
 
 def test_measured_bicycle_warns_and_strict_refuses():

@@ -26,6 +26,45 @@ def test_map_cells_are_the_single_bicycle_speeds(benchmark):
     assert set(m.status.ravel()) <= {"ok", "invalid", "accuracy_lost"}
 
 
+def test_replace_takes_the_names_design_map_takes(benchmark):
+    """Issue 28, item 13: ``replace`` takes the axis names (``trail``, ``head_angle_deg``,
+    ``wheel_radius``, the keys), read by the same code as the map's axes, so a map's cell is the
+    replaced bicycle's speeds; a wrong name lists the names accepted."""
+    m = benchmark.design_map("trail=0.05:0.11:3", "head_angle_deg=68:74:3")
+    for iy, head in enumerate(m.y):
+        for ix, trail in enumerate(m.x):
+            s = benchmark.replace(trail=float(trail), head_angle_deg=float(head)).critical_speeds()
+            assert s.v_w is not None and abs(m.v_w[iy, ix] - s.v_w) < 1e-10, (trail, head)
+    by_alias = benchmark.replace(trail=0.09, head_angle_deg=70.0, wheel_radius=0.33)
+    d = by_alias.to_dict()
+    assert d["c"] == 0.09 and d["rR"] == d["rF"] == 0.33
+    assert abs(d["lam"] - np.radians(20.0)) < 1e-15
+    assert by_alias.to_dict() == benchmark.replace(
+        c=0.09, lam=np.pi / 2 - np.radians(70.0), rR=0.33, rF=0.33).to_dict()
+    assert benchmark.replace(lam_deg=18.0).to_dict()["lam"] == pytest.approx(np.pi / 10, abs=1e-15)
+    crown = whipple.Bicycle.preset("schwinn-crown")
+    assert crown.replace(**{"rider.m": 80.0}).jbike6_dict()["mrider"] == 80.0
+    assert crown.replace(wheel_diameter=0.7).jbike6_dict()["Dfrontwheel"] == 0.7
+    for bad, words in (("trial", "known:"), ("speed", "known:"), ("c_deg", "not an angle"),
+                       ("mrider", "known:")):
+        with pytest.raises(whipple.ParameterError) as raised:
+            benchmark.replace(**{bad: 1.0})
+        assert raised.value.field == bad and words in raised.value.rule, raised.value.rule
+    with pytest.raises(whipple.ParameterError) as raised:
+        benchmark.replace(trial=0.09)
+    assert "trail" in raised.value.rule and "head_angle" in raised.value.rule
+
+
+def test_replace_names_the_copy_edited_and_drops_the_sigma_it_replaced():
+    fisher = whipple.Bicycle.preset("fisher")
+    assert fisher.sigma["c"] > 0 and fisher.sigma["lam"] > 0
+    edited = fisher.replace(trail=0.07, head_angle_deg=71.0)
+    assert edited.name == f"{fisher.name} (edited)"
+    assert "c" not in edited.sigma and "lam" not in edited.sigma
+    assert edited.sigma["mB"] == fisher.sigma["mB"]
+    assert edited.replace(mB=5.0).name == edited.name  # once, however many edits
+
+
 def test_refused_designs_say_why(benchmark):
     m = benchmark.design_map("mB=-10:10:3")
     assert m.status[0] == "invalid" and "mB" in m.reason[0] and np.isnan(m.v_w[0])

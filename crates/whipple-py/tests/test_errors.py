@@ -32,9 +32,11 @@ def test_unknown_and_missing_keys(benchmark):
     with pytest.raises(whipple.ParameterError) as info:
         whipple.Bicycle.from_dict({**benchmark.to_dict(), "w": "wide"})
     assert info.value.field == "w"
+    # `wheelbase` is a design axis's name for `w` (issue 28), a misspelling is not.
+    assert benchmark.replace(wheelbase=1.0).to_dict()["w"] == 1.0
     with pytest.raises(whipple.ParameterError) as info:
-        benchmark.replace(wheelbase=1.0)
-    assert info.value.field == "wheelbase" and "not a parameter" in info.value.rule
+        benchmark.replace(wheelbas=1.0)
+    assert info.value.field == "wheelbas" and "not a parameter" in info.value.rule
 
 
 def test_invalid_bicycle_names_the_fields(benchmark):

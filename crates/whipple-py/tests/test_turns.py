@@ -227,3 +227,17 @@ def test_simulate_from_turn_matches_cli(cli, benchmark):
     ours = np.column_stack([run.columns[name] for name in header])
     assert ours.shape == rows.shape
     assert np.array_equal(ours, rows)
+
+
+def test_each_speed_says_whose_it_is(benchmark):
+    """Issue 28, item 13: ``simulate``'s speed is the rear hub's, ``turn``'s the rear
+    contact's; the docstrings say so and the numbers agree: a run started on a turn at the rear
+    contact's speed v runs at the turn's hub speed."""
+    assert "rear hub" in whipple.Bicycle.simulate.__doc__
+    assert "rear contact" in whipple.Bicycle.turn.__doc__
+    assert "rear hub" in whipple.Simulation.__doc__
+    turn = benchmark.turn(5.0, lean=0.2)
+    assert turn.speed == 5.0 and abs(turn.hub_speed - turn.speed) > 1e-3
+    run = benchmark.simulate(5.0, 0.01, lean=0.2, from_turn=True)
+    assert abs(run.speed[0] - turn.hub_speed) < 1e-9
+    assert benchmark.simulate(5.0, 0.01).speed[0] == 5.0

@@ -723,7 +723,7 @@ await section("a link to an opened file, opened in a fresh browser, names the de
   await open("?bike=preset:benchmark");
   const folder = fileURLToPath(new URL("../../whipple/tests/data/bicycleparameters/", import.meta.url));
   await page.setInputFiles("#file-input", join(folder, "FisherBenchmark.txt"));
-  await waitFor("Fisher in the editor", async () => (await page.inputValue("#design-name")).startsWith("FisherBenchmark"), 15_000);
+  await waitFor("Fisher in the editor", async () => (await page.inputValue("#design-name")).startsWith("Fisher"), 15_000);
   await settled();
   const link = page.url();
   const fresh = await launch();
@@ -733,7 +733,7 @@ await section("a link to an opened file, opened in a fresh browser, names the de
     await p.waitForSelector("body[data-ready=true]", { timeout: 20_000 });
     await p.waitForSelector("body[data-pending='0']", { state: "attached", timeout: 30_000 });
     const shown = await p.$eval("#bike-select", (s) => s.selectedOptions[0]?.textContent ?? "");
-    check(shown === "FisherBenchmark (not saved here)", `the picker names the linked design: "${shown}"`);
+    check(shown === "Fisher (not saved here)", `the picker names the linked design: "${shown}"`);
     const vw = (await p.getByTestId("weave-speed").textContent()) ?? "";
     check(/ ± /.test(vw), `and its σ came with it: v_w ${vw}`);
   } finally {
@@ -792,7 +792,8 @@ await section("measured files: every field shows its value and σ, kept through 
   for (const file of files) {
     await open("?bike=preset:benchmark");
     await page.setInputFiles("#file-input", join(folder, file));
-    await waitFor(`${file} in the editor`, async () => (await page.inputValue("#design-name")).startsWith(file.replace(/\.txt$/, "")), 15_000);
+    // Named as BicycleParameters names it, without the parameter set's suffix.
+    await waitFor(`${file} in the editor`, async () => (await page.inputValue("#design-name")).startsWith(file.replace(/Benchmark\.txt$/, "")), 15_000);
     await settled();
     const shown = await page.$$eval("#editor-body input", (is) => Object.fromEntries(is.map((i) => [i.dataset.testid, i.value])));
     for (const line of readFileSync(join(folder, file), "utf8").split("\n")) {
@@ -820,7 +821,7 @@ await section("measured files: every field shows its value and σ, kept through 
   // Fisher: an edit keeps every σ, the table reads v ± σ, and the saved TOML has every σ.
   await open("?bike=preset:benchmark");
   await page.setInputFiles("#file-input", join(folder, "FisherBenchmark.txt"));
-  await waitFor("Fisher in the editor", async () => (await page.inputValue("#design-name")).startsWith("FisherBenchmark"), 15_000);
+  await waitFor("Fisher in the editor", async () => (await page.inputValue("#design-name")).startsWith("Fisher"), 15_000);
   await settled();
   const before = await text("weave-speed");
   check(/^\d+\.\d{4} ± \d/.test(before), `v_w ± σ in the table: "${before}"`);
@@ -828,7 +829,7 @@ await section("measured files: every field shows its value and σ, kept through 
   const marks = await page.$$eval("[data-testid=eigen-plot] svg text", (ts) => ts.map((t) => t.textContent).filter((t) => /^v_[wc] /.test(t)));
   check(marks.length === 2 && marks.every((t) => / ± /.test(t)) && (await page.locator("[data-testid=eigen-plot] [data-testid=sigma-band]").count()) >= 2, `the plot's markers read v ± σ with the band shaded: ${marks.join(", ")}`);
   const fisherCsv = await downloadOf(() => page.click("#eigen-csv"));
-  check(/^# FisherBenchmark: .*v_w = [\d.]+ ± [\d.e-]+ m\/s/m.test(fisherCsv.text), `the CSV's header gives v ± σ: ${fisherCsv.text.split("\n")[1]}`);
+  check(/^# Fisher: .*v_w = [\d.]+ ± [\d.e-]+ m\/s/m.test(fisherCsv.text), `the CSV's header gives v ± σ: ${fisherCsv.text.split("\n")[1]}`);
   await page.getByTestId("param-mB").fill("5");
   await waitForText("weave-speed", (t) => t !== before && / ± /.test(t));
   check((await page.inputValue("[data-testid=sigma-mB]")) === "0.02", "the edited mass keeps its σ (0.02 kg)");

@@ -647,7 +647,14 @@ async fn parse_file(
                     )
                 })?
             };
-            let bike = io::parse(&request.text, format)?;
+            let mut bike = io::parse(&request.text, format)?;
+            // A file without a name of its own is named after the file, as the CLI names it.
+            if bike.name.is_none() {
+                bike.name = request
+                    .file_name
+                    .as_deref()
+                    .and_then(|f| io::name_from_file_name(f, format));
+            }
             Ok(Parsed {
                 bike: bicycle_json(&bike)?,
                 format: format.name(),

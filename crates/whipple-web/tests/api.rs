@@ -1582,3 +1582,32 @@ async fn turns_lifting_a_wheel_or_past_the_radius_bound_are_422() -> TestResult 
     assert_eq!(body["error"]["field"], "radius", "{body}");
     Ok(())
 }
+
+/// Issue 28, item 13: a file without a `name` is named after the file without the parameter
+/// set's suffix, as BicycleParameters names it and as the CLI and Python do (one function in
+/// the library): `FisherBenchmark.txt` is `Fisher`; a file with a `name` keeps it.
+#[tokio::test]
+async fn a_parsed_file_is_named_without_the_parameter_sets_suffix() -> TestResult {
+    let app = app(Limits::default());
+    let mut fisher = presets::find("fisher")?.bicycle();
+    fisher.name = None;
+    let text = write(&fisher, Format::BicycleParametersTxt)?;
+    for (file_name, expected) in [
+        ("FisherBenchmark.txt", json!("Fisher")),
+        (
+            "bicycles/Fisher/RawData/FisherMeasured.txt",
+            json!("Fisher"),
+        ),
+        ("Benchmark.txt", json!("Benchmark")),
+    ] {
+        let (status, body) = post(
+            &app,
+            "/api/bike/parse",
+            &json!({"text": text, "format": "auto", "file_name": file_name}),
+        )
+        .await?;
+        assert_eq!(status, StatusCode::OK, "{body}");
+        assert_eq!(body["bike"]["name"], expected, "{file_name}");
+    }
+    Ok(())
+}

@@ -324,7 +324,7 @@ pub mod advanced {
     pub mod design {
         pub use crate::analysis::design::{
             Axis, DesignQuantities, DesignRow, DesignStatus, MAX_AXIS_POINTS, Parameter, Shard,
-            StudySettings,
+            StudySettings, aliases,
         };
     }
     #[doc = "Eigenvalues and eigenvectors of the linear model at one speed."]
@@ -372,7 +372,7 @@ pub mod advanced {
         pub use crate::parameters::io::Format;
         pub use crate::parameters::io::{
             FORMATS, MAX_FILE_BYTES, UNDETERMINED_FORMAT, json_slice_without_duplicates,
-            json_without_duplicates, parse, write,
+            json_without_duplicates, name_from_file_name, parse, write,
         };
     }
     #[doc = "The linearized model: canonical matrices, state space, characteristic polynomial, the linear system with named inputs and outputs, transfer functions."]

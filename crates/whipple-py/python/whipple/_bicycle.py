@@ -231,8 +231,18 @@ class Bicycle:
         return self._native.write(format)
 
     def replace(self, **changes: float) -> "Bicycle":
-        """A copy with parameters of its own form changed: ``bike.replace(c=0.09, mB=90.0)``
-        (JBike6 keys such as ``wheelbase`` for a JBike6-form bicycle)."""
+        """A copy with parameters changed, by the names :meth:`design_map`'s axes take (the
+        command line's ``--x``/``--y`` names): a key of the bicycle's form (``c``, ``mB``,
+        ``lam``, ``rR``; JBike6 keys such as ``wheelbase`` or ``mrider`` and TOML paths such as
+        ``rider.m`` for a JBike6-form bicycle), or an alias (``trail``, ``wheelbase``,
+        ``head_angle``, ``steer_axis_tilt``, ``gravity``, ``wheel_radius``; ``wheel_diameter``),
+        in SI units, or in degrees with ``_deg`` after an angle::
+
+            bike.replace(trail=0.09, head_angle_deg=70.0, mB=90.0)
+
+        The σ of the parameters changed are dropped, and the copy's name ends in
+        ``(edited)``. A name the bicycle does not have raises :class:`ParameterError` listing
+        the names it takes."""
         native = self._native.replace([(k, float(v)) for k, v in changes.items()])
         return type(self)._wrap(native)
 
@@ -356,7 +366,10 @@ class Bicycle:
         """Simulates the non-linear multibody bicycle (four rigid bodies, knife-edge wheels,
         projected onto the constraints after each step) from upright running at ``speed``
         [m/s] with initial ``lean``, ``steer`` [rad], ``lean_rate``, ``steer_rate`` [rad/s],
-        for ``duration`` [s].
+        for ``duration`` [s]. ``speed`` is the rear hub's forward speed (the rear wheel
+        centre's velocity along the rear frame's heading: the model's own speed coordinate,
+        the ``speed`` column of the result); in a turn it differs from the rear contact's speed
+        that :meth:`turn` takes (``SteadyTurn.hub_speed`` gives one from the other).
 
         ``integrator``: ``'rk4'`` with step ``dt`` (default 1 ms) or ``'adaptive'``
         (Dormand–Prince 5(4)) with relative tolerance ``rtol`` (default 1e-8). Rider torques

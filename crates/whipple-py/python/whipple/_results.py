@@ -294,7 +294,10 @@ class Simulation:
     ``columns`` maps every column of the command line's ``simulate --format csv`` (``t``,
     ``lean``, ``steer``, …, ``front_y``, in that order, ``csv_columns``) and the dependent
     coordinates ``pitch``, ``rear_wheel_angle``, ``front_wheel_angle`` to numpy arrays; each is
-    also an attribute (``run.lean``). Radians, metres, seconds, newtons, joules.
+    also an attribute (``run.lean``). Radians, metres, seconds, newtons, joules. ``speed`` is
+    the rear hub's forward speed [m/s] (the rear wheel centre's velocity along the rear frame's
+    heading, as :meth:`Bicycle.simulate` takes it), not the rear contact's of
+    :meth:`Bicycle.turn`.
 
     ``outcome`` is how the run ended, in words; ``outcome_kind`` a machine name (``completed``,
     ``fell``, ``wheel_lifted``, ``projection_failed``, ``non_finite_state``, ``step_limit``,

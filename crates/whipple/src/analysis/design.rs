@@ -100,14 +100,34 @@ fn form_name(form: Form) -> &'static str {
     }
 }
 
-/// Benchmark-form names that may stand for the keys (aliases of the paper's symbols).
+/// Benchmark-form names that stand for a key (aliases of the paper's symbols): (alias, key).
+const BENCHMARK_ALIASES: [(&str, &str); 4] = [
+    ("wheelbase", "w"),
+    ("trail", "c"),
+    ("steer_axis_tilt", "lam"),
+    ("gravity", "g"),
+];
+
+/// The key an alias of the benchmark form stands for, or the name itself.
 fn benchmark_alias(name: &str) -> &str {
-    match name {
-        "wheelbase" => "w",
-        "trail" => "c",
-        "steer_axis_tilt" => "lam",
-        "gravity" => "g",
-        other => other,
+    BENCHMARK_ALIASES
+        .iter()
+        .find(|(alias, _)| *alias == name)
+        .map_or(name, |(_, key)| key)
+}
+
+/// The names a form accepts beside its table's keys (and, in the JBike6 form, their TOML
+/// paths), in the order messages list them: the benchmark form's aliases (`wheelbase`,
+/// `trail`, `steer_axis_tilt`, `gravity`), `head_angle` and `wheel_radius`; the JBike6 form's
+/// `wheel_diameter`. The speed is not among them (it is no parameter of the bicycle).
+pub fn aliases(form: Form) -> Vec<&'static str> {
+    match form {
+        Form::Benchmark => {
+            let mut names: Vec<&'static str> = BENCHMARK_ALIASES.iter().map(|(a, _)| *a).collect();
+            names.extend(["head_angle", "wheel_radius"]);
+            names
+        }
+        Form::Jbike6 => vec!["wheel_diameter"],
     }
 }
 
@@ -198,6 +218,59 @@ impl Parameter {
     pub fn is_angle(&self) -> bool {
         self.unit() == ANGLE_UNIT
     }
+
+    /// The table keys whose values it sets (`c` for `trail`, `lam` for the benchmark form's
+    /// `head_angle`, `rR` and `rF` for `wheel_radius`); none for the speed. A bicycle's σ of
+    /// these keys no longer applies once the parameter is set.
+    pub fn keys(&self) -> &'static [&'static str] {
+        match self {
+            Parameter::Table(info) => std::slice::from_ref(&info.key),
+            Parameter::HeadAngle => &["lam"],
+            Parameter::WheelRadius => &["rR", "rF"],
+            Parameter::WheelDiameter => &["Drearwheel", "Dfrontwheel"],
+            Parameter::Speed => &[],
+        }
+    }
+
+    /// Sets the parameter to `x` (SI units) in a description of its own form: by the table's
+    /// key, or the parameters an alias stands for (both wheel radii for `wheel_radius`,
+    /// λ = π/2 − x for the benchmark form's `head_angle`). `false`, the description unchanged,
+    /// for the speed or a description of the other form.
+    ///
+    /// ```
+    /// use whipple::advanced::design::Parameter;
+    /// let mut bike = whipple::presets::find("benchmark")?.bicycle();
+    /// let head = Parameter::find("head_angle", &bike)?;
+    /// assert!(head.set(&mut bike.description, 70f64.to_radians()));
+    /// assert!((bike.description.values()[2] - 20f64.to_radians()).abs() < 1e-15);
+    /// assert!(!Parameter::Speed.set(&mut bike.description, 5.0));
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn set(&self, description: &mut Description, x: f64) -> bool {
+        match (self, description) {
+            (Parameter::Table(info), Description::Benchmark(b)) if info.form == Form::Benchmark => {
+                b.set(info.key, x)
+            }
+            (Parameter::Table(info), Description::Jbike6(j)) if info.form == Form::Jbike6 => {
+                j.set(info.key, x)
+            }
+            (Parameter::HeadAngle, Description::Benchmark(b)) => {
+                b.lambda = std::f64::consts::FRAC_PI_2 - x;
+                true
+            }
+            (Parameter::WheelRadius, Description::Benchmark(b)) => {
+                b.r_r = x;
+                b.r_f = x;
+                true
+            }
+            (Parameter::WheelDiameter, Description::Jbike6(j)) => {
+                j.rear_wheel.diameter = x;
+                j.front_wheel.diameter = x;
+                true
+            }
+            _ => false,
+        }
+    }
 }
 
 impl Axis {
@@ -263,33 +336,6 @@ impl Axis {
     #[inline]
     pub fn si_value(&self, i: usize) -> f64 {
         self.value(i) * self.scale
-    }
-}
-
-/// Puts an axis's value `x` (SI units) into a description: by the parameter table's key
-/// ([`crate::parameters::BenchmarkParameters::set`], [`crate::parameters::Jbike6Parameters::set`]), or an alias that sets two
-/// parameters (`wheel_radius`, `wheel_diameter`) or a derived one (`head_angle` of the benchmark
-/// form). The parameter belongs to the description's form ([`Parameter::named`]).
-fn set_parameter(description: &mut Description, parameter: &Parameter, x: f64) {
-    match (parameter, description) {
-        (Parameter::Table(info), Description::Benchmark(b)) if info.form == Form::Benchmark => {
-            b.set(info.key, x);
-        }
-        (Parameter::Table(info), Description::Jbike6(j)) if info.form == Form::Jbike6 => {
-            j.set(info.key, x);
-        }
-        (Parameter::HeadAngle, Description::Benchmark(b)) => {
-            b.lambda = std::f64::consts::FRAC_PI_2 - x;
-        }
-        (Parameter::WheelRadius, Description::Benchmark(b)) => {
-            b.r_r = x;
-            b.r_f = x;
-        }
-        (Parameter::WheelDiameter, Description::Jbike6(j)) => {
-            j.rear_wheel.diameter = x;
-            j.front_wheel.diameter = x;
-        }
-        _ => {}
     }
 }
 
@@ -585,7 +631,10 @@ impl Study {
             let v = axis.si_value(i);
             match &axis.parameter {
                 Parameter::Speed => speed = Some(v),
-                parameter => set_parameter(&mut description, parameter, v),
+                // Study::new checked that the axes belong to the base's form.
+                parameter => {
+                    parameter.set(&mut description, v);
+                }
             }
         };
         apply(&self.x, ix);

@@ -174,14 +174,68 @@ impl ParameterDerivatives {
             .collect()
     }
 
-    /// First-order standard deviation of a quantity from its derivatives: √Σ(∂f/∂pᵢ σᵢ)².
+    /// First-order standard deviation of a quantity from its derivatives: √Σ(∂f/∂pᵢ σᵢ)²,
+    /// formed as a scaled norm (each term divided by the largest before squaring), so it
+    /// overflows only where the true value is past `f64::MAX` (then it is +∞).
     pub fn sigma_of(&self, derivatives: &[f64]) -> f64 {
-        derivatives
-            .iter()
-            .zip(&self.sigma)
-            .map(|(d, s)| (d * s).powi(2))
-            .sum::<f64>()
-            .sqrt()
+        let terms = || derivatives.iter().zip(&self.sigma).map(|(d, s)| d * s);
+        let largest = terms().fold(0.0_f64, |m, t| m.max(t.abs()));
+        if largest == 0.0 || !largest.is_finite() {
+            return largest;
+        }
+        largest * terms().map(|t| (t / largest).powi(2)).sum::<f64>().sqrt()
+    }
+
+    /// [`ParameterDerivatives::sigma_of`] of a speed `what` [m/s] whose value is `value`,
+    /// refused where first-order propagation says nothing: a σ that is not a finite number, or
+    /// one larger than the speed's own size (its one-σ interval then reaches past zero: the parameters'
+    /// σ are too large for a linear propagation, which assumes the quantity changes little
+    /// over them). The error names the parameter that contributes most, by its file key, with
+    /// its σ ([`Error::InvalidParameter`]).
+    pub fn checked_sigma_of(&self, derivatives: &[f64], what: &str, value: f64) -> Result<f64> {
+        let sigma = self.sigma_of(derivatives);
+        if sigma.is_finite() && sigma <= value.abs() {
+            return Ok(sigma);
+        }
+        Err(self.absurd_sigma(derivatives, what, value, sigma, "m/s"))
+    }
+
+    /// The error for a σ of `what` that first-order propagation cannot give (see
+    /// [`ParameterDerivatives::checked_sigma_of`]).
+    fn absurd_sigma(
+        &self,
+        derivatives: &[f64],
+        what: &str,
+        value: f64,
+        sigma: f64,
+        unit: &str,
+    ) -> Error {
+        let contribution = |i: usize| (derivatives[i] * self.sigma[i]).abs();
+        let worst = (0..derivatives.len().min(self.sigma.len()))
+            .max_by(|a, b| contribution(*a).total_cmp(&contribution(*b)))
+            .unwrap_or(0);
+        let (field, parameter_sigma) = (
+            self.parameters.get(worst).map_or("?", |p| p.key),
+            self.sigma.get(worst).copied().unwrap_or(f64::NAN),
+        );
+        let size = if sigma.is_finite() {
+            format!(
+                "σ of {what} = {} {unit}, more than {what} = {} {unit} itself",
+                crate::error::short_number(sigma),
+                crate::error::short_number(value)
+            )
+        } else {
+            format!("σ of {what} past {:e} {unit}", f64::MAX)
+        };
+        Error::InvalidParameter {
+            field: field.to_string(),
+            value: parameter_sigma,
+            rule: format!(
+                "this standard deviation, the largest contribution, gives {size}: a first-order \
+                 σ means nothing when the parameters' σ change the quantity by more than its size \
+                 (is the σ in the parameter's unit?)"
+            ),
+        }
     }
 
     /// Standard deviations of the entries of M, C₁, K₀, K₂ (first order).
@@ -336,21 +390,51 @@ pub struct CriticalSpeedsSigma {
 pub fn critical_speeds_sigma(bike: &Bicycle, lo: f64, hi: f64) -> Result<CriticalSpeedsSigma> {
     let d = ParameterDerivatives::new(bike)?;
     let speeds = critical_speeds(&d.canonical, lo, hi)?;
-    let sig = |x: Option<Vec<f64>>| x.map(|x| d.sigma_of(&x));
+    let sig = |x: Option<Vec<f64>>, what: &str, value: Option<f64>| -> Result<Option<f64>> {
+        match (x, value) {
+            (Some(x), Some(value)) => d.checked_sigma_of(&x, what, value).map(Some),
+            _ => Ok(None),
+        }
+    };
+    // The named speeds first: an absurd σ is reported on v_d, v_w or v_c where it can be.
+    let double_root_speed_sigma = sig(
+        d.double_root_speed_derivatives(&speeds),
+        "v_d",
+        speeds.double_root_speed,
+    )?;
+    let weave_speed_sigma = sig(
+        d.weave_speed_derivatives(&speeds),
+        "v_w",
+        speeds.weave_speed,
+    )?;
+    let capsize_speed_sigma = sig(
+        d.capsize_speed_derivatives(&speeds),
+        "v_c",
+        speeds.capsize_speed,
+    )?;
+    let stable_speed_ranges_sigma = speeds
+        .stable_speed_ranges
+        .iter()
+        .map(|(a, b)| {
+            Ok((
+                sig(
+                    d.range_end_derivatives(*a, &speeds),
+                    "a stable range's start",
+                    Some(*a),
+                )?,
+                sig(
+                    d.range_end_derivatives(*b, &speeds),
+                    "a stable range's end",
+                    Some(*b),
+                )?,
+            ))
+        })
+        .collect::<Result<Vec<_>>>()?;
     Ok(CriticalSpeedsSigma {
-        double_root_speed_sigma: sig(d.double_root_speed_derivatives(&speeds)),
-        weave_speed_sigma: sig(d.weave_speed_derivatives(&speeds)),
-        capsize_speed_sigma: sig(d.capsize_speed_derivatives(&speeds)),
-        stable_speed_ranges_sigma: speeds
-            .stable_speed_ranges
-            .iter()
-            .map(|(a, b)| {
-                (
-                    sig(d.range_end_derivatives(*a, &speeds)),
-                    sig(d.range_end_derivatives(*b, &speeds)),
-                )
-            })
-            .collect(),
+        double_root_speed_sigma,
+        weave_speed_sigma,
+        capsize_speed_sigma,
+        stable_speed_ranges_sigma,
         speeds,
     })
 }
@@ -370,25 +454,33 @@ pub struct EigenvalueSigma {
 
 /// The eigenvalues at speed v with first-order standard deviations.
 pub fn eigenvalue_sigmas(d: &ParameterDerivatives, v: f64) -> Result<Vec<EigenvalueSigma>> {
-    Ok(d.eigenvalue_derivatives(v)?
+    d.eigenvalue_derivatives(v)?
         .into_iter()
         .map(|(l, dl)| {
             let (re_sigma, im_sigma) = match dl {
                 Some(dl) => {
                     let re: Vec<f64> = dl.iter().map(|z| z.re).collect();
                     let im: Vec<f64> = dl.iter().map(|z| z.im).collect();
-                    (Some(d.sigma_of(&re)), Some(d.sigma_of(&im)))
+                    let (re_sigma, im_sigma) = (d.sigma_of(&re), d.sigma_of(&im));
+                    // Never an infinite σ: the parameter's σ that overflows it is named.
+                    if !re_sigma.is_finite() {
+                        return Err(d.absurd_sigma(&re, "Re λ", l.re, re_sigma, "1/s"));
+                    }
+                    if !im_sigma.is_finite() {
+                        return Err(d.absurd_sigma(&im, "Im λ", l.im, im_sigma, "rad/s"));
+                    }
+                    (Some(re_sigma), Some(im_sigma))
                 }
                 None => (None, None),
             };
-            EigenvalueSigma {
+            Ok(EigenvalueSigma {
                 re: l.re,
                 im: l.im,
                 re_sigma,
                 im_sigma,
-            }
+            })
         })
-        .collect())
+        .collect()
 }
 
 /// The sensitivities of one parameter.
@@ -605,6 +697,37 @@ mod tests {
         )?));
         assert_eq!(t["stable_range"], s["stable_speed_ranges"][0]);
         assert_eq!(t["critical"]["weave_speed"], s["weave_speed"]);
+        Ok(())
+    }
+
+    /// Issue 28: σ is homogeneous of degree one in the parameters' σ, so σ of v_w with every
+    /// σ scaled by 1e280 is 1e280 times σ of v_w with the σ as given; the naive √Σ(dᵢσᵢ)²
+    /// squared terms near 1e280 and gave +∞. The scaled σ is then refused for exceeding v_w.
+    #[test]
+    fn issue_28_sigma_is_a_scaled_norm_without_overflow() -> Result<()> {
+        let mut bike = presets::find("benchmark")?.bicycle();
+        bike.sigma.insert("c".into(), 0.001);
+        bike.sigma.insert("mB".into(), 0.5);
+        let d = ParameterDerivatives::new(&bike)?;
+        let speeds = critical_speeds(&d.canonical, 0.0, 10.0)?;
+        let dv = d.weave_speed_derivatives(&speeds).expect("a weave speed");
+        let sigma = d.sigma_of(&dv);
+        let mut huge = bike.clone();
+        for s in huge.sigma.values_mut() {
+            *s *= 1e280;
+        }
+        let h = ParameterDerivatives::new(&huge)?;
+        let scaled = h.sigma_of(&dv);
+        assert!(scaled.is_finite(), "{scaled}");
+        assert!(
+            (scaled / 1e280 - sigma).abs() <= 1e-14 * sigma,
+            "{scaled} {sigma}"
+        );
+        let err = critical_speeds_sigma(&huge, 0.0, 10.0).expect_err("absurd σ");
+        assert!(
+            matches!(&err, Error::InvalidParameter { field, .. } if field == "mB" || field == "c"),
+            "{err}"
+        );
         Ok(())
     }
 }

@@ -221,6 +221,44 @@ impl Format {
     }
 }
 
+/// The suffixes that name a parameter set in a file's name rather than the bicycle, by format:
+/// BicycleParameters' `<Name>Benchmark.txt` (its `Parameters/` directory) and
+/// `<Name>Measured.txt` (its `RawData/`), HumanControl's `<Name>Par.txt`.
+fn name_suffixes(format: Format) -> &'static [&'static str] {
+    match format {
+        Format::BicycleParametersTxt => &["Benchmark", "Measured"],
+        Format::HumanControlTxt => &["Par"],
+        Format::Toml | Format::Json | Format::Jbike6M | Format::Yaml => &[],
+    }
+}
+
+/// The name a bicycle read from a file without a `name` of its own takes from the file's name:
+/// the last path component without its extension, and without the parameter set's suffix that
+/// the format's files carry (`BrowserBenchmark.txt` is `Browser`, as BicycleParameters calls
+/// it; `BrowserPar.txt` is `Browser`; `Benchmark.txt` stays `Benchmark`). `None` for an empty
+/// name. The one place a file's name becomes a bicycle's (the CLI, the server and Python).
+///
+/// ```
+/// use whipple::advanced::io::{Format, name_from_file_name};
+/// let bp = Format::BicycleParametersTxt;
+/// assert_eq!(name_from_file_name("data/BrowserBenchmark.txt", bp).as_deref(), Some("Browser"));
+/// assert_eq!(name_from_file_name("BenchmarkBenchmark.txt", bp).as_deref(), Some("Benchmark"));
+/// assert_eq!(name_from_file_name("my-Benchmark.toml", Format::Toml).as_deref(), Some("my-Benchmark"));
+/// assert_eq!(name_from_file_name("", Format::Toml), None);
+/// ```
+pub fn name_from_file_name(file_name: &str, format: Format) -> Option<String> {
+    let last = file_name.rsplit(['/', '\\']).next().unwrap_or(file_name);
+    let stem = match last.rsplit_once('.') {
+        Some((stem, _)) if !stem.is_empty() => stem,
+        _ => last,
+    };
+    let name = name_suffixes(format)
+        .iter()
+        .find_map(|suffix| stem.strip_suffix(suffix).filter(|s| !s.is_empty()))
+        .unwrap_or(stem);
+    (!name.is_empty()).then(|| name.to_string())
+}
+
 /// The [`Error::Parse`] `format` of a file whose format could not be told (from its extension
 /// or its text): the front ends name their own way to give it.
 pub const UNDETERMINED_FORMAT: &str = "parameter";
