@@ -1095,6 +1095,12 @@ await section("phones (390 × 844, touch): the critical speeds in sight while ty
     const apart = (a, b) => a[3] <= b[1] || b[3] <= a[1] || a[2] <= b[0] || b[2] <= a[0];
     check(after === (await table()) && / ± /.test(after), `typed c = 0.09: the bar reads the new v_w “${after}” (the table's words)`);
     check(Math.abs(g.input[1] - scrolled) < 2 && inside(g.bar) && g.focused === "param-c" && inside(g.input) && apart(g.bar, g.input), `without scrolling (the field stayed ${Math.round(scrolled)} px from the top), the bar (${g.bar.map(Math.round)}) and the field typed in (${g.input.map(Math.round)}) both on the screen, apart`);
+    // Text that is not a number: the bar, as the table, keeps the last numbers, marked.
+    await field.fill("0.0x");
+    await p.getByTestId("summary-note").waitFor({ state: "visible", timeout: 5_000 });
+    check((await p.getByTestId("summary-weave").textContent()).trim() === after, `“0.0x” typed: the bar keeps “${after}”, marked “${(await p.getByTestId("summary-note").textContent()).trim()}”`);
+    await field.fill("0.09");
+    await p.getByTestId("summary-note").waitFor({ state: "hidden", timeout: 5_000 });
     // A field focused where the bar is (at the top of the screen) is moved clear of it.
     // (Room below the page, so that the field can be scrolled up there: as a short screen or
     // an on-screen keyboard that shrinks the viewport would allow.)
@@ -1146,6 +1152,13 @@ await section("simulation at 1280 × 800: nothing overlaps, nothing sticks out",
   check(view.r - view.l >= 500 && view.b - view.t >= 250 && time.r - time.l >= 500 && time.b - time.t >= 140, `room for the 3-D view (${Math.round(view.r - view.l)} × ${Math.round(view.b - view.t)}) and the plots (${Math.round(time.r - time.l)} × ${Math.round(time.b - time.t)})`);
   const { scroll, inner } = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, inner: window.innerWidth }));
   check(scroll <= inner, `no sideways scroll (${scroll} px)`);
+  // The top row, shorter beside the simulation, still shows the side view and the table whole.
+  const top = await page.evaluate(() => {
+    const side = document.querySelector("[data-testid=side-view]");
+    const table = document.querySelector("#critical");
+    return { drawn: side.querySelector("svg").getBoundingClientRect().height, room: side.clientHeight, table: table.scrollHeight, shown: table.clientHeight };
+  });
+  check(top.drawn <= top.room + 1 && top.table <= top.shown + 1, `the side view drawn within its ${top.room} px, the critical speeds within theirs (${top.table} of ${top.shown} px)`);
 });
 
 await section("accessibility: axe-core finds nothing; headings", async () => {

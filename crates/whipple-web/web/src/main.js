@@ -575,6 +575,8 @@ function drawSummaryBar(design, stale) {
   $("summary-stable").textContent = s.stable;
   $("summary-bar").classList.toggle("stale", Boolean(stale));
   $("summary-bar").title = stale ?? "";
+  // Veiled as the table is: the last numbers computed, and the reason a tap away.
+  $("summary-note").hidden = !stale;
   updateSummaryBar();
 }
 /** Scrolls the page so that the bar does not cover `input` (a field of the editor). */

@@ -36,7 +36,9 @@ function comSymbol(x, y, r, colour) {
  */
 export function drawSideView(container, view, ghost = null, { stale = false, reason = null, centres = true, ellipses = true } = {}) {
   const width = Math.max(320, Math.round(container.clientWidth));
-  const height = Math.max(220, Math.round(container.clientHeight));
+  // As short as the panel is (the Simulation tab's top row at 1280 × 800 is ~200 px): a taller
+  // drawing would be cut at its dimensions.
+  const height = Math.max(150, Math.round(container.clientHeight));
   const views = ghost ? [view, ghost] : [view];
   // Extent in metres: wheels, bodies (with ellipses), axis.
   let x0 = Infinity, x1 = -Infinity, y1 = 0;
