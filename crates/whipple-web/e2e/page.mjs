@@ -1052,8 +1052,16 @@ await section("about: collapsed, it opens on what the page shows and lists the r
   check(violations.length === 0, `axe-core on the page with the panel open: ${violations.join(", ") || "no violations"}`);
   const box = await body.boundingBox();
   check(box.x >= 0 && box.x + box.width <= 1440 && box.y + box.height <= 900, `the panel stays on the screen (${Math.round(box.width)} × ${Math.round(box.height)} px)`);
+  await page.keyboard.press("Escape");
+  check(await becomes(() => body.isHidden(), 3_000), "Escape closes it");
   await page.click("#about > summary");
-  check(await body.isHidden(), "and closes again");
+  await body.waitFor({ state: "visible" });
+  await page.mouse.click(700, 700);
+  check(await becomes(() => body.isHidden(), 3_000), "so does a click elsewhere");
+  await page.click("#about > summary");
+  await body.waitFor({ state: "visible" });
+  await page.click("#about > summary");
+  check(await becomes(() => body.isHidden(), 3_000), "and its button closes it");
 });
 
 await section("phones (390 × 844, touch): the critical speeds in sight while typing", async () => {

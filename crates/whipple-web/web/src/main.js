@@ -258,6 +258,16 @@ function resetToBase() {
 }
 $("reset-bike").addEventListener("click", resetToBase);
 
+// About: a panel over the page, closed by Escape or a click elsewhere.
+document.addEventListener("click", (e) => {
+  if ($("about").open && !$("about").contains(e.target)) $("about").open = false;
+});
+document.addEventListener("keydown", (e) => {
+  if (e.key !== "Escape" || !$("about").open) return;
+  $("about").open = false;
+  $("about").querySelector("summary").focus();
+});
+
 /** Applies {path: value} edits (paths as url.js writes them) to a bicycle. */
 function applyEdits(bike, edits) {
   for (const [path, value] of Object.entries(edits)) {
