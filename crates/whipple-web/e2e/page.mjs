@@ -953,6 +953,223 @@ await section("design map: self-stable over a band, the qualifying designs outli
   check(await page.getByTestId("map-band").evaluate((i) => i.classList.contains("invalid")), `a reversed band is refused in its field: "${reversed}"`);
 });
 
+await section("side view: centres of mass and inertia ellipses toggled, kept in the link", async () => {
+  await open("?bike=preset:schwinn-crown");
+  await settled();
+  const count = (part) => page.locator(`[data-testid=side-view] [data-part=${part}]`).count();
+  const totalLabel = () => page.$$eval("[data-testid=side-view] svg text", (ts) => ts.some((t) => /^total /.test(t.textContent)));
+  const [centres, ellipses] = [await count("centre-of-mass"), await count("inertia-ellipse")];
+  // The Crown's seven JBike6 bodies and the whole bicycle's centre; the rider, frame, fork, … ellipses.
+  check(centres >= 5 && ellipses >= 3 && (await totalLabel()), `both drawn by default: ${centres} centres of mass, ${ellipses} inertia ellipses`);
+  await page.getByTestId("side-centres").uncheck();
+  await waitFor("the centres of mass hidden", async () => (await count("centre-of-mass")) === 0);
+  check((await count("inertia-ellipse")) === ellipses && !(await totalLabel()), "without the centres of mass (and their labels) the ellipses stay");
+  await page.getByTestId("side-ellipses").uncheck();
+  await waitFor("the ellipses hidden", async () => (await count("inertia-ellipse")) === 0);
+  check((await page.locator("[data-testid=side-view] svg circle").count()) > 4, "the bicycle itself is still drawn");
+  await settled();
+  check(/[?&]sv=centres:off;ellipses:off(&|$)/.test(decodeURIComponent(page.url())), `the link says so: ${decodeURIComponent(new URL(page.url()).search).match(/sv=[^&]*/)?.[0]}`);
+  await page.reload();
+  await page.waitForSelector("body[data-ready=true]");
+  await settled();
+  await waitFor("the side view redrawn", async () => (await page.locator("[data-testid=side-view] svg circle").count()) > 4);
+  check((await count("centre-of-mass")) === 0 && (await count("inertia-ellipse")) === 0 && !(await page.getByTestId("side-centres").isChecked()) && !(await page.getByTestId("side-ellipses").isChecked()), "a reload keeps both hidden, the boxes unticked");
+  await page.getByTestId("side-centres").check();
+  await waitFor("the centres of mass back", async () => (await count("centre-of-mass")) === centres);
+  check((await count("inertia-ellipse")) === 0, `ticked again: ${centres} centres of mass, still no ellipse`);
+});
+
+await section("reset: a preset, a conversion and an opened file go back as picked in one click", async () => {
+  // A measured preset: value and σ.
+  await open("?bike=preset:browser");
+  await settled();
+  const reset = page.getByTestId("reset-bike");
+  const as = { vw: await text("weave-speed"), c: await page.inputValue("[data-testid=param-c]"), sc: await page.inputValue("[data-testid=sigma-c]") };
+  check(await reset.isHidden(), "nothing edited: no reset button");
+  const barHeight = () => page.$eval(".topbar", (e) => Math.round(e.getBoundingClientRect().height));
+  const unedited = await barHeight();
+  await page.getByTestId("param-c").fill("0.09");
+  await waitForText("weave-speed", (t) => t !== as.vw && /\d/.test(t));
+  await page.getByTestId("sigma-c").fill("0.01");
+  await settled();
+  check((await page.locator("#modified").isVisible()) && (await reset.isVisible()) && (await reset.getAttribute("aria-label")) === "Reset to the preset", `edited (c 0.09 ± 0.01, v_w ${await text("weave-speed")}): “${await reset.getAttribute("aria-label")}” offered`);
+  check((await barHeight()) === unedited, `the top bar keeps its one line with the button (${unedited} px high)`);
+  await reset.click();
+  await waitForText("weave-speed", (t) => t === as.vw);
+  await settled();
+  const back = { c: await page.inputValue("[data-testid=param-c]"), sc: await page.inputValue("[data-testid=sigma-c]") };
+  check(back.c === as.c && back.sc === as.sc, `one click: c ${back.c} ± ${back.sc} again, v_w ${await text("weave-speed")}`);
+  check((await page.locator("#modified").isHidden()) && (await reset.isHidden()) && !/[?&]e=/.test(page.url()), "“modified” cleared, the button gone, the link holds no edit");
+  // A JBike6 preset converted to the benchmark form and edited: back to the JBike6 form.
+  await open("?bike=preset:schwinn-crown");
+  await settled();
+  const crown = await text("capsize-speed");
+  await page.click("#tab-benchmark");
+  await page.click("#to-benchmark");
+  await settled();
+  await page.getByTestId("param-c").fill("0.05");
+  await waitForText("capsize-speed", (t) => t !== crown && /\d/.test(t));
+  await reset.click();
+  await waitForText("capsize-speed", (t) => t === crown);
+  await settled();
+  check((await page.$eval("#bike-select", (s) => s.value)) === "preset:schwinn-crown" && (await page.getAttribute("#tab-jbike6", "aria-selected")) === "true" && (await page.locator("#modified").isHidden()), `a conversion undone: the Crown in its JBike6 form, v_c ${crown}`);
+  // A file opened: back to the file as opened.
+  await open("?bike=preset:benchmark");
+  const folder = fileURLToPath(new URL("../../whipple/tests/data/bicycleparameters/", import.meta.url));
+  await page.setInputFiles("#file-input", join(folder, "FisherBenchmark.txt"));
+  await waitFor("Fisher in the editor", async () => (await page.inputValue("#design-name")).startsWith("FisherBenchmark"), 15_000);
+  await settled();
+  const fisher = { vw: await text("weave-speed"), mB: await page.inputValue("[data-testid=param-mB]") };
+  await page.getByTestId("param-mB").fill("7");
+  await waitForText("weave-speed", (t) => t !== fisher.vw && /\d/.test(t));
+  check((await reset.getAttribute("aria-label")) === "Reset to the design as saved", `an opened file edited: “${await reset.getAttribute("aria-label")}”`);
+  await reset.click();
+  await waitForText("weave-speed", (t) => t === fisher.vw);
+  check((await page.inputValue("[data-testid=param-mB]")) === fisher.mB && (await page.locator("#modified").isHidden()), `back to the file as opened: mB ${fisher.mB}, v_w ${fisher.vw}`);
+});
+
+await section("about: collapsed, it opens on what the page shows and lists the references", async () => {
+  await open("?bike=preset:benchmark");
+  const body = page.getByTestId("about-body");
+  check(await body.isHidden(), "collapsed by default");
+  await page.click("#about > summary");
+  await body.waitFor({ state: "visible" });
+  const words = (await body.textContent()).replace(/\s+/g, " ").toLowerCase();
+  check(["weave", "capsize", "castering", "self-stable", "σ", "first-order", "not certified"].every((w) => words.includes(w)), "it explains the modes, the self-stable range, σ and “not certified”");
+  const refs = await page.$$eval("[data-testid=references] li", (ls) => ls.map((l) => l.textContent.replace(/\s+/g, " ")));
+  const cited = [
+    /Meijaard, J\. M\. Papadopoulos, A\. Ruina and A\. L\. Schwab \(2007\).*Proc\. R\. Soc\. A 463, 1955–1982.*doi:10\.1098\/rspa\.2007\.1857/,
+    /Basu-Mandal, A\. Chatterjee and J\. M\. Papadopoulos \(2007\).*Proc\. R\. Soc\. A 463, 1983–2003/,
+    /Moore \(2012\)\. Human Control of a Bicycle\. PhD dissertation, University of California, Davis.*BicycleParameters/,
+    /Dressel\. Benchmarking a Fully Non-Linear Bicycle Model with JBike6/,
+  ];
+  check(refs.length === 4 && cited.every((r) => refs.some((t) => r.test(t))), `four references, cited in full: ${refs.map((r) => r.slice(0, 40)).join(" | ")}`);
+  await page.evaluate(axeSource());
+  const violations = await page.evaluate(async () => {
+    // eslint-disable-next-line no-undef
+    const r = await axe.run(document, { runOnly: { type: "tag", values: ["wcag2a", "wcag2aa", "best-practice"] } });
+    return r.violations.map((v) => `${v.id} (${v.nodes.length}: ${v.nodes.slice(0, 2).map((n) => n.target.join(" ")).join("; ")})`);
+  });
+  check(violations.length === 0, `axe-core on the page with the panel open: ${violations.join(", ") || "no violations"}`);
+  const box = await body.boundingBox();
+  check(box.x >= 0 && box.x + box.width <= 1440 && box.y + box.height <= 900, `the panel stays on the screen (${Math.round(box.width)} × ${Math.round(box.height)} px)`);
+  await page.keyboard.press("Escape");
+  check(await becomes(() => body.isHidden(), 3_000), "Escape closes it");
+  await page.click("#about > summary");
+  await body.waitFor({ state: "visible" });
+  await page.mouse.click(700, 700);
+  check(await becomes(() => body.isHidden(), 3_000), "so does a click elsewhere");
+  await page.click("#about > summary");
+  await body.waitFor({ state: "visible" });
+  await page.click("#about > summary");
+  check(await becomes(() => body.isHidden(), 3_000), "and its button closes it");
+});
+
+await section("phones (390 × 844, touch): the critical speeds in sight while typing", async () => {
+  // Wide: nothing changes.
+  await open("?bike=preset:browser");
+  await page.getByTestId("param-c").fill("0.09");
+  await settled();
+  check(await page.getByTestId("summary-bar").isHidden(), "1440 px: no summary bar (the table is beside the editor)");
+  const phone = await launch({ phone: true });
+  try {
+    const p = phone.context.pages()[0] ?? (await phone.context.newPage());
+    await p.goto(new URL("?bike=preset:browser", url).href);
+    await p.waitForSelector("body[data-ready=true]", { timeout: 20_000 });
+    await p.waitForSelector("body[data-pending='0']", { state: "attached", timeout: 30_000 });
+    const bar = p.getByTestId("summary-bar");
+    check(await bar.isHidden(), "at the top of the page (table in sight): no bar");
+    const field = p.getByTestId("param-c");
+    await field.scrollIntoViewIfNeeded();
+    await field.tap();
+    await bar.waitFor({ state: "visible", timeout: 5_000 });
+    const before = (await p.getByTestId("summary-weave").textContent()).trim();
+    const table = async () => (await p.getByTestId("weave-speed").textContent()).trim();
+    check(before === (await table()), `the editor in view: the bar shows v_w as the table does: “${before}”`);
+    // The field's place on the screen (the page may grow above it: scroll anchoring keeps it).
+    const scrolled = await field.evaluate((i) => i.getBoundingClientRect().top);
+    await field.fill("0.09");
+    await p.waitForFunction((b) => {
+      const t = document.querySelector("[data-testid=summary-weave]").textContent.trim();
+      return t !== b && /\d/.test(t) && document.body.dataset.pending === "0";
+    }, before, { timeout: 15_000 });
+    const after = (await p.getByTestId("summary-weave").textContent()).trim();
+    const geometry = () => p.evaluate(() => {
+      const b = document.querySelector("[data-testid=summary-bar]").getBoundingClientRect();
+      const i = document.activeElement.getBoundingClientRect();
+      return { bar: [b.left, b.top, b.right, b.bottom], input: [i.left, i.top, i.right, i.bottom], h: window.innerHeight, w: window.innerWidth, y: window.scrollY, focused: document.activeElement.dataset.testid };
+    });
+    let g = await geometry();
+    const inside = (r) => r[1] >= 0 && r[3] <= g.h && r[0] >= 0 && r[2] <= g.w;
+    const apart = (a, b) => a[3] <= b[1] || b[3] <= a[1] || a[2] <= b[0] || b[2] <= a[0];
+    check(after === (await table()) && / ± /.test(after), `typed c = 0.09: the bar reads the new v_w “${after}” (the table's words)`);
+    check(Math.abs(g.input[1] - scrolled) < 2 && inside(g.bar) && g.focused === "param-c" && inside(g.input) && apart(g.bar, g.input), `without scrolling (the field stayed ${Math.round(scrolled)} px from the top), the bar (${g.bar.map(Math.round)}) and the field typed in (${g.input.map(Math.round)}) both on the screen, apart`);
+    // Text that is not a number: the bar, as the table, keeps the last numbers, marked.
+    await field.fill("0.0x");
+    await p.getByTestId("summary-note").waitFor({ state: "visible", timeout: 5_000 });
+    check((await p.getByTestId("summary-weave").textContent()).trim() === after, `“0.0x” typed: the bar keeps “${after}”, marked “${(await p.getByTestId("summary-note").textContent()).trim()}”`);
+    await field.fill("0.09");
+    await p.getByTestId("summary-note").waitFor({ state: "hidden", timeout: 5_000 });
+    // A field focused where the bar is (at the top of the screen) is moved clear of it.
+    // (Room below the page, so that the field can be scrolled up there: as a short screen or
+    // an on-screen keyboard that shrinks the viewport would allow.)
+    const under = await p.evaluate(() => {
+      document.body.style.paddingBottom = "1200px";
+      const i = document.querySelector("[data-testid=param-w]");
+      window.scrollBy(0, i.getBoundingClientRect().top - 10);
+      return i.getBoundingClientRect().top;
+    });
+    await bar.waitFor({ state: "visible" });
+    check(under < (await bar.boundingBox()).height, `a field scrolled under the bar (at ${Math.round(under)} px)`);
+    await p.evaluate(() => document.querySelector("[data-testid=param-w]").focus({ preventScroll: true }));
+    await p.waitForFunction(() => {
+      const b = document.querySelector("[data-testid=summary-bar]").getBoundingClientRect();
+      return document.activeElement.getBoundingClientRect().top >= b.bottom;
+    }, null, { timeout: 5_000 });
+    g = await geometry();
+    check(g.focused === "param-w" && inside(g.input) && apart(g.bar, g.input), `a field focused under the bar is scrolled clear of it (bar ends at ${Math.round(g.bar[3])} px, the field starts at ${Math.round(g.input[1])} px)`);
+  } finally {
+    await phone.close();
+  }
+});
+
+await section("simulation at 1280 × 800: nothing overlaps, nothing sticks out", async () => {
+  await open("?bike=preset:benchmark&tab=sim", { width: 1280, height: 800 });
+  await page.getByTestId("sim-run").click();
+  await ran((t) => /completed|fell/.test(t));
+  await settled();
+  const blocks = [".editor", ".side", ".stability", "#sim-form", ".sim-turn-row", ".sim-status", "#sim-view", ".sim-transport", ".sim-plot-tools", "#sim-time-plot", "#sim-track"];
+  const rects = await page.evaluate((sels) => sels.map((s) => {
+    const r = document.querySelector(s).getBoundingClientRect();
+    return { s, l: r.left, t: r.top, r: r.right, b: r.bottom };
+  }), blocks);
+  const out = rects.filter((r) => r.l < 0 || r.r > 1280 || r.r - r.l < 1).map((r) => r.s);
+  check(out.length === 0, `every block within the 1280 px (${out.join(", ") || "none outside"})`);
+  const overlaps = [];
+  for (let i = 0; i < rects.length; i++) {
+    for (let j = i + 1; j < rects.length; j++) {
+      const [a, b] = [rects[i], rects[j]];
+      const w = Math.min(a.r, b.r) - Math.max(a.l, b.l);
+      const h = Math.min(a.b, b.b) - Math.max(a.t, b.t);
+      if (w > 1 && h > 1) overlaps.push(`${a.s} × ${b.s}`);
+    }
+  }
+  check(overlaps.length === 0, `no two blocks overlap (${overlaps.join(", ") || "none"})`);
+  const size = (s) => rects.find((r) => r.s === s);
+  const [form, view, time] = [size("#sim-form"), size("#sim-view"), size("#sim-time-plot")];
+  check(form.b - form.t < 40, `the controls on one line (${Math.round(form.b - form.t)} px high)`);
+  check(view.r - view.l >= 500 && view.b - view.t >= 250 && time.r - time.l >= 500 && time.b - time.t >= 140, `room for the 3-D view (${Math.round(view.r - view.l)} × ${Math.round(view.b - view.t)}) and the plots (${Math.round(time.r - time.l)} × ${Math.round(time.b - time.t)})`);
+  const { scroll, inner } = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, inner: window.innerWidth }));
+  check(scroll <= inner, `no sideways scroll (${scroll} px)`);
+  // The top row, shorter beside the simulation, still shows the side view and the table whole.
+  const top = await page.evaluate(() => {
+    const side = document.querySelector("[data-testid=side-view]");
+    const table = document.querySelector("#critical");
+    return { drawn: side.querySelector("svg").getBoundingClientRect().height, room: side.clientHeight, table: table.scrollHeight, shown: table.clientHeight };
+  });
+  check(top.drawn <= top.room + 1 && top.table <= top.shown + 1, `the side view drawn within its ${top.room} px, the critical speeds within theirs (${top.table} of ${top.shown} px)`);
+});
+
 await section("accessibility: axe-core finds nothing; headings", async () => {
   await open("?bike=preset:schwinn-crown");
   await page.evaluate(axeSource());

@@ -61,11 +61,20 @@ function ranges(c) {
     .join(", ");
 }
 
+const weaveText = (c, e) => speed(c?.weave_speed, e, "weave", c?.range, c, c?.weave_speed_sigma);
+const capsizeText = (c, e) => speed(c?.capsize_speed, e, "capsize", c?.range, c, c?.capsize_speed_sigma);
+
+/** What the table shows of one design ({eigen}) for v_w, v_c and the self-stable ranges. */
+export function criticalSummary(eigen) {
+  const c = eigen?.critical ?? null;
+  return { weave: weaveText(c, eigen), capsize: capsizeText(c, eigen), stable: ranges(c) };
+}
+
 /** Fills `container` with the table for `designs` ([{label, eigen}], the first edited). */
 export function drawCritical(container, designs, { stale = false, reason = null } = {}) {
   const rows = [
-    ["weave", "v_w", (c, e) => speed(c?.weave_speed, e, "weave", c?.range, c, c?.weave_speed_sigma), "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
-    ["capsize", "v_c", (c, e) => speed(c?.capsize_speed, e, "capsize", c?.range, c, c?.capsize_speed_sigma), "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
+    ["weave", "v_w", weaveText, "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
+    ["capsize", "v_c", capsizeText, "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
     // Where round-off cannot certify v_d the library says where it lies: never "none".
     ["double root", "v_d", (c) => (c?.double_root_unavailable ? notCertified(c.double_root_unavailable) : speed(c?.double_root_speed, null, null, c?.range, c, c?.double_root_speed_sigma)), "double-root-speed", "two real eigenvalues meet and become the weave pair", "#9ca3af"],
     ["ω at v_w", "rad/s", (c) => (c?.weave_frequency == null ? "–" : fixed(c.weave_frequency, 3)), "weave-frequency", "the weave's angular frequency |Im λ| at v_w", null],

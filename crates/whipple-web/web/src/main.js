@@ -12,7 +12,7 @@ import { Editor, parseNumber } from "./editor.js";
 import { getPath, setPath, applyParameterTable, JBIKE6_SOURCES, JBIKE6_GROUPS, BENCHMARK_GROUPS } from "./fields.js";
 import { drawSideView } from "./sideview.js";
 import { EigenPlot, LocusPlot, COMPARE_COLOURS } from "./plot.js";
-import { drawCritical } from "./critical.js";
+import { drawCritical, criticalSummary } from "./critical.js";
 import { SimPanel } from "./sim.js";
 import { ModesPanel } from "./modes.js";
 import { SensitivityPanel } from "./sensitivity.js";
@@ -32,6 +32,7 @@ const state = {
   key: "",
   designId: null,
   base: null, // the bicycle as picked (preset or saved design): edits are relative to it
+  baseKey: "", // the picker's key of `base` (a conversion changes `key`, not the base)
   bike: null,
   form: "jbike6",
   validated: null,
@@ -171,10 +172,11 @@ function currentLabel() {
 
 /** Picks a bicycle. Unsaved edits of the one left are kept for an undo. */
 async function select(key, { edits = null, def = null, keepMessage = false } = {}) {
-  const leaving = state.bike && isModified() ? { key: state.key, designId: state.designId, base: clone(state.base), bike: clone(state.bike), form: state.form, label: currentLabel() } : null;
+  const leaving = state.bike && isModified() ? { key: state.key, baseKey: state.baseKey, designId: state.designId, base: clone(state.base), bike: clone(state.bike), form: state.form, label: currentLabel() } : null;
   try {
     const base = def ?? (await bikeFor(key));
     state.key = key;
+    state.baseKey = key;
     state.designId = key.startsWith("design:") ? key.slice(7) : null;
     state.base = clone(base);
     state.bike = clone(base);
@@ -202,6 +204,7 @@ async function select(key, { edits = null, def = null, keepMessage = false } = {
 /** Goes back to a bicycle as it was (an undo of a switch). */
 async function restore(saved) {
   state.key = saved.key;
+  state.baseKey = saved.baseKey;
   state.designId = saved.designId;
   state.base = saved.base;
   state.bike = saved.bike;
@@ -222,8 +225,48 @@ function isModified() {
 }
 
 function updateModified() {
-  $("modified").hidden = !isModified();
+  const modified = isModified();
+  $("modified").hidden = !modified;
+  const reset = $("reset-bike");
+  reset.hidden = !modified;
+  const kind = state.baseKey.startsWith("preset:") ? "preset" : state.baseKey.startsWith("design:") ? "design" : "link";
+  reset.title = {
+    preset: "Back to the preset's values (and σ of a measured bicycle), undoing every edit",
+    design: "Back to the design as last saved in My designs (a file: as it was opened), undoing every edit",
+    link: "Back to the design as the link gave it, undoing every edit",
+  }[kind];
+  reset.setAttribute("aria-label", { preset: "Reset to the preset", design: "Reset to the design as saved", link: "Reset to the design of the link" }[kind]);
 }
+
+/** Undoes every edit: the bicycle as picked (a preset, a saved design, a file as opened). */
+function resetToBase() {
+  if (!state.base) return;
+  state.bike = clone(state.base);
+  if (state.key !== state.baseKey) {
+    // A conversion to the benchmark form is undone too.
+    state.key = state.baseKey;
+    state.designId = state.key.startsWith("design:") ? state.key.slice(7) : null;
+    $("delete-design").hidden = !state.designId;
+    fillPickers();
+  }
+  state.form = state.bike.jbike6 ? "jbike6" : "benchmark";
+  $("design-name").value = state.bike.name ?? "";
+  updateModified();
+  renderEditor();
+  schedule();
+  remember(true);
+}
+$("reset-bike").addEventListener("click", resetToBase);
+
+// About: a panel over the page, closed by Escape or a click elsewhere.
+document.addEventListener("click", (e) => {
+  if ($("about").open && !$("about").contains(e.target)) $("about").open = false;
+});
+document.addEventListener("keydown", (e) => {
+  if (e.key !== "Escape" || !$("about").open) return;
+  $("about").open = false;
+  $("about").querySelector("summary").focus();
+});
 
 /** Applies {path: value} edits (paths as url.js writes them) to a bicycle. */
 function applyEdits(bike, edits) {
@@ -489,9 +532,15 @@ function drawCompareList() {
 function drawSide() {
   if (!state.validated) return;
   const ghost = state.compare.find((c) => c.validated)?.validated.side_view ?? null;
-  sideSvg = drawSideView($("side-view"), state.validated.side_view, ghost, { stale: Boolean(staleReason()), reason: staleReason() });
+  sideSvg = drawSideView($("side-view"), state.validated.side_view, ghost, {
+    stale: Boolean(staleReason()),
+    reason: staleReason(),
+    centres: $("side-centres").checked,
+    ellipses: $("side-ellipses").checked,
+  });
   const v = state.validated;
   $("side-meta").textContent = `${v.form === "jbike6" ? "JBike6 form" : "benchmark form"} · ${num(v.derived.total_mass, 4)} kg · head angle ${num(v.derived.head_angle_deg, 4)}°`;
+  $("side-meta").title = $("side-meta").textContent;
 }
 
 function designsShown() {
@@ -511,6 +560,57 @@ function drawAll() {
   if (state.view === "eigen") plot.update(designs, { ylim: yLimit(), stale });
   if (state.view === "locus") locus.update(designs, { ylim: yLimit(), stale });
   drawCritical($("critical"), designs, { stale: Boolean(stale), reason: stale });
+  drawSummaryBar(designs[0], stale);
+}
+
+// ---- the summary bar: the critical speeds in sight while typing on a narrow screen ---------
+
+// On a phone or a tablet the editor is below the plots, far from the table: while it is on the
+// screen (and the table is not), a bar pinned to the top of the screen repeats the table's
+// v_w, v_c and self-stable range, in the table's own words. At the top, the on-screen keyboard
+// (at the bottom) never hides it; a field focused under it is scrolled clear of it.
+const narrow = matchMedia("(max-width: 860px)");
+const inView = { editor: false, table: false };
+function updateSummaryBar() {
+  const bar = $("summary-bar");
+  const show = narrow.matches && inView.editor && !inView.table && Boolean(state.eigen);
+  if (bar.hidden === !show) return;
+  bar.hidden = !show;
+  if (show) clearOfSummaryBar(document.activeElement);
+}
+function drawSummaryBar(design, stale) {
+  const s = criticalSummary(design.eigen);
+  $("summary-weave").textContent = s.weave;
+  $("summary-capsize").textContent = s.capsize;
+  $("summary-stable").textContent = s.stable;
+  $("summary-bar").classList.toggle("stale", Boolean(stale));
+  $("summary-bar").title = stale ?? "";
+  // Veiled as the table is: the last numbers computed, and the reason a tap away.
+  $("summary-note").hidden = !stale;
+  updateSummaryBar();
+}
+/** Scrolls the page so that the bar does not cover `input` (a field of the editor). */
+function clearOfSummaryBar(input) {
+  const bar = $("summary-bar");
+  if (bar.hidden || !input || !input.closest?.(".editor")) return;
+  requestAnimationFrame(() => {
+    const under = bar.getBoundingClientRect().bottom + 8 - input.getBoundingClientRect().top;
+    if (under > 0) window.scrollBy(0, -under);
+  });
+}
+const watch = new IntersectionObserver((entries) => {
+  for (const e of entries) inView[e.target === $("critical") ? "table" : "editor"] = e.isIntersecting;
+  updateSummaryBar();
+});
+watch.observe(document.querySelector(".editor"));
+watch.observe($("critical"));
+narrow.addEventListener("change", updateSummaryBar);
+document.addEventListener("focusin", (e) => clearOfSummaryBar(e.target));
+// Where the on-screen keyboard pans the visual viewport, the bar follows its top.
+window.visualViewport?.addEventListener("resize", placeSummaryBar);
+window.visualViewport?.addEventListener("scroll", placeSummaryBar);
+function placeSummaryBar() {
+  $("summary-bar").style.top = `${Math.max(0, window.visualViewport.offsetTop)}px`;
 }
 
 // ---- bottom panel: eigenvalues, root locus, modes, simulation -------------------------------
@@ -566,6 +666,7 @@ function snapshot() {
     sim: sim.inputs(),
     sens: sensitivity.quantity,
     map: designMap.inputs(),
+    side: Object.fromEntries([["centres", "side-centres"], ["ellipses", "side-ellipses"]].filter(([, id]) => !$(id).checked).map(([k]) => [k, "off"])),
   };
   if (state.key.startsWith("preset:")) {
     const edits = diffEdits(state.base, state.bike);
@@ -604,6 +705,8 @@ async function applyUrl() {
     if (s.sim) sim.setInputs(s.sim);
     if (s.sens) sensitivity.setQuantity(s.sens);
     if (s.map) designMap.setInputs(s.map);
+    $("side-centres").checked = s.side?.centres !== "off";
+    $("side-ellipses").checked = s.side?.ellipses !== "off";
     state.compare = (s.compare ?? []).filter((k) => k.startsWith("preset:") || findDesign(k.slice(7))).slice(0, MAX_COMPARED).map((key) => ({ key, bike: null, eigen: null, validated: null, label: "" }));
     showView(s.view ?? "eigen", { push: false });
     let key = s.bike || `preset:${DEFAULT_PRESET}`;
@@ -655,6 +758,12 @@ for (const id of ["v-start", "v-stop", "v-step"]) {
     remember(true);
   });
 }
+for (const id of ["side-centres", "side-ellipses"]) {
+  $(id).addEventListener("change", () => {
+    drawSide();
+    remember(true);
+  });
+}
 $("y-limit").addEventListener("change", () => {
   drawAll();
   remember(true);
@@ -679,6 +788,7 @@ $("save-design").addEventListener("click", () => {
   const design = saveDesign({ id: state.designId ?? undefined, name, bike: clone(state.bike) });
   state.designId = design.id;
   state.key = `design:${design.id}`;
+  state.baseKey = state.key;
   state.base = clone(state.bike);
   updateModified();
   $("delete-design").hidden = false;

@@ -1,6 +1,6 @@
 // JBike6's stylized side view, drawn from the geometry /api/bike/validate returns: wheels,
 // steer axis and trail, fork, a stylized frame, and each body's centre of mass (the quartered
-// disc, area proportional to mass) with its inertia ellipse.
+// disc, area proportional to mass) with its inertia ellipse, each of the two shown on request.
 
 import { svg, fixed, FONT } from "./format.js";
 
@@ -31,11 +31,14 @@ function comSymbol(x, y, r, colour) {
 
 /**
  * Draws `view` (and, faint, `ghost`: a second design's view) into `container`, fitted to its
- * size. Returns the <svg> element.
+ * size; `centres` and `ellipses` say whether the bodies' centres of mass (with their labels) and
+ * inertia ellipses are drawn. Returns the <svg> element.
  */
-export function drawSideView(container, view, ghost = null, { stale = false, reason = null } = {}) {
+export function drawSideView(container, view, ghost = null, { stale = false, reason = null, centres = true, ellipses = true } = {}) {
   const width = Math.max(320, Math.round(container.clientWidth));
-  const height = Math.max(220, Math.round(container.clientHeight));
+  // As short as the panel is (the Simulation tab's top row at 1280 × 800 is ~200 px): a taller
+  // drawing would be cut at its dimensions.
+  const height = Math.max(150, Math.round(container.clientHeight));
   const views = ghost ? [view, ghost] : [view];
   // Extent in metres: wheels, bodies (with ellipses), axis.
   let x0 = Infinity, x1 = -Infinity, y1 = 0;
@@ -74,7 +77,7 @@ export function drawSideView(container, view, ghost = null, { stale = false, rea
     const ink = faint ? "#94a3b8" : INK;
     const dash = faint ? "5 4" : null;
     // Bodies first (behind the frame).
-    if (!faint) {
+    if (!faint && ellipses) {
       for (const b of v.bodies) {
         if (!b.ellipse) continue;
         const colour = BODY_COLOURS[b.name] ?? MUTED;
@@ -82,7 +85,7 @@ export function drawSideView(container, view, ghost = null, { stale = false, rea
         g.append(svg("ellipse", {
           cx: X(b.centre[0]), cy: Y(b.centre[1]), rx: Math.max(a * scale, 0.5), ry: Math.max(c * scale, 0.5),
           transform: `rotate(${(-b.ellipse.angle * 180) / Math.PI} ${X(b.centre[0])} ${Y(b.centre[1])})`,
-          fill: colour, "fill-opacity": 0.12, stroke: colour, "stroke-opacity": 0.7, "stroke-width": 1,
+          fill: colour, "fill-opacity": 0.12, stroke: colour, "stroke-opacity": 0.7, "stroke-width": 1, "data-part": "inertia-ellipse",
         }));
       }
     }
@@ -126,17 +129,24 @@ export function drawSideView(container, view, ghost = null, { stale = false, rea
   };
   const [cx, cy] = view.centre_of_mass;
   const symbols = svg("g");
-  for (const b of view.bodies) {
-    const colour = b.ellipse ? BODY_COLOURS[b.name] ?? MUTED : INK;
-    const r = Math.max(3.5, Math.min(12, 1.3 * Math.sqrt(b.mass)));
-    symbols.append(comSymbol(X(b.centre[0]), Y(b.centre[1]), r, colour));
-  }
-  symbols.append(comSymbol(X(cx), Y(cy), 9, "#dc2626"));
-  place(X(cx), Y(cy), 9, `total ${fixed(view.total_mass, 1)} kg`, { fill: "#dc2626", "font-weight": 600 });
-  for (const b of [...view.bodies].sort((p, q) => q.mass - p.mass)) {
-    if (!(b.ellipse || b.mass >= 5)) continue;
-    const r = Math.max(3.5, Math.min(12, 1.3 * Math.sqrt(b.mass)));
-    place(X(b.centre[0]), Y(b.centre[1]), r, `${b.name} ${fixed(b.mass, 1)} kg`);
+  const mark = (x, y, r, colour) => {
+    const g = comSymbol(x, y, r, colour);
+    g.setAttribute("data-part", "centre-of-mass");
+    symbols.append(g);
+  };
+  if (centres) {
+    for (const b of view.bodies) {
+      const colour = b.ellipse ? BODY_COLOURS[b.name] ?? MUTED : INK;
+      const r = Math.max(3.5, Math.min(12, 1.3 * Math.sqrt(b.mass)));
+      mark(X(b.centre[0]), Y(b.centre[1]), r, colour);
+    }
+    mark(X(cx), Y(cy), 9, "#dc2626");
+    place(X(cx), Y(cy), 9, `total ${fixed(view.total_mass, 1)} kg`, { fill: "#dc2626", "font-weight": 600 });
+    for (const b of [...view.bodies].sort((p, q) => q.mass - p.mass)) {
+      if (!(b.ellipse || b.mass >= 5)) continue;
+      const r = Math.max(3.5, Math.min(12, 1.3 * Math.sqrt(b.mass)));
+      place(X(b.centre[0]), Y(b.centre[1]), r, `${b.name} ${fixed(b.mass, 1)} kg`);
+    }
   }
   root.append(symbols, labels);
 

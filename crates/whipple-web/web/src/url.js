@@ -11,6 +11,7 @@
 //                                    (turn:held: started on the held steady turn)
 //   sq=weave                         the quantity of the Sensitivity tab
 //   map=x:trail=0:0.2:61;y:…;…       the Design map's axes, quantity and speed, as typed
+//   sv=centres:off;ellipses:off      what the side view leaves out (absent: everything drawn)
 
 function encodeJson(value) {
   const bytes = new TextEncoder().encode(JSON.stringify(value));
@@ -73,6 +74,7 @@ export function readUrl() {
     sim: q.get("sim") ? pairs(q.get("sim")) : null,
     sens: q.get("sq"),
     map: q.get("map") ? pairs(q.get("map")) : null,
+    side: q.get("sv") ? pairs(q.get("sv")) : null,
   };
 }
 
@@ -90,6 +92,7 @@ export function writeUrl(s, push) {
   if (s.sim) q.set("sim", joinPairs(s.sim));
   if (s.sens) q.set("sq", s.sens);
   if (s.map) q.set("map", joinPairs(s.map));
+  if (s.side && Object.keys(s.side).length) q.set("sv", joinPairs(s.side));
   const url = `${location.pathname}?${q.toString()}`;
   if (url === `${location.pathname}${location.search}`) return;
   if (push) history.pushState(null, "", url);
