@@ -11,7 +11,7 @@ use whipple::advanced::sensitivity::CriticalSpeedsSigma;
 
 use crate::TextFormat;
 use crate::bike::{RunContext, load};
-use crate::commands::{emit, optional, with_sigma};
+use crate::commands::{emit, optional, round_sigma, round_to_sigma, with_sigma};
 use crate::output::number;
 
 /// Parses `LO:HI` where either end may be `inf` (or left empty: `4:` is every speed from 4 m/s
@@ -57,10 +57,24 @@ pub fn range_words(lo: f64, hi: f64) -> Result<String> {
     })
 }
 
-fn stable_words(s: &CriticalSpeeds, a: f64, b: f64) -> Result<String> {
+/// An end of a stable range, `value ± σ` where it has a σ (as the speeds above print).
+fn range_end(x: f64, sd: Option<f64>) -> Result<String> {
+    Ok(match sd {
+        Some(s) if s > 0.0 => format!("{} ± {}", round_to_sigma(x, s), round_sigma(s)),
+        _ => number(x)?,
+    })
+}
+
+/// A stable range in words; `sd` holds its ends' σ where the bicycle has σ.
+fn stable_words(
+    s: &CriticalSpeeds,
+    a: f64,
+    b: f64,
+    sd: (Option<f64>, Option<f64>),
+) -> Result<String> {
     let (lo, hi) = s.range;
     Ok(if b == f64::INFINITY {
-        format!("above {} m/s (at every higher speed)", number(a)?)
+        format!("above {} m/s (at every higher speed)", range_end(a, sd.0)?)
     } else if let Some(open) = s
         .unresolved
         .iter()
@@ -69,11 +83,11 @@ fn stable_words(s: &CriticalSpeeds, a: f64, b: f64) -> Result<String> {
         format!(
             "above {} m/s (certified up to {} m/s; above that, round-off in the matrices \
              leaves it open)",
-            number(a)?,
+            range_end(a, sd.0)?,
             number(open.0)?
         )
     } else if a == f64::NEG_INFINITY {
-        format!("below {} m/s", number(b)?)
+        format!("below {} m/s", range_end(b, sd.1)?)
     } else {
         let open_end = if b == hi && hi.is_finite() {
             " (up to the end of the range)"
@@ -82,7 +96,11 @@ fn stable_words(s: &CriticalSpeeds, a: f64, b: f64) -> Result<String> {
         } else {
             ""
         };
-        format!("{} .. {} m/s{open_end}", number(a)?, number(b)?)
+        format!(
+            "{} .. {} m/s{open_end}",
+            range_end(a, sd.0)?,
+            range_end(b, sd.1)?
+        )
     })
 }
 
@@ -168,8 +186,11 @@ pub fn table(
             )?;
         }
     }
-    for &(a, b) in &s.stable_speed_ranges {
-        writeln!(t, "  self-stable            {}", stable_words(s, a, b)?)?;
+    for (k, &(a, b)) in s.stable_speed_ranges.iter().enumerate() {
+        let sd = sigma
+            .and_then(|u| u.stable_speed_ranges_sigma.get(k).copied())
+            .unwrap_or((None, None));
+        writeln!(t, "  self-stable            {}", stable_words(s, a, b, sd)?)?;
     }
     for &(a, b) in &s.unresolved {
         if b == f64::INFINITY {

@@ -25,6 +25,11 @@ fn speeds_print_the_uncertainty_of_a_measured_bicycle() {
     );
     // Named as BicycleParameters names it, without the parameter set's suffix (issue 28).
     assert!(out.starts_with("Fisher: critical speeds"), "{out}");
+    // The self-stable range's ends carry their σ as the speeds do (issue 28, item 2).
+    assert!(
+        out.contains("self-stable            3.7981 ± 0.0764 .. 6.119 ± 0.241 m/s"),
+        "{out}"
+    );
     let json: serde_json::Value = serde_json::from_str(&stdout(&whipple(&[
         "speeds",
         "--bike",
