@@ -510,7 +510,13 @@ impl LinearSystem {
                     }
                 }
                 StateVariable::RearContactY => {
-                    let yaw = index(StateVariable::Yaw).expect("checked: y needs ψ");
+                    // `check` refuses y without ψ; the error stays should that change.
+                    let Some(yaw) = index(StateVariable::Yaw) else {
+                        return Err(Error::InvalidArgument {
+                            what: "states",
+                            rule: "the rear contact's y needs the yaw ψ among the states".into(),
+                        });
+                    };
                     a[(i, yaw)] = speed;
                 }
                 // Deviations from the nominal run: zero rows (see the module documentation).
