@@ -192,7 +192,12 @@ impl ParameterDerivatives {
     /// σ are too large for a linear propagation, which assumes the quantity changes little
     /// over them). The error names the parameter that contributes most, by its file key, with
     /// its σ ([`Error::InvalidParameter`]).
-    pub fn checked_sigma_of(&self, derivatives: &[f64], what: &str, value: f64) -> Result<f64> {
+    pub(crate) fn checked_sigma_of(
+        &self,
+        derivatives: &[f64],
+        what: &str,
+        value: f64,
+    ) -> Result<f64> {
         let sigma = self.sigma_of(derivatives);
         if sigma.is_finite() && sigma <= value.abs() {
             return Ok(sigma);

@@ -627,7 +627,7 @@ impl LinearSystem {
     }
 
     /// The canonical matrices the system was built from.
-    pub fn canonical(&self) -> &Canonical {
+    pub(crate) fn canonical(&self) -> &Canonical {
         &self.canonical
     }
 
