@@ -8,6 +8,7 @@
 //!   typed), checked into the library's `InitialConditions` and `SimulationSettings`;
 //! - [`design`]: design axes `NAME=START:STOP:COUNT` into the library's typed `Axis`, and a study
 //!   with its axes as typed;
+//! - [`system`]: the linear system's inputs and outputs by name, frequency grids;
 //! - [`units`]: degrees to radians and back, units spelled for people (the units themselves are
 //!   the library's parameter table's);
 //! - [`message`]: the library's errors in the words of the options the user gave;
@@ -29,4 +30,5 @@ pub mod format;
 pub mod formats;
 pub mod message;
 pub mod simulation;
+pub mod system;
 pub mod units;
