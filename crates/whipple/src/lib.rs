@@ -417,6 +417,12 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::linear::StateSpace;
+        /// Controllability: the Kalman matrix at a speed, each mode's modal controllability,
+        /// and the speeds where one input loses a mode, certified.
+        pub use crate::linear::{
+            Controllability, ModalControllability, UncontrollableSpeed, UncontrollableSpeeds,
+            uncontrollable_speeds,
+        };
         pub use crate::linear::{
             FrequencyResponse, Input, MAX_SIGNALS, Output, StateVariable, SystemRequest,
             TransferFunction, origin_zero_speeds,

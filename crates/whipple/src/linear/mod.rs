@@ -4,12 +4,17 @@
 
 mod canonical;
 mod characteristic;
+mod controllability;
 mod state_space;
 mod system;
 mod transfer;
 
 pub use canonical::Canonical;
 pub use characteristic::{CharacteristicPolynomial, SpeedPolynomials};
+pub use controllability::{
+    Controllability, ModalControllability, UncontrollableSpeed, UncontrollableSpeeds,
+    uncontrollable_speeds,
+};
 pub use state_space::StateSpace;
 pub use system::{Input, LinearSystem, MAX_SIGNALS, Output, StateVariable, SystemRequest};
 pub use transfer::{FrequencyResponse, TransferFunction, origin_zero_speeds};

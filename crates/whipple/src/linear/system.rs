@@ -425,6 +425,17 @@ pub(crate) struct Geometry {
 }
 
 impl Geometry {
+    /// The geometry of a bicycle.
+    pub(crate) fn of(bike: &BenchmarkParameters) -> Self {
+        Geometry {
+            w: bike.w,
+            c: bike.c,
+            lambda: bike.lambda,
+            r_r: bike.r_r,
+            r_f: bike.r_f,
+        }
+    }
+
     /// ψ̇ = (v δ + c δ̇) cos λ / w on [φ, δ, φ̇, δ̇].
     fn yaw_rate_row(&self, speed: f64) -> [f64; 4] {
         let k = self.lambda.cos() / self.w;
@@ -486,13 +497,7 @@ impl LinearSystem {
         let canonical = Canonical::new(bike)?;
         let lean_steer = StateSpace::new(&canonical, speed)?;
         request.check()?;
-        let geometry = Geometry {
-            w: bike.w,
-            c: bike.c,
-            lambda: bike.lambda,
-            r_r: bike.r_r,
-            r_f: bike.r_f,
-        };
+        let geometry = Geometry::of(bike);
         let states: Vec<StateVariable> = StateVariable::LEAN_STEER
             .iter()
             .chain(&request.states)
