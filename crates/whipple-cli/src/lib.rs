@@ -7,6 +7,7 @@
 
 mod bike;
 mod commands;
+mod control;
 mod design;
 mod figures;
 mod interrupt;
@@ -245,6 +246,8 @@ enum Command {
     /// One steady turn of the non-linear bicycle (held at a lean, steer or radius, or every
     /// hands-free one at a speed): steer, radii, torque, contact forces and stability.
     Turn(turns::TurnArgs),
+    /// The bicycle under control: which modes each input can reach (controllability).
+    Control(control::ControlArgs),
     /// The families of hands-free steady turns (pseudo-arclength continuation), with a figure of
     /// lean, steer and radius against speed (stable parts bold).
     Turns(turns::TurnsArgs),
@@ -406,6 +409,7 @@ where
         } => design::merge(&files, out.as_deref(), plot.as_deref(), quantity),
         Command::Simulate(args) => simulate::run(cx, &args),
         Command::Turn(args) => turns::turn(cx, &args),
+        Command::Control(args) => control::run(cx, &args),
         Command::Turns(args) => turns::turns(cx, &args),
         Command::Serve {
             port,

@@ -1,0 +1,306 @@
+//! `whipple control`: the bicycle under control. `controllability` lists, per input, the speeds
+//! where it cannot reach a lean–steer mode (certified by the library) and, over a speed grid,
+//! the Kalman matrix's rank and condition and each mode's modal controllability.
+
+use std::fmt::Write as _;
+
+use anyhow::{Context, Result};
+use clap::{Args, Subcommand};
+use serde_json::json;
+use whipple::advanced::eigen::Complex64;
+use whipple::advanced::linear::{
+    Input, LinearSystem, Output, StateVariable, SystemRequest, uncontrollable_speeds,
+};
+use whipple::advanced::modes::mode_shapes;
+use whipple::advanced::roots::RealRoot;
+
+use crate::TextFormat;
+use crate::bike::{RunContext, load};
+use crate::commands::emit;
+use crate::output::{number, parse_triple};
+
+/// The most speeds the controllability table holds.
+pub const MAX_CONTROL_SPEEDS: usize = 100_000;
+
+/// The arguments of `whipple control`.
+#[derive(Args)]
+pub struct ControlArgs {
+    #[command(subcommand)]
+    command: ControlCommand,
+}
+
+#[derive(Subcommand)]
+enum ControlCommand {
+    /// Which modes each input can reach: the speeds where an input loses a lean–steer mode
+    /// (certified: the real roots of a polynomial in the speed, none missed), and over a speed
+    /// grid the Kalman matrix's rank and condition and each mode's modal controllability.
+    Controllability {
+        #[arg(long, help = whipple_front::formats::bike_help())]
+        bike: String,
+        /// An input: lean_torque, steer_torque or lateral_force:X,Z (the point of the rear
+        /// frame in metres, z down); repeat for several (default: steer_torque and lean_torque).
+        #[arg(long = "input", allow_hyphen_values = true)]
+        inputs: Vec<String>,
+        /// Speeds START:STOP:STEP in m/s for the table, both ends included.
+        #[arg(long, default_value = "0:10:0.5", allow_hyphen_values = true)]
+        speeds: String,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TextFormat,
+        /// Write to this file instead of standard output.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+    },
+}
+
+/// Runs `whipple control`.
+pub fn run(cx: &RunContext, args: &ControlArgs) -> Result<()> {
+    match &args.command {
+        ControlCommand::Controllability {
+            bike,
+            inputs,
+            speeds,
+            format,
+            out,
+        } => controllability(cx, bike, inputs, speeds, *format, out.as_deref()),
+    }
+}
+
+/// A complex number as `a ± bi`.
+fn complex(z: Complex64) -> Result<String> {
+    Ok(if z.im == 0.0 {
+        number(z.re)?
+    } else {
+        format!(
+            "{} {} {}i",
+            number(z.re)?,
+            if z.im < 0.0 { '-' } else { '+' },
+            number(z.im.abs())?
+        )
+    })
+}
+
+/// One row of the table: a speed's rank, condition and modal measures (mode, λ, measure).
+struct Row {
+    speed: f64,
+    rank: usize,
+    states: usize,
+    condition: f64,
+    modes: Vec<(&'static str, Complex64, f64)>,
+}
+
+fn controllability(
+    cx: &RunContext,
+    arg: &str,
+    inputs: &[String],
+    speeds: &str,
+    format: TextFormat,
+    out: Option<&std::path::Path>,
+) -> Result<()> {
+    let target = out
+        .map(|p| crate::output::Target::check("--out", p))
+        .transpose()?;
+    let bike = load(cx, arg)?;
+    let names: Vec<&str> = if inputs.is_empty() {
+        vec!["steer_torque", "lean_torque"]
+    } else {
+        inputs.iter().map(String::as_str).collect()
+    };
+    let inputs: Vec<Input> = names
+        .iter()
+        .map(|name| whipple_front::system::parse_input(name))
+        .collect::<whipple::Result<_>>()
+        .context("--input")?;
+    let (start, stop, step) = parse_triple(speeds, "--speeds")?;
+    let grid = whipple::speed_grid(start, stop, step).context("--speeds")?;
+    if grid.len() > MAX_CONTROL_SPEEDS {
+        anyhow::bail!(
+            "--speeds: at most {MAX_CONTROL_SPEEDS} speeds, got {}",
+            grid.len()
+        );
+    }
+    let c = crate::commands::canonical(&bike)?;
+    let mut sections = Vec::new();
+    for input in &inputs {
+        let lost = uncontrollable_speeds(&bike.benchmark, input)
+            .with_context(|| format!("the speeds where {input} loses a mode"))?;
+        let request = SystemRequest {
+            states: Vec::new(),
+            inputs: vec![*input],
+            outputs: vec![Output::State(StateVariable::Lean)],
+        };
+        let mut rows = Vec::with_capacity(grid.len());
+        for &v in &grid {
+            let system = LinearSystem::new(&bike.benchmark, v, &request)
+                .with_context(|| format!("the linear system at {v} m/s"))?;
+            let kalman = system.controllability(Some(0))?;
+            let shapes = mode_shapes(&c, v).with_context(|| format!("the modes at {v} m/s"))?;
+            let modes = system
+                .modal_controllability(0)?
+                .into_iter()
+                .map(|m| {
+                    let label = shapes
+                        .iter()
+                        .min_by(|a, b| {
+                            (a.pair.value - m.eigenvalue)
+                                .norm()
+                                .total_cmp(&(b.pair.value - m.eigenvalue).norm())
+                        })
+                        .map_or("mode", |s| s.mode.name());
+                    (label, m.eigenvalue, m.measure)
+                })
+                .collect();
+            rows.push(Row {
+                speed: v,
+                rank: kalman.rank,
+                states: kalman.states,
+                condition: kalman.condition,
+                modes,
+            });
+        }
+        sections.push((input, lost, rows));
+    }
+    let text = match format {
+        TextFormat::Json => {
+            let mut doc_inputs = Vec::new();
+            for (input, lost, rows) in &sections {
+                let mut speeds = Vec::new();
+                for s in &lost.speeds {
+                    let (lo, hi) = s.speed.enclosure();
+                    number(s.speed.value())?;
+                    speeds.push(json!({
+                        "speed": s.speed.value(),
+                        "enclosure": [lo, hi],
+                        "resolved": matches!(s.speed, RealRoot::Simple { .. }),
+                        "eigenvalue": [s.eigenvalue.re, s.eigenvalue.im],
+                    }));
+                }
+                let mut table = Vec::new();
+                for r in rows {
+                    let mut modes = Vec::new();
+                    for (label, value, measure) in &r.modes {
+                        number(*measure)?;
+                        modes.push(json!({
+                            "mode": label,
+                            "eigenvalue": [value.re, value.im],
+                            "modal_controllability": measure,
+                        }));
+                    }
+                    table.push(json!({
+                        "speed": r.speed,
+                        "rank": r.rank,
+                        "states": r.states,
+                        // JSON has no infinity: a rank-deficient matrix's condition is null.
+                        "condition": if r.condition.is_finite() { json!(r.condition) } else { json!(null) },
+                        "modes": modes,
+                    }));
+                }
+                doc_inputs.push(json!({
+                    "input": input.to_string(),
+                    "uncontrollable_speeds": speeds,
+                    "uncontrollable_everywhere": lost.everywhere,
+                    "table": table,
+                }));
+            }
+            let doc = json!({
+                "bike": bike.label,
+                "inputs": doc_inputs,
+                "warnings": bike.warnings_json(),
+            });
+            format!("{}\n", serde_json::to_string_pretty(&doc)?)
+        }
+        TextFormat::Table => {
+            let mut t = String::new();
+            for (input, lost, rows) in &sections {
+                writeln!(t, "{}: controllability by {input}", bike.label)?;
+                if lost.everywhere {
+                    writeln!(
+                        t,
+                        "  {input} does no work on lean or steer: it controls no mode at any speed"
+                    )?;
+                } else if lost.speeds.is_empty() {
+                    writeln!(
+                        t,
+                        "  {input} reaches every lean–steer mode at every speed (certified: the \
+                         polynomial whose roots are the speeds where a mode is lost has no real root)"
+                    )?;
+                } else {
+                    writeln!(
+                        t,
+                        "  speeds where {input} cannot reach a lean–steer mode (certified: the real \
+                         roots of a polynomial in v, none missed; the same at -v):"
+                    )?;
+                    for s in &lost.speeds {
+                        let (lo, hi) = s.speed.enclosure();
+                        let stable = if s.eigenvalue.re < 0.0 {
+                            "stable"
+                        } else {
+                            "unstable"
+                        };
+                        match s.speed {
+                            RealRoot::Simple { value, .. } => writeln!(
+                                t,
+                                "    v = {} m/s: the {stable} motion λ = {} 1/s is lost",
+                                number(value)?,
+                                complex(s.eigenvalue)?
+                            )?,
+                            RealRoot::Cluster { .. } => writeln!(
+                                t,
+                                "    v in [{}, {}] m/s (not resolved: a near-double root): a mode \
+                                 near λ = {} 1/s is lost",
+                                number(lo)?,
+                                number(hi)?,
+                                complex(s.eigenvalue)?
+                            )?,
+                        }
+                    }
+                }
+                writeln!(
+                    t,
+                    "  at each speed (numerical): the Kalman matrix's rank and condition, and each \
+                     mode's λ [1/s] and modal\n  controllability |ℓᵀb|/(‖ℓ‖‖b‖) (0: not reached, 1: \
+                     best)\n  v [m/s]   rank   condition   modes"
+                )?;
+                for r in rows {
+                    let condition = if r.condition.is_finite() {
+                        format!("{:.3e}", r.condition)
+                    } else {
+                        "inf".to_string()
+                    };
+                    let mut modes = Vec::new();
+                    for (label, value, measure) in &r.modes {
+                        // A conjugate pair has one measure: listed once, as `a ± bi`.
+                        if value.im < 0.0 {
+                            continue;
+                        }
+                        number(value.re)?;
+                        number(*measure)?;
+                        let value = if value.im > 0.0 {
+                            format!("{:.4}±{:.4}i", value.re, value.im)
+                        } else {
+                            format!("{:.4}", value.re)
+                        };
+                        let measure = if *measure >= 1e-3 || *measure == 0.0 {
+                            format!("{measure:.3}")
+                        } else {
+                            format!("{measure:.1e}")
+                        };
+                        modes.push(format!("{label} {value}: {measure}"));
+                    }
+                    writeln!(
+                        t,
+                        "  {:<9} {}/{}    {:<11} {}",
+                        number(r.speed)?,
+                        r.rank,
+                        r.states,
+                        condition,
+                        modes.join("; ")
+                    )?;
+                }
+                t.push('\n');
+            }
+            t
+        }
+    };
+    emit(&text, target.as_ref())
+}
