@@ -1,15 +1,23 @@
 //! The linearized Whipple bicycle (Meijaard et al. 2007): canonical matrices, state space,
 //! characteristic polynomial, and the bicycle as a linear system with named inputs and outputs
-//! and its transfer functions.
+//! and its transfer functions and time responses.
 
 mod canonical;
 mod characteristic;
+mod manoeuvre;
+mod response;
 mod state_space;
 mod system;
 mod transfer;
 
 pub use canonical::Canonical;
 pub use characteristic::{CharacteristicPolynomial, SpeedPolynomials};
+pub use manoeuvre::{
+    MAX_MANOEUVRE_BREAKS, Manoeuvre, ManoeuvreComparison, ManoeuvreMotion, compare_manoeuvre,
+};
+pub use response::{
+    GroundPath, InputSignal, MAX_KNOTS, MAX_RESPONSE_TIMES, MAX_RESPONSE_VALUES, TimeResponse,
+};
 pub use state_space::StateSpace;
 pub use system::{Input, LinearSystem, MAX_SIGNALS, Output, StateVariable, SystemRequest};
 pub use transfer::{FrequencyResponse, TransferFunction, origin_zero_speeds};
