@@ -369,13 +369,14 @@ fn pulse_manoeuvre(amplitude: f64) -> Result<Manoeuvre> {
 /// Issue 29: a steer-torque pulse of 0.5 s on the benchmark at 5 m/s, over 3 s, on the linear
 /// and the non-linear model. The difference is odd in the amplitude for lean, steer, yaw and
 /// the lateral positions, so O(a³): halving a divides it by 8; x's is even, O(a²): by 4. Two
-/// consecutive halvings (0.2 → 0.1 → 0.05 N m), each ratio within 3%. And the models agree
-/// to first order, which a sign error (of ψ, y or a torque) would break.
+/// consecutive halvings (0.1 → 0.05 → 0.025 N m), each ratio within 1% (measured: 7.992 and
+/// 7.998 for lean; 4.005 and 4.001 for x; at 1 → 0.5 N m the lean's is still 7.3). And the
+/// models agree to first order, which a sign error (of ψ, y or a torque) would break.
 #[test]
 fn issue_29_nonlinear_difference_scales_as_amplitude_cubed() -> Result<()> {
     let times = grid(0.05, 3.0);
     let mut maxima = Vec::new();
-    for a in [0.2, 0.1, 0.05] {
+    for a in [0.1, 0.05, 0.025] {
         let both = compare_manoeuvre(&bike(), &pulse_manoeuvre(a)?, &times, 1e-13)?;
         let (linear, difference) = (both.linear.max_abs(), both.difference.max_abs());
         println!(
@@ -397,7 +398,7 @@ fn issue_29_nonlinear_difference_scales_as_amplitude_cubed() -> Result<()> {
             println!("{name}: ratio {ratio:.4}");
             let expected = if *name == "rear_x" { 4.0 } else { 8.0 };
             assert!(
-                (ratio / expected - 1.0).abs() < 0.03,
+                (ratio / expected - 1.0).abs() < 0.01,
                 "{name}: ratio {ratio} where {expected} is expected"
             );
         }
@@ -491,6 +492,11 @@ fn bad_requests_name_their_field() -> Result<()> {
     invalid(system.response(&x0, &zero, &[]), "times", "at least one");
     let many = vec![0.0; whipple::advanced::linear::MAX_RESPONSE_TIMES + 1];
     invalid(system.response(&x0, &zero, &many), "times", "at most");
+    invalid(
+        system.response(&x0, &zero, &[0.0, 1e300]),
+        "times",
+        "too long for the matrix exponential",
+    );
     invalid(
         system.response(&x0, &zero[..2], &[0.0]),
         "inputs",

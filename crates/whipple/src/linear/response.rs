@@ -51,6 +51,9 @@ pub const MAX_RESPONSE_VALUES: usize = 50_000_000;
 /// at most 2 KB): beyond it an exponential is computed for each interval and dropped.
 const MAX_CACHED_EXPONENTIALS: usize = 4096;
 
+/// The largest ‖A h‖ (bounded by n max |a_ij| h) an interval's exponential is computed for.
+const MAX_EXPONENT_SIZE: f64 = 1e15;
+
 /// An input signal u(t), piecewise linear in time: linear between consecutive knots, a jump
 /// where a knot is given twice (the first value just before it, the second from it on), and
 /// constant before the first knot and after the last, at their values.
@@ -370,6 +373,19 @@ struct Exponential {
 impl Exponential {
     fn new(a: &DMatrix<f64>, h: f64) -> Result<Self> {
         let n = a.nrows();
+        // Scaling and squaring takes about log2 ‖A h‖ squarings: an interval whose ‖A h‖ is
+        // not finite, or beyond 1e15 (50 squarings; the response's modes have long since
+        // decayed or overflowed), is refused rather than handed to it.
+        let size = a.amax() * h * n as f64;
+        if !size.is_finite() || size > MAX_EXPONENT_SIZE {
+            return Err(Error::LimitExceeded {
+                what: "times",
+                rule: format!(
+                    "an interval of {} s without a knot or sample is too long for the matrix exponential (‖A‖ h ≈ {size:.3e}, at most {MAX_EXPONENT_SIZE:e}): sample more often",
+                    short_number(h)
+                ),
+            });
+        }
         let mut m = DMatrix::zeros(3 * n, 3 * n);
         m.view_mut((0, 0), (n, n)).copy_from(&(a * h));
         for i in 0..n {
