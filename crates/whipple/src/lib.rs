@@ -375,7 +375,7 @@ pub mod advanced {
             json_without_duplicates, name_from_file_name, parse, write,
         };
     }
-    #[doc = "The linearized model: canonical matrices, state space, characteristic polynomial, the linear system with named inputs and outputs, transfer functions."]
+    #[doc = "The linearized model: canonical matrices, state space, characteristic polynomial, the linear system with named inputs and outputs, transfer functions, time responses (exact and integrated), one manoeuvre on the linear and the non-linear model."]
     pub mod linear {
         /// The characteristic polynomial p(λ, v) = det(M λ² + v C₁ λ + g K₀ + v² K₂).
         ///
@@ -426,6 +426,11 @@ pub mod advanced {
         pub use crate::linear::{
             FrequencyResponse, Input, MAX_SIGNALS, Output, StateVariable, SystemRequest,
             TransferFunction, origin_zero_speeds,
+        };
+        pub use crate::linear::{
+            GroundPath, InputSignal, MAX_KNOTS, MAX_MANOEUVRE_BREAKS, MAX_RESPONSE_TIMES,
+            MAX_RESPONSE_VALUES, Manoeuvre, ManoeuvreComparison, ManoeuvreMotion, TimeResponse,
+            compare_manoeuvre,
         };
     }
     #[doc = "Jacobians of any vector field: exact (dual numbers) and by central differences."]

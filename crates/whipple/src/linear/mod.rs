@@ -1,10 +1,12 @@
 //! The linearized Whipple bicycle (Meijaard et al. 2007): canonical matrices, state space,
 //! characteristic polynomial, and the bicycle as a linear system with named inputs and outputs
-//! and its transfer functions.
+//! and its transfer functions and time responses.
 
 mod canonical;
 mod characteristic;
 mod controllability;
+mod manoeuvre;
+mod response;
 mod state_space;
 mod system;
 mod transfer;
@@ -14,6 +16,12 @@ pub use characteristic::{CharacteristicPolynomial, SpeedPolynomials};
 pub use controllability::{
     Controllability, ModalControllability, UncontrollableSpeed, UncontrollableSpeeds,
     uncontrollable_speeds,
+};
+pub use manoeuvre::{
+    MAX_MANOEUVRE_BREAKS, Manoeuvre, ManoeuvreComparison, ManoeuvreMotion, compare_manoeuvre,
+};
+pub use response::{
+    GroundPath, InputSignal, MAX_KNOTS, MAX_RESPONSE_TIMES, MAX_RESPONSE_VALUES, TimeResponse,
 };
 pub use state_space::StateSpace;
 pub use system::{Input, LinearSystem, MAX_SIGNALS, Output, StateVariable, SystemRequest};
