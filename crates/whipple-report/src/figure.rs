@@ -111,6 +111,7 @@ pub(crate) enum Content {
     Map(Box<crate::design::MapFigure>),
     Study(Box<crate::design::StudyFigure>),
     Tornado(Box<crate::tornado::TornadoFigure>),
+    Manoeuvre(Box<crate::manoeuvre::ManoeuvreFigure>),
 }
 
 /// A figure ready to render: its size in pixels and what it shows. Built by
@@ -289,6 +290,7 @@ impl Figure {
             Content::Study(_) => "design study",
             Content::Tornado(_) => "tornado plot",
             Content::Turns(_) => "turn families",
+            Content::Manoeuvre(_) => "manoeuvre plot",
         }
     }
 
@@ -303,6 +305,7 @@ impl Figure {
             Content::Study(f) => f.draw(root),
             Content::Tornado(f) => f.draw(root),
             Content::Turns(f) => f.draw(root),
+            Content::Manoeuvre(f) => f.draw(root),
         }
     }
 }

@@ -29,6 +29,7 @@ mod draw;
 mod eigen;
 mod error;
 mod figure;
+mod manoeuvre;
 mod side_view;
 mod table;
 mod time_series;
@@ -41,6 +42,7 @@ pub use draw::Dash;
 pub use eigen::{BikeEigen, EigenPlotOptions, eigen_comparison_plot, eigen_plot, mode_colour};
 pub use error::{Error, Result};
 pub use figure::{Figure, Format};
+pub use manoeuvre::manoeuvre_plot;
 pub use side_view::side_view;
 pub use table::{
     EIGEN_CSV_HEADER, eigen_csv, eigen_csv_row, eigen_table, eigen_table_header, eigen_table_row,
