@@ -4,12 +4,17 @@
 
 mod canonical;
 mod characteristic;
+mod feedback;
+mod riccati;
 mod state_space;
 mod system;
 mod transfer;
 
 pub use canonical::Canonical;
+pub(crate) use characteristic::GeneralSpeedPolynomials;
 pub use characteristic::{CharacteristicPolynomial, SpeedPolynomials};
+pub use feedback::{ClosedLoop, Gains, MAX_SCHEDULE_SPEEDS};
+pub use riccati::{Lqr, LqrSchedule, MAX_RICCATI_RESIDUAL, MAX_RICCATI_STATES, care, lqr_schedule};
 pub use state_space::StateSpace;
 pub use system::{Input, LinearSystem, MAX_SIGNALS, Output, StateVariable, SystemRequest};
 pub use transfer::{FrequencyResponse, TransferFunction, origin_zero_speeds};
