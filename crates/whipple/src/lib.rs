@@ -323,8 +323,8 @@ pub mod advanced {
     #[doc = "Feedback: the closed loop u = r − K x (gains constant or scheduled with speed), its tracked eigenvalues and certified critical speeds; LQR gains (the continuous algebraic Riccati equation) and single-input pole placement (`LinearSystem::lqr`, `LinearSystem::place_poles`)."]
     pub mod control {
         pub use crate::linear::{
-            ClosedLoop, Gains, Lqr, LqrSchedule, MAX_RICCATI_RESIDUAL, MAX_RICCATI_STATES,
-            MAX_SCHEDULE_SPEEDS, care, lqr_schedule,
+            ClosedLoop, Gains, Lqr, LqrSchedule, MAX_GENERAL_SWEEP_SPEEDS, MAX_RICCATI_RESIDUAL,
+            MAX_RICCATI_STATES, MAX_SCHEDULE_SPEEDS, care, lqr_schedule,
         };
     }
     #[doc = "Design studies over one or two parameters."]

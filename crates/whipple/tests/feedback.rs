@@ -610,3 +610,43 @@ fn zero_gains_give_the_open_loop_critical_speeds_for_every_preset() -> Result<()
     );
     Ok(())
 }
+
+/// Path control (gains on yaw and lateral position, from LQR with them weighted): a loop of
+/// order 6, swept by the general eigensolver and tracked by nearest assignment; each row is
+/// the set of eigenvalues of A − BK at its speed, and the columns move continuously.
+#[test]
+fn a_path_control_loop_is_swept_by_the_general_solver() -> Result<(), Error> {
+    let bike = BenchmarkParameters::meijaard2007();
+    let request = steer_only(vec![StateVariable::Yaw, StateVariable::RearContactY]);
+    let lqr = LinearSystem::new(&bike, 5.0, &request)?
+        .lqr(&DMatrix::identity(6, 6), &DMatrix::identity(1, 1))?;
+    let closed = ClosedLoop::new(&bike, &request, Gains::Constant(lqr.gains))?;
+    let speeds: Vec<f64> = (0..=180).map(|i| 1.0 + 0.05 * f64::from(i)).collect();
+    let rows = closed.general_sweep(&speeds)?;
+    assert_eq!(rows.len(), speeds.len());
+    for (v, row) in speeds.iter().zip(&rows) {
+        assert_eq!(row.len(), 6);
+        assert!(set_distance(row, &closed.eigenvalues(*v)?) == 0.0);
+    }
+    // Tracking: each row follows the previous one at least as closely as the solver's own
+    // order (sorted by real part) and as every transposition of the tracked order.
+    for (k, pair) in rows.windows(2).enumerate() {
+        let cost = |row: &[Complex64]| -> f64 {
+            row.iter().zip(&pair[0]).map(|(a, b)| (a - b).norm()).sum()
+        };
+        let tracked = cost(&pair[1]);
+        assert!(tracked <= cost(&closed.eigenvalues(speeds[k + 1])?) + 1e-12);
+        for i in 0..6 {
+            for j in 0..i {
+                let mut swapped = pair[1].clone();
+                swapped.swap(i, j);
+                assert!(tracked <= cost(&swapped) + 1e-12);
+            }
+        }
+    }
+    // At the design speed the loop is the LQR's: stable.
+    let at_design = &rows[80];
+    assert!((speeds[80] - 5.0).abs() < 1e-12);
+    assert!(at_design.iter().all(|l| l.re < 0.0));
+    Ok(())
+}

@@ -36,6 +36,9 @@ use crate::parameters::BenchmarkParameters;
 /// The most speeds in a gain schedule.
 pub const MAX_SCHEDULE_SPEEDS: usize = 10_000;
 
+/// The most speeds in one [`ClosedLoop::general_sweep`] (each a dense eigenproblem).
+pub const MAX_GENERAL_SWEEP_SPEEDS: usize = 1_000_000;
+
 /// Feedback gains K (inputs × states, in the order of the system's inputs and states): constant,
 /// or scheduled with speed.
 #[derive(Debug, Clone, PartialEq)]
@@ -285,8 +288,8 @@ impl ClosedLoop {
         Err(bad_gains(format!(
             "{what} needs gains on lean, steer and their rates only: gains on the ignorable \
              states raise the closed loop's order above four, so its eigenvalues come from \
-             the general eigensolver (ClosedLoop::eigenvalues) and its critical speeds are not \
-             certified"
+             the general eigensolver (ClosedLoop::eigenvalues, ClosedLoop::general_sweep) and \
+             its critical speeds are not certified"
         )))
     }
 
@@ -360,6 +363,53 @@ impl ClosedLoop {
         eigen_sweep_of(&Piecewise { breaks, pieces }, speeds)
     }
 
+    /// The eigenvalues of A − B K(v) over `speeds` from the general eigensolver, for any
+    /// gains (those on ignorable states included: a loop of any order), each row in tracked
+    /// column order: each speed's eigenvalues are matched to the previous speed's by the
+    /// smallest total distance (an optimal assignment for up to eight states, greedy by
+    /// distance beyond). Not certified, and not labelled: what [`Self::eigen_sweep`] gives
+    /// for gains on φ, δ, φ̇, δ̇ only, with certified eigenvalues and named modes. At most
+    /// [`MAX_GENERAL_SWEEP_SPEEDS`] speeds.
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use whipple::BenchmarkParameters;
+    /// use whipple::advanced::control::{ClosedLoop, Gains};
+    /// use whipple::advanced::linear::{Input, Output, StateVariable, SystemRequest};
+    /// let request = SystemRequest {
+    ///     states: vec![StateVariable::Yaw],
+    ///     inputs: vec![Input::SteerTorque],
+    ///     outputs: vec![Output::State(StateVariable::Yaw)],
+    /// };
+    /// // Heading control on top of steer into the fall: a gain on yaw, order 5.
+    /// let k = DMatrix::from_row_slice(1, 5, &[-100.0, 10.0, -20.0, 0.0, 5.0]);
+    /// let closed = ClosedLoop::new(&BenchmarkParameters::meijaard2007(), &request, Gains::Constant(k))?;
+    /// let rows = closed.general_sweep(&[3.0, 3.1, 3.2])?;
+    /// assert_eq!((rows.len(), rows[0].len()), (3, 5));
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn general_sweep(&self, speeds: &[f64]) -> Result<Vec<Vec<Complex64>>> {
+        if speeds.len() > MAX_GENERAL_SWEEP_SPEEDS {
+            return Err(Error::InvalidArgument {
+                what: "speeds",
+                rule: format!(
+                    "at most {MAX_GENERAL_SWEEP_SPEEDS} speeds in a general sweep, got {}",
+                    speeds.len()
+                ),
+            });
+        }
+        let mut rows: Vec<Vec<Complex64>> = Vec::with_capacity(speeds.len());
+        for v in speeds {
+            let values = self.eigenvalues(*v)?;
+            let row = match rows.last() {
+                Some(previous) => matched(previous, values),
+                None => values,
+            };
+            rows.push(row);
+        }
+        Ok(rows)
+    }
+
     /// The closed loop's critical speeds on [lo, hi] (m/s; constant gains allow ±∞),
     /// certified as the open loop's are (`analysis::stability`): every speed where an
     /// eigenvalue crosses the imaginary axis, with its enclosure, and the ranges of speed
@@ -413,6 +463,53 @@ impl Quartics for Piecewise {
     fn certified_at(&self, v: f64) -> Result<[Complex64; 4]> {
         self.piece(v).certified_at(v)
     }
+}
+
+/// `values` reordered to follow `previous`: the assignment of least total distance, by
+/// exhaustive search over permutations for up to eight values, greedy (closest pair first)
+/// beyond.
+fn matched(previous: &[Complex64], values: Vec<Complex64>) -> Vec<Complex64> {
+    let n = values.len();
+    let cost = |i: usize, j: usize| (previous[i] - values[j]).norm();
+    let mut assignment: Vec<usize> = (0..n).collect();
+    if n <= 8 {
+        // Heap's algorithm over the permutations (8! = 40 320 at most).
+        let mut best = assignment.clone();
+        let total = |a: &[usize]| (0..n).map(|i| cost(i, a[i])).sum::<f64>();
+        let mut best_cost = total(&best);
+        let mut c = vec![0usize; n];
+        let mut i = 1;
+        while i < n {
+            if c[i] < i {
+                let k = if i % 2 == 0 { 0 } else { c[i] };
+                assignment.swap(k, i);
+                let t = total(&assignment);
+                if t < best_cost {
+                    best_cost = t;
+                    best.clone_from(&assignment);
+                }
+                c[i] += 1;
+                i = 1;
+            } else {
+                c[i] = 0;
+                i += 1;
+            }
+        }
+        assignment = best;
+    } else {
+        let mut pairs: Vec<(usize, usize)> =
+            (0..n).flat_map(|i| (0..n).map(move |j| (i, j))).collect();
+        pairs.sort_by(|a, b| cost(a.0, a.1).total_cmp(&cost(b.0, b.1)));
+        let (mut row_done, mut col_done) = (vec![false; n], vec![false; n]);
+        for (i, j) in pairs {
+            if !row_done[i] && !col_done[j] {
+                assignment[i] = j;
+                row_done[i] = true;
+                col_done[j] = true;
+            }
+        }
+    }
+    assignment.iter().map(|&j| values[j]).collect()
 }
 
 /// The eigenvalues of a square matrix (faer's general eigensolver).

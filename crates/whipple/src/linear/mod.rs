@@ -13,7 +13,7 @@ mod transfer;
 pub use canonical::Canonical;
 pub(crate) use characteristic::GeneralSpeedPolynomials;
 pub use characteristic::{CharacteristicPolynomial, SpeedPolynomials};
-pub use feedback::{ClosedLoop, Gains, MAX_SCHEDULE_SPEEDS};
+pub use feedback::{ClosedLoop, Gains, MAX_GENERAL_SWEEP_SPEEDS, MAX_SCHEDULE_SPEEDS};
 pub use riccati::{Lqr, LqrSchedule, MAX_RICCATI_RESIDUAL, MAX_RICCATI_STATES, care, lqr_schedule};
 pub use state_space::StateSpace;
 pub use system::{Input, LinearSystem, MAX_SIGNALS, Output, StateVariable, SystemRequest};
