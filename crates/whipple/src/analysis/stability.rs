@@ -25,6 +25,12 @@
 //! near-tangency: a self-stable range that is about to open or close, or a double root) the
 //! speeds concerned are listed as `unresolved` instead of being guessed. Not covered: the
 //! round-off in forming M, C₁, K₀, K₂ from the parameters (about 1e-16 relative per entry).
+//!
+//! A closed loop (full-state feedback on φ, δ, φ̇, δ̇: `linear::feedback`) keeps the degrees
+//! in λ and v but loses the parity p(λ, −v) = p(−λ, v): its Routh entries are polynomials in ν
+//! itself ([`GeneralSpeedPolynomials`]: a₃ of degree 1, Δ₂ of 3, Δ₃ of 6, a₀ of 4), whose
+//! certified roots cut the same line, counted the same way ([`Structure::general`]), one
+//! segment of a gain schedule at a time ([`closed_loop_critical_speeds`]).
 
 use serde::ser::SerializeSeq;
 use serde::{Serialize, Serializer};

@@ -125,11 +125,15 @@ impl Gains {
         }
     }
 
-    /// The speeds the gains are defined on: the whole line, or the schedule's first to last.
+    /// The speeds the gains are defined on: the whole line, or the schedule's first to last
+    /// (NaN for an empty schedule).
     pub fn speed_range(&self) -> (f64, f64) {
         match self {
             Gains::Constant(_) => (f64::NEG_INFINITY, f64::INFINITY),
-            Gains::Scheduled { speeds, .. } => (speeds[0], speeds[speeds.len() - 1]),
+            Gains::Scheduled { speeds, .. } => (
+                speeds.first().copied().unwrap_or(f64::NAN),
+                speeds.last().copied().unwrap_or(f64::NAN),
+            ),
         }
     }
 
@@ -142,8 +146,28 @@ impl Gains {
     }
 
     /// K at `speed`: constant, or interpolated linearly in the schedule. Errors
-    /// ([`Error::InvalidArgument`] naming `speed`) for a speed outside the schedule.
+    /// ([`Error::InvalidArgument`]) naming `speed` for a speed outside the schedule, and
+    /// `gains` or `speeds` for a schedule [`ClosedLoop::new`] would refuse.
+    ///
+    /// ```
+    /// use nalgebra::DMatrix;
+    /// use whipple::advanced::control::Gains;
+    /// let gains = Gains::Scheduled {
+    ///     speeds: vec![1.0, 3.0],
+    ///     gains: vec![DMatrix::from_element(1, 4, -10.0), DMatrix::from_element(1, 4, -20.0)],
+    /// };
+    /// assert_eq!(gains.at(1.5)?[(0, 0)], -12.5);
+    /// assert!(gains.at(3.5).is_err()); // never extrapolated
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
     pub fn at(&self, speed: f64) -> Result<DMatrix<f64>> {
+        let shape = self.matrices().first().map_or((0, 0), |k| k.shape());
+        self.check(shape.0, shape.1)?;
+        self.at_checked(speed)
+    }
+
+    /// [`Self::at`] for gains already checked.
+    fn at_checked(&self, speed: f64) -> Result<DMatrix<f64>> {
         match self {
             Gains::Constant(k) => Ok(k.clone()),
             Gains::Scheduled { speeds, gains } => {
@@ -267,7 +291,7 @@ impl ClosedLoop {
     /// The closed loop at `speed` as a [`LinearSystem`]: A − B K(v), B, C − D K(v), D (the
     /// inputs are now reference inputs r; [`LinearSystem::gains`] holds K(v)).
     pub fn system(&self, speed: f64) -> Result<LinearSystem> {
-        let k = self.gains.at(speed)?;
+        let k = self.gains.at_checked(speed)?;
         Ok(LinearSystem::new(&self.bike, speed, &self.request)?.closed(&k))
     }
 
@@ -351,7 +375,7 @@ impl ClosedLoop {
         let (lo, hi) = self.gains.speed_range();
         if let Some(v) = speeds.iter().find(|v| !(**v >= lo && **v <= hi)) {
             // The schedule's own message.
-            self.gains.at(*v)?;
+            self.gains.at_checked(*v)?;
         }
         let mut breaks = Vec::new();
         let mut pieces = Vec::new();
@@ -417,8 +441,11 @@ impl ClosedLoop {
     /// segment (each one's polynomial is exact there) and [lo, hi] must lie inside it.
     /// `weave_speed` and `capsize_speed` keep the open loop's rules (the lowest forward speed
     /// where a pair crossing stabilizes, where a real one destabilizes); the double-root
-    /// speed is not computed (`double_root_unavailable` says why). Gains on ignorable states
-    /// are refused (naming `gains`): nothing about that loop is certified.
+    /// speed is not computed (`double_root_unavailable` says why). Where round-off cannot
+    /// decide (a near-tangency, or a coefficient of these polynomials that cancels to zero
+    /// within its bound, as the two-mass skate's does with zero gains) the speeds are listed
+    /// in `unresolved`, never guessed. Gains on ignorable states are refused (naming
+    /// `gains`): nothing about that loop is certified ([`Self::general_sweep`] samples it).
     pub fn critical_speeds(&self, lo: f64, hi: f64) -> Result<CriticalSpeeds> {
         self.refuse_ignorable("certified critical speeds")?;
         let (a, b) = self.gains.speed_range();
