@@ -7,10 +7,9 @@ use std::fmt::Write as _;
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
 use serde_json::json;
+use whipple::advanced::control::uncontrollable_speeds;
 use whipple::advanced::eigen::Complex64;
-use whipple::advanced::linear::{
-    Input, LinearSystem, Output, StateVariable, SystemRequest, uncontrollable_speeds,
-};
+use whipple::advanced::linear::{Input, LinearSystem, Output, StateVariable, SystemRequest};
 use whipple::advanced::modes::mode_shapes;
 use whipple::advanced::roots::RealRoot;
 

@@ -320,6 +320,19 @@ pub mod advanced {
             general_eigenvalues, lean_steer_eigenvalues, max_abs_diff, pick, zero_cluster,
         };
     }
+    #[doc = "Feedback and controllability: the closed loop u = r − K x (gains constant or scheduled with speed), its tracked eigenvalues and certified critical speeds; LQR gains (the continuous algebraic Riccati equation) and single-input pole placement (`LinearSystem::lqr`, `LinearSystem::place_poles`); the Kalman matrix, modal controllability and the certified speeds where an input loses a mode."]
+    pub mod control {
+        pub use crate::linear::{
+            ClosedLoop, Gains, Lqr, LqrSchedule, MAX_GENERAL_SWEEP_SPEEDS, MAX_RICCATI_RESIDUAL,
+            MAX_RICCATI_STATES, MAX_SCHEDULE_SPEEDS, care, lqr_schedule,
+        };
+        /// Controllability: the Kalman matrix at a speed, each mode's modal controllability,
+        /// and the speeds where one input loses a mode, certified.
+        pub use crate::linear::{
+            Controllability, ModalControllability, UncontrollableSpeed, UncontrollableSpeeds,
+            uncontrollable_speeds,
+        };
+    }
     #[doc = "Design studies over one or two parameters."]
     pub mod design {
         pub use crate::analysis::design::{
@@ -417,12 +430,6 @@ pub mod advanced {
         /// # Ok::<(), whipple::Error>(())
         /// ```
         pub use crate::linear::StateSpace;
-        /// Controllability: the Kalman matrix at a speed, each mode's modal controllability,
-        /// and the speeds where one input loses a mode, certified.
-        pub use crate::linear::{
-            Controllability, ModalControllability, UncontrollableSpeed, UncontrollableSpeeds,
-            uncontrollable_speeds,
-        };
         pub use crate::linear::{
             FrequencyResponse, Input, MAX_SIGNALS, Output, StateVariable, SystemRequest,
             TransferFunction, origin_zero_speeds,

@@ -3,9 +3,8 @@
 //! left eigenvectors computed independently.
 
 use nalgebra::{Complex, DMatrix};
-use whipple::advanced::linear::{
-    Input, LinearSystem, Output, StateVariable, SystemRequest, uncontrollable_speeds,
-};
+use whipple::advanced::control::uncontrollable_speeds;
+use whipple::advanced::linear::{Input, LinearSystem, Output, StateVariable, SystemRequest};
 use whipple::advanced::roots::RealRoot;
 use whipple::{BenchmarkParameters, presets};
 use whipple_reference::meijaard2007 as published;
@@ -113,7 +112,7 @@ fn the_kalman_matrix_and_the_modes_agree_with_the_certified_speeds() {
                 );
                 let modes = system(bike, v, input).modal_controllability(0).unwrap();
                 let (lost_mode, others): (
-                    Vec<&whipple::advanced::linear::ModalControllability>,
+                    Vec<&whipple::advanced::control::ModalControllability>,
                     Vec<_>,
                 ) = modes
                     .iter()

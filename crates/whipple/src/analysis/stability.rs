@@ -25,6 +25,12 @@
 //! near-tangency: a self-stable range that is about to open or close, or a double root) the
 //! speeds concerned are listed as `unresolved` instead of being guessed. Not covered: the
 //! round-off in forming M, C₁, K₀, K₂ from the parameters (about 1e-16 relative per entry).
+//!
+//! A closed loop (full-state feedback on φ, δ, φ̇, δ̇: `linear::feedback`) keeps the degrees
+//! in λ and v but loses the parity p(λ, −v) = p(−λ, v): its Routh entries are polynomials in ν
+//! itself ([`GeneralSpeedPolynomials`]: a₃ of degree 1, Δ₂ of 3, Δ₃ of 6, a₀ of 4), whose
+//! certified roots cut the same line, counted the same way ([`Structure::general`]), one
+//! segment of a gain schedule at a time ([`closed_loop_critical_speeds`]).
 
 use serde::ser::SerializeSeq;
 use serde::{Serialize, Serializer};
@@ -32,7 +38,7 @@ use serde::{Serialize, Serializer};
 use super::eigen::quartic_roots;
 use super::roots::{RealRoot, RealRoots, UNIT_ROUNDOFF, real_roots};
 use crate::error::{Error, Result};
-use crate::linear::{Canonical, SpeedPolynomials};
+use crate::linear::{Canonical, GeneralSpeedPolynomials, SpeedPolynomials};
 
 /// A reported speed is refused ([`Error::AccuracyLost`]) when its certified enclosure is wider
 /// than this, relative to the speed (ordinary bicycles give about 1e-15).
@@ -195,14 +201,54 @@ struct Line {
 }
 
 impl Line {
+    /// The line of an even–odd polynomial set ([`SpeedPolynomials`]): ν = 0 is a breakpoint.
     fn new() -> Self {
-        let mut line = Line {
+        let mut line = Line::empty();
+        line.push(Group::point(0.0, ZERO));
+        line
+    }
+
+    fn empty() -> Self {
+        Line {
             groups: [Group::default(); MAX_BREAKS],
             n: 0,
             counts: [None; MAX_BREAKS + 1],
-        };
-        line.push(Group::point(0.0, ZERO));
-        line
+        }
+    }
+
+    /// Adds the roots in ν of one polynomial in ν itself (no mirroring: a closed loop's
+    /// polynomials have no parity).
+    fn add_speed_roots(&mut self, roots: &RealRoots, kind: u8) {
+        let crossing = u8::from(kind & CROSSING != 0);
+        if roots.zero_multiplicity > 0 {
+            self.push(Group::point(0.0, kind));
+        }
+        for root in roots.as_slice() {
+            let (lo, hi) = root.enclosure();
+            self.push(Group {
+                lo,
+                hi,
+                value: root.value().clamp(lo, hi),
+                kinds: kind,
+                crossing_members: crossing,
+                cluster: matches!(root, RealRoot::Cluster { .. }),
+                beyond: false,
+            });
+        }
+        if roots.horizon.is_finite() {
+            let h = roots.horizon;
+            for (lo, hi, value) in [(h, f64::INFINITY, h), (f64::NEG_INFINITY, -h, -h)] {
+                self.push(Group {
+                    lo,
+                    hi,
+                    value,
+                    kinds: kind,
+                    crossing_members: crossing,
+                    cluster: true,
+                    beyond: true,
+                });
+            }
+        }
     }
 
     fn push(&mut self, g: Group) {
@@ -307,12 +353,21 @@ impl Line {
             } else {
                 self.groups[i].lo
             };
-            let x = if left == f64::NEG_INFINITY {
+            let x = if left == f64::NEG_INFINITY && right == f64::INFINITY {
+                1.0
+            } else if left == f64::NEG_INFINITY {
                 2.0 * right - 1.0
             } else if right == f64::INFINITY {
                 2.0 * left + 1.0
             } else {
                 0.5 * (left + right)
+            };
+            // A gap symmetric about zero (only on a closed loop's line, where zero is no
+            // breakpoint) is counted at another of its points.
+            let x = if x == 0.0 && right.is_finite() {
+                0.5 * right
+            } else {
+                x
             };
             self.counts[i] = if x > left && x < right && x != 0.0 {
                 count(x)
@@ -383,6 +438,40 @@ impl Structure {
         Ok(Structure {
             line,
             sqrt_g: sp.sqrt_g,
+        })
+    }
+
+    /// Unstable-eigenvalue counts on the speed line of any pencil (a closed loop) from the
+    /// Routh signs of a₃, Δ₂, Δ₃, a₀ as polynomials in ν: the first column is (a₄, a₃,
+    /// Δ₂/a₃, Δ₃/Δ₂, a₀), and between the roots of those four polynomials none is zero.
+    pub(crate) fn general(gp: &GeneralSpeedPolynomials) -> Result<Self> {
+        let a3 = real_roots(&gp.a3, "closed-loop critical speeds (the coefficient a3)")?;
+        let a0 = real_roots(&gp.a0, "closed-loop critical speeds (the coefficient a0)")?;
+        let d3 = real_roots(
+            &gp.delta3,
+            "closed-loop critical speeds (the Hurwitz determinant Δ3)",
+        )?;
+        let d2 = real_roots(
+            &gp.delta2,
+            "closed-loop critical speeds (the Hurwitz determinant Δ2)",
+        )?;
+        let mut line = Line::empty();
+        line.add_speed_roots(&a0, A0);
+        line.add_speed_roots(&d3, PAIR);
+        line.add_speed_roots(&d2, AUX);
+        line.add_speed_roots(&a3, AUX);
+        line.finish(|nu| {
+            let (s3, s2, sd, s0) = (
+                a3.sign_at(nu)?,
+                d2.sign_at(nu)?,
+                d3.sign_at(nu)?,
+                a0.sign_at(nu)?,
+            );
+            Some(sign_changes(&[1.0, s3, s2 * s3, sd * s2, s0]))
+        });
+        Ok(Structure {
+            line,
+            sqrt_g: gp.sqrt_g,
         })
     }
 
@@ -560,7 +649,13 @@ impl Structure {
     /// The one reading of the stability line: stable ranges, unresolved speeds and crossings
     /// inside [lo, hi] (m/s), in increasing speed, without allocating. Both
     /// [`critical_speeds`] and [`summary`] are projections of it.
-    fn findings(&self, sp: &SpeedPolynomials, lo: f64, hi: f64, mut visit: impl FnMut(Finding)) {
+    fn findings(
+        &self,
+        frequency: impl Fn(f64) -> Option<f64>,
+        lo: f64,
+        hi: f64,
+        mut visit: impl FnMut(Finding),
+    ) {
         let s = self.sqrt_g;
         let mut open: Option<(f64, f64)> = None;
         self.walk(lo, hi, |event| match event {
@@ -598,7 +693,7 @@ impl Structure {
                     unstable_below: l,
                     unstable_above: r,
                     frequency: match kind {
-                        CrossingKind::Pair => pair_frequency(sp, g.value),
+                        CrossingKind::Pair => frequency(g.value),
                         CrossingKind::Real => None,
                     },
                 }));
@@ -656,41 +751,46 @@ pub fn summary(
     let mut weave: Option<Crossing> = None;
     let mut capsize: Option<Crossing> = None;
     let mut failure: Option<Error> = None;
-    structure.findings(sp, lo, hi, |finding| match finding {
-        Finding::Stable(a, b) => {
-            out.stable_width += b - a;
-            out.stable_ranges += 1;
-            if out.stable_from.is_none() {
-                out.stable_from = Some(a);
-                out.stable_to = Some(b);
-            }
-            // An end of the range searched holds the band's end there (the self-stable range
-            // may go on beyond it).
-            if band.is_some_and(|(low, high)| (a < low || a == lo) && (high < b || b == hi)) {
-                holding = Some((a, b));
-            }
-        }
-        Finding::Unresolved(a, b) => {
-            out.unresolved = true;
-            if band.is_some_and(|(low, high)| a <= high && low <= b) {
-                band_unresolved = true;
-            }
-        }
-        Finding::Crossing(c) => {
-            if weave.is_none() && is_weave(&c) {
-                if failure.is_none() {
-                    failure = check_enclosure("the weave speed", c.speed, c.enclosure).err();
+    structure.findings(
+        |nu| pair_frequency(sp, nu),
+        lo,
+        hi,
+        |finding| match finding {
+            Finding::Stable(a, b) => {
+                out.stable_width += b - a;
+                out.stable_ranges += 1;
+                if out.stable_from.is_none() {
+                    out.stable_from = Some(a);
+                    out.stable_to = Some(b);
                 }
-                weave = Some(c);
-            }
-            if capsize.is_none() && is_capsize(&c) {
-                if failure.is_none() {
-                    failure = check_enclosure("the capsize speed", c.speed, c.enclosure).err();
+                // An end of the range searched holds the band's end there (the self-stable range
+                // may go on beyond it).
+                if band.is_some_and(|(low, high)| (a < low || a == lo) && (high < b || b == hi)) {
+                    holding = Some((a, b));
                 }
-                capsize = Some(c);
             }
-        }
-    });
+            Finding::Unresolved(a, b) => {
+                out.unresolved = true;
+                if band.is_some_and(|(low, high)| a <= high && low <= b) {
+                    band_unresolved = true;
+                }
+            }
+            Finding::Crossing(c) => {
+                if weave.is_none() && is_weave(&c) {
+                    if failure.is_none() {
+                        failure = check_enclosure("the weave speed", c.speed, c.enclosure).err();
+                    }
+                    weave = Some(c);
+                }
+                if capsize.is_none() && is_capsize(&c) {
+                    if failure.is_none() {
+                        failure = check_enclosure("the capsize speed", c.speed, c.enclosure).err();
+                    }
+                    capsize = Some(c);
+                }
+            }
+        },
+    );
     if let Some(e) = failure {
         return Err(e);
     }
@@ -730,23 +830,8 @@ pub fn critical_speeds(canonical: &Canonical, lo: f64, hi: f64) -> Result<Critic
     check_range(lo, hi)?;
     let sp = SpeedPolynomials::new(canonical)?;
     let structure = Structure::stability(&sp)?;
-    let mut stable: Vec<(f64, f64)> = Vec::new();
-    let mut crossings: Vec<Crossing> = Vec::new();
-    let mut unresolved = Vec::new();
-    let mut failure: Option<Error> = None;
-    structure.findings(&sp, lo, hi, |finding| match finding {
-        Finding::Stable(a, b) => stable.push((a, b)),
-        Finding::Unresolved(a, b) => unresolved.push((a, b)),
-        Finding::Crossing(c) => {
-            if failure.is_none() {
-                failure = check_enclosure("a critical speed", c.speed, c.enclosure).err();
-            }
-            crossings.push(c);
-        }
-    });
-    if let Some(e) = failure {
-        return Err(e);
-    }
+    let (stable, crossings, mut unresolved) =
+        read_line(&structure, |nu| pair_frequency(&sp, nu), lo, hi)?;
     // v_d, v_w and v_c are speeds of forward riding: a range reaching below zero has their
     // mirror images there (p(λ, −v) = p(−λ, v)), where nothing turns stable.
     let weave = crossings.iter().find(|c| is_weave(c));
@@ -776,6 +861,90 @@ pub fn critical_speeds(canonical: &Canonical, lo: f64, hi: f64) -> Result<Critic
         crossings,
         unresolved,
         double_root_unavailable,
+    })
+}
+
+/// The stable ranges, crossings and unresolved speeds of a stability line inside [lo, hi],
+/// each crossing's enclosure checked.
+type LineReading = (Vec<(f64, f64)>, Vec<Crossing>, Vec<(f64, f64)>);
+
+fn read_line(
+    structure: &Structure,
+    frequency: impl Fn(f64) -> Option<f64>,
+    lo: f64,
+    hi: f64,
+) -> Result<LineReading> {
+    let mut stable: Vec<(f64, f64)> = Vec::new();
+    let mut crossings: Vec<Crossing> = Vec::new();
+    let mut unresolved = Vec::new();
+    let mut failure: Option<Error> = None;
+    structure.findings(frequency, lo, hi, |finding| match finding {
+        Finding::Stable(a, b) => stable.push((a, b)),
+        Finding::Unresolved(a, b) => unresolved.push((a, b)),
+        Finding::Crossing(c) => {
+            if failure.is_none() {
+                failure = check_enclosure("a critical speed", c.speed, c.enclosure).err();
+            }
+            crossings.push(c);
+        }
+    });
+    match failure {
+        Some(e) => Err(e),
+        None => Ok((stable, crossings, unresolved)),
+    }
+}
+
+/// The certified critical speeds of a closed loop's pencils on [lo, hi] (m/s): `pieces` are
+/// the pencils of consecutive speed intervals [start, end] (one piece over the whole line for
+/// constant gains; one per segment of a gain schedule, which must cover [lo, hi]), each read
+/// on its own interval and the readings joined (a stable range running across a segment's end
+/// is one range). The double-root speed is not computed for a closed loop (its discriminant
+/// has degree 12 in v, beyond the certified root finder): `double_root_unavailable` says so.
+pub(crate) fn closed_loop_critical_speeds(
+    pieces: &[(f64, f64, GeneralSpeedPolynomials)],
+    lo: f64,
+    hi: f64,
+) -> Result<CriticalSpeeds> {
+    check_range(lo, hi)?;
+    let mut stable: Vec<(f64, f64)> = Vec::new();
+    let mut crossings: Vec<Crossing> = Vec::new();
+    let mut unresolved: Vec<(f64, f64)> = Vec::new();
+    for (start, end, gp) in pieces {
+        let (a, b) = (start.max(lo), end.min(hi));
+        if a >= b {
+            continue;
+        }
+        let structure = Structure::general(gp)?;
+        let frequency = |nu: f64| {
+            let w2 = gp.a1.eval(nu) / gp.a3.eval(nu);
+            (w2 > 0.0).then(|| gp.sqrt_g * w2.sqrt())
+        };
+        let (s, c, u) = read_line(&structure, frequency, a, b)?;
+        for range in s {
+            match stable.last_mut() {
+                Some(last) if last.1 == range.0 => last.1 = range.1,
+                _ => stable.push(range),
+            }
+        }
+        crossings.extend(c);
+        unresolved.extend(u);
+    }
+    let weave = crossings.iter().find(|c| is_weave(c));
+    let capsize = crossings.iter().find(|c| is_capsize(c));
+    Ok(CriticalSpeeds {
+        range: (lo, hi),
+        double_root_speed: None,
+        double_root_eigenvalue: None,
+        weave_speed: weave.map(|c| c.speed),
+        weave_frequency: weave.and_then(|c| c.frequency),
+        capsize_speed: capsize.map(|c| c.speed),
+        stable_speed_ranges: stable,
+        crossings,
+        unresolved,
+        double_root_unavailable: Some(
+            "not computed for a closed loop: its discriminant in λ has degree 12 in the speed"
+                .into(),
+        ),
     })
 }
 

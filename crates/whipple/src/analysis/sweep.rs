@@ -232,8 +232,8 @@ fn wanted(a: f64, b: f64) -> f64 {
 
 /// The eigenvalues at the intermediate speeds tracked through between the requested speeds
 /// `p` and `v` (none when they are close), in order.
-pub(crate) fn between<E: From<Error>>(
-    poly: &CharacteristicPolynomial,
+pub(crate) fn between<P: Quartics + ?Sized, E: From<Error>>(
+    poly: &P,
     p: f64,
     v: f64,
     share: f64,
@@ -242,7 +242,7 @@ pub(crate) fn between<E: From<Error>>(
     let substeps = (wanted(p, v) * share).floor() as usize;
     for k in 1..substeps {
         let u = p + (v - p) * k as f64 / substeps as f64;
-        each(quartic_roots(&poly.at_speed(u))?)?;
+        each(quartic_roots(&poly.coefficients_at(u))?)?;
     }
     Ok(())
 }
@@ -295,13 +295,14 @@ pub(crate) fn weave_swapped(a: Complex64, b: Complex64) -> bool {
 
 /// Runs the tracking over `speeds` and calls `each(reported, tracked eigenvalues)` at every
 /// speed visited, intermediate ones included (`reported` false).
-fn visit<I, E>(
-    poly: &CharacteristicPolynomial,
+fn visit<P, I, E>(
+    poly: &P,
     speeds: I,
     share: f64,
     mut each: impl FnMut(Option<f64>, &[Complex64; 4]) -> std::result::Result<(), E>,
 ) -> std::result::Result<(), E>
 where
+    P: Quartics + ?Sized,
     I: Iterator<Item = f64>,
     E: From<Error>,
 {
@@ -311,7 +312,7 @@ where
         if let Some(p) = previous {
             between(poly, p, v, share, |roots| each(None, &tracker.next(roots)))?;
         }
-        let values = tracker.next(certified_roots(poly, v)?);
+        let values = tracker.next(poly.certified_at(v)?);
         each(Some(v), &values)?;
         previous = Some(v);
     }
@@ -327,22 +328,12 @@ impl<I: Iterator<Item = f64> + Clone> SweepPlan<I> {
         // (overflow, a determinant of M lost to cancellation) instead of sweeping garbage.
         crate::linear::SpeedPolynomials::new(canonical)?;
         let poly = CharacteristicPolynomial::new(canonical);
-        let mut votes = Votes::default();
-        let mut first: Option<[Complex64; 4]> = None;
-        visit(&poly, speeds.clone(), share, |reported, values| {
-            votes.add(values);
-            if reported.is_some() && first.is_none() {
-                first = Some(*values);
-            }
-            Ok::<(), Error>(())
-        })?;
-        let labels = votes.labels();
-        let order = column_order(labels, first);
+        let (order, modes) = columns(&poly, speeds.clone(), share)?;
         Ok(SweepPlan {
             poly,
             speeds,
             share,
-            modes: order.map(|k| labels[k]),
+            modes,
             order,
         })
     }
@@ -361,25 +352,100 @@ impl<I: Iterator<Item = f64> + Clone> SweepPlan<I> {
         &self,
         mut row: impl FnMut(f64, &[Complex64; 4]) -> std::result::Result<(), E>,
     ) -> std::result::Result<(), E> {
-        let weave_pair = self.modes[0] == Mode::Weave && self.modes[1] == Mode::Weave;
-        visit(
+        rows_of(
             &self.poly,
             self.speeds.clone(),
             self.share,
-            |reported, values| {
-                let Some(v) = reported else {
-                    return Ok(());
-                };
-                let mut reordered: [Complex64; 4] = self.order.map(|k| values[k]);
-                if weave_pair {
-                    let (a, b) = (reordered[0], reordered[1]);
-                    if weave_swapped(a, b) {
-                        reordered[0] = b;
-                        reordered[1] = a;
-                    }
-                }
-                row(v, &reordered)
-            },
+            (self.order, self.modes),
+            &mut row,
         )
     }
+}
+
+/// What a sweep needs of the quartics in λ at each speed: their coefficients (lowest power
+/// first) and their certified roots. A [`CharacteristicPolynomial`] is one; a closed loop with
+/// a gain schedule is another (one polynomial per segment).
+pub(crate) trait Quartics {
+    /// p(λ) at speed v, lowest power first.
+    fn coefficients_at(&self, v: f64) -> [f64; 5];
+    /// Its roots, certified ([`certified_roots`]).
+    fn certified_at(&self, v: f64) -> Result<[Complex64; 4]>;
+}
+
+impl Quartics for CharacteristicPolynomial {
+    #[inline]
+    fn coefficients_at(&self, v: f64) -> [f64; 5] {
+        self.at_speed(v)
+    }
+    fn certified_at(&self, v: f64) -> Result<[Complex64; 4]> {
+        certified_roots(self, v)
+    }
+}
+
+/// The first pass of a sweep: tracks and labels the modes, giving the reported columns'
+/// order and modes.
+fn columns<P: Quartics + ?Sized>(
+    poly: &P,
+    speeds: impl Iterator<Item = f64>,
+    share: f64,
+) -> Result<([usize; 4], [Mode; 4])> {
+    let mut votes = Votes::default();
+    let mut first: Option<[Complex64; 4]> = None;
+    visit(poly, speeds, share, |reported, values| {
+        votes.add(values);
+        if reported.is_some() && first.is_none() {
+            first = Some(*values);
+        }
+        Ok::<(), Error>(())
+    })?;
+    let labels = votes.labels();
+    let order = column_order(labels, first);
+    Ok((order, order.map(|k| labels[k])))
+}
+
+/// The second pass: each requested speed's eigenvalues in the reported columns' order.
+fn rows_of<P: Quartics + ?Sized, E: From<Error>>(
+    poly: &P,
+    speeds: impl Iterator<Item = f64>,
+    share: f64,
+    (order, modes): ([usize; 4], [Mode; 4]),
+    row: &mut impl FnMut(f64, &[Complex64; 4]) -> std::result::Result<(), E>,
+) -> std::result::Result<(), E> {
+    let weave_pair = modes[0] == Mode::Weave && modes[1] == Mode::Weave;
+    visit(poly, speeds, share, |reported, values| {
+        let Some(v) = reported else {
+            return Ok(());
+        };
+        let mut reordered: [Complex64; 4] = order.map(|k| values[k]);
+        if weave_pair {
+            let (a, b) = (reordered[0], reordered[1]);
+            if weave_swapped(a, b) {
+                reordered[0] = b;
+                reordered[1] = a;
+            }
+        }
+        row(v, &reordered)
+    })
+}
+
+/// [`eigen_sweep`] of any family of quartics (a closed loop's): the same two passes.
+pub(crate) fn eigen_sweep_of<P: Quartics + ?Sized>(poly: &P, speeds: &[f64]) -> Result<EigenSweep> {
+    let share = checked_share(speeds.iter().copied())?;
+    let columns = columns(poly, speeds.iter().copied(), share)?;
+    let mut eigenvalues = Vec::with_capacity(speeds.len());
+    rows_of(
+        poly,
+        speeds.iter().copied(),
+        share,
+        columns,
+        &mut |_, values| {
+            eigenvalues.push(*values);
+            Ok::<(), Error>(())
+        },
+    )?;
+    Ok(EigenSweep {
+        speeds: speeds.to_vec(),
+        eigenvalues,
+        modes: columns.1,
+    })
 }

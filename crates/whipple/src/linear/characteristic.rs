@@ -6,6 +6,8 @@
 //! about smooth polynomials in v (Routh–Hurwitz), which is how the critical speeds are found to
 //! round-off.
 
+use nalgebra::Matrix2;
+
 use super::Canonical;
 use crate::analysis::roots::BoundedPolynomial;
 use crate::error::{Error, Result};
@@ -24,6 +26,49 @@ pub struct CharacteristicPolynomial {
     magnitudes: [[f64; DEGREE + 1]; DEGREE + 1],
     /// The bicycle's own rate scale at rest [1/s] ([`Self::rest_rate`]), formed once.
     rest_rate: f64,
+    /// The depth of the circuit forming each coefficient from the stored matrices, in rounded
+    /// operations ([`Self::error_bounds`]): 12 for the open loop, more for a closed loop's
+    /// matrices, which are formed from the gains.
+    depth: u32,
+}
+
+/// The depth of the open loop's coefficients' circuit ([`CharacteristicPolynomial::error_bounds`]).
+const OPEN_LOOP_DEPTH: u32 = 12;
+
+/// A quadratic matrix pencil in λ whose coefficients are polynomials in the speed v:
+/// M λ² + (C₀ + v C₁) λ + K₀ + v K₁ + v² K₂ (2 × 2, SI). The open loop has C₀ = K₁ = 0 and
+/// K₀ = g K₀ (Meijaard's); full-state feedback u = −(P + v Q) x on φ, δ, φ̇, δ̇ through inputs
+/// of generalized forces F adds C₀ = F P_rate, C₁ += F Q_rate, K₀ += F P_angle, K₁ = F Q_angle
+/// (constant gains: Q = 0), so the closed loop keeps the open loop's degrees in λ and v.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Pencil {
+    pub(crate) m: Matrix2<f64>,
+    pub(crate) c0: Matrix2<f64>,
+    pub(crate) c1: Matrix2<f64>,
+    pub(crate) k0: Matrix2<f64>,
+    pub(crate) k1: Matrix2<f64>,
+    pub(crate) k2: Matrix2<f64>,
+    /// g [m/s²]: the scale of the speed polynomials ([`GeneralSpeedPolynomials`]).
+    pub(crate) g: f64,
+    /// Rounded operations in forming an entry beyond the canonical matrices' (the gains'
+    /// products and sums), added to the coefficients' circuit depth.
+    pub(crate) formation_depth: u32,
+}
+
+impl Pencil {
+    /// The open loop: M λ² + v C₁ λ + g K₀ + v² K₂.
+    pub(crate) fn open_loop(canonical: &Canonical) -> Self {
+        Pencil {
+            m: canonical.m,
+            c0: Matrix2::zeros(),
+            c1: canonical.c1,
+            k0: canonical.k0.map(|x| canonical.g * x),
+            k1: Matrix2::zeros(),
+            k2: canonical.k2,
+            g: canonical.g,
+            formation_depth: 0,
+        }
+    }
 }
 
 type Bivariate = [[f64; DEGREE + 1]; DEGREE + 1];
@@ -50,12 +95,19 @@ fn multiply(a: &Bivariate, b: &Bivariate) -> Bivariate {
 impl CharacteristicPolynomial {
     /// Expands det(M λ² + v C₁ λ + g K₀ + v² K₂).
     pub fn new(canonical: &Canonical) -> Self {
+        Self::from_pencil(&Pencil::open_loop(canonical))
+    }
+
+    /// Expands det(M λ² + (C₀ + v C₁) λ + K₀ + v K₁ + v² K₂) of any [`Pencil`].
+    pub(crate) fn from_pencil(pencil: &Pencil) -> Self {
         let entry = |i: usize, j: usize, f: fn(f64) -> f64| {
             let mut e = [[0.0; DEGREE + 1]; DEGREE + 1];
-            e[2][0] = f(canonical.m[(i, j)]);
-            e[1][1] = f(canonical.c1[(i, j)]);
-            e[0][0] = f(canonical.g * canonical.k0[(i, j)]);
-            e[0][2] = f(canonical.k2[(i, j)]);
+            e[2][0] = f(pencil.m[(i, j)]);
+            e[1][0] = f(pencil.c0[(i, j)]);
+            e[1][1] = f(pencil.c1[(i, j)]);
+            e[0][0] = f(pencil.k0[(i, j)]);
+            e[0][1] = f(pencil.k1[(i, j)]);
+            e[0][2] = f(pencil.k2[(i, j)]);
             e
         };
         let same = |x: f64| x;
@@ -75,6 +127,7 @@ impl CharacteristicPolynomial {
             coefficients,
             magnitudes,
             rest_rate: 0.0,
+            depth: OPEN_LOOP_DEPTH + pencil.formation_depth,
         };
         let rest = poly.at_speed(0.0);
         poly.rest_rate = (0..DEGREE)
@@ -99,10 +152,12 @@ impl CharacteristicPolynomial {
     /// g or a sum of at most three terms) and Horner's scheme in v are circuits of depth at
     /// most 12 on the matrices as stored, so each computed aₖ lies within γ₁₂ Σⱼ |cₖⱼ| |v|ʲ of
     /// the exact coefficient of those matrices (Higham 2002, §3.1; the |cₖⱼ| are the expansion
-    /// of the entries' absolute values).
+    /// of the entries' absolute values). A closed loop's entries are formed from the gains
+    /// with more operations, which deepen the circuit ([`Pencil::formation_depth`]).
     pub(crate) fn error_bounds(&self, v: f64) -> [f64; DEGREE + 1] {
         const U: f64 = f64::EPSILON / 2.0;
-        let gamma = 12.0 * U / (1.0 - 12.0 * U);
+        let depth = f64::from(self.depth);
+        let gamma = depth * U / (1.0 - depth * U);
         let mut e = [0.0; DEGREE + 1];
         let av = v.abs();
         for (k, row) in self.magnitudes.iter().enumerate() {
@@ -569,5 +624,150 @@ impl SpeedPolynomials {
             .add(&m(&[&a, &a, &b, &d], -16.0, 1))
             .add(&m(&[&b, &b, &b, &b], -3.0, 2));
         Ok((disc.bounded(), p.bounded(), d4.bounded()))
+    }
+}
+
+/// The characteristic polynomial of any [`Pencil`] with its coefficients, and the Hurwitz
+/// determinants, as polynomials in the scaled speed ν = v/√g with a-priori round-off bounds:
+/// what the certified stability line needs when p(λ, −v) = p(−λ, v) no longer holds (a closed
+/// loop: the gains add damping and stiffness that do not change sign with the speed), so the
+/// even–odd structure of [`SpeedPolynomials`] is lost. With μ = λ/√g:
+///
+/// - a₄ = det M (constant), a₃(ν) (degree 1), a₂(ν) (2), a₁(ν) (3), a₀(ν) (4);
+/// - Δ₂ = a₃a₂ − a₄a₁ (degree 3) and Δ₃ = a₃a₂a₁ − a₄a₁² − a₀a₃² (degree 6).
+///
+/// Bounds as in [`SpeedPolynomials`]: the stored entries (scaled by 1/√g and 1/g where the
+/// speed's and the eigenvalue's scaling ask, then by a common power of two) are taken within
+/// 64 units of round-off of the pencil's, and every coefficient is a tracked circuit on them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct GeneralSpeedPolynomials {
+    /// √g, the scale between ν and v [√(m/s²)].
+    pub(crate) sqrt_g: f64,
+    /// a₄ = det M (scaled).
+    pub(crate) a4: BoundedPolynomial<1>,
+    pub(crate) a3: BoundedPolynomial<2>,
+    pub(crate) a1: BoundedPolynomial<4>,
+    pub(crate) a0: BoundedPolynomial<5>,
+    /// Δ₂ = a₃a₂ − a₄a₁.
+    pub(crate) delta2: BoundedPolynomial<4>,
+    /// Δ₃ = a₃a₂a₁ − a₄a₁² − a₀a₃².
+    pub(crate) delta3: BoundedPolynomial<7>,
+}
+
+impl GeneralSpeedPolynomials {
+    /// The polynomials of a pencil. Errors as [`SpeedPolynomials::new`]: [`Error::AccuracyLost`]
+    /// when an entry is not finite, the entries span too many orders of magnitude, or det M is
+    /// not certainly positive; [`Error::InvalidParameter`] naming `g` when g is not positive.
+    pub(crate) fn new(pencil: &Pencil) -> Result<Self> {
+        let g = pencil.g;
+        if !(g.is_finite() && g > 0.0) {
+            return Err(Error::InvalidParameter {
+                field: "g".into(),
+                value: g,
+                rule: "must be a finite number greater than zero".into(),
+            });
+        }
+        let sqrt_g = g.sqrt();
+        let mats = [
+            pencil.m,
+            pencil.c0 / sqrt_g,
+            pencil.c1,
+            pencil.k0 / g,
+            pencil.k1 / sqrt_g,
+            pencil.k2,
+        ];
+        let mut largest = 0.0f64;
+        for m in &mats {
+            for x in m.iter() {
+                if !x.is_finite() {
+                    return Err(accuracy_lost(format!(
+                        "a matrix entry of the closed loop is not finite ({x})"
+                    )));
+                }
+                largest = largest.max(x.abs());
+            }
+        }
+        if largest == 0.0 {
+            return Err(accuracy_lost("every matrix entry is zero".into()));
+        }
+        let exponent = largest.log2().floor() as i32 + 1;
+        let scale = 2f64.powi(-exponent);
+        let mut e = [[Tracked::ZERO; 4]; 6];
+        for (mi, m) in mats.iter().enumerate() {
+            for (k, x) in m.iter().enumerate() {
+                let y = x * scale;
+                if y != 0.0 && y.abs() < SMALLEST_RELATIVE_ENTRY {
+                    return Err(accuracy_lost(format!(
+                        "the entries of the closed loop's matrices span more than 22 orders of \
+                         magnitude (largest {largest:e}, smallest non-zero {:e})",
+                        x.abs()
+                    )));
+                }
+                e[mi][k] = Tracked::entry(y);
+            }
+        }
+        // Entry (i, j) as a polynomial in μ whose coefficients are polynomials in ν.
+        let entry = |i: usize, j: usize| -> [UPoly; 3] {
+            let [m, c0, c1, k0, k1, k2] = &e;
+            [
+                UPoly::new(&[at(k0, i, j), at(k1, i, j), at(k2, i, j)]),
+                UPoly::new(&[at(c0, i, j), at(c1, i, j)]),
+                UPoly::constant(at(m, i, j)),
+            ]
+        };
+        let product = |x: [UPoly; 3], y: [UPoly; 3]| -> [Option<UPoly>; 5] {
+            let mut out: [Option<UPoly>; 5] = [None; 5];
+            for (a, xa) in x.iter().enumerate() {
+                for (b, yb) in y.iter().enumerate() {
+                    let t = xa.mul(yb);
+                    out[a + b] = Some(match out[a + b] {
+                        Some(s) => s.add(&t),
+                        None => t,
+                    });
+                }
+            }
+            out
+        };
+        let diagonal = product(entry(0, 0), entry(1, 1));
+        let off = product(entry(0, 1), entry(1, 0));
+        let mut a = [UPoly::constant(Tracked::ZERO); 5];
+        for k in 0..5 {
+            if let (Some(d), Some(o)) = (diagonal[k], off[k]) {
+                a[k] = d.add(&o.scale(-1.0));
+            }
+        }
+        let [a0, a1, a2, a3, a4] = a;
+        if a4.c[0].v.partial_cmp(&a4.c[0].bound()) != Some(std::cmp::Ordering::Greater) {
+            return Err(accuracy_lost(
+                "det M is not certainly positive: the mass matrix's determinant is lost to \
+                 cancellation"
+                    .into(),
+            ));
+        }
+        let delta2 = a3.mul(&a2).add(&a4.mul(&a1).scale(-1.0));
+        let delta3 = a3
+            .mul(&a2)
+            .mul(&a1)
+            .add(&a4.mul(&a1).mul(&a1).scale(-1.0))
+            .add(&a0.mul(&a3).mul(&a3).scale(-1.0));
+        let out = GeneralSpeedPolynomials {
+            sqrt_g,
+            a4: a4.bounded(),
+            a3: a3.bounded(),
+            a1: a1.bounded(),
+            a0: a0.bounded(),
+            delta2: delta2.bounded(),
+            delta3: delta3.bounded(),
+        };
+        if out
+            .delta3
+            .coefficients
+            .iter()
+            .chain(out.delta3.bounds.iter())
+            .any(|x| !x.is_finite())
+        {
+            return Err(accuracy_lost("a coefficient overflowed".into()));
+        }
+        Ok(out)
     }
 }

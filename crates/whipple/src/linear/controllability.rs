@@ -193,7 +193,8 @@ fn resultant(canonical: &Canonical, f: Vector2<f64>) -> BoundedPolynomial<3> {
 ///
 /// ```
 /// use whipple::BenchmarkParameters;
-/// use whipple::advanced::linear::{Input, uncontrollable_speeds};
+/// use whipple::advanced::control::uncontrollable_speeds;
+/// use whipple::advanced::linear::Input;
 /// let lost = uncontrollable_speeds(&BenchmarkParameters::meijaard2007(), &Input::SteerTorque)?;
 /// assert_eq!(lost.speeds.len(), 2);
 /// # Ok::<(), whipple::Error>(())

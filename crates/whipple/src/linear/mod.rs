@@ -5,24 +5,29 @@
 mod canonical;
 mod characteristic;
 mod controllability;
+mod feedback;
 mod manoeuvre;
 mod response;
+mod riccati;
 mod state_space;
 mod system;
 mod transfer;
 
 pub use canonical::Canonical;
+pub(crate) use characteristic::GeneralSpeedPolynomials;
 pub use characteristic::{CharacteristicPolynomial, SpeedPolynomials};
 pub use controllability::{
     Controllability, ModalControllability, UncontrollableSpeed, UncontrollableSpeeds,
     uncontrollable_speeds,
 };
+pub use feedback::{ClosedLoop, Gains, MAX_GENERAL_SWEEP_SPEEDS, MAX_SCHEDULE_SPEEDS};
 pub use manoeuvre::{
     MAX_MANOEUVRE_BREAKS, Manoeuvre, ManoeuvreComparison, ManoeuvreMotion, compare_manoeuvre,
 };
 pub use response::{
     GroundPath, InputSignal, MAX_KNOTS, MAX_RESPONSE_TIMES, MAX_RESPONSE_VALUES, TimeResponse,
 };
+pub use riccati::{Lqr, LqrSchedule, MAX_RICCATI_RESIDUAL, MAX_RICCATI_STATES, care, lqr_schedule};
 pub use state_space::StateSpace;
 pub use system::{Input, LinearSystem, MAX_SIGNALS, Output, StateVariable, SystemRequest};
 pub use transfer::{FrequencyResponse, TransferFunction, origin_zero_speeds};

@@ -487,6 +487,8 @@ pub struct LinearSystem {
     d: DMatrix<f64>,
     /// The generalized forces of each input (2 × inputs): B's lower block is M⁻¹ times this.
     pub(crate) forces: DMatrix<f64>,
+    /// K (inputs × states) when this is a closed loop u = r − K x (`control::ClosedLoop`).
+    gains: Option<DMatrix<f64>>,
 }
 
 impl LinearSystem {
@@ -588,7 +590,25 @@ impl LinearSystem {
             c,
             d,
             forces,
+            gains: None,
         })
+    }
+
+    /// The closed loop u = r − K x of this open loop: A − B K, B, C − D K, D, the inputs
+    /// becoming reference inputs r. `k` must be inputs × states (checked by the caller).
+    pub(crate) fn closed(&self, k: &DMatrix<f64>) -> LinearSystem {
+        LinearSystem {
+            a: &self.a - &self.b * k,
+            c: &self.c - &self.d * k,
+            gains: Some(k.clone()),
+            ..self.clone()
+        }
+    }
+
+    /// K (inputs × states) when the system is a closed loop u = r − K x, `None` for the
+    /// open loop.
+    pub fn gains(&self) -> Option<&DMatrix<f64>> {
+        self.gains.as_ref()
     }
 
     /// The forward speed v [m/s].

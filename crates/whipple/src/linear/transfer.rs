@@ -387,6 +387,14 @@ impl LinearSystem {
                 ),
             });
         }
+        if self.gains().is_some() {
+            return Err(Error::InvalidArgument {
+                what: "system",
+                rule: "transfer functions are formed from the open loop's polynomial matrix; \
+                       a closed loop's are not offered yet (its A, B, C, D are)"
+                    .into(),
+            });
+        }
         let canonical = self.canonical();
         let v = self.speed();
         let eigenvalues = eigenvalues(canonical, v)?;

@@ -52,6 +52,7 @@ pub(crate) use jacobians::FullJacobian;
 pub use jacobians::{
     ComparisonSettings, full_state_jacobian, full_state_jacobian_fd, lean_steer_matrix,
 };
+pub(crate) use picking::faer_failure;
 pub use picking::{general_eigenvalues, lean_steer_eigenvalues, max_abs_diff, pick};
 
 /// A way to linearize the non-linear model about upright straight running.
