@@ -627,6 +627,7 @@ function showView(view, { push = true } = {}) {
   for (const v of VIEWS) $(`panel-${v}`).hidden = v !== view;
   $("speed-controls").hidden = !(view === "eigen" || view === "locus");
   document.querySelector(".layout").classList.toggle("sim-active", view === "sim");
+  document.querySelector(".layout").classList.toggle("resp-active", view === "resp");
   for (const tab of document.querySelectorAll(".tab[data-view]")) {
     const on = tab.dataset.view === view;
     tab.setAttribute("aria-selected", String(on));
