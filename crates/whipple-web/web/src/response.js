@@ -105,9 +105,13 @@ class BodePlot extends Chart {
     return this.logOmega;
   }
 
+  /** The slider's curve in ink; the compared speeds in the compared designs' colours, in order
+   * of speed (the first, slate, left out: it is too near the ink). */
   colour(k) {
-    const r = this.answer.responses[k];
-    return r.speed === this.heavy ? HEAVY : COMPARE_COLOURS[k % COMPARE_COLOURS.length];
+    const rs = this.answer.responses;
+    if (rs[k].speed === this.heavy) return HEAVY;
+    const j = rs.slice(0, k).filter((r) => r.speed !== this.heavy).length;
+    return COMPARE_COLOURS[1 + (j % (COMPARE_COLOURS.length - 1))];
   }
 
   render(root, f) {
