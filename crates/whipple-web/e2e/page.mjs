@@ -1133,6 +1133,129 @@ await section("phones (390 × 844, touch): the critical speeds in sight while ty
   }
 });
 
+const respCurves = (plot) => page.locator(`[data-testid=${plot}] [data-testid=resp-curve]`).count();
+const respPath = () => page.$eval("[data-testid=resp-magnitude] [data-testid=resp-curve][data-heavy=true]", (p) => p.getAttribute("d"));
+const rhpZeros = () => page.locator("[data-testid=resp-zero][data-rhp=true]").count();
+/** Until the Response tab shows `n` curves in both plots and the page has settled. */
+async function respDrawn(n) {
+  await waitFor(`${n} Bode curves`, async () => (await respCurves("resp-magnitude")) === n && (await respCurves("resp-phase")) === n, 15_000);
+  await settled();
+}
+
+await section("response: Bode plots of steer torque → lean, a speed slider, the right-half-plane zero, the link", async () => {
+  await open("?bike=preset:benchmark&tab=resp");
+  await respDrawn(3);
+  check(true, "three speeds compared by default (3, 5, 7 m/s): three curves in magnitude and in phase");
+  const heavy = await page.$$eval("[data-testid=resp-magnitude] [data-testid=resp-curve][data-heavy=true]", (ps) => ps.map((p) => p.dataset.speed));
+  check(heavy.length === 1 && heavy[0] === "5", `the slider's speed drawn heavy (${heavy.join(", ")} m/s)`);
+  const ticks = await xTicks("resp-magnitude");
+  check(["0.1", "1", "10", "100"].every((t) => ticks.split(" ").includes(t)), `logarithmic frequency axis, ticks at decades (${ticks})`);
+  check((await rhpZeros()) === 0 && /Minimum phase at 5 m\/s/.test(await text("resp-rhp-summary")), "at 5 m/s no zero is in the right half-plane");
+  // The crossing of steer torque → lean's zero: √(−g K₀₁₂ / K₂₁₂) of Meijaard et al. 2007 §5's matrices.
+  const crossing = Math.sqrt((9.81 * 2.59951685249872) / 76.59734589573222);
+  const said = await text("resp-crossing");
+  check(said.includes(`${crossing.toFixed(3)} m/s`), `the speed where the zero crosses s = 0 is given: “${said}” (√(−g K₀₁₂ / K₂₁₂) = ${crossing.toFixed(4)} m/s)`);
+  await page.getByTestId("resp-speed").fill("0.3");
+  await waitForText("resp-speed-value", (t) => t.startsWith("0.3"));
+  await respDrawn(4);
+  check((await rhpZeros()) === 1, "at 0.3 m/s, below the crossing, one zero is flagged in the right half-plane");
+  const zero = number(await page.locator("[data-testid=resp-zero][data-rhp=true]").textContent());
+  check(zero > 0, `its real part is positive (${zero} 1/s)`);
+  check(/Non-minimum phase at 0\.3 m\/s/.test(await text("resp-rhp-summary")), "and the phase is said to be non-minimum");
+  await page.getByTestId("resp-speed").fill("0.8");
+  await waitForText("resp-speed-value", (t) => t.startsWith("0.8"));
+  await respDrawn(4);
+  check((await rhpZeros()) === 0, "at 0.8 m/s, above it, none");
+  // Another pair, the slider low, then the link: everything comes back.
+  await page.getByTestId("resp-output").selectOption("yaw_rate");
+  await page.getByTestId("resp-input").selectOption("lean_torque");
+  await page.getByTestId("resp-compare").fill("2, 6");
+  await page.getByTestId("resp-compare").press("Enter");
+  await page.getByTestId("resp-speed").fill("0.3");
+  await waitForText("resp-meta", (t) => /T_φ → ψ̇/.test(t));
+  await respDrawn(3);
+  const link = page.url();
+  check(/[?&]rs=/.test(link) && /tab=resp/.test(link), "the link holds the tab and its choices");
+  const pathBefore = await respPath();
+  await page.goto("about:blank");
+  await open(new URL(link).search);
+  await respDrawn(3);
+  const restored = await page.evaluate(() => ["resp-input", "resp-output", "resp-speed", "resp-compare"].map((id) => document.getElementById(id).value).join("|"));
+  check(restored === "lean_torque|yaw_rate|0.3|2, 6", `the link restores input, output, speed and speeds compared (${restored})`);
+  check((await respPath()) === pathBefore, "and draws the same curve");
+  check(!(await page.locator("[data-testid=resp-crossing]").count()), "a yaw-rate output has no crossing speed to give");
+});
+
+await section("response: recomputed when the bicycle is edited; bad input never breaks the page", async () => {
+  await open("?tab=resp");
+  await respDrawn(3);
+  const before = await respPath();
+  const rootsBefore = await text("resp-poles");
+  await page.getByTestId("param-trail").fill("0.05");
+  await waitFor("the Bode plot redrawn", async () => (await respPath()) !== before, 15_000);
+  await settled();
+  check((await text("resp-poles")) !== rootsBefore, "a shorter trail redraws the Bode plot and changes the poles listed");
+  await page.getByTestId("param-trail").fill("abc");
+  await waitFor("the veil", async () => (await page.getByTestId("resp-roots").getAttribute("data-stale")) !== "", 10_000);
+  await settled();
+  check((await respCurves("resp-magnitude")) === 3 && (await page.locator("[data-testid=resp-magnitude] [data-testid=stale-veil]").count()) === 1, "text in a field veils the curves, which stay");
+  await page.getByTestId("param-trail").fill("0.05");
+  await waitFor("the veil lifted", async () => (await page.getByTestId("resp-roots").getAttribute("data-stale")) === "", 10_000);
+  await settled();
+  for (const bad of ["3, x", "1, 2, 3, 4, 5, 6, 7, 8, 9", "1e999"]) {
+    await page.getByTestId("resp-compare").fill(bad);
+    await page.getByTestId("resp-compare").press("Enter");
+    await settled();
+    const message = await text("resp-message");
+    check(message.length > 0 && (await page.getByTestId("resp-compare").getAttribute("class")).includes("invalid"), `“${bad}” is refused with a message: ${message}`);
+    check((await respCurves("resp-magnitude")) > 0, "and the last curves stay, veiled", { quiet: true });
+  }
+  await page.getByTestId("resp-compare").fill("4");
+  await page.getByTestId("resp-compare").press("Enter");
+  await respDrawn(2);
+  check(!(await page.getByTestId("resp-message").isVisible()), "a good value again: two curves (4 m/s and the slider's), the message gone");
+});
+
+await section("response at 1280 × 800 and 390 × 844: nothing overlaps, nothing sticks out", async () => {
+  for (const viewport of [{ width: 1280, height: 800 }, { width: 390, height: 844 }]) {
+    await open("?bike=preset:benchmark&tab=resp", viewport);
+    await respDrawn(3);
+    const blocks = ["#resp-form", "#resp-magnitude", "#resp-phase", "#resp-roots"];
+    const rects = await page.evaluate((sels) => sels.map((s) => {
+      const r = document.querySelector(s).getBoundingClientRect();
+      return { s, l: r.left, t: r.top, r: r.right, b: r.bottom };
+    }), blocks);
+    const out = rects.filter((r) => r.l < 0 || r.r > viewport.width || r.r - r.l < 1 || r.b - r.t < 1).map((r) => r.s);
+    check(out.length === 0, `${viewport.width} px: every block within the width (${out.join(", ") || "none outside"})`);
+    const overlaps = [];
+    for (let i = 0; i < rects.length; i++) {
+      for (let j = i + 1; j < rects.length; j++) {
+        const [a, b] = [rects[i], rects[j]];
+        if (Math.min(a.r, b.r) - Math.max(a.l, b.l) > 1 && Math.min(a.b, b.b) - Math.max(a.t, b.t) > 1) overlaps.push(`${a.s} × ${b.s}`);
+      }
+    }
+    check(overlaps.length === 0, `${viewport.width} px: no two blocks overlap (${overlaps.join(", ") || "none"})`);
+    const size = (s) => rects.find((r) => r.s === s);
+    const [mag, phase] = [size("#resp-magnitude"), size("#resp-phase")];
+    check(mag.b - mag.t >= 130 && phase.b - phase.t >= 130 && mag.r - mag.l >= 300, `${viewport.width} px: room for the plots (${Math.round(mag.r - mag.l)} × ${Math.round(mag.b - mag.t)} and ${Math.round(phase.b - phase.t)} px high)`);
+    // The panel holds what it shows: the plots are not cut off by the panel's bottom edge.
+    const panel = await page.evaluate(() => document.querySelector("#plots").getBoundingClientRect().bottom);
+    check(phase.b <= panel + 1, `${viewport.width} px: the phase plot ends inside its panel (${Math.round(phase.b)} ≤ ${Math.round(panel)})`);
+    const { scroll, inner } = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, inner: window.innerWidth }));
+    check(scroll <= inner, `${viewport.width} px: no sideways scroll (${scroll} px)`);
+    if (viewport.width === 1280) {
+      // The plots take the whole width below a shorter top row, which still shows the side view and the table whole.
+      check(mag.r - mag.l >= 800, `1280 px: the Bode plots take the width (${Math.round(mag.r - mag.l)} px)`);
+      const top = await page.evaluate(() => {
+        const side = document.querySelector("[data-testid=side-view]");
+        const table = document.querySelector("#critical");
+        return { drawn: side.querySelector("svg").getBoundingClientRect().height, room: side.clientHeight, table: table.scrollHeight, shown: table.clientHeight };
+      });
+      check(top.drawn <= top.room + 1 && top.table <= top.shown + 1, `1280 px: the side view drawn within its ${top.room} px, the critical speeds within theirs (${top.table} of ${top.shown} px)`);
+    }
+  }
+});
+
 await section("simulation at 1280 × 800: nothing overlaps, nothing sticks out", async () => {
   await open("?bike=preset:benchmark&tab=sim", { width: 1280, height: 800 });
   await page.getByTestId("sim-run").click();
@@ -1189,6 +1312,10 @@ await section("accessibility: axe-core finds nothing; headings", async () => {
   await page.getByTestId("tab-modes").click();
   await settled();
   await run("modes tab");
+  await page.getByTestId("tab-resp").click();
+  await page.locator("[data-testid=resp-magnitude] [data-testid=resp-curve]").first().waitFor({ timeout: 15_000 });
+  await settled();
+  await run("response tab");
   await page.getByTestId("tab-sens").click();
   await page.getByTestId("sens-tornado").waitFor({ timeout: 15_000 });
   await run("sensitivity tab");

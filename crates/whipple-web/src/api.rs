@@ -98,6 +98,7 @@ pub fn app_bound_to(limits: Limits, bound: IpAddr) -> Router {
         .route("/api/simulate", post(simulate))
         .route("/api/modes", post(modes))
         .route("/api/linear/response", post(linear_response))
+        .route("/api/linear/frequency", post(crate::frequency::frequency))
         .route("/api/map", post(crate::design::map))
         .route("/api/map/design", post(crate::design::design_at))
         .route("/api/turn", post(crate::turns::turn))

@@ -30,6 +30,7 @@ mod assets;
 mod connection;
 mod design;
 mod error;
+mod frequency;
 pub mod geometry;
 pub mod modes;
 pub mod simulation;

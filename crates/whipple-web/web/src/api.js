@@ -62,4 +62,7 @@ export const api = {
   turn: (request) => call("POST", "/api/turn", request),
   /** The linear model's free response: `request` as /api/simulate's initial numbers. */
   linearResponse: (request) => call("POST", "/api/linear/response", request),
+  /** One input → output pair at a few speeds, `request` {bike, speeds, input, output,
+   * frequencies: {start, stop, count}}: per speed the poles, zeros, gains and Bode data. */
+  frequency: (request) => call("POST", "/api/linear/frequency", request),
 };

@@ -13,9 +13,11 @@
 // A plot extends Chart and provides: extent() → the full view {x0, x1, y0, y1};
 // fitY(x0, x1) → {y0, y1} of the data seen (for autoscale); render(root, frame) to draw the
 // data; readAt(px, py, frame) → {rows, dots, x} or null for the read-out; xs() → the sorted
-// x values the keyboard steps through.
+// x values the keyboard steps through. With `logX`, the plot's x values are log₁₀ of the
+// quantity (a Bode plot's frequency): ticks fall on decades (and 2 and 5 between them when
+// few decades are seen), labelled with the quantity itself.
 
-import { svg, html, ticks, tickLabel, FONT } from "./format.js";
+import { svg, html, ticks, tickLabel, logTicks, num, FONT } from "./format.js";
 
 const GRID = "#e5e7eb";
 const INK = "#1f2937";
@@ -23,7 +25,8 @@ const INK = "#1f2937";
 let clipCount = 0;
 
 export class Chart {
-  constructor(container, { label, xLabel, yLabel, margin, minWidth = 280, minHeight = 180, crosshair = true, fontSize = 11, flipY = false, testid = null }) {
+  constructor(container, { label, xLabel, yLabel, margin, minWidth = 280, minHeight = 180, crosshair = true, fontSize = 11, flipY = false, logX = false, testid = null }) {
+    this.logX = logX;
     this.testid = testid ?? container.dataset.testid ?? "plot";
     this.flipY = flipY; // true: y grows downwards (the ground track seen from above)
     this.container = container;
@@ -308,7 +311,7 @@ export class Chart {
     const clip = `clip-${(clipCount += 1)}`;
     root.append(svg("defs", {}, svg("clipPath", { id: clip }, svg("rect", { x: m.left, y: m.top, width: pw, height: ph }))));
     frame.clip = `url(#${clip})`;
-    const xt = ticks(v.x0, v.x1, Math.max(3, Math.round(pw / 80)));
+    const xt = this.logX ? logTicks(v.x0, v.x1, Math.max(3, Math.round(pw / 60))) : ticks(v.x0, v.x1, Math.max(3, Math.round(pw / 80)));
     const yt = ticks(v.y0, v.y1, Math.max(3, Math.round(ph / 32)));
     frame.xt = xt;
     frame.yt = yt;
@@ -318,7 +321,7 @@ export class Chart {
     root.append(grid);
     if (v.y0 < 0 && v.y1 > 0) root.append(svg("line", { x1: m.left, y1: Y(0), x2: m.left + pw, y2: Y(0), stroke: "#9ca3af", "stroke-width": 1 }));
     const axes = svg("g", { fill: "#4b5563" });
-    for (const t of xt) axes.append(svg("text", { x: X(t), y: m.top + ph + 15, "text-anchor": "middle" }, tickLabel(t, xt)));
+    for (const t of xt) axes.append(svg("text", { x: X(t), y: m.top + ph + 15, "text-anchor": "middle" }, this.logX ? num(10 ** t, 3) : tickLabel(t, xt)));
     for (const t of yt) axes.append(svg("text", { x: m.left - 6, y: Y(t) + 4, "text-anchor": "end" }, tickLabel(t, yt)));
     axes.append(svg("text", { x: m.left + pw / 2, y: height - 6, "text-anchor": "middle", fill: INK, "font-size": this.fontSize + 1 }, this.xLabel));
     axes.append(svg("text", { x: 13, y: m.top + ph / 2, "text-anchor": "middle", fill: INK, "font-size": this.fontSize + 1, transform: `rotate(-90 13 ${m.top + ph / 2})` }, this.yLabel));

@@ -53,6 +53,29 @@ export function ticks(lo, hi, count) {
   return out;
 }
 
+/**
+ * Ticks of a logarithmic axis drawn in log₁₀ units over [lo, hi]: the decades, every k-th
+ * when there are more than `count`, and 2 and 5 of each decade when fewer than three are seen.
+ */
+export function logTicks(lo, hi, count) {
+  if (!(hi > lo)) return [lo];
+  const first = Math.ceil(lo - 1e-9), last = Math.floor(hi + 1e-9);
+  const decades = last - first + 1;
+  const out = [];
+  if (decades >= 3) {
+    const every = Math.max(1, Math.ceil(decades / Math.max(1, count)));
+    for (let k = first; k <= last; k += every) out.push(k);
+    return out;
+  }
+  for (let k = Math.floor(lo); k <= Math.ceil(hi); k++) {
+    for (const m of [1, 2, 5]) {
+      const t = k + Math.log10(m);
+      if (t >= lo - 1e-9 && t <= hi + 1e-9) out.push(t);
+    }
+  }
+  return out.length ? out : ticks(lo, hi, count);
+}
+
 /** A tick label with just the decimals the step needs. */
 export function tickLabel(t, all) {
   const step = all.length > 1 ? Math.abs(all[1] - all[0]) : 1;

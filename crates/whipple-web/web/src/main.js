@@ -15,6 +15,7 @@ import { EigenPlot, LocusPlot, COMPARE_COLOURS } from "./plot.js";
 import { drawCritical, criticalSummary } from "./critical.js";
 import { SimPanel } from "./sim.js";
 import { ModesPanel } from "./modes.js";
+import { ResponsePanel } from "./response.js";
 import { SensitivityPanel } from "./sensitivity.js";
 import { MapPanel } from "./map.js";
 import { readUrl, writeUrl, diffEdits } from "./url.js";
@@ -25,7 +26,7 @@ const clone = (x) => JSON.parse(JSON.stringify(x));
 const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
 const DEFAULT_PRESET = "schwinn-crown";
 const MAX_COMPARED = 5;
-const VIEWS = ["eigen", "locus", "modes", "sens", "map", "sim"];
+const VIEWS = ["eigen", "locus", "modes", "resp", "sens", "map", "sim"];
 
 const state = {
   presets: [],
@@ -73,6 +74,7 @@ const modes = new ModesPanel({
     sim.run();
   },
 });
+const response = new ResponsePanel({ bike: () => clone(state.bike), label: () => currentLabel(), onChange: () => remember(true) });
 const sensitivity = new SensitivityPanel({ bike: () => clone(state.bike), label: () => currentLabel(), onChange: () => remember(true) });
 const designMap = new MapPanel({
   bike: () => clone(state.bike),
@@ -479,6 +481,9 @@ async function recompute() {
   modes.suggest(state.eigen.critical);
   drawAll();
   if (state.view === "modes") modes.compute();
+  // The response of another bicycle is never shown: computed now, or when its tab opens.
+  if (state.view === "resp") response.compute();
+  else response.invalidate();
   if (state.view === "sens") sensitivity.compute();
   // A map of another bicycle is never shown: computed now, or again when its tab opens.
   if (state.view === "map") designMap.compute();
@@ -554,6 +559,7 @@ function drawAll() {
   drawSide();
   // The modes shown are those of the last valid bicycle: veiled while the form is not.
   modes.veil(staleReason({ speeds: false }));
+  if (state.view === "resp" && staleReason({ speeds: false })) response.veil(staleReason({ speeds: false }));
   if (!state.eigen) return;
   const designs = designsShown();
   const stale = staleReason();
@@ -621,6 +627,7 @@ function showView(view, { push = true } = {}) {
   for (const v of VIEWS) $(`panel-${v}`).hidden = v !== view;
   $("speed-controls").hidden = !(view === "eigen" || view === "locus");
   document.querySelector(".layout").classList.toggle("sim-active", view === "sim");
+  document.querySelector(".layout").classList.toggle("resp-active", view === "resp");
   for (const tab of document.querySelectorAll(".tab[data-view]")) {
     const on = tab.dataset.view === view;
     tab.setAttribute("aria-selected", String(on));
@@ -630,6 +637,7 @@ function showView(view, { push = true } = {}) {
   if (view === "modes") modes.compute();
   else modes.stop();
   // Before the first bicycle is loaded there is nothing to compute: recompute() does it then.
+  if (view === "resp" && state.bike && !response.fresh) response.compute();
   if (view === "sens" && state.bike) sensitivity.compute();
   if (view === "map" && state.bike && !designMap.answer) designMap.compute();
   // three.js is fetched when the Simulation tab first opens, not with the page.
@@ -663,6 +671,7 @@ function snapshot() {
     ylim: $("y-limit").value,
     view: state.view,
     mode: $("mode-speed").value,
+    resp: response.inputs(),
     sim: sim.inputs(),
     sens: sensitivity.quantity,
     map: designMap.inputs(),
@@ -702,6 +711,7 @@ async function applyUrl() {
       $("mode-speed").value = s.mode;
       modes.speedEdited = true;
     }
+    if (s.resp) response.setInputs(s.resp);
     if (s.sim) sim.setInputs(s.sim);
     if (s.sens) sensitivity.setQuantity(s.sens);
     if (s.map) designMap.setInputs(s.map);
