@@ -11,6 +11,7 @@ mod design;
 mod figures;
 mod interrupt;
 mod output;
+mod response;
 mod simulate;
 mod speeds;
 mod turns;
@@ -149,6 +150,12 @@ enum Command {
         /// parameters' sigmas).
         #[arg(long)]
         sigma_bands: bool,
+    },
+    /// The bicycle as a linear system: responses of named inputs to outputs (`bode`: frequency
+    /// responses at several speeds).
+    Response {
+        #[command(subcommand)]
+        kind: response::ResponseCommand,
     },
     /// Eigenvalues and mode shapes (eigenvectors) at one speed.
     Modes {
@@ -366,6 +373,7 @@ where
             speed,
             format,
         } => commands::modes(cx, &bike, speed, format),
+        Command::Response { kind } => response::run(cx, kind),
         Command::Speeds {
             bike,
             range,

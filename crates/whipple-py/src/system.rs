@@ -52,6 +52,14 @@ pub struct NativeLinearSystem {
     system: LinearSystem,
 }
 
+/// A, B, C and D as numpy arrays.
+type Matrices<'py> = (
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+);
+
 /// One signal as (name, label, symbol, unit): the label tells points apart
 /// (`lateral_force(x = 0.3 m, z = -1 m)`).
 type Signal = (&'static str, String, &'static str, &'static str);
@@ -219,15 +227,7 @@ impl NativeLinearSystem {
     }
 
     /// (A, B, C, D) as 2-D arrays.
-    fn matrices<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> PyResult<(
-        Bound<'py, PyAny>,
-        Bound<'py, PyAny>,
-        Bound<'py, PyAny>,
-        Bound<'py, PyAny>,
-    )> {
+    fn matrices<'py>(&self, py: Python<'py>) -> PyResult<Matrices<'py>> {
         let s = &self.system;
         Ok((
             matrix(py, s.a())?,

@@ -111,6 +111,7 @@ pub(crate) enum Content {
     Map(Box<crate::design::MapFigure>),
     Study(Box<crate::design::StudyFigure>),
     Tornado(Box<crate::tornado::TornadoFigure>),
+    Bode(Box<crate::bode::BodeFigure>),
 }
 
 /// A figure ready to render: its size in pixels and what it shows. Built by
@@ -288,6 +289,7 @@ impl Figure {
             Content::Map(_) => "design map",
             Content::Study(_) => "design study",
             Content::Tornado(_) => "tornado plot",
+            Content::Bode(_) => "Bode plot",
             Content::Turns(_) => "turn families",
         }
     }
@@ -302,6 +304,7 @@ impl Figure {
             Content::Map(f) => f.draw(root),
             Content::Study(f) => f.draw(root),
             Content::Tornado(f) => f.draw(root),
+            Content::Bode(f) => f.draw(root),
             Content::Turns(f) => f.draw(root),
         }
     }
