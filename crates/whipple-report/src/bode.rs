@@ -12,7 +12,7 @@ use crate::xy::span;
 const FIGURE: &str = "Bode plot";
 
 /// One frequency response: the frequencies (positive, any unit the axis names) and, at each,
-/// the magnitude [dB] and the phase [deg]. Non-finite values break the line.
+/// the magnitude \[dB\] and the phase \[deg\]. Non-finite values break the line.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BodeCurve {
     /// Legend text (for example `3 m/s`).
