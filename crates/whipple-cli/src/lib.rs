@@ -12,6 +12,7 @@ mod design;
 mod figures;
 mod interrupt;
 mod output;
+mod response;
 mod simulate;
 mod speeds;
 mod turns;
@@ -150,6 +151,12 @@ enum Command {
         /// parameters' sigmas).
         #[arg(long)]
         sigma_bands: bool,
+    },
+    /// The bicycle as a linear system: responses of named inputs to outputs (`bode`: frequency
+    /// responses at several speeds).
+    Response {
+        #[command(subcommand)]
+        kind: response::ResponseCommand,
     },
     /// Eigenvalues and mode shapes (eigenvectors) at one speed.
     Modes {
@@ -369,6 +376,7 @@ where
             speed,
             format,
         } => commands::modes(cx, &bike, speed, format),
+        Command::Response { kind } => response::run(cx, kind),
         Command::Speeds {
             bike,
             range,

@@ -12,6 +12,7 @@ mod guard;
 mod linear;
 mod side_view;
 mod simulate;
+mod system;
 mod turns;
 
 use pyo3::prelude::*;
@@ -38,6 +39,7 @@ fn _whipple(m: &Bound<'_, PyModule>) -> PyResult<()> {
     py.import("numpy")?;
     numpy::PyArray1::<f64>::zeros(py, 0, false);
     m.add_class::<bicycle::NativeBicycle>()?;
+    m.add_class::<system::NativeLinearSystem>()?;
     m.add_function(wrap_pyfunction!(bicycle::presets, m)?)?;
     m.add_function(wrap_pyfunction!(bicycle::formats, m)?)?;
     m.add_function(wrap_pyfunction!(bicycle::parameter_table, m)?)?;

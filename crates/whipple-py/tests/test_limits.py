@@ -46,6 +46,8 @@ def child(code: str, cap: bool = False) -> subprocess.Popen:
     ("bike.eig(np.linspace(0.0, 10.0, 15 * 10**6))", "eig: 15000000 speeds need"),
     ("bike.eig(np.linspace(0.0, 10.0, 2 * 10**7), tracked=False)", "eig: 20000000 speeds need"),
     ("bike.nonlinear_state_matrix(np.zeros(10**8))", "nonlinear_state_matrix: 100000000 speeds"),
+    ("bike.frequency_response(np.full(10**6, 5.0), np.ones(10**4))",
+     "frequency_responses: 10000000000 points (speeds × pairs × frequencies) need 400000000000 bytes"),
     ("bike.design_map('c=0.0:0.2:100000', 'w=0.9:1.2:100000')",
      "design_map: 10000000000 designs need 670000000000 bytes"),
     ("bike.design_map_shard('c=0.0:0.2:100000', 'w=0.9:1.2:100000', shard=(0, 2))",
@@ -147,6 +149,7 @@ def interrupted_within(call: str, busy: float = 0.3) -> float:
     "bike.eig(np.linspace(0.0, 10.0, 4 * 10**6), tracked=False)",
     "bike.state_space(np.linspace(0.0, 10.0, 10**7), parallel=False)",
     "bike.nonlinear_state_matrix(np.linspace(0.0, 10.0, 10**6))",
+    "bike.frequency_response(np.linspace(0.5, 10.0, 15000), np.logspace(-1, 2, 1000))",
     "bike.compare(np.linspace(0.0, 10.0, 100000))",
 ])
 def test_ctrl_c_raises_keyboard_interrupt_promptly(call):

@@ -112,6 +112,7 @@ pub(crate) enum Content {
     Study(Box<crate::design::StudyFigure>),
     Tornado(Box<crate::tornado::TornadoFigure>),
     Manoeuvre(Box<crate::manoeuvre::ManoeuvreFigure>),
+    Bode(Box<crate::bode::BodeFigure>),
 }
 
 /// A figure ready to render: its size in pixels and what it shows. Built by
@@ -289,6 +290,7 @@ impl Figure {
             Content::Map(_) => "design map",
             Content::Study(_) => "design study",
             Content::Tornado(_) => "tornado plot",
+            Content::Bode(_) => "Bode plot",
             Content::Turns(_) => "turn families",
             Content::Manoeuvre(_) => "manoeuvre plot",
         }
@@ -304,6 +306,7 @@ impl Figure {
             Content::Map(f) => f.draw(root),
             Content::Study(f) => f.draw(root),
             Content::Tornado(f) => f.draw(root),
+            Content::Bode(f) => f.draw(root),
             Content::Turns(f) => f.draw(root),
             Content::Manoeuvre(f) => f.draw(root),
         }

@@ -23,6 +23,7 @@
 //! ```
 #![warn(missing_docs)]
 
+mod bode;
 mod clip;
 mod design;
 mod draw;
@@ -37,6 +38,7 @@ mod tornado;
 mod turns;
 mod xy;
 
+pub use bode::{BodeCurve, BodeData, bode_plot};
 pub use design::{MapData, StudyData, design_map, design_study};
 pub use draw::Dash;
 pub use eigen::{BikeEigen, EigenPlotOptions, eigen_comparison_plot, eigen_plot, mode_colour};

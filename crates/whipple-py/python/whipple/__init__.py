@@ -18,8 +18,9 @@ from ._errors import (AccuracyLostError, ArgumentError, LimitError, NoSteadyTurn
                       NumericalError, ParameterError, ParameterWarning, ParseError, StrictError,
                       UnknownPresetError, WhippleError)
 from ._design import DesignMap, design_map_dask
-from ._plot import plot_eigenvalues
+from ._plot import plot_bode, plot_eigenvalues
 from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulation
+from ._system import FrequencyResponse, LinearSystem, Signal, TransferFunction
 from ._turns import SteadyTurn, TurnFamily, Turns, WheelContact
 
 __version__ = _whipple.__version__
@@ -27,7 +28,8 @@ __version__ = _whipple.__version__
 __all__ = [
     "Bicycle", "CriticalSpeeds", "Eigen", "Simulation", "Sensitivities", "Comparison",
     "SteadyTurn", "Turns", "TurnFamily", "WheelContact",
-    "DesignMap", "design_map_dask", "plot_eigenvalues", "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
+    "LinearSystem", "TransferFunction", "FrequencyResponse", "Signal",
+    "DesignMap", "design_map_dask", "plot_eigenvalues", "plot_bode", "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
     "WhippleError", "ParameterError", "StrictError", "ParseError", "UnknownPresetError",
     "ArgumentError", "LimitError", "NumericalError", "AccuracyLostError", "NoSteadyTurnError",
     "ParameterWarning",

@@ -6,7 +6,8 @@ import html
 import math
 import os
 import warnings
-from typing import TYPE_CHECKING, Any, Callable, Dict, List, Mapping, Optional, Tuple, Union
+from typing import (TYPE_CHECKING, Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple,
+                    Union)
 
 import numpy as np
 
@@ -14,6 +15,7 @@ from . import _whipple
 from ._errors import (ArgumentError, LimitError, NoSteadyTurnError, ParameterError,
                       ParameterWarning, ParseError)
 from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulation
+from ._system import FrequencyResponse, LinearSystem, _names, _signals
 from ._turns import SteadyTurn, Turns
 
 if TYPE_CHECKING:
@@ -68,7 +70,8 @@ class Bicycle:
     :attr:`notices`; ``strict=True`` refuses them.
 
     The linear model: :meth:`canonical` (M, C₁, K₀, K₂), :meth:`state_space` (A, B),
-    :meth:`eig`, :meth:`critical_speeds`, :meth:`sensitivities`. The non-linear model:
+    :meth:`linear_system` (named inputs and outputs, transfer functions),
+    :meth:`frequency_response` (many speeds at once), :meth:`eig`, :meth:`critical_speeds`, :meth:`sensitivities`. The non-linear model:
     :meth:`simulate`, :meth:`nonlinear_state_matrix`, :meth:`compare`, steady turns
     (:meth:`turn`, :meth:`turns`), :meth:`accelerations`. Figures: :meth:`plot_side_view`.
     """
@@ -285,6 +288,64 @@ class Bicycle:
         speeds, scalar = _speeds(v)
         a, b = self._native.state_space(speeds, parallel)
         return (a[0], b[0]) if scalar else (a, b)
+
+    def linear_system(self, speed: float,
+                      inputs: Union[str, Sequence[str]] = ("lean_torque", "steer_torque"),
+                      outputs: Union[str, Sequence[str]] = ("lean", "steer", "lean_rate",
+                                                             "steer_rate"),
+                      states: Union[str, Sequence[str]] = ()) -> LinearSystem:
+        """The bicycle as a linear system ẋ = A x + B u, y = C x + D u at ``speed`` [m/s], with
+        the signals named as the command line names them.
+
+        ``inputs``: ``'lean_torque'`` [N m], ``'steer_torque'`` [N m], ``'lateral_force:X,Z'``
+        [N] (a lateral force, right positive, at the point (X, Z) of the rear frame in metres,
+        benchmark axes: z down, so negative above the ground). ``outputs``: any state
+        (``'lean'``, ``'steer'``, ``'lean_rate'``, ``'steer_rate'``, ``'yaw'``,
+        ``'rear_contact_x'``, ``'rear_contact_y'``, ``'rear_wheel_angle'``,
+        ``'front_wheel_angle'``), ``'yaw_rate'``, ``'front_contact_y'``,
+        ``'rear_contact_lateral_acceleration'``, ``'rear_frame_point_y:X,Z'`` and
+        ``'front_frame_point_y:X,Z'`` (a point's lateral position). The ignorable coordinates an
+        output needs (yaw and the rear contact's y for a lateral position) are added to the
+        states; ``states`` asks for more. A bad name is a :class:`whipple.ArgumentError` naming
+        ``inputs``, ``outputs`` or ``states``.
+
+        >>> bike = Bicycle.preset("benchmark")
+        >>> g = bike.linear_system(3.0, "steer_torque", "lean").transfer_function("lean", "steer_torque")
+        >>> bool(g.rhp_zeros.size)  # counter-steering: the lean first goes the wrong way
+        True
+        """
+        native = self._native.linear_system(float(speed), _names(inputs, "inputs"),
+                                            _names(outputs, "outputs"), _names(states, "states"))
+        return LinearSystem(native, self)
+
+    def frequency_response(self, v: Any, omega: Any,
+                           inputs: Union[str, Sequence[str]] = "steer_torque",
+                           outputs: Union[str, Sequence[str]] = "lean",
+                           parallel: bool = True) -> FrequencyResponse:
+        """The frequency response G(iω) of each input–output pair (named as in
+        :meth:`linear_system`) at the frequencies ``omega`` [rad/s] and the speeds ``v`` [m/s],
+        many at once: the speeds are shared among the cores with the GIL released
+        (``parallel``), the results' memory reserved first (:class:`MemoryError` when it cannot
+        be) and Ctrl-C honoured. A scalar speed gives arrays of shape (outputs, inputs,
+        frequencies), an array of n speeds (n, outputs, inputs, frequencies). Plot it with
+        :meth:`FrequencyResponse.plot` (the speeds overlaid)."""
+        speeds, scalar = _speeds(v)
+        w = np.ascontiguousarray(np.asarray(omega, dtype=np.float64).reshape(-1))
+        ins, outs = _names(inputs, "inputs"), _names(outputs, "outputs")
+        g, reals = self._native.frequency_responses(speeds, w, ins, outs, parallel)
+        system = self._native.linear_system(0.0, ins, outs, [])
+        _, in_signals, out_signals = system.signals()
+        if scalar:
+            return FrequencyResponse(w, g[0], reals[0], _signals(in_signals),
+                                     _signals(out_signals), label=self.label)
+        return FrequencyResponse(w, g, reals, _signals(in_signals), _signals(out_signals),
+                                 speeds=speeds, label=self.label)
+
+    def origin_zero_speeds(self, input: str = "steer_torque", output: str = "lean") -> np.ndarray:
+        """The speeds [m/s] at which a zero of ``input`` → ``output`` (lean or steer) passes
+        through s = 0, certified; they come as ±v. For steer torque → lean the positive one is
+        where the counter-steering (right-half-plane) zero leaves for the left half-plane."""
+        return np.asarray(self._native.origin_zero_speeds(input, output), dtype=np.float64)
 
     def eig(self, v: Any, tracked: bool = True, parallel: bool = True) -> Eigen:
         """Eigenvalues [1/s] and eigenvectors of A(v) at speeds v [m/s]: ``values`` (n, 4)

@@ -509,3 +509,43 @@ def plot_design_map(design: Any, ax=None, quantity: str = "stable_width"):
     if handles:
         ax.legend(loc="upper right", fontsize="small", facecolor="0.6", framealpha=0.8)
     return ax
+
+
+def plot_bode(response: Any, output: Any = 0, input: Any = 0, axes=None, hz: bool = False,
+              title: Optional[str] = None):
+    """A Bode plot of one output–input pair of a :class:`whipple.FrequencyResponse`: the
+    magnitude [dB] above, the unwrapped phase [deg] below, against the frequency on a
+    logarithmic axis (rad/s, or Hz with ``hz``), one line per speed with a legend of speeds
+    (several speeds when the response came from :meth:`whipple.Bicycle.frequency_response`
+    with an array of speeds). ``axes``: two axes to draw on. The figure."""
+    plt = _pyplot()
+    o, i = response.pair(output, input)
+    if axes is None:
+        fig, axes = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True, constrained_layout=True)
+    else:
+        fig = axes[0].figure
+    magnitude_axis, phase_axis = axes[0], axes[1]
+    x = response.hz if hz else response.omega
+    db = response.magnitude_db[..., o, i, :]
+    phase = response.phase_deg[..., o, i, :]
+    speeds = response.speeds
+    if speeds is None:
+        db, phase, names = db[np.newaxis], phase[np.newaxis], [None]
+    else:
+        names = [f"{v:g} m/s" for v in speeds]
+    colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.85, max(len(names), 1)))
+    for k, name in enumerate(names):
+        colour = colours[k] if len(names) > 1 else "#1f77b4"
+        magnitude_axis.semilogx(x, db[k], color=colour, lw=1.5, label=name)
+        phase_axis.semilogx(x, phase[k], color=colour, lw=1.5, label=name)
+    out, inp = response.outputs[o], response.inputs[i]
+    magnitude_axis.set_ylabel(f"|{out.label} / {inp.label}| [dB re 1 {out.unit}/{inp.unit}]")
+    phase_axis.set_ylabel("phase [deg]")
+    phase_axis.set_xlabel("frequency [Hz]" if hz else "frequency [rad/s]")
+    for ax in (magnitude_axis, phase_axis):
+        ax.grid(True, which="both", alpha=0.3)
+    if speeds is not None:
+        magnitude_axis.legend(title="speed", fontsize="small")
+    magnitude_axis.set_title(title if title is not None
+                             else f"{response.label}: {inp.label} → {out.label}")
+    return fig

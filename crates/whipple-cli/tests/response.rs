@@ -1,0 +1,248 @@
+//! `whipple response bode`: the real binary against the library's transfer functions and
+//! frequency responses, its files, and its refusals naming the option.
+
+mod common;
+
+use std::fs;
+
+use common::{scratch, stderr_of_failure, stdout, whipple};
+use whipple::BenchmarkParameters;
+use whipple::advanced::linear::{Input, LinearSystem, Output, StateVariable, SystemRequest};
+
+fn lean_from_steer_torque(v: f64) -> whipple::advanced::linear::TransferFunction {
+    let request = SystemRequest {
+        states: vec![],
+        inputs: vec![Input::SteerTorque],
+        outputs: vec![Output::State(StateVariable::Lean)],
+    };
+    LinearSystem::new(&BenchmarkParameters::meijaard2007(), v, &request)
+        .expect("system")
+        .transfer_function(0, 0)
+        .expect("transfer function")
+}
+
+#[test]
+fn bode_prints_poles_zeros_and_gains_marking_right_half_plane_zeros() {
+    let out = whipple(&[
+        "response",
+        "bode",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "0.3,3,7",
+        "--input",
+        "steer_torque",
+        "--output",
+        "lean",
+        "--output",
+        "front_contact_y",
+    ]);
+    let text = stdout(&out);
+    // One block per speed and pair.
+    assert_eq!(text.matches("\nv = ").count(), 6, "{text}");
+    let block = |head: &str| {
+        let start = text
+            .find(head)
+            .unwrap_or_else(|| panic!("{head} in {text}"));
+        let rest = &text[start..];
+        rest[..rest[1..].find("\nv = ").map_or(rest.len(), |e| e + 1)].to_string()
+    };
+    // Steer torque → lean: non-minimum-phase below √(−g K₀₁₂ / K₂₁₂) ≈ 0.577 m/s only.
+    assert!(block("v = 0.3 m/s, steer_torque → lean").contains("(RHP)"));
+    assert!(!block("v = 3 m/s, steer_torque → lean").contains("(RHP)"));
+    assert!(!block("v = 7 m/s, steer_torque → lean").contains("(RHP)"));
+    // The front contact first moves the wrong way at every speed.
+    assert!(block("v = 7 m/s, steer_torque → front_contact_y").contains("(RHP)"));
+    assert!(
+        block("v = 7 m/s, steer_torque → front_contact_y").contains("static gain: none"),
+        "an integrator"
+    );
+    // The gain and the static gain are the library's numbers as results print.
+    let g = lean_from_steer_torque(3.0);
+    let b = block("v = 3 m/s, steer_torque → lean");
+    let number = |x: f64| whipple_front::format::number(x).expect("finite");
+    assert!(
+        b.contains(&format!("gain:        {} rad/(N m)", number(g.gain()))),
+        "{b}"
+    );
+    assert!(
+        b.contains(&format!(
+            "static gain: {} rad/(N m)",
+            number(g.static_gain().expect("finite"))
+        )),
+        "{b}"
+    );
+    for z in g.zeros().expect("zeros") {
+        assert!(b.contains(&number(z.re)), "{b}");
+    }
+}
+
+#[test]
+fn bode_csv_holds_the_library_response_and_the_figure_is_drawn() {
+    let dir = scratch("response-bode");
+    let csv = dir.join("bode.csv");
+    let png = dir.join("bode.png");
+    let svg = dir.join("bode.svg");
+    let args = |figure: &std::path::Path| {
+        whipple(&[
+            "response",
+            "bode",
+            "--bike",
+            "benchmark",
+            "--speeds",
+            "3,5,7",
+            "--input",
+            "steer_torque",
+            "--output",
+            "lean",
+            "--frequencies",
+            "0.1:100:50",
+            "--out",
+            csv.to_str().expect("utf-8"),
+            "--figure",
+            figure.to_str().expect("utf-8"),
+        ])
+    };
+    stdout(&args(&png));
+    let bytes = fs::read(&png).expect("png");
+    assert_eq!(&bytes[1..4], b"PNG");
+    stdout(&args(&svg));
+    let drawing = fs::read_to_string(&svg).expect("svg");
+    for speed in [
+        "3 m/s",
+        "5 m/s",
+        "7 m/s",
+        "frequency ω [rad/s]",
+        "phase [deg]",
+    ] {
+        assert!(drawing.contains(speed), "{speed}");
+    }
+    let text = fs::read_to_string(&csv).expect("csv");
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some("speed_m_s,input,output,frequency_rad_s,magnitude,magnitude_db,phase_deg")
+    );
+    let rows: Vec<Vec<String>> = lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    assert_eq!(rows.len(), 3 * 50);
+    let grid = whipple_front::system::parse_log_grid("0.1:100:50").expect("grid");
+    for (k, v) in [3.0, 5.0, 7.0].into_iter().enumerate() {
+        let f = lean_from_steer_torque(v)
+            .frequency_response(&grid)
+            .expect("response");
+        for j in 0..50 {
+            let row = &rows[k * 50 + j];
+            let x = |c: usize| row[c].parse::<f64>().expect("number");
+            assert_eq!(
+                (x(0), row[1].as_str(), row[2].as_str()),
+                (v, "steer_torque", "lean")
+            );
+            assert_eq!(x(3), grid[j]);
+            // Printed with the shortest digits that read back exactly.
+            assert_eq!(x(4), f.magnitude[j]);
+            assert_eq!(x(5), f.magnitude_db[j]);
+            assert_eq!(x(6), f.phase[j].to_degrees());
+        }
+    }
+}
+
+#[test]
+fn bode_in_hz_says_so_in_the_header_and_scales_the_grid() {
+    let dir = scratch("response-bode-hz");
+    let csv = dir.join("bode.csv");
+    stdout(&whipple(&[
+        "response",
+        "bode",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "5",
+        "--input",
+        "steer_torque",
+        "--output",
+        "lean",
+        "--frequencies",
+        "1:1:1",
+        "--hz",
+        "--out",
+        csv.to_str().expect("utf-8"),
+    ]));
+    let text = fs::read_to_string(&csv).expect("csv");
+    let mut lines = text.lines();
+    assert!(lines.next().expect("header").contains(",frequency_hz,"));
+    let row: Vec<f64> = lines
+        .next()
+        .expect("row")
+        .split(',')
+        .filter_map(|x| x.parse().ok())
+        .collect();
+    let f = lean_from_steer_torque(5.0)
+        .frequency_response(&[std::f64::consts::TAU])
+        .expect("response");
+    assert_eq!(row[1], 1.0);
+    assert_eq!(row[2], f.magnitude[0]);
+}
+
+#[test]
+fn bode_json_lists_each_pair() {
+    let out = whipple(&[
+        "response",
+        "bode",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "0.3,7",
+        "--input",
+        "steer_torque",
+        "--output",
+        "lean",
+        "--format",
+        "json",
+    ]);
+    let doc: serde_json::Value = serde_json::from_str(&stdout(&out)).expect("json");
+    let pairs = doc["pairs"].as_array().expect("pairs");
+    assert_eq!(pairs.len(), 2);
+    assert_eq!(pairs[0]["right_half_plane_zeros"], 1);
+    assert_eq!(pairs[1]["right_half_plane_zeros"], 0);
+    assert_eq!(pairs[0]["poles"].as_array().expect("poles").len(), 4);
+}
+
+#[test]
+fn bad_input_is_refused_naming_the_option_and_nothing_is_written() {
+    let dir = scratch("response-bode-bad");
+    let csv = dir.join("bode.csv");
+    let csv_arg = csv.to_str().expect("utf-8");
+    let base = ["response", "bode", "--bike", "benchmark", "--out", csv_arg];
+    let run = |extra: &[&str]| {
+        let mut args = base.to_vec();
+        args.extend_from_slice(extra);
+        stderr_of_failure(&whipple(&args))
+    };
+    let e = run(&["--input", "steer_torque", "--output", "heading"]);
+    assert!(e.contains("--output") && e.contains("yaw_rate"), "{e}");
+    let e = run(&["--input", "steer", "--output", "lean"]);
+    assert!(e.contains("--input") && e.contains("steer_torque"), "{e}");
+    for grid in ["0:10:5", "1:nan:5", "1:10", "10:1:5", "1:10:0"] {
+        let e = run(&[
+            "--input",
+            "steer_torque",
+            "--output",
+            "lean",
+            "--frequencies",
+            grid,
+        ]);
+        assert!(e.contains("--frequencies"), "{grid}: {e}");
+    }
+    let e = run(&[
+        "--input",
+        "steer_torque",
+        "--output",
+        "lean",
+        "--speeds",
+        "3,inf",
+    ]);
+    assert!(e.contains("--speeds"), "{e}");
+    assert!(!csv.exists(), "no file after a refusal");
+}
