@@ -15,6 +15,7 @@ mod output;
 mod response;
 mod simulate;
 mod speeds;
+mod time_response;
 mod turns;
 mod validate;
 

@@ -1,6 +1,6 @@
 //! `whipple response`: the bicycle as a linear system, one subcommand per kind of response.
 //! `bode` (frequency responses at several speeds) is here; the time responses (`step`,
-//! `impulse`, `initial`) take their place beside it in [`ResponseCommand`].
+//! `impulse`, `initial`) and the linear and non-linear `manoeuvre` are in `time_response.rs`.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -56,6 +56,49 @@ pub enum ResponseCommand {
         #[arg(long)]
         figure: Option<PathBuf>,
     },
+    /// The response to a step of one input at t = 0, exact (no time step), with the path in
+    /// the ground plane.
+    Step {
+        #[command(flatten)]
+        time: crate::time_response::TimeArgs,
+        /// The input: lean_torque, steer_torque or lateral_force:X,Z.
+        #[arg(long, allow_hyphen_values = true)]
+        input: String,
+        /// The step's size in the input's unit (N m, or N for a force).
+        #[arg(long, default_value = "1", allow_hyphen_values = true)]
+        amplitude: f64,
+    },
+    /// The response to an impulse of one input at t = 0, exact, with the path in the plane.
+    Impulse {
+        #[command(flatten)]
+        time: crate::time_response::TimeArgs,
+        /// The input: lean_torque, steer_torque or lateral_force:X,Z.
+        #[arg(long, allow_hyphen_values = true)]
+        input: String,
+        /// The impulse's size (N m s, or N s for a force).
+        #[arg(long, default_value = "1", allow_hyphen_values = true)]
+        amplitude: f64,
+    },
+    /// The free motion from an initial lean, steer and rates, exact, with the path in the plane.
+    Initial {
+        #[command(flatten)]
+        time: crate::time_response::TimeArgs,
+        /// Initial lean [deg].
+        #[arg(long, default_value = "0", allow_hyphen_values = true)]
+        lean: f64,
+        /// Initial steer [deg].
+        #[arg(long, default_value = "0", allow_hyphen_values = true)]
+        steer: f64,
+        /// Initial lean rate [deg/s].
+        #[arg(long, default_value = "0", allow_hyphen_values = true)]
+        lean_rate: f64,
+        /// Initial steer rate [deg/s].
+        #[arg(long, default_value = "0", allow_hyphen_values = true)]
+        steer_rate: f64,
+    },
+    /// One manoeuvre (torques against time, an initial lean or steer) on the linear model and
+    /// the non-linear model together: both motions, their difference, both paths in one figure.
+    Manoeuvre(crate::time_response::ManoeuvreArgs),
 }
 
 /// The most speeds one run takes.
@@ -91,6 +134,38 @@ pub fn run(cx: &RunContext, command: ResponseCommand) -> Result<()> {
                 figure: figure.as_deref(),
             },
         ),
+        ResponseCommand::Step {
+            time,
+            input,
+            amplitude,
+        } => crate::time_response::linear(
+            cx,
+            &time,
+            &crate::time_response::Kind::Step { input, amplitude },
+        ),
+        ResponseCommand::Impulse {
+            time,
+            input,
+            amplitude,
+        } => crate::time_response::linear(
+            cx,
+            &time,
+            &crate::time_response::Kind::Impulse { input, amplitude },
+        ),
+        ResponseCommand::Initial {
+            time,
+            lean,
+            steer,
+            lean_rate,
+            steer_rate,
+        } => crate::time_response::linear(
+            cx,
+            &time,
+            &crate::time_response::Kind::Initial {
+                state_deg: [lean, steer, lean_rate, steer_rate],
+            },
+        ),
+        ResponseCommand::Manoeuvre(args) => crate::time_response::manoeuvre(cx, &args),
     }
 }
 

@@ -13,7 +13,9 @@
 //! # Ok::<(), whipple::Error>(())
 //! ```
 
-use whipple::advanced::linear::{Input, MAX_SIGNALS, Output, StateVariable, SystemRequest};
+use whipple::advanced::linear::{
+    Input, InputSignal, MAX_KNOTS, MAX_SIGNALS, Output, StateVariable, SystemRequest,
+};
 use whipple::{Error, Result};
 
 /// The most frequencies one grid holds.
@@ -332,6 +334,77 @@ pub fn parse_log_grid(spec: &str) -> Result<Vec<f64>> {
     log_grid(start, stop, count)
 }
 
+/// An input signal of time as typed (seconds and the input's SI unit):
+///
+/// - `step:T:A`: zero before T, A from T on;
+/// - `pulse:T:D:A`: A from T for D seconds, zero before and after;
+/// - `linear:T1=U1,T2=U2,…`: piecewise linear through the points (a time given twice is a jump),
+///   constant before the first and after the last;
+/// - `constant:T1=U1,T2=U2,…`: U1 from T1 on, U2 from T2 on, … (piecewise constant).
+///
+/// `what` names the option or field in messages.
+pub fn parse_signal(spec: &str, what: &'static str) -> Result<InputSignal> {
+    let spec = spec.trim();
+    let usage = || {
+        invalid(
+            what,
+            format!(
+                "{spec:?}: give step:T:A, pulse:T:D:A, linear:T1=U1,T2=U2,… or \
+                 constant:T1=U1,T2=U2,… (seconds; the input's unit)"
+            ),
+        )
+    };
+    let (kind, rest) = spec.split_once(':').ok_or_else(usage)?;
+    let number = |text: &str| -> Result<f64> {
+        text.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| invalid(what, format!("{spec:?}: {text:?} is not a finite number")))
+    };
+    // The library's errors name its own fields (`knots`, `duration`): say which option it was.
+    let named =
+        |result: Result<InputSignal>| result.map_err(|e| invalid(what, format!("{spec:?}: {e}")));
+    match kind.trim() {
+        "step" => {
+            let parts: Vec<&str> = rest.split(':').collect();
+            let [t, a] = parts[..] else {
+                return Err(usage());
+            };
+            named(InputSignal::step(number(t)?, number(a)?))
+        }
+        "pulse" => {
+            let parts: Vec<&str> = rest.split(':').collect();
+            let [t, d, a] = parts[..] else {
+                return Err(usage());
+            };
+            named(InputSignal::pulse(number(t)?, number(d)?, number(a)?))
+        }
+        "linear" | "constant" => {
+            let points: Vec<&str> = rest.split(',').collect();
+            if points.len() > MAX_KNOTS {
+                return Err(Error::LimitExceeded {
+                    what,
+                    rule: format!("at most {MAX_KNOTS} points, got {}", points.len()),
+                });
+            }
+            let mut knots = Vec::with_capacity(points.len());
+            let mut values = Vec::with_capacity(points.len());
+            for point in points {
+                let (t, u) = point.split_once('=').ok_or_else(usage)?;
+                knots.push(number(t)?);
+                values.push(number(u)?);
+            }
+            named(if kind.trim() == "linear" {
+                InputSignal::piecewise_linear(knots, values)
+            } else {
+                InputSignal::piecewise_constant(knots, values)
+            })
+        }
+        _ => Err(usage()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -420,6 +493,38 @@ mod tests {
                 ..
             })
         ));
+    }
+
+    #[test]
+    fn signals_read_as_the_library_builds_them() {
+        assert_eq!(
+            parse_signal("pulse:0:0.5:1", "x").unwrap(),
+            InputSignal::pulse(0.0, 0.5, 1.0).unwrap()
+        );
+        assert_eq!(
+            parse_signal(" step:1:-2 ", "x").unwrap(),
+            InputSignal::step(1.0, -2.0).unwrap()
+        );
+        let ramp = parse_signal("linear:0=0,1=2,3=2", "x").unwrap();
+        assert_eq!(
+            (ramp.value(0.5), ramp.value(2.0), ramp.value(9.0)),
+            (1.0, 2.0, 2.0)
+        );
+        let stairs = parse_signal("constant:0=1,2=3", "x").unwrap();
+        assert_eq!((stairs.value(1.9), stairs.value(2.0)), (1.0, 3.0));
+        for bad in [
+            "pulse:0:0:1",
+            "pulse:0:1",
+            "step:1",
+            "linear:1=0,0=1",
+            "linear:0=x",
+            "ramp:0:1",
+            "pulse:0:inf:1",
+            "",
+        ] {
+            let e = parse_signal(bad, "--steer-torque").unwrap_err().to_string();
+            assert!(e.contains("--steer-torque"), "{bad}: {e}");
+        }
     }
 
     #[test]
