@@ -63,12 +63,12 @@ impl Measured {
 /// One hanging of a frame: how it hung from the torsional pendulum's wire, and its period.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hanging<T = Measured> {
-    /// `alphaB1`…: the steer axis' angle α with the horizontal, right side view [deg].
+    /// `alphaB1`…: the steer axis' angle α with the horizontal, right side view \[deg\].
     pub alpha: T,
     /// `aB1`…: the wire's distance from the wheel's centre, positive with the centre on the
-    /// wire's left [m].
+    /// wire's left \[m\].
     pub a: T,
-    /// `TtB1`…: the torsional pendulum's period in this hanging [s].
+    /// `TtB1`…: the torsional pendulum's period in this hanging \[s\].
     pub period: T,
 }
 
@@ -78,53 +78,53 @@ pub struct Hanging<T = Measured> {
 /// pipeline runs on dual numbers; the file's form is `Measurements<Measured>`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Measurements<T = Measured> {
-    /// `g`: gravity where the pendulums swung [m/s²].
+    /// `g`: gravity where the pendulums swung \[m/s²\].
     pub g: T,
-    /// `dR`: the distance the rear wheel rolled [m].
+    /// `dR`: the distance the rear wheel rolled \[m\].
     pub d_r: T,
     /// `nR`: in that many whole turns.
     pub n_r: T,
-    /// `dF`: the distance the front wheel rolled [m].
+    /// `dF`: the distance the front wheel rolled \[m\].
     pub d_f: T,
     /// `nF`: in that many whole turns.
     pub n_f: T,
-    /// `w`: wheelbase [m].
+    /// `w`: wheelbase \[m\].
     pub w: T,
-    /// `gamma`: the head tube's angle with the ground [deg].
+    /// `gamma`: the head tube's angle with the ground \[deg\].
     pub gamma: T,
-    /// `f`: fork offset, the front hub's perpendicular distance to the steer axis [m].
+    /// `f`: fork offset, the front hub's perpendicular distance to the steer axis \[m\].
     pub f: T,
-    /// `mR`: rear wheel mass [kg].
+    /// `mR`: rear wheel mass \[kg\].
     pub m_r: T,
-    /// `mF`: front wheel mass [kg].
+    /// `mF`: front wheel mass \[kg\].
     pub m_f: T,
-    /// `mB`: rear frame mass [kg].
+    /// `mB`: rear frame mass \[kg\].
     pub m_b: T,
-    /// `mH`: front frame (fork and handlebar) mass [kg].
+    /// `mH`: front frame (fork and handlebar) mass \[kg\].
     pub m_h: T,
-    /// `lR`: the rear wheel's compound pendulum length, axle to pivot [m].
+    /// `lR`: the rear wheel's compound pendulum length, axle to pivot \[m\].
     pub l_r: T,
-    /// `lF`: the front wheel's compound pendulum length [m].
+    /// `lF`: the front wheel's compound pendulum length \[m\].
     pub l_f: T,
-    /// `TcR1`: the rear wheel's compound pendulum period [s].
+    /// `TcR1`: the rear wheel's compound pendulum period \[s\].
     pub t_c_r: T,
-    /// `TcF1`: the front wheel's compound pendulum period [s].
+    /// `TcF1`: the front wheel's compound pendulum period \[s\].
     pub t_c_f: T,
-    /// `TcB1`: the rear frame's compound pendulum period, swung about the rear axle [s].
+    /// `TcB1`: the rear frame's compound pendulum period, swung about the rear axle \[s\].
     pub t_c_b: T,
-    /// `TcH1`: the front frame's compound pendulum period, swung about the front axle [s].
+    /// `TcH1`: the front frame's compound pendulum period, swung about the front axle \[s\].
     pub t_c_h: T,
-    /// `TtR1`: the rear wheel's torsional pendulum period, about a diameter [s].
+    /// `TtR1`: the rear wheel's torsional pendulum period, about a diameter \[s\].
     pub t_t_r: T,
-    /// `TtF1`: the front wheel's torsional pendulum period, about a diameter [s].
+    /// `TtF1`: the front wheel's torsional pendulum period, about a diameter \[s\].
     pub t_t_f: T,
-    /// `mP`: the calibration rod's mass [kg].
+    /// `mP`: the calibration rod's mass \[kg\].
     pub m_p: T,
-    /// `lP`: its length [m].
+    /// `lP`: its length \[m\].
     pub l_p: T,
-    /// `dP`: its diameter [m].
+    /// `dP`: its diameter \[m\].
     pub d_p: T,
-    /// `TtP1`: its torsional pendulum period [s].
+    /// `TtP1`: its torsional pendulum period \[s\].
     pub t_t_p: T,
     /// The rear frame's hangings (`alphaB1`, `aB1`, `TtB1`, …), in number order.
     pub rear_frame: Vec<Hanging<T>>,

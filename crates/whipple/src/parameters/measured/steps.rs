@@ -42,9 +42,9 @@ pub fn trail<T: RealField + Copy>(r_f: T, lambda: T, fork_offset: T) -> T {
 pub struct HangingLine<T = f64> {
     /// dz/dx of the line.
     pub slope: T,
-    /// z where the line crosses x = 0 [m].
+    /// z where the line crosses x = 0 \[m\].
     pub intercept: T,
-    /// β = λ − α: the pendulum frame's orientation relative to the benchmark frame [rad].
+    /// β = λ − α: the pendulum frame's orientation relative to the benchmark frame \[rad\].
     pub beta: T,
 }
 
@@ -204,4 +204,19 @@ pub fn planar_inertia<T: RealField + Copy>(
 pub fn pendulum_length<T: RealField + Copy>(x: T, z: T, axle_x: T, axle_z: T) -> T {
     let (dx, dz) = (x - axle_x, z - axle_z);
     (dx * dx + dz * dz).sqrt()
+}
+
+/// The principal moments of a body's inertia in the xz plane and the axes' orientation: from
+/// (I_xx, I_xz, I_zz), the moments I₁ ≥ I₂ of the 2 × 2 tensor [[I_xx, I_xz], [I_xz, I_zz]] and
+/// the angle θ from the x axis to I₁'s axis, a rotation about y, in (−π/2, π/2]
+/// (Moore 2012 §2.7: the frames' principal axes). Inverse: I_xx = I₁ cos²θ + I₂ sin²θ,
+/// I_zz = I₁ sin²θ + I₂ cos²θ, I_xz = (I₂ − I₁) sin θ cos θ (z down, so a rotation about y
+/// takes x towards −z).
+pub fn principal_planar<T: RealField + Copy>(i_xx: T, i_xz: T, i_zz: T) -> (T, T, T) {
+    let half: T = c(0.5);
+    let mean = (i_xx + i_zz) * half;
+    let d = (i_xx - i_zz) * half;
+    let radius = (d * d + i_xz * i_xz).sqrt();
+    let theta = (-i_xz).atan2(d) * half;
+    (mean + radius, mean - radius, theta)
 }

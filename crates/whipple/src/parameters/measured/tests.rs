@@ -254,3 +254,26 @@ fn repeated_measurements_are_averaged() -> Result<()> {
     assert!((d_f.sigma - (0.0001f64 + 0.0004).sqrt() / 2.0).abs() < 1e-15);
     Ok(())
 }
+
+/// The principal moments and angle rebuild the tensor they came from, and the moments are the
+/// eigenvalues of the 2 × 2 tensor (trace and determinant kept).
+#[test]
+fn principal_axes_rebuild_the_tensor() -> Result<()> {
+    let file = read_measurements(BROWSER)?;
+    let p = MeasuredParameters::new(&file.measurements)?.benchmark;
+    for (ixx, ixz, izz) in [
+        (p.i_bxx, p.i_bxz, p.i_bzz),
+        (p.i_hxx, p.i_hxz, p.i_hzz),
+        (1.0, 0.0, 2.0),
+        (2.0, 0.3, 2.0),
+    ] {
+        let (i1, i2, theta) = steps::principal_planar(ixx, ixz, izz);
+        let (s, c) = theta.sin_cos();
+        assert!(i1 >= i2);
+        assert!((i1 * c * c + i2 * s * s - ixx).abs() < 1e-14);
+        assert!((i1 * s * s + i2 * c * c - izz).abs() < 1e-14);
+        assert!(((i2 - i1) * s * c - ixz).abs() < 1e-14);
+        assert!((i1 * i2 - (ixx * izz - ixz * ixz)).abs() < 1e-14);
+    }
+    Ok(())
+}
