@@ -524,6 +524,14 @@ pub mod advanced {
         pub use crate::parameters::jbike6::BENCHMARK_FROM_JBIKE6;
         pub use crate::parameters::{Checked, Notice, Severity};
     }
+    #[doc = "Bicycles from bench measurements: BicycleParameters' `*Measured.txt` read, and the steps (Moore 2012 ch. 2) to benchmark parameters with exact first-order σ and covariance."]
+    pub mod measured {
+        pub use crate::parameters::measured::steps;
+        pub use crate::parameters::measured::{
+            Hanging, MAX_HANGINGS, Measured, MeasuredFile, MeasuredParameters, Measurements,
+            benchmark_from_measurements, read_measurements,
+        };
+    }
     #[doc = "Certified real roots of low-degree polynomials."]
     pub mod roots {
         pub use crate::analysis::roots::{BoundedPolynomial, RealRoot, real_roots};

@@ -5,6 +5,7 @@ pub(crate) mod benchmark;
 pub(crate) mod check;
 pub(crate) mod io;
 pub(crate) mod jbike6;
+pub(crate) mod measured;
 pub mod presets;
 pub(crate) mod table;
 

@@ -1,0 +1,478 @@
+//! A bicycle from bench measurements: BicycleParameters' `*Measured.txt` read into typed
+//! [`Measurements`], and the pipeline (Moore 2012 ch. 2; Moore, Hubbard, Kooijman & Schwab
+//! 2010) that turns them into [`BenchmarkParameters`] with the standard deviation of every
+//! output and their full covariance, by exact first-order propagation (one dual-number pass
+//! per measurement through the same steps as the values, [`steps`]).
+//!
+//! The pipeline, in order:
+//! 1. wheel radii from the distance rolled in whole turns ([`steps::wheel_radius`]);
+//! 2. steer axis tilt from the head tube angle, wheelbase as measured, trail from the fork
+//!    offset ([`steps::steer_axis_tilt`], [`steps::trail`]);
+//! 3. each frame's mass centre from the lines of its hangings ([`steps::hanging_line`],
+//!    [`steps::mass_centre`]);
+//! 4. the wheels' and frames' moments about y from compound pendulum periods
+//!    ([`steps::compound_pendulum_inertia`], [`steps::pendulum_length`]);
+//! 5. the torsion constant from the calibration rod ([`steps::rod_transverse_inertia`],
+//!    [`steps::torsion_constant`]);
+//! 6. the wheels' moments about a diameter and the frames' in-plane tensors from torsional
+//!    pendulum periods ([`steps::torsional_pendulum_inertia`], [`steps::planar_inertia`]);
+//! 7. masses and g as measured.
+//!
+//! Measurements are independent inputs; a key given as a list (repeated measurements) is
+//! their mean, with σ = √(Σσᵢ²)/n as BicycleParameters computes it.
+
+mod read;
+pub mod steps;
+#[cfg(test)]
+mod tests;
+
+use std::collections::BTreeMap;
+
+use nalgebra::{DMatrix, RealField};
+use num_dual::Dual64;
+
+use super::benchmark::{BENCHMARK_TABLE, BenchmarkParameters};
+use super::{Bicycle, Description};
+use crate::error::{Error, Result};
+use steps::HungFrame;
+
+pub use read::{MAX_HANGINGS, MeasuredFile, read_measurements};
+
+/// A measured value with its standard deviation and where it was read.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Measured {
+    /// The value (the mean of a list) in the file's unit.
+    pub value: f64,
+    /// Its standard deviation σ (0 where the file gave none).
+    pub sigma: f64,
+    /// The 1-based line of the file it was read from (0 when not read from a file).
+    pub line: usize,
+}
+
+impl Measured {
+    /// A value with its σ, not from a file.
+    pub fn new(value: f64, sigma: f64) -> Self {
+        Measured {
+            value,
+            sigma,
+            line: 0,
+        }
+    }
+}
+
+/// One hanging of a frame: how it hung from the torsional pendulum's wire, and its period.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hanging<T = Measured> {
+    /// `alphaB1`…: the steer axis' angle α with the horizontal, right side view \[deg\].
+    pub alpha: T,
+    /// `aB1`…: the wire's distance from the wheel's centre, positive with the centre on the
+    /// wire's left \[m\].
+    pub a: T,
+    /// `TtB1`…: the torsional pendulum's period in this hanging \[s\].
+    pub period: T,
+}
+
+/// The measurements of a bicycle on the bench, under BicycleParameters' file keys (Moore 2012
+/// ch. 2), for a bicycle whose fork and handlebar were measured as one frame and whose geometry
+/// was measured as wheelbase, head angle and fork offset. Generic over the scalar so that the
+/// pipeline runs on dual numbers; the file's form is `Measurements<Measured>`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Measurements<T = Measured> {
+    /// `g`: gravity where the pendulums swung \[m/s²\].
+    pub g: T,
+    /// `dR`: the distance the rear wheel rolled \[m\].
+    pub d_r: T,
+    /// `nR`: in that many whole turns.
+    pub n_r: T,
+    /// `dF`: the distance the front wheel rolled \[m\].
+    pub d_f: T,
+    /// `nF`: in that many whole turns.
+    pub n_f: T,
+    /// `w`: wheelbase \[m\].
+    pub w: T,
+    /// `gamma`: the head tube's angle with the ground \[deg\].
+    pub gamma: T,
+    /// `f`: fork offset, the front hub's perpendicular distance to the steer axis \[m\].
+    pub f: T,
+    /// `mR`: rear wheel mass \[kg\].
+    pub m_r: T,
+    /// `mF`: front wheel mass \[kg\].
+    pub m_f: T,
+    /// `mB`: rear frame mass \[kg\].
+    pub m_b: T,
+    /// `mH`: front frame (fork and handlebar) mass \[kg\].
+    pub m_h: T,
+    /// `lR`: the rear wheel's compound pendulum length, axle to pivot \[m\].
+    pub l_r: T,
+    /// `lF`: the front wheel's compound pendulum length \[m\].
+    pub l_f: T,
+    /// `TcR1`: the rear wheel's compound pendulum period \[s\].
+    pub t_c_r: T,
+    /// `TcF1`: the front wheel's compound pendulum period \[s\].
+    pub t_c_f: T,
+    /// `TcB1`: the rear frame's compound pendulum period, swung about the rear axle \[s\].
+    pub t_c_b: T,
+    /// `TcH1`: the front frame's compound pendulum period, swung about the front axle \[s\].
+    pub t_c_h: T,
+    /// `TtR1`: the rear wheel's torsional pendulum period, about a diameter \[s\].
+    pub t_t_r: T,
+    /// `TtF1`: the front wheel's torsional pendulum period, about a diameter \[s\].
+    pub t_t_f: T,
+    /// `mP`: the calibration rod's mass \[kg\].
+    pub m_p: T,
+    /// `lP`: its length \[m\].
+    pub l_p: T,
+    /// `dP`: its diameter \[m\].
+    pub d_p: T,
+    /// `TtP1`: its torsional pendulum period \[s\].
+    pub t_t_p: T,
+    /// The rear frame's hangings (`alphaB1`, `aB1`, `TtB1`, …), in number order.
+    pub rear_frame: Vec<Hanging<T>>,
+    /// The front frame's hangings (`alphaH1`, `aH1`, `TtH1`, …), in number order.
+    pub front_frame: Vec<Hanging<T>>,
+}
+
+impl<T: Copy> Measurements<T> {
+    /// Every value with its file key, in a fixed order (scalars in field order, then the rear
+    /// frame's and the front frame's hangings).
+    pub fn entries(&self) -> Vec<(String, T)> {
+        let mut out: Vec<(String, T)> = [
+            ("g", self.g),
+            ("dR", self.d_r),
+            ("nR", self.n_r),
+            ("dF", self.d_f),
+            ("nF", self.n_f),
+            ("w", self.w),
+            ("gamma", self.gamma),
+            ("f", self.f),
+            ("mR", self.m_r),
+            ("mF", self.m_f),
+            ("mB", self.m_b),
+            ("mH", self.m_h),
+            ("lR", self.l_r),
+            ("lF", self.l_f),
+            ("TcR1", self.t_c_r),
+            ("TcF1", self.t_c_f),
+            ("TcB1", self.t_c_b),
+            ("TcH1", self.t_c_h),
+            ("TtR1", self.t_t_r),
+            ("TtF1", self.t_t_f),
+            ("mP", self.m_p),
+            ("lP", self.l_p),
+            ("dP", self.d_p),
+            ("TtP1", self.t_t_p),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+        for (part, set) in [("B", &self.rear_frame), ("H", &self.front_frame)] {
+            for (i, h) in set.iter().enumerate() {
+                out.push((format!("alpha{part}{}", i + 1), h.alpha));
+                out.push((format!("a{part}{}", i + 1), h.a));
+                out.push((format!("Tt{part}{}", i + 1), h.period));
+            }
+        }
+        out
+    }
+
+    /// The same measurements with every value mapped, in the order of [`Measurements::entries`].
+    pub fn map<U>(&self, mut f: impl FnMut(&T) -> U) -> Measurements<U> {
+        let g = f(&self.g);
+        let d_r = f(&self.d_r);
+        let n_r = f(&self.n_r);
+        let d_f = f(&self.d_f);
+        let n_f = f(&self.n_f);
+        let w = f(&self.w);
+        let gamma = f(&self.gamma);
+        let ff = f(&self.f);
+        let m_r = f(&self.m_r);
+        let m_f = f(&self.m_f);
+        let m_b = f(&self.m_b);
+        let m_h = f(&self.m_h);
+        let l_r = f(&self.l_r);
+        let l_f = f(&self.l_f);
+        let t_c_r = f(&self.t_c_r);
+        let t_c_f = f(&self.t_c_f);
+        let t_c_b = f(&self.t_c_b);
+        let t_c_h = f(&self.t_c_h);
+        let t_t_r = f(&self.t_t_r);
+        let t_t_f = f(&self.t_t_f);
+        let m_p = f(&self.m_p);
+        let l_p = f(&self.l_p);
+        let d_p = f(&self.d_p);
+        let t_t_p = f(&self.t_t_p);
+        let mut hangings = |set: &[Hanging<T>]| -> Vec<Hanging<U>> {
+            set.iter()
+                .map(|h| {
+                    let alpha = f(&h.alpha);
+                    let a = f(&h.a);
+                    let period = f(&h.period);
+                    Hanging { alpha, a, period }
+                })
+                .collect()
+        };
+        let rear_frame = hangings(&self.rear_frame);
+        let front_frame = hangings(&self.front_frame);
+        Measurements {
+            g,
+            d_r,
+            n_r,
+            d_f,
+            n_f,
+            w,
+            gamma,
+            f: ff,
+            m_r,
+            m_f,
+            m_b,
+            m_h,
+            l_r,
+            l_f,
+            t_c_r,
+            t_c_f,
+            t_c_b,
+            t_c_h,
+            t_t_r,
+            t_t_f,
+            m_p,
+            l_p,
+            d_p,
+            t_t_p,
+            rear_frame,
+            front_frame,
+        }
+    }
+}
+
+impl Measurements<Measured> {
+    /// The values alone.
+    pub fn values(&self) -> Measurements<f64> {
+        self.map(|m| m.value)
+    }
+
+    /// Checks what the pipeline divides by or takes roots of: every value finite, every σ
+    /// finite and non-negative, periods, masses, lengths, turns and g positive. The error
+    /// names the key and its line.
+    pub fn check(&self) -> Result<()> {
+        for (key, m) in self.entries() {
+            let at = if m.line > 0 {
+                format!(" (line {})", m.line)
+            } else {
+                String::new()
+            };
+            let bad = |rule: String| Error::InvalidParameter {
+                field: key.clone(),
+                value: m.value,
+                rule,
+            };
+            if !m.value.is_finite() {
+                return Err(bad(format!("must be finite{at}")));
+            }
+            if !(m.sigma.is_finite() && m.sigma >= 0.0) {
+                return Err(bad(format!(
+                    "its standard deviation {} must be finite and not negative{at}",
+                    m.sigma
+                )));
+            }
+            let positive = key.starts_with('T')
+                || key.starts_with('m')
+                || key.starts_with('n')
+                || matches!(
+                    key.as_str(),
+                    "g" | "dR" | "dF" | "w" | "lR" | "lF" | "lP" | "dP"
+                );
+            if positive && m.value <= 0.0 {
+                let what = match key.as_bytes().first() {
+                    Some(b'T') => "a period",
+                    Some(b'm') => "a mass",
+                    Some(b'n') => "a number of turns",
+                    _ if key == "lP" => "the calibration rod's length",
+                    _ if key == "dP" => "the calibration rod's diameter",
+                    _ => "a length",
+                };
+                return Err(bad(format!("{what} must be positive{at}")));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The benchmark parameters computed from [`Measurements`] (the pipeline of the module's
+/// documentation), on any scalar. Fails, naming the measurement, where the hangings do not
+/// determine a mass centre or an inertia.
+pub fn benchmark_from_measurements<T: RealField + Copy>(
+    m: &Measurements<T>,
+) -> Result<BenchmarkParameters<T>> {
+    // 1. wheels
+    let r_r = steps::wheel_radius(m.d_r, m.n_r);
+    let r_f = steps::wheel_radius(m.d_f, m.n_f);
+    // 2. geometry
+    let lambda = steps::steer_axis_tilt(m.gamma);
+    let w = m.w;
+    let c = steps::trail(r_f, lambda, m.f);
+    // 3. mass centres
+    let lines = |frame, set: &[Hanging<T>]| -> Vec<steps::HangingLine<T>> {
+        set.iter()
+            .map(|h| steps::hanging_line(frame, h.alpha, h.a, lambda, w, r_r, r_f))
+            .collect()
+    };
+    let rear_lines = lines(HungFrame::Rear, &m.rear_frame);
+    let front_lines = lines(HungFrame::Front, &m.front_frame);
+    let (x_b, z_b) = steps::mass_centre(&rear_lines, "alphaB")?;
+    let (x_h, z_h) = steps::mass_centre(&front_lines, "alphaH")?;
+    // 4. compound pendulums
+    let i_ryy = steps::compound_pendulum_inertia(m.m_r, m.g, m.l_r, m.t_c_r);
+    let i_fyy = steps::compound_pendulum_inertia(m.m_f, m.g, m.l_f, m.t_c_f);
+    let l_b = steps::pendulum_length(x_b, z_b, T::zero(), -r_r);
+    let i_byy = steps::compound_pendulum_inertia(m.m_b, m.g, l_b, m.t_c_b);
+    let l_h = steps::pendulum_length(x_h, z_h, w, -r_f);
+    let i_hyy = steps::compound_pendulum_inertia(m.m_h, m.g, l_h, m.t_c_h);
+    // 5. torsion constant
+    let rod = steps::rod_transverse_inertia(m.m_p, m.l_p, m.d_p);
+    let k = steps::torsion_constant(rod, m.t_t_p);
+    // 6. torsional pendulums
+    let i_rxx = steps::torsional_pendulum_inertia(k, m.t_t_r);
+    let i_fxx = steps::torsional_pendulum_inertia(k, m.t_t_f);
+    let planar = |set: &[Hanging<T>], lines: &[steps::HangingLine<T>], field: &str| {
+        let moments: Vec<T> = set
+            .iter()
+            .map(|h| steps::torsional_pendulum_inertia(k, h.period))
+            .collect();
+        let betas: Vec<T> = lines.iter().map(|l| l.beta).collect();
+        steps::planar_inertia(&moments, &betas, field)
+    };
+    let [i_bxx, i_bxz, i_bzz] = planar(&m.rear_frame, &rear_lines, "TtB")?;
+    let [i_hxx, i_hxz, i_hzz] = planar(&m.front_frame, &front_lines, "TtH")?;
+    // 7. masses and gravity
+    Ok(BenchmarkParameters {
+        w,
+        c,
+        lambda,
+        g: m.g,
+        r_r,
+        m_r: m.m_r,
+        i_rxx,
+        i_ryy,
+        x_b,
+        z_b,
+        m_b: m.m_b,
+        i_bxx,
+        i_byy,
+        i_bzz,
+        i_bxz,
+        x_h,
+        z_h,
+        m_h: m.m_h,
+        i_hxx,
+        i_hyy,
+        i_hzz,
+        i_hxz,
+        r_f,
+        m_f: m.m_f,
+        i_fxx,
+        i_fyy,
+    })
+}
+
+/// Benchmark parameters computed from measurements, with the exact first-order uncertainty of
+/// each and their covariance (measurements independent).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredParameters {
+    /// The parameters.
+    pub benchmark: BenchmarkParameters,
+    /// σ of each parameter by file key (`IBxx`), those with σ > 0: the shape of
+    /// [`Bicycle::sigma`].
+    pub sigma: BTreeMap<String, f64>,
+    /// The measurements' keys, in the order of the Jacobian's columns
+    /// ([`Measurements::entries`]).
+    pub inputs: Vec<String>,
+    /// ∂pᵢ/∂mⱼ: one row per benchmark parameter in table order
+    /// ([`crate::advanced::table::parameters`]), one column per measurement.
+    pub jacobian: DMatrix<f64>,
+    /// The covariance of the benchmark parameters, table order: J diag(σ²) Jᵀ.
+    pub covariance: DMatrix<f64>,
+}
+
+impl MeasuredParameters {
+    /// The parameters from measurements: one pass on `f64` and one dual-number pass per
+    /// measurement (its exact derivative), then σ and the covariance.
+    ///
+    /// ```
+    /// use whipple::advanced::measured::{read_measurements, MeasuredParameters};
+    /// # let text = include_str!("../../../tests/data/measured/BrowserMeasured.txt");
+    /// let file = read_measurements(text)?;
+    /// let result = MeasuredParameters::new(&file.measurements)?;
+    /// assert!((result.benchmark.w - 1.121).abs() < 1e-12);
+    /// assert!((result.sigma["w"] - 0.002).abs() < 1e-12);
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn new(measurements: &Measurements<Measured>) -> Result<Self> {
+        measurements.check()?;
+        let values = measurements.values();
+        let benchmark = benchmark_from_measurements(&values)?;
+        let entries = measurements.entries();
+        let n = entries.len();
+        let rows = BENCHMARK_TABLE.len();
+        let mut jacobian = DMatrix::zeros(rows, n);
+        for j in 0..n {
+            let mut k = 0;
+            let seeded = values.map(|v| {
+                let d = Dual64::new(*v, if k == j { 1.0 } else { 0.0 });
+                k += 1;
+                d
+            });
+            let derivative = benchmark_from_measurements(&seeded)?.to_array();
+            for (i, d) in derivative.iter().enumerate() {
+                jacobian[(i, j)] = d.eps;
+            }
+        }
+        let variances = DMatrix::from_diagonal(&nalgebra::DVector::from_iterator(
+            n,
+            entries.iter().map(|(_, m)| m.sigma * m.sigma),
+        ));
+        let covariance = &jacobian * variances * jacobian.transpose();
+        let sigma = BENCHMARK_TABLE
+            .iter()
+            .enumerate()
+            .map(|(i, info)| (info.key.to_string(), covariance[(i, i)].max(0.0).sqrt()))
+            .filter(|(_, s)| *s > 0.0)
+            .collect();
+        for (info, v) in BENCHMARK_TABLE.iter().zip(benchmark.to_array()) {
+            if !v.is_finite() {
+                return Err(Error::InvalidParameter {
+                    field: info.key.into(),
+                    value: v,
+                    rule: "the measurements give no finite value".into(),
+                });
+            }
+        }
+        Ok(MeasuredParameters {
+            benchmark,
+            sigma,
+            inputs: entries.into_iter().map(|(k, _)| k).collect(),
+            jacobian,
+            covariance,
+        })
+    }
+
+    /// The correlation coefficient of two parameters by file key (`xB`, `IBxx`), `None` for an
+    /// unknown key or a parameter with σ = 0.
+    pub fn correlation(&self, a: &str, b: &str) -> Option<f64> {
+        let i = BENCHMARK_TABLE.iter().position(|p| p.key == a)?;
+        let j = BENCHMARK_TABLE.iter().position(|p| p.key == b)?;
+        let (si, sj) = (
+            self.covariance[(i, i)].sqrt(),
+            self.covariance[(j, j)].sqrt(),
+        );
+        (si > 0.0 && sj > 0.0).then(|| self.covariance[(i, j)] / (si * sj))
+    }
+
+    /// A [`Bicycle`] in the benchmark form carrying these values and σ.
+    pub fn bicycle(&self) -> Bicycle {
+        Bicycle {
+            description: Description::Benchmark(self.benchmark),
+            sigma: self.sigma.clone(),
+            ..Bicycle::default()
+        }
+    }
+}

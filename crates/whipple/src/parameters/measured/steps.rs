@@ -1,0 +1,222 @@
+//! The steps from bench measurements to benchmark parameters, one function each, generic over
+//! the scalar so that dual numbers carry exact first-order derivatives through them.
+//!
+//! Sources: Moore 2012 (PhD thesis, UC Davis), ch. 2 "Physical parameter measurement";
+//! Moore, Hubbard, Kooijman & Schwab 2010, "A method for estimating physical properties of a
+//! combined bicycle and rider" (ASME IDETC 2009, DETC2009-86947); Kooijman 2006, "Experimental
+//! validation of a model for the motion of an uncontrolled bicycle" (TU Delft). The order of
+//! the steps and their conventions are those of BicycleParameters' `calculate_from_measured`,
+//! whose results the tests compare with.
+
+use nalgebra::{Matrix3, RealField, Vector3};
+
+use crate::error::{Error, Result};
+
+fn c<T: RealField + Copy>(x: f64) -> T {
+    nalgebra::convert(x)
+}
+
+/// A wheel's radius from the distance it rolled on the ground in a whole number of turns:
+/// r = d / (2π n).
+pub fn wheel_radius<T: RealField + Copy>(distance: T, rotations: T) -> T {
+    distance / (T::two_pi() * rotations)
+}
+
+/// The steer axis tilt λ (from the vertical) from the head tube's angle γ with the ground, in
+/// degrees as it is measured: λ = π/2 − γ.
+pub fn steer_axis_tilt<T: RealField + Copy>(head_angle_deg: T) -> T {
+    (c::<T>(90.0) - head_angle_deg) * T::pi() / c(180.0)
+}
+
+/// The trail c from the front wheel's radius, the steer axis tilt and the fork offset f (the
+/// perpendicular distance from the front hub to the steer axis):
+/// c = (r_F sin λ − f) / cos λ.
+pub fn trail<T: RealField + Copy>(r_f: T, lambda: T, fork_offset: T) -> T {
+    (r_f * lambda.sin() - fork_offset) / lambda.cos()
+}
+
+/// A line z = slope·x + intercept in the benchmark frame (x forward, z down, origin at the rear
+/// contact) on which a hung frame's mass centre lies, with the angle β from the benchmark x
+/// axis to the pendulum's x axis (a rotation about y).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HangingLine<T = f64> {
+    /// dz/dx of the line.
+    pub slope: T,
+    /// z where the line crosses x = 0 \[m\].
+    pub intercept: T,
+    /// β = λ − α: the pendulum frame's orientation relative to the benchmark frame \[rad\].
+    pub beta: T,
+}
+
+/// Which frame hung: its reference point is a wheel's centre.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HungFrame {
+    /// The rear frame: the reference point is the rear hub, at (0, −r_R).
+    Rear,
+    /// The front frame (fork and handlebar): the reference point is the front hub, at
+    /// (w, −r_F).
+    Front,
+}
+
+/// The line through a frame's mass centre when it hangs still from a wire: the wire is
+/// vertical and passes through the mass centre. The frame hangs with its steer axis at angle α
+/// (degrees, measured in the vertical plane from the horizontal, right side view), and the
+/// wire passes at distance `a` from the reference point (the wheel's centre), positive where
+/// the point lies on the wire's left. In the benchmark frame the wire's direction makes the
+/// angle β = λ − α with the z axis, so its slope is −tan β and its intercept follows from the
+/// reference point: z₀ = −a / cos β + z_ref − x_ref·(−tan β)
+/// (Moore 2012 §2.4; Kooijman 2006).
+pub fn hanging_line<T: RealField + Copy>(
+    frame: HungFrame,
+    alpha_deg: T,
+    a: T,
+    lambda: T,
+    wheelbase: T,
+    r_r: T,
+    r_f: T,
+) -> HangingLine<T> {
+    let beta = lambda - alpha_deg * T::pi() / c(180.0);
+    let slope = -beta.tan();
+    let intercept = match frame {
+        HungFrame::Rear => -a / beta.cos() - r_r,
+        HungFrame::Front => -a / beta.cos() - r_f + wheelbase * beta.tan(),
+    };
+    HangingLine {
+        slope,
+        intercept,
+        beta,
+    }
+}
+
+/// The point where two lines meet, `None` for parallel lines (slopes equal to a relative 1e-9).
+pub fn intersection<T: RealField + Copy>(a: &HangingLine<T>, b: &HangingLine<T>) -> Option<(T, T)> {
+    let ds = b.slope - a.slope;
+    let scale = c::<T>(1.0) + a.slope.abs() + b.slope.abs();
+    if ds.abs() <= scale * c(1e-9) {
+        return None;
+    }
+    let x = (a.intercept - b.intercept) / ds;
+    Some((x, a.intercept + a.slope * x))
+}
+
+/// A hung frame's mass centre (x, z): the mean of the lines' intersections, every pair once,
+/// as BicycleParameters estimates it (`com.center_of_mass`; three lines give three points
+/// whose spread shows the measurement error). Fails, naming `field`, when fewer than two lines
+/// are given or two of them are parallel.
+pub fn mass_centre<T: RealField + Copy>(lines: &[HangingLine<T>], field: &str) -> Result<(T, T)> {
+    if lines.len() < 2 {
+        return Err(Error::InvalidParameter {
+            field: field.into(),
+            value: lines.len() as f64,
+            rule: "a mass centre needs at least two hanging angles".into(),
+        });
+    }
+    let (mut x, mut z, mut n) = (T::zero(), T::zero(), 0.0);
+    for (i, a) in lines.iter().enumerate() {
+        for (j, b) in lines.iter().enumerate().skip(i + 1) {
+            let (xi, zi) = intersection(a, b).ok_or_else(|| Error::InvalidParameter {
+                field: format!("{field}{} and {field}{}", i + 1, j + 1),
+                value: f64::NAN,
+                rule: "the two hanging lines are parallel: they do not determine the mass \
+                       centre (hang the frame at another angle)"
+                    .into(),
+            })?;
+            x += xi;
+            z += zi;
+            n += 1.0;
+        }
+    }
+    Ok((x / c(n), z / c(n)))
+}
+
+/// The moment of inertia about its mass centre of a body swung as a compound pendulum about
+/// an axis at distance l from the mass centre, from its period T:
+/// I = m g l (T / 2π)² − m l² (Moore 2012 §2.5).
+pub fn compound_pendulum_inertia<T: RealField + Copy>(mass: T, g: T, length: T, period: T) -> T {
+    let t = period / T::two_pi();
+    t * t * mass * g * length - mass * length * length
+}
+
+/// The moment of inertia of a solid cylindrical rod about a transverse axis through its
+/// centre: I = m (3 r² + l²) / 12 with r = d/2.
+pub fn rod_transverse_inertia<T: RealField + Copy>(mass: T, length: T, diameter: T) -> T {
+    let r = diameter / c(2.0);
+    mass / c(12.0) * (c::<T>(3.0) * r * r + length * length)
+}
+
+/// The torsion constant of a torsional pendulum from a body of known inertia I and its
+/// period T: k = 4π² I / T².
+pub fn torsion_constant<T: RealField + Copy>(inertia: T, period: T) -> T {
+    let w = T::two_pi() / period;
+    inertia * w * w
+}
+
+/// The moment of inertia of a body on a torsional pendulum of constant k from its period T:
+/// I = k T² / 4π² (the inverse of [`torsion_constant`]).
+pub fn torsional_pendulum_inertia<T: RealField + Copy>(k: T, period: T) -> T {
+    let t = period / T::two_pi();
+    k * t * t
+}
+
+/// The planar inertia components (I_xx, I_xz, I_zz) of a body from its moments J_i about axes
+/// in the xz plane at angles β_i: J = I_xx cos²β − 2 I_xz sin β cos β + I_zz sin²β, solved by
+/// least squares (exactly for three axes). Fails, naming `field`, when the axes do not
+/// determine the three components.
+pub fn planar_inertia<T: RealField + Copy>(
+    moments: &[T],
+    betas: &[T],
+    field: &str,
+) -> Result<[T; 3]> {
+    let bad = |rule: &str| Error::InvalidParameter {
+        field: field.into(),
+        value: moments.len() as f64,
+        rule: rule.into(),
+    };
+    if moments.len() < 3 || moments.len() != betas.len() {
+        return Err(bad(
+            "the inertia in the plane needs at least three torsional periods at distinct angles",
+        ));
+    }
+    let mut normal = Matrix3::<T>::zeros();
+    let mut rhs = Vector3::<T>::zeros();
+    for (j, beta) in moments.iter().zip(betas) {
+        let (s, co) = beta.sin_cos();
+        let row = Vector3::new(co * co, -c::<T>(2.0) * s * co, s * s);
+        normal += row * row.transpose();
+        rhs += row * *j;
+    }
+    let scale = normal.iter().fold(T::zero(), |m, x| m.max(x.abs()));
+    let det = normal.determinant();
+    if det.abs() <= scale * scale * scale * c(1e-12) {
+        return Err(bad(
+            "the hanging angles do not determine the inertia in the plane (two are parallel)",
+        ));
+    }
+    let solution = normal
+        .try_inverse()
+        .ok_or_else(|| bad("the hanging angles do not determine the inertia in the plane"))?
+        * rhs;
+    Ok([solution[0], solution[1], solution[2]])
+}
+
+/// The distance from a point to a wheel's centre in the xz plane: the length of the compound
+/// pendulum when a frame swings about that wheel's axle.
+pub fn pendulum_length<T: RealField + Copy>(x: T, z: T, axle_x: T, axle_z: T) -> T {
+    let (dx, dz) = (x - axle_x, z - axle_z);
+    (dx * dx + dz * dz).sqrt()
+}
+
+/// The principal moments of a body's inertia in the xz plane and the axes' orientation: from
+/// (I_xx, I_xz, I_zz), the moments I₁ ≥ I₂ of the 2 × 2 tensor [[I_xx, I_xz], [I_xz, I_zz]] and
+/// the angle θ from the x axis to I₁'s axis, a rotation about y, in (−π/2, π/2]
+/// (Moore 2012 §2.7: the frames' principal axes). Inverse: I_xx = I₁ cos²θ + I₂ sin²θ,
+/// I_zz = I₁ sin²θ + I₂ cos²θ, I_xz = (I₂ − I₁) sin θ cos θ (z down, so a rotation about y
+/// takes x towards −z).
+pub fn principal_planar<T: RealField + Copy>(i_xx: T, i_xz: T, i_zz: T) -> (T, T, T) {
+    let half: T = c(0.5);
+    let mean = (i_xx + i_zz) * half;
+    let d = (i_xx - i_zz) * half;
+    let radius = (d * d + i_xz * i_xz).sqrt();
+    let theta = (-i_xz).atan2(d) * half;
+    (mean + radius, mean - radius, theta)
+}
