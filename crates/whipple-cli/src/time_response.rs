@@ -29,7 +29,7 @@ pub struct TimeArgs {
     #[arg(long = "output", allow_hyphen_values = true)]
     outputs: Vec<String>,
     /// How long, in seconds, from t = 0.
-    #[arg(long, default_value = "5")]
+    #[arg(long, default_value = "5", allow_hyphen_values = true)]
     duration: f64,
     /// How many samples, evenly spaced from 0 to the duration (both included).
     #[arg(long, default_value = "501")]
@@ -401,7 +401,7 @@ pub struct ManoeuvreArgs {
     #[arg(long, default_value = "0", allow_hyphen_values = true)]
     steer: f64,
     /// How long, in seconds, from t = 0.
-    #[arg(long, default_value = "3")]
+    #[arg(long, default_value = "3", allow_hyphen_values = true)]
     duration: f64,
     /// How many samples, evenly spaced from 0 to the duration (both included).
     #[arg(long, default_value = "301")]

@@ -246,3 +246,176 @@ fn bad_input_is_refused_naming_the_option_and_nothing_is_written() {
     assert!(e.contains("--speeds"), "{e}");
     assert!(!csv.exists(), "no file after a refusal");
 }
+
+/// `response step`: the CSV's samples equal the library's exact response bit for bit as printed,
+/// the step settles at the static gain where the bicycle is stable (5 m/s), and the path
+/// columns carry the run v t.
+#[test]
+fn step_writes_the_exact_response_and_settles_at_the_static_gain() {
+    let dir = scratch("response-step");
+    let csv = dir.join("step.csv");
+    let figure = dir.join("step.png");
+    let out = stdout(&whipple(&[
+        "response",
+        "step",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "5",
+        "--input",
+        "steer_torque",
+        "--amplitude",
+        "0.01",
+        "--output",
+        "lean",
+        "--duration",
+        "60",
+        "--samples",
+        "61",
+        "--out",
+        csv.to_str().unwrap(),
+        "--figure",
+        figure.to_str().unwrap(),
+    ]));
+    assert!(out.contains("a step of 0.01 N m in steer_torque"), "{out}");
+    let text = fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "t_s,lean,path_x_m,path_y_m,path_yaw_rad"
+    );
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 61);
+    let static_gain = lean_from_steer_torque(5.0).static_gain().unwrap();
+    let last = &rows[60];
+    assert_eq!((last[0], last[2]), (60.0, 300.0), "t and x = v t");
+    assert!(
+        (last[1] - 0.01 * static_gain).abs() < 1e-9 * static_gain.abs(),
+        "{} vs {}",
+        last[1],
+        0.01 * static_gain
+    );
+    let png = fs::read(&figure).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    // The heading has turned far: the summary says where the linear path stops holding.
+    assert!(out.contains("the linear path"), "{out}");
+}
+
+/// `response manoeuvre`: one call runs both models; halving the pulse divides the lean
+/// difference by about 8 (the amplitude cubed).
+#[test]
+fn manoeuvre_runs_both_models_and_the_difference_scales_as_the_cube() {
+    let dir = scratch("response-manoeuvre");
+    let lean_difference = |amplitude: &str, name: &str| -> f64 {
+        let csv = dir.join(name);
+        stdout(&whipple(&[
+            "response",
+            "manoeuvre",
+            "--bike",
+            "benchmark",
+            "--speed",
+            "5",
+            "--steer-torque",
+            &format!("pulse:0:0.5:{amplitude}"),
+            "--duration",
+            "3",
+            "--samples",
+            "61",
+            "--rtol",
+            "1e-12",
+            "--out",
+            csv.to_str().unwrap(),
+        ]));
+        let text = fs::read_to_string(&csv).unwrap();
+        let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+        let column = header.iter().position(|h| *h == "difference_lean").unwrap();
+        text.lines()
+            .skip(1)
+            .map(|l| {
+                l.split(',')
+                    .nth(column)
+                    .unwrap()
+                    .parse::<f64>()
+                    .unwrap()
+                    .abs()
+            })
+            .fold(0.0, f64::max)
+    };
+    let ratio = lean_difference("0.1", "a.csv") / lean_difference("0.05", "b.csv");
+    assert!((ratio - 8.0).abs() < 0.1, "{ratio}");
+    let figure = dir.join("pulse.svg");
+    let out = stdout(&whipple(&[
+        "response",
+        "manoeuvre",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "5",
+        "--steer-torque",
+        "pulse:0:0.5:1",
+        "--figure",
+        figure.to_str().unwrap(),
+    ]));
+    assert!(
+        out.contains("non-linear model") && out.contains("rear_y"),
+        "{out}"
+    );
+    assert!(
+        fs::read_to_string(&figure)
+            .unwrap()
+            .contains("non-linear − linear")
+    );
+}
+
+#[test]
+fn time_responses_refuse_bad_input_naming_the_option() {
+    let dir = scratch("response-time-bad");
+    let never = dir.join("never.csv");
+    for (args, words) in [
+        (
+            vec!["step", "--speed", "5", "--input", "steer"],
+            vec!["--input", "unknown input"],
+        ),
+        (
+            vec![
+                "step",
+                "--speed",
+                "5",
+                "--input",
+                "steer_torque",
+                "--samples",
+                "1",
+            ],
+            vec!["--samples"],
+        ),
+        (
+            vec!["impulse", "--speed", "nan", "--input", "steer_torque"],
+            vec!["--speed"],
+        ),
+        (
+            vec!["initial", "--speed", "5", "--lean", "1", "--duration", "-1"],
+            vec!["--duration"],
+        ),
+        (
+            vec!["manoeuvre", "--speed", "5", "--steer-torque", "pulse:0:0:1"],
+            vec!["--steer-torque", "duration"],
+        ),
+        (vec!["manoeuvre", "--speed", "5"], vec!["nothing happens"]),
+        (
+            vec!["manoeuvre", "--speed", "5", "--lean-torque", "wave:1"],
+            vec!["--lean-torque", "pulse:T:D:A"],
+        ),
+    ] {
+        let mut full = vec!["response"];
+        full.extend(&args[..1]);
+        full.extend(["--bike", "benchmark", "--out", never.to_str().unwrap()]);
+        full.extend(&args[1..]);
+        let e = stderr_of_failure(&whipple(&full));
+        for w in &words {
+            assert!(e.contains(w), "{args:?}: {w}: {e}");
+        }
+        assert!(!never.exists(), "{args:?} wrote a file");
+    }
+}
