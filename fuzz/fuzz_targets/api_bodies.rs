@@ -11,7 +11,7 @@ use libfuzzer_sys::fuzz_target;
 use tower::ServiceExt;
 use whipple_web::{Limits, app};
 
-const ROUTES: [&str; 9] = [
+const ROUTES: [&str; 10] = [
     "/api/bike/validate",
     "/api/sensitivity",
     "/api/bike/toml",
@@ -21,6 +21,7 @@ const ROUTES: [&str; 9] = [
     "/api/simulate",
     "/api/modes",
     "/api/linear/response",
+    "/api/linear/frequency",
 ];
 
 fn runtime() -> &'static tokio::runtime::Runtime {

@@ -86,3 +86,27 @@ fn toml_seeds() {
         );
     }
 }
+
+/// BicycleParameters' raw measurements: an `ok-*` seed reads and computes with every σ finite;
+/// an `err-*` seed is refused, by the reader or by the pipeline, naming the key at fault.
+#[test]
+fn measured_file_seeds() {
+    use whipple::advanced::measured::{MeasuredParameters, read_measurements};
+    for (name, data) in seeds("measured_files") {
+        let text = std::str::from_utf8(&data).expect("UTF-8");
+        let result = read_measurements(text)
+            .and_then(|file| MeasuredParameters::new(&file.measurements));
+        match result {
+            Ok(parameters) => {
+                assert!(name.starts_with("ok-"), "{name}: accepted");
+                assert!(parameters.sigma.values().all(|s| s.is_finite()), "{name}");
+            }
+            Err(e) => {
+                assert!(name.starts_with("err-"), "{name}: refused: {e}");
+                let message = e.to_string();
+                let key = if name.contains("dF") { "dF" } else { "TcB1" };
+                assert!(message.contains(key), "{name}: {message}");
+            }
+        }
+    }
+}
