@@ -394,12 +394,14 @@ pub(crate) async fn compute<T: Send + 'static>(
     let permit = slot(state, budget).await?;
     let stop = StopOnDrop(Arc::new(AtomicBool::new(false)));
     let flag = stop.0.clone();
+    // Taken before the work starts: a busy machine may run all of it before this thread
+    // goes on.
+    let started = std::time::Instant::now();
     let task = tokio::task::spawn_blocking(move || {
         // The slot stays taken until the work ends, even if the client has gone.
         let _permit = permit;
         work(flag)
     });
-    let started = std::time::Instant::now();
     match tokio::time::timeout(limits.compute_timeout, task).await {
         // The timer fires on its own coarse ticks: work that ends past the limit before the
         // tick is over the limit all the same, so the answer does not depend on the race.
