@@ -1354,7 +1354,7 @@ await section("response's time views at 1280 × 800 and 390 × 844: nothing over
       check(first.b - first.t >= 130 && first.r - first.l >= 300, `${viewport.width} px, ${kind}: room for the plot (${Math.round(first.r - first.l)} × ${Math.round(first.b - first.t)})`);
       const { scroll, inner } = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, inner: window.innerWidth }));
       check(scroll <= inner, `${viewport.width} px, ${kind}: no sideways scroll (${scroll} px)`);
-      if (process.env.WHIPPLE_E2E_SHOTS) await page.screenshot({ path: `${process.env.WHIPPLE_E2E_SHOTS}/resp-${kind}-${viewport.width}.png` });
+      if (process.env.WHIPPLE_E2E_SHOTS) await page.locator("#panel-resp").screenshot({ path: `${process.env.WHIPPLE_E2E_SHOTS}/resp-${kind}-${viewport.width}.png` });
     }
   }
 });

@@ -173,8 +173,8 @@ class BodePlot extends Chart {
 /** Curves y(x) (x increasing), each {x, y, colour, dashed, name, testid}: the time plots and
  * the path in the plane. */
 class CurvePlot extends Chart {
-  constructor(container, { label, xLabel, yLabel, unit }) {
-    super(container, { label, xLabel, yLabel, minHeight: 140, margin: { left: 56, right: 14, top: 36, bottom: 38 }, testid: container.dataset.testid });
+  constructor(container, { label, xLabel, yLabel, unit, flipY = false }) {
+    super(container, { label, xLabel, yLabel, flipY, minHeight: 140, margin: { left: 56, right: 14, top: 36, bottom: 38 }, testid: container.dataset.testid });
     this.unit = unit;
     this.series = null;
   }
@@ -256,7 +256,7 @@ export class ResponsePanel {
     this.phase = new BodePlot($("resp-phase"), { quantity: "phase_deg", label: "Bode phase against frequency", yLabel: "phase [°]", legendOn: false });
     this.lean = new CurvePlot($("resp-lean"), { label: "Lean against time", xLabel: "time t [s]", yLabel: "lean φ [°]", unit: "°" });
     this.steer = new CurvePlot($("resp-steer"), { label: "Steer against time", xLabel: "time t [s]", yLabel: "steer δ [°]", unit: "°" });
-    this.path = new CurvePlot($("resp-path"), { label: "The wheels' contact paths in the ground plane, seen from above", xLabel: "x along the run [m]", yLabel: "y across, right positive [m]", unit: "m" });
+    this.path = new CurvePlot($("resp-path"), { label: "The wheels' contact paths in the ground plane, seen from above", xLabel: "x along the run [m]", yLabel: "y, to the right: down [m]", unit: "m", flipY: true });
     this.timeAnswer = null;
     const changed = () => {
       this.compute();
