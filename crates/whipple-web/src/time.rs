@@ -227,7 +227,8 @@ fn check(request: &TimeRequest) -> Result<Plan, ApiError> {
         ));
     }
     if request.nonlinear {
-        if matches!(input, Input::LateralForce { .. }) {
+        // An initial condition has no input: the lateral force named is not applied.
+        if matches!(input, Input::LateralForce { .. }) && request.kind != Kind::Initial {
             return Err(invalid(
                 "input",
                 format!(

@@ -216,6 +216,12 @@ async fn errors_name_the_field() -> TestResult {
     body["nonlinear"] = json!(false);
     let (status, answer) = post("/api/linear/time", &body).await?;
     assert_eq!(status, StatusCode::OK, "{answer}");
+    // An initial condition applies no input: the lateral force named does not matter.
+    body["kind"] = json!("initial");
+    body["lean_deg"] = json!(2.0);
+    body["nonlinear"] = json!(true);
+    let (status, answer) = post("/api/linear/time", &body).await?;
+    assert_eq!(status, StatusCode::OK, "{answer}");
     let mut body = base;
     body["kind"] = json!("impulse");
     body["nonlinear"] = json!(true);
