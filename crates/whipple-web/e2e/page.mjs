@@ -1256,6 +1256,109 @@ await section("response at 1280 × 800 and 390 × 844: nothing overlaps, nothing
   }
 });
 
+const timeCurves = (plot, testid = "resp-time-curve") => page.locator(`[data-testid=${plot}] [data-testid=${testid}]`).count();
+/** The last point of a plot's first linear curve, in the plot's pixels. */
+const lastPoint = (plot) => page.$eval(`[data-testid=${plot}] [data-testid=resp-time-curve]`, (p) => p.getAttribute("d").split(/[ML]/).filter(Boolean).at(-1));
+
+await section("response: step response, initial condition, path in the plane, the non-linear model beside", async () => {
+  await open("?bike=preset:benchmark&tab=resp");
+  await respDrawn(3);
+  await page.getByTestId("resp-kind").selectOption("step");
+  await waitFor("the step response drawn", async () => (await timeCurves("resp-lean")) === 1 && (await timeCurves("resp-steer")) === 1, 15_000);
+  await settled();
+  check(!(await page.getByTestId("resp-magnitude").isVisible()) && (await page.getByTestId("resp-amplitude").isVisible()) && !(await page.getByTestId("resp-compare").isVisible()), "the step view shows lean and steer against time and the amplitude field, not the Bode plots");
+  // Where the API says the step settles: the same request, asked directly.
+  const bike = await page.evaluate(async () => (await fetch("/api/presets/benchmark")).json());
+  const api = await page.evaluate(async (bike) => (await fetch("/api/linear/time", { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ bike, speed: 5, kind: "step", input: "steer_torque", amplitude: 0.1, duration: 10, samples: 401 }) })).json(), bike);
+  const final = Number(await page.getByTestId("resp-final").getAttribute("data-lean"));
+  const expected = api.linear.lean_deg.at(-1);
+  check(Math.abs(final - expected) < 1e-9 * Math.max(1, Math.abs(expected)), `the step response at 5 m/s ends where the API says (${final.toFixed(4)}° vs ${expected.toFixed(4)}°)`);
+  const tail = api.linear.lean_deg.slice(-40);
+  check(Math.max(...tail) - Math.min(...tail) < 0.1 * Math.abs(expected), `and has nearly settled there over the last second (${(Math.max(...tail) - Math.min(...tail)).toFixed(4)}° of ${expected.toFixed(3)}°)`);
+  const [x, y] = (await lastPoint("resp-lean")).trim().split(" ").map(Number);
+  check(Number.isFinite(x) && Number.isFinite(y), `the curve is drawn to its last sample (${x}, ${y} px)`);
+
+  await page.getByTestId("resp-nonlinear").check();
+  await waitFor("the non-linear step beside", async () => (await timeCurves("resp-lean", "resp-time-curve-nonlinear")) === 1, 20_000);
+  await settled();
+  check(/largest difference/.test(await text("resp-difference")), `the largest difference is given: ${await text("resp-difference")}`);
+
+  await page.getByTestId("resp-kind").selectOption("initial");
+  await waitFor("the initial-condition response drawn", async () => (await page.getByTestId("resp-lean0").isVisible()) && /no input/.test(await text("resp-roots")) && (await timeCurves("resp-lean")) === 1 && (await timeCurves("resp-steer", "resp-time-curve-nonlinear")) === 1, 20_000);
+  await settled();
+  check(true, "the initial-condition view draws lean and steer, linear and non-linear");
+
+  await page.getByTestId("resp-kind").selectOption("path");
+  await waitFor("two paths and their non-linear twins", async () => (await timeCurves("resp-path", "resp-path-curve")) === 2 && (await timeCurves("resp-path", "resp-path-curve-nonlinear")) === 2, 20_000);
+  await settled();
+  check(await page.getByTestId("resp-pulse").isVisible(), "the path view draws the rear and front contacts' paths, each beside the non-linear one, with the pulse's duration field");
+  const meta = await text("resp-meta");
+  const stretch = Number(await page.getByTestId("resp-meta").getAttribute("data-exaggeration"));
+  check(stretch <= 1.5 || /y exaggerated ×/.test(meta), `the exaggeration of y is said (×${stretch.toFixed(1)}: “${meta}”)`);
+
+  // Bad numbers: refused with a message, the curves kept under a veil.
+  for (const [id, bad] of [["resp-amplitude", "abc"], ["resp-amplitude", "1e9"], ["resp-pulse", "0"], ["resp-pulse", "x"]]) {
+    await page.getByTestId(id).fill(bad);
+    await page.getByTestId(id).press("Enter");
+    await waitFor("the message", async () => (await page.getByTestId("resp-message").isVisible()), 10_000);
+    const message = await text("resp-message");
+    check((await page.getByTestId(id).getAttribute("class")).includes("invalid") && (await page.locator("[data-testid=resp-path] [data-testid=stale-veil]").count()) === 1, `${id} “${bad}” is refused with a message: ${message}`);
+    await page.getByTestId(id).fill(id === "resp-amplitude" ? "0.2" : "0.4");
+    await page.getByTestId(id).press("Enter");
+    await waitFor("the message gone", async () => !(await page.getByTestId("resp-message").isVisible()), 15_000);
+  }
+  await settled();
+  // The link restores the view.
+  const link = page.url();
+  const before = await page.$eval("[data-testid=resp-path] [data-testid=resp-path-curve]", (p) => p.getAttribute("d"));
+  await page.goto("about:blank");
+  await open(new URL(link).search);
+  await waitFor("the path restored", async () => (await timeCurves("resp-path", "resp-path-curve-nonlinear")) === 2, 20_000);
+  await settled();
+  const restored = await page.evaluate(() => ["resp-kind", "resp-amplitude", "resp-pulse"].map((id) => document.getElementById(id).value).join("|") + `|${document.getElementById("resp-nonlinear").checked}`);
+  check(restored === "path|0.2|0.4|true", `the link restores the view, amplitude, pulse and the comparison (${restored})`);
+  const after = await page.$eval("[data-testid=resp-path] [data-testid=resp-path-curve]", (p) => p.getAttribute("d"));
+  check(after === before, "and draws the same path");
+
+  // Recomputed on a bicycle edit; veiled on an invalid one.
+  await page.getByTestId("param-c").fill("0.05");
+  await waitFor("the path redrawn", async () => (await page.$eval("[data-testid=resp-path] [data-testid=resp-path-curve]", (p) => p.getAttribute("d"))) !== before, 20_000);
+  await page.getByTestId("param-c").fill("abc");
+  await waitFor("the veil", async () => (await page.locator("[data-testid=resp-path] [data-testid=stale-veil]").count()) === 1, 10_000);
+  check(true, "a bicycle edit redraws the path; text in a field veils it");
+});
+
+await section("response's time views at 1280 × 800 and 390 × 844: nothing overlaps, nothing sticks out", async () => {
+  for (const viewport of [{ width: 1280, height: 800 }, { width: 390, height: 844 }]) {
+    for (const kind of ["step", "path"]) {
+      await open(`?bike=preset:benchmark&tab=resp&rs=${encodeURIComponent(`kind:${kind};nl:1`)}`, viewport);
+      const plot = kind === "path" ? "resp-path" : "resp-lean";
+      await waitFor(`the ${kind} view drawn`, async () => (await page.locator(`[data-testid=${plot}] [data-testid$=nonlinear]`).count()) >= 1, 20_000);
+      await settled();
+      const blocks = ["#resp-form", ...(kind === "path" ? ["#resp-path"] : ["#resp-lean", "#resp-steer"]), "#resp-roots"];
+      const rects = await page.evaluate((sels) => sels.map((s) => {
+        const r = document.querySelector(s).getBoundingClientRect();
+        return { s, l: r.left, t: r.top, r: r.right, b: r.bottom };
+      }), blocks);
+      const out = rects.filter((r) => r.l < 0 || r.r > viewport.width || r.r - r.l < 1 || r.b - r.t < 1).map((r) => r.s);
+      check(out.length === 0, `${viewport.width} px, ${kind}: every block within the width (${out.join(", ") || "none outside"})`);
+      const overlaps = [];
+      for (let i = 0; i < rects.length; i++) {
+        for (let j = i + 1; j < rects.length; j++) {
+          const [a, b] = [rects[i], rects[j]];
+          if (Math.min(a.r, b.r) - Math.max(a.l, b.l) > 1 && Math.min(a.b, b.b) - Math.max(a.t, b.t) > 1) overlaps.push(`${a.s} × ${b.s}`);
+        }
+      }
+      check(overlaps.length === 0, `${viewport.width} px, ${kind}: no two blocks overlap (${overlaps.join(", ") || "none"})`);
+      const first = rects[1];
+      check(first.b - first.t >= 130 && first.r - first.l >= 300, `${viewport.width} px, ${kind}: room for the plot (${Math.round(first.r - first.l)} × ${Math.round(first.b - first.t)})`);
+      const { scroll, inner } = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, inner: window.innerWidth }));
+      check(scroll <= inner, `${viewport.width} px, ${kind}: no sideways scroll (${scroll} px)`);
+      if (process.env.WHIPPLE_E2E_SHOTS) await page.locator("#panel-resp").screenshot({ path: `${process.env.WHIPPLE_E2E_SHOTS}/resp-${kind}-${viewport.width}.png` });
+    }
+  }
+});
+
 await section("simulation at 1280 × 800: nothing overlaps, nothing sticks out", async () => {
   await open("?bike=preset:benchmark&tab=sim", { width: 1280, height: 800 });
   await page.getByTestId("sim-run").click();

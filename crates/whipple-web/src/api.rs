@@ -99,6 +99,7 @@ pub fn app_bound_to(limits: Limits, bound: IpAddr) -> Router {
         .route("/api/modes", post(modes))
         .route("/api/linear/response", post(linear_response))
         .route("/api/linear/frequency", post(crate::frequency::frequency))
+        .route("/api/linear/time", post(crate::time::time))
         .route("/api/map", post(crate::design::map))
         .route("/api/map/design", post(crate::design::design_at))
         .route("/api/turn", post(crate::turns::turn))

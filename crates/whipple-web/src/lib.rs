@@ -34,6 +34,7 @@ mod frequency;
 pub mod geometry;
 pub mod modes;
 pub mod simulation;
+mod time;
 mod turns;
 
 use std::future::Future;

@@ -65,4 +65,8 @@ export const api = {
   /** One input → output pair at a few speeds, `request` {bike, speeds, input, output,
    * frequencies: {start, stop, count}}: per speed the poles, zeros, gains and Bode data. */
   frequency: (request) => call("POST", "/api/linear/frequency", request),
+  /** The linear model's exact time response, `request` {bike, speed, kind, input, amplitude,
+   * pulse_duration, lean_deg, duration, samples, nonlinear}: lean, steer, yaw, the ground path;
+   * with nonlinear, the same manoeuvre on the non-linear model and the difference. */
+  time: (request) => call("POST", "/api/linear/time", request),
 };

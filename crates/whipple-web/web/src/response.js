@@ -3,8 +3,11 @@
 // speeds compared ("3, 5, 7" m/s): Bode magnitude [dB] and phase [deg] against frequency on
 // logarithmic axes, one curve per speed, the slider's drawn heavy; the poles and zeros at the
 // slider's speed, a right-half-plane zero flagged, and the speeds where a zero crosses s = 0
-// (steer torque → lean: the counter-steering zero). `kind` is the sub-view: the Bode plot
-// now; step and initial-condition responses and the path in the plane join it as kinds.
+// (steer torque → lean: the counter-steering zero). `kind` is the sub-view: the Bode plot, or
+// a time response (/api/linear/time, exact): the step response and the motion from an initial
+// lean drawn as lean and steer against time, and the path in the plane of a pulse of torque
+// (the rear and front contacts seen from above); each optionally beside the same manoeuvre on
+// the non-linear model, dashed, with the largest difference.
 
 import { api } from "./api.js";
 import { parseNumber } from "./editor.js";
@@ -18,7 +21,14 @@ const GRID = { start: 0.1, stop: 100, count: 300 };
 /** The most speeds compared besides the slider's (the server takes 16 in all). */
 const MAX_COMPARED = 8;
 const HEAVY = "#111827";
-export const KINDS = ["bode"];
+export const KINDS = ["bode", "step", "initial", "path"];
+/** The time views: the time response asked for, its span [s] and samples. */
+const TIME_VIEWS = {
+  step: { kind: "step", duration: 10, samples: 401 },
+  initial: { kind: "initial", duration: 6, samples: 241 },
+  path: { kind: "pulse", duration: 6, samples: 241 },
+};
+const LINEAR_COLOURS = { lean: "#1d4ed8", steer: "#b45309", rear: "#1d4ed8", front: "#b45309" };
 
 /** "3, 5, 7" → [3, 5, 7]; null when a part is not a number (empty parts skipped). */
 export function parseSpeeds(text) {
@@ -160,6 +170,79 @@ class BodePlot extends Chart {
   }
 }
 
+/** Curves y(x) (x increasing), each {x, y, colour, dashed, name, testid}: the time plots and
+ * the path in the plane. */
+class CurvePlot extends Chart {
+  constructor(container, { label, xLabel, yLabel, unit, flipY = false }) {
+    super(container, { label, xLabel, yLabel, flipY, minHeight: 140, margin: { left: 56, right: 14, top: 36, bottom: 38 }, testid: container.dataset.testid });
+    this.unit = unit;
+    this.series = null;
+  }
+
+  ready() {
+    return Boolean(this.series?.length);
+  }
+
+  update(series) {
+    this.view = null;
+    this.series = series;
+    this.draw();
+  }
+
+  extent() {
+    const xs = this.series[0].x;
+    const fit = this.fitY(xs[0], xs[xs.length - 1]) ?? { y0: -1, y1: 1 };
+    const pad = Math.max(1e-6, 0.06 * (fit.y1 - fit.y0));
+    return { x0: xs[0], x1: xs[xs.length - 1], y0: fit.y0 - pad, y1: fit.y1 + pad };
+  }
+
+  fitY(x0, x1) {
+    let lo = Infinity, hi = -Infinity;
+    for (const s of this.series) {
+      s.y.forEach((y, i) => {
+        if (!Number.isFinite(y) || s.x[i] < x0 || s.x[i] > x1) return;
+        lo = Math.min(lo, y);
+        hi = Math.max(hi, y);
+      });
+    }
+    if (!(hi >= lo)) return null;
+    return hi > lo ? { y0: lo, y1: hi } : { y0: lo - 1, y1: lo + 1 };
+  }
+
+  xs() {
+    return this.series[0].x;
+  }
+
+  render(root, f) {
+    const { X, Y } = f;
+    const curves = svg("g", { "clip-path": f.clip, fill: "none", "stroke-linejoin": "round" });
+    for (const s of this.series) {
+      const d = s.y.map((y, i) => `${i ? "L" : "M"}${X(s.x[i]).toFixed(1)} ${Y(y).toFixed(1)}`).join("");
+      curves.append(svg("path", { d, stroke: s.colour, "stroke-width": s.dashed ? 1.8 : 2, "stroke-dasharray": s.dashed ? "6 4" : "none", "data-testid": s.testid, "data-name": s.name }));
+    }
+    root.append(curves);
+    const items = this.series.map((s) => ({
+      draw: (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: s.colour, "stroke-width": 2, "stroke-dasharray": s.dashed ? "5 3" : "none" }),
+      text: s.name,
+    }));
+    f.legendBottom = legend(root, items, f.left, f.legendWidth, 11);
+  }
+
+  readAt(h, f) {
+    const xs = this.series[0].x;
+    const i = h.key !== undefined ? nearest(xs, h.key) : nearest(xs, this.toData(h).x);
+    if (h.key === undefined) this.hover.index = i;
+    const rows = [html("div", { class: "tt-v", text: `${this.xLabel.split(" [")[0]} = ${num(xs[i])}` })];
+    const dots = [];
+    for (const s of this.series) {
+      const y = s.y[i];
+      rows.push(html("div", { class: "tt-row" }, html("span", { class: "tt-dot", style: `background:${s.colour}` }), html("span", { class: "tt-mode", text: s.name }), html("span", { class: "tt-val", text: `${num(y)} ${this.unit}` })));
+      if (Number.isFinite(y)) dots.push({ x: f.X(s.x[i]), y: f.Y(y), colour: s.colour });
+    }
+    return { rows, dots, x: f.X(xs[i]) };
+  }
+}
+
 export class ResponsePanel {
   /** `bike()` gives the current bicycle, `label()` its name; `onChange()` records the state. */
   constructor({ bike, label, onChange }) {
@@ -171,11 +254,16 @@ export class ResponsePanel {
     this.sequence = 0;
     this.magnitude = new BodePlot($("resp-magnitude"), { quantity: "magnitude_db", label: "Bode magnitude against frequency", yLabel: "magnitude [dB]", legendOn: true });
     this.phase = new BodePlot($("resp-phase"), { quantity: "phase_deg", label: "Bode phase against frequency", yLabel: "phase [°]", legendOn: false });
+    this.lean = new CurvePlot($("resp-lean"), { label: "Lean against time", xLabel: "time t [s]", yLabel: "lean φ [°]", unit: "°" });
+    this.steer = new CurvePlot($("resp-steer"), { label: "Steer against time", xLabel: "time t [s]", yLabel: "steer δ [°]", unit: "°" });
+    this.path = new CurvePlot($("resp-path"), { label: "The wheels' contact paths in the ground plane, seen from above", xLabel: "x along the run [m]", yLabel: "y, to the right: down [m]", unit: "m", flipY: true });
+    this.timeAnswer = null;
     const changed = () => {
       this.compute();
       this.onChange();
     };
-    for (const id of ["resp-input", "resp-output", "resp-kind"]) $(id).addEventListener("change", changed);
+    for (const id of ["resp-input", "resp-output", "resp-kind", "resp-nonlinear", "resp-amplitude", "resp-pulse", "resp-lean0"]) $(id).addEventListener("change", changed);
+    $("resp-kind").addEventListener("change", () => this.showKind());
     $("resp-speed").addEventListener("input", () => {
       this.showSpeed();
       this.compute();
@@ -187,6 +275,31 @@ export class ResponsePanel {
     });
     $("resp-compare").addEventListener("change", changed);
     this.showSpeed();
+    this.showKind();
+  }
+
+  /** The sub-view shown: "bode" or a time view. */
+  view() {
+    return $("resp-kind").value;
+  }
+
+  /** Shows the fields and plots of the sub-view chosen, hides the others. */
+  showKind() {
+    const kind = this.view();
+    const time = kind !== "bode";
+    const show = (selector, on) => document.querySelectorAll(selector).forEach((e) => (e.hidden = !on));
+    show(".resp-bode-only", !time);
+    show(".resp-any-time", time);
+    show(".resp-time-only", kind === "step" || kind === "path");
+    show(".resp-path-only", kind === "path");
+    show(".resp-initial-only", kind === "initial");
+    $("resp-magnitude").hidden = time;
+    $("resp-phase").hidden = time;
+    $("resp-lean").hidden = kind !== "step" && kind !== "initial";
+    $("resp-steer").hidden = kind !== "step" && kind !== "initial";
+    $("resp-path").hidden = kind !== "path";
+    document.querySelector(".resp-plots").classList.toggle("single", kind === "path");
+    $("resp-roots").setAttribute("aria-label", time ? "The response's summary" : "Poles and zeros at the slider's speed");
   }
 
   /** The slider's speed [m/s]. */
@@ -200,7 +313,7 @@ export class ResponsePanel {
 
   /** The state the link carries. */
   inputs() {
-    return { kind: $("resp-kind").value, in: $("resp-input").value, out: $("resp-output").value, v: $("resp-speed").value, cmp: $("resp-compare").value.trim() };
+    return { kind: $("resp-kind").value, in: $("resp-input").value, out: $("resp-output").value, v: $("resp-speed").value, cmp: $("resp-compare").value.trim(), amp: $("resp-amplitude").value.trim(), dur: $("resp-pulse").value.trim(), lean: $("resp-lean0").value.trim(), nl: $("resp-nonlinear").checked ? "1" : "0" };
   }
 
   /** Restores what `inputs()` gave; unknown choices keep the defaults. */
@@ -213,7 +326,12 @@ export class ResponsePanel {
     choose("resp-output", s.out);
     if (s.v !== undefined && Number.isFinite(Number(s.v))) $("resp-speed").value = s.v;
     if (s.cmp !== undefined) $("resp-compare").value = s.cmp;
+    if (s.amp !== undefined) $("resp-amplitude").value = s.amp;
+    if (s.dur !== undefined) $("resp-pulse").value = s.dur;
+    if (s.lean !== undefined) $("resp-lean0").value = s.lean;
+    if (s.nl !== undefined) $("resp-nonlinear").checked = s.nl === "1";
     this.showSpeed();
+    this.showKind();
   }
 
   /** The bicycle changed: the answer shown is of another one until computed again. */
@@ -227,6 +345,7 @@ export class ResponsePanel {
   }
 
   async compute() {
+    if (this.view() !== "bode") return this.computeTime();
     const compared = parseSpeeds($("resp-compare").value);
     $("resp-compare").classList.toggle("invalid", compared === null || compared.length > MAX_COMPARED);
     if (compared === null || compared.length > MAX_COMPARED) {
@@ -254,11 +373,119 @@ export class ResponsePanel {
     }
   }
 
+  /** The time view's numbers read from the form; null (with the message said and the field
+   * marked) when one is not a number or out of range. */
+  timeRequest() {
+    const view = TIME_VIEWS[this.view()];
+    const fields = [
+      { id: "resp-amplitude", on: view.kind !== "initial", lo: -100, hi: 100, what: "The amplitude must be a number of newton-metres between −100 and 100." },
+      { id: "resp-pulse", on: view.kind === "pulse", lo: 1e-3, hi: view.duration, what: `The pulse's duration must be a number of seconds from 0.001 to ${view.duration}.` },
+      { id: "resp-lean0", on: view.kind === "initial", lo: -45, hi: 45, what: "The initial lean must be a number of degrees between −45 and 45." },
+    ];
+    const values = {};
+    let bad = null;
+    for (const f of fields) {
+      const v = parseNumber($(f.id).value);
+      const wrong = f.on && (v === null || !(v >= f.lo && v <= f.hi));
+      $(f.id).classList.toggle("invalid", wrong);
+      $(f.id).setAttribute("aria-invalid", String(wrong));
+      if (wrong && !bad) bad = f.what;
+      values[f.id] = v;
+    }
+    if (bad) {
+      this.say(bad);
+      this.veil("not recomputed: see the message above");
+      return null;
+    }
+    return {
+      bike: this.bike(),
+      speed: this.speed(),
+      kind: view.kind,
+      input: $("resp-input").value,
+      amplitude: view.kind === "initial" ? 0 : values["resp-amplitude"],
+      pulse_duration: view.kind === "pulse" ? values["resp-pulse"] : 0.5,
+      lean_deg: view.kind === "initial" ? values["resp-lean0"] : 0,
+      duration: view.duration,
+      samples: view.samples,
+      nonlinear: $("resp-nonlinear").checked,
+    };
+  }
+
+  async computeTime() {
+    const request = this.timeRequest();
+    if (!request) return;
+    const mine = ++this.sequence;
+    const view = this.view();
+    try {
+      const answer = await api.time(request);
+      if (mine !== this.sequence) return;
+      this.say(null);
+      this.timeAnswer = answer;
+      this.fresh = true;
+      this.renderTime(view, answer);
+    } catch (e) {
+      if (mine !== this.sequence) return;
+      const field = { amplitude: "resp-amplitude", pulse_duration: "resp-pulse", lean_deg: "resp-lean0" }[e.field];
+      if (field) $(field).classList.add("invalid");
+      this.say(e.message);
+      this.veil("not recomputed: see the message above");
+    }
+  }
+
+  renderTime(view, a) {
+    const nl = a.nonlinear;
+    const t = a.times;
+    const box = $("resp-roots");
+    box.replaceChildren();
+    const input = a.kind === "initial" ? "no input" : `${a.input.symbol} ${a.kind} of ${num(a.amplitude)} ${a.input.unit}`;
+    box.append(html("h3", { text: `At ${num(a.speed)} m/s: ${input}` }));
+    const last = t.length - 1;
+    if (view === "path") {
+      const w = this.bike()?.benchmark?.w ?? 0;
+      const l = a.linear;
+      const series = [
+        { x: l.rear_x, y: l.rear_y, colour: LINEAR_COLOURS.rear, dashed: false, name: "rear contact (linear)", testid: "resp-path-curve" },
+        { x: l.rear_x.map((x) => x + w), y: l.front_y, colour: LINEAR_COLOURS.front, dashed: false, name: "front contact (linear)", testid: "resp-path-curve" },
+      ];
+      if (nl) {
+        series.push({ x: nl.motion.rear_x, y: nl.motion.rear_y, colour: LINEAR_COLOURS.rear, dashed: true, name: "rear (non-linear)", testid: "resp-path-curve-nonlinear" });
+        series.push({ x: nl.motion.rear_x.map((x) => x + w), y: nl.motion.front_y, colour: LINEAR_COLOURS.front, dashed: true, name: "front (non-linear)", testid: "resp-path-curve-nonlinear" });
+      }
+      this.path.update(series);
+      // How much more y is stretched than x on the screen.
+      const f = this.path.frame;
+      const e = this.path.extent();
+      const stretch = f ? (f.ph / (e.y1 - e.y0)) / (f.pw / (e.x1 - e.x0)) : 1;
+      const note = stretch > 1.5 ? ` — y exaggerated ×${num(stretch, 2)}` : "";
+      $("resp-meta").textContent = `${this.label()}: the contacts' paths seen from above (front x: rear x + wheelbase)${note}`;
+      $("resp-meta").dataset.exaggeration = String(stretch);
+      box.append(html("p", { class: "mono", "data-testid": "resp-final", text: `at ${num(t[last])} s: y_P = ${num(l.rear_y[last])} m, ψ = ${num(l.yaw_deg[last])}°` }));
+    } else {
+      const curves = (key, colour) => {
+        const series = [{ x: t, y: a.linear[key], colour, dashed: false, name: "linear", testid: "resp-time-curve" }];
+        if (nl) series.push({ x: t, y: nl.motion[key], colour: "#111827", dashed: true, name: "non-linear", testid: "resp-time-curve-nonlinear" });
+        return series;
+      };
+      this.lean.update(curves("lean_deg", LINEAR_COLOURS.lean));
+      this.steer.update(curves("steer_deg", LINEAR_COLOURS.steer));
+      $("resp-meta").textContent = `${this.label()}: lean and steer against time (linear model${nl ? ", non-linear dashed" : ""})`;
+      box.append(html("p", { class: "mono", "data-testid": "resp-final", "data-lean": String(a.linear.lean_deg[last]), text: `at ${num(t[last])} s: φ = ${num(a.linear.lean_deg[last])}°, δ = ${num(a.linear.steer_deg[last])}°` }));
+    }
+    if (nl) {
+      const d = nl.largest_difference;
+      box.append(html("p", { class: "mono", "data-testid": "resp-difference", text: `largest difference, non-linear − linear: φ ${num(d.lean_deg)}°, δ ${num(d.steer_deg)}°, ψ ${num(d.yaw_deg)}°, y ${num(d.rear_y)} m` }));
+    }
+    box.append(html("p", { class: "note", text: nl
+      ? "Linear: exact (matrix exponentials). Non-linear: the same manoeuvre integrated on the full model (dashed)."
+      : "The linearized model's exact response (matrix exponentials), not a numerical integration." }));
+    this.veil(null);
+  }
+
   /** Veils what is shown (`reason`), or unveils it (null). */
   veil(reason) {
     $("resp-roots").classList.toggle("stale", Boolean(reason));
     $("resp-roots").dataset.stale = reason ?? "";
-    for (const p of [this.magnitude, this.phase]) {
+    for (const p of [this.magnitude, this.phase, this.lean, this.steer, this.path]) {
       if (!p.ready()) continue;
       p.stale = reason;
       p.draw();
