@@ -11,7 +11,7 @@ use libfuzzer_sys::fuzz_target;
 use tower::ServiceExt;
 use whipple_web::{Limits, app};
 
-const ROUTES: [&str; 10] = [
+const ROUTES: [&str; 11] = [
     "/api/bike/validate",
     "/api/sensitivity",
     "/api/bike/toml",
@@ -22,6 +22,7 @@ const ROUTES: [&str; 10] = [
     "/api/modes",
     "/api/linear/response",
     "/api/linear/frequency",
+    "/api/linear/time",
 ];
 
 fn runtime() -> &'static tokio::runtime::Runtime {
