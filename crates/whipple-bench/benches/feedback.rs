@@ -37,7 +37,11 @@ fn benches(c: &mut Criterion) {
     group.finish();
     let mut group = c.benchmark_group("feedback");
     group.bench_function("closed_loop_critical_speeds_0_10", |b| {
-        b.iter(|| closed.critical_speeds(black_box(0.0), 10.0).expect("certified"))
+        b.iter(|| {
+            closed
+                .critical_speeds(black_box(0.0), 10.0)
+                .expect("certified")
+        })
     });
     group.finish();
 }

@@ -396,7 +396,7 @@ fn gains_text(gains: &Gains, inputs: &[String]) -> Result<String> {
             t.push_str("  K =\n");
             t.push_str(&matrix_text(k, "  ")?);
         }
-        Gains::Scheduled { speeds, gains } => {
+        Gains::Scheduled { speeds, .. } => {
             writeln!(
                 t,
                 "  K scheduled at {} speeds from {} to {} m/s, linear between them",
@@ -404,7 +404,6 @@ fn gains_text(gains: &Gains, inputs: &[String]) -> Result<String> {
                 number(speeds[0])?,
                 number(speeds[speeds.len() - 1])?
             )?;
-            let _ = gains;
         }
     }
     Ok(t)
