@@ -205,6 +205,112 @@ pub fn matrices(cx: &RunContext, arg: &str, jbike6: bool, format: TextFormat) ->
     emit(&text, None)
 }
 
+/// The rows of an eigenvalue table against speed (`whipple eig`'s, and the closed loop's of
+/// `whipple control feedback`): a head, one row per speed, a tail, in the chosen format.
+pub(crate) struct EigenRows {
+    format: TableFormat,
+    modes: [whipple::advanced::modes::Mode; 4],
+    rows: u64,
+}
+
+impl EigenRows {
+    pub(crate) fn new(format: TableFormat, modes: [whipple::advanced::modes::Mode; 4]) -> Self {
+        EigenRows {
+            format,
+            modes,
+            rows: 0,
+        }
+    }
+
+    /// The head: `what` names the eigenvalues in the table's title ("eigenvalues",
+    /// "closed-loop eigenvalues"); `fields` go at the top of the JSON object, after `bike`.
+    pub(crate) fn head(
+        &self,
+        label: &str,
+        what: &str,
+        fields: &serde_json::Map<String, serde_json::Value>,
+    ) -> Result<String> {
+        Ok(match self.format {
+            TableFormat::Csv => whipple_report::EIGEN_CSV_HEADER.to_string(),
+            TableFormat::Json => {
+                let mut head = format!("{{\n  \"bike\": {},", serde_json::to_string(label)?);
+                for (key, value) in fields {
+                    write!(
+                        head,
+                        "\n  {}: {},",
+                        serde_json::to_string(key)?,
+                        serde_json::to_string(value)?
+                    )?;
+                }
+                write!(
+                    head,
+                    "\n  \"modes\": {},\n  \"rows\": [",
+                    serde_json::to_string(&self.modes.map(|m| m.name()))?
+                )?;
+                head
+            }
+            TableFormat::Table => format!(
+                "{label}: {what} [1/s] against forward speed v [m/s]\n{}",
+                whipple_report::eigen_table_header(&self.modes)
+            ),
+        })
+    }
+
+    /// One speed's row.
+    pub(crate) fn row(
+        &mut self,
+        v: f64,
+        values: &[whipple::advanced::eigen::Complex64; 4],
+    ) -> Result<String> {
+        if let Some(l) = values
+            .iter()
+            .find(|l| !(l.re.is_finite() && l.im.is_finite()))
+        {
+            bail!("the eigenvalue {l} at v = {v} m/s is not a finite number");
+        }
+        let row = match self.format {
+            TableFormat::Csv => whipple_report::eigen_csv_row(v, values),
+            TableFormat::Table => whipple_report::eigen_table_row(v, values),
+            TableFormat::Json => {
+                let eigs: Vec<_> = values
+                    .iter()
+                    .zip(self.modes)
+                    .map(|(l, mode)| json!({"re": l.re, "im": l.im, "mode": mode.name()}))
+                    .collect();
+                format!(
+                    "{}\n    {}",
+                    if self.rows == 0 { "" } else { "," },
+                    serde_json::to_string(&json!({"v": v, "eigenvalues": eigs}))?
+                )
+            }
+        };
+        self.rows += 1;
+        Ok(row)
+    }
+
+    /// The tail: `fields` go at the end of the JSON object, before `warnings`.
+    pub(crate) fn tail(
+        &self,
+        warnings: &serde_json::Value,
+        fields: &serde_json::Map<String, serde_json::Value>,
+    ) -> Result<String> {
+        if self.format != TableFormat::Json {
+            return Ok(String::new());
+        }
+        let mut tail = "\n  ],".to_string();
+        for (key, value) in fields {
+            let pretty = serde_json::to_string_pretty(value)?.replace('\n', "\n  ");
+            write!(tail, "\n  {}: {pretty},", serde_json::to_string(key)?)?;
+        }
+        write!(
+            tail,
+            "\n  \"warnings\": {}\n}}\n",
+            serde_json::to_string(warnings)?
+        )?;
+        Ok(tail)
+    }
+}
+
 pub fn eig(
     cx: &RunContext,
     arg: &str,
@@ -250,44 +356,11 @@ pub fn eig(
         eigenvalues: Vec::new(),
         modes,
     };
-    match format {
-        TableFormat::Csv => sink.text(whipple_report::EIGEN_CSV_HEADER)?,
-        TableFormat::Json => sink.text(&format!(
-            "{{\n  \"bike\": {},\n  \"modes\": {},\n  \"rows\": [",
-            serde_json::to_string(&bike.label)?,
-            serde_json::to_string(&modes.map(|m| m.name()))?
-        ))?,
-        TableFormat::Table => sink.text(&format!(
-            "{}: eigenvalues [1/s] against forward speed v [m/s]\n{}",
-            bike.label,
-            whipple_report::eigen_table_header(&modes)
-        ))?,
-    }
+    let mut rows = EigenRows::new(format, modes);
+    sink.text(&rows.head(&bike.label, "eigenvalues", &serde_json::Map::new())?)?;
     let mut i = 0u64;
     plan.rows(|v, values| -> Result<()> {
-        if let Some(l) = values
-            .iter()
-            .find(|l| !(l.re.is_finite() && l.im.is_finite()))
-        {
-            bail!("the eigenvalue {l} at v = {v} m/s is not a finite number");
-        }
-        let row = match format {
-            TableFormat::Csv => whipple_report::eigen_csv_row(v, values),
-            TableFormat::Table => whipple_report::eigen_table_row(v, values),
-            TableFormat::Json => {
-                let eigs: Vec<_> = values
-                    .iter()
-                    .zip(modes)
-                    .map(|(l, mode)| json!({"re": l.re, "im": l.im, "mode": mode.name()}))
-                    .collect();
-                format!(
-                    "{}\n    {}",
-                    if i == 0 { "" } else { "," },
-                    serde_json::to_string(&json!({"v": v, "eigenvalues": eigs}))?
-                )
-            }
-        };
-        sink.text(&row)?;
+        sink.text(&rows.row(v, values)?)?;
         if plot_sink.is_some() && (i % every == 0 || i == last) {
             shown.speeds.push(v);
             shown.eigenvalues.push(*values);
@@ -295,12 +368,7 @@ pub fn eig(
         i += 1;
         Ok(())
     })?;
-    if format == TableFormat::Json {
-        sink.text(&format!(
-            "\n  ],\n  \"warnings\": {}\n}}\n",
-            serde_json::to_string(&bike.warnings_json())?
-        ))?;
-    }
+    sink.text(&rows.tail(&bike.warnings_json(), &serde_json::Map::new())?)?;
     let mut finished = vec![sink.finish()?];
     if let (Some(mut plot_sink), Some(target)) = (plot_sink, &plot) {
         if every > 1 {
@@ -319,6 +387,7 @@ pub fn eig(
         };
         let bytes = crate::figures::eigen_plot_bytes(
             &bike,
+            "eigenvalues",
             &shown,
             &critical,
             bands.as_deref(),

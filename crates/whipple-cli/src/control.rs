@@ -1,6 +1,10 @@
 //! `whipple control`: the bicycle under control. `controllability` lists, per input, the speeds
 //! where it cannot reach a lean–steer mode (certified by the library) and, over a speed grid,
-//! the Kalman matrix's rank and condition and each mode's modal controllability.
+//! the Kalman matrix's rank and condition and each mode's modal controllability. `feedback`
+//! closes the loop u = r − K x with given gains (constant, or scheduled from a CSV file) and
+//! prints its eigenvalues against speed and its certified critical speeds as `eig` and
+//! `speeds` print the open loop's; `lqr` and `place` design K at one speed (`lqr` also over
+//! speeds, a schedule, with the speeds it stabilizes).
 
 use std::fmt::Write as _;
 
@@ -13,10 +17,10 @@ use whipple::advanced::linear::{Input, LinearSystem, Output, StateVariable, Syst
 use whipple::advanced::modes::mode_shapes;
 use whipple::advanced::roots::RealRoot;
 
-use crate::TextFormat;
 use crate::bike::{RunContext, load};
 use crate::commands::emit;
 use crate::output::{number, parse_triple};
+use crate::{TableFormat, TextFormat};
 
 /// The most speeds the controllability table holds.
 pub const MAX_CONTROL_SPEEDS: usize = 100_000;
@@ -50,6 +54,89 @@ enum ControlCommand {
         #[arg(long)]
         out: Option<std::path::PathBuf>,
     },
+    /// The closed loop u = r − K x: its eigenvalues against speed, tracked and labelled as
+    /// `whipple eig` prints them, and its critical speeds, certified as `whipple speeds` gives
+    /// them. K's columns are (lean φ, steer δ, lean rate φ̇, steer rate δ̇), one row per input
+    /// (N m per rad and per rad/s). Sign: the input is u = −K x, so steering into the fall,
+    /// T_δ = 100 φ − 10 δ + 20 φ̇, is `--gains "-100,10,-20,0"`.
+    Feedback {
+        #[arg(long, help = whipple_front::formats::bike_help())]
+        bike: String,
+        /// K: one row per input, rows separated by `;`, four gains each (φ, δ, φ̇, δ̇), for
+        /// example "-100,10,-20,0". Give this or --schedule.
+        #[arg(long, allow_hyphen_values = true, conflicts_with = "schedule")]
+        gains: Option<String>,
+        /// Gains scheduled with speed: a CSV file of rows `speed,k1,k2,…` (speed in m/s,
+        /// increasing; K's rows one after the other, four gains each); linear between the
+        /// speeds, never extrapolated. A first line of names and lines starting with # are
+        /// skipped.
+        #[arg(long)]
+        schedule: Option<std::path::PathBuf>,
+        /// An input fed back: lean_torque, steer_torque or lateral_force:X,Z; repeat for
+        /// several, in the order of K's rows (default: steer_torque).
+        #[arg(long = "input", allow_hyphen_values = true)]
+        inputs: Vec<String>,
+        /// Speeds START:STOP:STEP in m/s, both ends included (default: 0:10:0.1, or the
+        /// schedule's first to last speed in 100 steps).
+        #[arg(long, allow_hyphen_values = true)]
+        speeds: Option<String>,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TableFormat,
+        /// Also draw the closed-loop eigenvalues against speed to this .svg or .png file.
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+        /// The speeds LO:HI in m/s for the critical speeds; HI may be `inf` (default: every
+        /// speed v >= 0, or the schedule's speeds).
+        #[arg(long, allow_hyphen_values = true)]
+        range: Option<String>,
+    },
+    /// LQR: the gain K minimizing ∫ xᵀQx + uᵀRu dt at one speed (K, the Riccati solution X,
+    /// the closed-loop poles, the residual), or over speeds a gain schedule and the speeds
+    /// from which the scheduled loop is stable (certified). The states are (φ, δ, φ̇, δ̇).
+    Lqr {
+        #[arg(long, help = whipple_front::formats::bike_help())]
+        bike: String,
+        /// Forward speed in m/s (or --speeds for a schedule).
+        #[arg(long, allow_hyphen_values = true, conflicts_with = "speeds")]
+        speed: Option<f64>,
+        /// Speeds START:STOP:STEP in m/s for a gain schedule, both ends included.
+        #[arg(long, allow_hyphen_values = true)]
+        speeds: Option<String>,
+        /// The state weight Q (4 × 4, symmetric positive semi-definite): "diag:1,1,1,1" or
+        /// rows separated by `;` ("1,0,0,0;0,1,0,0;0,0,1,0;0,0,0,1").
+        #[arg(long, allow_hyphen_values = true)]
+        q: String,
+        /// The input weight R (inputs × inputs, symmetric positive definite): "1", "diag:1,2"
+        /// or rows separated by `;`.
+        #[arg(long, allow_hyphen_values = true)]
+        r: String,
+        /// An input: lean_torque, steer_torque or lateral_force:X,Z; repeat for several
+        /// (default: steer_torque).
+        #[arg(long = "input", allow_hyphen_values = true)]
+        inputs: Vec<String>,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TextFormat,
+    },
+    /// Pole placement for one input: the K (1 × 4) that gives A − B K the poles asked for, and
+    /// the check (the closed loop's eigenvalues).
+    Place {
+        #[arg(long, help = whipple_front::formats::bike_help())]
+        bike: String,
+        /// Forward speed in m/s.
+        #[arg(long, allow_hyphen_values = true)]
+        speed: f64,
+        /// The input: lean_torque, steer_torque or lateral_force:X,Z.
+        #[arg(long, default_value = "steer_torque", allow_hyphen_values = true)]
+        input: String,
+        /// Four poles in 1/s, complex ones in conjugate pairs: "-2,-3,-4+1i,-4-1i".
+        #[arg(long, allow_hyphen_values = true)]
+        poles: String,
+        /// Output format.
+        #[arg(long, value_enum, default_value = "table")]
+        format: TextFormat,
+    },
 }
 
 /// Runs `whipple control`.
@@ -62,11 +149,49 @@ pub fn run(cx: &RunContext, args: &ControlArgs) -> Result<()> {
             format,
             out,
         } => controllability(cx, bike, inputs, speeds, *format, out.as_deref()),
+        ControlCommand::Feedback {
+            bike,
+            gains,
+            schedule,
+            inputs,
+            speeds,
+            format,
+            plot,
+            range,
+        } => crate::feedback::feedback(
+            cx,
+            &crate::feedback::FeedbackArgs {
+                bike,
+                gains: gains.as_deref(),
+                schedule: schedule.as_deref(),
+                inputs,
+                speeds: speeds.as_deref(),
+                format: *format,
+                plot: plot.as_deref(),
+                range: range.as_deref(),
+            },
+        ),
+        ControlCommand::Lqr {
+            bike,
+            speed,
+            speeds,
+            q,
+            r,
+            inputs,
+            format,
+        } => crate::feedback::lqr(cx, bike, *speed, speeds.as_deref(), q, r, inputs, *format),
+        ControlCommand::Place {
+            bike,
+            speed,
+            input,
+            poles,
+            format,
+        } => crate::feedback::place(cx, bike, *speed, input, poles, *format),
     }
 }
 
 /// A complex number as `a ± bi`.
-fn complex(z: Complex64) -> Result<String> {
+pub(crate) fn complex(z: Complex64) -> Result<String> {
     Ok(if z.im == 0.0 {
         number(z.re)?
     } else {

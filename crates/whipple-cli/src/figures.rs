@@ -16,9 +16,10 @@ fn render(figure: &Figure, path: &Path) -> Result<Vec<u8>> {
         .with_context(|| format!("drawing {}", path.display()))
 }
 
-/// The eigenvalue plot of `sweep`, rendered for `path` (not written).
+/// The eigenvalue plot of `sweep` (`what`: "eigenvalues", "closed-loop eigenvalues"), rendered for `path` (not written).
 pub fn eigen_plot_bytes(
     bike: &LoadedBike,
+    what: &str,
     sweep: &EigenSweep,
     critical: &CriticalSpeeds,
     sigma_bands: Option<&[[(f64, f64); 4]]>,
@@ -27,11 +28,11 @@ pub fn eigen_plot_bytes(
     let options = EigenPlotOptions {
         title: Some(if sigma_bands.is_some() {
             format!(
-                "{}: eigenvalues against forward speed (real parts ± 1σ shaded)",
+                "{}: {what} against forward speed (real parts ± 1σ shaded)",
                 bike.label
             )
         } else {
-            format!("{}: eigenvalues against forward speed", bike.label)
+            format!("{}: {what} against forward speed", bike.label)
         }),
         sigma_bands: sigma_bands.map(<[_]>::to_vec),
         ..EigenPlotOptions::default()

@@ -9,6 +9,7 @@ mod bike;
 mod commands;
 mod control;
 mod design;
+mod feedback;
 mod figures;
 mod interrupt;
 mod output;

@@ -104,13 +104,23 @@ fn stable_words(
     })
 }
 
-/// The text table of critical speeds.
 /// The table of `whipple speeds`; with `sigma`, each speed as `value ± σ` (one standard
 /// deviation, first order, parameters independent).
 pub fn table(
     label: &str,
     s: &CriticalSpeeds,
     sigma: Option<&CriticalSpeedsSigma>,
+) -> Result<String> {
+    worded_table(label, s, sigma, "self-stable")
+}
+
+/// The table of critical speeds, a stable range called `stable` ("self-stable" for the
+/// bicycle alone, "stable" for a closed loop).
+pub fn worded_table(
+    label: &str,
+    s: &CriticalSpeeds,
+    sigma: Option<&CriticalSpeedsSigma>,
+    stable: &str,
 ) -> Result<String> {
     let (lo, hi) = s.range;
     let where_ = range_words(lo, hi)?;
@@ -178,11 +188,11 @@ pub fn table(
     )?;
     if s.stable_speed_ranges.is_empty() {
         if undecided.is_empty() {
-            writeln!(t, "  self-stable            nowhere in {where_}")?;
+            writeln!(t, "  {stable:<22} nowhere in {where_}")?;
         } else {
             writeln!(
                 t,
-                "  self-stable            undecided in {undecided}; nowhere else in {where_}"
+                "  {stable:<22} undecided in {undecided}; nowhere else in {where_}"
             )?;
         }
     }
@@ -190,7 +200,7 @@ pub fn table(
         let sd = sigma
             .and_then(|u| u.stable_speed_ranges_sigma.get(k).copied())
             .unwrap_or((None, None));
-        writeln!(t, "  self-stable            {}", stable_words(s, a, b, sd)?)?;
+        writeln!(t, "  {stable:<22} {}", stable_words(s, a, b, sd)?)?;
     }
     for &(a, b) in &s.unresolved {
         if b == f64::INFINITY {
