@@ -94,8 +94,8 @@ fn measured_file_seeds() {
     use whipple::advanced::measured::{MeasuredParameters, read_measurements};
     for (name, data) in seeds("measured_files") {
         let text = std::str::from_utf8(&data).expect("UTF-8");
-        let result = read_measurements(text)
-            .and_then(|file| MeasuredParameters::new(&file.measurements));
+        let result =
+            read_measurements(text).and_then(|file| MeasuredParameters::new(&file.measurements));
         match result {
             Ok(parameters) => {
                 assert!(name.starts_with("ok-"), "{name}: accepted");
