@@ -375,6 +375,7 @@ impl NativeBicycle {
 
     /// The closed loop's certified critical speeds in [lo, hi] (the core's `CriticalSpeeds`
     /// as a dict).
+    #[allow(clippy::too_many_arguments)]
     fn closed_loop_critical_speeds<'py>(
         &self,
         py: Python<'py>,
