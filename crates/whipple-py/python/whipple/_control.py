@@ -273,17 +273,20 @@ class ManoeuvreComparison:
     ``lean``, ``steer``, ``yaw`` [rad], ``rear_x``, ``rear_y``, ``front_y`` [m];
     ``nonlinear_steps`` the integrator's steps."""
 
-    def __init__(self, data: Dict[str, Any], label: str) -> None:
+    def __init__(self, data: Dict[str, Any], label: str, wheelbase: float) -> None:
         self.t: np.ndarray = data["times"]
         self.linear: Dict[str, np.ndarray] = data["linear"]
         self.nonlinear: Dict[str, np.ndarray] = data["nonlinear"]
         self.difference: Dict[str, np.ndarray] = data["difference"]
         self.nonlinear_steps: int = data["nonlinear_steps"]
         self.label = label
+        self._wheelbase = wheelbase
 
     def plot_paths(self, ax: Optional["Axes"] = None) -> "Axes":
         """Both models' rear- and front-contact paths in the ground plane (x forward, y to the
-        right drawn downward as seen from above), equal scales. Needs matplotlib
+        right drawn downward as seen from above), equal scales; the front contact is drawn at
+        x = rear x + w cos ψ (its lateral position ``front_y`` as computed, the wheelbase w
+        ahead to first order). Needs matplotlib
         (``whipple[plot]``). The axes."""
         from ._plot import _pyplot
 
@@ -293,7 +296,8 @@ class ManoeuvreComparison:
         for name, motion, style in (("linear", self.linear, "-"),
                                     ("non-linear", self.nonlinear, "--")):
             ax.plot(motion["rear_x"], motion["rear_y"], style, label=f"{name}: rear contact")
-            ax.plot(motion["rear_x"], motion["front_y"], style, alpha=0.6,
+            front_x = motion["rear_x"] + self._wheelbase * np.cos(motion["yaw"])
+            ax.plot(front_x, motion["front_y"], style, alpha=0.6,
                     label=f"{name}: front contact")
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
@@ -319,7 +323,7 @@ def compare_manoeuvre(bicycle: "Bicycle", speed: float, t: Any, steer_torque: An
             torques.append((name, knots, values))
     data = bicycle._native.compare_manoeuvre(float(speed), float(lean0), float(steer0), torques,
                                              times.tolist(), float(rtol))
-    return ManoeuvreComparison(data, bicycle.label)
+    return ManoeuvreComparison(data, bicycle.label, float(bicycle.to_dict()["w"]))
 
 
 __all__ = ["TimeResponse", "GroundPath", "Lqr", "Controllability", "ModalControllability",
