@@ -6,6 +6,7 @@
 mod accelerations;
 mod bicycle;
 mod cli;
+mod control;
 mod design;
 mod errors;
 mod guard;

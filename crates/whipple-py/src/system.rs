@@ -52,6 +52,18 @@ pub struct NativeLinearSystem {
     system: LinearSystem,
 }
 
+impl NativeLinearSystem {
+    /// Wraps a system the core built.
+    pub(crate) fn from_system(system: LinearSystem) -> Self {
+        NativeLinearSystem { system }
+    }
+
+    /// The core's system.
+    pub(crate) fn system(&self) -> &LinearSystem {
+        &self.system
+    }
+}
+
 /// A, B, C and D as numpy arrays.
 type Matrices<'py> = (
     Bound<'py, PyAny>,

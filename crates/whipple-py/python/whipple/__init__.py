@@ -17,6 +17,8 @@ from ._bicycle import BENCHMARK_KEYS, Bicycle, formats, parameter_table, presets
 from ._errors import (AccuracyLostError, ArgumentError, LimitError, NoSteadyTurnError,
                       NumericalError, ParameterError, ParameterWarning, ParseError, StrictError,
                       UnknownPresetError, WhippleError)
+from ._control import (ClosedLoop, Controllability, GroundPath, Lqr, ManoeuvreComparison,
+                       ModalControllability, TimeResponse, UncontrollableSpeeds)
 from ._design import DesignMap, design_map_dask
 from ._plot import plot_bode, plot_eigenvalues
 from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulation
@@ -29,6 +31,8 @@ __all__ = [
     "Bicycle", "CriticalSpeeds", "Eigen", "Simulation", "Sensitivities", "Comparison",
     "SteadyTurn", "Turns", "TurnFamily", "WheelContact",
     "LinearSystem", "TransferFunction", "FrequencyResponse", "Signal",
+    "TimeResponse", "GroundPath", "Lqr", "Controllability", "ModalControllability",
+    "UncontrollableSpeeds", "ClosedLoop", "ManoeuvreComparison",
     "DesignMap", "design_map_dask", "plot_eigenvalues", "plot_bode", "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
     "WhippleError", "ParameterError", "StrictError", "ParseError", "UnknownPresetError",
     "ArgumentError", "LimitError", "NumericalError", "AccuracyLostError", "NoSteadyTurnError",

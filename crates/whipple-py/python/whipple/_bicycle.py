@@ -15,6 +15,7 @@ from . import _whipple
 from ._errors import (ArgumentError, LimitError, NoSteadyTurnError, ParameterError,
                       ParameterWarning, ParseError)
 from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulation
+from ._control import ClosedLoop, ManoeuvreComparison, UncontrollableSpeeds, compare_manoeuvre
 from ._system import FrequencyResponse, LinearSystem, _names, _signals
 from ._turns import SteadyTurn, Turns
 
@@ -340,6 +341,44 @@ class Bicycle:
                                      _signals(out_signals), label=self.label)
         return FrequencyResponse(w, g, reals, _signals(in_signals), _signals(out_signals),
                                  speeds=speeds, label=self.label)
+
+    def closed_loop(self, gains: Any,
+                    inputs: Union[str, Sequence[str]] = ("lean_torque", "steer_torque"),
+                    states: Union[str, Sequence[str]] = ()) -> ClosedLoop:
+        """The bicycle with feedback u = r − K x on ``inputs``: ``gains`` a matrix K (inputs ×
+        states, the states φ, δ, φ̇, δ̇ then those of ``states``), or a schedule ``(speeds,
+        [K₀, K₁, …])`` interpolated linearly in speed. A :class:`whipple.ClosedLoop` with
+        ``eig(v)``, ``critical_speeds(lo, hi)`` and ``system(speed)``. A K of the wrong shape or
+        with a value that is not finite, or schedule speeds not increasing, is an
+        :class:`whipple.ArgumentError` naming ``gains`` or ``speeds``.
+
+        >>> bike = Bicycle.preset("benchmark")
+        >>> steer_into_fall = bike.closed_loop([[0, 0, 0, 0], [-20.0, 0, -2.0, 0]])
+        >>> bool(steer_into_fall.eig(2.0).values.real.max() < 0)
+        True
+        """
+        return ClosedLoop(self, gains, _names(inputs, "inputs"), _names(states, "states"))
+
+    def uncontrollable_speeds(self, input: str = "steer_torque") -> UncontrollableSpeeds:
+        """The forward speeds [m/s] at which ``input`` loses a mode (the Kalman matrix drops
+        rank), certified, with the eigenvalue lost at each: a
+        :class:`whipple.UncontrollableSpeeds`."""
+        speeds, values, everywhere = self._native.uncontrollable_speeds(input)
+        return UncontrollableSpeeds(input, np.asarray(speeds, dtype=np.float64), values,
+                                    bool(everywhere))
+
+    def compare_manoeuvre(self, speed: float, t: Any, *, steer_torque: Any = None,
+                          lean_torque: Any = None, lean0: float = 0.0, steer0: float = 0.0,
+                          rtol: float = 1e-10) -> ManoeuvreComparison:
+        """The linear model (exact) and the non-linear model (Dormand–Prince 5(4), relative
+        tolerance ``rtol``, projected on the constraints) through the same manoeuvre from
+        upright straight running at ``speed`` [m/s]: initial lean ``lean0`` and steer
+        ``steer0`` [rad], torques [N m] given as ``(knots, values)`` (piecewise linear between
+        the knots) or as one value per sample time ``t`` [s]. A
+        :class:`whipple.ManoeuvreComparison` (both motions and their difference; its
+        ``plot_paths()`` draws both paths in the ground plane). The difference grows as the
+        cube of the amplitude: halving a torque divides it by about 8."""
+        return compare_manoeuvre(self, speed, t, steer_torque, lean_torque, lean0, steer0, rtol)
 
     def origin_zero_speeds(self, input: str = "steer_torque", output: str = "lean") -> np.ndarray:
         """The speeds [m/s] at which a zero of ``input`` → ``output`` (lean or steer) passes

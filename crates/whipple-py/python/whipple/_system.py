@@ -14,6 +14,8 @@ from ._errors import ArgumentError
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
+    from ._control import Controllability, Lqr, ModalControllability, TimeResponse
+
     from ._bicycle import Bicycle
 
 #: A signal chosen by its label or name (``"lean"``), or by its index.
@@ -262,6 +264,96 @@ class LinearSystem:
         w = _frequencies(omega)
         g, reals = self._native.frequency_response(w)
         return FrequencyResponse(w, g, reals, self.inputs, self.outputs, label=self.label)
+
+    def simulate(self, t: Any, u: Any = None, x0: Any = None, *, rtol: float = 1e-10,
+                 atol: float = 1e-12) -> "TimeResponse":
+        """The response sampled at times ``t`` [s] (increasing, from t[0] ≥ 0; the state is
+        ``x0`` at t = 0, zero by default) to the inputs ``u``:
+
+        - None: every input zero;
+        - an array of shape (len(t), inputs) (or (len(t),) with one input): the inputs at the
+          sample times, taken as piecewise linear between them, and the response computed
+          exactly (matrix exponentials, no time step; as ``scipy.signal.lsim`` with
+          ``interp=True``);
+        - a callable ``u(t)`` returning the inputs at t: integrated by Dormand–Prince 5(4) with
+          ``rtol``/``atol`` (an exception it raises propagates).
+
+        A :class:`whipple.TimeResponse`. Bad shapes, times that are not increasing, values that
+        are not finite are :class:`whipple.ArgumentError` s naming ``t``, ``u``, ``x0``
+        (``initial state``) or ``times``.
+
+        >>> import whipple
+        >>> system = whipple.Bicycle.preset("benchmark").linear_system(5.0)
+        >>> r = system.simulate([0.0, 1.0, 2.0], x0=[0.0, 0.0, 0.5, 0.0])
+        >>> bool(abs(r.states["lean"][-1]) < 0.1)
+        True
+        """
+        from ._control import simulate
+
+        return simulate(self, t, u, x0, rtol, atol)
+
+    def step(self, input: SignalKey, t: Any) -> "TimeResponse":
+        """From rest, a unit step of ``input`` (label, name or index) at t = 0, sampled at
+        ``t`` [s]; where the system is stable the outputs settle at G(0)."""
+        from ._control import TimeResponse, _times
+
+        i = _index(self.inputs, input, "input")
+        return TimeResponse(self._native.step_response(i, _times(t).tolist()), self)
+
+    def impulse(self, input: SignalKey, t: Any) -> "TimeResponse":
+        """A unit impulse of ``input`` at t = 0 (the free response from x(0⁺) = B eᵢ), sampled
+        at ``t`` [s]: the derivative of :meth:`step`."""
+        from ._control import TimeResponse, _times
+
+        i = _index(self.inputs, input, "input")
+        return TimeResponse(self._native.impulse_response(i, _times(t).tolist()), self)
+
+    def initial(self, x0: Any, t: Any) -> "TimeResponse":
+        """The free response (inputs zero) from the state ``x0`` at t = 0, sampled at ``t``."""
+        from ._control import TimeResponse, _times, _vector
+
+        x = _vector(x0, len(self.states), "x0")
+        return TimeResponse(self._native.initial_response(x, _times(t).tolist()), self)
+
+    def lqr(self, Q: Any, R: Any) -> "Lqr":
+        """The linear–quadratic regulator for ∫ xᵀQx + uᵀRu dt: Q (states × states) symmetric
+        positive semi-definite, R (inputs × inputs) symmetric positive definite. Solves the
+        continuous algebraic Riccati equation (stable invariant subspace of the Hamiltonian,
+        refined by Newton–Kleinman) and gives a :class:`whipple.Lqr` (K, X, poles, residual).
+        Bad weights, or a pair (A, B) that cannot be stabilized, are errors naming ``Q``,
+        ``R`` or the system."""
+        from ._control import Lqr, _matrix
+
+        k, x, poles, residual, steps = self._native.lqr(_matrix(Q, "Q"), _matrix(R, "R"))
+        return Lqr(k, x, poles, float(residual), int(steps))
+
+    def place_poles(self, poles: Any) -> np.ndarray:
+        """K (1 × states) with the eigenvalues of A − B K at ``poles`` [1/s] (one per state,
+        complex ones in conjugate pairs), for a system with one input (Ackermann's formula with
+        its checks). An :class:`whipple.ArgumentError` otherwise."""
+        p = np.asarray(poles, dtype=complex).reshape(-1)
+        k: np.ndarray = self._native.place_poles([(float(z.real), float(z.imag)) for z in p])
+        return k
+
+    def controllability(self, input: Optional[SignalKey] = None) -> "Controllability":
+        """The Kalman controllability matrix's singular values and numerical rank, for one
+        input (label, name or index) or all of them (None): a
+        :class:`whipple.Controllability`."""
+        from ._control import Controllability
+
+        i = None if input is None else _index(self.inputs, input, "input")
+        d = self._native.controllability(i)
+        return Controllability(d["singular_values"], int(d["rank"]), float(d["tolerance"]),
+                               float(d["condition"]), int(d["states"]))
+
+    def modal_controllability(self, input: SignalKey = 0) -> "ModalControllability":
+        """How strongly ``input`` reaches each mode: the eigenvalues of A and, for each, a
+        measure that is zero when that mode is uncontrollable from this input."""
+        from ._control import ModalControllability
+
+        values, measures = self._native.modal_controllability(
+            _index(self.inputs, input, "input"))
+        return ModalControllability(values, measures)
 
     def to_scipy(self) -> Any:
         """``scipy.signal.StateSpace(A, B, C, D)`` (needs scipy: ``whipple[scipy]``)."""
