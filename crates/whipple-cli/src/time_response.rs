@@ -101,22 +101,19 @@ fn named(error: whipple::Error) -> anyhow::Error {
     anyhow!(whipple_front::message::message(&error)).context(option)
 }
 
-/// The output and figure files, checked before any work.
-fn targets(args: &TimeArgs) -> Result<(Option<Target>, Option<Target>)> {
-    let figure = args
-        .figure
-        .as_deref()
+/// The output (`--out`) and figure (`--figure`) files, checked before any work.
+fn targets(
+    out: Option<&std::path::Path>,
+    figure: Option<&std::path::Path>,
+) -> Result<(Option<Target>, Option<Target>)> {
+    let figure = figure
         .map(|p| {
             whipple_report::Format::from_path(p)
                 .with_context(|| format!("--figure {}", p.display()))?;
             Target::check("--figure", p)
         })
         .transpose()?;
-    let out = args
-        .out
-        .as_deref()
-        .map(|p| Target::check("--out", p))
-        .transpose()?;
+    let out = out.map(|p| Target::check("--out", p)).transpose()?;
     if let (Some(a), Some(b)) = (&out, &figure) {
         output::distinct(a, b)?;
     }
@@ -125,7 +122,7 @@ fn targets(args: &TimeArgs) -> Result<(Option<Target>, Option<Target>)> {
 
 /// Runs `step`, `impulse` or `initial`.
 pub fn linear(cx: &RunContext, args: &TimeArgs, kind: &Kind) -> Result<()> {
-    let (out, figure) = targets(args)?;
+    let (out, figure) = targets(args.out.as_deref(), args.figure.as_deref())?;
     if !args.speed.is_finite() {
         bail!("--speed must be a finite number of m/s, got {}", args.speed);
     }
@@ -422,23 +419,7 @@ const MAX_MANOEUVRE_SAMPLES: usize = 20_000;
 
 /// Runs `whipple response manoeuvre`.
 pub fn manoeuvre(cx: &RunContext, args: &ManoeuvreArgs) -> Result<()> {
-    let figure = args
-        .figure
-        .as_deref()
-        .map(|p| {
-            whipple_report::Format::from_path(p)
-                .with_context(|| format!("--figure {}", p.display()))?;
-            Target::check("--figure", p)
-        })
-        .transpose()?;
-    let out = args
-        .out
-        .as_deref()
-        .map(|p| Target::check("--out", p))
-        .transpose()?;
-    if let (Some(a), Some(b)) = (&out, &figure) {
-        output::distinct(a, b)?;
-    }
+    let (out, figure) = targets(args.out.as_deref(), args.figure.as_deref())?;
     if !args.speed.is_finite() {
         bail!("--speed must be a finite number of m/s, got {}", args.speed);
     }
