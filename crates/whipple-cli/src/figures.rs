@@ -35,6 +35,13 @@ pub fn eigen_plot_bytes(
             format!("{}: {what} against forward speed", bike.label)
         }),
         sigma_bands: sigma_bands.map(<[_]>::to_vec),
+        // An open loop that is stable is self-stable; a closed loop is stable by its control.
+        stable_label: if what == "eigenvalues" {
+            "self-stable"
+        } else {
+            "stable"
+        }
+        .to_string(),
         ..EigenPlotOptions::default()
     };
     let figure = whipple_report::eigen_plot(sweep, critical, &options)?;

@@ -35,6 +35,9 @@ pub struct EigenPlotOptions {
     /// Bands to shade around the first bicycle's real parts: for each speed of its sweep and
     /// each column, (Re λ − σ, Re λ + σ) (NaN where unknown); default none.
     pub sigma_bands: Option<Vec<[(f64, f64); 4]>>,
+    /// What the shaded speed ranges are called in the legend (default "self-stable"; a closed
+    /// loop's are "stable").
+    pub stable_label: String,
 }
 
 impl Default for EigenPlotOptions {
@@ -46,6 +49,7 @@ impl Default for EigenPlotOptions {
             title: None,
             size: (1000, 620),
             sigma_bands: None,
+            stable_label: "self-stable".to_string(),
         }
     }
 }
@@ -430,11 +434,14 @@ impl EigenFigure {
                 Swatch::Fill {
                     colour: SHADES[i.min(SHADES.len() - 1)].mix(alpha),
                 },
-                "self-stable".to_string(),
+                self.options.stable_label.clone(),
             ));
             let ranges = &b.critical.stable_speed_ranges;
             if ranges.is_empty() {
-                entries.push((Swatch::Note, "no self-stable speed in range".to_string()));
+                entries.push((
+                    Swatch::Note,
+                    format!("no {} speed in range", self.options.stable_label),
+                ));
             }
             for &(lo, hi) in ranges {
                 let words = if hi.is_finite() {

@@ -281,3 +281,19 @@ fn log_and_line_plots_render_with_markers() -> TestResult {
     assert!(xy_log_plot(&[], &[], &bad).is_err());
     Ok(())
 }
+
+/// The legend names the shaded ranges as asked: "self-stable" for a bicycle on its own,
+/// "stable" for a closed loop.
+#[test]
+fn the_stable_ranges_legend_takes_its_label() -> TestResult {
+    let (sweep, critical) = results("benchmark", &speed_grid(0.0, 10.0, 0.1)?)?;
+    let open = eigen_plot(&sweep, &critical, &EigenPlotOptions::default())?.to_svg()?;
+    assert!(open.contains("\nself-stable\n"));
+    let options = EigenPlotOptions {
+        stable_label: "stable".into(),
+        ..Default::default()
+    };
+    let closed = eigen_plot(&sweep, &critical, &options)?.to_svg()?;
+    assert!(closed.contains("\nstable\n") && !closed.contains("self-stable"));
+    Ok(())
+}
