@@ -236,18 +236,22 @@ impl Line {
             });
         }
         if roots.horizon.is_finite() {
-            let h = roots.horizon;
-            for (lo, hi, value) in [(h, f64::INFINITY, h), (f64::NEG_INFINITY, -h, -h)] {
-                self.push(Group {
-                    lo,
-                    hi,
-                    value,
-                    kinds: kind,
-                    crossing_members: crossing,
-                    cluster: true,
-                    beyond: true,
-                });
-            }
+            self.push_beyond(roots.horizon, kind, crossing);
+        }
+    }
+
+    /// The speeds beyond a certified horizon `h` on both sides, |v| ≥ h: undecided there.
+    fn push_beyond(&mut self, h: f64, kind: u8, crossing: u8) {
+        for (lo, hi, value) in [(h, f64::INFINITY, h), (f64::NEG_INFINITY, -h, -h)] {
+            self.push(Group {
+                lo,
+                hi,
+                value,
+                kinds: kind,
+                crossing_members: crossing,
+                cluster: true,
+                beyond: true,
+            });
         }
     }
 
@@ -300,18 +304,11 @@ impl Line {
             }
         }
         if roots.horizon.is_finite() {
-            let h = roots.horizon.sqrt() * (1.0 - 2.0 * UNIT_ROUNDOFF);
-            for (lo, hi, value) in [(h, f64::INFINITY, h), (f64::NEG_INFINITY, -h, -h)] {
-                self.push(Group {
-                    lo,
-                    hi,
-                    value,
-                    kinds: kind,
-                    crossing_members: crossing,
-                    cluster: true,
-                    beyond: true,
-                });
-            }
+            self.push_beyond(
+                roots.horizon.sqrt() * (1.0 - 2.0 * UNIT_ROUNDOFF),
+                kind,
+                crossing,
+            );
         }
     }
 
