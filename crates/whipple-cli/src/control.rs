@@ -83,6 +83,9 @@ enum ControlCommand {
         /// Output format.
         #[arg(long, value_enum, default_value = "table")]
         format: TableFormat,
+        /// Write the table to this file instead of standard output.
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
         /// Also draw the closed-loop eigenvalues against speed to this .svg or .png file.
         #[arg(long)]
         plot: Option<std::path::PathBuf>,
@@ -156,6 +159,7 @@ pub fn run(cx: &RunContext, args: &ControlArgs) -> Result<()> {
             inputs,
             speeds,
             format,
+            out,
             plot,
             range,
         } => crate::feedback::feedback(
@@ -167,6 +171,7 @@ pub fn run(cx: &RunContext, args: &ControlArgs) -> Result<()> {
                 inputs,
                 speeds: speeds.as_deref(),
                 format: *format,
+                out: out.as_deref(),
                 plot: plot.as_deref(),
                 range: range.as_deref(),
             },

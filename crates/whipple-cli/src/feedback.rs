@@ -32,6 +32,7 @@ pub(crate) struct FeedbackArgs<'a> {
     pub inputs: &'a [String],
     pub speeds: Option<&'a str>,
     pub format: TableFormat,
+    pub out: Option<&'a Path>,
     pub plot: Option<&'a Path>,
     pub range: Option<&'a str>,
 }
@@ -128,6 +129,8 @@ fn parse_gains(text: &str, inputs: usize) -> Result<DMatrix<f64>> {
 fn read_schedule(path: &Path, inputs: usize) -> Result<Gains> {
     let shown = path.display();
     let text = std::fs::read_to_string(path).with_context(|| format!("--schedule {shown}"))?;
+    // An input: no output may be written onto it.
+    output::register_input(path);
     let width = 1 + 4 * inputs;
     let mut speeds = Vec::new();
     let mut gains = Vec::new();
@@ -267,7 +270,7 @@ fn input_names(inputs: &[Input]) -> Vec<String> {
 
 /// `whipple control feedback`.
 pub(crate) fn feedback(cx: &RunContext, args: &FeedbackArgs) -> Result<()> {
-    let (_, plot) = output::table_and_plot(None, args.plot)?;
+    let (out, plot) = output::table_and_plot(args.out, args.plot)?;
     let bike = load(cx, args.bike)?;
     let inputs = inputs(args.inputs)?;
     let count = inputs.len();
@@ -319,9 +322,11 @@ pub(crate) fn feedback(cx: &RunContext, args: &FeedbackArgs) -> Result<()> {
         .critical_speeds(lo, hi)
         .map_err(|e| named(e, &[("speed", "--range"), ("range", "--range")]))?;
 
-    let mut sink = match &plot {
-        Some(_) => Sink::stdout_beside_files(),
-        None => Sink::stdout(),
+    // Every output is opened (its temporary file created) before it is written.
+    let mut sink = match (&out, &plot) {
+        (Some(target), _) => target.open()?,
+        (None, Some(_)) => Sink::stdout_beside_files(),
+        (None, None) => Sink::stdout(),
     };
     let plot_sink = plot.as_ref().map(Target::open).transpose()?;
     let mut rows = EigenRows::new(args.format, sweep.modes);

@@ -220,6 +220,48 @@ fn control_feedback_reads_a_schedule_and_draws_the_plot() {
     );
     let bytes = std::fs::read(&plot).unwrap();
     assert!(bytes.starts_with(b"\x89PNG"), "not a PNG");
+
+    // --out: the table goes to the file, whole, and nothing to standard output; the same
+    // table as standard output's. Never onto an input.
+    let out = dir.join("closed.csv");
+    let quiet = stdout(&whipple(&[
+        "control",
+        "feedback",
+        "--bike",
+        "benchmark",
+        "--schedule",
+        schedule.to_str().unwrap(),
+        "--format",
+        "csv",
+        "--out",
+        out.to_str().unwrap(),
+    ]));
+    assert!(quiet.is_empty(), "{quiet}");
+    let written = std::fs::read_to_string(&out).unwrap();
+    let printed = stdout(&whipple(&[
+        "control",
+        "feedback",
+        "--bike",
+        "benchmark",
+        "--schedule",
+        schedule.to_str().unwrap(),
+        "--format",
+        "csv",
+    ]));
+    assert_eq!(written, printed);
+    assert_eq!(written.lines().filter(|l| !l.starts_with('#')).count(), 102);
+    let refused = stderr_of_failure(&whipple(&[
+        "control",
+        "feedback",
+        "--bike",
+        "benchmark",
+        "--schedule",
+        schedule.to_str().unwrap(),
+        "--out",
+        schedule.to_str().unwrap(),
+    ]));
+    assert!(refused.contains("--out"), "{refused}");
+    assert!(std::fs::read_to_string(&schedule).unwrap().starts_with("speed,k_lean"));
 }
 
 /// LQR at 5 m/s for Q = I, R = 1: the gain the library computes (checked against scipy's

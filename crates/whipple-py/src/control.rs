@@ -10,7 +10,7 @@ use numpy::{Complex64 as NpComplex, PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use whipple::Error;
-use whipple::advanced::control::{ClosedLoop, Gains, uncontrollable_speeds};
+use whipple::advanced::control::{ClosedLoop, Gains, lqr_schedule, uncontrollable_speeds};
 use whipple::advanced::eigen::Complex64;
 use whipple::advanced::integrate::Dopri5Settings;
 use whipple::advanced::linear::{
@@ -324,7 +324,8 @@ impl NativeLinearSystem {
 
 #[pymethods]
 impl NativeBicycle {
-    /// The closed loop's eigenvalues at `speeds`: (values (n, states), mode labels or None).
+    /// The closed loop's eigenvalues at `speeds`: (values (n, k), vectors (n, k, k), mode
+    /// labels or None).
     /// With gains on φ, δ, φ̇, δ̇ only: tracked and labelled (the core's `eigen_sweep`);
     /// otherwise the general eigensolver's, by decreasing real part.
     #[pyo3(signature = (inputs, states, gains, gain_speeds, speeds))]
@@ -337,9 +338,24 @@ impl NativeBicycle {
         gains: Vec<Vec<Vec<f64>>>,
         gain_speeds: Option<Vec<f64>>,
         speeds: Vec<f64>,
-    ) -> PyResult<(Bound<'py, PyAny>, Option<Vec<&'static str>>)> {
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Option<Vec<&'static str>>)> {
         let closed = closed_loop(self, &inputs, &states, &gains, gain_speeds).py_err(py)?;
         let n = speeds.len();
+        // Each speed's eigenvectors, in its eigenvalues' order (row-major k × k: row = state,
+        // column = eigenvalue, as `Bicycle.eig`'s).
+        let vectors = |values: &[NpComplex], k: usize| -> whipple::Result<Vec<NpComplex>> {
+            let mut out = vec![NpComplex::new(0.0, 0.0); values.len() * k];
+            for (i, v) in speeds.iter().enumerate() {
+                for col in 0..k {
+                    let z = values[i * k + col];
+                    let x = closed.eigenvector(*v, Complex64::new(z.re, z.im))?;
+                    for row in 0..k {
+                        out[i * k * k + row * k + col] = complex(x[row]);
+                    }
+                }
+            }
+            Ok(out)
+        };
         if closed.is_lean_steer() {
             let sweep = py.detach(|| closed.eigen_sweep(&speeds)).py_err(py)?;
             let values: Vec<NpComplex> = sweep
@@ -359,8 +375,10 @@ impl NativeBicycle {
                 by_speed = values;
             }
             let labels = sweep.modes.iter().map(|m| m.name()).collect();
+            let vecs = py.detach(|| vectors(&by_speed, 4)).py_err(py)?;
             let arr = PyArray1::from_vec(py, by_speed).reshape([n, 4])?;
-            Ok((arr.into_any(), Some(labels)))
+            let vecs = PyArray1::from_vec(py, vecs).reshape([n, 4, 4])?;
+            Ok((arr.into_any(), vecs.into_any(), Some(labels)))
         } else {
             let rows = py.detach(|| closed.general_sweep(&speeds)).py_err(py)?;
             let width = rows.first().map_or(0, Vec::len);
@@ -368,8 +386,10 @@ impl NativeBicycle {
                 .iter()
                 .flat_map(|row| row.iter().map(|z| complex(*z)))
                 .collect();
+            let vecs = py.detach(|| vectors(&flat, width)).py_err(py)?;
             let arr = PyArray1::from_vec(py, flat).reshape([n, width])?;
-            Ok((arr.into_any(), None))
+            let vecs = PyArray1::from_vec(py, vecs).reshape([n, width, width])?;
+            Ok((arr.into_any(), vecs.into_any(), None))
         }
     }
 
@@ -389,6 +409,35 @@ impl NativeBicycle {
         let closed = closed_loop(self, &inputs, &states, &gains, gain_speeds).py_err(py)?;
         let speeds = py.detach(|| closed.critical_speeds(lo, hi)).py_err(py)?;
         serialized(py, &speeds)
+    }
+
+    /// LQR gains for the same Q and R at each of `speeds` (the core's `lqr_schedule`): the
+    /// gains (speeds, inputs, states) and each speed's Riccati residual.
+    fn lqr_schedule<'py>(
+        &self,
+        py: Python<'py>,
+        inputs: Vec<String>,
+        states: Vec<String>,
+        speeds: Vec<f64>,
+        q: Vec<Vec<f64>>,
+        r: Vec<Vec<f64>>,
+    ) -> PyResult<(Vec<Bound<'py, PyAny>>, Vec<f64>)> {
+        let inputs: Vec<&str> = inputs.iter().map(String::as_str).collect();
+        let states: Vec<&str> = states.iter().map(String::as_str).collect();
+        let outputs = ["lean", "steer", "lean_rate", "steer_rate"];
+        let request = request_with_states(&inputs, &outputs, &states).py_err(py)?;
+        let q = dmatrix(&q, "Q").py_err(py)?;
+        let r = dmatrix(&r, "R").py_err(py)?;
+        let bike = self.checked.benchmark;
+        let schedule = py
+            .detach(|| lqr_schedule(&bike, &request, &speeds, &q, &r))
+            .py_err(py)?;
+        let gains = schedule
+            .solutions
+            .iter()
+            .map(|s| array2(py, &s.gains))
+            .collect::<PyResult<Vec<_>>>()?;
+        Ok((gains, schedule.solutions.iter().map(|s| s.residual).collect()))
     }
 
     /// The closed loop at `speed` as a linear system (A − B K, B, C − D K, D).

@@ -203,6 +203,49 @@ def test_closed_loop_schedule_and_yaw(benchmark):
     assert err.value.field == "gains"
 
 
+def test_closed_loop_eigenvectors(benchmark):
+    """The closed loop's eigenvectors satisfy (A − B K) x = λ x, for gains on the lean–steer
+    states (4 components) and with a gain on yaw (5), as numpy's would, up to scale."""
+    for loop, states in ((benchmark.closed_loop(K_STEER), 4),
+                         (benchmark.closed_loop([[-20.0, 5.0, -3.0, 0.5, 2.0]],
+                                                inputs="steer_torque", states="yaw"), 5)):
+        e = loop.eig([2.0, 5.0])
+        assert e.vectors.shape == (2, states, states)
+        assert np.all(np.isfinite(e.vectors))
+        for i, v in enumerate((2.0, 5.0)):
+            a = loop.system(v).A[:states, :states]
+            for j in range(states):
+                x = e.vectors[i, :, j]
+                assert abs(np.linalg.norm(x) - 1.0) < 1e-14
+                residual = np.linalg.norm(a @ x - e.values[i, j] * x)
+                assert residual < 1e-12 * (1 + np.linalg.norm(a)), residual
+
+
+def test_lqr_schedule_matches_scipy_and_is_certified(benchmark):
+    optional("scipy")
+    import scipy.linalg
+
+    speeds = [1.0, 2.0, 4.0, 8.0]
+    q, r = np.diag([10.0, 1.0, 1.0, 0.1]), np.array([[1.0]])
+    loop = benchmark.lqr_schedule(speeds, q, r)
+    assert loop.speeds == speeds and loop.residuals is not None
+    assert np.all(loop.residuals < 1e-12)
+    for v in speeds:
+        s = benchmark.linear_system(v, "steer_torque")
+        x = scipy.linalg.solve_continuous_are(s.A, s.B, q, r)
+        k = np.linalg.solve(r, s.B.T @ x)
+        assert relative(loop.system(v).A, s.A - s.B @ k) < 1e-9
+    # Between the design speeds the gains are interpolated: certified stable all through.
+    ranges = loop.critical_speeds(1.0, 8.0)["stable_speed_ranges"]
+    assert len(ranges) == 1 and ranges[0][0] == 1.0 and ranges[0][1] == 8.0
+    with pytest.raises(whipple.ArgumentError) as e:
+        benchmark.lqr_schedule([2.0, 1.0], q, r)
+    assert e.value.field == "speeds"
+    with pytest.raises(whipple.ArgumentError) as e:
+        benchmark.lqr_schedule(speeds, -q, r)
+    assert e.value.field == "Q"
+
+
 def test_closed_loop_bad_gains_raise(benchmark):
     with pytest.raises(whipple.ArgumentError) as e:
         benchmark.closed_loop(np.zeros((2, 3)))

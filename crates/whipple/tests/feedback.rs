@@ -650,3 +650,41 @@ fn a_path_control_loop_is_swept_by_the_general_solver() -> Result<(), Error> {
     assert!(at_design.iter().all(|l| l.re < 0.0));
     Ok(())
 }
+
+/// The closed loop's eigenvectors satisfy (A − B K) x = λ x: on the lean–steer block for gains
+/// on φ, δ, φ̇, δ̇ (the second-order null vector, as the open loop's), on the whole state for
+/// gains on yaw (the singular vector); unit length, largest component real.
+#[test]
+fn closed_loop_eigenvectors_satisfy_the_eigen_equation() -> Result<(), Error> {
+    let bike = BenchmarkParameters::meijaard2007();
+    let heading = DMatrix::from_row_slice(1, 5, &[-100.0, 10.0, -20.0, 0.0, 5.0]);
+    let mut worst = 0.0f64;
+    for (request, k) in [
+        (steer_only(vec![]), steer_into_fall()),
+        (steer_only(vec![StateVariable::Yaw]), heading),
+    ] {
+        let closed = ClosedLoop::new(&bike, &request, Gains::Constant(k))?;
+        for v in [0.5, 2.0, 5.0, 8.0] {
+            let system = closed.system(v)?;
+            let a = system.a();
+            let n = if closed.is_lean_steer() { 4 } else { a.nrows() };
+            let a = a.view((0, 0), (n, n)).map(|x| Complex64::new(x, 0.0));
+            let values = if closed.is_lean_steer() {
+                closed.eigen_sweep(&[v])?.eigenvalues[0].to_vec()
+            } else {
+                closed.eigenvalues(v)?
+            };
+            for value in values {
+                let x = closed.eigenvector(v, value)?;
+                assert_eq!(x.len(), n);
+                assert!((x.norm() - 1.0).abs() < 1e-14);
+                let pivot = x.iter().max_by(|p, q| p.norm().total_cmp(&q.norm())).unwrap();
+                assert!(pivot.im.abs() < 1e-15 && pivot.re > 0.0);
+                let scale = 1.0 + value.norm() + a.norm();
+                worst = worst.max((&a * &x - x.clone() * value).norm() / scale);
+            }
+        }
+    }
+    assert!(worst < 1e-13, "largest residual {worst:e}");
+    Ok(())
+}

@@ -359,6 +359,31 @@ class Bicycle:
         """
         return ClosedLoop(self, gains, _names(inputs, "inputs"), _names(states, "states"))
 
+    def lqr_schedule(self, speeds: Any, Q: Any, R: Any,
+                     inputs: Union[str, Sequence[str]] = "steer_torque",
+                     states: Union[str, Sequence[str]] = ()) -> ClosedLoop:
+        """The LQR gain for weights ``Q`` and ``R`` at each of ``speeds`` [m/s] (strictly
+        increasing, at least two), scheduled: a :class:`whipple.ClosedLoop` whose gains are
+        interpolated linearly between those speeds (never extrapolated), so that
+        ``critical_speeds(speeds[0], speeds[-1])`` certifies where the scheduled loop is stable
+        between the design speeds too. Its ``residuals`` hold each speed's Riccati residual.
+        Bad weights are :class:`whipple.ArgumentError` naming ``Q``, ``R`` or ``speeds``.
+
+        >>> bike = Bicycle.preset("benchmark")
+        >>> loop = bike.lqr_schedule([1.0, 2.0, 4.0, 8.0], np.eye(4), [[1.0]])
+        >>> loop.critical_speeds(1.0, 8.0)["stable_speed_ranges"]
+        [[1.0, 8.0]]
+        """
+        from ._control import _matrix
+
+        names_in, names_states = _names(inputs, "inputs"), _names(states, "states")
+        v = [float(x) for x in np.asarray(speeds, dtype=np.float64).reshape(-1)]
+        gains, residuals = self._native.lqr_schedule(names_in, names_states, v,
+                                                     _matrix(Q, "Q"), _matrix(R, "R"))
+        loop = ClosedLoop(self, (v, gains), names_in, names_states)
+        loop.residuals = np.asarray(residuals, dtype=np.float64)
+        return loop
+
     def uncontrollable_speeds(self, input: str = "steer_torque") -> UncontrollableSpeeds:
         """The forward speeds [m/s] at which ``input`` loses a mode (the Kalman matrix drops
         rank), certified, with the eigenvalue lost at each: a

@@ -204,6 +204,9 @@ class ClosedLoop:
         self._bicycle = bicycle
         self.inputs = inputs
         self.states = states
+        #: Each design speed's Riccati residual for a loop from
+        #: :meth:`whipple.Bicycle.lqr_schedule`; None otherwise.
+        self.residuals: Optional[np.ndarray] = None
         if isinstance(gains, tuple) and len(gains) == 2:
             speeds, matrices = gains
             self.speeds: Optional[List[float]] = [float(v) for v in
@@ -227,16 +230,14 @@ class ClosedLoop:
         """The eigenvalues of A − B K at speeds ``v`` [m/s] as a :class:`whipple.Eigen`. With
         gains on lean, steer and their rates only: tracked over the speeds and labelled (weave,
         capsize, …) as :meth:`whipple.Bicycle.eig`; with gains on other states: each speed's
-        eigenvalues by decreasing real part, ``modes`` None. ``vectors`` are not computed
-        (NaN)."""
+        eigenvalues by decreasing real part, ``modes`` None. ``vectors[i, :, j]`` is the
+        eigenvector of ``values[i, j]``, unit length with its largest component real: on
+        (φ, δ, φ̇, δ̇) for gains on those states, on every state of the loop otherwise."""
         arr = np.asarray(v, dtype=np.float64)
         scalar = arr.ndim == 0
         speeds = np.ascontiguousarray(arr.reshape(-1))
-        values, modes = self._bicycle._native.closed_loop_eig(self.inputs, self.states,
-                                                              self._gains, self.speeds,
-                                                              speeds.tolist())
-        k = values.shape[1]
-        vectors = np.full((len(speeds), k, k), np.nan, dtype=complex)
+        values, vectors, modes = self._bicycle._native.closed_loop_eig(
+            self.inputs, self.states, self._gains, self.speeds, speeds.tolist())
         return Eigen(speeds, values, vectors, modes, scalar, self._bicycle.label)
 
     def critical_speeds(self, lo: float = 0.0, hi: float = 10.0) -> Dict[str, Any]:

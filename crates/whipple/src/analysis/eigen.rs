@@ -7,7 +7,7 @@
 //! general Hessenberg QR and never iterates without bound. The tests cross-check it against
 //! faer's general eigensolver on A(v).
 
-use nalgebra::{Complex, Vector2, Vector4};
+use nalgebra::{Complex, Matrix2, Vector2, Vector4};
 
 use crate::error::{Error, Result};
 use crate::linear::{Canonical, CharacteristicPolynomial};
@@ -373,8 +373,19 @@ pub fn eigenvalues_with(poly: &CharacteristicPolynomial, speed: f64) -> Result<[
 pub fn eigenvector(canonical: &Canonical, speed: f64, value: Complex64) -> Vector4<Complex64> {
     let k = canonical.k0 * canonical.g + canonical.k2 * (speed * speed);
     let c = canonical.c1 * speed;
-    let at =
-        |i: usize, j: usize| value * value * canonical.m[(i, j)] + value * c[(i, j)] + k[(i, j)];
+    second_order_eigenvector(&canonical.m, &c, &k, value)
+}
+
+/// The eigenvector x = [q; λ q] of the second-order system M q̈ + C q̇ + K q = 0 for its
+/// eigenvalue `value`: q a null vector of M λ² + C λ + K, normalized as [`eigenvector`]
+/// documents (the open loop's and the closed loop's vectors, one home).
+pub(crate) fn second_order_eigenvector(
+    m: &Matrix2<f64>,
+    c: &Matrix2<f64>,
+    k: &Matrix2<f64>,
+    value: Complex64,
+) -> Vector4<Complex64> {
+    let at = |i: usize, j: usize| value * value * m[(i, j)] + value * c[(i, j)] + k[(i, j)];
     // A null vector of the 2×2 matrix P(λ): orthogonal to its larger row.
     let rows = [(at(0, 0), at(0, 1)), (at(1, 0), at(1, 1))];
     let (r0, r1) = if rows[0].0.norm_sqr() + rows[0].1.norm_sqr()

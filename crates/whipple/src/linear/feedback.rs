@@ -22,12 +22,12 @@
 //! order: the closed loop is then only the matrix A − B K, its eigenvalues come from the
 //! general eigensolver ([`ClosedLoop::eigenvalues`]) and nothing about it is certified.
 
-use nalgebra::{DMatrix, Matrix2};
+use nalgebra::{DMatrix, DVector, Matrix2};
 
 use super::characteristic::{GeneralSpeedPolynomials, Pencil};
 use super::system::{LinearSystem, SystemRequest};
 use super::{Canonical, CharacteristicPolynomial};
-use crate::analysis::eigen::Complex64;
+use crate::analysis::eigen::{Complex64, second_order_eigenvector};
 use crate::analysis::stability::{CriticalSpeeds, closed_loop_critical_speeds};
 use crate::analysis::sweep::{EigenSweep, Quartics, eigen_sweep_of};
 use crate::error::{Error, Result, short_number};
@@ -303,6 +303,69 @@ impl ClosedLoop {
         let mut values = matrix_eigenvalues(system.a())?;
         values.sort_by(|a, b| b.re.total_cmp(&a.re).then(b.im.total_cmp(&a.im)));
         Ok(values)
+    }
+
+    /// The eigenvector of the closed loop at `speed` for its eigenvalue `value`, unit length
+    /// with its largest component real and positive (as the open loop's,
+    /// [`crate::advanced::eigen::eigenvector`]). With gains on φ, δ, φ̇, δ̇ only: the four
+    /// components (φ, δ, φ̇, δ̇) from a null vector of the closed loop's 2 × 2 second-order
+    /// matrix, as the open loop's; otherwise one component per state of the system, the
+    /// right singular vector of A − B K − λ I for its smallest singular value.
+    pub fn eigenvector(&self, speed: f64, value: Complex64) -> Result<DVector<Complex64>> {
+        let k = self.gains.at_checked(speed)?;
+        if !value.re.is_finite() || !value.im.is_finite() {
+            return Err(Error::InvalidArgument {
+                what: "eigenvalue",
+                rule: format!("must be finite, got {value}"),
+            });
+        }
+        if self.lean_steer {
+            let c = &self.canonical;
+            let fk = &self.forces * k.columns(0, 4);
+            let block = |col: usize| {
+                Matrix2::new(
+                    fk[(0, col)],
+                    fk[(0, col + 1)],
+                    fk[(1, col)],
+                    fk[(1, col + 1)],
+                )
+            };
+            let damping = c.c1 * speed + block(2);
+            let stiffness = c.k0 * c.g + c.k2 * (speed * speed) + block(0);
+            let x = second_order_eigenvector(&c.m, &damping, &stiffness, value);
+            return Ok(DVector::from_iterator(4, x.iter().copied()));
+        }
+        let system = self.system(speed)?;
+        let a = system.a();
+        let n = a.nrows();
+        let shifted = DMatrix::<Complex64>::from_fn(n, n, |i, j| {
+            let diagonal = if i == j { value } else { Complex64::new(0.0, 0.0) };
+            Complex64::new(a[(i, j)], 0.0) - diagonal
+        });
+        // Bounded: nalgebra's iteration stops after 1000 sweeps (None then).
+        let svd = shifted.try_svd(false, true, f64::EPSILON, 1000);
+        let (Some(v_t), Some(smallest)) = (
+            svd.as_ref().and_then(|s| s.v_t.clone()),
+            svd.iter()
+                .flat_map(|s| s.singular_values.iter())
+                .enumerate()
+                .min_by(|a, b| a.1.total_cmp(b.1))
+                .map(|(i, _)| i),
+        ) else {
+            return Err(Error::InvalidArgument {
+                what: "eigenvalue",
+                rule: "the singular value decomposition of A − B K − λ I failed".into(),
+            });
+        };
+        let mut x: DVector<Complex64> = v_t.row(smallest).adjoint();
+        let pivot = x.iter().copied().fold(Complex64::new(0.0, 0.0), |best, z| {
+            if z.norm_sqr() > best.norm_sqr() { z } else { best }
+        });
+        let norm = x.norm();
+        if pivot.norm() > 0.0 && norm > 0.0 {
+            x *= pivot.conj() / (pivot.norm() * norm);
+        }
+        Ok(x)
     }
 
     fn refuse_ignorable(&self, what: &str) -> Result<()> {
