@@ -261,7 +261,11 @@ fn control_feedback_reads_a_schedule_and_draws_the_plot() {
         schedule.to_str().unwrap(),
     ]));
     assert!(refused.contains("--out"), "{refused}");
-    assert!(std::fs::read_to_string(&schedule).unwrap().starts_with("speed,k_lean"));
+    assert!(
+        std::fs::read_to_string(&schedule)
+            .unwrap()
+            .starts_with("speed,k_lean")
+    );
 }
 
 /// LQR at 5 m/s for Q = I, R = 1: the gain the library computes (checked against scipy's

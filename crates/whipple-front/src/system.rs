@@ -60,6 +60,8 @@ pub fn output_names() -> Vec<&'static str> {
     let mut names = state_names();
     names.extend(PLAIN_OUTPUTS.iter().map(|o| o.name()));
     names.extend(["rear_frame_point_y:X,Z", "front_frame_point_y:X,Z"]);
+    // An input as an output: the torque or force applied (in a closed loop, r − K x).
+    names.extend(input_names());
     names
 }
 
@@ -143,9 +145,20 @@ pub fn parse_input(spec: &str) -> Result<Input> {
 
 /// An output as typed: a state's name, `yaw_rate`, `front_contact_y`,
 /// `rear_contact_lateral_acceleration`, or the lateral position of a point of a frame,
-/// `rear_frame_point_y:X,Z` or `front_frame_point_y:X,Z` (metres, z down).
+/// `rear_frame_point_y:X,Z` or `front_frame_point_y:X,Z` (metres, z down), or an input's
+/// name (`steer_torque`, …): the torque or force applied, which in a closed loop u = r − K x
+/// is the controller's (the input must be among the inputs too).
 pub fn parse_output(spec: &str) -> Result<Output> {
     let (name, point) = split_point(spec, "outputs")?;
+    if matches!(
+        name.as_str(),
+        "lean_torque" | "steer_torque" | "lateral_force"
+    ) {
+        return parse_input(spec).map(Output::Input).map_err(|e| match e {
+            Error::InvalidArgument { rule, .. } => invalid("outputs", rule),
+            other => other,
+        });
+    }
     if let Some((x, z)) = point {
         return match name.as_str() {
             "rear_frame_point_y" => Ok(Output::RearFramePointY { x, z }),
@@ -428,6 +441,21 @@ mod tests {
             parse_output("front_frame_point_y:1.1,-0.9").unwrap(),
             Output::FrontFramePointY { x: 1.1, z: -0.9 }
         );
+        // An input as an output, the torque or force applied.
+        assert_eq!(
+            parse_output("steer_torque").unwrap(),
+            Output::Input(Input::SteerTorque)
+        );
+        assert_eq!(
+            parse_output("lateral_force:0.3,-1").unwrap(),
+            Output::Input(Input::LateralForce { x: 0.3, z: -1.0 })
+        );
+        let e = parse_output("lateral_force").unwrap_err();
+        assert!(
+            matches!(&e, Error::InvalidArgument { what: "outputs", rule } if rule.contains("X,Z")),
+            "{e:?}"
+        );
+        assert!(output_names().contains(&"steer_torque"));
     }
 
     #[test]

@@ -116,6 +116,10 @@ fn gains(matrices: &[Vec<Vec<f64>>], speeds: Option<Vec<f64>>) -> whipple::Resul
     }
 }
 
+/// The lean–steer states, the closed loop's outputs unless others are asked for (its
+/// eigenvalues and critical speeds do not depend on them).
+const LEAN_STEER_OUTPUTS: [&str; 4] = ["lean", "steer", "lean_rate", "steer_rate"];
+
 fn closed_loop(
     bike: &NativeBicycle,
     inputs: &[String],
@@ -123,11 +127,23 @@ fn closed_loop(
     matrices: &[Vec<Vec<f64>>],
     speeds: Option<Vec<f64>>,
 ) -> whipple::Result<ClosedLoop> {
+    closed_loop_with_outputs(bike, inputs, states, None, matrices, speeds)
+}
+
+fn closed_loop_with_outputs(
+    bike: &NativeBicycle,
+    inputs: &[String],
+    states: &[String],
+    outputs: Option<&[String]>,
+    matrices: &[Vec<Vec<f64>>],
+    speeds: Option<Vec<f64>>,
+) -> whipple::Result<ClosedLoop> {
     let inputs: Vec<&str> = inputs.iter().map(String::as_str).collect();
     let states: Vec<&str> = states.iter().map(String::as_str).collect();
-    // The outputs are the lean–steer states (the closed loop's eigenvalues and critical
-    // speeds do not depend on them; `system` gives them as y).
-    let outputs = ["lean", "steer", "lean_rate", "steer_rate"];
+    let outputs: Vec<&str> = match outputs {
+        Some(names) => names.iter().map(String::as_str).collect(),
+        None => LEAN_STEER_OUTPUTS.to_vec(),
+    };
     let request = request_with_states(&inputs, &outputs, &states)?;
     ClosedLoop::new(&bike.checked.benchmark, &request, gains(matrices, speeds)?)
 }
@@ -338,7 +354,11 @@ impl NativeBicycle {
         gains: Vec<Vec<Vec<f64>>>,
         gain_speeds: Option<Vec<f64>>,
         speeds: Vec<f64>,
-    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Option<Vec<&'static str>>)> {
+    ) -> PyResult<(
+        Bound<'py, PyAny>,
+        Bound<'py, PyAny>,
+        Option<Vec<&'static str>>,
+    )> {
         let closed = closed_loop(self, &inputs, &states, &gains, gain_speeds).py_err(py)?;
         let n = speeds.len();
         // Each speed's eigenvectors, in its eigenvalues' order (row-major k × k: row = state,
@@ -424,8 +444,7 @@ impl NativeBicycle {
     ) -> PyResult<(Vec<Bound<'py, PyAny>>, Vec<f64>)> {
         let inputs: Vec<&str> = inputs.iter().map(String::as_str).collect();
         let states: Vec<&str> = states.iter().map(String::as_str).collect();
-        let outputs = ["lean", "steer", "lean_rate", "steer_rate"];
-        let request = request_with_states(&inputs, &outputs, &states).py_err(py)?;
+        let request = request_with_states(&inputs, &LEAN_STEER_OUTPUTS, &states).py_err(py)?;
         let q = dmatrix(&q, "Q").py_err(py)?;
         let r = dmatrix(&r, "R").py_err(py)?;
         let bike = self.checked.benchmark;
@@ -437,10 +456,16 @@ impl NativeBicycle {
             .iter()
             .map(|s| array2(py, &s.gains))
             .collect::<PyResult<Vec<_>>>()?;
-        Ok((gains, schedule.solutions.iter().map(|s| s.residual).collect()))
+        Ok((
+            gains,
+            schedule.solutions.iter().map(|s| s.residual).collect(),
+        ))
     }
 
-    /// The closed loop at `speed` as a linear system (A − B K, B, C − D K, D).
+    /// The closed loop at `speed` as a linear system (A − B K, B, C − D K, D), with
+    /// `outputs` by name (default: the lean–steer states).
+    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (inputs, states, gains, gain_speeds, speed, outputs = None))]
     fn closed_loop_system(
         &self,
         py: Python<'_>,
@@ -449,8 +474,17 @@ impl NativeBicycle {
         gains: Vec<Vec<Vec<f64>>>,
         gain_speeds: Option<Vec<f64>>,
         speed: f64,
+        outputs: Option<Vec<String>>,
     ) -> PyResult<NativeLinearSystem> {
-        let closed = closed_loop(self, &inputs, &states, &gains, gain_speeds).py_err(py)?;
+        let closed = closed_loop_with_outputs(
+            self,
+            &inputs,
+            &states,
+            outputs.as_deref(),
+            &gains,
+            gain_speeds,
+        )
+        .py_err(py)?;
         let system: LinearSystem = closed.system(speed).py_err(py)?;
         Ok(NativeLinearSystem::from_system(system))
     }

@@ -246,6 +246,36 @@ def test_lqr_schedule_matches_scipy_and_is_certified(benchmark):
     assert e.value.field == "Q"
 
 
+@pytest.mark.parametrize("speed", (1.0, 5.0))
+def test_closed_loop_transfer_functions_match_python_control(benchmark, speed):
+    """The closed loop's transfer functions (exact, from its polynomial matrix) against
+    python-control's ``feedback`` of the open loop, steer torque in the loop included."""
+    control = optional("control")
+    k = np.array([[-100.0, 10.0, -20.0, 0.0]])
+    loop = benchmark.closed_loop(k, inputs="steer_torque")
+    closed = loop.system(speed, ["lean", "steer", "steer_torque"])
+    open_loop = benchmark.linear_system(speed, "steer_torque",
+                                        ["lean", "steer", "lean_rate", "steer_rate"])
+    plant = control.ss(open_loop.A, open_loop.B, np.eye(4), np.zeros((4, 1)))
+    theirs = control.feedback(plant, control.ss([], [], [], k), sign=-1)
+    omega = np.logspace(-1, 2, 60)
+    response = closed.frequency_response(omega)
+    g = theirs(1j * omega)  # (outputs, inputs, n)
+    for row, expected in ((0, g[0, 0]), (1, g[1, 0])):
+        ours = response.response[row, 0]
+        assert np.max(np.abs(ours - expected) / np.abs(expected)) < 1e-10
+    # The torque the loop applies: r − K x, that is 1 − K G_x(iω).
+    applied = 1.0 - (k @ g[:, 0, :])[0]
+    ours = response.response[2, 0]
+    assert np.max(np.abs(ours - applied) / np.abs(applied)) < 1e-10
+    tf = closed.transfer_function("lean", "steer_torque")
+    assert np.max(np.abs(np.sort_complex(tf.poles) -
+                         np.sort_complex(loop.eig([speed]).values[0]))) < 1e-10
+    with pytest.raises(whipple.ArgumentError) as e:
+        loop.system(speed, ["lean_torque"])
+    assert e.value.field == "outputs"
+
+
 def test_closed_loop_bad_gains_raise(benchmark):
     with pytest.raises(whipple.ArgumentError) as e:
         benchmark.closed_loop(np.zeros((2, 3)))

@@ -678,7 +678,10 @@ fn closed_loop_eigenvectors_satisfy_the_eigen_equation() -> Result<(), Error> {
                 let x = closed.eigenvector(v, value)?;
                 assert_eq!(x.len(), n);
                 assert!((x.norm() - 1.0).abs() < 1e-14);
-                let pivot = x.iter().max_by(|p, q| p.norm().total_cmp(&q.norm())).unwrap();
+                let pivot = x
+                    .iter()
+                    .max_by(|p, q| p.norm().total_cmp(&q.norm()))
+                    .unwrap();
                 assert!(pivot.im.abs() < 1e-15 && pivot.re > 0.0);
                 let scale = 1.0 + value.norm() + a.norm();
                 worst = worst.max((&a * &x - x.clone() * value).norm() / scale);

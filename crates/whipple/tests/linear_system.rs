@@ -486,3 +486,114 @@ fn derived_output_rows() -> Result<()> {
     }
     Ok(())
 }
+
+/// Closed-loop transfer functions (u = r − K x, gains on φ, δ, φ̇, δ̇) from the closed loop's
+/// polynomial matrix, against a direct complex solve of the closed loop's state space
+/// (C − D K)(iω I − A + B K)⁻¹ B + D; their poles are the closed loop's eigenvalues; and the
+/// steer torque in the loop (`Output::Input`) follows the loop's sensitivity: u / r =
+/// 1 / (1 + L(iω)), L the open loop's K (iω I − A)⁻¹ B formed from the open loop's own
+/// transfer functions.
+#[test]
+fn closed_loop_transfer_functions_equal_the_direct_solve() -> Result<()> {
+    use whipple::advanced::control::{ClosedLoop, Gains};
+    let request = SystemRequest {
+        states: vec![StateVariable::Yaw, StateVariable::RearContactY],
+        inputs: vec![Input::SteerTorque],
+        outputs: vec![
+            Output::State(StateVariable::Lean),
+            Output::State(StateVariable::Steer),
+            Output::YawRate,
+            Output::FrontContactY,
+            Output::Input(Input::SteerTorque),
+        ],
+    };
+    let k = DMatrix::from_row_slice(1, 6, &[-100.0, 10.0, -20.0, 0.0, 0.0, 0.0]);
+    let closed = ClosedLoop::new(&bike(), &request, Gains::Constant(k.clone()))?;
+    let omegas: Vec<f64> = (0..120)
+        .map(|i| 10f64.powf(-1.5 + 4.0 * i as f64 / 119.0))
+        .collect();
+    let mut worst = 0.0f64;
+    for speed in [0.5, 2.0, 5.0, 8.0] {
+        let system = closed.system(speed)?;
+        let open = LinearSystem::new(&bike(), speed, &request)?;
+        let n = system.states().len();
+        let a = system.a().map(|x| C64::new(x, 0.0));
+        let b = system.b().map(|x| C64::new(x, 0.0));
+        let c = system.c().map(|x| C64::new(x, 0.0));
+        let d = system.d().map(|x| C64::new(x, 0.0));
+        // The poles: the closed loop's certified eigenvalues (and the integrators' zeros).
+        let g = system.transfer_function(0, 0)?;
+        let mut poles = g.poles();
+        let mut expected = closed.eigen_sweep(&[speed])?.eigenvalues[0].to_vec();
+        let key = |z: &C64| (z.re, z.im);
+        poles.sort_by(|p, q| key(p).partial_cmp(&key(q)).unwrap());
+        expected.sort_by(|p, q| key(p).partial_cmp(&key(q)).unwrap());
+        for (p, q) in poles.iter().zip(&expected) {
+            assert!((p - q).norm() <= 1e-12 * (1.0 + q.norm()), "{p} vs {q}");
+        }
+        // Each state's open-loop response to steer torque, for L(iω) = Σ K_j G_j(iω).
+        let states_request = SystemRequest {
+            states: request.states.clone(),
+            inputs: vec![Input::SteerTorque],
+            outputs: open.states().iter().map(|s| Output::State(*s)).collect(),
+        };
+        let per_state = LinearSystem::new(&bike(), speed, &states_request)?;
+        for (i, output) in system.outputs().iter().enumerate() {
+            let response = system
+                .transfer_function(i, 0)?
+                .frequency_response(&omegas)?;
+            for (w, got) in omegas.iter().zip(&response.response) {
+                let lhs = DMatrix::<C64>::identity(n, n) * C64::new(0.0, *w) - &a;
+                let x = lhs.lu().solve(&b).expect("iω is not an eigenvalue");
+                let direct = (&c * x + &d)[(i, 0)];
+                let error = (got - direct).norm() / direct.norm().max(1e-300);
+                worst = worst.max(error);
+                assert!(
+                    error < 1e-10,
+                    "v = {speed}, {output}, ω = {w}: {got} vs {direct}"
+                );
+                if let Output::Input(_) = output {
+                    let mut loop_gain = C64::new(0.0, 0.0);
+                    for j in 0..per_state.outputs().len() {
+                        let gj = per_state.transfer_function(j, 0)?.eval(C64::new(0.0, *w));
+                        loop_gain += gj * k[(0, j)];
+                    }
+                    let sensitivity = C64::new(1.0, 0.0) / (C64::new(1.0, 0.0) + loop_gain);
+                    assert!((got - sensitivity).norm() < 1e-9 * sensitivity.norm());
+                }
+            }
+        }
+        // The open loop's u → u is exactly 1.
+        let u = LinearSystem::new(&bike(), speed, &request)?.transfer_function(4, 0)?;
+        assert_eq!(
+            u.frequency_response(&[1.0])?.response[0],
+            C64::new(1.0, 0.0)
+        );
+    }
+    println!("largest relative difference: {worst:e}");
+    // Output::Input needs the input among the inputs; gains on yaw are refused by name.
+    let err = LinearSystem::new(
+        &bike(),
+        5.0,
+        &SystemRequest {
+            states: vec![],
+            inputs: vec![Input::SteerTorque],
+            outputs: vec![Output::Input(Input::LeanTorque)],
+        },
+    )
+    .unwrap_err();
+    assert!(
+        matches!(&err, Error::InvalidArgument { what: "outputs", rule } if rule.contains("lean_torque")),
+        "{err:?}"
+    );
+    let heading = DMatrix::from_row_slice(1, 6, &[-100.0, 10.0, -20.0, 0.0, 5.0, 0.0]);
+    let err = ClosedLoop::new(&bike(), &request, Gains::Constant(heading))?
+        .system(5.0)?
+        .transfer_function(0, 0)
+        .unwrap_err();
+    assert!(
+        matches!(&err, Error::InvalidArgument { what: "gains", .. }),
+        "{err:?}"
+    );
+    Ok(())
+}

@@ -372,7 +372,7 @@ class Bicycle:
         >>> bike = Bicycle.preset("benchmark")
         >>> loop = bike.lqr_schedule([1.0, 2.0, 4.0, 8.0], np.eye(4), [[1.0]])
         >>> loop.critical_speeds(1.0, 8.0)["stable_speed_ranges"]
-        [[1.0, 8.0]]
+        [(1.0, 8.0)]
         """
         from ._control import _matrix
 

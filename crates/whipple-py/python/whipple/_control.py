@@ -13,7 +13,7 @@ import numpy as np
 
 from ._errors import ArgumentError
 from ._results import Eigen
-from ._system import LinearSystem, Signal, SignalKey, _index
+from ._system import LinearSystem, Signal, SignalKey, _index, _names
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -219,11 +219,24 @@ class ClosedLoop:
         at = 0.0 if self.speeds is None else self.speeds[0]
         self.system(at)
 
-    def system(self, speed: float) -> LinearSystem:
+    def system(self, speed: float, outputs: Optional[Sequence[str]] = None) -> LinearSystem:
         """The closed loop at ``speed`` [m/s] as a :class:`whipple.LinearSystem`: A − B K, B,
-        C − D K, D (the inputs are now the references r)."""
+        C − D K, D (the inputs are now the references r). ``outputs`` by name as in
+        :meth:`whipple.Bicycle.linear_system` (default: lean, steer and their rates); an
+        input's name, such as ``'steer_torque'``, is the torque the loop applies, r − K x. Its
+        ``transfer_function`` gives the closed loop's, exactly (gains on lean, steer and their
+        rates only).
+
+        >>> loop = Bicycle.preset("benchmark").closed_loop([[-100.0, 10.0, -20.0, 0.0]],
+        ...                                                 inputs="steer_torque")
+        >>> g = loop.system(5.0, ["lean", "steer_torque"]).transfer_function(
+        ...     "steer_torque", "steer_torque")
+        >>> bool(np.all(g.poles.real < 0))  # this loop is stable at 5 m/s
+        True
+        """
+        names = None if outputs is None else _names(outputs, "outputs")
         native = self._bicycle._native.closed_loop_system(self.inputs, self.states, self._gains,
-                                                          self.speeds, float(speed))
+                                                          self.speeds, float(speed), names)
         return LinearSystem(native, self._bicycle)
 
     def eig(self, v: Any) -> Eigen:

@@ -135,7 +135,8 @@ class FrequencyResponse:
 class TransferFunction:
     """G(s) = numerator(s) / denominator(s) of one input–output pair, formed exactly from the
     polynomial matrix M s² + v C₁ s + g K₀ + v² K₂ and its adjugate (not from a numerical
-    state-space realization). ``numerator`` and ``denominator`` hold the coefficients highest
+    state-space realization); for a closed loop (:meth:`whipple.ClosedLoop.system`), from the
+    closed loop's, M s² + (v C₁ + F K_rate) s + g K₀ + v² K₂ + F K_angle. ``numerator`` and ``denominator`` hold the coefficients highest
     power first (as ``numpy.polyval`` and ``scipy.signal`` take them); the denominator is
     s^k det P(s) with ``integrators`` k (yaw 1, lateral positions 2).
 

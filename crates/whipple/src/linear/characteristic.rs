@@ -6,7 +6,7 @@
 //! about smooth polynomials in v (Routh–Hurwitz), which is how the critical speeds are found to
 //! round-off.
 
-use nalgebra::Matrix2;
+use nalgebra::{DMatrix, Matrix2};
 
 use super::Canonical;
 use crate::analysis::roots::BoundedPolynomial;
@@ -68,6 +68,45 @@ impl Pencil {
             g: canonical.g,
             formation_depth: 0,
         }
+    }
+
+    /// The closed loop u = r − K(v) x with K(v) = P + v Q (inputs × states, the first four
+    /// columns on φ, δ, φ̇, δ̇; the caller checks that no gain reads another state) and the
+    /// inputs' generalized forces F (2 × inputs): M λ² + (v C₁ + F K_rate) λ + g K₀ + v² K₂ +
+    /// F K_angle.
+    pub(crate) fn closed(
+        canonical: &Canonical,
+        forces: &DMatrix<f64>,
+        p: &DMatrix<f64>,
+        q: &DMatrix<f64>,
+    ) -> Self {
+        let block = |k: &DMatrix<f64>, col: usize| -> Matrix2<f64> {
+            let fk = forces * k.columns(col, 2);
+            Matrix2::new(fk[(0, 0)], fk[(0, 1)], fk[(1, 0)], fk[(1, 1)])
+        };
+        let inputs = forces.ncols() as u32;
+        Pencil {
+            m: canonical.m,
+            c0: block(p, 2),
+            c1: canonical.c1 + block(q, 2),
+            k0: canonical.k0.map(|x| canonical.g * x) + block(p, 0),
+            k1: block(q, 0),
+            k2: canonical.k2,
+            g: canonical.g,
+            // F K: a sum of `inputs` products; one addition to the open loop's entry; for a
+            // schedule, P and Q from the gains (a difference, a division, a product and a
+            // difference).
+            formation_depth: inputs + 6,
+        }
+    }
+
+    /// The matrices of P(λ) = M λ² + C λ + K at speed `v`: (M, C, K).
+    pub(crate) fn at_speed(&self, v: f64) -> (Matrix2<f64>, Matrix2<f64>, Matrix2<f64>) {
+        (
+            self.m,
+            self.c0 + self.c1 * v,
+            self.k0 + self.k1 * v + self.k2 * (v * v),
+        )
     }
 }
 

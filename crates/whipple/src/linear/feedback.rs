@@ -339,7 +339,11 @@ impl ClosedLoop {
         let a = system.a();
         let n = a.nrows();
         let shifted = DMatrix::<Complex64>::from_fn(n, n, |i, j| {
-            let diagonal = if i == j { value } else { Complex64::new(0.0, 0.0) };
+            let diagonal = if i == j {
+                value
+            } else {
+                Complex64::new(0.0, 0.0)
+            };
             Complex64::new(a[(i, j)], 0.0) - diagonal
         });
         // Bounded: nalgebra's iteration stops after 1000 sweeps (None then).
@@ -359,7 +363,11 @@ impl ClosedLoop {
         };
         let mut x: DVector<Complex64> = v_t.row(smallest).adjoint();
         let pivot = x.iter().copied().fold(Complex64::new(0.0, 0.0), |best, z| {
-            if z.norm_sqr() > best.norm_sqr() { z } else { best }
+            if z.norm_sqr() > best.norm_sqr() {
+                z
+            } else {
+                best
+            }
         });
         let norm = x.norm();
         if pivot.norm() > 0.0 && norm > 0.0 {
@@ -382,26 +390,7 @@ impl ClosedLoop {
 
     /// The pencil of one segment K(v) = P + v Q.
     fn pencil(&self, p: &DMatrix<f64>, q: &DMatrix<f64>) -> Pencil {
-        let c = &self.canonical;
-        let f = &self.forces;
-        let block = |k: &DMatrix<f64>, col: usize| -> Matrix2<f64> {
-            let fk = f * k.columns(col, 2);
-            Matrix2::new(fk[(0, 0)], fk[(0, 1)], fk[(1, 0)], fk[(1, 1)])
-        };
-        let inputs = f.ncols() as u32;
-        Pencil {
-            m: c.m,
-            c0: block(p, 2),
-            c1: c.c1 + block(q, 2),
-            k0: c.k0.map(|x| c.g * x) + block(p, 0),
-            k1: block(q, 0),
-            k2: c.k2,
-            g: c.g,
-            // F K: a sum of `inputs` products; one addition to the open loop's entry; for a
-            // schedule, P and Q from the gains (a difference, a division, a product and a
-            // difference).
-            formation_depth: inputs + 6,
-        }
+        Pencil::closed(&self.canonical, &self.forces, p, q)
     }
 
     /// The pencils of the segments, with their speed intervals.

@@ -241,6 +241,10 @@ pub enum Output {
     },
     /// ÿ: the rear contact's lateral acceleration [m/s²].
     RearContactLateralAcceleration,
+    /// One of the system's inputs as applied: u itself in the open loop (D's row), and in a
+    /// closed loop u = r − K x, the torque or force the controller applies ("steer torque in
+    /// the loop"). The request must list the input among its inputs.
+    Input(Input),
 }
 
 impl Output {
@@ -253,6 +257,7 @@ impl Output {
             Output::RearFramePointY { .. } => "rear_frame_point_y",
             Output::FrontFramePointY { .. } => "front_frame_point_y",
             Output::RearContactLateralAcceleration => "rear_contact_lateral_acceleration",
+            Output::Input(input) => input.name(),
         }
     }
 
@@ -264,6 +269,7 @@ impl Output {
             Output::FrontContactY => "y_F",
             Output::RearFramePointY { .. } | Output::FrontFramePointY { .. } => "y",
             Output::RearContactLateralAcceleration => "ÿ_P",
+            Output::Input(input) => input.symbol(),
         }
     }
 
@@ -273,6 +279,7 @@ impl Output {
             Output::State(s) => s.unit(),
             Output::YawRate => "rad/s",
             Output::RearContactLateralAcceleration => "m/s²",
+            Output::Input(input) => input.unit(),
             _ => "m",
         }
     }
@@ -288,6 +295,7 @@ impl std::fmt::Display for Output {
                 short_number(*x),
                 short_number(*z)
             ),
+            Output::Input(input) => input.fmt(f),
             other => f.write_str(other.name()),
         }
     }
@@ -389,6 +397,17 @@ impl SystemRequest {
             }
             if self.outputs[..k].contains(output) {
                 return bad("outputs", format!("{output} is listed twice"));
+            }
+            if let Output::Input(input) = output
+                && !self.inputs.contains(input)
+            {
+                return bad(
+                    "outputs",
+                    format!(
+                        "{output} as an output is the input applied: list it among the inputs \
+                         too"
+                    ),
+                );
             }
             let needs: &[StateVariable] = match output {
                 Output::State(s) => std::slice::from_ref(s),
@@ -567,6 +586,8 @@ impl LinearSystem {
                     point(&mut set, geometry.w, 0.0);
                     set(StateVariable::Steer, -geometry.c * cos_l);
                 }
+                // D's row (below): u itself, no state.
+                Output::Input(_) => {}
                 Output::RearFramePointY { x, z } => point(&mut set, x, z),
                 Output::FrontFramePointY { x, z } => {
                     point(&mut set, x, z);
@@ -577,7 +598,14 @@ impl LinearSystem {
                 }
             }
         }
-        let d = DMatrix::zeros(p, m);
+        let mut d = DMatrix::zeros(p, m);
+        for (i, output) in request.outputs.iter().enumerate() {
+            if let Output::Input(input) = output
+                && let Some(j) = request.inputs.iter().position(|u| u == input)
+            {
+                d[(i, j)] = 1.0;
+            }
+        }
         Ok(LinearSystem {
             speed,
             canonical,

@@ -25,8 +25,9 @@
 use nalgebra::DMatrix;
 
 use super::CharacteristicPolynomial;
+use super::characteristic::{GeneralSpeedPolynomials, Pencil};
 use super::system::{Input, LinearSystem, StateVariable};
-use crate::analysis::eigen::{Complex64, eigenvalues};
+use crate::analysis::eigen::{Complex64, eigenvalues, eigenvalues_with};
 use crate::analysis::roots::{
     BoundedPolynomial, RealRoot, Unpaired, approximate, horner, pair_conjugates, real_roots,
 };
@@ -387,27 +388,44 @@ impl LinearSystem {
                 ),
             });
         }
-        if self.gains().is_some() {
-            return Err(Error::InvalidArgument {
-                what: "system",
-                rule: "transfer functions are formed from the open loop's polynomial matrix; \
-                       a closed loop's are not offered yet (its A, B, C, D are)"
-                    .into(),
-            });
-        }
         let canonical = self.canonical();
         let v = self.speed();
-        let eigenvalues = eigenvalues(canonical, v)?;
-        let characteristic = CharacteristicPolynomial::new(canonical).at_speed(v);
-        // P(s)'s entries.
+        // The open loop's polynomial matrix, or the closed loop's: u = r − K x moves F K's
+        // rate columns into C and its angle columns into K (`Pencil::closed`).
+        let (pencil, eigenvalues) = match self.gains() {
+            None => (Pencil::open_loop(canonical), eigenvalues(canonical, v)?),
+            Some(k) => {
+                if (4..k.ncols()).any(|j| k.column(j).iter().any(|x| *x != 0.0)) {
+                    return Err(Error::InvalidArgument {
+                        what: "gains",
+                        rule: "a closed loop's transfer functions are formed from its 2 × 2 \
+                               polynomial matrix, which holds for gains on lean, steer and \
+                               their rates only; with gains on ignorable states use its A, B, \
+                               C, D"
+                            .into(),
+                    });
+                }
+                let zero = DMatrix::zeros(k.nrows(), k.ncols());
+                let pencil = Pencil::closed(canonical, &self.forces, k, &zero);
+                GeneralSpeedPolynomials::new(&pencil)?;
+                let poly = CharacteristicPolynomial::from_pencil(&pencil);
+                let values = eigenvalues_with(&poly, v)?;
+                (pencil, values)
+            }
+        };
+        let characteristic = CharacteristicPolynomial::from_pencil(&pencil).at_speed(v);
+        let (m, c, k) = pencil.at_speed(v);
+        // P(s)'s entries, each coefficient with the sum of its terms' magnitudes.
         let p = |i: usize, j: usize| {
-            let k0 = canonical.g * canonical.k0[(i, j)];
-            let k2 = v * v * canonical.k2[(i, j)];
-            let c1 = v * canonical.c1[(i, j)];
+            let k0 = pencil.k0[(i, j)];
+            let k1 = v * pencil.k1[(i, j)];
+            let k2 = v * v * pencil.k2[(i, j)];
+            let c0 = pencil.c0[(i, j)];
+            let c1 = v * pencil.c1[(i, j)];
             Poly(vec![
-                (k0 + k2, k0.abs() + k2.abs()),
-                (c1, c1.abs()),
-                (canonical.m[(i, j)], canonical.m[(i, j)].abs()),
+                (k[(i, j)], k0.abs() + k1.abs() + k2.abs()),
+                (c[(i, j)], c0.abs() + c1.abs()),
+                (m[(i, j)], m[(i, j)].abs()),
             ])
         };
         let f = [self.forces[(0, input)], self.forces[(1, input)]];
