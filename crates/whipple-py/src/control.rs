@@ -4,6 +4,7 @@
 //! into numpy arrays and dicts.
 
 use std::cell::RefCell;
+use std::sync::atomic::AtomicBool;
 
 use nalgebra::DMatrix;
 use numpy::{Complex64 as NpComplex, PyArray1, PyArrayMethods};
@@ -20,6 +21,7 @@ use whipple_front::system::{parse_input, request_with_states};
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
+use crate::guard::{SHORT, estimate, interruptible, is_stopped, stopped};
 use crate::serialized;
 use crate::system::NativeLinearSystem;
 
@@ -362,13 +364,35 @@ impl NativeBicycle {
         let closed = closed_loop(self, &inputs, &states, &gains, gain_speeds).py_err(py)?;
         let n = speeds.len();
         // Each speed's eigenvectors, in its eigenvalues' order (row-major k × k: row = state,
-        // column = eigenvalue, as `Bicycle.eig`'s).
-        let vectors = |values: &[NpComplex], k: usize| -> whipple::Result<Vec<NpComplex>> {
-            let mut out = vec![NpComplex::new(0.0, 0.0); values.len() * k];
+        // column = eigenvalue, as `Bicycle.eig`'s), allocated only if memory allows.
+        let vectors = |values: &[NpComplex],
+                       k: usize,
+                       stop: &AtomicBool|
+         -> whipple::Result<Vec<NpComplex>> {
+            let len = values.len().saturating_mul(k);
+            let mut out = Vec::new();
+            out.try_reserve_exact(len)
+                .map_err(|_| Error::LimitExceeded {
+                    what: "speeds",
+                    rule: format!(
+                        "{n} speeds' eigenvectors need {} bytes, more than this process can \
+                         allocate; use fewer speeds",
+                        estimate(len, 16)
+                    ),
+                })?;
+            out.resize(len, NpComplex::new(0.0, 0.0));
+            let mut at = Vec::with_capacity(k);
             for (i, v) in speeds.iter().enumerate() {
-                for col in 0..k {
-                    let z = values[i * k + col];
-                    let x = closed.eigenvector(*v, Complex64::new(z.re, z.im))?;
+                if is_stopped(stop) {
+                    return Err(stopped());
+                }
+                at.clear();
+                at.extend(
+                    values[i * k..(i + 1) * k]
+                        .iter()
+                        .map(|z| Complex64::new(z.re, z.im)),
+                );
+                for (col, x) in closed.eigenvectors(*v, &at)?.iter().enumerate() {
                     for row in 0..k {
                         out[i * k * k + row * k + col] = complex(x[row]);
                     }
@@ -376,37 +400,46 @@ impl NativeBicycle {
             }
             Ok(out)
         };
+        let short = n <= SHORT;
         if closed.is_lean_steer() {
-            let sweep = py.detach(|| closed.eigen_sweep(&speeds)).py_err(py)?;
-            let values: Vec<NpComplex> = sweep
-                .eigenvalues
-                .iter()
-                .flat_map(|row| row.iter().map(|z| complex(*z)))
-                .collect();
-            // The sweep sorts the speeds; put the rows back in the caller's order.
-            let mut order: Vec<usize> = (0..n).collect();
-            order.sort_by(|&i, &j| speeds[i].total_cmp(&speeds[j]));
-            let mut by_speed = vec![NpComplex::new(0.0, 0.0); values.len()];
-            if sweep.eigenvalues.len() == n {
-                for (k, &i) in order.iter().enumerate() {
-                    by_speed[4 * i..4 * i + 4].copy_from_slice(&values[4 * k..4 * k + 4]);
+            let (by_speed, vecs, modes) = interruptible(py, short, |stop| {
+                let sweep = closed.eigen_sweep_until(&speeds, stop)?;
+                let values: Vec<NpComplex> = sweep
+                    .eigenvalues
+                    .iter()
+                    .flat_map(|row| row.iter().map(|z| complex(*z)))
+                    .collect();
+                // The sweep sorts the speeds; put the rows back in the caller's order.
+                let mut order: Vec<usize> = (0..n).collect();
+                order.sort_by(|&i, &j| speeds[i].total_cmp(&speeds[j]));
+                let mut by_speed = vec![NpComplex::new(0.0, 0.0); values.len()];
+                if sweep.eigenvalues.len() == n {
+                    for (k, &i) in order.iter().enumerate() {
+                        by_speed[4 * i..4 * i + 4].copy_from_slice(&values[4 * k..4 * k + 4]);
+                    }
+                } else {
+                    by_speed = values;
                 }
-            } else {
-                by_speed = values;
-            }
-            let labels = sweep.modes.iter().map(|m| m.name()).collect();
-            let vecs = py.detach(|| vectors(&by_speed, 4)).py_err(py)?;
+                let vecs = vectors(&by_speed, 4, stop)?;
+                Ok::<_, Error>((by_speed, vecs, sweep.modes))
+            })?
+            .py_err(py)?;
+            let labels = modes.iter().map(|m| m.name()).collect();
             let arr = PyArray1::from_vec(py, by_speed).reshape([n, 4])?;
             let vecs = PyArray1::from_vec(py, vecs).reshape([n, 4, 4])?;
             Ok((arr.into_any(), vecs.into_any(), Some(labels)))
         } else {
-            let rows = py.detach(|| closed.general_sweep(&speeds)).py_err(py)?;
-            let width = rows.first().map_or(0, Vec::len);
-            let flat: Vec<NpComplex> = rows
-                .iter()
-                .flat_map(|row| row.iter().map(|z| complex(*z)))
-                .collect();
-            let vecs = py.detach(|| vectors(&flat, width)).py_err(py)?;
+            let (flat, vecs, width) = interruptible(py, short, |stop| {
+                let rows = closed.general_sweep_until(&speeds, stop)?;
+                let width = rows.first().map_or(0, Vec::len);
+                let flat: Vec<NpComplex> = rows
+                    .iter()
+                    .flat_map(|row| row.iter().map(|z| complex(*z)))
+                    .collect();
+                let vecs = vectors(&flat, width, stop)?;
+                Ok::<_, Error>((flat, vecs, width))
+            })?
+            .py_err(py)?;
             let arr = PyArray1::from_vec(py, flat).reshape([n, width])?;
             let vecs = PyArray1::from_vec(py, vecs).reshape([n, width, width])?;
             Ok((arr.into_any(), vecs.into_any(), None))

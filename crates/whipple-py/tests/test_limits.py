@@ -151,6 +151,11 @@ def interrupted_within(call: str, busy: float = 0.3) -> float:
     "bike.nonlinear_state_matrix(np.linspace(0.0, 10.0, 10**6))",
     "bike.frequency_response(np.linspace(0.5, 10.0, 15000), np.logspace(-1, 2, 1000))",
     "bike.compare(np.linspace(0.0, 10.0, 100000))",
+    # The closed loop's tracked sweep with eigenvectors, and a loop of order 5 (general).
+    "bike.closed_loop([[-100.0, 10.0, -20.0, 0.0]], inputs='steer_torque')"
+    ".eig(np.linspace(0.0, 10.0, 4 * 10**6))",
+    "bike.closed_loop([[-100.0, 10.0, -20.0, 0.0, 1.0]], inputs='steer_torque', states='yaw')"
+    ".eig(np.linspace(0.0, 10.0, 10**6))",
 ])
 def test_ctrl_c_raises_keyboard_interrupt_promptly(call):
     latency = interrupted_within(call)

@@ -512,15 +512,27 @@ fn bad_gains_q_r_and_poles_are_errors_naming_the_field() -> Result<(), Error> {
         .chain([Complex64::new(-5.0, 0.0)])
         .collect::<Vec<_>>();
     assert_eq!(what(x.place_poles(&five)).0, "inputs");
-    // A closed loop's transfer functions are not formed from the open loop's matrices.
+    // The closed loop of steer into the fall.
     let closed = ClosedLoop::new(
         &bike,
         &steer_only(vec![]),
         Gains::Constant(steer_into_fall()),
     )?;
+    // A closed loop's transfer functions exist for gains on φ, δ, φ̇, δ̇ (checked against the
+    // direct solve in linear_system.rs); a gain on yaw is refused naming `gains`.
+    assert!(closed.system(5.0)?.transfer_function(0, 0).is_ok());
+    let heading = ClosedLoop::new(
+        &BenchmarkParameters::meijaard2007(),
+        &steer_only(vec![StateVariable::Yaw]),
+        Gains::Constant(DMatrix::from_row_slice(
+            1,
+            5,
+            &[-100.0, 10.0, -20.0, 0.0, 5.0],
+        )),
+    )?;
     assert_eq!(
-        what(closed.system(5.0)?.transfer_function(0, 0)).0,
-        "system"
+        what(heading.system(5.0)?.transfer_function(0, 0)).0,
+        "gains"
     );
     Ok(())
 }

@@ -1,5 +1,7 @@
 //! Speed sweeps: eigenvalues at many speeds, modes tracked and labelled.
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use super::eigen::{Complex64, certified_roots, quartic_roots};
 use super::modes::{Mode, Tracker, Votes};
 use crate::error::{Error, Result};
@@ -428,21 +430,40 @@ fn rows_of<P: Quartics + ?Sized, E: From<Error>>(
     })
 }
 
-/// [`eigen_sweep`] of any family of quartics (a closed loop's): the same two passes.
-pub(crate) fn eigen_sweep_of<P: Quartics + ?Sized>(poly: &P, speeds: &[f64]) -> Result<EigenSweep> {
-    let share = checked_share(speeds.iter().copied())?;
-    let columns = columns(poly, speeds.iter().copied(), share)?;
+/// [`eigen_sweep`] of any family of quartics (a closed loop's): the same two passes, stopped
+/// with [`Error::InvalidArgument`] `what: "stopped"` when `stop` is set (checked before every
+/// speed of each pass).
+pub(crate) fn eigen_sweep_of<P: Quartics + ?Sized>(
+    poly: &P,
+    speeds: &[f64],
+    stop: &AtomicBool,
+) -> Result<EigenSweep> {
+    let stopped = || {
+        Err(Error::InvalidArgument {
+            what: "stopped",
+            rule: "the sweep was stopped before it finished".into(),
+        })
+    };
+    // The passes see the speeds up to the first one after `stop` is set.
+    let until = || {
+        speeds
+            .iter()
+            .copied()
+            .take_while(|_| !stop.load(Ordering::Relaxed))
+    };
+    let share = checked_share(until())?;
+    let columns = columns(poly, until(), share)?;
+    if stop.load(Ordering::Relaxed) {
+        return stopped();
+    }
     let mut eigenvalues = Vec::with_capacity(speeds.len());
-    rows_of(
-        poly,
-        speeds.iter().copied(),
-        share,
-        columns,
-        &mut |_, values| {
-            eigenvalues.push(*values);
-            Ok::<(), Error>(())
-        },
-    )?;
+    rows_of(poly, until(), share, columns, &mut |_, values| {
+        eigenvalues.push(*values);
+        Ok::<(), Error>(())
+    })?;
+    if stop.load(Ordering::Relaxed) {
+        return stopped();
+    }
     Ok(EigenSweep {
         speeds: speeds.to_vec(),
         eigenvalues,

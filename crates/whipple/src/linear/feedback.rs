@@ -22,7 +22,9 @@
 //! order: the closed loop is then only the matrix A − B K, its eigenvalues come from the
 //! general eigensolver ([`ClosedLoop::eigenvalues`]) and nothing about it is certified.
 
-use nalgebra::{DMatrix, DVector, Matrix2};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use nalgebra::{DMatrix, DVector};
 
 use super::characteristic::{GeneralSpeedPolynomials, Pencil};
 use super::system::{LinearSystem, SystemRequest};
@@ -312,29 +314,49 @@ impl ClosedLoop {
     /// matrix, as the open loop's; otherwise one component per state of the system, the
     /// right singular vector of A − B K − λ I for its smallest singular value.
     pub fn eigenvector(&self, speed: f64, value: Complex64) -> Result<DVector<Complex64>> {
+        let mut vectors = self.eigenvectors(speed, &[value])?;
+        vectors.pop().ok_or_else(|| Error::InvalidArgument {
+            what: "eigenvalue",
+            rule: "no eigenvector was formed".into(),
+        })
+    }
+
+    /// [`Self::eigenvector`] of each of `values` at one `speed` (the loop's matrices formed
+    /// once).
+    pub fn eigenvectors(
+        &self,
+        speed: f64,
+        values: &[Complex64],
+    ) -> Result<Vec<DVector<Complex64>>> {
         let k = self.gains.at_checked(speed)?;
-        if !value.re.is_finite() || !value.im.is_finite() {
+        if let Some(value) = values
+            .iter()
+            .find(|z| !z.re.is_finite() || !z.im.is_finite())
+        {
             return Err(Error::InvalidArgument {
                 what: "eigenvalue",
                 rule: format!("must be finite, got {value}"),
             });
         }
         if self.lean_steer {
-            let c = &self.canonical;
-            let fk = &self.forces * k.columns(0, 4);
-            let block = |col: usize| {
-                Matrix2::new(
-                    fk[(0, col)],
-                    fk[(0, col + 1)],
-                    fk[(1, col)],
-                    fk[(1, col + 1)],
-                )
-            };
-            let damping = c.c1 * speed + block(2);
-            let stiffness = c.k0 * c.g + c.k2 * (speed * speed) + block(0);
-            let x = second_order_eigenvector(&c.m, &damping, &stiffness, value);
-            return Ok(DVector::from_iterator(4, x.iter().copied()));
+            let zero = DMatrix::zeros(k.nrows(), k.ncols());
+            let (m, damping, stiffness) =
+                Pencil::closed(&self.canonical, &self.forces, &k, &zero).at_speed(speed);
+            return Ok(values
+                .iter()
+                .map(|value| {
+                    let x = second_order_eigenvector(&m, &damping, &stiffness, *value);
+                    DVector::from_iterator(4, x.iter().copied())
+                })
+                .collect());
         }
+        values
+            .iter()
+            .map(|value| self.general_eigenvector(speed, *value))
+            .collect()
+    }
+
+    fn general_eigenvector(&self, speed: f64, value: Complex64) -> Result<DVector<Complex64>> {
         let system = self.system(speed)?;
         let a = system.a();
         let n = a.nrows();
@@ -423,6 +445,13 @@ impl ClosedLoop {
     /// labelled as [`crate::eigen_sweep`] does for the open loop (the same code), for gains
     /// on φ, δ, φ̇, δ̇; every speed must lie in the schedule's range.
     pub fn eigen_sweep(&self, speeds: &[f64]) -> Result<EigenSweep> {
+        self.eigen_sweep_until(speeds, &AtomicBool::new(false))
+    }
+
+    /// [`Self::eigen_sweep`] that stops early when `stop` is set (checked before every
+    /// speed), with [`Error::InvalidArgument`] `what: "stopped"`: for front ends that honour
+    /// Ctrl-C.
+    pub fn eigen_sweep_until(&self, speeds: &[f64], stop: &AtomicBool) -> Result<EigenSweep> {
         self.refuse_ignorable("the tracked sweep")?;
         let (lo, hi) = self.gains.speed_range();
         if let Some(v) = speeds.iter().find(|v| !(**v >= lo && **v <= hi)) {
@@ -436,7 +465,7 @@ impl ClosedLoop {
             breaks.push(a);
             pieces.push(CharacteristicPolynomial::from_pencil(&pencil));
         }
-        eigen_sweep_of(&Piecewise { breaks, pieces }, speeds)
+        eigen_sweep_of(&Piecewise { breaks, pieces }, speeds, stop)
     }
 
     /// The eigenvalues of A − B K(v) over `speeds` from the general eigensolver, for any
@@ -465,6 +494,16 @@ impl ClosedLoop {
     /// # Ok::<(), whipple::Error>(())
     /// ```
     pub fn general_sweep(&self, speeds: &[f64]) -> Result<Vec<Vec<Complex64>>> {
+        self.general_sweep_until(speeds, &AtomicBool::new(false))
+    }
+
+    /// [`Self::general_sweep`] that stops early when `stop` is set (checked before every
+    /// speed), with [`Error::InvalidArgument`] `what: "stopped"`.
+    pub fn general_sweep_until(
+        &self,
+        speeds: &[f64],
+        stop: &AtomicBool,
+    ) -> Result<Vec<Vec<Complex64>>> {
         if speeds.len() > MAX_GENERAL_SWEEP_SPEEDS {
             return Err(Error::InvalidArgument {
                 what: "speeds",
@@ -476,6 +515,12 @@ impl ClosedLoop {
         }
         let mut rows: Vec<Vec<Complex64>> = Vec::with_capacity(speeds.len());
         for v in speeds {
+            if stop.load(Ordering::Relaxed) {
+                return Err(Error::InvalidArgument {
+                    what: "stopped",
+                    rule: "the sweep was stopped before it finished".into(),
+                });
+            }
             let values = self.eigenvalues(*v)?;
             let row = match rows.last() {
                 Some(previous) => matched(previous, values),
