@@ -287,6 +287,9 @@ struct Placed<T> {
     antero_posterior: bool,
 }
 
+/// A limb's two segments: the solids of its upper and lower segment.
+type Limb<T> = (Vec<Placed<T>>, Vec<Placed<T>>);
+
 /// A segment's mass, mass centre on its z axis, inertia about it (own frame) and length, its
 /// solids stacked from its joint along +z (`up`) or −z.
 fn stack<T: RealField + Copy>(solids: &[Placed<T>], up: bool) -> (T, T, Matrix3<T>, T) {
@@ -424,7 +427,7 @@ fn build<T: RealField + Copy>(
     let s3_height = s3.height;
 
     // Arms: levels 0..7 from the shoulder, solids built from the distal level up.
-    let arm = |side: char| -> Result<(Vec<Placed<T>>, Vec<Placed<T>>)> {
+    let arm = |side: char| -> Result<Limb<T>> {
         let n = |suffix: &str| format!("L{side}{suffix}");
         let mut levels = Vec::with_capacity(8);
         for i in 0..4 {
@@ -450,7 +453,7 @@ fn build<T: RealField + Copy>(
         let lower = solids.split_off(2);
         Ok((solids, lower))
     };
-    let leg = |side: char| -> Result<(Vec<Placed<T>>, Vec<Placed<T>>)> {
+    let leg = |side: char| -> Result<Limb<T>> {
         let n = |suffix: &str| format!("L{side}{suffix}");
         // The hip level: a circle of the mean of Ls0's radius and width.
         let hip = Stadium::circle(T::pi() * (ls0.radius * r.v("Ls0w")).abs().sqrt());

@@ -100,7 +100,7 @@ pub fn read_yeadon_measurements(text: &str) -> Result<YeadonMeasurements<f64>> {
     for (line, key, value) in entries(text, f)? {
         match key.as_str() {
             "measurementconversionfactor" => {
-                if !(value > 0.0) {
+                if value.is_nan() || value <= 0.0 {
                     return Err(error(
                         f,
                         line,
@@ -124,7 +124,7 @@ pub fn read_yeadon_measurements(text: &str) -> Result<YeadonMeasurements<f64>> {
                         format!("`{name}` is not one of Yeadon's 95 measurements"),
                     ));
                 };
-                if !(value > 0.0) {
+                if value.is_nan() || value <= 0.0 {
                     return Err(error(
                         f,
                         line,

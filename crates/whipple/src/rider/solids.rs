@@ -39,7 +39,9 @@ impl<T: RealField + Copy> Stadium<T> {
         let denominator = T::two_pi() - c(4.0);
         let thickness = (T::pi() * w - p) / denominator;
         let radius = (p - c::<T>(2.0) * w) / denominator;
-        if !(radius > T::zero()) || thickness < T::zero() {
+        if radius.partial_cmp(&T::zero()) != Some(std::cmp::Ordering::Greater)
+            || thickness < T::zero()
+        {
             return Err(format!(
                 "{fields}: not a stadium (a stadium's perimeter lies between 2 and π times its \
                  width, above 2 for a positive radius and at most π for a non-negative flat length)"
