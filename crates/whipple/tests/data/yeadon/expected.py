@@ -1,10 +1,13 @@
 """Writes expected.json: the Yeadon model of every rider file here, as computed by the Python
 package `yeadon` (PyPI), for whipple's cross-check (crates/whipple/tests/yeadon.rs).
 
-Run from this folder with a throw-away venv that has `yeadon` installed:
+Run with a throw-away venv that has `yeadon` installed:
 
     python3 -m venv /tmp/yeadon-venv && /tmp/yeadon-venv/bin/pip install yeadon
-    /tmp/yeadon-venv/bin/python expected.py > expected.json
+    cd crates/whipple/tests/data/yeadon && /tmp/yeadon-venv/bin/python expected.py > expected.json
+
+The Python package's tests import `cases()` and compare it with `whipple rider-inertia`
+(crates/whipple-py/tests/test_yeadon.py).
 
 yeadon 2.0.1 is corrected in three places before it runs (each is checked independently in
 whipple's own tests, so the cross-check is not circular):
@@ -24,6 +27,7 @@ set_CFG_dict, since Human(meas, cfg_path) reads the file without updating the se
 import copy
 import glob
 import json
+import os
 import sys
 import warnings
 
@@ -90,37 +94,53 @@ def flat(a):
     return [float(x) for x in np.asarray(a).ravel()]
 
 
-cases = []
-for meas in sorted(glob.glob('*YeadonMeas.txt')):
-    rider = meas[:-len('YeadonMeas.txt')]
-    cfgs = [None] + sorted(glob.glob(rider + '*YeadonCFG.txt'))
-    if rider == 'Jason':
-        cfgs.append('ArbitraryYeadonCFG.txt')
-    for cfg in cfgs:
-        patch(ORIGINAL)
-        raw, _ = human(meas, cfg)
-        patch(CORRECTED)
-        h, caught = human(meas, cfg)
-        cases.append({
-            'measurements': meas,
-            'configuration': cfg,
-            'warnings': caught,
-            'mass': float(h.mass),
-            'center_of_mass': flat(h.center_of_mass),
-            'inertia': flat(h.inertia),
-            'segments': [{
-                'name': s.label.split(':')[0],
-                'mass': float(s.mass),
-                'center_of_mass': flat(s.center_of_mass),
-                'orientation': flat(s.rot_mat),
-                'local_inertia': flat(s.rel_inertia),
-                'inertia': flat(s.inertia),
-            } for s in h.segments],
-            'yeadon_as_published': {
-                'center_of_mass': flat(raw.center_of_mass),
-                'inertia': flat(raw.inertia),
-            },
-        })
+HERE = os.path.dirname(os.path.abspath(__file__))
 
-json.dump({'yeadon': yeadon.__version__, 'cases': cases}, sys.stdout, indent=1)
-sys.stdout.write('\n')
+
+def cases():
+    """Every measurement file here in the zero configuration and in each of its configuration
+    files (Jason also in ArbitraryYeadonCFG.txt), as yeadon computes them (corrected)."""
+    out = []
+    for meas_path in sorted(glob.glob(os.path.join(HERE, '*YeadonMeas.txt'))):
+        meas = os.path.basename(meas_path)
+        rider = meas[:-len('YeadonMeas.txt')]
+        cfgs = [None] + sorted(os.path.basename(p) for p in
+                               glob.glob(os.path.join(HERE, rider + '*YeadonCFG.txt')))
+        if rider == 'Jason':
+            cfgs.append('ArbitraryYeadonCFG.txt')
+        for cfg in cfgs:
+            cfg_path = None if cfg is None else os.path.join(HERE, cfg)
+            try:
+                patch(ORIGINAL)
+                raw, _ = human(meas_path, cfg_path)
+                patch(CORRECTED)
+                h, caught = human(meas_path, cfg_path)
+            finally:
+                patch(ORIGINAL)
+            out.append({
+                'measurements': meas,
+                'configuration': cfg,
+                'warnings': caught,
+                'mass': float(h.mass),
+                'center_of_mass': flat(h.center_of_mass),
+                'inertia': flat(h.inertia),
+                'segments': [{
+                    'name': s.label.split(':')[0],
+                    'mass': float(s.mass),
+                    'center_of_mass': flat(s.center_of_mass),
+                    'orientation': flat(s.rot_mat),
+                    'local_inertia': flat(s.rel_inertia),
+                    'inertia': flat(s.inertia),
+                } for s in h.segments],
+                'yeadon_as_published': {
+                    'center_of_mass': flat(raw.center_of_mass),
+                    'inertia': flat(raw.inertia),
+                },
+            })
+    yeadon.Human.segmental_densities = copy.deepcopy(ORIGINAL_DENSITIES)
+    return out
+
+
+if __name__ == '__main__':
+    json.dump({'yeadon': yeadon.__version__, 'cases': cases()}, sys.stdout, indent=1)
+    sys.stdout.write('\n')
