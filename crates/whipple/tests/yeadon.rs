@@ -318,3 +318,17 @@ fn configuration_files_are_checked() {
         other => panic!("{other:?}"),
     }
 }
+
+#[test]
+fn a_key_given_twice_names_both_lines() {
+    let text = format!("{}\nLs1L: 17.6\n", file("JasonYeadonMeas.txt"));
+    let (field, line, message) = parse_error(read_yeadon_measurements(&text).unwrap_err());
+    assert_eq!(
+        (field.as_deref(), line),
+        (Some("Ls1L"), text.lines().count())
+    );
+    assert!(
+        message.contains(&format!("first on line {}", line_of(&text, "Ls1L"))),
+        "{message}"
+    );
+}

@@ -49,6 +49,7 @@ fn entries(text: &str, format: &'static str) -> Result<Vec<(usize, String, f64)>
         ));
     }
     let mut out = Vec::new();
+    let mut seen = std::collections::HashMap::new();
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;
         let content = raw.split('#').next().unwrap_or("").trim();
@@ -74,7 +75,7 @@ fn entries(text: &str, format: &'static str) -> Result<Vec<(usize, String, f64)>
                 format!("`{value}` is not a finite number"),
             ));
         };
-        if let Some((first, _, _)) = out.iter().find(|(_, k, _)| k == key) {
+        if let Some(first) = seen.insert(key.to_string(), line) {
             return Err(error(
                 format,
                 line,
