@@ -368,10 +368,20 @@ pub fn yeadon_body<T: RealField + Copy>(
         values,
     };
     let body = build(&reader, configuration, T::one())?;
-    match measurements.total_mass {
-        Some(total) => build(&reader, configuration, total / body.mass),
-        None => Ok(body),
+    let body = match measurements.total_mass {
+        Some(total) => build(&reader, configuration, total / body.mass)?,
+        None => body,
+    };
+    let finite = std::iter::once(body.mass)
+        .chain(body.center_of_mass.iter().copied())
+        .chain(body.inertia.iter().copied())
+        .all(|x| to_f64(x).is_finite());
+    if !finite {
+        return Err(Error::NonFinite {
+            context: "the Yeadon body (measurements too large for the arithmetic)".to_string(),
+        });
     }
+    Ok(body)
 }
 
 fn build<T: RealField + Copy>(
