@@ -14,6 +14,7 @@ mod figures;
 mod interrupt;
 mod output;
 mod response;
+mod rider;
 mod simulate;
 mod speeds;
 mod time_response;
@@ -257,6 +258,9 @@ enum Command {
     Turn(turns::TurnArgs),
     /// The bicycle under control: which modes each input can reach (controllability).
     Control(control::ControlArgs),
+    /// A rider's body from the Yeadon model (95 measurements, 21 joint angles): the body's and
+    /// each segment's mass, mass centre and inertia.
+    RiderInertia(rider::RiderInertiaArgs),
     /// The families of hands-free steady turns (pseudo-arclength continuation), with a figure of
     /// lean, steer and radius against speed (stable parts bold).
     Turns(turns::TurnsArgs),
@@ -420,6 +424,7 @@ where
         Command::Simulate(args) => simulate::run(cx, &args),
         Command::Turn(args) => turns::turn(cx, &args),
         Command::Control(args) => control::run(cx, &args),
+        Command::RiderInertia(args) => rider::run(&args),
         Command::Turns(args) => turns::turns(cx, &args),
         Command::Serve {
             port,

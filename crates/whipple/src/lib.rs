@@ -71,6 +71,7 @@ mod integrate;
 mod linear;
 mod nonlinear;
 mod parameters;
+mod rider;
 mod side_view;
 
 /// The library's error: one variant per kind of failure, naming the field, value and rule.
@@ -530,6 +531,14 @@ pub mod advanced {
         pub use crate::parameters::measured::{
             Hanging, MAX_HANGINGS, Measured, MeasuredFile, MeasuredParameters, Measurements,
             benchmark_from_measurements, read_measurements,
+        };
+    }
+    #[doc = "The Yeadon human body model (Yeadon 1990): a rider's 11 segments from the 95 anthropometric measurements and the 21 joint angles, with `yeadon`'s files read."]
+    pub mod rider {
+        pub use crate::rider::{
+            CONFIGURATION_ANGLES, MEASUREMENT_NAMES, SEGMENT_NAMES, YeadonBody,
+            YeadonConfiguration, YeadonMeasurements, YeadonSegment, read_yeadon_configuration,
+            read_yeadon_measurements, yeadon_body,
         };
     }
     #[doc = "Certified real roots of low-degree polynomials."]

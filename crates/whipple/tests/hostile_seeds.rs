@@ -110,3 +110,28 @@ fn measured_file_seeds() {
         }
     }
 }
+
+/// `yeadon`'s files: an `ok-*` seed reads (a `-meas` one also builds a body with finite mass,
+/// mass centre and inertia); an `err-*` seed is refused by the reader or the model.
+#[test]
+fn yeadon_file_seeds() {
+    use whipple::advanced::rider::{
+        YeadonConfiguration, read_yeadon_configuration, read_yeadon_measurements, yeadon_body,
+    };
+    for (name, data) in seeds("yeadon_files") {
+        let text = std::str::from_utf8(&data).expect("UTF-8");
+        let result = if name.ends_with("-cfg.txt") {
+            read_yeadon_configuration(text).map(|_| ())
+        } else {
+            read_yeadon_measurements(text)
+                .and_then(|m| yeadon_body(&m, &YeadonConfiguration::zero()))
+                .map(|body| {
+                    assert!(body.mass.is_finite() && body.inertia.iter().all(|x| x.is_finite()));
+                })
+        };
+        match result {
+            Ok(()) => assert!(name.starts_with("ok-"), "{name}: accepted"),
+            Err(e) => assert!(name.starts_with("err-"), "{name}: refused: {e}"),
+        }
+    }
+}
