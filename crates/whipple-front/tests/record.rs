@@ -178,3 +178,32 @@ proptest! {
         let _ = read_record(&bytes, "r.mat", &RecordRequest::default());
     }
 }
+
+/// The fuzz target's seeds (`fuzz/seeds/period_records/`), replayed on stable: `ok-` seeds read
+/// and fit, `err-` seeds give an error with a message.
+#[test]
+fn fuzz_seeds_replay() {
+    let dir =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fuzz/seeds/period_records");
+    let mut count = 0;
+    for entry in std::fs::read_dir(&dir).expect("the seeds are in the repository") {
+        let path = entry.expect("a directory entry").path();
+        let name = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or_default()
+            .to_string();
+        let bytes = std::fs::read(&path).expect("a seed reads");
+        let result = read_record(&bytes, &name, &RecordRequest::default())
+            .and_then(|record| fit_period(&record.time, &record.signal));
+        match result {
+            Ok(fit) => assert!(name.starts_with("ok-") && fit.period.is_finite(), "{name}"),
+            Err(e) => assert!(
+                name.starts_with("err-") && !e.to_string().is_empty(),
+                "{name}: {e}"
+            ),
+        }
+        count += 1;
+    }
+    assert!(count >= 5);
+}
