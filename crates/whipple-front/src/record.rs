@@ -15,6 +15,8 @@ use whipple::advanced::measured::period::MAX_SAMPLES;
 
 /// The largest record file read \[bytes\] (64 MiB).
 pub const MAX_RECORD_BYTES: usize = 64 << 20;
+/// The most columns a CSV record may have.
+pub const MAX_COLUMNS: usize = 1000;
 /// The most a `.mat` file's compressed variables may expand to, together \[bytes\] (128 MiB).
 pub const MAX_EXPANDED_BYTES: usize = 128 << 20;
 
@@ -131,6 +133,17 @@ pub fn read_csv_record(text: &str, request: &RecordRequest) -> Result<Record, Er
             continue;
         }
         let fields = split(line);
+        if fields.len() > MAX_COLUMNS {
+            return Err(parse_error(
+                CSV,
+                None,
+                number,
+                format!(
+                    "{} columns; a record has at most {MAX_COLUMNS}",
+                    fields.len()
+                ),
+            ));
+        }
         let values: Vec<Option<f64>> = fields.iter().map(|f| f.parse::<f64>().ok()).collect();
         if columns.is_empty() && header.is_none() && values.iter().any(Option::is_none) {
             width = fields.len();
