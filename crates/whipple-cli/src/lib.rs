@@ -13,6 +13,7 @@ mod feedback;
 mod figures;
 mod interrupt;
 mod output;
+mod period;
 mod response;
 mod rider;
 mod simulate;
@@ -294,6 +295,9 @@ enum Command {
         #[arg(long)]
         report: Option<std::path::PathBuf>,
     },
+    /// A pendulum's period (± σ) and damping fitted to an oscillation record (CSV or MATLAB
+    /// .mat, as BicycleParameters' rate-gyro files), with a figure of the fit.
+    Period(period::PeriodArgs),
     /// JBike6's stylized side view of the bicycle.
     Draw {
         #[arg(long, help = whipple_front::formats::bike_help())]
@@ -389,6 +393,7 @@ where
             format,
         } => speeds::speeds(cx, &bike, range.as_deref(), format),
         Command::Draw { bike, out } => commands::draw(cx, &bike, &out),
+        Command::Period(args) => period::run(args),
         Command::Map {
             bike,
             x,

@@ -9,6 +9,7 @@
 //! - [`design`]: design axes `NAME=START:STOP:COUNT` into the library's typed `Axis`, and a study
 //!   with its axes as typed;
 //! - [`system`]: the linear system's inputs and outputs by name, frequency grids;
+//! - [`record`]: oscillation records (CSV, MATLAB `.mat`) for the period fit;
 //! - [`units`]: degrees to radians and back, units spelled for people (the units themselves are
 //!   the library's parameter table's);
 //! - [`message`]: the library's errors in the words of the options the user gave;
@@ -29,6 +30,7 @@ pub mod design;
 pub mod format;
 pub mod formats;
 pub mod message;
+pub mod record;
 pub mod simulation;
 pub mod system;
 pub mod units;

@@ -527,6 +527,9 @@ pub mod advanced {
     }
     #[doc = "Bicycles from bench measurements: BicycleParameters' `*Measured.txt` read, and the steps (Moore 2012 ch. 2) to benchmark parameters with exact first-order σ and covariance."]
     pub mod measured {
+        /// Pendulum periods from oscillation records: a decaying oscillation fitted by
+        /// Levenberg–Marquardt, the period's σ from the fit's covariance.
+        pub use crate::parameters::measured::period;
         pub use crate::parameters::measured::steps;
         pub use crate::parameters::measured::{
             Hanging, MAX_HANGINGS, Measured, MeasuredFile, MeasuredParameters, Measurements,

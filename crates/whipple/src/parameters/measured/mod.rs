@@ -21,6 +21,7 @@
 //! Measurements are independent inputs; a key given as a list (repeated measurements) is
 //! their mean, with σ = √(Σσᵢ²)/n as BicycleParameters computes it.
 
+pub mod period;
 mod read;
 pub mod steps;
 #[cfg(test)]
