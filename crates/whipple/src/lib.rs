@@ -526,6 +526,7 @@ pub mod advanced {
     }
     #[doc = "Bicycles from bench measurements: BicycleParameters' `*Measured.txt` read, and the steps (Moore 2012 ch. 2) to benchmark parameters with exact first-order σ and covariance."]
     pub mod measured {
+        pub use crate::parameters::measured::report::{Correlation, Step};
         pub use crate::parameters::measured::steps;
         pub use crate::parameters::measured::{
             Hanging, MAX_HANGINGS, Measured, MeasuredFile, MeasuredParameters, Measurements,
