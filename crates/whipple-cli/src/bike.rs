@@ -116,7 +116,7 @@ pub fn load(cx: &RunContext, arg: &str) -> Result<LoadedBike> {
 
 /// Reads a parameter file, at most [`MAX_FILE_BYTES`] of it: a longer file (or a device that
 /// never ends, `/dev/zero`) is refused when the bound is passed, not read into memory.
-fn read_capped(path: &Path) -> Result<Vec<u8>> {
+pub(crate) fn read_capped(path: &Path) -> Result<Vec<u8>> {
     use std::io::Read;
     let context = || format!("reading parameters from {}", path.display());
     let file = std::fs::File::open(path).with_context(context)?;
@@ -157,7 +157,7 @@ fn window(line: &str, column: usize) -> (String, usize) {
 }
 
 /// A parse error with the file name and, where known, the offending line with a caret.
-fn located(error: Error, path: &Path, text: &str) -> anyhow::Error {
+pub(crate) fn located(error: Error, path: &Path, text: &str) -> anyhow::Error {
     match &error {
         Error::Parse { line, column, .. } if *line > 0 => {
             let source_line = text
