@@ -11,6 +11,7 @@ mod design;
 mod errors;
 mod guard;
 mod linear;
+mod measure;
 mod side_view;
 mod simulate;
 mod system;
@@ -45,6 +46,7 @@ fn _whipple(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(bicycle::formats, m)?)?;
     m.add_function(wrap_pyfunction!(bicycle::parameter_table, m)?)?;
     m.add_function(wrap_pyfunction!(cli::cli_main, m)?)?;
+    m.add_function(wrap_pyfunction!(measure::measure, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_FILE_BYTES", whipple::advanced::io::MAX_FILE_BYTES)?;
     Ok(())

@@ -699,7 +699,8 @@ impl MeasuredParameters {
         }
         let inputs: Vec<String> = entries.iter().map(|(k, _)| k.clone()).collect();
         let sigmas: Vec<f64> = entries.iter().map(|(_, m)| m.sigma).collect();
-        let steps = report::steps(records, &step_jacobian, &inputs, &sigmas);
+        let measured: Vec<f64> = entries.iter().map(|(_, m)| m.value).collect();
+        let steps = report::steps(records, &step_jacobian, &inputs, &measured, &sigmas);
         Ok(MeasuredParameters {
             benchmark,
             sigma,

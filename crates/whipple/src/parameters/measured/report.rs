@@ -66,7 +66,9 @@ pub struct Step {
     pub value: f64,
     /// Its first-order standard deviation, `None` where it is not carried (the residuals).
     pub sigma: Option<f64>,
-    /// The measurements (file keys) it depends on: those with a non-zero derivative.
+    /// The measurements (file keys) it depends on: those whose relative effect |∂q/∂mⱼ mⱼ| is
+    /// more than 1e-10 of the largest (a derivative that is zero but for round-off, as the
+    /// principal axes' angle's on the rod's mass, is left out).
     pub inputs: Vec<String>,
     /// Whether it is one of the benchmark parameters (the file written holds it).
     pub benchmark: bool,
@@ -78,6 +80,7 @@ pub(crate) fn steps(
     records: Vec<Record<f64>>,
     jacobian: &DMatrix<f64>,
     inputs: &[String],
+    values: &[f64],
     sigmas: &[f64],
 ) -> Vec<Step> {
     records
@@ -85,10 +88,16 @@ pub(crate) fn steps(
         .enumerate()
         .map(|(i, r)| {
             let row = (0..inputs.len()).map(|j| jacobian.get((i, j)).copied().unwrap_or(0.0));
-            let depends: Vec<String> = row
+            let effect: Vec<f64> = row
                 .clone()
+                .zip(values)
+                .map(|(d, m)| if d.is_finite() { (d * m).abs() } else { 0.0 })
+                .collect();
+            let largest = effect.iter().fold(0.0f64, |a, b| a.max(*b));
+            let depends: Vec<String> = effect
+                .iter()
                 .zip(inputs)
-                .filter(|(d, _)| *d != 0.0 && d.is_finite())
+                .filter(|(e, _)| **e > 0.0 && **e > 1e-10 * largest)
                 .map(|(_, k)| k.clone())
                 .collect();
             let sigma = r.propagated.then(|| {
