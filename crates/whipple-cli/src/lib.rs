@@ -12,6 +12,7 @@ mod design;
 mod feedback;
 mod figures;
 mod interrupt;
+mod measure;
 mod output;
 mod period;
 mod response;
@@ -306,6 +307,9 @@ enum Command {
         #[arg(long)]
         out: std::path::PathBuf,
     },
+    /// A bicycle from BicycleParameters' raw bench measurements (`<Name>Measured.txt`): its
+    /// benchmark parameters with σ, and a report of every step.
+    Measure(measure::MeasureArgs),
 }
 
 /// Runs the `whipple` command with `args` (the program name first, as in `std::env::args_os`)
@@ -427,6 +431,7 @@ where
             quantity,
         } => design::merge(&files, out.as_deref(), plot.as_deref(), quantity),
         Command::Simulate(args) => simulate::run(cx, &args),
+        Command::Measure(args) => measure::run(cx, &args),
         Command::Turn(args) => turns::turn(cx, &args),
         Command::Control(args) => control::run(cx, &args),
         Command::RiderInertia(args) => rider::run(&args),

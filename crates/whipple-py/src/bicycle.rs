@@ -28,7 +28,7 @@ pub struct NativeBicycle {
 }
 
 impl NativeBicycle {
-    fn new(py: Python<'_>, bicycle: Bicycle, strict: bool) -> PyResult<Self> {
+    pub(crate) fn new(py: Python<'_>, bicycle: Bicycle, strict: bool) -> PyResult<Self> {
         let checked = bicycle.check().py_err(py)?;
         let checked = if strict {
             checked.strict().py_err(py)?

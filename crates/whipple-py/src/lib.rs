@@ -11,6 +11,7 @@ mod design;
 mod errors;
 mod guard;
 mod linear;
+mod measure;
 mod period;
 mod side_view;
 mod simulate;
@@ -48,6 +49,7 @@ fn _whipple(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cli::cli_main, m)?)?;
     m.add_function(wrap_pyfunction!(period::fit_period_native, m)?)?;
     m.add_function(wrap_pyfunction!(period::read_period_native, m)?)?;
+    m.add_function(wrap_pyfunction!(measure::measure, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_FILE_BYTES", whipple::advanced::io::MAX_FILE_BYTES)?;
     Ok(())

@@ -530,6 +530,7 @@ pub mod advanced {
         /// Pendulum periods from oscillation records: a decaying oscillation fitted by
         /// Levenberg–Marquardt, the period's σ from the fit's covariance.
         pub use crate::parameters::measured::period;
+        pub use crate::parameters::measured::report::{Correlation, Step};
         pub use crate::parameters::measured::steps;
         pub use crate::parameters::measured::{
             Hanging, MAX_HANGINGS, Measured, MeasuredFile, MeasuredParameters, Measurements,

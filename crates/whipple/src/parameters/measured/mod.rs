@@ -23,6 +23,7 @@
 
 pub mod period;
 mod read;
+pub(crate) mod report;
 pub mod steps;
 #[cfg(test)]
 mod tests;
@@ -304,13 +305,52 @@ impl Measurements<Measured> {
 pub fn benchmark_from_measurements<T: RealField + Copy>(
     m: &Measurements<T>,
 ) -> Result<BenchmarkParameters<T>> {
+    pipeline(m).map(|(benchmark, _)| benchmark)
+}
+
+/// The pipeline itself: the benchmark parameters and every number derived on the way, in the
+/// order computed ([`report::Record`]), so the report and the parameters are one computation.
+fn pipeline<T: RealField + Copy>(
+    m: &Measurements<T>,
+) -> Result<(BenchmarkParameters<T>, Vec<report::Record<T>>)> {
+    use report::Record;
+    let mut out: Vec<Record<T>> = Vec::new();
     // 1. wheels
     let r_r = steps::wheel_radius(m.d_r, m.n_r);
     let r_f = steps::wheel_radius(m.d_f, m.n_f);
+    out.push(Record::new(
+        "rR",
+        "rear wheel radius, from the distance rolled",
+        "wheel_radius",
+        "m",
+        r_r,
+    ));
+    out.push(Record::new(
+        "rF",
+        "front wheel radius, from the distance rolled",
+        "wheel_radius",
+        "m",
+        r_f,
+    ));
     // 2. geometry
     let lambda = steps::steer_axis_tilt(m.gamma);
     let w = m.w;
     let c = steps::trail(r_f, lambda, m.f);
+    out.push(Record::new(
+        "lam",
+        "steer axis tilt, from the head tube angle",
+        "steer_axis_tilt",
+        "rad",
+        lambda,
+    ));
+    out.push(Record::new("w", "wheelbase, as measured", "", "m", w));
+    out.push(Record::new(
+        "c",
+        "trail, from the fork offset, rF and lam",
+        "trail",
+        "m",
+        c,
+    ));
     // 3. mass centres
     let lines = |frame, set: &[Hanging<T>]| -> Vec<steps::HangingLine<T>> {
         set.iter()
@@ -321,6 +361,80 @@ pub fn benchmark_from_measurements<T: RealField + Copy>(
     let front_lines = lines(HungFrame::Front, &m.front_frame);
     let (x_b, z_b) = steps::mass_centre(&rear_lines, "alphaB")?;
     let (x_h, z_h) = steps::mass_centre(&front_lines, "alphaH")?;
+    for (part, name, set, (x, z)) in [
+        ("B", "rear", &rear_lines, (x_b, z_b)),
+        ("H", "front", &front_lines, (x_h, z_h)),
+    ] {
+        for (i, line) in set.iter().enumerate() {
+            let n = i + 1;
+            out.push(Record::owned(
+                format!("beta{part}{n}"),
+                format!("{name} frame, hanging {n}: angle from the x axis to the pendulum's axis"),
+                "hanging_line",
+                "rad",
+                line.beta,
+            ));
+            out.push(Record::owned(
+                format!("slope{part}{n}"),
+                format!(
+                    "{name} frame, hanging {n}: slope dz/dx of the line through the mass centre"
+                ),
+                "hanging_line",
+                "",
+                line.slope,
+            ));
+            out.push(Record::owned(
+                format!("intercept{part}{n}"),
+                format!("{name} frame, hanging {n}: that line's z at x = 0"),
+                "hanging_line",
+                "m",
+                line.intercept,
+            ));
+        }
+        for (i, a) in set.iter().enumerate() {
+            for (j, b) in set.iter().enumerate().skip(i + 1) {
+                if let Some((xi, zi)) = steps::intersection(a, b) {
+                    let (p, q) = (i + 1, j + 1);
+                    for (axis, value) in [("x", xi), ("z", zi)] {
+                        out.push(Record::owned(
+                            format!("{axis}{part}{p}{q}"),
+                            format!(
+                                "{name} frame: {axis} where the lines of hangings {p} and {q} meet"
+                            ),
+                            "intersection",
+                            "m",
+                            value,
+                        ));
+                    }
+                }
+            }
+        }
+        out.push(Record::owned(
+            format!("x{part}"),
+            format!("{name} frame's mass centre: the mean of the intersections"),
+            "mass_centre",
+            "m",
+            x,
+        ));
+        out.push(Record::owned(
+            format!("z{part}"),
+            format!("{name} frame's mass centre: the mean of the intersections"),
+            "mass_centre",
+            "m",
+            z,
+        ));
+        let mut residual = Record::owned(
+            format!("residual{part}"),
+            format!(
+                "{name} frame: root mean square distance of the mass centre from the hanging lines"
+            ),
+            "line_residual",
+            "m",
+            steps::line_residual(set, x, z),
+        );
+        residual.propagated = false;
+        out.push(residual);
+    }
     // 4. compound pendulums
     let i_ryy = steps::compound_pendulum_inertia(m.m_r, m.g, m.l_r, m.t_c_r);
     let i_fyy = steps::compound_pendulum_inertia(m.m_f, m.g, m.l_f, m.t_c_f);
@@ -328,24 +442,151 @@ pub fn benchmark_from_measurements<T: RealField + Copy>(
     let i_byy = steps::compound_pendulum_inertia(m.m_b, m.g, l_b, m.t_c_b);
     let l_h = steps::pendulum_length(x_h, z_h, w, -r_f);
     let i_hyy = steps::compound_pendulum_inertia(m.m_h, m.g, l_h, m.t_c_h);
+    out.push(Record::new(
+        "IRyy",
+        "rear wheel's spin inertia, compound pendulum (TcR1, lR, mR, g)",
+        "compound_pendulum_inertia",
+        "kg m^2",
+        i_ryy,
+    ));
+    out.push(Record::new(
+        "IFyy",
+        "front wheel's spin inertia, compound pendulum (TcF1, lF, mF, g)",
+        "compound_pendulum_inertia",
+        "kg m^2",
+        i_fyy,
+    ));
+    out.push(Record::new(
+        "lB",
+        "rear frame's pendulum length: mass centre to the rear axle",
+        "pendulum_length",
+        "m",
+        l_b,
+    ));
+    out.push(Record::new(
+        "IByy",
+        "rear frame's inertia about y, compound pendulum (TcB1, lB, mB, g)",
+        "compound_pendulum_inertia",
+        "kg m^2",
+        i_byy,
+    ));
+    out.push(Record::new(
+        "lH",
+        "front frame's pendulum length: mass centre to the front axle",
+        "pendulum_length",
+        "m",
+        l_h,
+    ));
+    out.push(Record::new(
+        "IHyy",
+        "front frame's inertia about y, compound pendulum (TcH1, lH, mH, g)",
+        "compound_pendulum_inertia",
+        "kg m^2",
+        i_hyy,
+    ));
     // 5. torsion constant
     let rod = steps::rod_transverse_inertia(m.m_p, m.l_p, m.d_p);
     let k = steps::torsion_constant(rod, m.t_t_p);
+    out.push(Record::new(
+        "IP",
+        "calibration rod's inertia about a transverse axis (mP, lP, dP)",
+        "rod_transverse_inertia",
+        "kg m^2",
+        rod,
+    ));
+    out.push(Record::new(
+        "k",
+        "torsion constant of the pendulum's wire, from the rod's period TtP1",
+        "torsion_constant",
+        "N m/rad",
+        k,
+    ));
     // 6. torsional pendulums
     let i_rxx = steps::torsional_pendulum_inertia(k, m.t_t_r);
     let i_fxx = steps::torsional_pendulum_inertia(k, m.t_t_f);
-    let planar = |set: &[Hanging<T>], lines: &[steps::HangingLine<T>], field: &str| {
+    out.push(Record::new(
+        "IRxx",
+        "rear wheel's inertia about a diameter, torsional pendulum (TtR1, k)",
+        "torsional_pendulum_inertia",
+        "kg m^2",
+        i_rxx,
+    ));
+    out.push(Record::new(
+        "IFxx",
+        "front wheel's inertia about a diameter, torsional pendulum (TtF1, k)",
+        "torsional_pendulum_inertia",
+        "kg m^2",
+        i_fxx,
+    ));
+    let mut planar = |part: &str,
+                      name: &str,
+                      set: &[Hanging<T>],
+                      lines: &[steps::HangingLine<T>]|
+     -> Result<[T; 3]> {
         let moments: Vec<T> = set
             .iter()
             .map(|h| steps::torsional_pendulum_inertia(k, h.period))
             .collect();
+        for (i, j) in moments.iter().enumerate() {
+            let n = i + 1;
+            out.push(Record::owned(
+                format!("J{part}{n}"),
+                format!("{name} frame, hanging {n}: inertia about the wire, torsional pendulum (Tt{part}{n}, k)"),
+                "torsional_pendulum_inertia",
+                "kg m^2",
+                *j,
+            ));
+        }
         let betas: Vec<T> = lines.iter().map(|l| l.beta).collect();
-        steps::planar_inertia(&moments, &betas, field)
+        let tensor = steps::planar_inertia(&moments, &betas, &format!("Tt{part}"))?;
+        for (key, value) in ["xx", "xz", "zz"].iter().zip(tensor) {
+            out.push(Record::owned(
+                format!("I{part}{key}"),
+                format!(
+                    "{name} frame's inertia in the plane, least squares over the hangings' moments"
+                ),
+                "planar_inertia",
+                "kg m^2",
+                value,
+            ));
+        }
+        let (first, second, theta) = steps::principal_planar(tensor[0], tensor[1], tensor[2]);
+        out.push(Record::owned(
+            format!("I{part}1"),
+            format!("{name} frame's larger principal moment in the plane"),
+            "principal_planar",
+            "kg m^2",
+            first,
+        ));
+        out.push(Record::owned(
+            format!("I{part}2"),
+            format!("{name} frame's smaller principal moment in the plane"),
+            "principal_planar",
+            "kg m^2",
+            second,
+        ));
+        out.push(Record::owned(
+            format!("theta{part}"),
+            format!("{name} frame: angle from the x axis to the larger moment's axis"),
+            "principal_planar",
+            "rad",
+            theta,
+        ));
+        Ok(tensor)
     };
-    let [i_bxx, i_bxz, i_bzz] = planar(&m.rear_frame, &rear_lines, "TtB")?;
-    let [i_hxx, i_hxz, i_hzz] = planar(&m.front_frame, &front_lines, "TtH")?;
+    let [i_bxx, i_bxz, i_bzz] = planar("B", "rear", &m.rear_frame, &rear_lines)?;
+    let [i_hxx, i_hxz, i_hzz] = planar("H", "front", &m.front_frame, &front_lines)?;
     // 7. masses and gravity
-    Ok(BenchmarkParameters {
+    for (key, description, unit, value) in [
+        ("mR", "rear wheel's mass, as measured", "kg", m.m_r),
+        ("mF", "front wheel's mass, as measured", "kg", m.m_f),
+        ("mB", "rear frame's mass, as measured", "kg", m.m_b),
+        ("mH", "front frame's mass, as measured", "kg", m.m_h),
+        ("g", "gravity, as measured", "m/s^2", m.g),
+    ] {
+        out.push(Record::new(key, description, "", unit, value));
+    }
+    let benchmark = BenchmarkParameters {
         w,
         c,
         lambda,
@@ -372,7 +613,8 @@ pub fn benchmark_from_measurements<T: RealField + Copy>(
         m_f: m.m_f,
         i_fxx,
         i_fyy,
-    })
+    };
+    Ok((benchmark, out))
 }
 
 /// Benchmark parameters computed from measurements, with the exact first-order uncertainty of
@@ -392,6 +634,9 @@ pub struct MeasuredParameters {
     pub jacobian: DMatrix<f64>,
     /// The covariance of the benchmark parameters, table order: J diag(σ²) Jᵀ.
     pub covariance: DMatrix<f64>,
+    /// Every number the pipeline derived, in the order computed, with its σ and the
+    /// measurements it depends on: the report of `whipple measure`.
+    pub steps: Vec<report::Step>,
 }
 
 impl MeasuredParameters {
@@ -410,11 +655,12 @@ impl MeasuredParameters {
     pub fn new(measurements: &Measurements<Measured>) -> Result<Self> {
         measurements.check()?;
         let values = measurements.values();
-        let benchmark = benchmark_from_measurements(&values)?;
+        let (benchmark, records) = pipeline(&values)?;
         let entries = measurements.entries();
         let n = entries.len();
         let rows = BENCHMARK_TABLE.len();
         let mut jacobian = DMatrix::zeros(rows, n);
+        let mut step_jacobian = DMatrix::zeros(records.len(), n);
         for j in 0..n {
             let mut k = 0;
             let seeded = values.map(|v| {
@@ -422,9 +668,14 @@ impl MeasuredParameters {
                 k += 1;
                 d
             });
-            let derivative = benchmark_from_measurements(&seeded)?.to_array();
-            for (i, d) in derivative.iter().enumerate() {
+            let (derivative, derived) = pipeline(&seeded)?;
+            for (i, d) in derivative.to_array().iter().enumerate() {
                 jacobian[(i, j)] = d.eps;
+            }
+            // The same records in the same order: the pipeline's steps do not branch on values
+            // except where a pair of lines is parallel, which the f64 pass refused already.
+            for (i, d) in derived.iter().enumerate().take(records.len()) {
+                step_jacobian[(i, j)] = d.value.eps;
             }
         }
         let variances = DMatrix::from_diagonal(&nalgebra::DVector::from_iterator(
@@ -447,12 +698,17 @@ impl MeasuredParameters {
                 });
             }
         }
+        let inputs: Vec<String> = entries.iter().map(|(k, _)| k.clone()).collect();
+        let sigmas: Vec<f64> = entries.iter().map(|(_, m)| m.sigma).collect();
+        let measured: Vec<f64> = entries.iter().map(|(_, m)| m.value).collect();
+        let steps = report::steps(records, &step_jacobian, &inputs, &measured, &sigmas);
         Ok(MeasuredParameters {
             benchmark,
             sigma,
-            inputs: entries.into_iter().map(|(k, _)| k).collect(),
+            inputs,
             jacobian,
             covariance,
+            steps,
         })
     }
 

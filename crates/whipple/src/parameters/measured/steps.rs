@@ -220,3 +220,18 @@ pub fn principal_planar<T: RealField + Copy>(i_xx: T, i_xz: T, i_zz: T) -> (T, T
     let theta = (-i_xz).atan2(d) * half;
     (mean + radius, mean - radius, theta)
 }
+
+/// The root mean square distance of a point (x, z) from hanging lines: how well the lines of
+/// a hung frame agree on its mass centre (zero for two lines, which always meet in one point;
+/// the measurement error shows with three or more).
+pub fn line_residual<T: RealField + Copy>(lines: &[HangingLine<T>], x: T, z: T) -> T {
+    if lines.is_empty() {
+        return T::zero();
+    }
+    let mut sum = T::zero();
+    for line in lines {
+        let d = (z - line.slope * x - line.intercept) / (T::one() + line.slope * line.slope).sqrt();
+        sum += d * d;
+    }
+    (sum / c(lines.len() as f64)).sqrt()
+}

@@ -277,3 +277,60 @@ fn principal_axes_rebuild_the_tensor() -> Result<()> {
     }
     Ok(())
 }
+
+/// The report's steps are the pipeline's numbers: each benchmark step equals the parameter
+/// and its σ; a bicycle measured exactly has hanging lines meeting in one point (residual 0)
+/// and its torsion constant from the rod's closed form.
+#[test]
+fn report_steps_are_the_pipeline() -> Result<()> {
+    let file = read_measurements(BROWSER)?;
+    let result = MeasuredParameters::new(&file.measurements)?;
+    let bicycle = result.bicycle();
+    let values = result.benchmark.to_array();
+    let mut seen = 0;
+    for step in result.steps.iter().filter(|s| s.benchmark) {
+        let i = BENCHMARK_TABLE
+            .iter()
+            .position(|p| p.key == step.key)
+            .unwrap();
+        assert_eq!(step.value, values[i], "{}", step.key);
+        let sigma = step.sigma.unwrap();
+        assert!(
+            (sigma - bicycle.sigma_of(&step.key)).abs() <= 1e-14 * sigma.max(1e-300),
+            "{}",
+            step.key
+        );
+        seen += 1;
+    }
+    assert_eq!(seen, BENCHMARK_TABLE.len());
+    let step = |key: &str| result.steps.iter().find(|s| s.key == key).unwrap();
+    assert_eq!(step("rR").inputs, ["dR", "nR"]);
+    assert_eq!(step("k").inputs, ["mP", "lP", "dP", "TtP1"]);
+    assert!(step("residualB").value > 0.0 && step("residualB").sigma.is_none());
+
+    let exact = MeasuredParameters::new(&measured_exactly(&BenchmarkParameters::meijaard2007()))?;
+    let exact_step = |key: &str| exact.steps.iter().find(|s| s.key == key).unwrap().value;
+    assert!(exact_step("residualB") < 1e-12 && exact_step("residualH") < 1e-12);
+    let rod: f64 = 5.56 / 12.0 * (3.0 * 0.015 * 0.015 + 1.05 * 1.05);
+    let k = rod * (2.0 * PI / 1.894).powi(2);
+    assert!((exact_step("k") - k).abs() < 1e-14 * k);
+    Ok(())
+}
+
+/// The largest correlations come sorted by |ρ|, each pair once, within [−1, 1], and agree
+/// with `correlation`.
+#[test]
+fn largest_correlations_are_sorted() -> Result<()> {
+    let result = MeasuredParameters::new(&read_measurements(BROWSER)?.measurements)?;
+    let all = result.largest_correlations(usize::MAX);
+    let with_sigma = result.sigma.len();
+    assert_eq!(all.len(), with_sigma * (with_sigma - 1) / 2);
+    for pair in all.windows(2) {
+        assert!(pair[0].rho.abs() >= pair[1].rho.abs());
+    }
+    for c in &all {
+        assert!(c.rho.abs() <= 1.0 && c.a != c.b);
+        assert!((result.correlation(c.a, c.b).unwrap() - c.rho).abs() < 1e-12);
+    }
+    Ok(())
+}

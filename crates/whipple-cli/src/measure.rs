@@ -1,0 +1,266 @@
+//! `whipple measure`: a bicycle from BicycleParameters' raw bench measurements
+//! (`<Name>Measured.txt`), written as a parameter file with σ, and a report of every step the
+//! core's pipeline took (`whipple::advanced::measured`): which measurements gave which number,
+//! with its σ, and on request the largest correlations between the parameters.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, anyhow, bail};
+use clap::Args;
+use serde_json::json;
+use whipple::Bicycle;
+use whipple::advanced::io::{Format, name_from_file_name, write};
+use whipple::advanced::measured::{MeasuredParameters, read_measurements};
+
+use crate::bike::{RunContext, located, read_capped};
+use crate::commands::{round_sigma, round_to_sigma};
+use crate::output::{Target, number, print_stdout, register_input};
+use crate::{FileFormat, TextFormat};
+
+/// The most correlations `--correlations` prints (every pair of the 26 parameters is 325).
+const MAX_CORRELATIONS: usize = 325;
+
+#[derive(Args)]
+pub struct MeasureArgs {
+    /// BicycleParameters' raw measurements, `<Name>Measured.txt` (values with `+/-` and σ).
+    #[arg(long)]
+    raw: PathBuf,
+    /// Write the bicycle (benchmark form, with σ) to this file; its format follows from the
+    /// extension (.toml, .json, .yaml; .txt is BicycleParameters' Benchmark.txt) or --to.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// The format of --out, overriding its extension.
+    #[arg(long, value_enum)]
+    to: Option<FileFormat>,
+    /// Output format of the report on standard output.
+    #[arg(long, value_enum, default_value = "table")]
+    format: TextFormat,
+    /// Also print the N largest correlations between the parameters (from their covariance).
+    #[arg(long, value_name = "N")]
+    correlations: Option<usize>,
+    /// A rider's Yeadon measurements (`<Rider>YeadonMeas.txt`): not supported yet.
+    #[arg(long)]
+    rider: Option<PathBuf>,
+    /// The rider's configuration on this bicycle (`<Rider><Bike>YeadonCFG.txt`): not supported
+    /// yet.
+    #[arg(long)]
+    configuration: Option<PathBuf>,
+}
+
+/// The file format `--out` is written in: `--to`, else its extension.
+fn out_format(path: &Path, to: Option<FileFormat>) -> Result<Format> {
+    let format = match to {
+        Some(FileFormat::Toml) => Format::Toml,
+        Some(FileFormat::Json) => Format::Json,
+        Some(FileFormat::BpTxt) => Format::BicycleParametersTxt,
+        Some(FileFormat::HcTxt) => Format::HumanControlTxt,
+        Some(FileFormat::Yaml) => Format::Yaml,
+        Some(FileFormat::M) => Format::Jbike6M,
+        None => {
+            let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+            if extension.eq_ignore_ascii_case("txt") {
+                Format::BicycleParametersTxt
+            } else {
+                Format::from_extension(extension).ok_or_else(|| {
+                    anyhow!(
+                        "--out {}: the extension does not name a parameter format (.toml, \
+                         .json, .yaml, .txt): give one or --to",
+                        path.display()
+                    )
+                })?
+            }
+        }
+    };
+    if format == Format::Jbike6M {
+        bail!(
+            "--out {}: a measured bicycle is in the benchmark form, which has no JBike6 .m \
+             layout: write .toml, .json, .yaml or .txt",
+            path.display()
+        );
+    }
+    Ok(format)
+}
+
+pub fn run(_cx: &RunContext, args: &MeasureArgs) -> Result<()> {
+    if args.rider.is_some() || args.configuration.is_some() {
+        let option = if args.rider.is_some() {
+            "--rider"
+        } else {
+            "--configuration"
+        };
+        bail!(
+            "{option}: a rider from the Yeadon body model is not supported yet; measure the \
+             bicycle alone (without --rider and --configuration)"
+        );
+    }
+    if let Some(n) = args.correlations {
+        if n == 0 || n > MAX_CORRELATIONS {
+            bail!(
+                "--correlations {n}: give a count from 1 to {MAX_CORRELATIONS} (the pairs of \
+                 the 26 parameters)"
+            );
+        }
+    }
+    let format = args
+        .out
+        .as_deref()
+        .map(|p| out_format(p, args.to))
+        .transpose()?;
+    if args.to.is_some() && args.out.is_none() {
+        bail!("--to names the format of --out: give --out too");
+    }
+    let path = args.raw.as_path();
+    let bytes = read_capped(path).with_context(|| format!("--raw {}", path.display()))?;
+    // The measurements are an input: no output of this run may be written onto them.
+    register_input(path);
+    let out = args
+        .out
+        .as_deref()
+        .map(|p| Target::check("--out", p))
+        .transpose()?;
+    let text = String::from_utf8(bytes)
+        .map_err(|_| anyhow!("{}: the file is not UTF-8 text", path.display()))?;
+    let file = read_measurements(&text).map_err(|e| located(e, path, &text))?;
+    let result = MeasuredParameters::new(&file.measurements)
+        .map_err(|e| anyhow!(whipple_front::message::message(&e)))
+        .with_context(|| format!("computing the parameters from {}", path.display()))?;
+    let file_name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let name = name_from_file_name(&file_name, Format::BicycleParametersTxt)
+        .unwrap_or_else(|| "measured".into());
+    let bicycle = Bicycle {
+        name: Some(name.clone()),
+        source: Some(format!(
+            "computed by whipple measure from the bench measurements in {file_name} (Moore \
+             2012 ch. 2)"
+        )),
+        ..result.bicycle()
+    };
+    let checked = bicycle
+        .check()
+        .with_context(|| format!("checking the parameters computed for {name}"))?;
+    for notice in &checked.notices {
+        eprintln!("{notice}");
+    }
+    if let (Some(target), Some(format)) = (&out, format) {
+        let written = write(&bicycle, format).with_context(|| format!("writing {name}"))?;
+        target.write_whole(written.as_bytes())?;
+    }
+    let report = match args.format {
+        TextFormat::Table => table(&name, &file_name, &result, args.correlations)?,
+        TextFormat::Json => json_report(&name, &file_name, &result, args.correlations)?,
+    };
+    print_stdout(&report)
+}
+
+/// `value ± σ` to the σ's three digits, or the value alone.
+fn shown(value: f64, sigma: Option<f64>) -> Result<(String, String)> {
+    Ok(match sigma {
+        Some(s) if s > 0.0 => (round_to_sigma(value, s), round_sigma(s)),
+        Some(_) => (number(value)?, "0".into()),
+        None => (number(value)?, "-".into()),
+    })
+}
+
+fn table(
+    name: &str,
+    file_name: &str,
+    result: &MeasuredParameters,
+    correlations: Option<usize>,
+) -> Result<String> {
+    let mut rows = vec![[
+        "key".to_string(),
+        "value".into(),
+        "σ".into(),
+        "unit".into(),
+        "step".into(),
+        "from".into(),
+    ]];
+    for step in &result.steps {
+        let (value, sigma) = shown(step.value, step.sigma)?;
+        let key = if step.benchmark {
+            format!("{} *", step.key)
+        } else {
+            step.key.clone()
+        };
+        rows.push([
+            key,
+            value,
+            sigma,
+            step.unit.to_string(),
+            if step.function.is_empty() {
+                "as measured".into()
+            } else {
+                step.function.to_string()
+            },
+            step.inputs.join(" "),
+        ]);
+    }
+    let widths: Vec<usize> = (0..5)
+        .map(|c| rows.iter().map(|r| r[c].chars().count()).max().unwrap_or(0))
+        .collect();
+    let mut text = format!(
+        "{name}: benchmark parameters from the bench measurements in {file_name}\n\
+         (* a benchmark parameter, written to --out; σ to first order, exact, the measurements \
+         independent; `from`: the measurements each number depends on)\n\n"
+    );
+    for row in &rows {
+        let mut line = String::new();
+        for (c, cell) in row.iter().enumerate() {
+            if c < 5 {
+                let pad = widths[c].saturating_sub(cell.chars().count());
+                if c == 1 || c == 2 {
+                    line.push_str(&" ".repeat(pad));
+                    line.push_str(cell);
+                } else {
+                    line.push_str(cell);
+                    line.push_str(&" ".repeat(pad));
+                }
+                line.push_str("  ");
+            } else {
+                line.push_str(cell);
+            }
+        }
+        text.push_str(line.trim_end());
+        text.push('\n');
+    }
+    if let Some(n) = correlations {
+        text.push_str(
+            "\nLargest correlations between the parameters (ρ = cov/(σσ); \
+             BicycleParameters keeps only the σ):\n",
+        );
+        for c in result.largest_correlations(n) {
+            text.push_str(&format!("  {:>5} {:>5}  {:+.4}\n", c.a, c.b, c.rho));
+        }
+    }
+    Ok(text)
+}
+
+fn json_report(
+    name: &str,
+    file_name: &str,
+    result: &MeasuredParameters,
+    correlations: Option<usize>,
+) -> Result<String> {
+    for step in &result.steps {
+        number(step.value)?;
+    }
+    let mut doc = json!({
+        "bike": name,
+        "raw": file_name,
+        "steps": result.steps,
+        "parameters": result
+            .benchmark
+            .to_array()
+            .iter()
+            .zip(whipple::advanced::table::parameters(whipple::advanced::table::Form::Benchmark))
+            .map(|(v, p)| (p.key.to_string(), json!({ "value": v, "sigma": result.sigma.get(p.key).copied().unwrap_or(0.0) })))
+            .collect::<serde_json::Map<String, serde_json::Value>>(),
+    });
+    if let (Some(n), Some(map)) = (correlations, doc.as_object_mut()) {
+        map.insert("correlations".into(), json!(result.largest_correlations(n)));
+    }
+    Ok(format!("{}\n", serde_json::to_string_pretty(&doc)?))
+}

@@ -1,0 +1,257 @@
+//! `whipple measure` through the real binary: BicycleParameters' raw bench measurements to a
+//! parameter file with σ and a report of every step (issue 30, items 1 and 5).
+
+mod common;
+
+use common::{scratch, stderr_of_failure, stdout, whipple};
+use whipple::advanced::io::{Format, parse};
+use whipple::advanced::measured::{MeasuredParameters, read_measurements};
+
+fn raw(name: &str) -> String {
+    format!(
+        "{}/../whipple/tests/data/measured/{name}Measured.txt",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+fn core(name: &str) -> MeasuredParameters {
+    let text = std::fs::read_to_string(raw(name)).expect("raw file");
+    let file = read_measurements(&text).expect("reads");
+    MeasuredParameters::new(&file.measurements).expect("computes")
+}
+
+/// Browser's raw file gives, in the file written, exactly the core's parameters and σ; the
+/// JSON report holds every step, the benchmark ones equal to the file's.
+#[test]
+fn browser_file_holds_the_core_parameters() {
+    let dir = scratch("measure-browser");
+    let out = dir.join("browser.toml");
+    let report = stdout(&whipple(&[
+        "measure",
+        "--raw",
+        &raw("Browser"),
+        "--out",
+        out.to_str().unwrap(),
+        "--format",
+        "json",
+    ]));
+    let expected = core("Browser");
+    let written = parse(&std::fs::read_to_string(&out).unwrap(), Format::Toml).unwrap();
+    assert_eq!(written.name.as_deref(), Some("Browser"));
+    assert_eq!(written.benchmark().unwrap(), expected.benchmark);
+    assert_eq!(written.sigma, expected.sigma);
+    let json: serde_json::Value = serde_json::from_str(&report).expect("JSON");
+    let steps = json["steps"].as_array().expect("steps");
+    assert_eq!(steps.len(), expected.steps.len());
+    let step = |key: &str| steps.iter().find(|s| s["key"] == key).expect(key);
+    assert_eq!(step("k")["function"], "torsion_constant");
+    assert_eq!(step("rR")["inputs"], serde_json::json!(["dR", "nR"]));
+    assert_eq!(
+        step("IBxx")["value"].as_f64(),
+        Some(expected.benchmark.i_bxx)
+    );
+    assert!(step("residualB")["sigma"].is_null());
+    assert_eq!(
+        json["parameters"]["xB"]["sigma"].as_f64(),
+        Some(expected.sigma["xB"])
+    );
+    // Every format --out knows by its extension reads back the same numbers.
+    for (file, format) in [
+        ("b.json", Format::Json),
+        ("bBenchmark.txt", Format::BicycleParametersTxt),
+    ] {
+        let path = dir.join(file);
+        stdout(&whipple(&[
+            "measure",
+            "--raw",
+            &raw("Browser"),
+            "--out",
+            path.to_str().unwrap(),
+        ]));
+        let back = parse(&std::fs::read_to_string(&path).unwrap(), format).unwrap();
+        assert_eq!(back.benchmark().unwrap(), expected.benchmark, "{file}");
+    }
+}
+
+/// The critical speeds of the file written, with σ, are those of the parameters
+/// BicycleParameters computed from the same measurements (its stored `BrowserBenchmark.txt`).
+#[test]
+fn critical_speeds_with_sigma_from_the_written_file() {
+    let dir = scratch("measure-speeds");
+    let out = dir.join("browser.toml");
+    stdout(&whipple(&[
+        "measure",
+        "--raw",
+        &raw("Browser"),
+        "--out",
+        out.to_str().unwrap(),
+    ]));
+    let speeds = |bike: &str| -> serde_json::Value {
+        serde_json::from_str(&stdout(&whipple(&[
+            "speeds", "--bike", bike, "--format", "json",
+        ])))
+        .expect("JSON")
+    };
+    let ours = speeds(out.to_str().unwrap());
+    let stored = speeds(&format!(
+        "{}/../whipple/tests/data/measured/BrowserBenchmark.txt",
+        env!("CARGO_MANIFEST_DIR")
+    ));
+    for key in [
+        "weave_speed",
+        "capsize_speed",
+        "weave_speed_sigma",
+        "capsize_speed_sigma",
+    ] {
+        let (a, b) = (
+            ours[key].as_f64().expect(key),
+            stored[key].as_f64().expect(key),
+        );
+        assert!(
+            (a - b).abs() <= 1e-9 * b.abs(),
+            "{key}: {a} vs BicycleParameters' {b}"
+        );
+        assert!(a > 0.0, "{key}");
+    }
+    let table = stdout(&whipple(&["speeds", "--bike", out.to_str().unwrap()]));
+    assert!(table.contains(" ± "), "{table}");
+}
+
+/// The table names each step's function and inputs; --correlations adds the largest |ρ|.
+#[test]
+fn table_report_and_correlations() {
+    let text = stdout(&whipple(&[
+        "measure",
+        "--raw",
+        &raw("Browser"),
+        "--correlations",
+        "4",
+    ]));
+    assert!(text.starts_with("Browser: benchmark parameters"), "{text}");
+    let line = text.lines().find(|l| l.starts_with("k ")).expect("k row");
+    assert!(
+        line.contains("torsion_constant") && line.ends_with("mP lP dP TtP1"),
+        "{line}"
+    );
+    let after = text
+        .split("Largest correlations")
+        .nth(1)
+        .expect("correlations");
+    assert_eq!(
+        after.lines().filter(|l| l.starts_with("  ")).count(),
+        4,
+        "{after}"
+    );
+    let json: serde_json::Value = serde_json::from_str(&stdout(&whipple(&[
+        "measure",
+        "--raw",
+        &raw("Browser"),
+        "--correlations",
+        "3",
+        "--format",
+        "json",
+    ])))
+    .unwrap();
+    let top = json["correlations"].as_array().unwrap();
+    let expected = core("Browser").largest_correlations(3);
+    assert_eq!(top.len(), 3);
+    for (got, want) in top.iter().zip(&expected) {
+        assert_eq!(got["a"], want.a);
+        assert_eq!(got["rho"].as_f64(), Some(want.rho));
+    }
+}
+
+/// Silver's raw file has no rolled distance of the front wheel: the message names dF and what
+/// it feeds, and nothing is written.
+#[test]
+fn silver_names_the_missing_measurement() {
+    let dir = scratch("measure-silver");
+    let out = dir.join("silver.toml");
+    let err = stderr_of_failure(&whipple(&[
+        "measure",
+        "--raw",
+        &raw("Silver"),
+        "--out",
+        out.to_str().unwrap(),
+    ]));
+    assert!(
+        err.contains("dF is missing: the front wheel's radius needs it"),
+        "{err}"
+    );
+    assert!(err.contains("SilverMeasured.txt"), "{err}");
+    assert!(!out.exists());
+}
+
+/// A negative period is refused naming the key and its line; a missing file and the options
+/// not supported yet are refused clearly; the output never replaces the measurements.
+#[test]
+fn bad_input_is_refused() {
+    let dir = scratch("measure-bad");
+    let text = std::fs::read_to_string(raw("Browser")).unwrap();
+    let (index, line) = text
+        .lines()
+        .enumerate()
+        .find(|(_, l)| l.starts_with("TcR1"))
+        .expect("TcR1");
+    let bad = text.replace(line, "TcR1 = -1.4+/-0.001");
+    let path = dir.join("BadMeasured.txt");
+    std::fs::write(&path, &bad).unwrap();
+    let err = stderr_of_failure(&whipple(&["measure", "--raw", path.to_str().unwrap()]));
+    assert!(
+        err.contains("TcR1") && err.contains("a period must be positive"),
+        "{err}"
+    );
+    assert!(err.contains(&format!("line {}", index + 1)), "{err}");
+
+    let missing = dir.join("NoneMeasured.txt");
+    let err = stderr_of_failure(&whipple(&["measure", "--raw", missing.to_str().unwrap()]));
+    assert!(
+        err.contains("--raw") && err.contains("NoneMeasured.txt"),
+        "{err}"
+    );
+
+    let err = stderr_of_failure(&whipple(&[
+        "measure",
+        "--raw",
+        &raw("Browser"),
+        "--rider",
+        "JasonYeadonMeas.txt",
+    ]));
+    assert!(
+        err.contains("--rider") && err.contains("not supported yet"),
+        "{err}"
+    );
+
+    let copy = dir.join("BrowserMeasured.txt");
+    std::fs::write(&copy, &text).unwrap();
+    let err = stderr_of_failure(&whipple(&[
+        "measure",
+        "--raw",
+        copy.to_str().unwrap(),
+        "--out",
+        copy.to_str().unwrap(),
+        "--to",
+        "toml",
+    ]));
+    assert!(err.contains("would destroy it"), "{err}");
+    assert_eq!(std::fs::read_to_string(&copy).unwrap(), text);
+
+    let err = stderr_of_failure(&whipple(&[
+        "measure",
+        "--raw",
+        &raw("Browser"),
+        "--out",
+        dir.join("b.m").to_str().unwrap(),
+    ]));
+    assert!(err.contains("no JBike6 .m"), "{err}");
+    let err = stderr_of_failure(&whipple(&[
+        "measure",
+        "--raw",
+        &raw("Browser"),
+        "--out",
+        dir.to_str().unwrap(),
+        "--to",
+        "toml",
+    ]));
+    assert!(err.contains("--out"), "{err}");
+}
