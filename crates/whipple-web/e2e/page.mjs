@@ -1342,6 +1342,9 @@ await section("control at 1280 × 800 and 390 × 844: nothing overlaps, nothing 
     check(overlaps.length === 0, `${viewport.width} px: no two blocks overlap (${overlaps.join(", ") || "none"})`);
     const plot = rects.find((r) => r.s === "#ctl-plot");
     check(plot.b - plot.t >= 230 && plot.r - plot.l >= 300, `${viewport.width} px: room for the plot (${Math.round(plot.r - plot.l)} × ${Math.round(plot.b - plot.t)} px)`);
+    const panel = await page.evaluate(() => document.querySelector("#plots").getBoundingClientRect().bottom);
+    const last = Math.max(...rects.map((r) => r.b));
+    check(last <= panel + 1, `${viewport.width} px: the plot and the gains end inside their panel (${Math.round(last)} ≤ ${Math.round(panel)})`);
     const side = await page.evaluate(() => { const e = document.querySelector(".ctl-side-col"); return { scroll: e.scrollWidth, client: e.clientWidth }; });
     check(side.scroll <= side.client + 1, `${viewport.width} px: the gains and weights fit their column (${side.scroll} of ${side.client} px)`);
     const { scroll, inner } = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, inner: window.innerWidth }));

@@ -251,6 +251,11 @@ export class ControlPanel {
     this.veil(null);
   }
 
+  /** Draws the curves shown again, for another |λ| limit. */
+  redraw() {
+    if (this.plot.ready()) this.plot.update(this.plot.designs, { ylim: this.ylim() ?? 10, stale: this.plot.stale });
+  }
+
   /** Veils what is shown (`reason`), or unveils it (null). */
   veil(reason) {
     $("ctl-side").classList.toggle("stale", Boolean(reason));

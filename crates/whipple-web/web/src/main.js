@@ -787,6 +787,7 @@ for (const id of ["side-centres", "side-ellipses"]) {
 }
 $("y-limit").addEventListener("change", () => {
   drawAll();
+  if (state.view === "control") control.redraw();
   remember(true);
 });
 
