@@ -409,7 +409,7 @@ await section("a negative simulation speed is answered", async () => {
 await section("no sideways scroll at 768 and 390 px; 1920 px uses the width", async () => {
   for (const [width, height] of [[768, 1024], [390, 844]]) {
     await open("?bike=preset:benchmark", { width, height });
-    for (const tab of ["eigen", "sim"]) {
+    for (const tab of ["eigen", "control", "sim"]) {
       await page.getByTestId(`tab-${tab}`).click();
       await settled();
       const { scroll, inner, wide } = await page.evaluate(() => ({
@@ -1256,6 +1256,102 @@ await section("response at 1280 × 800 and 390 × 844: nothing overlaps, nothing
   }
 });
 
+const ctlCurves = (testid = "eigen-curve") => page.locator(`[data-testid=ctl-plot] [data-testid=${testid}]`).count();
+/** Until the Control tab's sentence says something matching `pattern` and the page has settled. */
+async function ctlSays(pattern) {
+  const test = typeof pattern === "function" ? pattern : (t) => pattern.test(t);
+  const said = await waitForText("ctl-sentence", test, 15_000);
+  await settled();
+  return said;
+}
+
+await section("control: K or LQR weights → the closed loop's eigenvalues against speed, stable speeds, the link, bad gains", async () => {
+  await open("?bike=preset:benchmark&tab=control");
+  // T_δ = 100 φ − 10 δ + 20 φ̇, the default K: the library's example, stable from 0.8067 m/s.
+  const said = await ctlSays(/stabilizes/);
+  check(said.includes("from 0.8067 m/s"), `K = (−100, 10, −20, 0) stabilizes the benchmark from 0.8067 m/s: “${said}”`);
+  check((await ctlCurves()) === 4 && (await ctlCurves("faint-curve")) === 4, "four closed-loop curves, the open loop's four faintly behind");
+  const shaded = await page.$$eval("[data-testid=ctl-plot] [data-testid=stable-range]", (rs) => rs.map((r) => r.getAttribute("width")));
+  const label = await page.$$eval("[data-testid=ctl-plot] svg text", (ts) => ts.map((t) => t.textContent));
+  check(shaded.length === 1 && label.includes("stable") && !label.includes("self-stable"), `the stable range shaded and called “stable” (${shaded.length} range)`);
+  // Recomputed when the bicycle is edited.
+  await page.getByTestId("param-c").fill("0.05");
+  const edited = await ctlSays((t) => !t.includes("0.8067"));
+  check(/stabiliz/.test(edited), `a shorter trail recomputes the closed loop: “${edited}”`);
+  await page.getByTestId("param-c").fill("0.08");
+  await ctlSays(/from 0\.8067 m\/s/);
+  // LQR, Q = I, R = 1, at every speed of the sweep from 0.1 m/s (from 0 the library cannot
+  // certify the first segment against round-off, and says so): stable over the whole sweep.
+  await page.getByTestId("ctl-mode-lqr").check();
+  await page.getByTestId("ctl-scheduled").check();
+  await page.fill("#v-start", "0.1");
+  await page.press("#v-start", "Enter");
+  const lqr = await ctlSays(/at every speed plotted/);
+  check(/from 0\.1 to 10 m\/s/.test(lqr), `LQR (Q = I, R = 1) scheduled at every speed: “${lqr}”`);
+  check(/LQR at each of 991 speeds/.test(await text("ctl-used")), `the gain said: ${await text("ctl-used")}`);
+  const res = await page.$$eval("[data-testid=ctl-plot] [data-testid=eigen-curve]", (ps) => ps.length);
+  check(res === 4, "and its four curves drawn");
+  // The link restores the panel.
+  const link = page.url();
+  check(/[?&]ctl=/.test(link) && /tab=control/.test(link), "the link holds the tab and its choices");
+  await page.goto("about:blank");
+  await open(new URL(link).search);
+  const again = await ctlSays(/at every speed plotted/);
+  const restored = await page.evaluate(() => [document.getElementById("ctl-mode-lqr").checked, document.getElementById("ctl-scheduled").checked, document.getElementById("v-start").value].join("|"));
+  check(restored === "true|true|0.1" && again === lqr, `the link restores LQR, the schedule and the speeds (${restored}): “${again}”`);
+  // Bad input: refused with a message naming the field, the last curves veiled.
+  await page.getByTestId("ctl-mode-gains").check();
+  await ctlSays(/from 0\.8067 m\/s/);
+  await page.getByTestId("ctl-k-steer_torque-0").fill("abc");
+  await page.getByTestId("ctl-k-steer_torque-0").press("Enter");
+  await settled();
+  const message = await text("ctl-message");
+  check(/K's gain of T_δ on φ must be a finite number/.test(message) && (await page.getByTestId("ctl-k-steer_torque-0").getAttribute("aria-invalid")) === "true", `a gain that is not a number is refused: “${message}”`);
+  check((await ctlCurves()) === 4 && (await page.locator("[data-testid=ctl-plot] [data-testid=stale-veil]").count()) === 1, "the last curves stay, veiled");
+  await page.getByTestId("ctl-k-steer_torque-0").fill("-100");
+  await page.getByTestId("ctl-mode-lqr").check();
+  await page.getByTestId("ctl-q-0").fill("-1");
+  await page.getByTestId("ctl-q-0").press("Enter");
+  await settled();
+  const refused = await waitForText("ctl-message", (t) => /Q/.test(t));
+  check((await page.getByTestId("ctl-q-0").getAttribute("aria-invalid")) === "true", `Q not positive semi-definite is refused by the server, its fields marked: “${refused}”`);
+  await page.getByTestId("ctl-q-0").fill("1");
+  await page.getByTestId("ctl-q-0").press("Enter");
+  await ctlSays(/at every speed plotted/);
+  check(!(await page.getByTestId("ctl-message").isVisible()), "a good value again: the message gone");
+});
+
+await section("control at 1280 × 800 and 390 × 844: nothing overlaps, nothing sticks out", async () => {
+  for (const viewport of [{ width: 1280, height: 800 }, { width: 390, height: 844 }]) {
+    await open("?bike=preset:benchmark&tab=control&ctl=m:lqr;in:steer_torque,lean_torque;q:1,1,1,1;r:1,1;v:5;s:0", viewport);
+    await ctlSays(/stabilizes/);
+    const blocks = [".ctl-controls", "#ctl-plot", ".ctl-side-col"];
+    const rects = await page.evaluate((sels) => sels.map((s) => {
+      const r = document.querySelector(s).getBoundingClientRect();
+      return { s, l: r.left, t: r.top, r: r.right, b: r.bottom };
+    }), blocks);
+    const out = rects.filter((r) => r.l < 0 || r.r > viewport.width || r.r - r.l < 1 || r.b - r.t < 1).map((r) => r.s);
+    check(out.length === 0, `${viewport.width} px: every block within the width (${out.join(", ") || "none outside"})`);
+    const overlaps = [];
+    for (let i = 0; i < rects.length; i++) {
+      for (let j = i + 1; j < rects.length; j++) {
+        const [a, b] = [rects[i], rects[j]];
+        if (Math.min(a.r, b.r) - Math.max(a.l, b.l) > 1 && Math.min(a.b, b.b) - Math.max(a.t, b.t) > 1) overlaps.push(`${a.s} × ${b.s}`);
+      }
+    }
+    check(overlaps.length === 0, `${viewport.width} px: no two blocks overlap (${overlaps.join(", ") || "none"})`);
+    const plot = rects.find((r) => r.s === "#ctl-plot");
+    check(plot.b - plot.t >= 230 && plot.r - plot.l >= 300, `${viewport.width} px: room for the plot (${Math.round(plot.r - plot.l)} × ${Math.round(plot.b - plot.t)} px)`);
+    const panel = await page.evaluate(() => document.querySelector("#plots").getBoundingClientRect().bottom);
+    const last = Math.max(...rects.map((r) => r.b));
+    check(last <= panel + 1, `${viewport.width} px: the plot and the gains end inside their panel (${Math.round(last)} ≤ ${Math.round(panel)})`);
+    const side = await page.evaluate(() => { const e = document.querySelector(".ctl-side-col"); return { scroll: e.scrollWidth, client: e.clientWidth }; });
+    check(side.scroll <= side.client + 1, `${viewport.width} px: the gains and weights fit their column (${side.scroll} of ${side.client} px)`);
+    const { scroll, inner } = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, inner: window.innerWidth }));
+    check(scroll <= inner, `${viewport.width} px: no sideways scroll (${scroll} px)`);
+  }
+});
+
 const timeCurves = (plot, testid = "resp-time-curve") => page.locator(`[data-testid=${plot}] [data-testid=${testid}]`).count();
 /** The last point of a plot's first linear curve, in the plot's pixels. */
 const lastPoint = (plot) => page.$eval(`[data-testid=${plot}] [data-testid=resp-time-curve]`, (p) => p.getAttribute("d").split(/[ML]/).filter(Boolean).at(-1));
@@ -1419,6 +1515,10 @@ await section("accessibility: axe-core finds nothing; headings", async () => {
   await page.locator("[data-testid=resp-magnitude] [data-testid=resp-curve]").first().waitFor({ timeout: 15_000 });
   await settled();
   await run("response tab");
+  await page.getByTestId("tab-control").click();
+  await page.locator("[data-testid=ctl-plot] [data-testid=eigen-curve]").first().waitFor({ timeout: 15_000 });
+  await settled();
+  await run("control tab");
   await page.getByTestId("tab-sens").click();
   await page.getByTestId("sens-tornado").waitFor({ timeout: 15_000 });
   await run("sensitivity tab");

@@ -32,6 +32,7 @@ use whipple::presets::PRESETS;
 use whipple::{Bicycle, Canonical};
 use whipple::{CriticalSpeeds, critical_speeds, eigen_sweep, speed_grid};
 
+use crate::closed_loop::closed_loop;
 use crate::error::{ApiError, quoted_field};
 use crate::geometry::{SideView, side_view};
 use crate::modes::{self as mode_api, ModesRequest, ModesResponse, ResponseRequest};
@@ -100,6 +101,7 @@ pub fn app_bound_to(limits: Limits, bound: IpAddr) -> Router {
         .route("/api/linear/response", post(linear_response))
         .route("/api/linear/frequency", post(crate::frequency::frequency))
         .route("/api/linear/time", post(crate::time::time))
+        .route("/api/linear/closed_loop", post(closed_loop))
         .route("/api/map", post(crate::design::map))
         .route("/api/map/design", post(crate::design::design_at))
         .route("/api/turn", post(crate::turns::turn))
@@ -746,12 +748,12 @@ async fn sensitivity(
     .await
 }
 
-#[derive(Deserialize, Clone, Copy)]
+#[derive(Deserialize, Clone, Copy, Debug)]
 #[serde(deny_unknown_fields)]
-struct SpeedGrid {
-    start: f64,
-    stop: f64,
-    step: f64,
+pub(crate) struct SpeedGrid {
+    pub(crate) start: f64,
+    pub(crate) stop: f64,
+    pub(crate) step: f64,
 }
 
 #[derive(Deserialize)]
@@ -762,10 +764,23 @@ struct EigenRequest {
 }
 
 #[derive(Serialize)]
-struct EigenColumn {
+pub(crate) struct EigenColumn {
     mode: &'static str,
     re: Vec<f64>,
     im: Vec<f64>,
+}
+
+impl EigenColumn {
+    /// The sweep's columns, one per tracked eigenvalue, as `/api/eigen` answers them.
+    pub(crate) fn of(sweep: &whipple::EigenSweep) -> Vec<EigenColumn> {
+        (0..4)
+            .map(|k| EigenColumn {
+                mode: sweep.modes[k].name(),
+                re: sweep.eigenvalues.iter().map(|row| row[k].re).collect(),
+                im: sweep.eigenvalues.iter().map(|row| row[k].im).collect(),
+            })
+            .collect()
+    }
 }
 
 #[derive(Serialize)]
@@ -787,13 +802,13 @@ enum Critical {
 
 /// Sweeps of at most this many speeds (the page's plot asks for a few hundred as one types)
 /// take the interactive budget; longer ones are heavy work.
-const INTERACTIVE_SPEEDS: f64 = 2_000.0;
+pub(crate) const INTERACTIVE_SPEEDS: f64 = 2_000.0;
 
 /// The number of speeds on the grid, as the library counts them (`sweep::SpeedGrid::count`; 0 when it
 /// is not a valid grid: the library says why when the sweep is built),
 /// checked against the limit before the grid is built, so that no huge vector is ever
 /// allocated.
-fn check_grid(grid: SpeedGrid, max_speeds: usize) -> Result<f64, ApiError> {
+pub(crate) fn check_grid(grid: SpeedGrid, max_speeds: usize) -> Result<f64, ApiError> {
     let SpeedGrid { start, stop, step } = grid;
     let Ok(count) = whipple::advanced::sweep::SpeedGrid::count(start, stop, step) else {
         return Ok(0.0);
@@ -845,13 +860,7 @@ async fn eigen(
         } else {
             Some(Critical::Plain(critical_speeds(&canonical, lo, hi)?))
         };
-        let eigenvalues = (0..4)
-            .map(|k| EigenColumn {
-                mode: sweep.modes[k].name(),
-                re: sweep.eigenvalues.iter().map(|row| row[k].re).collect(),
-                im: sweep.eigenvalues.iter().map(|row| row[k].im).collect(),
-            })
-            .collect();
+        let eigenvalues = EigenColumn::of(&sweep);
         Ok(EigenResponse {
             name: bike.name.clone(),
             speeds: sweep.speeds,

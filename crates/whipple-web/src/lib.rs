@@ -27,6 +27,7 @@
 mod access;
 mod api;
 mod assets;
+mod closed_loop;
 mod connection;
 mod design;
 mod error;

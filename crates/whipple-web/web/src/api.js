@@ -69,4 +69,8 @@ export const api = {
    * pulse_duration, lean_deg, duration, samples, nonlinear}: lean, steer, yaw, the ground path;
    * with nonlinear, the same manoeuvre on the non-linear model and the difference. */
   time: (request) => call("POST", "/api/linear/time", request),
+  /** The bicycle under feedback u = r − K x, `request` {bike, inputs, gains | lqr: {q, r, speed |
+   * scheduled}, speeds}: the gain used, the closed loop's eigenvalues in /api/eigen's shape and
+   * its certified critical speeds. */
+  closedLoop: (request) => call("POST", "/api/linear/closed_loop", request),
 };

@@ -105,3 +105,24 @@ export function drawCritical(container, designs, { stale = false, reason = null 
   const note = html("p", { class: "note", text: range ? (open ? "“+”: still stable at the end of the plotted speeds." : "") : "Give a speed range to find the critical speeds." });
   container.replaceChildren(html("div", { class: "table-scroll" }, table), note);
 }
+
+/**
+ * The closed loop's certified stable ranges as a sentence, for the Control tab: "This
+ * controller stabilizes the bicycle from 0.8067 m/s (to the end of the plotted speeds, 10 m/s)."
+ * `eigen`: /api/linear/closed_loop's answer. The speeds to four decimals, as the table's.
+ */
+export function stabilizesText(eigen) {
+  if (!eigen) return "";
+  if (eigen.critical_unavailable) return `The stable speeds could not be certified: ${eigen.critical_unavailable}`;
+  const c = eigen.critical;
+  if (!c) return "Give a range of speeds to find where this controller stabilizes the bicycle.";
+  const [lo, hi] = c.range;
+  const open = undecided(c);
+  const tail = open ? ` Undecided (round-off) in ${open}.` : "";
+  const r = c.stable_speed_ranges;
+  if (!r.length) return `This controller does not stabilize the bicycle at any speed from ${num(lo)} to ${num(hi)} m/s.${tail}`;
+  if (r.length === 1 && r[0][0] <= lo && r[0][1] >= hi) return `This controller stabilizes the bicycle at every speed plotted, from ${num(lo)} to ${num(hi)} m/s.${tail}`;
+  if (r.length === 1 && r[0][1] >= hi) return `This controller stabilizes the bicycle from ${fixed(r[0][0], 4)} m/s (to the end of the plotted speeds, ${num(hi)} m/s).${tail}`;
+  const list = r.map(([a, b]) => `${fixed(a, 4)} – ${fixed(b, 4)}${b >= hi ? "+" : ""}`).join(", ");
+  return `This controller stabilizes the bicycle from ${list} m/s${r.some(([, b]) => b >= hi) ? " (“+”: to the end of the plotted speeds)" : ""}.${tail}`;
+}

@@ -16,6 +16,7 @@ import { drawCritical, criticalSummary } from "./critical.js";
 import { SimPanel } from "./sim.js";
 import { ModesPanel } from "./modes.js";
 import { ResponsePanel } from "./response.js";
+import { ControlPanel } from "./control.js";
 import { SensitivityPanel } from "./sensitivity.js";
 import { MapPanel } from "./map.js";
 import { readUrl, writeUrl, diffEdits } from "./url.js";
@@ -26,7 +27,7 @@ const clone = (x) => JSON.parse(JSON.stringify(x));
 const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
 const DEFAULT_PRESET = "schwinn-crown";
 const MAX_COMPARED = 5;
-const VIEWS = ["eigen", "locus", "modes", "resp", "sens", "map", "sim"];
+const VIEWS = ["eigen", "locus", "modes", "resp", "control", "sens", "map", "sim"];
 
 const state = {
   presets: [],
@@ -75,6 +76,7 @@ const modes = new ModesPanel({
   },
 });
 const response = new ResponsePanel({ bike: () => clone(state.bike), label: () => currentLabel(), onChange: () => remember(true) });
+const control = new ControlPanel({ bike: () => clone(state.bike), speeds: () => speedGrid(), openLoop: () => state.eigen, label: () => currentLabel(), ylim: () => yLimit(), onChange: () => remember(true) });
 const sensitivity = new SensitivityPanel({ bike: () => clone(state.bike), label: () => currentLabel(), onChange: () => remember(true) });
 const designMap = new MapPanel({
   bike: () => clone(state.bike),
@@ -484,6 +486,8 @@ async function recompute() {
   // The response of another bicycle is never shown: computed now, or when its tab opens.
   if (state.view === "resp") response.compute();
   else response.invalidate();
+  if (state.view === "control") control.compute();
+  else control.invalidate();
   if (state.view === "sens") sensitivity.compute();
   // A map of another bicycle is never shown: computed now, or again when its tab opens.
   if (state.view === "map") designMap.compute();
@@ -560,6 +564,7 @@ function drawAll() {
   // The modes shown are those of the last valid bicycle: veiled while the form is not.
   modes.veil(staleReason({ speeds: false }));
   if (state.view === "resp" && staleReason({ speeds: false })) response.veil(staleReason({ speeds: false }));
+  if (state.view === "control" && staleReason()) control.veil(staleReason());
   if (!state.eigen) return;
   const designs = designsShown();
   const stale = staleReason();
@@ -625,7 +630,10 @@ function showView(view, { push = true } = {}) {
   if (!VIEWS.includes(view)) view = "eigen";
   state.view = view;
   for (const v of VIEWS) $(`panel-${v}`).hidden = v !== view;
-  $("speed-controls").hidden = !(view === "eigen" || view === "locus");
+  $("speed-controls").hidden = !(view === "eigen" || view === "locus" || view === "control");
+  // The Control tab takes the sweep's speeds; its plot is not the one the exports write.
+  document.querySelector("#speed-controls .btn-group").style.display = view === "control" ? "none" : "";
+  document.querySelector(".layout").classList.toggle("ctl-active", view === "control");
   document.querySelector(".layout").classList.toggle("sim-active", view === "sim");
   document.querySelector(".layout").classList.toggle("resp-active", view === "resp");
   for (const tab of document.querySelectorAll(".tab[data-view]")) {
@@ -638,6 +646,7 @@ function showView(view, { push = true } = {}) {
   else modes.stop();
   // Before the first bicycle is loaded there is nothing to compute: recompute() does it then.
   if (view === "resp" && state.bike && !response.fresh) response.compute();
+  if (view === "control" && state.bike && state.eigen && !control.fresh) control.compute();
   if (view === "sens" && state.bike) sensitivity.compute();
   if (view === "map" && state.bike && !designMap.answer) designMap.compute();
   // three.js is fetched when the Simulation tab first opens, not with the page.
@@ -672,6 +681,7 @@ function snapshot() {
     view: state.view,
     mode: $("mode-speed").value,
     resp: response.inputs(),
+    control: control.inputs(),
     sim: sim.inputs(),
     sens: sensitivity.quantity,
     map: designMap.inputs(),
@@ -712,6 +722,7 @@ async function applyUrl() {
       modes.speedEdited = true;
     }
     if (s.resp) response.setInputs(s.resp);
+    if (s.control) control.setInputs(s.control);
     if (s.sim) sim.setInputs(s.sim);
     if (s.sens) sensitivity.setQuantity(s.sens);
     if (s.map) designMap.setInputs(s.map);
@@ -776,6 +787,7 @@ for (const id of ["side-centres", "side-ellipses"]) {
 }
 $("y-limit").addEventListener("change", () => {
   drawAll();
+  if (state.view === "control") control.redraw();
   remember(true);
 });
 

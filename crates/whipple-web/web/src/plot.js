@@ -43,9 +43,16 @@ function sameSpeed(design, v) {
 }
 
 export class EigenPlot extends Chart {
-  constructor(container) {
-    super(container, { label: "Eigenvalues against forward speed", xLabel: "forward speed v [m/s]", yLabel: "eigenvalue λ [1/s]", testid: "plot" });
+  /**
+   * `stableLabel`: what the shaded ranges are called ("self-stable" for the bicycle alone,
+   * "stable" for a closed loop); `faint`: the other designs drawn faintly, for comparison only
+   * (their critical speeds not marked); `others`: their name in the legend when faint.
+   */
+  constructor(container, { label = "Eigenvalues against forward speed", testid = "plot", stableLabel = "self-stable", faint = false } = {}) {
+    super(container, { label, xLabel: "forward speed v [m/s]", yLabel: "eigenvalue λ [1/s]", testid });
     this.designs = null;
+    this.stableLabel = stableLabel;
+    this.faint = faint;
   }
 
   ready() {
@@ -102,7 +109,7 @@ export class EigenPlot extends Chart {
       const xa = Math.max(left, X(a)), xb = Math.min(left + pw, X(b));
       if (xb <= xa) continue;
       shade.append(svg("rect", { x: xa, y: top, width: xb - xa, height: ph, fill: STABLE, "data-testid": "stable-range" }));
-      if (xb - xa > 60) shade.append(svg("text", { x: (xa + xb) / 2, y: top + ph - 8, "text-anchor": "middle", fill: "#15803d", "font-size": 11, "font-weight": 600 }, "self-stable"));
+      if (xb - xa > 60) shade.append(svg("text", { x: (xa + xb) / 2, y: top + ph - 8, "text-anchor": "middle", fill: "#15803d", "font-size": 11, "font-weight": 600 }, this.stableLabel));
     }
     root.insertBefore(shade, root.children[2]);
 
@@ -129,7 +136,9 @@ export class EigenPlot extends Chart {
         if (im) curves.append(svg("path", { d: im, stroke: colour, "stroke-width": width * 0.85, "stroke-dasharray": "6 4" }));
       }
     };
-    others.forEach((d, k) => trace(d, () => COMPARE_COLOURS[k % COMPARE_COLOURS.length], 1.4, "compare-curve"));
+    others.forEach((d, k) => trace(d, this.faint ? modeColour : () => COMPARE_COLOURS[k % COMPARE_COLOURS.length], this.faint ? 1.1 : 1.4, this.faint ? "faint-curve" : "compare-curve"));
+    // Faint designs behind, for comparison: light and thin, under the curves that matter.
+    if (this.faint) for (const p of curves.children) p.setAttribute("stroke-opacity", "0.3");
     trace(primary, modeColour, 2, "eigen-curve");
     root.append(curves);
 
@@ -157,7 +166,7 @@ export class EigenPlot extends Chart {
     };
     others.forEach((d, k) => {
       const c = d.eigen.critical;
-      if (!c) return;
+      if (!c || this.faint) return;
       const colour = COMPARE_COLOURS[k % COMPARE_COLOURS.length];
       mark(c.weave_speed, "v_w", colour, -1 - k, "4 3", c.weave_speed_sigma);
       mark(c.capsize_speed, "v_c", colour, -1 - k, "4 3", c.capsize_speed_sigma);
@@ -172,8 +181,8 @@ export class EigenPlot extends Chart {
     const seg = (colour, dash, w = 2) => (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: colour, "stroke-width": w, "stroke-dasharray": dash });
     const items = [{ draw: seg(INK), text: "Re λ" }, { draw: seg(INK, "6 4"), text: "Im λ" }];
     for (const mode of [...new Set(primary.eigen.eigenvalues.map((c) => c.mode))]) items.push({ draw: seg(modeColour(mode), null, 3), text: mode });
-    items.push({ draw: (x, y) => svg("rect", { x, y: y - 6, width: 18, height: 12, fill: STABLE, stroke: "#86efac" }), text: "self-stable" });
-    others.forEach((d, k) => items.push({ draw: seg(COMPARE_COLOURS[k % COMPARE_COLOURS.length], null, 1.6), text: d.label }));
+    items.push({ draw: (x, y) => svg("rect", { x, y: y - 6, width: 18, height: 12, fill: STABLE, stroke: "#86efac" }), text: this.stableLabel });
+    others.forEach((d, k) => items.push({ draw: this.faint ? (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: INK, "stroke-width": 1.4, "stroke-opacity": 0.3 }) : seg(COMPARE_COLOURS[k % COMPARE_COLOURS.length], null, 1.6), text: d.label }));
     f.legendBottom = legend(root, items, left, f.legendWidth);
   }
 
@@ -188,7 +197,7 @@ export class EigenPlot extends Chart {
     readDesign(rows, dots, primary, i, modeColour, f.X, f.Y);
     others.forEach((d, k) => {
       const j = sameSpeed(d, speeds[i]);
-      if (j >= 0) readDesign(rows, dots, d, j, () => COMPARE_COLOURS[k % COMPARE_COLOURS.length], f.X, f.Y);
+      if (j >= 0) readDesign(rows, dots, d, j, this.faint ? modeColour : () => COMPARE_COLOURS[k % COMPARE_COLOURS.length], f.X, f.Y);
     });
     return { rows, dots, x: f.X(speeds[i]) };
   }
