@@ -21,9 +21,16 @@ from mkdocs.structure.files import File
 ROOT = Path(__file__).resolve().parents[2]
 GUIDE = ROOT / "docs" / "guide"
 DATA = ROOT / "crates" / "whipple" / "tests" / "data"
-# The folders of parameter files the guide's examples name (as crates/whipple-cli/tests/guide.rs
-# copies them for the same commands).
-INPUTS = ("bicycleparameters", "humancontrol", "bicycleparameters-yaml")
+# The folders of the field's files the guide's examples name, and the endings of the files taken
+# from each (as crates/whipple-cli/tests/guide.rs copies them for the same commands).
+INPUTS = (
+    ("bicycleparameters", (".txt", ".yml")),
+    ("humancontrol", (".txt", ".yml")),
+    ("bicycleparameters-yaml", (".txt", ".yml")),
+    ("measured", ("Measured.txt",)),
+    ("measured/periods", (".mat",)),
+    ("yeadon", ("YeadonMeas.txt", "YeadonCFG.txt")),
+)
 FIGURE_OPTIONS = ("--plot", "--figure")
 # One command's bound: the slowest (a design map) takes seconds.
 TIMEOUT = 300
@@ -72,9 +79,9 @@ def on_files(files, config):
             "the guide's figures are made by its commands: set WHIPPLE_GUIDE_BIN to a built "
             "whipple binary (docs/build-guide does)")
     _scratch = Path(tempfile.mkdtemp(prefix="whipple-guide-figures."))
-    for sub in INPUTS:
+    for sub, endings in INPUTS:
         for path in sorted((DATA / sub).iterdir()):
-            if path.suffix in (".txt", ".yml"):
+            if path.name.endswith(endings):
                 shutil.copy(path, _scratch / path.name)
     for name, (chapter, line, words) in sorted(_figures().items()):
         try:

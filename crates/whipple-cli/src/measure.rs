@@ -155,11 +155,15 @@ pub fn run(_cx: &RunContext, args: &MeasureArgs) -> Result<()> {
     print_stdout(&report)
 }
 
-/// `value ± σ` to the σ's three digits, or the value alone.
+/// `value ± σ` to the σ's three digits, or the value alone to about six significant digits (the
+/// JSON report keeps every digit).
 fn shown(value: f64, sigma: Option<f64>) -> Result<(String, String)> {
     Ok(match sigma {
         Some(s) if s > 0.0 => (round_to_sigma(value, s), round_sigma(s)),
         Some(_) => (number(value)?, "0".into()),
+        None if value != 0.0 && value.is_finite() => {
+            (round_to_sigma(value, value.abs() * 1e-3), "-".into())
+        }
         None => (number(value)?, "-".into()),
     })
 }

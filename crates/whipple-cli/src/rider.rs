@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, anyhow};
+use anyhow::{Context, Result, anyhow, bail};
 use clap::Args;
 use nalgebra::{Matrix3, Vector3};
 use serde_json::json;
@@ -57,27 +57,58 @@ fn rows(m: &Matrix3<f64>) -> Result<Vec<Vec<f64>>> {
         .collect()
 }
 
+/// The numbers of one quantity to ten significant digits of its largest (round-off below that
+/// shows as zero; JSON keeps every digit).
+fn shown(values: &[f64]) -> Result<Vec<String>> {
+    if let Some(x) = values.iter().find(|x| !x.is_finite()) {
+        bail!("a computed result is not a finite number ({x})");
+    }
+    let largest = values.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let decimals = if largest > 0.0 {
+        (9 - largest.log10().floor() as i32).clamp(0, 20) as usize
+    } else {
+        0
+    };
+    Ok(values
+        .iter()
+        .map(|x| {
+            let text = format!("{x:.decimals$}");
+            // No "-0.000…" for a round-off of either sign.
+            if text
+                .trim_start_matches('-')
+                .chars()
+                .all(|c| c == '0' || c == '.')
+            {
+                text.trim_start_matches('-').to_string()
+            } else {
+                text
+            }
+        })
+        .collect())
+}
+
 fn write_body(t: &mut String, mass: f64, com: &Vector3<f64>, inertia: &Matrix3<f64>) -> Result<()> {
-    writeln!(t, "  mass (kg)              {}", number(mass)?)?;
-    writeln!(
-        t,
-        "  mass centre (m)        [{}, {}, {}]",
-        number(com.x)?,
-        number(com.y)?,
-        number(com.z)?
-    )?;
+    writeln!(t, "  mass (kg)              {}", shown(&[mass])?[0])?;
+    let c = shown(com.as_slice())?;
+    writeln!(t, "  mass centre (m)        [{}, {}, {}]", c[0], c[1], c[2])?;
+    let entries: Vec<f64> = (0..3)
+        .flat_map(|i| (0..3).map(move |j| (i, j)))
+        .map(|(i, j)| inertia[(i, j)])
+        .collect();
+    let m = shown(&entries)?;
+    let width = m.iter().map(String::len).max().unwrap_or(0);
     for i in 0..3 {
         writeln!(
             t,
-            "  {} [{:>22} {:>22} {:>22}]",
+            "  {} [{:>width$} {:>width$} {:>width$}]",
             if i == 0 {
                 "inertia (kg m^2)    "
             } else {
                 "                    "
             },
-            number(inertia[(i, 0)])?,
-            number(inertia[(i, 1)])?,
-            number(inertia[(i, 2)])?
+            m[3 * i],
+            m[3 * i + 1],
+            m[3 * i + 2]
         )?;
     }
     Ok(())

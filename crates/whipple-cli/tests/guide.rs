@@ -104,18 +104,25 @@ fn examples(chapter: &str, text: &str) -> Vec<Example> {
     found
 }
 
-/// The field's parameter files the guide's examples read, copied into the scratch directory.
+/// The field's files the guide's examples read, copied into the scratch directory: parameter
+/// files, raw bench measurements, an oscillation record and Yeadon riders (folder, and the
+/// endings of the files taken from it). docs/hooks/figures.py copies the same for the figures.
+const INPUTS: [(&str, &[&str]); 6] = [
+    ("bicycleparameters", &[".txt", ".yml"]),
+    ("humancontrol", &[".txt", ".yml"]),
+    ("bicycleparameters-yaml", &[".txt", ".yml"]),
+    ("measured", &["Measured.txt"]),
+    ("measured/periods", &[".mat"]),
+    ("yeadon", &["YeadonMeas.txt", "YeadonCFG.txt"]),
+];
+
 fn copy_inputs(dir: &Path) {
     let data = root().join("crates/whipple/tests/data");
-    for sub in [
-        "bicycleparameters",
-        "humancontrol",
-        "bicycleparameters-yaml",
-    ] {
+    for (sub, endings) in INPUTS {
         for entry in fs::read_dir(data.join(sub)).expect("test data") {
             let path = entry.expect("test data entry").path();
             let name = path.file_name().expect("a file name").to_string_lossy();
-            if name.ends_with(".txt") || name.ends_with(".yml") {
+            if endings.iter().any(|e| name.ends_with(e)) {
                 fs::copy(&path, dir.join(&*name)).expect("copy a parameter file");
             }
         }
