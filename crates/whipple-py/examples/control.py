@@ -1,9 +1,9 @@
 # %% [markdown]
 # # Time responses, feedback and the non-linear check
 # The benchmark bicycle as a linear system: a steer-torque pulse simulated exactly, an LQR
-# controller and a steer-into-the-fall controller with their closed-loop eigenvalues, the
-# speeds where steer torque loses a mode, and the linear model beside the non-linear one
-# through the same pulse. Run it as a script or open it in Jupyter (percent format). Figures
+# controller (at one speed and scheduled over speed) and a steer-into-the-fall controller with
+# their closed-loop eigenvalues and transfer functions, the speeds where steer torque loses a
+# mode, and the linear model beside the non-linear one through the same pulse. Run it as a script or open it in Jupyter (percent format). Figures
 # go to the working directory (or $WHIPPLE_EXAMPLES_OUT).
 
 # %%
@@ -36,6 +36,23 @@ print("closed-loop poles:", np.round(lqr.poles, 3))
 k = np.array([[0.0, 0.0, 0.0, 0.0], [-20.0, 5.0, -3.0, 0.5]])
 loop = bike.closed_loop(k)
 print("closed-loop stable ranges:", loop.critical_speeds(0.0, 10.0)["stable_speed_ranges"])
+
+# %% An LQR steer controller scheduled over speed: from which speed is it stable?
+# One gain per design speed, interpolated between them; the stable range is certified between
+# the design speeds too, not sampled.
+scheduled = bike.lqr_schedule([0.5, 1.0, 2.0, 4.0, 8.0], np.eye(4), [[1.0]])
+assert scheduled.residuals is not None  # set by lqr_schedule
+print("largest Riccati residual:", float(scheduled.residuals.max()))
+print("scheduled LQR stable ranges:",
+      scheduled.critical_speeds(0.5, 8.0)["stable_speed_ranges"])
+
+# %% The steer torque the loop applies, as a transfer function of the closed loop
+# r → u is the loop's sensitivity 1/(1 + L); formed exactly from the closed loop's polynomials.
+steer_loop = bike.closed_loop([[-100.0, 10.0, -20.0, 0.0]], inputs="steer_torque")
+g = steer_loop.system(5.0, ["lean", "steer_torque"]).transfer_function("steer_torque",
+                                                                       "steer_torque")
+print("closed-loop poles at 5 m/s:", np.round(g.poles, 4))
+print("static gain of r → steer torque:", g.static_gain)
 
 # %% Steer torque loses a mode at these speeds (certified)
 print(bike.uncontrollable_speeds("steer_torque"))

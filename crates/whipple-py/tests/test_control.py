@@ -301,7 +301,9 @@ def test_closed_loop_matches_bicycleparameters(benchmark, speed):
     a, _ = model.form_state_space_matrices(v=speed, **dict(zip(names, K_STEER.reshape(-1))))
     theirs = np.linalg.eigvals(a)
     ours = benchmark.closed_loop(K_STEER).eig(speed).values
-    assert np.max(np.abs(sorted_eig(ours) - sorted_eig(theirs))) < 1e-9
+    # The tolerance: closed-loop eigenvalues to 1e-12 (relative to max(1, |λ|)).
+    scale = np.maximum(1.0, np.abs(sorted_eig(theirs)))
+    assert np.max(np.abs(sorted_eig(ours) - sorted_eig(theirs)) / scale) < 1e-12
 
 
 @pytest.mark.parametrize("speed", SPEEDS)
