@@ -112,7 +112,7 @@ fn parse_matrix(text: &str, option: &str) -> Result<DMatrix<f64>> {
 }
 
 /// K as typed in `--gains`: inputs × 4.
-fn parse_gains(text: &str, inputs: usize) -> Result<DMatrix<f64>> {
+pub(crate) fn parse_gains(text: &str, inputs: usize) -> Result<DMatrix<f64>> {
     let k = parse_matrix(text, "--gains")?;
     if k.shape() != (inputs, 4) {
         bail!(

@@ -7,7 +7,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Subcommand;
+use nalgebra::DMatrix;
 use serde_json::json;
+use whipple::advanced::control::{ClosedLoop, Gains};
 use whipple::advanced::eigen::Complex64;
 use whipple::advanced::linear::{FrequencyResponse, LinearSystem, TransferFunction};
 use whipple_front::system::{parse_log_grid, request};
@@ -55,6 +57,12 @@ pub enum ResponseCommand {
         /// .png file.
         #[arg(long)]
         figure: Option<PathBuf>,
+        /// Close the loop u = r − K x first, K as `control feedback --gains` takes it (one row
+        /// per --input, four gains each on φ, δ, φ̇, δ̇): the closed loop's transfer functions
+        /// from the references r, exact from its own polynomial matrix. An input's name among
+        /// the outputs is then the torque the loop applies.
+        #[arg(long, allow_hyphen_values = true)]
+        gains: Option<String>,
     },
     /// The response to a step of one input at t = 0, exact (no time step), with the path in
     /// the ground plane.
@@ -120,9 +128,11 @@ pub fn run(cx: &RunContext, command: ResponseCommand) -> Result<()> {
             format,
             out,
             figure,
+            gains,
         } => bode(
             cx,
             &Bode {
+                gains: gains.as_deref(),
                 bike: &bike,
                 speeds: &speeds,
                 inputs: &inputs,
@@ -186,6 +196,7 @@ struct Bode<'a> {
     format: TextFormat,
     out: Option<&'a Path>,
     figure: Option<&'a Path>,
+    gains: Option<&'a str>,
 }
 
 /// Speeds as typed, `3,5,7`, each finite.
@@ -278,10 +289,32 @@ fn bode(cx: &RunContext, args: &Bode<'_>) -> Result<()> {
             omega.len()
         );
     }
+    // The closed loop, when asked: K on φ, δ, φ̇, δ̇, zeros on the states the outputs add.
+    let closed = match args.gains {
+        None => None,
+        Some(text) => {
+            let k = crate::feedback::parse_gains(text, req.inputs.len())?;
+            let states = 4 + req.states.len();
+            let padded = DMatrix::from_fn(
+                k.nrows(),
+                states,
+                |i, j| {
+                    if j < 4 { k[(i, j)] } else { 0.0 }
+                },
+            );
+            let closed = ClosedLoop::new(&bike.benchmark, &req, Gains::Constant(padded))
+                .map_err(|e| anyhow!(whipple_front::message::message(&e)).context("--gains"))?;
+            Some(closed)
+        }
+    };
     // Everything is computed before anything is written.
     let mut results: Vec<AtSpeed> = Vec::with_capacity(speeds.len());
     for &v in &speeds {
-        let system = LinearSystem::new(&bike.benchmark, v, &req).map_err(|e| {
+        let system = match &closed {
+            Some(closed) => closed.system(v),
+            None => LinearSystem::new(&bike.benchmark, v, &req),
+        }
+        .map_err(|e| {
             let option = option_of(&e);
             anyhow!(whipple_front::message::message(&e)).context(option)
         })?;
@@ -304,9 +337,13 @@ fn bode(cx: &RunContext, args: &Bode<'_>) -> Result<()> {
     }
     let mut summary = match args.format {
         TextFormat::Table => format!(
-            "{}: transfer functions and frequency responses (poles and zeros in 1/s; a zero \
+            "{}{}: transfer functions and frequency responses (poles and zeros in 1/s; a zero \
              marked RHP is in the right half-plane: non-minimum-phase)\n",
-            bike.label
+            bike.label,
+            match args.gains {
+                Some(k) => format!(" under feedback u = r − K x, K = {k} (on φ, δ, φ̇, δ̇)"),
+                None => String::new(),
+            }
         ),
         TextFormat::Json => String::new(),
     };
@@ -371,6 +408,14 @@ fn bode(cx: &RunContext, args: &Bode<'_>) -> Result<()> {
     if args.format == TextFormat::Json {
         let doc = json!({
             "bike": bike.label,
+            "gains": closed.as_ref().and_then(|c| match c.gains() {
+                Gains::Constant(k) => Some(
+                    k.row_iter()
+                        .map(|r| r.iter().take(4).copied().collect::<Vec<f64>>())
+                        .collect::<Vec<_>>(),
+                ),
+                Gains::Scheduled { .. } => None,
+            }),
             "pairs": json_rows,
             "warnings": bike.warnings_json(),
         });

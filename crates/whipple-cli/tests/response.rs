@@ -419,3 +419,113 @@ fn time_responses_refuse_bad_input_naming_the_option() {
         assert!(!never.exists(), "{args:?} wrote a file");
     }
 }
+
+/// `--gains`: the closed loop's transfer functions. Their poles are the closed-loop eigenvalues
+/// `control feedback` prints at the same speed, and the steer torque the loop applies has the
+/// unit gain at high frequency (u = r − K x, D = 1) and the library's static gain.
+#[test]
+fn bode_with_gains_gives_the_closed_loop() {
+    let json = |args: &[&str]| -> serde_json::Value {
+        serde_json::from_str(&stdout(&whipple(args))).expect("JSON")
+    };
+    let bode = json(&[
+        "response",
+        "bode",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "5",
+        "--input",
+        "steer_torque",
+        "--output",
+        "lean",
+        "--output",
+        "steer_torque",
+        "--gains",
+        "-100,10,-20,0",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(
+        bode["gains"],
+        serde_json::json!([[-100.0, 10.0, -20.0, 0.0]])
+    );
+    let feedback = json(&[
+        "control",
+        "feedback",
+        "--bike",
+        "benchmark",
+        "--gains",
+        "-100,10,-20,0",
+        "--speeds",
+        "5:5:1",
+        "--format",
+        "json",
+    ]);
+    let mut expected: Vec<(f64, f64)> = feedback["rows"][0]["eigenvalues"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|z| (z["re"].as_f64().unwrap(), z["im"].as_f64().unwrap()))
+        .collect();
+    expected.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    for pair in bode["pairs"].as_array().unwrap() {
+        let mut poles: Vec<(f64, f64)> = pair["poles"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|z| (z[0].as_f64().unwrap(), z[1].as_f64().unwrap()))
+            .collect();
+        poles.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        assert_eq!(poles.len(), 4, "{pair}");
+        for (p, q) in poles.iter().zip(&expected) {
+            assert!(
+                (p.0 - q.0).abs() + (p.1 - q.1).abs() < 1e-12 * 20.0,
+                "{p:?} vs {q:?}"
+            );
+        }
+    }
+    let applied = &bode["pairs"][1];
+    assert_eq!(applied["output"], "steer_torque");
+    assert_eq!(applied["gain"], 1.0);
+    // The library's own closed loop, the same number.
+    let request = SystemRequest {
+        states: vec![],
+        inputs: vec![Input::SteerTorque],
+        outputs: vec![Output::Input(Input::SteerTorque)],
+    };
+    let k = nalgebra::DMatrix::from_row_slice(1, 4, &[-100.0, 10.0, -20.0, 0.0]);
+    let closed = whipple::advanced::control::ClosedLoop::new(
+        &BenchmarkParameters::meijaard2007(),
+        &request,
+        whipple::advanced::control::Gains::Constant(k),
+    )
+    .unwrap();
+    let static_gain = closed
+        .system(5.0)
+        .unwrap()
+        .transfer_function(0, 0)
+        .unwrap()
+        .static_gain()
+        .unwrap();
+    assert_eq!(applied["static_gain"].as_f64().unwrap(), static_gain);
+    // K of the wrong shape is refused naming --gains.
+    let refused = stderr_of_failure(&whipple(&[
+        "response",
+        "bode",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "5",
+        "--input",
+        "steer_torque",
+        "--output",
+        "lean",
+        "--gains",
+        "1,2,3",
+    ]));
+    assert!(
+        refused.contains("--gains") && refused.contains("1 × 4"),
+        "{refused}"
+    );
+}
