@@ -213,8 +213,10 @@ pub fn worded_table(
         } else {
             writeln!(
                 t,
-                "  not decided            {} .. {} m/s: roots closer than round-off (a \
-                 near-tangency); the stability there cannot be told in double precision",
+                "  not decided            {} .. {} m/s: round-off cannot place where the \
+                 stability changes inside this interval (roots closer than round-off, or a \
+                 crossing known only to this width); the stability there cannot be told in \
+                 double precision",
                 number(a)?,
                 number(b)?
             )?;

@@ -827,8 +827,13 @@ pub fn critical_speeds(canonical: &Canonical, lo: f64, hi: f64) -> Result<Critic
     check_range(lo, hi)?;
     let sp = SpeedPolynomials::new(canonical)?;
     let structure = Structure::stability(&sp)?;
-    let (stable, crossings, mut unresolved) =
-        read_line(&structure, |nu| pair_frequency(&sp, nu), lo, hi)?;
+    let (stable, crossings, mut unresolved) = read_line(
+        &structure,
+        |nu| pair_frequency(&sp, nu),
+        lo,
+        hi,
+        WideCrossing::Fail,
+    )?;
     // v_d, v_w and v_c are speeds of forward riding: a range reaching below zero has their
     // mirror images there (p(λ, −v) = p(−λ, v)), where nothing turns stable.
     let weave = crossings.iter().find(|c| is_weave(c));
@@ -865,11 +870,22 @@ pub fn critical_speeds(canonical: &Canonical, lo: f64, hi: f64) -> Result<Critic
 /// each crossing's enclosure checked.
 type LineReading = (Vec<(f64, f64)>, Vec<Crossing>, Vec<(f64, f64)>);
 
+/// What [`read_line`] does with a crossing whose enclosure is wider than
+/// [`MAX_RELATIVE_ENCLOSURE`]: fail the whole reading (the open loop, whose named speeds are
+/// what the user asked for), or list its enclosure among the unresolved speeds and keep the
+/// rest (a closed loop, whose crossings are only where its stable ranges end).
+#[derive(Clone, Copy, PartialEq)]
+enum WideCrossing {
+    Fail,
+    Unresolved,
+}
+
 fn read_line(
     structure: &Structure,
     frequency: impl Fn(f64) -> Option<f64>,
     lo: f64,
     hi: f64,
+    wide: WideCrossing,
 ) -> Result<LineReading> {
     let mut stable: Vec<(f64, f64)> = Vec::new();
     let mut crossings: Vec<Crossing> = Vec::new();
@@ -879,10 +895,19 @@ fn read_line(
         Finding::Stable(a, b) => stable.push((a, b)),
         Finding::Unresolved(a, b) => unresolved.push((a, b)),
         Finding::Crossing(c) => {
-            if failure.is_none() {
-                failure = check_enclosure("a critical speed", c.speed, c.enclosure).err();
+            let check = check_enclosure("a critical speed", c.speed, c.enclosure);
+            match (check, wide) {
+                (Ok(()), _) => crossings.push(c),
+                (Err(_), WideCrossing::Unresolved) => {
+                    unresolved.push((c.enclosure.0.max(lo), c.enclosure.1.min(hi)));
+                }
+                (Err(e), WideCrossing::Fail) => {
+                    if failure.is_none() {
+                        failure = Some(e);
+                    }
+                    crossings.push(c);
+                }
             }
-            crossings.push(c);
         }
     });
     match failure {
@@ -916,7 +941,7 @@ pub(crate) fn closed_loop_critical_speeds(
             let w2 = gp.a1.eval(nu) / gp.a3.eval(nu);
             (w2 > 0.0).then(|| gp.sqrt_g * w2.sqrt())
         };
-        let (s, c, u) = read_line(&structure, frequency, a, b)?;
+        let (s, c, u) = read_line(&structure, frequency, a, b, WideCrossing::Unresolved)?;
         for range in s {
             match stable.last_mut() {
                 Some(last) if last.1 == range.0 => last.1 = range.1,

@@ -539,7 +539,8 @@ impl ClosedLoop {
     /// `weave_speed` and `capsize_speed` keep the open loop's rules (the lowest forward speed
     /// where a pair crossing stabilizes, where a real one destabilizes); the double-root
     /// speed is not computed (`double_root_unavailable` says why). Where round-off cannot
-    /// decide (a near-tangency, or a coefficient of these polynomials that cancels to zero
+    /// decide (a near-tangency, a crossing whose enclosure is wider than 1e-8 of its speed,
+    /// or a coefficient of these polynomials that cancels to zero
     /// within its bound, as the two-mass skate's does with zero gains) the speeds are listed
     /// in `unresolved`, never guessed. Gains on ignorable states are refused (naming
     /// `gains`): nothing about that loop is certified ([`Self::general_sweep`] samples it).
