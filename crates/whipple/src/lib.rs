@@ -533,7 +533,8 @@ pub mod advanced {
         /// use whipple::BenchmarkParameters;
         /// use whipple::advanced::parameters::{PrincipalBody, PrincipalParameters};
         /// let b = BenchmarkParameters::meijaard2007();
-        /// let rider = PrincipalBody { m: 70.0, x: 0.3, z: -0.9, k_aa: 0.3, k_bb: 0.15, k_yy: 0.3, alpha: 0.2 };
+        /// // A 20 kg rider inside the benchmark's 85 kg rear frame B; D is B without it.
+        /// let rider = PrincipalBody { m: 20.0, x: 0.3, z: -0.9, k_aa: 0.2, k_bb: 0.1, k_yy: 0.2, alpha: 0.2 };
         /// let p = PrincipalParameters::from_benchmark(&b, &rider, 1.7, 0.5)?;
         /// assert!((p.to_benchmark().i_bxz - b.i_bxz).abs() < 1e-12);
         /// # Ok::<(), whipple::Error>(())
