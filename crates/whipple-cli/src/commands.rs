@@ -6,7 +6,7 @@ use std::path::Path;
 use anyhow::{Context, Result, bail};
 use nalgebra::Matrix2;
 use serde_json::json;
-use whipple::advanced::io::{Format, write};
+use whipple::advanced::io::{Format, principal_yaml, write};
 use whipple::advanced::parameters::Description;
 use whipple::advanced::sensitivity;
 use whipple::advanced::sweep;
@@ -130,6 +130,11 @@ pub fn convert(
         FileFormat::BpTxt => Format::BicycleParametersTxt,
         FileFormat::HcTxt => Format::HumanControlTxt,
         FileFormat::Yaml => Format::Yaml,
+        FileFormat::PrincipalYaml => {
+            let text = principal_yaml(&bicycle)
+                .with_context(|| format!("writing {} as a principal set", bike.label))?;
+            return emit(&text, out.as_ref());
+        }
     };
     let text = write(&bicycle, format).with_context(|| {
         if format == Format::Jbike6M && !keep_form {

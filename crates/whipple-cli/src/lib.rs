@@ -100,6 +100,12 @@ pub enum FileFormat {
     HcTxt,
     /// BicycleParameters' YAML parameter set.
     Yaml,
+    /// BicycleParameters' YAML parameter set in the principal parameterization (Moore 2019);
+    /// the bicycle must carry its rider P (as a principal set read by whipple does).
+    #[value(
+        help = "BicycleParameters' YAML set in the principal parameterization (Moore 2019); needs the rider P a principal set carries"
+    )]
+    PrincipalYaml,
 }
 
 #[derive(Subcommand)]

@@ -56,6 +56,10 @@ fn out_format(path: &Path, to: Option<FileFormat>) -> Result<Format> {
         Some(FileFormat::HcTxt) => Format::HumanControlTxt,
         Some(FileFormat::Yaml) => Format::Yaml,
         Some(FileFormat::M) => Format::Jbike6M,
+        Some(FileFormat::PrincipalYaml) => bail!(
+            "--to principal-yaml: a measured bicycle has no rider P kept apart from its rear \
+             frame, which the principal parameterization needs; write it as --to yaml"
+        ),
         None => {
             let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
             if extension.eq_ignore_ascii_case("txt") {

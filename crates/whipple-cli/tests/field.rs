@@ -184,3 +184,48 @@ fn issue_28_an_absurd_sigma_is_refused_naming_the_field_never_printed_as_inf() {
     );
     assert!(!out.contains("inf"), "{out}");
 }
+
+/// A principal set (Moore 2019) is read (converted, with a note), written back with
+/// `--to principal-yaml` and read again to the same weave speed; a bicycle without the rider P
+/// is refused, naming what it lacks.
+#[test]
+fn principal_sets_convert_and_read_back() {
+    let dir = scratch("field-principal");
+    let original = data("bicycleparameters-yaml/principal-browserjason.yml");
+    let path = dir.join("principal.yml");
+    let out = whipple(&[
+        "convert",
+        "--bike",
+        &original,
+        "--to",
+        "principal-yaml",
+        "--out",
+        &path.to_string_lossy(),
+    ]);
+    stdout(&out);
+    let notes = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(
+        notes.contains("principal parameterization (Moore 2019)"),
+        "{notes}"
+    );
+    let speeds = |bike: &str| -> serde_json::Value {
+        serde_json::from_str(&stdout(&whipple(&[
+            "speeds", "--bike", bike, "--format", "json",
+        ])))
+        .expect("JSON")
+    };
+    let (a, b) = (speeds(&path.to_string_lossy()), speeds(&original));
+    let (wa, wb) = (
+        a["weave_speed"].as_f64().expect("v_w"),
+        b["weave_speed"].as_f64().expect("v_w"),
+    );
+    assert!((wa - wb).abs() < 1e-9 * wb, "{wa} against {wb}");
+    let err = stderr_of_failure(&whipple(&[
+        "convert",
+        "--bike",
+        "browser-jason",
+        "--to",
+        "principal-yaml",
+    ]));
+    assert!(err.contains("rider") && err.contains("mP"), "{err}");
+}

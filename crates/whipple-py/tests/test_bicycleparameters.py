@@ -89,3 +89,24 @@ def test_parameter_set(benchmark):
     assert mine.to_dict() == benchmark.to_dict()
     # Its operating speed `v` is kept as a key the Whipple parameters do not hold.
     assert [e["key"] for e in mine.extras] == ["v"] and mine.extras[0]["value"] == 5.0
+
+
+def test_principal_set_equals_bicycleparameters_conversion():
+    """A set in the principal parameterization (Moore 2019), read by whipple (converted to the
+    benchmark form on reading) and converted by BicycleParameters' own
+    Moore2019ParameterSet.to_parameterization('Meijaard2007'): the same 25 numbers and g to
+    1e-12 relative."""
+    import yaml
+    from bicycleparameters.parameter_sets import Moore2019ParameterSet
+
+    path = DATA / "bicycleparameters-yaml" / "principal-browserjason.yml"
+    with open(path) as f:
+        values = yaml.safe_load(f)["values"]
+    theirs = Moore2019ParameterSet({k: float(v) for k, v in values.items()}).to_parameterization(
+        "Meijaard2007").parameters
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", whipple.ParameterWarning)
+        mine = whipple.Bicycle.from_file(path).to_dict()
+    assert len(mine) == 26
+    for key, value in mine.items():
+        assert value == pytest.approx(float(theirs[key]), rel=1e-12, abs=1e-300), key

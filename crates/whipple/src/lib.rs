@@ -384,6 +384,8 @@ pub mod advanced {
         /// assert_eq!(whipple::advanced::io::Format::from_extension("toml"), Some(whipple::advanced::io::Format::Toml));
         /// ```
         pub use crate::parameters::io::Format;
+        /// A principal parameter set (Moore 2019) of a bicycle that carries its rider P.
+        pub use crate::parameters::io::principal_yaml;
         pub use crate::parameters::io::{
             FORMATS, MAX_FILE_BYTES, UNDETERMINED_FORMAT, json_slice_without_duplicates,
             json_without_duplicates, name_from_file_name, parse, write,
@@ -524,6 +526,20 @@ pub mod advanced {
         pub use crate::parameters::Jbike6Parameters;
         pub use crate::parameters::jbike6::BENCHMARK_FROM_JBIKE6;
         pub use crate::parameters::{Checked, Notice, Severity};
+        /// BicycleParameters' principal parameterization (Moore 2019) and its conversion to
+        /// and from the benchmark form.
+        ///
+        /// ```
+        /// use whipple::BenchmarkParameters;
+        /// use whipple::advanced::parameters::{PrincipalBody, PrincipalParameters};
+        /// let b = BenchmarkParameters::meijaard2007();
+        /// // A 20 kg rider inside the benchmark's 85 kg rear frame B; D is B without it.
+        /// let rider = PrincipalBody { m: 20.0, x: 0.3, z: -0.9, k_aa: 0.2, k_bb: 0.1, k_yy: 0.2, alpha: 0.2 };
+        /// let p = PrincipalParameters::from_benchmark(&b, &rider, 1.7, 0.5)?;
+        /// assert!((p.to_benchmark().i_bxz - b.i_bxz).abs() < 1e-12);
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::parameters::{PRINCIPAL_KEYS, PrincipalBody, PrincipalParameters};
     }
     #[doc = "Bicycles from bench measurements: BicycleParameters' `*Measured.txt` read, and the steps (Moore 2012 ch. 2) to benchmark parameters with exact first-order σ and covariance."]
     pub mod measured {

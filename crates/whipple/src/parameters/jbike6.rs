@@ -728,14 +728,21 @@ impl<T: RealField + Copy> PlaneBody<T> {
     /// A JBike6 body: centre (x forward, y up) and principal moments [I11, I22, Izz], the first
     /// two in the plane with the principal axis of I11 turned by `alpha` from x towards y.
     fn jbike6(m: T, x: T, y: T, inertia: [T; 3], alpha: T) -> Self {
+        Self::principal(m, x, -y, inertia, alpha)
+    }
+
+    /// A body from its principal moments [I11, I22, Iyy] about the centre (x, z), the first
+    /// two in the plane with the axis of I11 turned by `alpha` from x upwards (towards −z):
+    /// JBike6's bodies and Moore 2019's principal parameterization alike.
+    pub(crate) fn principal(m: T, x: T, z: T, inertia: [T; 3], alpha: T) -> Self {
         let [i11, i22, izz] = inertia;
         let (s, c) = alpha.sin_cos();
-        // R(alpha) diag(I11, I22) R(alpha)^T with R = [[c, -s], [s, c]], in JBike6's x-y
-        // axes; the benchmark's z is −y, so its xz product is minus JBike6's xy product.
+        // R(alpha) diag(I11, I22) R(alpha)^T with R = [[c, -s], [s, c]], in axes x forward,
+        // y up; the benchmark's z is −y, so its xz product is minus that xy product.
         PlaneBody {
             m,
             x,
-            z: -y,
+            z,
             i_xx: i11 * c * c + i22 * s * s,
             i_yy: izz,
             i_zz: i11 * s * s + i22 * c * c,

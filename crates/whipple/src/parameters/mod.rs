@@ -7,6 +7,7 @@ pub(crate) mod io;
 pub(crate) mod jbike6;
 pub(crate) mod measured;
 pub mod presets;
+pub(crate) mod principal;
 pub(crate) mod table;
 
 use std::collections::BTreeMap;
@@ -20,6 +21,7 @@ pub use jbike6::Jbike6Parameters;
 pub(crate) use jbike6::{
     JBIKE6_GRAVITY, JBIKE6_TABLE, Jbike6FrontBody, Jbike6RearBody, Jbike6Wheel,
 };
+pub use principal::{PRINCIPAL_KEYS, PrincipalBody, PrincipalParameters};
 pub(crate) use table::Form;
 pub(crate) use table::ParameterInfo;
 

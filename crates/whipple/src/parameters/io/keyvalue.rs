@@ -322,6 +322,12 @@ pub(crate) fn extra_meaning(key: &str) -> Option<&'static str> {
         "parameterization" | "parameters" | "rider" | "description" => {
             "YAML metadata of a BicycleParameters parameter set"
         }
+        "mP" | "xP" | "zP" | "kPaa" | "kPbb" | "kPyy" | "alphaP" => {
+            "the rigid rider P of Moore 2019's principal parameterization (BicycleParameters), inside the rear frame B; kept to write the principal form back"
+        }
+        "lP" | "wP" => {
+            "length and width of the rider diamond BicycleParameters draws for Moore 2019's principal parameterization [m]; not used by the Whipple model"
+        }
         _ => return None,
     })
 }

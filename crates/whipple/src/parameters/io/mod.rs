@@ -18,6 +18,7 @@ mod keyvalue;
 mod matlab;
 mod tree;
 mod write;
+pub use write::principal_yaml;
 mod yaml;
 
 pub use json::{json_slice_without_duplicates, json_without_duplicates};

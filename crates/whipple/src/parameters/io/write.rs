@@ -4,7 +4,8 @@
 use super::Format;
 use crate::error::{Error, Result};
 use crate::parameters::{
-    BENCHMARK_TABLE, Bicycle, Description, Extra, JBIKE6_TABLE, ParameterInfo,
+    BENCHMARK_TABLE, Bicycle, Description, Extra, JBIKE6_TABLE, PRINCIPAL_KEYS, ParameterInfo,
+    PrincipalBody, PrincipalParameters,
 };
 
 pub(crate) fn write(bike: &Bicycle, format: Format) -> Result<String> {
@@ -427,4 +428,97 @@ fn yaml(bike: &Bicycle) -> String {
         }
     }
     out
+}
+
+/// A BicycleParameters parameter set in the principal parameterization (Moore 2019,
+/// `parameterization: principal`), from the bicycle's benchmark parameters
+/// ([`PrincipalParameters::from_benchmark`]). The rear frame B splits into the frame D and the
+/// rider P only with the rider given: the bicycle must carry the rider's `mP`, `xP`, `zP`,
+/// `kPaa`, `kPbb`, `kPyy`, `alphaP`, `lP`, `wP` among its extras, as a principal set read by
+/// whipple does (also through a TOML or JSON file written from it). The keys BicycleParameters
+/// repeats (`yD`, `xF`, `zR`, `kRbb`, ...) are written too, and `v` where the bicycle has one
+/// (BicycleParameters requires it). Standard deviations are refused: they are not carried to
+/// the principal form yet.
+pub fn principal_yaml(bike: &Bicycle) -> Result<String> {
+    if bike.has_uncertainty() {
+        return Err(Error::InvalidArgument {
+            what: "format",
+            rule: "the principal form does not carry standard deviations yet: write the \
+                   benchmark form to keep them"
+                .into(),
+        });
+    }
+    let b = bike.benchmark()?;
+    let extra = |key: &str| {
+        bike.extras
+            .iter()
+            .find(|e| e.key == key)
+            .and_then(|e| e.value)
+    };
+    let rider_keys = [
+        "mP", "xP", "zP", "kPaa", "kPbb", "kPyy", "alphaP", "lP", "wP",
+    ];
+    let missing: Vec<&str> = rider_keys
+        .iter()
+        .copied()
+        .filter(|k| extra(k).is_none())
+        .collect();
+    let given: Vec<f64> = rider_keys.iter().filter_map(|k| extra(k)).collect();
+    let [m, x, z, k_aa, k_bb, k_yy, alpha, l_p, w_p] = given[..] else {
+        return Err(Error::InvalidArgument {
+            what: "format",
+            rule: format!(
+                "the principal form keeps the rider P apart from the frame D, but the benchmark's \
+                 rear frame B does not say how it splits; the bicycle lacks the rider's {} (a \
+                 principal set read by whipple keeps them)",
+                missing.join(", ")
+            ),
+        });
+    };
+    let rider = PrincipalBody {
+        m,
+        x,
+        z,
+        k_aa,
+        k_bb,
+        k_yy,
+        alpha,
+    };
+    let p = PrincipalParameters::from_benchmark(&b, &rider, l_p, w_p)?;
+    let mut lines: Vec<(&str, f64)> = PRINCIPAL_KEYS.iter().copied().zip(p.to_array()).collect();
+    lines.extend([
+        ("yD", 0.0),
+        ("yH", 0.0),
+        ("yP", 0.0),
+        ("yR", 0.0),
+        ("yF", 0.0),
+        ("xR", 0.0),
+        ("xF", p.w),
+        ("zR", -p.r_r),
+        ("zF", -p.r_f),
+        ("kRbb", p.k_raa),
+        ("kFbb", p.k_faa),
+    ]);
+    if let Some(v) = extra("v") {
+        lines.push(("v", v));
+    }
+    lines.sort_by(|a, b| a.0.cmp(b.0));
+    let mut out = String::from("parameterization: principal\n");
+    if let Some(name) = &bike.name {
+        out.push_str(&format!("parameters: {}\n", yaml_scalar(name)));
+    }
+    let rider_text = bike
+        .extras
+        .iter()
+        .find(|e| e.key == "rider")
+        .map_or("True", |e| e.text.as_str());
+    out.push_str(&format!("rider: {}\n", yaml_scalar(rider_text)));
+    if let Some(source) = &bike.source {
+        out.push_str(&format!("description: {}\n", yaml_scalar(source)));
+    }
+    out.push_str("values:\n");
+    for (k, v) in lines {
+        out.push_str(&format!("  {k}: {}\n", number(v)));
+    }
+    Ok(out)
 }
