@@ -244,6 +244,22 @@ fn bad_input_is_refused_naming_the_option_and_nothing_is_written() {
         "3,inf",
     ]);
     assert!(e.contains("--speeds"), "{e}");
+    // A point inside nothing: under the road, or two metres ahead of the front wheel.
+    let e = run(&["--input", "lateral_force:0.3,0.5", "--output", "lean"]);
+    assert!(
+        e.contains("--input") && e.contains("below the ground"),
+        "{e}"
+    );
+    let e = run(&[
+        "--input",
+        "steer_torque",
+        "--output",
+        "rear_frame_point_y:3.4,-1",
+    ]);
+    assert!(
+        e.contains("--output") && e.contains("outside the bicycle") && e.contains("1.370 m"),
+        "{e}"
+    );
     assert!(!csv.exists(), "no file after a refusal");
 }
 

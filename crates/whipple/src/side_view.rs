@@ -146,6 +146,41 @@ impl SideView {
     }
 }
 
+impl SideView {
+    /// The box the bicycle occupies in the side view, `[min, max]` corners (x forward, y up)
+    /// \[m\]: the wheels (x from −r_R to w + r_F, up to the taller wheel's top) and, for each
+    /// other body, its inertia ellipse (the uniform solid ellipsoid with its mass and inertia)
+    /// or, without one, its centre of mass. Only the parameters decide it: the drawing aids
+    /// (tubes, saddle, handlebar) do not count. The ground, y = 0, is always its lower side.
+    pub fn extent(&self) -> [Point; 2] {
+        let mut lo = [-self.rear_wheel_radius, 0.0];
+        let mut hi = [
+            self.wheelbase + self.front_wheel_radius,
+            2.0 * self.rear_wheel_radius.max(self.front_wheel_radius),
+        ];
+        for body in self
+            .bodies
+            .iter()
+            .filter(|b| !b.part.is_wheel() && b.mass > 0.0)
+        {
+            let half = body.ellipse.map_or([0.0, 0.0], |e| {
+                let [a, b] = e.semi_axes;
+                let (s, c) = e.angle.sin_cos();
+                [
+                    (a * a * c * c + b * b * s * s).sqrt(),
+                    (a * a * s * s + b * b * c * c).sqrt(),
+                ]
+            });
+            for k in 0..2 {
+                lo[k] = lo[k].min(body.centre[k] - half[k]);
+                hi[k] = hi[k].max(body.centre[k] + half[k]);
+            }
+        }
+        lo[1] = 0.0;
+        [lo, hi]
+    }
+}
+
 /// Semi-axes of the uniform ellipsoid with in-plane principal moments `i1` (about the first
 /// axis) and `i2`, and lateral moment `i3`: a_k² = 5 (I_j + I_3 − I_k) / (2m).
 pub(crate) fn ellipse(mass: f64, i1: f64, i2: f64, i3: f64, angle: f64) -> Option<Ellipse> {

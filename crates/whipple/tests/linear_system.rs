@@ -8,6 +8,7 @@ use nalgebra::{Complex, DMatrix};
 use whipple::advanced::linear::{
     Input, LinearSystem, Output, StateVariable, SystemRequest, origin_zero_speeds,
 };
+use whipple::advanced::side_view::side_view;
 use whipple::{BenchmarkParameters, Error, Result};
 use whipple_reference::meijaard2007 as published;
 
@@ -375,6 +376,76 @@ fn bad_requests_name_their_field() -> Result<()> {
         "outputs",
         "finite",
     );
+    // A point inside nothing: below the ground, or outside the box the bicycle occupies.
+    let track = vec![StateVariable::Yaw, StateVariable::RearContactY];
+    refused(
+        SystemRequest {
+            inputs: vec![Input::LateralForce { x: 0.3, z: 0.2 }],
+            ..base.clone()
+        },
+        "inputs",
+        "input 1 (lateral_force(x = 0.3 m, z = 0.2 m)) is below the ground",
+    );
+    refused(
+        SystemRequest {
+            inputs: vec![Input::SteerTorque, Input::LateralForce { x: 3.0, z: -1.0 }],
+            ..base.clone()
+        },
+        "inputs",
+        "input 2 (lateral_force(x = 3 m, z = -1 m)) lies outside the bicycle, which spans x \
+         from -0.300 to 1.370 m",
+    );
+    refused(
+        SystemRequest {
+            states: track.clone(),
+            outputs: vec![Output::RearFramePointY { x: 0.5, z: -4.0 }],
+            ..base.clone()
+        },
+        "outputs",
+        "output 1 (rear_frame_point_y(x = 0.5 m, z = -4 m)) lies outside the bicycle",
+    );
+    refused(
+        SystemRequest {
+            states: track.clone(),
+            outputs: vec![Output::FrontFramePointY { x: -0.5, z: -0.5 }],
+            ..base.clone()
+        },
+        "outputs",
+        "lies outside the bicycle",
+    );
+    refused(
+        SystemRequest {
+            states: track.clone(),
+            outputs: vec![Output::FrontFramePointY { x: 1.0, z: 1e-9 }],
+            ..base.clone()
+        },
+        "outputs",
+        "below the ground",
+    );
+    // On the box's edges (the rear wheel's back, the front wheel's front, the ground) and at
+    // the rider's head (the top of B's ellipsoid, z = -0.9 - 0.723…) the points are the
+    // bicycle's.
+    let [lo, hi] = side_view(&bike(), None).extent();
+    assert_eq!((lo, hi[0]), ([-0.3, 0.0], 1.02 + 0.35));
+    assert!((1.55..1.7).contains(&hi[1]), "{hi:?}");
+    LinearSystem::new(
+        &bike(),
+        5.0,
+        &SystemRequest {
+            states: track.clone(),
+            inputs: vec![
+                Input::LateralForce { x: -0.3, z: 0.0 },
+                Input::LateralForce {
+                    x: hi[0],
+                    z: -hi[1],
+                },
+            ],
+            outputs: vec![
+                Output::RearFramePointY { x: 0.3, z: -hi[1] },
+                Output::FrontFramePointY { x: hi[0], z: 0.0 },
+            ],
+        },
+    )?;
     refused(
         SystemRequest {
             states: vec![StateVariable::Lean],

@@ -51,7 +51,7 @@ use super::{Canonical, LinearSystem};
 use crate::analysis::eigen::{Complex64, eigenvalues};
 use crate::analysis::roots::{BoundedPolynomial, RealRoot, UNIT_ROUNDOFF, real_roots};
 use crate::error::{Error, Result};
-use crate::linear::system::{Geometry, Input};
+use crate::linear::system::{Geometry, Input, SystemRequest};
 use crate::parameters::BenchmarkParameters;
 
 /// The Kalman controllability matrix's numerical answer at one speed.
@@ -188,7 +188,8 @@ fn resultant(canonical: &Canonical, f: Vector2<f64>) -> BoundedPolynomial<3> {
 /// modes, certified (see the module documentation): each a root of a polynomial in v, with an
 /// enclosure, so none is missed; and the eigenvalue of the mode lost there.
 ///
-/// Errors: invalid parameters, a lateral force at a point that is not finite, and
+/// Errors: invalid parameters, a lateral force at a point that is not finite or lies inside
+/// nothing (as [`LinearSystem::new`] refuses it), and
 /// [`Error::AccuracyLost`] when round-off leaves the polynomial's roots undecided.
 ///
 /// ```
@@ -212,6 +213,12 @@ pub fn uncontrollable_speeds(
             rule: format!("the point of {input} must have finite coordinates"),
         });
     }
+    SystemRequest {
+        states: Vec::new(),
+        inputs: vec![*input],
+        outputs: Vec::new(),
+    }
+    .check_points(bike)?;
     let geometry = Geometry::of(bike);
     let f = Vector2::from(geometry.generalized_forces(input));
     let none = |everywhere| UncontrollableSpeeds {

@@ -429,6 +429,60 @@ impl SystemRequest {
     }
 }
 
+impl SystemRequest {
+    /// Refuses a point (a lateral force's, or an output's on the rear or front frame) that lies
+    /// below the ground (z > 0) or outside the box the bicycle occupies in its side view
+    /// ([`SideView::extent`](crate::side_view::SideView::extent): the wheels and each frame's
+    /// uniform ellipsoid of the same mass and inertia), naming `inputs` or `outputs`.
+    pub(crate) fn check_points(&self, bike: &BenchmarkParameters) -> Result<()> {
+        let [lo, hi] = crate::side_view::side_view(bike, None).extent();
+        let points = self
+            .inputs
+            .iter()
+            .enumerate()
+            .filter_map(|(k, input)| match *input {
+                Input::LateralForce { x, z } => {
+                    Some(("inputs", "input", k, input.to_string(), x, z))
+                }
+                _ => None,
+            })
+            .chain(
+                self.outputs
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(k, output)| match *output {
+                        Output::RearFramePointY { x, z } | Output::FrontFramePointY { x, z } => {
+                            Some(("outputs", "output", k, output.to_string(), x, z))
+                        }
+                        _ => None,
+                    }),
+            );
+        for (what, one, k, name, x, z) in points {
+            let rule = if z > 0.0 {
+                format!(
+                    "the point of {one} {} ({name}) is below the ground: z points down, so a \
+                     point on the bicycle has z ≤ 0",
+                    k + 1
+                )
+            } else if x < lo[0] || x > hi[0] || -z > hi[1] {
+                format!(
+                    "the point of {one} {} ({name}) lies outside the bicycle, which spans x from \
+                     {:.3} to {:.3} m and z from {:.3} to 0 m (its wheels, and each frame's \
+                     uniform ellipsoid of the same mass and inertia)",
+                    k + 1,
+                    lo[0],
+                    hi[0],
+                    -hi[1],
+                )
+            } else {
+                continue;
+            };
+            return Err(Error::InvalidArgument { what, rule });
+        }
+        Ok(())
+    }
+}
+
 /// The geometry the ignorable coordinates' kinematics need (benchmark symbols, SI).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Geometry {
@@ -518,6 +572,7 @@ impl LinearSystem {
         let canonical = Canonical::new(bike)?;
         let lean_steer = StateSpace::new(&canonical, speed)?;
         request.check()?;
+        request.check_points(bike)?;
         let geometry = Geometry::of(bike);
         let states: Vec<StateVariable> = StateVariable::LEAN_STEER
             .iter()
