@@ -154,30 +154,33 @@ const DRAWINGS = {
     view: "0 0 260 144",
   },
   geometry: {
-    alt: "A bicycle's side view: the wheelbase w between the contact points, the head tube angle gamma with the ground, and the fork offset f from the front hub perpendicular to the steer axis.",
+    alt: "A bicycle's side view: the wheelbase w between the contact points, the head tube angle gamma between the steer axis and the ground, and the fork offset f from the front hub perpendicular to the steer axis.",
     body: () => {
-      // Steer axis through (200, 30) at 70° to the ground; the front hub offset from it.
-      const g = (70 * Math.PI) / 180;
-      const [ax, ay] = [176, 112];
-      const top = [ax + 100 * Math.cos(g), ay - 100 * Math.sin(g)];
-      const hub = [214, 80];
-      // The foot of the perpendicular from the hub to the axis.
-      const d = [Math.cos(g), -Math.sin(g)];
-      const t = (hub[0] - ax) * d[0] + (hub[1] - ay) * d[1];
-      const foot = [ax + t * d[0], ay + t * d[1]];
-      return `<line x1="10" y1="112" x2="250" y2="112" stroke="${INK}" stroke-width="1.5"/>
-        ${wheelSvg(52, 80, 32)}${wheelSvg(hub[0], hub[1], 32)}
-        <path d="M52 80 L96 82 L150 40 L${(foot[0] - 0).toFixed(1)} ${(foot[1] - 36).toFixed(1)} M96 82 L140 30 M150 40 L140 30" fill="none" stroke="${INK}" stroke-width="2"/>
-        <line x1="${ax}" y1="${ay}" x2="${top[0].toFixed(1)}" y2="${top[1].toFixed(1)}" stroke="${MUTED}" stroke-width="1" stroke-dasharray="5 3"/>
-        <line x1="${foot[0].toFixed(1)}" y1="${(foot[1] - 36).toFixed(1)}" x2="${hub[0]}" y2="${hub[1]}" stroke="${INK}" stroke-width="2"/>
-        ${dim(hub[0], hub[1], foot[0].toFixed(1), foot[1].toFixed(1))}${label(hub[0] + 12, hub[1] - 10, "f", "start")}
-        <path d="M ${ax + 24} ${ay} A 24 24 0 0 0 ${(ax + 24 * Math.cos(g)).toFixed(1)} ${(ay - 24 * Math.sin(g)).toFixed(1)}" fill="none" stroke="${ACCENT}" stroke-width="1.2"/>
-        ${label(ax + 34, ay - 8, "gamma", "start")}
-        ${dim(52, 126, hub[0], 126)}${label(133, 140, "w")}`;
+      // To scale but for the fork offset, doubled: r = 40, w = 3.3 r, the steer axis tilted
+      // back by lambda = 90° − gamma, the front hub ahead of it by f, the trail c that follows.
+      const [r, lambda, f] = [40, (25 * Math.PI) / 180, 12];
+      const hub = [180, 72];
+      const c = (r * Math.sin(lambda) - f) / Math.cos(lambda);
+      const p = [hub[0] + c, 112];
+      const d = [-Math.sin(lambda), -Math.cos(lambda)];
+      const on = (y) => [p[0] + ((p[1] - y) / Math.cos(lambda)) * d[0], y];
+      const t = (hub[0] - p[0]) * d[0] + (hub[1] - p[1]) * d[1];
+      const foot = [p[0] + t * d[0], p[1] + t * d[1]];
+      const [h1, h2] = [on(20), on(40)];
+      const f2 = (q) => q.map((x) => x.toFixed(1)).join(" ");
+      const top = on(4);
+      return `<line x1="4" y1="112" x2="276" y2="112" stroke="${INK}" stroke-width="1.5"/>
+        ${wheelSvg(48, 72, r)}${wheelSvg(hub[0], hub[1], r)}
+        <path d="M 48 72 L 100 84 L 88 24 Z M 88 24 L ${f2(h1)} M 100 84 L ${f2(h2)} M ${f2(h1)} L ${f2(h2)} L ${f2(hub)} M ${f2(h1)} L ${(h1[0] - 4).toFixed(1)} 8 L ${(h1[0] - 20).toFixed(1)} 8 M 80 24 L 96 24" fill="none" stroke="${INK}" stroke-width="2.2" stroke-linejoin="round"/>
+        <line x1="${top[0].toFixed(1)}" y1="${top[1]}" x2="${(p[0] - 6 * d[0]).toFixed(1)}" y2="${(p[1] - 6 * d[1]).toFixed(1)}" stroke="${MUTED}" stroke-width="1" stroke-dasharray="5 3"/>
+        <line x1="${hub[0]}" y1="${hub[1]}" x2="${foot[0].toFixed(1)}" y2="${foot[1].toFixed(1)}" stroke="${ACCENT}" stroke-width="2.5"/>${label(hub[0] + 7, hub[1] - 9, "f", "start")}
+        <path d="M ${(p[0] - 30).toFixed(1)} ${p[1]} A 30 30 0 0 1 ${f2([p[0] + 30 * d[0], p[1] + 30 * d[1]])}" fill="none" stroke="${ACCENT}" stroke-width="1.2"/>
+        ${label(p[0] + 12, p[1] + 14, "gamma", "start")}
+        ${dim(48, 126, hub[0], 126)}${label(114, 140, "w")}`;
     },
-    view: "0 0 260 144",
+    view: "0 0 280 144",
   },
-  rod: {
+    rod: {
     alt: "A torsion pendulum: a wire from a fixed support holding a rod of mass mP, length lP and diameter dP at its middle, twisting back and forth with period TtP1.",
     body: () => `<rect x="80" y="6" width="100" height="8" fill="${MUTED}"/><line x1="130" y1="14" x2="130" y2="76" stroke="${INK}" stroke-width="1.5"/>
       <rect x="40" y="76" width="180" height="10" rx="5" fill="#cbd5e1" stroke="${INK}" stroke-width="1.5"/>
@@ -186,32 +189,40 @@ const DRAWINGS = {
     view: "0 0 260 136",
   },
   hanging: {
-    alt: "A rear frame hung from the torsion pendulum's wire at an angle: the steer axis at angle alphaB1 with the horizontal, the plumb line down the wire through the mass centre, the rear axle at distance aB1 from it.",
+    alt: "A rear frame hung from the torsion pendulum's wire: the steer axis at angle alphaB1 with the horizontal, the wire's plumb line running down through the mass centre, the rear axle at distance aB1 from it; the frame twists about the wire with period TtB1.",
     body: () => {
-      // A frame (triangle with the steer axis) turned by 30° about the wire's clamp.
-      const turn = (x, y) => {
-        const a = (-28 * Math.PI) / 180;
-        const [cx, cy] = [130, 60];
-        return [(cx + (x - cx) * Math.cos(a) - (y - cy) * Math.sin(a)).toFixed(1), (cy + (x - cx) * Math.sin(a) + (y - cy) * Math.cos(a)).toFixed(1)];
-      };
-      const p = (x, y) => turn(x, y).join(" ");
-      const axle = turn(70, 96);
-      const head = [turn(176, 40), turn(168, 96)];
-      return `<rect x="90" y="4" width="80" height="7" fill="${MUTED}"/>
-        <line x1="130" y1="11" x2="130" y2="134" stroke="${MUTED}" stroke-width="1" stroke-dasharray="4 3"/>
-        <line x1="130" y1="11" x2="130" y2="46" stroke="${INK}" stroke-width="1.5"/>
-        <path d="M ${p(70, 96)} L ${p(116, 98)} L ${p(170, 60)} L ${p(110, 50)} Z M ${p(116, 98)} L ${p(110, 50)}" fill="none" stroke="${INK}" stroke-width="2.2"/>
-        <line x1="${head[0][0]}" y1="${head[0][1]}" x2="${head[1][0]}" y2="${head[1][1]}" stroke="${INK}" stroke-width="3"/>
-        <circle cx="${axle[0]}" cy="${axle[1]}" r="4" fill="#fff" stroke="${INK}" stroke-width="1.5"/>
-        <circle cx="130" cy="78" r="5" fill="${ACCENT}"/><text x="138" y="92" font-size="10" fill="${MUTED}">mass centre</text>
-        ${dim(axle[0], Number(axle[1]) + 16, 130, Number(axle[1]) + 16)}${label((Number(axle[0]) + 130) / 2, Number(axle[1]) + 30, "aB1")}
-        <line x1="${head[1][0]}" y1="${head[1][1]}" x2="${Number(head[1][0]) + 50}" y2="${head[1][1]}" stroke="${MUTED}" stroke-width="1"/>
-        ${label(Number(head[1][0]) + 30, Number(head[1][1]) - 18, "alphaB1", "start")}
-        ${label(136, 24, "TtB1", "start")}`;
+      // The rear frame (axle, seat tube, head tube) turned by -35° about its clamp on the wire.
+      const a = (-35 * Math.PI) / 180;
+      const [cx, cy] = [140, 44];
+      const at = (x, y) => [cx + (x - cx) * Math.cos(a) - (y - cy) * Math.sin(a), cy + (x - cx) * Math.sin(a) + (y - cy) * Math.cos(a)];
+      const f2 = (q) => q.map((x) => x.toFixed(1)).join(" ");
+      const axle = at(70, 100);
+      const bb = at(122, 106);
+      const seat = at(110, 50);
+      const [head1, head2] = [at(178, 52), at(170, 84)];
+      // The steer axis extended below the head tube, and its angle with the horizontal.
+      const dir = [head2[0] - head1[0], head2[1] - head1[1]];
+      const len = Math.hypot(...dir);
+      const end = [head2[0] + (dir[0] / len) * 34, head2[1] + (dir[1] / len) * 34];
+      const alpha = Math.atan2(dir[1], dir[0]);
+      const arc = [head2[0] + 22 * Math.cos(alpha), head2[1] + 22 * Math.sin(alpha)];
+      return `<rect x="100" y="2" width="80" height="7" fill="${MUTED}"/>
+        <line x1="140" y1="9" x2="140" y2="142" stroke="${MUTED}" stroke-width="1" stroke-dasharray="4 3"/>
+        <line x1="140" y1="9" x2="140" y2="52" stroke="${INK}" stroke-width="1.5"/>
+        <path d="M ${f2(axle)} L ${f2(bb)} L ${f2(seat)} Z M ${f2(seat)} L ${f2(head1)} M ${f2(bb)} L ${f2(head2)}" fill="none" stroke="${INK}" stroke-width="2.2" stroke-linejoin="round"/>
+        <line x1="${head1[0].toFixed(1)}" y1="${head1[1].toFixed(1)}" x2="${head2[0].toFixed(1)}" y2="${head2[1].toFixed(1)}" stroke="${INK}" stroke-width="4"/>
+        <line x1="${head2[0].toFixed(1)}" y1="${head2[1].toFixed(1)}" x2="${end[0].toFixed(1)}" y2="${end[1].toFixed(1)}" stroke="${MUTED}" stroke-width="1" stroke-dasharray="4 3"/>
+        <line x1="${head2[0].toFixed(1)}" y1="${head2[1].toFixed(1)}" x2="${(head2[0] + 34).toFixed(1)}" y2="${head2[1].toFixed(1)}" stroke="${MUTED}" stroke-width="1"/>
+        <path d="M ${(head2[0] + 22).toFixed(1)} ${head2[1].toFixed(1)} A 22 22 0 0 1 ${f2(arc)}" fill="none" stroke="${ACCENT}" stroke-width="1.2"/>
+        ${label(head2[0] + 26, head2[1] + 22, "alphaB1", "start")}
+        <circle cx="${axle[0].toFixed(1)}" cy="${axle[1].toFixed(1)}" r="4" fill="#fff" stroke="${INK}" stroke-width="1.5"/>
+        <circle cx="140" cy="98" r="5" fill="${ACCENT}"/><text x="168" y="124" font-size="10" fill="${MUTED}">mass centre</text><line x1="144" y1="101" x2="166" y2="118" stroke="${MUTED}" stroke-width="0.8"/>
+        ${dim(axle[0].toFixed(1), (axle[1] + 14).toFixed(1), 140, (axle[1] + 14).toFixed(1))}${label((axle[0] + 140) / 2, axle[1] + 28, "aB1")}
+        ${label(146, 24, "TtB1", "start")}`;
     },
-    view: "0 0 260 144",
+    view: "0 0 260 166",
   },
-  compound: {
+    compound: {
     alt: "A compound pendulum: a wheel hung from a knife edge inside its rim swings in its own plane with period TcR1; lR is the knife edge's distance to the axle.",
     body: () => `<path d="M 110 14 L 150 14 L 130 30 Z" fill="${MUTED}"/>${wheelSvg(130, 80, 48)}
       ${dim(130, 32, 130, 80)}${label(138, 60, "lR", "start")}
