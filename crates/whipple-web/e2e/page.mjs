@@ -409,7 +409,7 @@ await section("a negative simulation speed is answered", async () => {
 await section("no sideways scroll at 768 and 390 px; 1920 px uses the width", async () => {
   for (const [width, height] of [[768, 1024], [390, 844]]) {
     await open("?bike=preset:benchmark", { width, height });
-    for (const tab of ["eigen", "control", "sim", "measure"]) {
+    for (const tab of ["eigen", "control", "measure", "sim"]) {
       await page.getByTestId(`tab-${tab}`).click();
       await settled();
       const { scroll, inner, wide } = await page.evaluate(() => ({
@@ -1530,6 +1530,21 @@ await section("measure: the Browser sample's derived numbers as whipple measure 
   await page.getByTestId("ms-dR").fill("27.85");
   await measured();
   check(!(await page.getByTestId("ms-message").isVisible()) && (await text("ms-step-rR")) === MEASURE_BROWSER.rR, "mended: the message gone, rR back");
+  // A file opened fills the form (a list of repeated measurements averaged by the library),
+  // and the form saved is a *Measured.txt that the library reads to the same numbers.
+  const samples = await page.evaluate(() => fetch("/api/measure/samples").then((r) => r.json()));
+  const edited = samples[0].text.replace(/^TcR1 = .*$/m, "TcR1 = 1.36+/-0.001, 1.38+/-0.001");
+  await page.setInputFiles("#ms-file", { name: "TestMeasured.txt", mimeType: "text/plain", buffer: Buffer.from(edited) });
+  await measured();
+  const mean = [await page.getByTestId("ms-TcR1").inputValue(), await page.getByTestId("ms-TcR1-sigma").inputValue()];
+  check(mean[0] === "1.37" && mean[1] === "0.000707106781187" && (await page.getByTestId("ms-name").inputValue()) === "Test" && (await page.getByTestId("ms-sample").inputValue()) === "", `TestMeasured.txt opened: “Test”, TcR1 = 1.36, 1.38 read as their mean ${mean[0]} ± ${mean[1]} (√(2·0.001²)/2)`);
+  const saved = await downloadOf(() => page.getByTestId("ms-save").click());
+  const lines = saved.text.trim().split("\n");
+  check(saved.name === "TestMeasured.txt" && lines.length === 50 && lines.includes("TcR1 = 1.37+/-0.000707106781187") && lines.includes("lcs = 0.46"), `saved as ${saved.name}: ${lines.length} lines, the rider's geometry kept`);
+  const again = await page.evaluate((text) => fetch("/api/measure", { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ text }) }).then((r) => r.json()), saved.text);
+  const shownIRyy = await text("ms-step-IRyy");
+  const reread = again.steps.find((s) => s.key === "IRyy");
+  check(shownIRyy.startsWith(reread.value.toFixed(5)), `the saved file read again gives the IRyy shown (${shownIRyy}; ${reread.value})`);
   // The same bicycle from BicycleParameters' own computation (the preset, its Benchmark.txt):
   // the same critical speeds.
   await open("?bike=preset:browser");
