@@ -409,7 +409,7 @@ await section("a negative simulation speed is answered", async () => {
 await section("no sideways scroll at 768 and 390 px; 1920 px uses the width", async () => {
   for (const [width, height] of [[768, 1024], [390, 844]]) {
     await open("?bike=preset:benchmark", { width, height });
-    for (const tab of ["eigen", "control", "sim"]) {
+    for (const tab of ["eigen", "control", "measure", "sim"]) {
       await page.getByTestId(`tab-${tab}`).click();
       await settled();
       const { scroll, inner, wide } = await page.evaluate(() => ({
@@ -1492,6 +1492,107 @@ await section("simulation at 1280 × 800: nothing overlaps, nothing sticks out",
   check(top.drawn <= top.room + 1 && top.table <= top.shown + 1, `the side view drawn within its ${top.room} px, the critical speeds within theirs (${top.table} of ${top.shown} px)`);
 });
 
+// `whipple measure --raw BrowserMeasured.txt` prints these rows (value to the decimals of σ's
+// three digits); the page shows the same numbers from /api/measure, which calls the same core.
+const MEASURE_BROWSER = { rR: "0.340959 ± 0.000122", IBxx: "0.52963 ± 0.00248" };
+
+/** Until the Measure tab has computed (the derived numbers unveiled) and the page settled. */
+async function measured() {
+  await settled();
+  await waitFor("the derived numbers", async () => !(await page.evaluate(() => document.querySelector(".ms-view").classList.contains("ms-stale"))));
+}
+
+await section("measure: the Browser sample's derived numbers as whipple measure prints them, bad input named, load into editor, the eigenvalues of it", async () => {
+  await open("?bike=preset:benchmark&tab=measure");
+  check((await page.locator("[data-testid^=ms-drawing-]").count()) === 6, "six drawings of the set-ups");
+  await page.getByTestId("ms-sample").selectOption("browser");
+  await measured();
+  check((await page.getByTestId("ms-dR").inputValue()) === "27.85" && (await page.getByTestId("ms-dR-sigma").inputValue()) === "0.01", "the sample fills the form: dR = 27.85 ± 0.01 m");
+  check((await page.getByTestId("ms-TtB3").inputValue()) === "1.83976940999", "and the hangings: TtB3 = 1.83976940999 s");
+  for (const [key, shown] of Object.entries(MEASURE_BROWSER)) {
+    const got = await text(`ms-step-${key}`);
+    check(got === shown, `${key} = ${got}, as whipple measure prints it (${shown})`);
+  }
+  check(/Browser: 26 parameters with σ/.test(await text("ms-meta")), `the summary: ${await text("ms-meta")}`);
+  check(/[?&]ms=s(%3A|:)browser/.test(page.url()), "the link holds the sample");
+  // Typed: recomputed after the pause; a bad value named by its key, its field marked.
+  await page.getByTestId("ms-dR").fill("28.85");
+  await measured();
+  const radius = await text("ms-step-rR");
+  check(radius.startsWith("0.353"), `dR = 28.85 m: rR = ${radius} (28.85 / 26π)`);
+  check(/k\.dR(%3A|:)28\.85/.test(page.url()), "the link holds the edit");
+  await page.getByTestId("ms-TtB2").fill("-2.3");
+  await settled();
+  const refused = await waitForText("ms-message", (t) => /TtB2/.test(t));
+  check(/a period must be positive/.test(refused) && (await page.getByTestId("ms-TtB2").getAttribute("aria-invalid")) === "true", `a negative period is refused naming TtB2: “${refused}”`);
+  check(await page.getByTestId("ms-load").isDisabled(), "and nothing stale can be loaded");
+  await page.getByTestId("ms-TtB2").fill("2.37671750273");
+  await page.getByTestId("ms-dR").fill("27.85");
+  await measured();
+  check(!(await page.getByTestId("ms-message").isVisible()) && (await text("ms-step-rR")) === MEASURE_BROWSER.rR, "mended: the message gone, rR back");
+  // A file opened fills the form (a list of repeated measurements averaged by the library),
+  // and the form saved is a *Measured.txt that the library reads to the same numbers.
+  const samples = await page.evaluate(() => fetch("/api/measure/samples").then((r) => r.json()));
+  const edited = samples[0].text.replace(/^TcR1 = .*$/m, "TcR1 = 1.36+/-0.001, 1.38+/-0.001");
+  await page.setInputFiles("#ms-file", { name: "TestMeasured.txt", mimeType: "text/plain", buffer: Buffer.from(edited) });
+  await measured();
+  const mean = [await page.getByTestId("ms-TcR1").inputValue(), await page.getByTestId("ms-TcR1-sigma").inputValue()];
+  check(mean[0] === "1.37" && mean[1] === "0.000707106781187" && (await page.getByTestId("ms-name").inputValue()) === "Test" && (await page.getByTestId("ms-sample").inputValue()) === "", `TestMeasured.txt opened: “Test”, TcR1 = 1.36, 1.38 read as their mean ${mean[0]} ± ${mean[1]} (√(2·0.001²)/2)`);
+  const saved = await downloadOf(() => page.getByTestId("ms-save").click());
+  const lines = saved.text.trim().split("\n");
+  check(saved.name === "TestMeasured.txt" && lines.length === 50 && lines.includes("TcR1 = 1.37+/-0.000707106781187") && lines.includes("lcs = 0.46"), `saved as ${saved.name}: ${lines.length} lines, the rider's geometry kept`);
+  const again = await page.evaluate((text) => fetch("/api/measure", { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ text }) }).then((r) => r.json()), saved.text);
+  const shownIRyy = await text("ms-step-IRyy");
+  const reread = again.steps.find((s) => s.key === "IRyy");
+  check(shownIRyy.startsWith(reread.value.toFixed(5)), `the saved file read again gives the IRyy shown (${shownIRyy}; ${reread.value})`);
+  // The same bicycle from BicycleParameters' own computation (the preset, its Benchmark.txt):
+  // the same critical speeds.
+  await open("?bike=preset:browser");
+  const weave = await waitForText("weave-speed", (t) => /\d/.test(t));
+  const capsize = await text("capsize-speed");
+  await open("?bike=preset:benchmark&tab=measure&ms=s:browser");
+  await measured();
+  await page.getByTestId("ms-load").click();
+  await settled();
+  check((await page.getByTestId("tab-eigen").getAttribute("aria-selected")) === "true", "loaded: the eigenvalue tab shown");
+  check((await page.locator("#design-name").inputValue()) === "Browser" && (await page.getByTestId("bike-select").inputValue()) === "link:", "the editor holds “Browser” (from the link, not saved)");
+  check((await page.getByTestId("sigma-IBxx").inputValue()) !== "", `the editor keeps σ: IBxx ± ${await page.getByTestId("sigma-IBxx").inputValue()}`);
+  const w2 = await waitForText("weave-speed", (t) => /\d/.test(t));
+  check(w2 === weave && (await text("capsize-speed")) === capsize, `its critical speeds are the Browser preset's: v_w ${w2}, v_c ${await text("capsize-speed")}`);
+  check((await page.locator("[data-testid=eigen-plot] [data-testid=eigen-curve]").count()) >= 4, "and its eigenvalues drawn");
+});
+
+await section("measure at 1280 × 800 and 390 × 844: nothing sticks out; a screenshot", async () => {
+  for (const viewport of [{ width: 1280, height: 800 }, { width: 390, height: 844 }]) {
+    await open("?bike=preset:benchmark&tab=measure&ms=s:browser", viewport);
+    await measured();
+    const rects = await page.evaluate(() => [".ms-controls", ".ms-body", ...[...document.querySelectorAll(".ms-step")].map((_, k) => `.ms-step:nth-child(${k + 1})`)].map((s) => {
+      const r = document.querySelector(s).getBoundingClientRect();
+      return { s, l: r.left, t: r.top, r: r.right, b: r.bottom };
+    }));
+    const out = rects.filter((r) => r.l < 0 || r.r > viewport.width || r.r - r.l < 1 || r.b - r.t < 1).map((r) => r.s);
+    check(out.length === 0 && rects.length === 8, `${viewport.width} px: the controls and the six sections within the width (${out.join(", ") || "none outside"})`);
+    const steps = rects.filter((r) => r.s.startsWith(".ms-step"));
+    const overlaps = [];
+    for (let i = 0; i < steps.length; i++) for (let j = i + 1; j < steps.length; j++) {
+      const [a, b] = [steps[i], steps[j]];
+      if (Math.min(a.r, b.r) - Math.max(a.l, b.l) > 1 && Math.min(a.b, b.b) - Math.max(a.t, b.t) > 1) overlaps.push(`${a.s} × ${b.s}`);
+    }
+    check(overlaps.length === 0, `${viewport.width} px: no two sections overlap (${overlaps.join(", ") || "none"})`);
+    const inner = await page.evaluate(() => [...document.querySelectorAll(".ms-step")].map((e) => e.scrollWidth - e.clientWidth));
+    check(inner.every((d) => d <= 1), `${viewport.width} px: each section's content fits it (${inner.join(", ")})`);
+    const { scroll, width } = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, width: window.innerWidth }));
+    check(scroll <= width, `${viewport.width} px: no sideways scroll (${scroll} px)`);
+    if (viewport.width === 1280) {
+      const body = rects.find((r) => r.s === ".ms-body");
+      check(body.b - body.t >= 250, `1280 px: the form has room (${Math.round(body.b - body.t)} px high, scrolling inside)`);
+    }
+    const shot = join(tmpdir(), `whipple-e2e-measure-${viewport.width}.png`);
+    await page.screenshot({ path: shot, fullPage: viewport.width < 500 });
+    console.log(`  screenshot: ${shot}`);
+  }
+});
+
 await section("accessibility: axe-core finds nothing; headings", async () => {
   await open("?bike=preset:schwinn-crown");
   await page.evaluate(axeSource());
@@ -1525,6 +1626,11 @@ await section("accessibility: axe-core finds nothing; headings", async () => {
   await page.getByTestId("tab-map").click();
   await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
   await run("design map tab");
+  await page.getByTestId("tab-measure").click();
+  await page.getByTestId("ms-sample").selectOption("browser");
+  await settled();
+  await page.getByTestId("ms-step-IBxx").waitFor({ timeout: 15_000 });
+  await run("measure tab");
 });
 
 if (errors.length) failures.push(`page errors: ${errors.join("; ")}`);

@@ -102,6 +102,8 @@ pub fn app_bound_to(limits: Limits, bound: IpAddr) -> Router {
         .route("/api/linear/frequency", post(crate::frequency::frequency))
         .route("/api/linear/time", post(crate::time::time))
         .route("/api/linear/closed_loop", post(closed_loop))
+        .route("/api/measure", post(crate::measure::measure))
+        .route("/api/measure/samples", get(crate::measure::samples))
         .route("/api/map", post(crate::design::map))
         .route("/api/map/design", post(crate::design::design_at))
         .route("/api/turn", post(crate::turns::turn))

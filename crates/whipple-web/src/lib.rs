@@ -33,6 +33,7 @@ mod design;
 mod error;
 mod frequency;
 pub mod geometry;
+mod measure;
 pub mod modes;
 pub mod simulation;
 mod time;

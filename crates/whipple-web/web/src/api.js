@@ -73,4 +73,10 @@ export const api = {
    * scheduled}, speeds}: the gain used, the closed loop's eigenvalues in /api/eigen's shape and
    * its certified critical speeds. */
   closedLoop: (request) => call("POST", "/api/linear/closed_loop", request),
+  /** Bench measurements to a bicycle, `request` {text, file_name} (a *Measured.txt) or
+   * {measurements: {key: {value, sigma}}, name}: {name, bike, parameters, steps, measurements,
+   * other, correlations, warnings}. */
+  measure: (request) => call("POST", "/api/measure", request),
+  /** The Measure tab's samples: [{name, title, file_name, source, text}]. */
+  measureSamples: () => call("GET", "/api/measure/samples"),
 };

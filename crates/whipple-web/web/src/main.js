@@ -19,6 +19,7 @@ import { ResponsePanel } from "./response.js";
 import { ControlPanel } from "./control.js";
 import { SensitivityPanel } from "./sensitivity.js";
 import { MapPanel } from "./map.js";
+import { MeasurePanel } from "./measure.js";
 import { readUrl, writeUrl, diffEdits } from "./url.js";
 import { html, slug, download, svgText, svgPng, num } from "./format.js";
 
@@ -27,7 +28,7 @@ const clone = (x) => JSON.parse(JSON.stringify(x));
 const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
 const DEFAULT_PRESET = "schwinn-crown";
 const MAX_COMPARED = 5;
-const VIEWS = ["eigen", "locus", "modes", "resp", "control", "sens", "map", "sim"];
+const VIEWS = ["eigen", "locus", "modes", "resp", "control", "sens", "map", "sim", "measure"];
 
 const state = {
   presets: [],
@@ -92,6 +93,17 @@ const designMap = new MapPanel({
     remember(true);
     say(`Loaded the design at ${where} into the editor (not saved).`, "info");
   },
+});
+// The Measure tab's bicycle goes to the editor as a design of the link (not saved), and the
+// eigenvalues show it.
+const measure = new MeasurePanel({
+  onChange: () => remember(false),
+  onLoad: (bike) => during(async () => {
+    await select("link:", { def: bike });
+    showView("eigen", { push: false });
+    remember(true);
+    say(`Loaded “${bike.name}”, computed from its bench measurements, into the editor (not saved: Save to my designs keeps it).`, "info");
+  }),
 });
 let sideSvg = null;
 
@@ -636,6 +648,7 @@ function showView(view, { push = true } = {}) {
   document.querySelector(".layout").classList.toggle("ctl-active", view === "control");
   document.querySelector(".layout").classList.toggle("sim-active", view === "sim");
   document.querySelector(".layout").classList.toggle("resp-active", view === "resp");
+  document.querySelector(".layout").classList.toggle("ms-active", view === "measure");
   for (const tab of document.querySelectorAll(".tab[data-view]")) {
     const on = tab.dataset.view === view;
     tab.setAttribute("aria-selected", String(on));
@@ -651,6 +664,8 @@ function showView(view, { push = true } = {}) {
   if (view === "map" && state.bike && !designMap.answer) designMap.compute();
   // three.js is fetched when the Simulation tab first opens, not with the page.
   if (view === "sim") sim.ensureView();
+  // The sample list is fetched when the Measure tab first opens.
+  if (view === "measure") during(() => measure.ensureSamples()).catch((e) => measure.say(e.message));
   if (push) remember(true);
 }
 const viewTabs = [...document.querySelectorAll(".tab[data-view]")];
@@ -682,6 +697,7 @@ function snapshot() {
     mode: $("mode-speed").value,
     resp: response.inputs(),
     control: control.inputs(),
+    measure: state.view === "measure" || measure.sample || measure.answer ? measure.inputs() : null,
     sim: sim.inputs(),
     sens: sensitivity.quantity,
     map: designMap.inputs(),
@@ -723,6 +739,7 @@ async function applyUrl() {
     }
     if (s.resp) response.setInputs(s.resp);
     if (s.control) control.setInputs(s.control);
+    if (s.measure) await measure.setInputs(s.measure);
     if (s.sim) sim.setInputs(s.sim);
     if (s.sens) sensitivity.setQuantity(s.sens);
     if (s.map) designMap.setInputs(s.map);
