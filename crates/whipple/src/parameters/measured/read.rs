@@ -79,7 +79,20 @@ fn value(text: &str, line: usize, key: &str) -> Result<(f64, f64, bool)> {
             .map_err(|_| error(line, Some(key), format!("`{}` is not a number", t.trim())))
     };
     match text.split_once("+/-") {
-        Some((v, s)) => Ok((number(v)?, number(s)?, true)),
+        Some((v, s)) => {
+            let sigma = number(s)?;
+            if !(sigma >= 0.0) {
+                return Err(error(
+                    line,
+                    Some(key),
+                    format!(
+                        "the standard deviation `{}` must be zero or positive",
+                        s.trim()
+                    ),
+                ));
+            }
+            Ok((number(v)?, sigma, true))
+        }
         None => Ok((number(text)?, 0.0, false)),
     }
 }

@@ -234,6 +234,14 @@ fn file_errors_name_key_and_line() {
     assert!(message.contains("+/-"), "{message}");
     let message = error_of(&browser_with("mB", "heavy")).to_string();
     assert!(message.contains("`heavy` is not a number"), "{message}");
+    for sigma in ["-0.003", "nan"] {
+        let message = error_of(&browser_with("mB", &format!("9.86+/-{sigma}"))).to_string();
+        assert!(
+            message.contains("mB")
+                && message.contains(&format!("`{sigma}` must be zero or positive")),
+            "{message}"
+        );
+    }
     let message = error_of(&format!("{BROWSER}\nh1 = 0.9")).to_string();
     assert!(message.contains("not supported yet"), "{message}");
     let missing = BROWSER
