@@ -153,7 +153,7 @@ impl SideView {
     /// or, without one, its centre of mass. Only the parameters decide it: the drawing aids
     /// (tubes, saddle, handlebar) do not count. The ground, y = 0, is always its lower side.
     pub fn extent(&self) -> [Point; 2] {
-        let mut lo = [-self.rear_wheel_radius, 0.0];
+        let mut lo = [0.0 - self.rear_wheel_radius, 0.0];
         let mut hi = [
             self.wheelbase + self.front_wheel_radius,
             2.0 * self.rear_wheel_radius.max(self.front_wheel_radius),

@@ -472,7 +472,7 @@ impl SystemRequest {
                     k + 1,
                     lo[0],
                     hi[0],
-                    -hi[1],
+                    0.0 - hi[1],
                 )
             } else {
                 continue;
