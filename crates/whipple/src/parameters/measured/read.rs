@@ -81,7 +81,7 @@ fn value(text: &str, line: usize, key: &str) -> Result<(f64, f64, bool)> {
     match text.split_once("+/-") {
         Some((v, s)) => {
             let sigma = number(s)?;
-            if !(sigma >= 0.0) {
+            if sigma.is_nan() || sigma < 0.0 {
                 return Err(error(
                     line,
                     Some(key),
