@@ -6,7 +6,7 @@ use std::path::Path;
 use anyhow::{Context, Result, bail};
 use nalgebra::Matrix2;
 use serde_json::json;
-use whipple::advanced::io::{Format, principal_yaml, write};
+use whipple::advanced::io::{Format, moore2012_yaml, principal_yaml, write};
 use whipple::advanced::parameters::Description;
 use whipple::advanced::sensitivity;
 use whipple::advanced::sweep;
@@ -135,11 +135,14 @@ pub fn convert(
                 .with_context(|| format!("writing {} as a principal set", bike.label))?;
             return emit(&text, out.as_ref());
         }
+        FileFormat::Moore2012Yaml => {
+            let text = moore2012_yaml(&bicycle)
+                .with_context(|| format!("writing {} as a Moore 2012 set", bike.label))?;
+            return emit(&text, out.as_ref());
+        }
     };
     let text = write(&bicycle, format).with_context(|| {
-        if format == Format::Jbike6M && !keep_form {
-            "--to m needs --keep-form (the benchmark form has no .m layout)".to_string()
-        } else if keep_form && bicycle.jbike6().is_some() {
+        if keep_form && bicycle.jbike6().is_some() {
             "--keep-form keeps the JBike6 bodies: leave it out to write the benchmark form"
                 .to_string()
         } else {

@@ -106,6 +106,13 @@ pub enum FileFormat {
         help = "BicycleParameters' YAML set in the principal parameterization (Moore 2019); needs the rider P a principal set carries"
     )]
     PrincipalYaml,
+    /// BicycleParameters' YAML parameter set in Moore 2012's parameterization (rf, rr, d1, d2,
+    /// d3, l1..l4, mc, md, me, mf, ic11.., id11.., ie11.., if11.., g).
+    #[value(
+        name = "moore2012-yaml",
+        help = "BicycleParameters' YAML set in Moore 2012's parameterization (d1, d2, d3, l1..l4, ic11, ...)"
+    )]
+    Moore2012Yaml,
 }
 
 #[derive(Subcommand)]

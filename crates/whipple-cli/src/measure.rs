@@ -60,6 +60,10 @@ fn out_format(path: &Path, to: Option<FileFormat>) -> Result<Format> {
             "--to principal-yaml: a measured bicycle has no rider P kept apart from its rear \
              frame, which the principal parameterization needs; write it as --to yaml"
         ),
+        Some(FileFormat::Moore2012Yaml) => bail!(
+            "--to moore2012-yaml: Moore 2012's form does not carry standard deviations yet, and \
+             a measured bicycle's are its point; write it as --to yaml"
+        ),
         None => {
             let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
             if extension.eq_ignore_ascii_case("txt") {
@@ -77,8 +81,8 @@ fn out_format(path: &Path, to: Option<FileFormat>) -> Result<Format> {
     };
     if format == Format::Jbike6M {
         bail!(
-            "--out {}: a measured bicycle is in the benchmark form, which has no JBike6 .m \
-             layout: write .toml, .json, .yaml or .txt",
+            "--out {}: JBike6's .m files hold no standard deviations, and a measured bicycle's \
+             are its point: write .toml, .json, .yaml or .txt",
             path.display()
         );
     }

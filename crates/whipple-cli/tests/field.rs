@@ -229,3 +229,109 @@ fn principal_sets_convert_and_read_back() {
     ]));
     assert!(err.contains("rider") && err.contains("mP"), "{err}");
 }
+
+/// `--to moore2012-yaml` writes Moore 2012's parameterization, which `--bike` reads back
+/// (converted, with a note) to the same benchmark numbers; `--to m` writes a benchmark bicycle
+/// as JBike6's bodies, read back to the same numbers; a bicycle with standard deviations is
+/// refused for Moore's form, naming why.
+#[test]
+fn moore2012_and_m_files_of_a_benchmark_bicycle_read_back() {
+    let dir = scratch("field-moore2012");
+    let show = |bike: &str| -> serde_json::Value {
+        let text = stdout(&whipple(&["convert", "--bike", bike, "--to", "json"]));
+        let v: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+        v["benchmark"].clone()
+    };
+    let reference = show("benchmark");
+    for (to, file) in [("moore2012-yaml", "moore.yml"), ("m", "bodies.m")] {
+        let path = dir.join(file);
+        let out = whipple(&[
+            "convert",
+            "--bike",
+            "benchmark",
+            "--to",
+            to,
+            "--out",
+            &path.to_string_lossy(),
+        ]);
+        stdout(&out);
+        let text = std::fs::read_to_string(&path).expect("written");
+        if to == "m" {
+            assert!(
+                text.contains("mframe = 85.0;") && text.contains("mrider = 0.0;"),
+                "{text}"
+            );
+        } else {
+            assert!(text.starts_with("parameterization: Moore2012\n"), "{text}");
+            // dtk's docstring prints d1 = 0.9534570696121849 for the benchmark bicycle.
+            assert!(text.contains("  d1: 0.95345706961218"), "{text}");
+        }
+        let back = show(&path.to_string_lossy());
+        for (key, value) in reference.as_object().expect("a table") {
+            let (x, y) = (value.as_f64().unwrap(), back[key].as_f64().unwrap());
+            assert!(
+                (x - y).abs() <= 1e-12 * x.abs().max(1.0),
+                "{to} {key}: {x} vs {y}"
+            );
+        }
+    }
+    let out = whipple(&["speeds", "--bike", &dir.join("moore.yml").to_string_lossy()]);
+    let notes = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(notes.contains("Moore 2012's parameterization"), "{notes}");
+    let err = stderr_of_failure(&whipple(&[
+        "convert",
+        "--bike",
+        "fisher",
+        "--to",
+        "moore2012-yaml",
+    ]));
+    assert!(err.contains("standard deviations"), "{err}");
+}
+
+/// A TOML file giving the front assembly's moment about the steer axis (`IAlamlam`) instead
+/// of IHzz reads as the bicycle it was computed from; an impossible one is an error naming it.
+#[test]
+fn the_steer_axis_moment_stands_for_ihzz() {
+    let dir = scratch("field-steer");
+    let text = stdout(&whipple(&[
+        "convert",
+        "--bike",
+        "benchmark",
+        "--to",
+        "toml",
+    ]));
+    // The benchmark bicycle's I_Aλλ by Meijaard 2007's A28 (through A's combined centre),
+    // evaluated apart from whipple.
+    let i_a = 0.15389731601426776_f64;
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("IHzz = "))
+        .expect("IHzz line")
+        .to_string();
+    let steer = text.replace(&line, &format!("IAlamlam = {i_a:?}"));
+    let path = dir.join("steer.toml");
+    std::fs::write(&path, &steer).expect("write");
+    let back = stdout(&whipple(&[
+        "convert",
+        "--bike",
+        &path.to_string_lossy(),
+        "--to",
+        "json",
+    ]));
+    let v: serde_json::Value = serde_json::from_str(&back).expect("JSON");
+    let ihzz = v["benchmark"]["IHzz"].as_f64().expect("IHzz");
+    assert!((ihzz - 0.00708).abs() < 1e-14, "{ihzz}");
+    std::fs::write(&path, text.replace(&line, "IAlamlam = 0.14")).expect("write");
+    let err = stderr_of_failure(&whipple(&["speeds", "--bike", &path.to_string_lossy()]));
+    assert!(
+        err.contains("IAlamlam") && err.contains("the least the front assembly"),
+        "{err}"
+    );
+    std::fs::write(
+        &path,
+        text.replace(&line, &format!("{line}\nIAlamlam = 0.3")),
+    )
+    .expect("write");
+    let err = stderr_of_failure(&whipple(&["speeds", "--bike", &path.to_string_lossy()]));
+    assert!(err.contains("give either IHzz"), "{err}");
+}

@@ -243,7 +243,10 @@ fn bad_input_is_refused() {
         "--out",
         dir.join("b.m").to_str().unwrap(),
     ]));
-    assert!(err.contains("no JBike6 .m"), "{err}");
+    assert!(
+        err.contains(".m files hold no standard deviations"),
+        "{err}"
+    );
     let err = stderr_of_failure(&whipple(&[
         "measure",
         "--raw",

@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use pyo3::prelude::*;
 use whipple::advanced::io;
 use whipple::advanced::io::Format;
-use whipple::advanced::parameters::Checked;
+use whipple::advanced::parameters::{Checked, Description, MOORE2012_KEYS, Moore2012Parameters};
 use whipple::advanced::table;
 use whipple::advanced::table::Form;
 use whipple::presets as library_presets;
@@ -141,6 +141,83 @@ impl NativeBicycle {
     /// Meijaard 2007 Table 1.
     fn benchmark(&self) -> Vec<(&'static str, f64)> {
         self.checked.benchmark.fields().to_vec()
+    }
+
+    /// Moore 2012's parameters (BicycleParameters' `Moore2012` keys) of the checked bicycle,
+    /// in the order of `MOORE2012_KEYS`.
+    fn moore2012(&self) -> Vec<(&'static str, f64)> {
+        MOORE2012_KEYS
+            .iter()
+            .copied()
+            .zip(Moore2012Parameters::from_benchmark(&self.checked.benchmark).to_array())
+            .collect()
+    }
+
+    /// A benchmark-form bicycle from Moore 2012's parameters ((key, value) pairs; every one of
+    /// the 26 keys required once, `v` accepted and ignored as BicycleParameters' sets carry
+    /// it, other keys refused).
+    #[staticmethod]
+    #[pyo3(signature = (items, name=None, source=None, strict=false))]
+    fn from_moore2012(
+        py: Python<'_>,
+        items: Vec<(String, f64)>,
+        name: Option<String>,
+        source: Option<String>,
+        strict: bool,
+    ) -> PyResult<Self> {
+        let mut values: [Option<f64>; 26] = [None; 26];
+        for (key, value) in &items {
+            if key == "v" {
+                continue;
+            }
+            let Some(i) = MOORE2012_KEYS.iter().position(|k| k == key) else {
+                return Err(Error::InvalidParameter {
+                    field: key.clone(),
+                    value: *value,
+                    rule: format!(
+                        "not a key of Moore 2012's parameterization ({})",
+                        MOORE2012_KEYS.join(", ")
+                    ),
+                })
+                .py_err(py);
+            };
+            if values[i].replace(*value).is_some() {
+                return Err(Error::InvalidParameter {
+                    field: key.clone(),
+                    value: *value,
+                    rule: "is given twice".into(),
+                })
+                .py_err(py);
+            }
+        }
+        let missing: Vec<&str> = MOORE2012_KEYS
+            .iter()
+            .zip(&values)
+            .filter(|(_, v)| v.is_none())
+            .map(|(k, _)| *k)
+            .collect();
+        if let Some(first) = missing.first() {
+            return Err(Error::InvalidParameter {
+                field: first.to_string(),
+                value: f64::NAN,
+                rule: format!("missing: {}", missing.join(", ")),
+            })
+            .py_err(py);
+        }
+        let benchmark = Moore2012Parameters::from_array(values.map(|v| v.unwrap_or(0.0)))
+            .to_benchmark()
+            .py_err(py)?;
+        let bicycle = Bicycle {
+            name,
+            source,
+            ..Bicycle::new(Description::Benchmark(benchmark))
+        };
+        Self::new(py, bicycle, strict)
+    }
+
+    /// The front assembly's moment of inertia about the steer axis, I_Aλλ \[kg m²\].
+    fn front_assembly_steer_inertia(&self) -> f64 {
+        self.checked.benchmark.front_assembly_steer_inertia()
     }
 
     /// Standard deviations by key of the bicycle's own form (only those given).

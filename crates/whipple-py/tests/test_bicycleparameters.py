@@ -110,3 +110,94 @@ def test_principal_set_equals_bicycleparameters_conversion():
     assert len(mine) == 26
     for key, value in mine.items():
         assert value == pytest.approx(float(theirs[key]), rel=1e-12, abs=1e-300), key
+
+
+def _benchmark_files():
+    """Every bicycle of the data set in the benchmark form: BicycleParameters' <Name>Benchmark.txt
+    (both copies) and benchmark YAML sets; the rider's file (a rider alone) is not a bicycle."""
+    files = sorted((DATA / "bicycleparameters").glob("*Benchmark.txt"))
+    files += sorted((DATA / "bicycleparameters-full").glob("*Benchmark.txt"))
+    files += sorted((DATA / "bicycleparameters-yaml").glob("benchmark-*.yml"))
+    return [f for f in files if f.name != "JasonBrowserBenchmark.txt"]
+
+
+# The keys of Moore 2012's tensor entries, by body, whose tolerance is the body's largest moment
+# (a product or a turned moment can be far smaller than the tensor it comes from).
+_MOORE_TENSORS = {"c": ("ic11", "ic22", "ic31", "ic33"), "e": ("ie11", "ie22", "ie31", "ie33")}
+
+
+def _moore_close(mine, theirs, key):
+    scale = abs(theirs[key])
+    for keys in _MOORE_TENSORS.values():
+        if key in keys:
+            scale = max(abs(theirs[k]) for k in keys)
+    if key in ("l1", "l2", "l3", "l4", "d1", "d2", "d3"):
+        scale = max(scale, abs(theirs["d1"]))
+    return abs(mine - theirs[key]) <= 1e-12 * scale
+
+
+@pytest.mark.parametrize("path", _benchmark_files(), ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_moore2012_equals_bicycleparameters_conversion(path):
+    """Bicycle.to_moore2012 equals BicycleParameters' own conversion,
+    Meijaard2007ParameterSet.to_parameterization('Moore2012') (dtk's benchmark_to_moore), to
+    1e-12 relative (a tensor entry relative to its body's largest moment, a length to d1), for
+    every benchmark-form bicycle of the data set; and from_moore2012 of BicycleParameters'
+    numbers gives the same 26 benchmark numbers back to 1e-12."""
+    from bicycleparameters.parameter_sets import Meijaard2007ParameterSet
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", whipple.ParameterWarning)
+        bike = whipple.Bicycle.from_file(path)
+    benchmark = bike.to_dict()
+    theirs = Meijaard2007ParameterSet({**benchmark, "v": 1.0}, True).to_parameterization(
+        "Moore2012").parameters
+    theirs = {k: float(v) for k, v in theirs.items()}
+    mine = bike.to_moore2012()
+    assert len(mine) == 26
+    for key, value in mine.items():
+        assert _moore_close(value, theirs, key), (key, value, theirs[key])
+    # Their extra keys are the redundant ones whipple's YAML reader checks, and v.
+    assert set(theirs) - set(mine) == {"ic12", "ic23", "ie12", "ie23", "id33", "if33", "v"}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", whipple.ParameterWarning)
+        back = whipple.Bicycle.from_moore2012(
+            {k: theirs[k] for k in list(mine) + ["v"]}).to_dict()
+    tensors = {"B": ("IBxx", "IBzz", "IBxz"), "H": ("IHxx", "IHzz", "IHxz")}
+    for key, value in benchmark.items():
+        scale = abs(value)
+        for keys in tensors.values():
+            if key in keys:
+                scale = max(abs(benchmark[k]) for k in keys)
+        if key in ("xB", "zB", "xH", "zH", "c"):
+            scale = max(scale, benchmark["w"])
+        assert abs(back[key] - value) <= 1e-12 * scale, (key, back[key], value)
+
+
+def test_front_assembly_steer_inertia_identity():
+    """I_Aλλ computed from a bicycle, entered as IAlamlam instead of IHzz, gives the bicycle
+    back; it equals the canonical mass matrix's steer entry; an impossible one is refused."""
+    import math
+
+    bike = whipple.Bicycle.preset("benchmark")
+    i_a = bike.front_assembly_steer_inertia()
+    d = bike.to_dict()
+    # By parts: each body's own moment about the parallel axis, plus mass times distance².
+    s, c = math.sin(d["lam"]), math.cos(d["lam"])
+
+    def distance(x, z):
+        return (x - d["w"] - d["c"]) * c - z * s
+
+    parts = (d["IFxx"] + d["mF"] * distance(d["w"], -d["rF"]) ** 2
+             + d["mH"] * distance(d["xH"], d["zH"]) ** 2
+             + d["IHxx"] * s * s + 2 * d["IHxz"] * s * c + d["IHzz"] * c * c)
+    assert i_a == pytest.approx(parts, rel=1e-13)
+    ihzz = d.pop("IHzz")
+    again = whipple.Bicycle.from_dict({**d, "IAlamlam": i_a})
+    assert again.to_dict()["IHzz"] == pytest.approx(ihzz, rel=1e-12)
+    assert any(n["field"] == "IHzz" and "IAlamlam" in n["message"] for n in again.notices)
+    with pytest.raises(whipple.ParameterError) as error:
+        whipple.Bicycle.from_dict({**d, "IAlamlam": -0.1})
+    assert error.value.field == "IAlamlam" and "must not be negative" in str(error.value)
+    with pytest.raises(whipple.ParameterError) as error:
+        whipple.Bicycle.from_dict({**d, "IAlamlam": 0.01})
+    assert "the least the front assembly can have" in str(error.value)

@@ -384,6 +384,8 @@ pub mod advanced {
         /// assert_eq!(whipple::advanced::io::Format::from_extension("toml"), Some(whipple::advanced::io::Format::Toml));
         /// ```
         pub use crate::parameters::io::Format;
+        /// A parameter set in Moore 2012's parameterization (BicycleParameters' `Moore2012`).
+        pub use crate::parameters::io::moore2012_yaml;
         /// A principal parameter set (Moore 2019) of a bicycle that carries its rider P.
         pub use crate::parameters::io::principal_yaml;
         pub use crate::parameters::io::{
@@ -526,6 +528,18 @@ pub mod advanced {
         pub use crate::parameters::Jbike6Parameters;
         pub use crate::parameters::jbike6::BENCHMARK_FROM_JBIKE6;
         pub use crate::parameters::{Checked, Notice, Severity};
+        /// Moore 2012's parameterization (BicycleParameters' `Moore2012`) and its conversion
+        /// to and from the benchmark form.
+        ///
+        /// ```
+        /// use whipple::BenchmarkParameters;
+        /// use whipple::advanced::parameters::Moore2012Parameters;
+        /// let b = BenchmarkParameters::meijaard2007();
+        /// let back = Moore2012Parameters::from_benchmark(&b).to_benchmark()?;
+        /// assert!((back.w - b.w).abs() < 1e-15 && (back.c - b.c).abs() < 1e-15);
+        /// # Ok::<(), whipple::Error>(())
+        /// ```
+        pub use crate::parameters::{MOORE2012_KEYS, Moore2012Parameters};
         /// BicycleParameters' principal parameterization (Moore 2019) and its conversion to
         /// and from the benchmark form.
         ///

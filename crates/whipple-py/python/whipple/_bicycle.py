@@ -140,7 +140,9 @@ class Bicycle:
         required, unknown keys are errors). A value is a float, an ``uncertainties`` ufloat, a
         ``(value, sigma)`` pair or ``{'value': …, 'sigma': …}``: the σ is propagated to the
         critical speeds. The same rules as a BicycleParameters ``.txt`` file apply (its optional
-        ``yB``, ``IBxy``, ``IRzz``, … keys included)."""
+        ``yB``, ``IBxy``, ``IRzz``, … keys included). ``'IAlamlam'``, the front assembly's
+        moment of inertia about the steer axis, may stand for ``'IHzz'``, which is then derived
+        (see :meth:`front_assembly_steer_inertia`)."""
         items = []
         for key, value in d.items():
             try:
@@ -150,6 +152,19 @@ class Bicycle:
                                      field=str(key), value=value, rule="must be a number") from error
             items.append((str(key), v, s))
         return cls._wrap(_whipple.NativeBicycle.from_items(items, name, source, strict))
+
+    @classmethod
+    def from_moore2012(cls, d: Mapping[str, Any], name: Optional[str] = None,
+                       source: Optional[str] = None, strict: bool = False) -> "Bicycle":
+        """A benchmark-form bicycle from Moore 2012's parameters (BicycleParameters'
+        ``Moore2012`` keys: ``'rf'``, ``'rr'``, ``'d1'``, ``'d2'``, ``'d3'``, ``'l1'`` …
+        ``'l4'``, ``'mc'``, ``'md'``, ``'me'``, ``'mf'``, ``'ic11'``, ``'ic22'``, ``'ic31'``,
+        ``'ic33'``, ``'id11'``, ``'id22'``, ``'ie11'``, ``'ie22'``, ``'ie31'``, ``'ie33'``,
+        ``'if11'``, ``'if22'``, ``'g'``; all required, ``'v'`` ignored, others refused), converted
+        by the library: the inverse of :meth:`to_moore2012`. A Moore 2012 YAML set
+        (``parameterization: Moore2012``) reads with :meth:`from_file` too."""
+        items = [(str(k), float(v)) for k, v in d.items()]
+        return cls._wrap(_whipple.NativeBicycle.from_moore2012(items, name, source, strict))
 
     @classmethod
     def from_bicycleparameters(cls, obj: Any, strict: bool = False) -> "Bicycle":
@@ -224,6 +239,20 @@ class Bicycle:
         Table 1 (JBike6 bodies combined): ``Bicycle.from_dict(b.to_dict())`` gives the same
         numbers."""
         return dict(self._native.benchmark())
+
+    def to_moore2012(self) -> Dict[str, float]:
+        """Moore 2012's parameters (his dissertation, ch. 2; BicycleParameters' ``Moore2012``
+        parameter set) with BicycleParameters' keys, computed by the library from the benchmark
+        form: what ``Meijaard2007ParameterSet.to_parameterization('Moore2012')`` gives (less its
+        redundant zero products and ``v``)."""
+        return dict(self._native.moore2012())
+
+    def front_assembly_steer_inertia(self) -> float:
+        """The front assembly's (front frame and front wheel) moment of inertia about the steer
+        axis, I_Aλλ [kg m²]: the number a torsional pendulum gives with the steer axis
+        vertical. ``from_dict`` and the parameter files take it as ``IAlamlam`` instead of
+        ``IHzz``, which is then derived (every other parameter kept)."""
+        return self._native.front_assembly_steer_inertia()
 
     def jbike6_dict(self) -> Optional[Dict[str, float]]:
         """JBike6's own parameters (``.m`` names) where the bicycle was described that way."""

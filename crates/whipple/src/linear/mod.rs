@@ -14,6 +14,7 @@ mod system;
 mod transfer;
 
 pub use canonical::Canonical;
+pub(crate) use canonical::Intermediates;
 pub(crate) use characteristic::GeneralSpeedPolynomials;
 pub use characteristic::{CharacteristicPolynomial, SpeedPolynomials};
 pub use controllability::{

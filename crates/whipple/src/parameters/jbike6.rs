@@ -750,6 +750,24 @@ impl<T: RealField + Copy> PlaneBody<T> {
         }
     }
 
+    /// The inverse of [`PlaneBody::principal`]: the principal moments [I11, I22, Iyy] about the
+    /// centre, I11 ≥ I22 the in-plane ones, and the angle α in (−π/2, π/2] of I11's axis from
+    /// x upwards (α = 0 where the two in-plane moments are equal).
+    pub(crate) fn principal_axes(&self) -> ([T; 3], T) {
+        let half: T = nalgebra::convert(0.5);
+        let two: T = nalgebra::convert(2.0);
+        let mean = (self.i_xx + self.i_zz) * half;
+        let diff = (self.i_xx - self.i_zz) * half;
+        let radius = (diff * diff + self.i_xz * self.i_xz).sqrt();
+        // atan2 gives (−π, π]; halved, (−π/2, π/2].
+        let alpha = if radius > T::zero() {
+            (-(two * self.i_xz)).atan2(two * diff) * half
+        } else {
+            T::zero()
+        };
+        ([mean + radius, mean - radius, self.i_yy], alpha)
+    }
+
     /// One body from several: masses added, centre of mass the mass-weighted mean (the origin
     /// when the total mass is zero), each tensor moved to that centre by the parallel-axis
     /// theorem, I + m (|d|² E − d dᵀ) with d from the combined centre to the body's.
@@ -792,6 +810,96 @@ impl<T: RealField + Copy> Jbike6Parameters<T> {
         let (s, c) = (T::frac_pi_2() - self.head_angle).sin_cos();
         let front_point = self.wheelbase + self.trail;
         [front_point + b.ucm * c - b.vcm * s, b.ucm * s + b.vcm * c]
+    }
+
+    /// JBike6's form of benchmark parameters, exactly and without a check: the rear wheel,
+    /// the frame (the benchmark's rear body B, rider included), the fork (the front frame H)
+    /// and the front wheel; the rider, rack and basket absent (zero mass and inertia, as
+    /// JBike6 takes an absent body). Each body's in-plane tensor becomes its principal moments
+    /// I11 ≥ I22 with α in (−π/2, π/2] (α = 0 where they are equal); the wheels' I11 = I22
+    /// are the benchmark's diametral moments, Izz the spin moments; the fork's centre goes to
+    /// (ucm, vcm) about the steer axis' ground point. [`Jbike6Parameters::to_benchmark`] gives
+    /// the 25 numbers and g back to round-off.
+    ///
+    /// ```
+    /// use whipple::{BenchmarkParameters, advanced::parameters::Jbike6Parameters};
+    /// let b = BenchmarkParameters::meijaard2007();
+    /// let back = Jbike6Parameters::from_benchmark(&b).to_benchmark()?;
+    /// assert!((back.i_hxz - b.i_hxz).abs() < 1e-15 && (back.x_h - b.x_h).abs() < 1e-15);
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn from_benchmark(b: &BenchmarkParameters<T>) -> Self {
+        let zero = T::zero();
+        let two: T = nalgebra::convert(2.0);
+        let wheel = |r: T, m: T, i_diametral: T, i_spin: T| Jbike6Wheel {
+            diameter: two * r,
+            m,
+            inertia: [i_diametral, i_diametral, i_spin],
+            alpha: zero,
+        };
+        let absent_rear = Jbike6RearBody {
+            m: zero,
+            xcm: zero,
+            ycm: zero,
+            inertia: [zero; 3],
+            alpha: zero,
+        };
+        let absent_front = Jbike6FrontBody {
+            m: zero,
+            ucm: zero,
+            vcm: zero,
+            inertia: [zero; 3],
+            alpha: zero,
+        };
+        let rear = PlaneBody {
+            m: b.m_b,
+            x: b.x_b,
+            z: b.z_b,
+            i_xx: b.i_bxx,
+            i_yy: b.i_byy,
+            i_zz: b.i_bzz,
+            i_xz: b.i_bxz,
+        };
+        let front = PlaneBody {
+            m: b.m_h,
+            x: b.x_h,
+            z: b.z_h,
+            i_xx: b.i_hxx,
+            i_yy: b.i_hyy,
+            i_zz: b.i_hzz,
+            i_xz: b.i_hxz,
+        };
+        let (rear_moments, rear_alpha) = rear.principal_axes();
+        let (front_moments, front_alpha) = front.principal_axes();
+        // The inverse of `front_body_centre`: the centre relative to the steer axis' ground
+        // point, turned by λ.
+        let (s, c) = b.lambda.sin_cos();
+        let (x, y) = (b.x_h - b.w - b.c, -b.z_h);
+        Jbike6Parameters {
+            wheelbase: b.w,
+            head_angle: T::frac_pi_2() - b.lambda,
+            trail: b.c,
+            gravity: b.g,
+            rear_wheel: wheel(b.r_r, b.m_r, b.i_rxx, b.i_ryy),
+            front_wheel: wheel(b.r_f, b.m_f, b.i_fxx, b.i_fyy),
+            rider: absent_rear,
+            frame: Jbike6RearBody {
+                m: b.m_b,
+                xcm: b.x_b,
+                ycm: -b.z_b,
+                inertia: rear_moments,
+                alpha: rear_alpha,
+            },
+            rack: absent_rear,
+            fork: Jbike6FrontBody {
+                m: b.m_h,
+                ucm: x * c + y * s,
+                vcm: -x * s + y * c,
+                inertia: front_moments,
+                alpha: front_alpha,
+            },
+            basket: absent_front,
+        }
     }
 
     /// The benchmark parameters without any check, on any scalar (for dual numbers); see

@@ -6,8 +6,10 @@ pub(crate) mod check;
 pub(crate) mod io;
 pub(crate) mod jbike6;
 pub(crate) mod measured;
+pub(crate) mod moore2012;
 pub mod presets;
 pub(crate) mod principal;
+pub(crate) mod steer;
 pub(crate) mod table;
 
 use std::collections::BTreeMap;
@@ -21,7 +23,9 @@ pub use jbike6::Jbike6Parameters;
 pub(crate) use jbike6::{
     JBIKE6_GRAVITY, JBIKE6_TABLE, Jbike6FrontBody, Jbike6RearBody, Jbike6Wheel,
 };
+pub use moore2012::{MOORE2012_KEYS, Moore2012Parameters};
 pub use principal::{PRINCIPAL_KEYS, PrincipalBody, PrincipalParameters};
+pub(crate) use steer::STEER_INERTIA_KEY;
 pub(crate) use table::Form;
 pub(crate) use table::ParameterInfo;
 

@@ -133,9 +133,6 @@ impl<T: RealField + Copy> PrincipalBody<T> {
     /// moment is `aa`, α in (−π/2, π/2]; α = 0 where the two moments are equal. `prefix` names
     /// the body in errors (`D`, `H`).
     fn from_plane_body(b: &PlaneBody<T>, prefix: &str) -> Result<Self> {
-        let zero = T::zero();
-        let half: T = nalgebra::convert(0.5);
-        let two: T = nalgebra::convert(2.0);
         if !positive(b.m) {
             return Err(Error::InvalidParameter {
                 field: format!("m{prefix}"),
@@ -143,16 +140,7 @@ impl<T: RealField + Copy> PrincipalBody<T> {
                 rule: "must be positive to have radii of gyration".into(),
             });
         }
-        let mean = (b.i_xx + b.i_zz) * half;
-        let diff = (b.i_xx - b.i_zz) * half;
-        let radius = (diff * diff + b.i_xz * b.i_xz).sqrt();
-        let (i_aa, i_bb) = (mean + radius, mean - radius);
-        // atan2 gives (−π, π]; halved, (−π/2, π/2].
-        let alpha = if radius > zero {
-            (-(two * b.i_xz)).atan2(two * diff) * half
-        } else {
-            zero
-        };
+        let ([i_aa, i_bb, _], alpha) = b.principal_axes();
         for (key, moment) in [("bb", i_bb), ("yy", b.i_yy)] {
             if !positive(moment) {
                 return Err(Error::InvalidBicycle {

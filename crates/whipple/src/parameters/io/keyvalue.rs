@@ -26,7 +26,9 @@ use crate::error::{Result, shorten};
 use crate::parameters::check::{Notice, percent};
 use crate::parameters::jbike6::PlaneBody;
 use crate::parameters::table::{Form, index_of};
-use crate::parameters::{BENCHMARK_TABLE, BenchmarkParameters, Bicycle, Description, Extra};
+use crate::parameters::{
+    BENCHMARK_TABLE, BenchmarkParameters, Bicycle, Description, Extra, STEER_INERTIA_KEY,
+};
 
 /// One value read from a file.
 #[derive(Debug, Clone)]
@@ -338,6 +340,7 @@ pub(crate) fn extra_meaning(key: &str) -> Option<&'static str> {
 pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
     let mut values: [Option<&Entry>; 26] = [None; 26];
     let mut extras: Vec<&Entry> = Vec::new();
+    let mut steer: Option<&Entry> = None;
     let mut notices = Vec::new();
     for (i, e) in entries.iter().enumerate() {
         if let Some(first) = entries[..i].iter().find(|f| f.key == e.key) {
@@ -351,6 +354,8 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
         }
         if let Some(k) = index_of(Form::Benchmark, &e.key) {
             values[k] = Some(e);
+        } else if e.key == STEER_INERTIA_KEY {
+            steer = Some(e);
         } else if extra_meaning(&e.key).is_some() {
             extras.push(e);
         } else if is_raw_measurement(&e.key) {
@@ -385,9 +390,38 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
     // The front frame H: given, or built from the handlebar G and fork S.
     let split: Vec<Option<&Entry>> = SPLIT_FORK.iter().map(|k| get(k)).collect();
     let split_values: Option<Vec<f64>> = split.iter().map(|e| e.map(|e| e.value)).collect();
+    // The front assembly's moment about the steer axis stands for IHzz: one of them.
+    let ihzz = index_of(Form::Benchmark, "IHzz").unwrap_or(20);
+    if let Some(e) = steer {
+        if values[ihzz].is_some() || split_values.is_some() {
+            return Err(error_at(
+                format,
+                e.line,
+                e.column,
+                Some(STEER_INERTIA_KEY),
+                format!(
+                    "give either IHzz (or the handlebar G and fork S) or {STEER_INERTIA_KEY} \
+                     (the front assembly's moment about the steer axis, from which IHzz is \
+                     derived), not both"
+                ),
+            ));
+        }
+        if e.sigma.is_some_and(|s| s > 0.0) {
+            return Err(error_at(
+                format,
+                e.line,
+                e.column,
+                Some(STEER_INERTIA_KEY),
+                format!(
+                    "a standard deviation of `{STEER_INERTIA_KEY}` is not carried to IHzz yet: \
+                     give its value alone, or IHzz with its own"
+                ),
+            ));
+        }
+    }
     // Missing keys, all named in one message: IByy BicycleParameters takes as zero; the front
-    // frame's keys are not missing when its handlebar G and fork S are given; the rest are
-    // required.
+    // frame's keys are not missing when its handlebar G and fork S are given; IHzz is not
+    // missing when IAlamlam is given; the rest are required.
     let missing: Vec<&str> = BENCHMARK_TABLE
         .iter()
         .enumerate()
@@ -395,6 +429,7 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
             values[*i].is_none()
                 && p.key != "IByy"
                 && !(split_values.is_some() && FRONT_FRAME.contains(&p.key))
+                && !(steer.is_some() && *i == ihzz)
         })
         .map(|(_, p)| p.key)
         .collect();
@@ -448,6 +483,7 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
                     }
                 }
             }
+            None if steer.is_some() && i == ihzz => {}
             None => {
                 if let (Some(pos), Some(c)) = (
                     FRONT_FRAME.iter().position(|k| *k == p.key),
@@ -478,7 +514,11 @@ pub(crate) fn assemble(entries: Vec<Entry>, format: Format) -> Result<Bicycle> {
             }
         }
     }
-    let bike = BenchmarkParameters::from_array(filled);
+    let mut bike = BenchmarkParameters::from_array(filled);
+    if let Some(e) = steer {
+        bike = bike.with_front_assembly_steer_inertia(e.value)?;
+        notices.push(super::tree::steer_note(e.value, bike.i_hzz));
+    }
     for e in &extras {
         check_extra(
             e,

@@ -18,7 +18,7 @@ mod keyvalue;
 mod matlab;
 mod tree;
 mod write;
-pub use write::principal_yaml;
+pub use write::{moore2012_yaml, principal_yaml};
 mod yaml;
 
 pub use json::{json_slice_without_duplicates, json_without_duplicates};
@@ -311,8 +311,11 @@ pub fn parse(text: &str, format: Format) -> Result<Bicycle> {
 
 /// Writes a bicycle in the given format, every number in its shortest round-trip form and
 /// every standard deviation kept, so that reading the text back gives the same bicycle.
-/// JBike6's `.m` form exists only for bicycles described in JBike6's form; BicycleParameters'
-/// formats and HumanControl's only for the benchmark form.
+/// JBike6's `.m` files hold no standard deviations; a benchmark-form bicycle is written in them
+/// as JBike6's bodies (`Jbike6Parameters::from_benchmark`:
+/// the frame is the rear body B, the fork the front frame H, rider, rack and basket absent),
+/// which JBike6 and whipple read back as the same 25 numbers and g. BicycleParameters' formats
+/// and HumanControl's exist only for the benchmark form.
 pub fn write(bike: &Bicycle, format: Format) -> Result<String> {
     write::write(bike, format)
 }

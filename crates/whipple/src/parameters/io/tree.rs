@@ -10,8 +10,21 @@ use crate::error::{Result, shorten};
 use crate::parameters::table::Form;
 use crate::parameters::{
     BENCHMARK_TABLE, BenchmarkParameters, Bicycle, Description, Extra, JBIKE6_GRAVITY,
-    JBIKE6_TABLE, Jbike6Parameters, Notice,
+    JBIKE6_TABLE, Jbike6Parameters, Notice, STEER_INERTIA_KEY,
 };
+
+/// The note a bicycle read with `IAlamlam` carries: what was derived.
+pub(crate) fn steer_note(i_a: f64, i_hzz: f64) -> Notice {
+    Notice::note(
+        "IHzz",
+        format!(
+            "IHzz = {} kg m^2 derived from {STEER_INERTIA_KEY} = {} kg m^2, the front \
+             assembly's moment about the steer axis, keeping every other parameter as given",
+            super::write::number(i_hzz),
+            super::write::number(i_a)
+        ),
+    )
+}
 
 /// A value with its position (line and column 1-based; 0 when unknown).
 #[derive(Debug, Clone)]
@@ -295,13 +308,32 @@ impl Reader {
 
     fn benchmark(&self, node: &Node, bike: &mut Bicycle) -> Result<BenchmarkParameters> {
         let mut values: [Option<f64>; 26] = [None; 26];
+        let mut steer: Option<(f64, &Node)> = None;
         for (key, n) in entries(node) {
+            if key == STEER_INERTIA_KEY {
+                let mut sigma = BTreeMap::new();
+                let value = self.number(n, key, &mut sigma)?;
+                if !sigma.is_empty() {
+                    return Err(self.err(
+                        n,
+                        key,
+                        format!(
+                            "a standard deviation of `{STEER_INERTIA_KEY}` is not carried to \
+                             IHzz yet: give its value alone, or IHzz with its own"
+                        ),
+                    ));
+                }
+                steer = Some((value, n));
+                continue;
+            }
             let Some(i) = BENCHMARK_TABLE.iter().position(|p| p.key == key) else {
                 return Err(self.err(
                     n,
                     key,
                     format!(
-                        "unknown key `{}` in the benchmark table (keys: {})",
+                        "unknown key `{}` in the benchmark table (keys: {}; or \
+                         {STEER_INERTIA_KEY}, the front assembly's moment about the steer axis, \
+                         instead of IHzz)",
                         shorten(key, 40),
                         BENCHMARK_TABLE
                             .iter()
@@ -312,6 +344,23 @@ impl Reader {
                 ));
             };
             values[i] = Some(self.number(n, key, &mut bike.sigma)?);
+        }
+        if let Some((_, n)) = steer {
+            let ihzz = BENCHMARK_TABLE
+                .iter()
+                .position(|p| p.key == "IHzz")
+                .unwrap_or(20);
+            if values[ihzz].is_some() {
+                return Err(self.err(
+                    n,
+                    STEER_INERTIA_KEY,
+                    format!(
+                        "give either IHzz or {STEER_INERTIA_KEY} (the front assembly's moment \
+                         about the steer axis, from which IHzz is derived), not both"
+                    ),
+                ));
+            }
+            values[ihzz] = Some(0.0);
         }
         let missing: Vec<&str> = BENCHMARK_TABLE
             .iter()
@@ -329,9 +378,15 @@ impl Reader {
                 ),
             ));
         }
-        Ok(BenchmarkParameters::from_array(
-            values.map(|v| v.unwrap_or(0.0)),
-        ))
+        let b = BenchmarkParameters::from_array(values.map(|v| v.unwrap_or(0.0)));
+        match steer {
+            None => Ok(b),
+            Some((i_a, _)) => {
+                let b = b.with_front_assembly_steer_inertia(i_a)?;
+                bike.notices.push(steer_note(i_a, b.i_hzz));
+                Ok(b)
+            }
+        }
     }
 
     fn jbike6(&self, node: &Node, bike: &mut Bicycle) -> Result<Jbike6Parameters> {

@@ -4,8 +4,8 @@
 use super::Format;
 use crate::error::{Error, Result};
 use crate::parameters::{
-    BENCHMARK_TABLE, Bicycle, Description, Extra, JBIKE6_TABLE, PRINCIPAL_KEYS, ParameterInfo,
-    PrincipalBody, PrincipalParameters,
+    BENCHMARK_TABLE, Bicycle, Description, Extra, JBIKE6_TABLE, Jbike6Parameters, MOORE2012_KEYS,
+    Moore2012Parameters, PRINCIPAL_KEYS, ParameterInfo, PrincipalBody, PrincipalParameters,
 };
 
 pub(crate) fn write(bike: &Bicycle, format: Format) -> Result<String> {
@@ -29,11 +29,12 @@ pub(crate) fn write(bike: &Bicycle, format: Format) -> Result<String> {
         Format::Json => Ok(json(bike)),
         Format::Jbike6M => match &bike.description {
             Description::Jbike6(_) => Ok(matlab(bike)),
-            Description::Benchmark(_) => Err(Error::InvalidArgument {
-                what: "format",
-                rule: "only a bicycle described in JBike6's form can be written as a .m file"
-                    .into(),
-            }),
+            // The benchmark form as JBike6's bodies: frame = B, fork = H, the rest absent.
+            Description::Benchmark(b) => Ok(matlab(&Bicycle {
+                description: Description::Jbike6(Jbike6Parameters::from_benchmark(b)),
+                sigma: Default::default(),
+                ..bike.clone()
+            })),
         },
         Format::BicycleParametersTxt | Format::HumanControlTxt | Format::Yaml => {
             match &bike.description {
@@ -518,6 +519,56 @@ pub fn principal_yaml(bike: &Bicycle) -> Result<String> {
     }
     out.push_str("values:\n");
     for (k, v) in lines {
+        out.push_str(&format!("  {k}: {}\n", number(v)));
+    }
+    Ok(out)
+}
+
+/// A BicycleParameters parameter set in Moore 2012's parameterization (`parameterization:
+/// Moore2012`, the name of its `Moore2012ParameterSet`), from the bicycle's benchmark parameters
+/// ([`Moore2012Parameters::from_benchmark`]): the 26 keys sorted, and `v` where the bicycle has
+/// one, as whipple's YAML reader (and `--bike`) reads it back. Standard deviations are refused:
+/// they are not carried to Moore's form yet.
+pub fn moore2012_yaml(bike: &Bicycle) -> Result<String> {
+    if bike.has_uncertainty() {
+        return Err(Error::InvalidArgument {
+            what: "format",
+            rule: "Moore 2012's form does not carry standard deviations yet: write the \
+                   benchmark form to keep them"
+                .into(),
+        });
+    }
+    let b = bike.benchmark()?;
+    let m = Moore2012Parameters::from_benchmark(&b);
+    let mut lines: Vec<(&str, f64)> = MOORE2012_KEYS.iter().copied().zip(m.to_array()).collect();
+    if let Some(v) = bike
+        .extras
+        .iter()
+        .find(|e| e.key == "v")
+        .and_then(|e| e.value)
+    {
+        lines.push(("v", v));
+    }
+    lines.sort_by(|a, b| a.0.cmp(b.0));
+    let mut out = String::from("parameterization: Moore2012\n");
+    if let Some(name) = &bike.name {
+        out.push_str(&format!("parameters: {}\n", yaml_scalar(name)));
+    }
+    if let Some(rider) = bike.extras.iter().find(|e| e.key == "rider") {
+        out.push_str(&format!("rider: {}\n", yaml_scalar(&rider.text)));
+    }
+    if let Some(source) = &bike.source {
+        out.push_str(&format!("description: {}\n", yaml_scalar(source)));
+    }
+    out.push_str("values:\n");
+    for (k, v) in lines {
+        if !v.is_finite() {
+            return Err(Error::InvalidParameter {
+                field: k.to_string(),
+                value: v,
+                rule: "must be a finite number to be written to a file".into(),
+            });
+        }
         out.push_str(&format!("  {k}: {}\n", number(v)));
     }
     Ok(out)

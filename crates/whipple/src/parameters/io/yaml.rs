@@ -9,13 +9,17 @@
 //! A set in the principal parameterization (`parameterization: principal` or `Moore2019`,
 //! Moore 2019) is converted to the benchmark form on reading
 //! ([`PrincipalParameters::to_benchmark`](crate::parameters::PrincipalParameters::to_benchmark)), with a note saying so; its rider P is kept among the
-//! extras so that [`principal_yaml`](super::principal_yaml) can write it back.
+//! extras so that [`principal_yaml`](super::principal_yaml) can write it back. A set in Moore
+//! 2012's parameterization (`parameterization: Moore2012`) is converted the same way
+//! ([`Moore2012Parameters::to_benchmark`](crate::parameters::Moore2012Parameters::to_benchmark)).
 
 use super::keyvalue::{Entry, assemble};
 use super::{Format, error_at, parse_number, rounding_allowance};
 use crate::error::{Result, shorten};
 use crate::parameters::check::Notice;
-use crate::parameters::{Extra, PRINCIPAL_KEYS, PrincipalParameters};
+use crate::parameters::{
+    Extra, MOORE2012_KEYS, Moore2012Parameters, PRINCIPAL_KEYS, PrincipalParameters,
+};
 
 const F: Format = Format::Yaml;
 
@@ -172,7 +176,10 @@ pub(crate) fn parse(text: &str) -> Result<crate::parameters::Bicycle> {
     let has_values_section = !values.is_empty() || get("parameterization").is_some();
     if let Some((_, p, line)) = get("parameterization") {
         if p.eq_ignore_ascii_case("principal") || p == "Moore2019" {
-            return principal(values, &sigmas, &top, *line, description);
+            return converted(&PRINCIPAL, values, &sigmas, &top, *line, description);
+        }
+        if p.eq_ignore_ascii_case("moore2012") {
+            return converted(&MOORE2012, values, &sigmas, &top, *line, description);
         }
         if !(p.eq_ignore_ascii_case("benchmark") || p == "Meijaard2007") {
             return Err(error_at(
@@ -182,8 +189,8 @@ pub(crate) fn parse(text: &str) -> Result<crate::parameters::Bicycle> {
                 Some("parameterization"),
                 format!(
                     "the parameter set is in BicycleParameters' `{}` parameterization; whipple \
-                     reads the benchmark parameterization (`benchmark`, Meijaard2007) and the \
-                     principal one (`principal`, Moore2019). \
+                     reads the benchmark parameterization (`benchmark`, Meijaard2007), the \
+                     principal one (`principal`, Moore2019) and Moore2012. \
                      BicycleParameters converts between them (ParameterSet.to_parameterization)",
                     shorten(p, 40)
                 ),
@@ -263,7 +270,7 @@ pub(crate) fn parse(text: &str) -> Result<crate::parameters::Bicycle> {
 
 /// The keys of a principal set that repeat what others say (BicycleParameters writes them),
 /// with the key and sign each must equal (`None`: zero), checked to the written digits.
-const PRINCIPAL_REDUNDANT: [(&str, Option<(&str, f64)>); 13] = [
+const PRINCIPAL_REDUNDANT: &[(&str, Option<(&str, f64)>)] = &[
     ("yD", None),
     ("yH", None),
     ("yP", None),
@@ -280,14 +287,77 @@ const PRINCIPAL_REDUNDANT: [(&str, Option<(&str, f64)>); 13] = [
 ];
 
 /// The rider's keys, kept among the extras.
-const PRINCIPAL_RIDER: [&str; 9] = [
+const PRINCIPAL_RIDER: &[&str] = &[
     "mP", "xP", "zP", "kPaa", "kPbb", "kPyy", "alphaP", "lP", "wP",
 ];
 
-/// A set in the principal parameterization: every key of [`PRINCIPAL_KEYS`] required, the
-/// redundant ones checked, then the benchmark parameters computed and assembled as a benchmark
-/// set's would be.
-fn principal(
+/// The keys of a Moore 2012 set that repeat what others say (`dtk.bicycle.benchmark_to_moore`
+/// returns them): the products the model's symmetry makes zero, the wheels' second diametral
+/// moments.
+const MOORE2012_REDUNDANT: &[(&str, Option<(&str, f64)>)] = &[
+    ("ic12", None),
+    ("ic23", None),
+    ("ie12", None),
+    ("ie23", None),
+    ("id33", Some(("id11", 1.0))),
+    ("if33", Some(("if11", 1.0))),
+];
+
+/// A parameterization of BicycleParameters that whipple reads by converting it to the
+/// benchmark form.
+struct Converted {
+    /// How messages name it.
+    title: &'static str,
+    /// Its keys, all required, in the order `convert` takes them.
+    keys: &'static [&'static str],
+    /// Keys that repeat others, checked.
+    redundant: &'static [(&'static str, Option<(&'static str, f64)>)],
+    /// Keys kept among the extras (besides `v`).
+    kept: &'static [&'static str],
+    /// The keys in words, for the message on an unknown one.
+    listing: &'static str,
+    convert: fn(&[f64]) -> Result<crate::parameters::BenchmarkParameters>,
+    note: &'static str,
+}
+
+const PRINCIPAL: Converted = Converted {
+    title: "principal",
+    keys: &PRINCIPAL_KEYS,
+    redundant: PRINCIPAL_REDUNDANT,
+    kept: PRINCIPAL_RIDER,
+    listing: "Moore 2019: w, c, lam, g, rR, mR, kRaa, kRyy, ..., mD, xD, zD, kDaa, kDbb, kDyy, \
+              alphaD, the same for H and P, lP, wP, v",
+    convert: |v| {
+        let mut array = [0.0; 35];
+        array.copy_from_slice(v);
+        Ok(PrincipalParameters::from_array(array).to_benchmark())
+    },
+    note: "converted from BicycleParameters' principal parameterization (Moore 2019) to the \
+           benchmark form: the rear frame B is the frame D and the rider P combined, each body's \
+           inertia from its radii of gyration about its principal axes",
+};
+
+const MOORE2012: Converted = Converted {
+    title: "Moore2012",
+    keys: &MOORE2012_KEYS,
+    redundant: MOORE2012_REDUNDANT,
+    kept: &[],
+    listing: "Moore 2012: rf, rr, d1, d2, d3, l1, l2, l3, l4, mc, md, me, mf, ic11, ic22, ic31, \
+              ic33, id11, id22, ie11, ie22, ie31, ie33, if11, if22, g, v",
+    convert: |v| {
+        let mut array = [0.0; 26];
+        array.copy_from_slice(v);
+        Moore2012Parameters::from_array(array).to_benchmark()
+    },
+    note: "converted from Moore 2012's parameterization (BicycleParameters' Moore2012) to the \
+           benchmark form: wheelbase and steer axis tilt from d1, d2, d3 and the wheel radii, \
+           mass centres and tensors turned back by the tilt",
+};
+
+/// A set in a converted parameterization: every key required, the redundant ones checked, then
+/// the benchmark parameters computed and assembled as a benchmark set's would be.
+fn converted(
+    set: &Converted,
     values: Vec<Entry>,
     sigmas: &[(String, f64, usize)],
     top: &[(String, String, usize)],
@@ -300,8 +370,11 @@ fn principal(
             *line,
             1,
             Some(key),
-            "standard deviations of a principal set are not carried to the benchmark form yet: \
-             leave out `sigma:` or give the set in the benchmark parameterization",
+            format!(
+                "standard deviations of a {} set are not carried to the benchmark form yet: \
+                 leave out `sigma:` or give the set in the benchmark parameterization",
+                set.title
+            ),
         ));
     }
     for (key, _, line) in top {
@@ -332,9 +405,9 @@ fn principal(
                 format!("`{}` is given twice (first on line {})", e.key, first.line),
             ));
         }
-        let known = PRINCIPAL_KEYS.contains(&e.key.as_str())
+        let known = set.keys.contains(&e.key.as_str())
             || e.key == "v"
-            || PRINCIPAL_REDUNDANT.iter().any(|(k, _)| *k == e.key);
+            || set.redundant.iter().any(|(k, _)| *k == e.key);
         if !known {
             return Err(error_at(
                 F,
@@ -342,16 +415,17 @@ fn principal(
                 e.column,
                 Some(&e.key),
                 format!(
-                    "unknown key `{}` in a principal set (Moore 2019: w, c, lam, g, rR, mR, \
-                     kRaa, kRyy, ..., mD, xD, zD, kDaa, kDbb, kDyy, alphaD, the same for H and P, \
-                     lP, wP, v)",
-                    shorten(&e.key, 40)
+                    "unknown key `{}` in a {} set ({})",
+                    shorten(&e.key, 40),
+                    set.title,
+                    set.listing
                 ),
             ));
         }
     }
     let find = |key: &str| values.iter().find(|e| e.key == key);
-    let missing: Vec<&str> = PRINCIPAL_KEYS
+    let missing: Vec<&str> = set
+        .keys
         .iter()
         .copied()
         .filter(|k| find(k).is_none())
@@ -363,7 +437,8 @@ fn principal(
             1,
             missing.first().copied(),
             format!(
-                "the principal set lacks {}",
+                "the {} set lacks {}",
+                set.title,
                 missing
                     .iter()
                     .map(|k| format!("`{k}`"))
@@ -372,12 +447,12 @@ fn principal(
             ),
         ));
     }
-    for (key, source) in PRINCIPAL_REDUNDANT {
+    for (key, source) in set.redundant {
         let Some(e) = find(key) else { continue };
         let (expected, allowance, what) = match source {
             None => (0.0, 0.0, "0 (the model is left-right symmetric, its wheels axisymmetric, the rear contact the origin)".to_string()),
             Some((k, sign)) => match find(k) {
-                Some(s) => (sign * s.value, s.allowance, format!("{}{k}", if sign < 0.0 { "−" } else { "" })),
+                Some(s) => (sign * s.value, s.allowance, format!("{}{k}", if *sign < 0.0 { "−" } else { "" })),
                 None => continue,
             },
         };
@@ -396,11 +471,12 @@ fn principal(
             ));
         }
     }
-    let mut array = [0.0; 35];
-    for (slot, key) in array.iter_mut().zip(PRINCIPAL_KEYS) {
-        *slot = find(key).map_or(0.0, |e| e.value);
-    }
-    let benchmark = PrincipalParameters::from_array(array).to_benchmark();
+    let numbers: Vec<f64> = set
+        .keys
+        .iter()
+        .map(|key| find(key).map_or(0.0, |e| e.value))
+        .collect();
+    let benchmark = (set.convert)(&numbers)?;
     let mut entries: Vec<Entry> = crate::parameters::BENCHMARK_TABLE
         .iter()
         .zip(benchmark.to_array())
@@ -417,7 +493,7 @@ fn principal(
     entries.extend(
         values
             .iter()
-            .filter(|e| e.key == "v" || PRINCIPAL_RIDER.contains(&e.key.as_str()))
+            .filter(|e| e.key == "v" || set.kept.contains(&e.key.as_str()))
             .cloned(),
     );
     let mut bike = assemble(entries, F)?;
@@ -439,14 +515,7 @@ fn principal(
         .collect();
     extras.append(&mut bike.extras);
     bike.extras = extras;
-    bike.notices.insert(
-        0,
-        Notice::note(
-            "parameterization",
-            "converted from BicycleParameters' principal parameterization (Moore 2019) to the \
-             benchmark form: the rear frame B is the frame D and the rider P combined, each \
-             body's inertia from its radii of gyration about its principal axes",
-        ),
-    );
+    bike.notices
+        .insert(0, Notice::note("parameterization", set.note));
     Ok(bike)
 }
