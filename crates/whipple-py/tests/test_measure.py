@@ -181,3 +181,72 @@ def test_silver_fails_in_both(bp, data_dir):
     assert "dF" in str(theirs_error.value)
     with pytest.raises(whipple.ParseError, match="dF is missing: the front wheel's radius"):
         whipple.measure(RAW / "SilverMeasured.txt")
+
+
+def without(text, *keys):
+    return "\n".join(l for l in text.splitlines() if l.split("=")[0].strip() not in keys)
+
+
+def period_of(text, key):
+    line = next(l for l in text.splitlines() if l.split("=")[0].strip() == key)
+    return float(line.split("=")[1].split("+/-")[0])
+
+
+def test_periods_from_synthetic_records(tmp_path):
+    """Browser's file with TcB1 and TtB2 removed, and rate-gyro records (.mat, as
+    BicycleParameters names them) of a decaying oscillation at exactly those periods: the
+    fitted periods are the file's, and so are the parameters."""
+    sio = optional("scipy.io").io
+    text = (RAW / "BrowserMeasured.txt").read_text()
+    raw = tmp_path / "BrowserMeasured.txt"
+    raw.write_text(without(text, "TcB1", "TtB2"))
+    records = tmp_path / "records"
+    records.mkdir()
+    rate = 1000
+    t = np.arange(20 * rate) / rate
+    for key, stem, trials in [("TcB1", "FrameCompoundFirst", 2), ("TtB2", "FrameTorsionalSecond", 1)]:
+        period = period_of(text, key)
+        for trial in range(1, trials + 1):
+            phase = 0.3 * trial  # trials differ, their period does not
+            data = 1.2 + np.exp(-0.04 * t) * np.sin(2 * np.pi / period * t + phase)
+            sio.savemat(records / f"Browser{stem}{trial}.mat",
+                        {"data": data, "sampleRate": np.array([[rate]], dtype=float)})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", whipple.ParameterWarning)
+        got = whipple.measure(raw, periods=records)
+    fitted = {f["key"]: f for f in got.fitted}
+    assert sorted(fitted) == ["TcB1", "TtB2"]
+    for key in fitted:
+        assert fitted[key]["value"] == pytest.approx(period_of(text, key), rel=1e-9)
+    assert fitted["TcB1"]["source"] == ("fitted from BrowserFrameCompoundFirst1.mat, "
+                                        "BrowserFrameCompoundFirst2.mat")
+    assert fitted["TtB2"]["source"] == "fitted from BrowserFrameTorsionalSecond1.mat"
+    want = ours("Browser").bicycle.to_dict()
+    for key, value in got.bicycle.to_dict().items():
+        assert value == pytest.approx(want[key], rel=1e-8, abs=1e-12), key
+
+
+def test_periods_from_bicycleparameters_record(tmp_path):
+    """Browser's fork record from BicycleParameters' test data fills a missing TcH1 with the
+    core's fit of it, trimmed as BicycleParameters trims it (whipple.read_period, trim 0.1);
+    a period without a record names the key and the file looked for."""
+    text = (RAW / "BrowserMeasured.txt").read_text()
+    raw = tmp_path / "BrowserMeasured.txt"
+    raw.write_text(without(text, "TcH1"))
+    records = RAW / "periods"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", whipple.ParameterWarning)
+        got = whipple.measure(raw, periods=records)
+    fit = whipple.read_period(records / "BrowserForkCompoundFirst1.mat", trim=0.1)
+    (tc,) = got.fitted
+    assert tc["key"] == "TcH1" and tc["value"] == fit.period and tc["sigma"] == fit.period_sigma
+    assert tc["source"] == "fitted from BrowserForkCompoundFirst1.mat"
+    assert got.step("IHyy")["inputs"].count("TcH1") == 1
+    raw.write_text(without(text, "TcB1"))
+    with pytest.raises(whipple.ParameterError) as error:
+        whipple.measure(raw, periods=records)
+    assert error.value.field == "TcB1"
+    assert "looked for" in str(error.value) and "BrowserFrameCompoundFirst1.mat" in str(error.value)
+    # Without periods= the missing period is named with what it feeds.
+    with pytest.raises(whipple.ParseError, match="TcB1 is missing: the rear frame's IByy"):
+        whipple.measure(raw)
