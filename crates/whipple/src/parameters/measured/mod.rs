@@ -527,49 +527,11 @@ struct PartResult<T> {
 
 /// The keys of the parts BicycleParameters computes besides the benchmark's four bodies (a
 /// fork S and handlebar G measured apart, a flywheel D in the front wheel): kept with the
-/// bicycle as extras, with what each means.
-const PART_KEYS: [(&str, &str); 17] = [
-    ("mS", "fork's mass (measured apart from the handlebar) [kg]"),
-    ("xS", "fork's mass centre, x [m]"),
-    ("zS", "fork's mass centre, z [m]"),
-    ("ISxx", "fork's inertia about its mass centre, xx [kg m^2]"),
-    ("ISyy", "fork's inertia about its mass centre, yy [kg m^2]"),
-    ("ISzz", "fork's inertia about its mass centre, zz [kg m^2]"),
-    ("ISxz", "fork's inertia about its mass centre, xz [kg m^2]"),
-    ("mG", "handlebar's mass (measured apart from the fork) [kg]"),
-    ("xG", "handlebar's mass centre, x [m]"),
-    ("zG", "handlebar's mass centre, z [m]"),
-    (
-        "IGxx",
-        "handlebar's inertia about its mass centre, xx [kg m^2]",
-    ),
-    (
-        "IGyy",
-        "handlebar's inertia about its mass centre, yy [kg m^2]",
-    ),
-    (
-        "IGzz",
-        "handlebar's inertia about its mass centre, zz [kg m^2]",
-    ),
-    (
-        "IGxz",
-        "handlebar's inertia about its mass centre, xz [kg m^2]",
-    ),
-    (
-        "mD",
-        "flywheel's mass, inside the front wheel (not in the Whipple model, which has no \
-         flywheel; BicycleParameters' benchmark analyses ignore it too) [kg]",
-    ),
-    (
-        "IDxx",
-        "flywheel's inertia about a diameter, inside the front wheel (not in the model) \
-         [kg m^2]",
-    ),
-    (
-        "IDyy",
-        "flywheel's inertia about its spin axis, inside the front wheel (not in the model) \
-         [kg m^2]",
-    ),
+/// bicycle as extras, their meanings from the one table of other models' keys
+/// ([`crate::parameters::io::extra_meaning`]).
+const PART_KEYS: [&str; 17] = [
+    "mS", "xS", "zS", "ISxx", "ISyy", "ISzz", "ISxz", "mG", "xG", "zG", "IGxx", "IGyy", "IGzz",
+    "IGxz", "mD", "IDxx", "IDyy",
 ];
 
 /// The pipeline itself: the benchmark parameters and every number derived on the way, in the
@@ -1253,8 +1215,9 @@ impl MeasuredParameters {
     fn part_extras(&self) -> Vec<Extra> {
         PART_KEYS
             .iter()
-            .filter_map(|(key, meaning)| {
+            .filter_map(|key| {
                 let step = self.steps.iter().rev().find(|s| s.key == *key)?;
+                let meaning = crate::parameters::io::extra_meaning(key).unwrap_or_default();
                 Some(Extra {
                     key: key.to_string(),
                     text: format!("{}", step.value),
