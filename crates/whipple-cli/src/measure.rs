@@ -10,7 +10,9 @@ use clap::Args;
 use serde_json::json;
 use whipple::Bicycle;
 use whipple::advanced::io::{Format, name_from_file_name, write};
-use whipple::advanced::measured::{MeasuredParameters, read_measurements};
+use whipple::advanced::measured::{
+    FittedPeriod, MeasuredParameters, read_measurements, read_measurements_with_records,
+};
 
 use crate::bike::{RunContext, located, read_capped};
 use crate::commands::{round_sigma, round_to_sigma};
@@ -38,6 +40,11 @@ pub struct MeasureArgs {
     /// Also print the N largest correlations between the parameters (from their covariance).
     #[arg(long, value_name = "N")]
     correlations: Option<usize>,
+    /// A directory of rate-gyro records (`<Name>FrameCompoundFirst1.mat`, named as
+    /// BicycleParameters names them): every period the raw file lacks is fitted from its
+    /// records (the trials' mean), as BicycleParameters' calculate_from_measured does.
+    #[arg(long, value_name = "DIR")]
+    periods: Option<PathBuf>,
     /// A rider's Yeadon measurements (`<Rider>YeadonMeas.txt`): not supported yet.
     #[arg(long)]
     rider: Option<PathBuf>,
@@ -128,16 +135,34 @@ pub fn run(_cx: &RunContext, args: &MeasureArgs) -> Result<()> {
         .transpose()?;
     let text = String::from_utf8(bytes)
         .map_err(|_| anyhow!("{}: the file is not UTF-8 text", path.display()))?;
-    let file = read_measurements(&text).map_err(|e| located(e, path, &text))?;
-    let result = MeasuredParameters::new(&file.measurements)
-        .map_err(|e| anyhow!(whipple_front::message::message(&e)))
-        .with_context(|| format!("computing the parameters from {}", path.display()))?;
     let file_name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let name = name_from_file_name(&file_name, Format::BicycleParametersTxt)
-        .unwrap_or_else(|| "measured".into());
+    let named = name_from_file_name(&file_name, Format::BicycleParametersTxt);
+    let file = match &args.periods {
+        None => read_measurements(&text),
+        Some(dir) => {
+            let Some(bike) = named.as_deref() else {
+                bail!(
+                    "--periods {}: the records are found by the bicycle's name, which comes \
+                     from --raw's file name <Name>Measured.txt ({file_name} names none)",
+                    dir.display()
+                );
+            };
+            if !dir.is_dir() {
+                bail!("--periods {}: not a directory", dir.display());
+            }
+            read_measurements_with_records(&text, &mut |key| {
+                whipple_front::record::period_from_records(dir, bike, key).map(Some)
+            })
+        }
+    }
+    .map_err(|e| located(e, path, &text))?;
+    let result = MeasuredParameters::new(&file.measurements)
+        .map_err(|e| anyhow!(whipple_front::message::message(&e)))
+        .with_context(|| format!("computing the parameters from {}", path.display()))?;
+    let name = named.unwrap_or_else(|| "measured".into());
     let bicycle = Bicycle {
         name: Some(name.clone()),
         source: Some(format!(
@@ -157,8 +182,10 @@ pub fn run(_cx: &RunContext, args: &MeasureArgs) -> Result<()> {
         target.write_whole(written.as_bytes())?;
     }
     let report = match args.format {
-        TextFormat::Table => table(&name, &file_name, &result, args.correlations)?,
-        TextFormat::Json => json_report(&name, &file_name, &result, args.correlations)?,
+        TextFormat::Table => table(&name, &file_name, &result, &file.fitted, args.correlations)?,
+        TextFormat::Json => {
+            json_report(&name, &file_name, &result, &file.fitted, args.correlations)?
+        }
     };
     print_stdout(&report)
 }
@@ -180,6 +207,7 @@ fn table(
     name: &str,
     file_name: &str,
     result: &MeasuredParameters,
+    fitted: &[FittedPeriod],
     correlations: Option<usize>,
 ) -> Result<String> {
     let mut rows = vec![[
@@ -238,6 +266,16 @@ fn table(
         text.push_str(line.trim_end());
         text.push('\n');
     }
+    if !fitted.is_empty() {
+        text.push_str("\nPeriods the raw file lacked, fitted from records (--periods):\n");
+        for f in fitted {
+            let (value, sigma) = shown(f.period.value, Some(f.period.sigma))?;
+            text.push_str(&format!(
+                "  {} = {value} ± {sigma} s, {}\n",
+                f.key, f.source
+            ));
+        }
+    }
     if let Some(n) = correlations {
         text.push_str(
             "\nLargest correlations between the parameters (ρ = cov/(σσ); \
@@ -254,6 +292,7 @@ fn json_report(
     name: &str,
     file_name: &str,
     result: &MeasuredParameters,
+    fitted: &[FittedPeriod],
     correlations: Option<usize>,
 ) -> Result<String> {
     for step in &result.steps {
@@ -271,6 +310,16 @@ fn json_report(
             .map(|(v, p)| (p.key.to_string(), json!({ "value": v, "sigma": result.sigma.get(p.key).copied().unwrap_or(0.0) })))
             .collect::<serde_json::Map<String, serde_json::Value>>(),
     });
+    if let (false, Some(map)) = (fitted.is_empty(), doc.as_object_mut()) {
+        let rows: Vec<serde_json::Value> = fitted
+            .iter()
+            .map(|f| {
+                json!({ "key": f.key, "value": f.period.value, "sigma": f.period.sigma,
+                        "source": f.source })
+            })
+            .collect();
+        map.insert("fitted".into(), json!(rows));
+    }
     if let (Some(n), Some(map)) = (correlations, doc.as_object_mut()) {
         map.insert("correlations".into(), json!(result.largest_correlations(n)));
     }

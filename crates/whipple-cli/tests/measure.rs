@@ -258,3 +258,110 @@ fn bad_input_is_refused() {
     ]));
     assert!(err.contains("--out"), "{err}");
 }
+
+/// `--periods DIR`: Browser's file without TcH1 takes it from BicycleParameters' record of
+/// Browser's fork (`BrowserForkCompoundFirst1.mat`), fitted by the core as `whipple period
+/// --trim 0.1` fits it; the report names the period, its σ and the file. A period with no
+/// record is refused naming the key and the file looked for.
+#[test]
+fn periods_from_records() {
+    use whipple::advanced::measured::period::{decay_window, fit_period};
+    use whipple_front::record::{RecordRequest, read_record};
+    let dir = scratch("measure-periods");
+    let records = format!(
+        "{}/../whipple/tests/data/measured/periods",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(raw("Browser")).unwrap();
+    let without = |key: &str| -> String {
+        text.lines()
+            .filter(|l| l.split('=').next().map(str::trim) != Some(key))
+            .map(|l| format!("{l}\n"))
+            .collect()
+    };
+    let path = dir.join("BrowserMeasured.txt");
+    std::fs::write(&path, without("TcH1")).unwrap();
+    let report = stdout(&whipple(&[
+        "measure",
+        "--raw",
+        path.to_str().unwrap(),
+        "--periods",
+        &records,
+        "--format",
+        "json",
+    ]));
+    let json: serde_json::Value = serde_json::from_str(&report).expect("JSON");
+    let bytes = std::fs::read(format!("{records}/BrowserForkCompoundFirst1.mat")).unwrap();
+    let record = read_record(
+        &bytes,
+        "BrowserForkCompoundFirst1.mat",
+        &RecordRequest::default(),
+    )
+    .unwrap();
+    let window = decay_window(&record.signal, 0.1).unwrap();
+    let fit = fit_period(&record.time[window.clone()], &record.signal[window]).unwrap();
+    let fitted = json["fitted"].as_array().expect("fitted");
+    assert_eq!(fitted.len(), 1);
+    assert_eq!(fitted[0]["key"], "TcH1");
+    assert_eq!(fitted[0]["value"].as_f64(), Some(fit.period));
+    assert_eq!(fitted[0]["sigma"].as_f64(), Some(fit.period_sigma));
+    assert_eq!(
+        fitted[0]["source"],
+        "fitted from BrowserForkCompoundFirst1.mat"
+    );
+    // The table names them too.
+    let table = stdout(&whipple(&[
+        "measure",
+        "--raw",
+        path.to_str().unwrap(),
+        "--periods",
+        &records,
+    ]));
+    assert!(
+        table.contains("fitted from records") && table.contains("TcH1 = 1.5903"),
+        "{table}"
+    );
+    // No record of the rear frame's compound pendulum.
+    std::fs::write(&path, without("TcB1")).unwrap();
+    let err = stderr_of_failure(&whipple(&[
+        "measure",
+        "--raw",
+        path.to_str().unwrap(),
+        "--periods",
+        &records,
+    ]));
+    assert!(
+        err.contains("TcB1")
+            && err.contains("looked for")
+            && err.contains("BrowserFrameCompoundFirst1.mat"),
+        "{err}"
+    );
+}
+
+/// The bicycles measured with perpendicular distances, a split fork or a flywheel compute
+/// through the binary; the flywheel's and the fork's parts are written as extras.
+#[test]
+fn rigid_and_gyro_compute() {
+    let dir = scratch("measure-rigid");
+    for (name, key) in [("Rigid", "ISxx"), ("Gyro", "IDyy")] {
+        let out = dir.join(format!("{name}.txt"));
+        stdout(&whipple(&[
+            "measure",
+            "--raw",
+            &raw(name),
+            "--out",
+            out.to_str().unwrap(),
+        ]));
+        let written = std::fs::read_to_string(&out).unwrap();
+        assert!(written.contains(key), "{name}: {written}");
+        let expected = core(name);
+        let parsed = parse(&written, Format::BicycleParametersTxt).unwrap();
+        let back = parsed.benchmark().unwrap();
+        for (a, b) in back.to_array().iter().zip(expected.benchmark.to_array()) {
+            assert!(
+                (a - b).abs() <= 1e-10 * b.abs().max(1e-12),
+                "{name}: {a} vs {b}"
+            );
+        }
+    }
+}

@@ -559,3 +559,89 @@ pub fn read_mat_record(bytes: &[u8], request: &RecordRequest) -> Result<Record, 
     }
     Ok(record)
 }
+
+/// The most trials of one period read from a directory (`<Name>FrameCompoundFirst1.mat` …
+/// `…16.mat`).
+pub const MAX_TRIALS: usize = 16;
+
+/// A period a `*Measured.txt` lacks, fitted from the rate-gyro records in `dir` named as
+/// BicycleParameters names them: `<bicycle><record_name(key)><trial>.mat`, trials 1, 2, …
+/// while they exist (at most [`MAX_TRIALS`]). Each record is read as `whipple period` reads
+/// it, trimmed as BicycleParameters trims a record without times (from the largest swing to
+/// the last sample above a tenth of it; a record with times is fitted whole) and fitted by
+/// the core; the trials' mean is the period, σ = √(Σσᵢ²)/n. The source names the files.
+/// No first trial's file is an error naming the key and the file looked for.
+pub fn period_from_records(
+    dir: &std::path::Path,
+    bicycle: &str,
+    key: &str,
+) -> Result<(whipple::advanced::measured::Measured, String), Error> {
+    use whipple::advanced::measured::period::{decay_window, fit_period};
+    use whipple::advanced::measured::{Measured, record_name};
+    let missing = |looked: String| Error::InvalidParameter {
+        field: key.into(),
+        value: f64::NAN,
+        rule: looked,
+    };
+    let Some(name) = record_name(key) else {
+        return Err(missing(format!(
+            "is missing from the file, and BicycleParameters names no record for it \
+             (periods from records: Tc/Tt of B, H, S, G, F, R, D, P, orientations 1 to 6) in {}",
+            dir.display()
+        )));
+    };
+    let mut fits: Vec<(f64, f64)> = Vec::new();
+    let mut files: Vec<String> = Vec::new();
+    for trial in 1..=MAX_TRIALS {
+        let file = format!("{bicycle}{name}{trial}.mat");
+        let path = dir.join(&file);
+        if !path.is_file() {
+            break;
+        }
+        let bytes = read_capped(&path).map_err(|e| Error::InvalidParameter {
+            field: key.into(),
+            value: f64::NAN,
+            rule: format!("its record {} cannot be read: {e}", path.display()),
+        })?;
+        let record = read_record(&bytes, &file, &RecordRequest::default())?;
+        let window = if record.time_source.starts_with("rate") {
+            decay_window(&record.signal, 0.1)?
+        } else {
+            0..record.signal.len()
+        };
+        let (Some(time), Some(signal)) =
+            (record.time.get(window.clone()), record.signal.get(window))
+        else {
+            return Err(missing(format!(
+                "its record {} has no samples to fit",
+                path.display()
+            )));
+        };
+        let fit = fit_period(time, signal)?;
+        fits.push((fit.period, fit.period_sigma));
+        files.push(file);
+    }
+    if fits.is_empty() {
+        return Err(missing(format!(
+            "is missing from the file and has no record: looked for {}",
+            dir.join(format!("{bicycle}{name}1.mat")).display()
+        )));
+    }
+    let n = fits.len() as f64;
+    let period = fits.iter().map(|f| f.0).sum::<f64>() / n;
+    let sigma = fits.iter().map(|f| f.1 * f.1).sum::<f64>().sqrt() / n;
+    Ok((
+        Measured::new(period, sigma),
+        format!("fitted from {}", files.join(", ")),
+    ))
+}
+
+/// A file's bytes, at most [`MAX_RECORD_BYTES`] + 1 read.
+fn read_capped(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(MAX_RECORD_BYTES as u64 + 1)
+        .read_to_end(&mut bytes)?;
+    Ok(bytes)
+}

@@ -8,7 +8,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use whipple::Bicycle;
 use whipple::advanced::io::{Format, name_from_file_name};
-use whipple::advanced::measured::{MeasuredParameters, read_measurements};
+use whipple::advanced::measured::{
+    MeasuredParameters, read_measurements, read_measurements_with_records,
+};
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
@@ -24,21 +26,44 @@ fn array<'py>(py: Python<'py>, m: &DMatrix<f64>) -> PyResult<Bound<'py, PyArray2
 /// form with σ), `steps` (list of dicts), `inputs` (the measurements' keys, the Jacobian's
 /// columns), `jacobian` (26 × n), `covariance` (26 × 26, the parameter table's order) and
 /// `correlations` (every pair of parameters with σ > 0, largest |ρ| first).
+///
+/// With `periods` (a directory), every period the text lacks is fitted from the rate-gyro
+/// records there, named as BicycleParameters names them after the bicycle (whose name comes
+/// from `file_name`), by whipple-front's `period_from_records`; `fitted` lists them (key,
+/// value, sigma, source).
 #[pyfunction]
-#[pyo3(signature = (text, file_name, strict=false))]
+#[pyo3(signature = (text, file_name, strict=false, periods=None))]
 pub fn measure<'py>(
     py: Python<'py>,
     text: &str,
     file_name: &str,
     strict: bool,
+    periods: Option<std::path::PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let result = py
+    let name = name_from_file_name(file_name, Format::BicycleParametersTxt);
+    let (file, result) = py
         .detach(|| {
-            let file = read_measurements(text)?;
-            MeasuredParameters::new(&file.measurements)
+            let file = match (&periods, &name) {
+                (None, _) => read_measurements(text)?,
+                (Some(dir), Some(bike)) => read_measurements_with_records(text, &mut |key| {
+                    whipple_front::record::period_from_records(dir, bike, key).map(Some)
+                })?,
+                (Some(dir), None) => {
+                    return Err(whipple::Error::InvalidParameter {
+                        field: "periods".into(),
+                        value: f64::NAN,
+                        rule: format!(
+                            "the records in {} are found by the bicycle's name, which comes \
+                             from the raw file's name <Name>Measured.txt: give the file's path",
+                            dir.display()
+                        ),
+                    });
+                }
+            };
+            let result = MeasuredParameters::new(&file.measurements)?;
+            Ok((file, result))
         })
         .py_err(py)?;
-    let name = name_from_file_name(file_name, Format::BicycleParametersTxt);
     let source = if file_name.is_empty() {
         "computed from bench measurements (Moore 2012 ch. 2)".to_string()
     } else {
@@ -55,6 +80,19 @@ pub fn measure<'py>(
     out.set_item("inputs", result.inputs.clone())?;
     out.set_item("jacobian", array(py, &result.jacobian)?)?;
     out.set_item("covariance", array(py, &result.covariance)?)?;
+    let fitted: Vec<(String, f64, f64, String)> = file
+        .fitted
+        .iter()
+        .map(|f| {
+            (
+                f.key.clone(),
+                f.period.value,
+                f.period.sigma,
+                f.source.clone(),
+            )
+        })
+        .collect();
+    out.set_item("fitted", fitted)?;
     out.set_item(
         "correlations",
         serialized(py, &result.largest_correlations(usize::MAX))?,

@@ -563,8 +563,10 @@ pub mod advanced {
         pub use crate::parameters::measured::report::{Correlation, Step};
         pub use crate::parameters::measured::steps;
         pub use crate::parameters::measured::{
-            Hanging, MAX_HANGINGS, Measured, MeasuredFile, MeasuredParameters, Measurements,
-            benchmark_from_measurements, read_measurements,
+            FittedPeriod, Flywheel, FrontFrame, Geometry, HandlebarReference, Hanging, HungPart,
+            MAX_HANGINGS, Measured, MeasuredFile, MeasuredParameters, Measurements, Offsets,
+            PeriodSource, benchmark_from_measurements, read_measurements,
+            read_measurements_with_records, record_name,
         };
     }
     #[doc = "The Yeadon human body model (Yeadon 1990): a rider's 11 segments from the 95 anthropometric measurements and the 21 joint angles, with `yeadon`'s files read."]

@@ -31,9 +31,13 @@ class Measurement:
             numbers).
         covariance: the parameters' covariance J diag(σ²) Jᵀ, shape ``(26, 26)``, the
             measurements independent (BicycleParameters keeps only its diagonal).
+        fitted: the periods the raw file lacked, fitted from records (``periods=``): dicts
+            with ``key`` (``'TcH1'``), ``value`` and ``sigma`` [s] and ``source`` (the record
+            files).
     """
 
-    __slots__ = ("bicycle", "steps", "keys", "inputs", "jacobian", "covariance", "_correlations")
+    __slots__ = ("bicycle", "steps", "keys", "inputs", "jacobian", "covariance", "fitted",
+                 "_correlations")
 
     def __init__(self, native: Dict[str, Any]) -> None:
         """Use :func:`whipple.measure`."""
@@ -43,6 +47,8 @@ class Measurement:
         self.inputs: List[str] = list(native["inputs"])
         self.jacobian: np.ndarray = np.asarray(native["jacobian"], dtype=np.float64)
         self.covariance: np.ndarray = np.asarray(native["covariance"], dtype=np.float64)
+        self.fitted: List[Dict[str, Any]] = [
+            dict(zip(("key", "value", "sigma", "source"), f)) for f in native["fitted"]]
         self._correlations: List[Dict[str, Any]] = list(native["correlations"])
 
     def step(self, key: str) -> Dict[str, Any]:
@@ -71,7 +77,8 @@ class Measurement:
         return f"<Measurement of {self.bicycle.label}: {len(self.steps)} steps>"
 
 
-def measure(source: Union[str, "os.PathLike[str]"], strict: bool = False) -> Measurement:
+def measure(source: Union[str, "os.PathLike[str]"], strict: bool = False,
+            periods: Union[None, str, "os.PathLike[str]"] = None) -> Measurement:
     """A bicycle from BicycleParameters' raw bench measurements (``<Name>Measured.txt``:
     ``key = value+/-sigma`` lines): the benchmark parameters with their exact first-order σ,
     every step of the computation and the parameters' covariance (see :class:`Measurement`).
@@ -83,9 +90,15 @@ def measure(source: Union[str, "os.PathLike[str]"], strict: bool = False) -> Mea
 
     For example, ``whipple.measure("BrowserMeasured.txt").bicycle.critical_speeds()`` gives
     Browser's critical speeds, with their σ, from the raw file alone.
+
+    ``periods``, a directory, holds rate-gyro records named as BicycleParameters names them
+    (``BrowserFrameCompoundFirst1.mat``, trials 1, 2, …): every period the file lacks is
+    fitted from them (the trials' mean; see :attr:`Measurement.fitted`); a period with no
+    record raises :class:`whipple.ParameterError` naming the key and the file looked for.
     """
+    folder = None if periods is None else os.fspath(periods)
     if isinstance(source, str) and ("\n" in source or "=" in source):
-        return Measurement(_whipple.measure(source, "", strict))
+        return Measurement(_whipple.measure(source, "", strict, folder))
     path = os.fspath(source)
     limit = _whipple.MAX_FILE_BYTES
     with open(path, "rb") as f:
@@ -100,4 +113,4 @@ def measure(source: Union[str, "os.PathLike[str]"], strict: bool = False) -> Mea
         raise ParseError(f"{path}: the file is not UTF-8 text", field=None, value=None,
                          rule="a measurements file is UTF-8 text", format="unknown",
                          line=0, column=0) from error
-    return Measurement(_whipple.measure(text, os.path.basename(path), strict))
+    return Measurement(_whipple.measure(text, os.path.basename(path), strict, folder))

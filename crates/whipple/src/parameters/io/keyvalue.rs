@@ -321,6 +321,9 @@ pub(crate) fn extra_meaning(key: &str) -> Option<&'static str> {
         k if SPLIT_FORK.contains(&k) => {
             "fork S measured apart from the handlebar (BicycleParameters); with the handlebar G it makes the front frame H"
         }
+        "mD" | "IDxx" | "IDyy" => {
+            "flywheel D inside the front wheel, measured with it (BicycleParameters' Gyro): its own mass [kg] or inertia [kg m^2]; not in the Whipple model, which BicycleParameters' analyses ignore it in too"
+        }
         "parameterization" | "parameters" | "rider" | "description" => {
             "YAML metadata of a BicycleParameters parameter set"
         }

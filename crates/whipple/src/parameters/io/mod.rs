@@ -15,6 +15,7 @@
 
 mod json;
 mod keyvalue;
+pub(crate) use keyvalue::extra_meaning;
 mod matlab;
 mod tree;
 mod write;

@@ -5,7 +5,10 @@
 
 use std::collections::BTreeMap;
 
-use super::{Hanging, Measured, Measurements};
+use super::{
+    Flywheel, FrontFrame, Geometry, HandlebarReference, Hanging, HungPart, Measured, Measurements,
+    Offsets,
+};
 use crate::error::{Error, Result};
 use crate::parameters::io::MAX_FILE_BYTES;
 
@@ -17,26 +20,22 @@ pub const MAX_HANGINGS: usize = 16;
 /// The most values in one key's list of repeated measurements.
 const MAX_REPEATS: usize = 64;
 
-/// The scalar measurements, with what each one feeds (for a missing key's message).
-const SCALARS: [(&str, &str); 24] = [
+/// The scalar measurements every file needs, with what each one feeds (for a missing key's
+/// message).
+const COMMON: [(&str, &str); 19] = [
     ("g", "every compound pendulum's inertia"),
     ("dR", "the rear wheel's radius"),
     ("nR", "the rear wheel's radius"),
     ("dF", "the front wheel's radius"),
     ("nF", "the front wheel's radius"),
-    ("w", "the wheelbase"),
-    ("gamma", "the steer axis tilt"),
-    ("f", "the trail"),
     ("mR", "the rear wheel's mass and IRyy"),
     ("mF", "the front wheel's mass and IFyy"),
     ("mB", "the rear frame's mass and IByy"),
-    ("mH", "the front frame's mass and IHyy"),
     ("lR", "the rear wheel's IRyy (compound pendulum length)"),
     ("lF", "the front wheel's IFyy (compound pendulum length)"),
     ("TcR1", "the rear wheel's IRyy"),
     ("TcF1", "the front wheel's IFyy"),
     ("TcB1", "the rear frame's IByy"),
-    ("TcH1", "the front frame's IHyy"),
     ("TtR1", "the rear wheel's IRxx"),
     ("TtF1", "the front wheel's IFxx"),
     ("mP", "the torsion constant (calibration rod)"),
@@ -44,6 +43,77 @@ const SCALARS: [(&str, &str); 24] = [
     ("dP", "the torsion constant (calibration rod)"),
     ("TtP1", "the torsion constant (calibration rod)"),
 ];
+
+/// The geometry measured directly.
+const DIRECT: [(&str, &str); 3] = [
+    ("w", "the wheelbase"),
+    ("gamma", "the steer axis tilt"),
+    ("f", "the trail"),
+];
+
+/// What the perpendicular distances feed.
+const OFFSETS_FEED: &str =
+    "the steer axis tilt, the wheelbase and the trail (geometry as perpendicular distances)";
+
+/// The geometry measured as perpendicular distances.
+const OFFSETS: [&str; 10] = ["h1", "h2", "h3", "h4", "h5", "d1", "d2", "d3", "d4", "d"];
+
+/// The front frame measured as one.
+const WHOLE: [(&str, &str); 2] = [
+    ("mH", "the front frame's mass and IHyy"),
+    ("TcH1", "the front frame's IHyy"),
+];
+
+/// The fork and the handlebar measured apart.
+const SPLIT: [(&str, &str); 9] = [
+    ("mS", "the fork's mass, ISyy and the front frame's mass"),
+    (
+        "mG",
+        "the handlebar's mass, IGyy and the front frame's mass",
+    ),
+    ("TcS1", "the fork's ISyy"),
+    ("TcG1", "the handlebar's IGyy"),
+    (
+        "h6",
+        "the handlebar's reference point (front axle's height)",
+    ),
+    (
+        "h7",
+        "the handlebar's reference point (reference circle's height)",
+    ),
+    (
+        "d5",
+        "the handlebar's reference point (front axle's diameter)",
+    ),
+    (
+        "d6",
+        "the handlebar's reference point (reference circle's diameter)",
+    ),
+    ("l", "the handlebar's reference point (axle to circle)"),
+];
+
+/// A flywheel inside the front wheel.
+const FLYWHEEL: [(&str, &str); 3] = [
+    ("mD", "the flywheel's mass (front wheel with flywheel)"),
+    (
+        "TcD1",
+        "the flywheel's IDyy (front wheel with flywheel, compound pendulum)",
+    ),
+    (
+        "TtD1",
+        "the flywheel's IDxx (front wheel with flywheel, torsional pendulum)",
+    ),
+];
+
+/// Whether `key` is one of the scalar measurements.
+fn is_scalar(key: &str) -> bool {
+    COMMON.iter().any(|(k, _)| *k == key)
+        || DIRECT.iter().any(|(k, _)| *k == key)
+        || OFFSETS.contains(&key)
+        || WHOLE.iter().any(|(k, _)| *k == key)
+        || SPLIT.iter().any(|(k, _)| *k == key)
+        || FLYWHEEL.iter().any(|(k, _)| *k == key)
+}
 
 /// Keys of the rider's seat and handlebar geometry (BicycleParameters' `add_rider`) and of
 /// the lateral force point: read and kept, not used by the bicycle's parameters.
@@ -59,7 +129,61 @@ pub struct MeasuredFile {
     /// The rider's geometry and other known keys the bicycle's parameters do not use
     /// (`lcs`, `hbb`, `LhbF`, …), in file order.
     pub other: Vec<(String, Measured)>,
+    /// The periods the file lacked, fitted from records ([`read_measurements_with_records`]),
+    /// in the order asked.
+    pub fitted: Vec<FittedPeriod>,
 }
+
+/// A period the file lacked, taken from its records.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FittedPeriod {
+    /// Its key (`TcB1`, `TtH2`).
+    pub key: String,
+    /// The period with its σ (the mean of the trials' fits, σ = √(Σσᵢ²)/n).
+    pub period: Measured,
+    /// Where it came from, as the caller words it (the record files).
+    pub source: String,
+}
+
+/// The name BicycleParameters gives a period's records without the bicycle's name and the
+/// trial's number: `TcH1` → `ForkCompoundFirst` (its files are
+/// `<Name>ForkCompoundFirst1.mat`, `…2.mat`, …). The part's word: `Frame` (B), `Fork` (H, or
+/// S when the handlebar was measured apart), `Handlebar` (G), `Fwheel` (F), `Rwheel` (R),
+/// `Flywheel` (D), `Rod` (P); the pendulum: `Compound` (Tc) or `Torsional` (Tt); the hanging's
+/// ordinal `First` … `Sixth`. `None` for a key that is not a period or has no such name.
+pub fn record_name(key: &str) -> Option<String> {
+    let (pendulum, rest) = if let Some(rest) = key.strip_prefix("Tc") {
+        ("Compound", rest)
+    } else {
+        ("Torsional", key.strip_prefix("Tt")?)
+    };
+    let mut chars = rest.chars();
+    let part = match chars.next()? {
+        'B' => "Frame",
+        'H' | 'S' => "Fork",
+        'G' => "Handlebar",
+        'F' => "Fwheel",
+        'R' => "Rwheel",
+        'D' => "Flywheel",
+        'P' => "Rod",
+        _ => return None,
+    };
+    let ordinal = match chars.as_str() {
+        "1" => "First",
+        "2" => "Second",
+        "3" => "Third",
+        "4" => "Fourth",
+        "5" => "Fifth",
+        "6" => "Sixth",
+        _ => return None,
+    };
+    Some(format!("{part}{pendulum}{ordinal}"))
+}
+
+/// What a caller gives for a period the file lacks: `Ok(Some((period, source)))` from its
+/// records, `Ok(None)` to leave it missing, or an error naming the key and what was looked
+/// for.
+pub type PeriodSource<'a> = dyn FnMut(&str) -> Result<Option<(Measured, String)>> + 'a;
 
 fn error(line: usize, field: Option<&str>, message: String) -> Error {
     Error::Parse {
@@ -133,31 +257,6 @@ fn values(text: &str, line: usize, key: &str) -> Result<Measured> {
     })
 }
 
-/// What a key that this reader does not compute from says about the file.
-fn unsupported(key: &str) -> Option<&'static str> {
-    let geometry = ["h1", "h2", "h3", "h4", "h5", "d1", "d2", "d3", "d4", "d"];
-    let split = ["h6", "h7", "d5", "d6", "l", "mS", "mG", "TcS1", "TcG1"];
-    let flywheel = ["mD", "TcD1", "TtD1"];
-    let part = |p: char| {
-        key.strip_prefix("alpha")
-            .or_else(|| key.strip_prefix("Tt"))
-            .or_else(|| key.strip_prefix('a'))
-            .is_some_and(|rest| rest.starts_with(p))
-    };
-    if geometry.contains(&key) {
-        Some(
-            "the geometry measured as perpendicular distances (h1…h5, d1…d4, d) is not \
-             supported yet: give w, gamma and f",
-        )
-    } else if split.contains(&key) || part('S') || part('G') {
-        Some("a fork measured apart from its handlebar (parts S and G) is not supported yet")
-    } else if flywheel.contains(&key) {
-        Some("a flywheel in the front wheel (part D) is not supported yet")
-    } else {
-        None
-    }
-}
-
 /// A hanging key (`alphaB2`, `aH1`, `TtB3`): which frame, which of the three, its number.
 fn hanging_key(key: &str) -> Option<(char, usize, usize)> {
     for (which, prefix) in [(0, "alpha"), (2, "Tt"), (1, "a")] {
@@ -165,7 +264,7 @@ fn hanging_key(key: &str) -> Option<(char, usize, usize)> {
             let mut chars = rest.chars();
             let part = chars.next()?;
             let number: usize = chars.as_str().parse().ok()?;
-            if matches!(part, 'B' | 'H') && number >= 1 {
+            if matches!(part, 'B' | 'H' | 'S' | 'G') && number >= 1 {
                 return Some((part, which, number));
             }
         }
@@ -174,7 +273,9 @@ fn hanging_key(key: &str) -> Option<(char, usize, usize)> {
 }
 
 /// Reads a `*Measured.txt` (BicycleParameters' raw data, Moore 2012 ch. 2). Errors name the key
-/// and its line; a missing measurement is named with what it feeds.
+/// and its line; a missing measurement is named with what it feeds. A hanging's distance
+/// (`aB4`) given without its angle and period is no hanging, as BicycleParameters reads it:
+/// it is kept in [`MeasuredFile::other`].
 ///
 /// ```
 /// use whipple::advanced::measured::read_measurements;
@@ -183,6 +284,18 @@ fn hanging_key(key: &str) -> Option<(char, usize, usize)> {
 /// assert!(message.contains("dR is missing: the rear wheel's radius needs it"), "{message}");
 /// ```
 pub fn read_measurements(text: &str) -> Result<MeasuredFile> {
+    read_measurements_with_records(text, &mut |_| Ok(None))
+}
+
+/// [`read_measurements`], asking `records` for every period the file lacks (as
+/// BicycleParameters' `calculate_from_measured` fits them from its rate-gyro records when the
+/// file has too few): the compound and torsional periods of the parts measured, and the
+/// torsional period of every hanging whose angle and distance are given. The periods given
+/// are listed in [`MeasuredFile::fitted`].
+pub fn read_measurements_with_records(
+    text: &str,
+    records: &mut PeriodSource<'_>,
+) -> Result<MeasuredFile> {
     if text.len() > MAX_FILE_BYTES {
         return Err(error(
             0,
@@ -190,7 +303,7 @@ pub fn read_measurements(text: &str) -> Result<MeasuredFile> {
             format!("the file is larger than {} MiB", MAX_FILE_BYTES >> 20),
         ));
     }
-    let mut scalars: BTreeMap<&str, Measured> = BTreeMap::new();
+    let mut scalars: BTreeMap<String, Measured> = BTreeMap::new();
     let mut hangings: BTreeMap<(char, usize), [Option<Measured>; 3]> = BTreeMap::new();
     let mut other = Vec::new();
     let mut seen: BTreeMap<String, usize> = BTreeMap::new();
@@ -215,12 +328,9 @@ pub fn read_measurements(text: &str) -> Result<MeasuredFile> {
                 format!("given twice (first on line {first})"),
             ));
         }
-        if let Some(why) = unsupported(key) {
-            return Err(error(line, Some(key), why.into()));
-        }
         let measured = values(rest, line, key)?;
-        if let Some((name, _)) = SCALARS.iter().find(|(k, _)| *k == key) {
-            scalars.insert(name, measured);
+        if is_scalar(key) {
+            scalars.insert(key.to_string(), measured);
         } else if let Some((part, which, number)) = hanging_key(key) {
             if number > MAX_HANGINGS {
                 return Err(error(
@@ -240,13 +350,142 @@ pub fn read_measurements(text: &str) -> Result<MeasuredFile> {
             ));
         }
     }
-    let mut missing: Vec<String> = SCALARS
+    // A hanging's distance given without its angle and period describes no hanging (Gyro's
+    // aB4): BicycleParameters reads a frame's hangings by their angles and passes it by;
+    // it is kept with the other keys.
+    let orphans: Vec<(char, usize)> = hangings
         .iter()
-        .filter(|(k, _)| !scalars.contains_key(k))
-        .map(|(k, feeds)| format!("{k} is missing: {feeds} needs it"))
+        .filter(|(_, h)| h[0].is_none() && h[2].is_none())
+        .map(|(k, _)| *k)
         .collect();
-    let mut frames: [Vec<Hanging>; 2] = [Vec::new(), Vec::new()];
-    for (slot, part, name) in [(0, 'B', "rear"), (1, 'H', "front")] {
+    for (part, number) in orphans {
+        if let Some([_, Some(a), _]) = hangings.remove(&(part, number)) {
+            other.push((format!("a{part}{number}"), a));
+        }
+    }
+    let has = |k: &str| scalars.contains_key(k);
+    let line_of = |k: &str| scalars.get(k).map_or(0, |m| m.line);
+    // Which forms the file measured, from the keys it gives.
+    let offsets = OFFSETS.iter().find(|k| has(k));
+    let direct = DIRECT.iter().find(|(k, _)| has(k));
+    if let (Some(o), Some((d, _))) = (offsets, direct) {
+        return Err(error(
+            line_of(o),
+            Some(o),
+            format!(
+                "the geometry is given twice: as perpendicular distances (h1…h5, d1…d4, d) \
+                 and as {d} (w, gamma, f, line {}); give one",
+                line_of(d)
+            ),
+        ));
+    }
+    let split_key = SPLIT
+        .iter()
+        .map(|(k, _)| k.to_string())
+        .chain(
+            hangings
+                .keys()
+                .filter(|(p, _)| matches!(p, 'S' | 'G'))
+                .map(|(p, n)| format!("alpha{p}{n}")),
+        )
+        .find(|k| has(k) || k.starts_with("alpha"));
+    let whole_key = WHOLE
+        .iter()
+        .map(|(k, _)| k.to_string())
+        .chain(
+            hangings
+                .keys()
+                .filter(|(p, _)| *p == 'H')
+                .map(|(p, n)| format!("alpha{p}{n}")),
+        )
+        .find(|k| has(k) || k.starts_with("alpha"));
+    if let (Some(s), Some(h)) = (&split_key, &whole_key) {
+        return Err(error(
+            line_of(s),
+            Some(s),
+            format!(
+                "the front frame is given twice: as fork and handlebar apart (parts S and G) \
+                 and as one ({h}, part H); give one"
+            ),
+        ));
+    }
+    let split = split_key.is_some();
+    let flywheel = FLYWHEEL.iter().any(|(k, _)| has(k));
+    // The periods the file lacks, from the caller's records.
+    let mut periods: Vec<String> = ["TcR1", "TcF1", "TcB1", "TtR1", "TtF1", "TtP1"]
+        .iter()
+        .map(|k| k.to_string())
+        .collect();
+    periods.extend(
+        if split {
+            &["TcS1", "TcG1"][..]
+        } else {
+            &["TcH1"][..]
+        }
+        .iter()
+        .map(|k| k.to_string()),
+    );
+    if flywheel {
+        periods.extend(["TcD1", "TtD1"].map(String::from));
+    }
+    for ((part, number), given) in &hangings {
+        if given[0].is_some() && given[1].is_some() && given[2].is_none() {
+            periods.push(format!("Tt{part}{number}"));
+        }
+    }
+    let mut fitted = Vec::new();
+    for key in periods {
+        if scalars.contains_key(&key)
+            || hanging_key(&key)
+                .is_some_and(|(p, _, n)| hangings.get(&(p, n)).is_some_and(|h| h[2].is_some()))
+        {
+            continue;
+        }
+        if let Some((period, source)) = records(&key)? {
+            if let Some((part, which, number)) = hanging_key(&key) {
+                hangings.entry((part, number)).or_default()[which] = Some(period);
+            } else {
+                scalars.insert(key.clone(), period);
+            }
+            fitted.push(FittedPeriod {
+                key,
+                period,
+                source,
+            });
+        }
+    }
+    let has = |k: &str| scalars.contains_key(k);
+    let mut missing: Vec<String> = Vec::new();
+    let mut need = |list: &[(&str, &str)]| {
+        for (k, feeds) in list {
+            if !has(k) {
+                missing.push(format!("{k} is missing: {feeds} needs it"));
+            }
+        }
+    };
+    need(&COMMON);
+    if offsets.is_some() {
+        let list: Vec<(&str, &str)> = OFFSETS.iter().map(|k| (*k, OFFSETS_FEED)).collect();
+        need(&list);
+    } else {
+        need(&DIRECT);
+    }
+    if split {
+        need(&SPLIT);
+    } else {
+        need(&WHOLE);
+    }
+    if flywheel {
+        need(&FLYWHEEL);
+    }
+    let parts: &[(char, &str)] = if split {
+        &[('B', "rear frame"), ('S', "fork"), ('G', "handlebar")]
+    } else {
+        &[('B', "rear frame"), ('H', "front frame")]
+    };
+    let mut frames: Vec<Vec<Hanging>> = Vec::new();
+    for (part, name) in parts {
+        let part = *part;
         let count = hangings
             .keys()
             .filter(|(p, _)| *p == part)
@@ -255,26 +494,26 @@ pub fn read_measurements(text: &str) -> Result<MeasuredFile> {
             .unwrap_or(0);
         if count == 0 {
             missing.push(format!(
-                "alpha{part}1 is missing: the {name} frame's mass centre and inertia need its hangings (alpha{part}i, a{part}i, Tt{part}i)"
+                "alpha{part}1 is missing: the {name}'s mass centre and inertia need its hangings (alpha{part}i, a{part}i, Tt{part}i)"
             ));
         }
+        let mut set = Vec::new();
         for number in 1..=count {
-            let set = hangings.get(&(part, number)).copied().unwrap_or_default();
-            match set {
-                [Some(alpha), Some(a), Some(period)] => {
-                    frames[slot].push(Hanging { alpha, a, period })
-                }
+            let given = hangings.get(&(part, number)).copied().unwrap_or_default();
+            match given {
+                [Some(alpha), Some(a), Some(period)] => set.push(Hanging { alpha, a, period }),
                 _ => {
                     for (which, prefix) in ["alpha", "a", "Tt"].iter().enumerate() {
-                        if set[which].is_none() {
+                        if given[which].is_none() {
                             missing.push(format!(
-                                "{prefix}{part}{number} is missing: the {name} frame's hanging {number} needs it"
+                                "{prefix}{part}{number} is missing: the {name}'s hanging {number} needs it"
                             ));
                         }
                     }
                 }
             }
         }
+        frames.push(set);
     }
     if let Some(first) = missing.first() {
         let field = first.split(' ').next().unwrap_or("").to_string();
@@ -295,7 +534,51 @@ pub fn read_measurements(text: &str) -> Result<MeasuredFile> {
             .copied()
             .unwrap_or(Measured::new(f64::NAN, 0.0))
     };
-    let [rear_frame, front_frame] = frames;
+    let geometry = if offsets.is_some() {
+        Geometry::Offsets(Offsets {
+            h: [get("h1"), get("h2"), get("h3"), get("h4"), get("h5")],
+            d1: get("d1"),
+            d2: get("d2"),
+            d3: get("d3"),
+            d4: get("d4"),
+            d: get("d"),
+        })
+    } else {
+        Geometry::Direct {
+            w: get("w"),
+            gamma: get("gamma"),
+            f: get("f"),
+        }
+    };
+    let mut frames = frames.into_iter();
+    let rear_frame = frames.next().unwrap_or_default();
+    let mut part = |p: &str| HungPart {
+        mass: get(&format!("m{p}")),
+        compound_period: get(&format!("Tc{p}1")),
+        hangings: frames.next().unwrap_or_default(),
+    };
+    let front_frame = if split {
+        let fork = part("S");
+        let handlebar = part("G");
+        FrontFrame::Split {
+            fork,
+            handlebar,
+            reference: HandlebarReference {
+                h6: get("h6"),
+                h7: get("h7"),
+                d5: get("d5"),
+                d6: get("d6"),
+                l: get("l"),
+            },
+        }
+    } else {
+        FrontFrame::Whole(part("H"))
+    };
+    let flywheel = flywheel.then(|| Flywheel {
+        mass: get("mD"),
+        compound_period: get("TcD1"),
+        torsional_period: get("TtD1"),
+    });
     Ok(MeasuredFile {
         measurements: Measurements {
             g: get("g"),
@@ -303,19 +586,15 @@ pub fn read_measurements(text: &str) -> Result<MeasuredFile> {
             n_r: get("nR"),
             d_f: get("dF"),
             n_f: get("nF"),
-            w: get("w"),
-            gamma: get("gamma"),
-            f: get("f"),
+            geometry,
             m_r: get("mR"),
             m_f: get("mF"),
             m_b: get("mB"),
-            m_h: get("mH"),
             l_r: get("lR"),
             l_f: get("lF"),
             t_c_r: get("TcR1"),
             t_c_f: get("TcF1"),
             t_c_b: get("TcB1"),
-            t_c_h: get("TcH1"),
             t_t_r: get("TtR1"),
             t_t_f: get("TtF1"),
             m_p: get("mP"),
@@ -324,7 +603,9 @@ pub fn read_measurements(text: &str) -> Result<MeasuredFile> {
             t_t_p: get("TtP1"),
             rear_frame,
             front_frame,
+            flywheel,
         },
         other,
+        fitted,
     })
 }

@@ -75,17 +75,155 @@ pub fn hanging_line<T: RealField + Copy>(
     r_r: T,
     r_f: T,
 ) -> HangingLine<T> {
-    let beta = lambda - alpha_deg * T::pi() / c(180.0);
-    let slope = -beta.tan();
-    let intercept = match frame {
-        HungFrame::Rear => -a / beta.cos() - r_r,
-        HungFrame::Front => -a / beta.cos() - r_f + wheelbase * beta.tan(),
+    let (x_ref, z_ref) = match frame {
+        HungFrame::Rear => (T::zero(), -r_r),
+        HungFrame::Front => (wheelbase, -r_f),
     };
+    hanging_line_through(alpha_deg, a, lambda, x_ref, z_ref)
+}
+
+/// [`hanging_line`] for any reference point (x_ref, z_ref) of the benchmark frame: the wire
+/// passes at distance `a` from it (positive with the point on the wire's left), so the line
+/// is z = −tan β · x + z₀ with z₀ = −a / cos β + z_ref + x_ref tan β, β = λ − α. A handlebar
+/// hung apart from its fork takes the handlebar's reference point
+/// ([`handlebar_reference_offset`]).
+pub fn hanging_line_through<T: RealField + Copy>(
+    alpha_deg: T,
+    a: T,
+    lambda: T,
+    x_ref: T,
+    z_ref: T,
+) -> HangingLine<T> {
+    let beta = lambda - alpha_deg * T::pi() / c(180.0);
     HangingLine {
-        slope,
-        intercept,
+        slope: -beta.tan(),
+        intercept: -a / beta.cos() + z_ref + x_ref * beta.tan(),
         beta,
     }
+}
+
+/// The geometry measured as perpendicular distances (Moore 2012 §2.3, the frame and fork on
+/// a surface plate with a height gauge and dummy axles): the rear frame's offset a (the
+/// perpendicular distance from the steer axis to the rear hub), the fork offset b (from the
+/// steer axis to the front hub) and the distance c along the steer axis between the feet of
+/// those two perpendiculars:
+/// a = h1 + h2 − h3 + d1/2 − d2/2, b = h4 − d3/2 − h5 + d4/2,
+/// c = √((d + (d2 + d3)/2)² − (a − b)²), where h1…h5 are the heights of the rear axle's
+/// top, the gauge's base, the head tube's top, the front axle's top and the steer tube's
+/// top, d1…d4 the diameters of the head tube, the dummy rear and front axles and the steer
+/// tube, and d the inside distance between the axles with the fork reversed (the hubs
+/// are d + (d2 + d3)/2 apart). c is NaN when the hubs are closer than |a − b|: the
+/// measurements then describe no steer axis (the reader refuses them first).
+#[allow(clippy::too_many_arguments)]
+pub fn steer_axis_offsets<T: RealField + Copy>(
+    h: [T; 5],
+    d1: T,
+    d2: T,
+    d3: T,
+    d4: T,
+    d: T,
+) -> (T, T, T) {
+    let half: T = c(0.5);
+    let a = h[0] + h[1] - h[2] + half * d1 - half * d2;
+    let b = h[3] - half * d3 - h[4] + half * d4;
+    let hubs = d + half * (d2 + d3);
+    let span = (hubs * hubs - (a - b) * (a - b)).sqrt();
+    (a, b, span)
+}
+
+/// The most Newton steps [`steer_axis_tilt_from_offsets`] takes.
+const MAX_TILT_STEPS: usize = 64;
+
+/// The steer axis tilt λ from the offsets of [`steer_axis_offsets`] and the wheel radii: with
+/// both wheels on the ground the hubs' heights differ by r_F − r_R, which the offsets and the
+/// span along the axis give as (a + b) sin λ − c cos λ, so λ solves
+/// F(λ) = sin λ − (r_F − r_R + c cos λ) / (a + b) = 0 (Moore 2012 §2.3). Newton's method from
+/// atan(c / (a + b)) (the root for equal wheels), at most 64 steps, then two more so that a
+/// dual number's derivative part, which follows the value one step behind, is converged
+/// too: its derivative is the implicit one, −F_x / F_λ. Fails, naming `field`, when a + b is
+/// not positive or the iteration does not settle in (−π/2, π/2).
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+pub fn steer_axis_tilt_from_offsets<T: RealField + Copy>(
+    r_f: T,
+    r_r: T,
+    a: T,
+    b: T,
+    span: T,
+    field: &str,
+) -> Result<T> {
+    let bad = |value: f64, rule: &str| Error::InvalidParameter {
+        field: field.into(),
+        value,
+        rule: rule.into(),
+    };
+    let ab = a + b;
+    if !(ab > T::zero()) {
+        return Err(bad(
+            f64::NAN,
+            "the rear frame's and the fork's offsets from the steer axis (a + b) must add              up to a positive distance",
+        ));
+    }
+    let step = |lam: T| {
+        let (s, co) = lam.sin_cos();
+        let value = s - (r_f - r_r + span * co) / ab;
+        let slope = co + span * s / ab;
+        value / slope
+    };
+    let mut lam = (span / ab).atan();
+    let mut settled = 0;
+    for _ in 0..MAX_TILT_STEPS {
+        let delta = step(lam);
+        lam -= delta;
+        if !(lam.abs() < T::frac_pi_2()) {
+            break;
+        }
+        if delta.abs() <= c::<T>(1e-15) * (T::one() + lam.abs()) {
+            settled += 1;
+            if settled > 2 {
+                return Ok(lam);
+            }
+        }
+    }
+    Err(bad(
+        f64::NAN,
+        "the perpendicular distances give no steer axis tilt: Newton's method on          sin λ = (rF − rR + c cos λ)/(a + b) did not settle in (−90°, 90°)",
+    ))
+}
+
+/// The wheelbase from the offsets and the steer axis tilt: the hubs' horizontal distance,
+/// w = (a + b) cos λ + c sin λ (Moore 2012 §2.3).
+pub fn wheelbase_from_offsets<T: RealField + Copy>(a: T, b: T, span: T, lambda: T) -> T {
+    (a + b) * lambda.cos() + span * lambda.sin()
+}
+
+/// Where a handlebar measured apart from its fork has its reference point (the centre of a
+/// reference circle on the handlebar), relative to the front hub: (l1, l2), perpendicular to
+/// the steer axis (forward positive) and along it (upwards positive), from the heights of
+/// the front axle's top h6 and the reference circle's top h7, their diameters d5 and d6, and
+/// the outer distance l between axle and circle (Moore 2012 §2.4): l1 = h7 − h6 + d5/2 − d6/2,
+/// l0 = l − d5/2 − d6/2 (the centres' distance), l2 = √(l0² − l1²). l2 is NaN when |l1| > l0
+/// (the reader refuses such measurements first).
+pub fn handlebar_reference<T: RealField + Copy>(h6: T, h7: T, d5: T, d6: T, l: T) -> (T, T) {
+    let half: T = c(0.5);
+    let l1 = h7 - h6 + half * d5 - half * d6;
+    let l0 = l - half * d5 - half * d6;
+    (l1, (l0 * l0 - l1 * l1).sqrt())
+}
+
+/// The handlebar's reference point relative to the front hub in the benchmark frame's
+/// directions, (−u1, −u2) (x forward, z down), from its (l1, l2) across and along the steer
+/// axis tilted by λ: u1 = l2 sin λ − l1 cos λ (backwards), u2 = l2 cos λ + l1 sin λ
+/// (upwards). The point is at (w − u1, −r_F − u2).
+pub fn handlebar_reference_offset<T: RealField + Copy>(lambda: T, l1: T, l2: T) -> (T, T) {
+    let (s, co) = lambda.sin_cos();
+    (l2 * s - l1 * co, l2 * co + l1 * s)
+}
+
+/// A flywheel's own quantity from a measurement of the front wheel with the flywheel inside
+/// (BicycleParameters' part D, the gyro bicycle): the combined value less the wheel's,
+/// for its mass and for its moments (compound pendulum about y, torsional about a diameter).
+pub fn flywheel_part<T: RealField + Copy>(wheel_with_flywheel: T, wheel: T) -> T {
+    wheel_with_flywheel - wheel
 }
 
 /// The point where two lines meet, `None` for parallel lines (slopes equal to a relative 1e-9).
