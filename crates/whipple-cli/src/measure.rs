@@ -365,7 +365,7 @@ fn json_report(
         map.insert(
             "rider".into(),
             json!({
-                "mass_kg": number(r.mass)?,
+                "mass_kg": r.mass,
                 "center_of_mass_m": [r.center_of_mass.x, r.center_of_mass.y, r.center_of_mass.z],
                 "inertia_kg_m2": (0..3).map(|i| (0..3).map(|j| r.inertia[(i, j)]).collect::<Vec<f64>>()).collect::<Vec<_>>(),
                 "configuration": whipple::advanced::rider::CONFIGURATION_ANGLES

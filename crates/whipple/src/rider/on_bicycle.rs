@@ -209,7 +209,8 @@ fn invalid(fields: &str, rule: String) -> Error {
 pub fn bottom_bracket<T: RealField + Copy>(g: &RiderGeometry<T>, r_r: T) -> Result<[T; 2]> {
     let rise = r_r - g.hbb;
     let run2 = g.lcs * g.lcs - rise * rise;
-    if !(to_f64(run2) > 0.0) {
+    let run2_f64 = to_f64(run2);
+    if run2_f64.is_nan() || run2_f64 <= 0.0 {
         return Err(invalid(
             "lcs, hbb, rR",
             format!(
@@ -268,7 +269,8 @@ pub fn handlebar_grips<T: RealField + Copy>(
     let d = (dx * dx + dz * dz).sqrt();
     let along = (a * a - b * b + d * d) / (c::<T>(2.0) * d);
     let across2 = a * a - along * along;
-    if !(to_f64(across2) > 0.0) {
+    let across2_f64 = to_f64(across2);
+    if across2_f64.is_nan() || across2_f64 <= 0.0 {
         return Err(invalid(
             "LhbF, LhbR, w",
             format!(
@@ -415,6 +417,7 @@ fn lift<T: RealField + Copy>(m: &YeadonMeasurements<f64>) -> YeadonMeasurements<
 
 /// The reach of two links `a` and `b` (a thigh and a shank, an upper arm and a forearm-hand):
 /// the distance `d` must lie between |a − b| and a + b.
+#[allow(clippy::too_many_arguments)]
 fn reach_error(
     d: f64,
     a: f64,
@@ -564,7 +567,7 @@ pub fn solve_seated(
             break;
         }
     }
-    if !(norm < TOLERANCE) {
+    if norm.is_nan() || norm >= TOLERANCE {
         return Err(failed(iterations, norm));
     }
     for (i, name) in SEATED_ANGLES.iter().enumerate() {
