@@ -13,6 +13,9 @@ use whipple::advanced::io::{Format, name_from_file_name, write};
 use whipple::advanced::measured::{
     FittedPeriod, MeasuredParameters, read_measurements, read_measurements_with_records,
 };
+use whipple::advanced::rider::{
+    YeadonConfiguration, YeadonMeasurements, read_yeadon_configuration, read_yeadon_measurements,
+};
 
 use crate::bike::{RunContext, located, read_capped};
 use crate::commands::{round_sigma, round_to_sigma};
@@ -45,12 +48,14 @@ pub struct MeasureArgs {
     /// records (the trials' mean), as BicycleParameters' calculate_from_measured does.
     #[arg(long, value_name = "DIR")]
     periods: Option<PathBuf>,
-    /// A rider's Yeadon measurements (`<Rider>YeadonMeas.txt`): not supported yet.
-    #[arg(long)]
+    /// A rider's Yeadon measurements (`<Rider>YeadonMeas.txt`): the rider is seated on the
+    /// bicycle (feet on the bottom bracket, hands on the grips) and added to its rear frame,
+    /// as BicycleParameters' `add_rider`. Needs --configuration.
+    #[arg(long, requires = "configuration")]
     rider: Option<PathBuf>,
-    /// The rider's configuration on this bicycle (`<Rider><Bike>YeadonCFG.txt`): not supported
-    /// yet.
-    #[arg(long)]
+    /// The rider's configuration on this bicycle (`<Rider><Bike>YeadonCFG.txt`): the angles
+    /// the seating does not solve (somersault, the trunk's). Needs --rider.
+    #[arg(long, requires = "rider")]
     configuration: Option<PathBuf>,
 }
 
@@ -97,17 +102,6 @@ fn out_format(path: &Path, to: Option<FileFormat>) -> Result<Format> {
 }
 
 pub fn run(_cx: &RunContext, args: &MeasureArgs) -> Result<()> {
-    if args.rider.is_some() || args.configuration.is_some() {
-        let option = if args.rider.is_some() {
-            "--rider"
-        } else {
-            "--configuration"
-        };
-        bail!(
-            "{option}: a rider from the Yeadon body model is not supported yet; measure the \
-             bicycle alone (without --rider and --configuration)"
-        );
-    }
     if let Some(n) = args.correlations {
         if n == 0 || n > MAX_CORRELATIONS {
             bail!(
@@ -159,16 +153,52 @@ pub fn run(_cx: &RunContext, args: &MeasureArgs) -> Result<()> {
         }
     }
     .map_err(|e| located(e, path, &text))?;
-    let result = MeasuredParameters::new(&file.measurements)
-        .map_err(|e| anyhow!(whipple_front::message::message(&e)))
-        .with_context(|| format!("computing the parameters from {}", path.display()))?;
-    let name = named.unwrap_or_else(|| "measured".into());
+    let rider = match (&args.rider, &args.configuration) {
+        (Some(rider), Some(configuration)) => Some(read_rider(rider, configuration)?),
+        _ => None,
+    };
+    let result = match &rider {
+        Some(r) => MeasuredParameters::with_rider(&file, &r.measurements, &r.configuration)
+            .map_err(|e| match &e {
+                // A measurement of the rider's file, at its line there.
+                whipple::Error::Parse { format, .. } if format.starts_with("Yeadon") => {
+                    located(e, &r.path, &r.text)
+                }
+                _ => located(e, path, &text),
+            })
+            .with_context(|| {
+                format!(
+                    "seating the rider of {} on the bicycle of {}",
+                    r.name,
+                    path.display()
+                )
+            })?,
+        None => MeasuredParameters::new(&file.measurements)
+            .map_err(|e| anyhow!(whipple_front::message::message(&e)))
+            .with_context(|| format!("computing the parameters from {}", path.display()))?,
+    };
+    let bike_name = named.unwrap_or_else(|| "measured".into());
+    let (name, source) = match &rider {
+        Some(r) => (
+            format!("{bike_name} with {}", r.name),
+            format!(
+                "computed by whipple measure from the bench measurements in {file_name} (Moore \
+                 2012 ch. 2) with the rider of {} seated as {} (Yeadon 1990; BicycleParameters' \
+                 add_rider)",
+                r.file_name, r.configuration_file_name
+            ),
+        ),
+        None => (
+            bike_name,
+            format!(
+                "computed by whipple measure from the bench measurements in {file_name} (Moore \
+                 2012 ch. 2)"
+            ),
+        ),
+    };
     let bicycle = Bicycle {
         name: Some(name.clone()),
-        source: Some(format!(
-            "computed by whipple measure from the bench measurements in {file_name} (Moore \
-             2012 ch. 2)"
-        )),
+        source: Some(source),
         ..result.bicycle()
     };
     let checked = bicycle
@@ -188,6 +218,59 @@ pub fn run(_cx: &RunContext, args: &MeasureArgs) -> Result<()> {
         }
     };
     print_stdout(&report)
+}
+
+fn rider_iterations(result: &MeasuredParameters) -> usize {
+    result.rider.as_ref().map_or(0, |r| r.solve.iterations)
+}
+
+fn rider_residual(result: &MeasuredParameters) -> f64 {
+    result.rider.as_ref().map_or(0.0, |r| r.solve.residual)
+}
+
+/// The rider's two files, read.
+struct RiderFiles {
+    name: String,
+    path: PathBuf,
+    text: String,
+    file_name: String,
+    configuration_file_name: String,
+    measurements: YeadonMeasurements<f64>,
+    configuration: YeadonConfiguration<f64>,
+}
+
+fn read_rider(rider: &Path, configuration: &Path) -> Result<RiderFiles> {
+    let text_of = |option: &str, path: &Path| -> Result<String> {
+        let bytes = read_capped(path).with_context(|| format!("{option} {}", path.display()))?;
+        register_input(path);
+        String::from_utf8(bytes)
+            .map_err(|_| anyhow!("{}: the file is not UTF-8 text", path.display()))
+    };
+    let text = text_of("--rider", rider)?;
+    let measurements = read_yeadon_measurements(&text).map_err(|e| located(e, rider, &text))?;
+    let cfg_text = text_of("--configuration", configuration)?;
+    let read =
+        read_yeadon_configuration(&cfg_text).map_err(|e| located(e, configuration, &cfg_text))?;
+    let base = |p: &Path| {
+        p.file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    };
+    let file_name = base(rider);
+    let name = file_name
+        .strip_suffix("YeadonMeas.txt")
+        .filter(|n| !n.is_empty())
+        .unwrap_or("the rider")
+        .to_string();
+    Ok(RiderFiles {
+        name,
+        path: rider.to_path_buf(),
+        text,
+        file_name,
+        configuration_file_name: base(configuration),
+        measurements,
+        configuration: read,
+    })
 }
 
 /// `value ± σ` to the σ's three digits, or the value alone to about six significant digits (the
@@ -246,6 +329,16 @@ fn table(
          (* a benchmark parameter, written to --out; σ to first order, exact, the measurements \
          independent; `from`: the measurements each number depends on)\n\n"
     );
+    if let Some(rider) = &result.rider {
+        text.push_str(&format!(
+            "The rider is seated by solving its joint angles ({} Newton iterations, residual \
+             {:.1e} m) and taken as exact (no σ of its own); mB, xB, zB and IB.. are the rear \
+             frame with the rider ({} kg), the frame alone is under mB_frame, xB_frame, ….\n\n",
+            rider_iterations(result),
+            rider_residual(result),
+            round_to_sigma(rider.rider.mass, 1e-3),
+        ));
+    }
     for row in &rows {
         let mut line = String::new();
         for (c, cell) in row.iter().enumerate() {
@@ -319,6 +412,24 @@ fn json_report(
             })
             .collect();
         map.insert("fitted".into(), json!(rows));
+    }
+    if let (Some(rider), Some(map)) = (&result.rider, doc.as_object_mut()) {
+        let r = &rider.rider;
+        map.insert(
+            "rider".into(),
+            json!({
+                "mass_kg": r.mass,
+                "center_of_mass_m": [r.center_of_mass.x, r.center_of_mass.y, r.center_of_mass.z],
+                "inertia_kg_m2": (0..3).map(|i| (0..3).map(|j| r.inertia[(i, j)]).collect::<Vec<f64>>()).collect::<Vec<_>>(),
+                "configuration": whipple::advanced::rider::CONFIGURATION_ANGLES
+                    .iter()
+                    .zip(rider.configuration.angles)
+                    .map(|((n, _, _), a)| (n.to_string(), json!(a)))
+                    .collect::<serde_json::Map<String, serde_json::Value>>(),
+                "iterations": rider_iterations(result),
+                "residual_m": rider_residual(result),
+            }),
+        );
     }
     if let (Some(n), Some(map)) = (correlations, doc.as_object_mut()) {
         map.insert("correlations".into(), json!(result.largest_correlations(n)));

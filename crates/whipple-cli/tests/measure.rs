@@ -218,7 +218,7 @@ fn bad_input_is_refused() {
         "JasonYeadonMeas.txt",
     ]));
     assert!(
-        err.contains("--rider") && err.contains("not supported yet"),
+        err.contains("--rider") && err.contains("--configuration"),
         "{err}"
     );
 
@@ -364,4 +364,117 @@ fn rigid_and_gyro_compute() {
             );
         }
     }
+}
+
+fn rider_file(name: &str) -> String {
+    format!(
+        "{}/../whipple/tests/data/yeadon/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    )
+}
+
+/// `--rider` and `--configuration`: Browser with Jason seated, the file written holds the
+/// core's `with_rider` parameters and σ, the report the rider's steps; a handlebar out of
+/// reach is refused naming what.
+#[test]
+fn browser_with_jason() {
+    use whipple::advanced::rider::{read_yeadon_configuration, read_yeadon_measurements};
+    let dir = scratch("measure-browser-jason");
+    let out = dir.join("browser-jason.toml");
+    let args = |raw: &str, out: &str| {
+        vec![
+            "measure".to_string(),
+            "--raw".into(),
+            raw.into(),
+            "--rider".into(),
+            rider_file("JasonYeadonMeas.txt"),
+            "--configuration".into(),
+            rider_file("JasonBrowserYeadonCFG.txt"),
+            "--out".into(),
+            out.into(),
+        ]
+    };
+    let mut json_args = args(&raw("Browser"), out.to_str().unwrap());
+    json_args.extend(["--format".to_string(), "json".into()]);
+    let refs: Vec<&str> = json_args.iter().map(String::as_str).collect();
+    let report = stdout(&whipple(&refs));
+    let text = std::fs::read_to_string(raw("Browser")).unwrap();
+    let expected = MeasuredParameters::with_rider(
+        &read_measurements(&text).unwrap(),
+        &read_yeadon_measurements(
+            &std::fs::read_to_string(rider_file("JasonYeadonMeas.txt")).unwrap(),
+        )
+        .unwrap(),
+        &read_yeadon_configuration(
+            &std::fs::read_to_string(rider_file("JasonBrowserYeadonCFG.txt")).unwrap(),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    let written = parse(&std::fs::read_to_string(&out).unwrap(), Format::Toml).unwrap();
+    assert_eq!(written.name.as_deref(), Some("Browser with Jason"));
+    assert_eq!(
+        written.benchmark().unwrap().to_array(),
+        expected.benchmark.to_array()
+    );
+    assert_eq!(written.sigma, expected.sigma);
+    let doc: serde_json::Value = serde_json::from_str(&report).unwrap();
+    let rider = &doc["rider"];
+    let mass = expected.rider.as_ref().unwrap().rider.mass;
+    assert_eq!(rider["mass_kg"].as_f64(), Some(mass));
+    assert!(rider["iterations"].as_u64().unwrap() >= 1);
+    let steps = doc["steps"].as_array().unwrap();
+    let keys: Vec<&str> = steps.iter().map(|s| s["key"].as_str().unwrap()).collect();
+    for key in ["mB_frame", "xseat", "xgrip", "PJ1extension", "mRider", "mB"] {
+        assert!(keys.contains(&key), "{key} not in {keys:?}");
+    }
+
+    // The table names the rider's steps too.
+    let table_args = args(&raw("Browser"), dir.join("b.toml").to_str().unwrap());
+    let refs: Vec<&str> = table_args.iter().map(String::as_str).collect();
+    let table = stdout(&whipple(&refs));
+    assert!(
+        table.starts_with("Browser with Jason: benchmark parameters"),
+        "{table}"
+    );
+    assert!(table.contains("seated_configuration") && table.contains("combine_with_rear_frame"));
+
+    // A handlebar a metre further than Jason's arms.
+    let far = dir.join("FarMeasured.txt");
+    std::fs::write(
+        &far,
+        text.replace("LhbF = 0.8930", "LhbF = 1.8930")
+            .replace("LhbR = 0.9213", "LhbR = 1.9213"),
+    )
+    .unwrap();
+    let bad_args = args(
+        far.to_str().unwrap(),
+        dir.join("far.toml").to_str().unwrap(),
+    );
+    let refs: Vec<&str> = bad_args.iter().map(String::as_str).collect();
+    let err = stderr_of_failure(&whipple(&refs));
+    assert!(
+        err.contains("the rider cannot reach the handlebar")
+            && err.contains("La2L, La4L, La5L, LhbF, LhbR, whb, somersault"),
+        "{err}"
+    );
+    assert!(!dir.join("far.toml").exists());
+
+    // A configuration without its somersault: the angle named.
+    let cfg = dir.join("JasonBrowserYeadonCFG.txt");
+    let cfg_text = std::fs::read_to_string(rider_file("JasonBrowserYeadonCFG.txt")).unwrap();
+    std::fs::write(&cfg, cfg_text.replace("somersault: 0.175\n", "")).unwrap();
+    let err = stderr_of_failure(&whipple(&[
+        "measure",
+        "--raw",
+        &raw("Browser"),
+        "--rider",
+        &rider_file("JasonYeadonMeas.txt"),
+        "--configuration",
+        cfg.to_str().unwrap(),
+    ]));
+    assert!(
+        err.contains("1 of the 21 angles missing: somersault"),
+        "{err}"
+    );
 }

@@ -11,6 +11,9 @@ use whipple::advanced::io::{Format, name_from_file_name};
 use whipple::advanced::measured::{
     MeasuredParameters, read_measurements, read_measurements_with_records,
 };
+use whipple::advanced::rider::{
+    CONFIGURATION_ANGLES, read_yeadon_configuration, read_yeadon_measurements,
+};
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
@@ -25,20 +28,26 @@ fn array<'py>(py: Python<'py>, m: &DMatrix<f64>) -> PyResult<Bound<'py, PyArray2
 /// The pipeline on a `*Measured.txt`'s text: a dict with `bicycle` (a NativeBicycle, benchmark
 /// form with σ), `steps` (list of dicts), `inputs` (the measurements' keys, the Jacobian's
 /// columns), `jacobian` (26 × n), `covariance` (26 × 26, the parameter table's order) and
-/// `correlations` (every pair of parameters with σ > 0, largest |ρ| first).
+/// `correlations` (every pair of parameters with σ > 0, largest |ρ| first); with `rider` and
+/// `configuration` (the texts of `<Rider>YeadonMeas.txt` and `<Rider><Bike>YeadonCFG.txt`) the
+/// rider seated and added to the rear frame, and `rider` (mass, centre, inertia in the
+/// benchmark's axes, the configuration on the bicycle, the solve's iterations), else None.
 ///
 /// With `periods` (a directory), every period the text lacks is fitted from the rate-gyro
 /// records there, named as BicycleParameters names them after the bicycle (whose name comes
 /// from `file_name`), by whipple-front's `period_from_records`; `fitted` lists them (key,
 /// value, sigma, source).
 #[pyfunction]
-#[pyo3(signature = (text, file_name, strict=false, periods=None))]
+#[pyo3(signature = (text, file_name, strict=false, periods=None, rider=None, configuration=None, rider_name=""))]
 pub fn measure<'py>(
     py: Python<'py>,
     text: &str,
     file_name: &str,
     strict: bool,
     periods: Option<std::path::PathBuf>,
+    rider: Option<&str>,
+    configuration: Option<&str>,
+    rider_name: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let name = name_from_file_name(file_name, Format::BicycleParametersTxt);
     let (file, result) = py
@@ -60,15 +69,34 @@ pub fn measure<'py>(
                     });
                 }
             };
-            let result = MeasuredParameters::new(&file.measurements)?;
+            let result = match (rider, configuration) {
+                (Some(rider), Some(configuration)) => MeasuredParameters::with_rider(
+                    &file,
+                    &read_yeadon_measurements(rider)?,
+                    &read_yeadon_configuration(configuration)?,
+                )?,
+                _ => MeasuredParameters::new(&file.measurements)?,
+            };
             Ok((file, result))
         })
         .py_err(py)?;
-    let source = if file_name.is_empty() {
+    let mut name = name;
+    let mut source = if file_name.is_empty() {
         "computed from bench measurements (Moore 2012 ch. 2)".to_string()
     } else {
         format!("computed from the bench measurements in {file_name} (Moore 2012 ch. 2)")
     };
+    if result.rider.is_some() {
+        let who = if rider_name.is_empty() {
+            "a rider"
+        } else {
+            rider_name
+        };
+        name = name.map(|n| format!("{n} with {who}"));
+        source.push_str(&format!(
+            ", with {who} seated (Yeadon 1990; BicycleParameters' add_rider)"
+        ));
+    }
     let bicycle = Bicycle {
         name,
         source: Some(source),
@@ -93,6 +121,29 @@ pub fn measure<'py>(
         })
         .collect();
     out.set_item("fitted", fitted)?;
+    if let Some(seated) = &result.rider {
+        let r = &seated.rider;
+        let rider = PyDict::new(py);
+        rider.set_item("mass", r.mass)?;
+        rider.set_item(
+            "center_of_mass",
+            vec![r.center_of_mass.x, r.center_of_mass.y, r.center_of_mass.z],
+        )?;
+        let inertia: Vec<Vec<f64>> = (0..3)
+            .map(|i| (0..3).map(|j| r.inertia[(i, j)]).collect())
+            .collect();
+        rider.set_item("inertia", inertia)?;
+        let angles = PyDict::new(py);
+        for ((n, _, _), a) in CONFIGURATION_ANGLES.iter().zip(seated.configuration.angles) {
+            angles.set_item(*n, a)?;
+        }
+        rider.set_item("configuration", angles)?;
+        rider.set_item("iterations", seated.solve.iterations)?;
+        rider.set_item("residual", seated.solve.residual)?;
+        out.set_item("rider", rider)?;
+    } else {
+        out.set_item("rider", py.None())?;
+    }
     out.set_item(
         "correlations",
         serialized(py, &result.largest_correlations(usize::MAX))?,

@@ -569,12 +569,15 @@ pub mod advanced {
             read_measurements_with_records, record_name,
         };
     }
-    #[doc = "The Yeadon human body model (Yeadon 1990): a rider's 11 segments from the 95 anthropometric measurements and the 21 joint angles, with `yeadon`'s files read."]
+    #[doc = "The Yeadon human body model (Yeadon 1990): a rider's 11 segments from the 95 anthropometric measurements and the 21 joint angles, with `yeadon`'s files read; the rider seated on a measured bicycle and added to its rear frame (BicycleParameters' `add_rider`)."]
     pub mod rider {
         pub use crate::rider::{
-            CONFIGURATION_ANGLES, MEASUREMENT_NAMES, SEGMENT_NAMES, YeadonBody,
-            YeadonConfiguration, YeadonMeasurements, YeadonSegment, read_yeadon_configuration,
-            read_yeadon_measurements, yeadon_body,
+            CONFIGURATION_ANGLES, MAX_ITERATIONS, MEASUREMENT_NAMES, RIDER_GEOMETRY_KEYS,
+            RiderBody, RiderGeometry, SEATED_ANGLES, SEGMENT_NAMES, SeatedRider, SeatedSolve,
+            YeadonBody, YeadonConfiguration, YeadonMeasurements, YeadonSegment, bottom_bracket,
+            combine_with_rear_frame, handlebar_grips, read_yeadon_configuration,
+            read_yeadon_measurements, rider_in_benchmark_frame, rider_on_bicycle, seat,
+            seated_configuration, seated_rider, solve_seated, yeadon_body,
         };
     }
     #[doc = "Certified real roots of low-degree polynomials."]

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from typing import Any, Dict, List, Tuple, Union
+from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -34,9 +34,15 @@ class Measurement:
         fitted: the periods the raw file lacked, fitted from records (``periods=``): dicts
             with ``key`` (``'TcH1'``), ``value`` and ``sigma`` [s] and ``source`` (the record
             files).
+        rider: with a rider (``measure(..., rider=, configuration=)``), the rider alone as a
+            dict: ``mass`` (kg), ``center_of_mass`` (m, benchmark axes: x forward, y right, z
+            down), ``inertia`` (3 × 3, kg m², about its mass centre), ``configuration`` (the 21
+            angles seated on the bicycle, rad), ``iterations`` and ``residual`` (m) of the
+            joint-angle solve; else ``None``.
     """
 
     __slots__ = ("bicycle", "steps", "keys", "inputs", "jacobian", "covariance", "fitted",
+                 "rider",
                  "_correlations")
 
     def __init__(self, native: Dict[str, Any]) -> None:
@@ -50,6 +56,8 @@ class Measurement:
         self.fitted: List[Dict[str, Any]] = [
             dict(zip(("key", "value", "sigma", "source"), f)) for f in native["fitted"]]
         self._correlations: List[Dict[str, Any]] = list(native["correlations"])
+        rider = native.get("rider")
+        self.rider: Optional[Dict[str, Any]] = None if rider is None else dict(rider)
 
     def step(self, key: str) -> Dict[str, Any]:
         """The step of that key (``'k'``, ``'xB'``, ``'residualH'``); ``KeyError`` if none."""
@@ -77,7 +85,31 @@ class Measurement:
         return f"<Measurement of {self.bicycle.label}: {len(self.steps)} steps>"
 
 
+def _text(source: Union[str, "os.PathLike[str]"], marker: str, what: str) -> Tuple[str, str]:
+    """A file's text and base name, or ``source`` itself when it is text (holds a newline or
+    ``marker``)."""
+    if isinstance(source, str) and ("\n" in source or marker in source):
+        return source, ""
+    path = os.fspath(source)
+    limit = _whipple.MAX_FILE_BYTES
+    with open(path, "rb") as f:
+        data = f.read(limit + 1)
+    if len(data) > limit:
+        raise LimitError(f"{path}: longer than {limit >> 20} MiB, the most {what} may hold",
+                         field="path", value=path,
+                         rule=f"{what} holds at most {limit} bytes")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise ParseError(f"{path}: the file is not UTF-8 text", field=None, value=None,
+                         rule=f"{what} is UTF-8 text", format="unknown",
+                         line=0, column=0) from error
+    return text, os.path.basename(path)
+
+
 def measure(source: Union[str, "os.PathLike[str]"], strict: bool = False,
+            rider: Optional[Union[str, "os.PathLike[str]"]] = None,
+            configuration: Optional[Union[str, "os.PathLike[str]"]] = None,
             periods: Union[None, str, "os.PathLike[str]"] = None) -> Measurement:
     """A bicycle from BicycleParameters' raw bench measurements (``<Name>Measured.txt``:
     ``key = value+/-sigma`` lines): the benchmark parameters with their exact first-order σ,
@@ -88,6 +120,15 @@ def measure(source: Union[str, "os.PathLike[str]"], strict: bool = False,
     missing measurement raises :class:`whipple.ParseError` naming it and what it feeds; a
     negative period, mass or length :class:`whipple.ParameterError` naming the key and line.
 
+    With ``rider`` (a ``<Rider>YeadonMeas.txt``: Yeadon's 95 measurements) and
+    ``configuration`` (its ``<Rider><Bike>YeadonCFG.txt``), paths or texts, the rider is
+    seated on the bicycle — its hips, knees, shoulders and elbows solved so that the feet reach
+    the bottom bracket and the hands the grips, from the file's ``lcs``, ``hbb``, ``lsp``,
+    ``lst``, ``lamst``, ``whb``, ``LhbF`` and ``LhbR`` — and added to the rear frame, as
+    BicycleParameters' ``add_rider``; the bicycle's σ is carried through the rider's place,
+    the rider's body is taken as exact. A rider who cannot reach raises
+    :class:`whipple.ParameterError` whose ``field`` names the measurements and keys involved.
+
     For example, ``whipple.measure("BrowserMeasured.txt").bicycle.critical_speeds()`` gives
     Browser's critical speeds, with their σ, from the raw file alone.
 
@@ -97,20 +138,15 @@ def measure(source: Union[str, "os.PathLike[str]"], strict: bool = False,
     record raises :class:`whipple.ParameterError` naming the key and the file looked for.
     """
     folder = None if periods is None else os.fspath(periods)
-    if isinstance(source, str) and ("\n" in source or "=" in source):
-        return Measurement(_whipple.measure(source, "", strict, folder))
-    path = os.fspath(source)
-    limit = _whipple.MAX_FILE_BYTES
-    with open(path, "rb") as f:
-        data = f.read(limit + 1)
-    if len(data) > limit:
-        raise LimitError(f"{path}: longer than {limit >> 20} MiB, the most a measurements file "
-                         "may hold", field="path", value=path,
-                         rule=f"a measurements file holds at most {limit} bytes")
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError as error:
-        raise ParseError(f"{path}: the file is not UTF-8 text", field=None, value=None,
-                         rule="a measurements file is UTF-8 text", format="unknown",
-                         line=0, column=0) from error
-    return Measurement(_whipple.measure(text, os.path.basename(path), strict, folder))
+    if (rider is None) != (configuration is None):
+        raise TypeError("measure: give rider and configuration together (the rider's "
+                        "measurements and its configuration on this bicycle)")
+    text, name = _text(source, "=", "a measurements file")
+    if rider is None:
+        return Measurement(_whipple.measure(text, name, strict, folder))
+    rider_text, rider_file = _text(rider, ":", "a Yeadon measurements file")
+    cfg_text, _ = _text(configuration, ":", "a Yeadon configuration file")
+    rider_name = rider_file[: -len("YeadonMeas.txt")] if rider_file.endswith("YeadonMeas.txt") \
+        else ""
+    return Measurement(_whipple.measure(text, name, strict, folder, rider_text, cfg_text,
+                                        rider_name))

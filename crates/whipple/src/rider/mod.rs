@@ -22,11 +22,18 @@
 //! (`r³t`, not yeadon's `rt³`) and the rotation of a segment's inertia into the global frame
 //! (yeadon applies the inverse rotation).
 
+mod on_bicycle;
 mod read;
 mod solids;
 
 use nalgebra::{Matrix3, RealField, Vector3};
 
+pub use on_bicycle::{
+    MAX_ITERATIONS, RIDER_GEOMETRY_KEYS, RiderBody, RiderGeometry, SEATED_ANGLES, SeatedRider,
+    SeatedSolve, bottom_bracket, combine_with_rear_frame, handlebar_grips,
+    rider_in_benchmark_frame, rider_on_bicycle, seat, seated_configuration, seated_rider,
+    solve_seated,
+};
 pub use read::{read_yeadon_configuration, read_yeadon_measurements};
 
 use crate::error::{Error, Result};
@@ -355,17 +362,9 @@ pub fn yeadon_body<T: RealField + Copy>(
             });
         }
     }
-    let mut values = measurements.values;
-    // Left and right limbs averaged: left arm 21..39 with right arm 39..57, left leg 57..76
-    // with right leg 76..95.
-    for (left, right) in (21..39).zip(39..57).chain((57..76).zip(76..95)) {
-        let mean = (values[left] + values[right]) * c(0.5);
-        values[left] = mean;
-        values[right] = mean;
-    }
     let reader = Reader {
         m: measurements,
-        values,
+        values: averaged(measurements),
     };
     let body = build(&reader, configuration, T::one())?;
     let body = match measurements.total_mass {
@@ -382,6 +381,33 @@ pub fn yeadon_body<T: RealField + Copy>(
         });
     }
     Ok(body)
+}
+
+/// The measurements with left and right limbs averaged (as `yeadon` does by default): left arm
+/// 21..39 with right arm 39..57, left leg 57..76 with right leg 76..95.
+pub(crate) fn averaged<T: RealField + Copy>(measurements: &YeadonMeasurements<T>) -> [T; 95] {
+    let mut values = measurements.values;
+    for (left, right) in (21..39).zip(39..57).chain((57..76).zip(76..95)) {
+        let mean = (values[left] + values[right]) * c(0.5);
+        values[left] = mean;
+        values[right] = mean;
+    }
+    values
+}
+
+/// The segments placed by a configuration without checking the angles' ranges (Dempster's
+/// densities unscaled: the places, not the masses, are what this is for): the iterates of
+/// the seated rider's joint-angle solve ([`on_bicycle`]). The measurements must have passed
+/// [`yeadon_body`] once.
+pub(crate) fn placed<T: RealField + Copy>(
+    measurements: &YeadonMeasurements<T>,
+    configuration: &YeadonConfiguration<T>,
+) -> Result<YeadonBody<T>> {
+    let reader = Reader {
+        m: measurements,
+        values: averaged(measurements),
+    };
+    build(&reader, configuration, T::one())
 }
 
 fn build<T: RealField + Copy>(

@@ -47,6 +47,10 @@ use super::benchmark::{BENCHMARK_TABLE, BenchmarkParameters};
 use super::jbike6::PlaneBody;
 use super::{Bicycle, Description, Extra};
 use crate::error::{Error, Result};
+use crate::rider::{
+    RIDER_GEOMETRY_KEYS, RiderGeometry, SEATED_ANGLES, SeatedRider, SeatedSolve,
+    YeadonConfiguration, YeadonMeasurements, combine_with_rear_frame, seated_rider, solve_seated,
+};
 
 pub use read::{
     FittedPeriod, MAX_HANGINGS, MeasuredFile, PeriodSource, read_measurements,
@@ -1109,6 +1113,165 @@ pub struct MeasuredParameters {
     /// Every number the pipeline derived, in the order computed, with its σ and the
     /// measurements it depends on: the report of `whipple measure`.
     pub steps: Vec<report::Step>,
+    /// The rider seated on the bicycle ([`MeasuredParameters::with_rider`]): its place, joint
+    /// angles and body, the rider alone in the benchmark's axes (`None` for the bicycle alone).
+    pub rider: Option<SeatedRider<f64>>,
+}
+
+/// What one pass computes: the parameters, every record, the seated rider if any.
+type PassOutput<T> = (
+    BenchmarkParameters<T>,
+    Vec<report::Record<T>>,
+    Option<SeatedRider<T>>,
+);
+
+/// The measurements of `template`'s shape from the flat inputs `x` (its entries first).
+fn rebuild<T: Copy>(template: &Measurements<f64>, x: &[T]) -> Measurements<T> {
+    let mut k = 0;
+    template.map(|_| {
+        let v = x[k];
+        k += 1;
+        v
+    })
+}
+
+/// The rear frame's keys, reported apart (`mB_frame`) when a rider joins the frame.
+const REAR_FRAME_KEYS: [&str; 7] = ["mB", "xB", "zB", "IBxx", "IByy", "IBzz", "IBxz"];
+
+/// The rider's steps after the bicycle's: seated by the f64 `solve`, lifted to `T`, added to
+/// the rear frame; the records of the frame alone renamed, the rider's appended.
+fn seated<T: RealField + Copy>(
+    solve: &SeatedSolve,
+    rider: &YeadonMeasurements<f64>,
+    configuration: &YeadonConfiguration<f64>,
+    geometry: &RiderGeometry<T>,
+    bicycle: BenchmarkParameters<T>,
+    mut records: Vec<report::Record<T>>,
+) -> Result<PassOutput<T>> {
+    use report::Record;
+    let s = seated_rider(
+        solve,
+        rider,
+        configuration,
+        geometry,
+        bicycle.w,
+        bicycle.r_r,
+        bicycle.r_f,
+    )?;
+    for r in &mut records {
+        if REAR_FRAME_KEYS.contains(&r.key.as_str()) {
+            r.key = format!("{}_frame", r.key);
+            r.description = format!("{} (without the rider)", r.description);
+        }
+    }
+    let mut push = |key: &str, description: &str, function: &'static str, unit, value| {
+        records.push(Record::new(key, description, function, unit, value));
+    };
+    push(
+        "xbb",
+        "bottom bracket, x (lcs, hbb, rR)",
+        "bottom_bracket",
+        "m",
+        s.bottom_bracket[0],
+    );
+    push(
+        "zbb",
+        "bottom bracket, z (hbb)",
+        "bottom_bracket",
+        "m",
+        s.bottom_bracket[1],
+    );
+    push(
+        "xseat",
+        "the rider's seat, x (lst + lsp up the seat tube at lamst)",
+        "seat",
+        "m",
+        s.seat[0],
+    );
+    push("zseat", "the rider's seat, z", "seat", "m", s.seat[1]);
+    push(
+        "xgrip",
+        "the grips' centre, x (LhbF, LhbR, whb, w, rR, rF)",
+        "handlebar_grips",
+        "m",
+        s.grips[0],
+    );
+    push(
+        "zgrip",
+        "the grips' centre, z",
+        "handlebar_grips",
+        "m",
+        s.grips[1],
+    );
+    for name in SEATED_ANGLES {
+        if let Some(angle) = s.configuration.get(name) {
+            push(
+                name,
+                "joint angle solved so that the feet reach the bottom bracket and the hands the grips",
+                "seated_configuration",
+                "rad",
+                angle,
+            );
+        }
+    }
+    let (m, c, i) = (s.rider.mass, s.rider.center_of_mass, s.rider.inertia);
+    push(
+        "mRider",
+        "the rider's mass (Yeadon body)",
+        "rider_in_benchmark_frame",
+        "kg",
+        m,
+    );
+    for (key, value) in [("xRider", c.x), ("yRider", c.y), ("zRider", c.z)] {
+        push(
+            key,
+            "the rider's mass centre, benchmark axes",
+            "rider_in_benchmark_frame",
+            "m",
+            value,
+        );
+    }
+    for (key, value) in [
+        ("IRiderxx", i[(0, 0)]),
+        ("IRideryy", i[(1, 1)]),
+        ("IRiderzz", i[(2, 2)]),
+        ("IRiderxz", i[(0, 2)]),
+        ("IRiderxy", i[(0, 1)]),
+        ("IRideryz", i[(1, 2)]),
+    ] {
+        push(
+            key,
+            "the rider's inertia about its mass centre, benchmark axes",
+            "rider_in_benchmark_frame",
+            "kg m^2",
+            value,
+        );
+    }
+    let combined = combine_with_rear_frame(&bicycle, &s.rider);
+    for (key, value) in [
+        ("mB", combined.m_b),
+        ("xB", combined.x_b),
+        ("zB", combined.z_b),
+        ("IBxx", combined.i_bxx),
+        ("IByy", combined.i_byy),
+        ("IBzz", combined.i_bzz),
+        ("IBxz", combined.i_bxz),
+    ] {
+        push(
+            key,
+            "the rear frame with the rider",
+            "combine_with_rear_frame",
+            if key.starts_with('I') {
+                "kg m^2"
+            } else if key == "mB" {
+                "kg"
+            } else {
+                "m"
+            },
+            value,
+        );
+    }
+    Ok((combined, records, Some(s)))
 }
 
 impl MeasuredParameters {
@@ -1126,21 +1289,139 @@ impl MeasuredParameters {
     /// ```
     pub fn new(measurements: &Measurements<Measured>) -> Result<Self> {
         measurements.check()?;
-        let values = measurements.values();
-        let (benchmark, records) = pipeline(&values)?;
         let entries = measurements.entries();
+        let template = measurements.values();
+        Self::propagate(
+            entries,
+            |x: &[f64]| pipeline(&rebuild(&template, x)).map(|(b, r)| (b, r, None)),
+            |x: &[Dual64]| pipeline(&rebuild(&template, x)).map(|(b, r)| (b, r, None)),
+        )
+    }
+
+    /// The bicycle of a `*Measured.txt` with a rider seated on it and added to its rear frame
+    /// (BicycleParameters' `add_rider`; [`crate::advanced::rider`]'s steps): the rider from
+    /// Yeadon's 95 `measurements` in the configuration `configuration`, whose hips', knees',
+    /// shoulders' and elbows' angles are solved so that the feet reach the bottom bracket and
+    /// the hands the grips. The seat and handlebar come from the file's `lcs`, `hbb`, `lsp`,
+    /// `lst`, `lamst`, `whb`, `LhbF` and `LhbR` ([`crate::advanced::rider::RIDER_GEOMETRY_KEYS`]).
+    ///
+    /// σ: the bicycle's measurements' (including those eight keys' where the file gives one)
+    /// through every step, the rider's place and joint angles included (they follow rR, rF and
+    /// w); the rider's body is taken as exact, as BicycleParameters takes it. The steps report
+    /// the rear frame alone under `mB_frame`, `xB_frame`, … and the rider alone under `mRider`,
+    /// `xRider`, …; `mB`, `xB`, … are the rear frame with the rider.
+    ///
+    /// ```
+    /// use whipple::advanced::measured::{read_measurements, MeasuredParameters};
+    /// use whipple::advanced::rider::{read_yeadon_configuration, read_yeadon_measurements};
+    /// # let text = include_str!("../../../tests/data/measured/BrowserMeasured.txt");
+    /// # let meas = include_str!("../../../tests/data/yeadon/JasonYeadonMeas.txt");
+    /// # let cfg = include_str!("../../../tests/data/yeadon/JasonBrowserYeadonCFG.txt");
+    /// let result = MeasuredParameters::with_rider(
+    ///     &read_measurements(text)?,
+    ///     &read_yeadon_measurements(meas)?,
+    ///     &read_yeadon_configuration(cfg)?,
+    /// )?;
+    /// let rider = result.rider.as_ref().map(|r| r.rider.mass).unwrap_or(0.0);
+    /// assert!((result.benchmark.m_b - (9.86 + rider)).abs() < 1e-9);
+    /// assert!(result.sigma["xB"] > 0.0);
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn with_rider(
+        file: &MeasuredFile,
+        rider: &YeadonMeasurements<f64>,
+        configuration: &YeadonConfiguration<f64>,
+    ) -> Result<Self> {
+        let measurements = &file.measurements;
+        measurements.check()?;
+        let mut geometry = Vec::with_capacity(RIDER_GEOMETRY_KEYS.len());
+        for (key, what) in RIDER_GEOMETRY_KEYS {
+            let Some((_, m)) = file.other.iter().find(|(k, _)| k == key) else {
+                return Err(Error::Parse {
+                    format: "BicycleParameters Measured .txt",
+                    field: Some(key.to_string()),
+                    line: 0,
+                    column: 0,
+                    message: format!(
+                        "{key} is missing: seating a rider needs the {}",
+                        what.split(" [").next().unwrap_or(what)
+                    ),
+                });
+            };
+            let at = if m.line > 0 {
+                format!(" (line {})", m.line)
+            } else {
+                String::new()
+            };
+            if !(m.value.is_finite() && m.value > 0.0) {
+                return Err(Error::InvalidParameter {
+                    field: key.to_string(),
+                    value: m.value,
+                    rule: format!("the rider's seat and handlebar need it positive{at}"),
+                });
+            }
+            if !(m.sigma.is_finite() && m.sigma >= 0.0) {
+                return Err(Error::InvalidParameter {
+                    field: key.to_string(),
+                    value: m.value,
+                    rule: format!(
+                        "its standard deviation {} must be finite and not negative{at}",
+                        m.sigma
+                    ),
+                });
+            }
+            geometry.push((key.to_string(), *m));
+        }
+        let template = measurements.values();
+        let n = measurements.entries().len();
+        let geometry_values = |x: &[f64]| -> [f64; 8] { std::array::from_fn(|i| x[n + i]) };
+        let mut entries = measurements.entries();
+        entries.extend(geometry.iter().cloned());
+        let values: Vec<f64> = entries.iter().map(|(_, m)| m.value).collect();
+        // The joint angles on f64 once; each dual pass lifts them (implicit function theorem).
+        let (bicycle, _) = pipeline(&template)?;
+        let g = RiderGeometry::from_array(geometry_values(&values));
+        let solve = solve_seated(
+            rider,
+            configuration,
+            &g,
+            bicycle.w,
+            bicycle.r_r,
+            bicycle.r_f,
+        )?;
+        let f64_pass = |x: &[f64]| {
+            let (b, r) = pipeline(&rebuild(&template, x))?;
+            let g = RiderGeometry::from_array(std::array::from_fn(|i| x[n + i]));
+            seated(&solve, rider, configuration, &g, b, r)
+        };
+        let dual_pass = |x: &[Dual64]| {
+            let (b, r) = pipeline(&rebuild(&template, x))?;
+            let g = RiderGeometry::from_array(std::array::from_fn(|i| x[n + i]));
+            seated(&solve, rider, configuration, &g, b, r)
+        };
+        Self::propagate(entries, f64_pass, dual_pass)
+    }
+
+    /// One pass on f64 and one dual-number pass per input (its exact derivative), then σ, the
+    /// covariance and the report.
+    fn propagate(
+        entries: Vec<(String, Measured)>,
+        f64_pass: impl Fn(&[f64]) -> Result<PassOutput<f64>>,
+        dual_pass: impl Fn(&[Dual64]) -> Result<PassOutput<Dual64>>,
+    ) -> Result<Self> {
+        let values: Vec<f64> = entries.iter().map(|(_, m)| m.value).collect();
+        let (benchmark, records, rider) = f64_pass(&values)?;
         let n = entries.len();
         let rows = BENCHMARK_TABLE.len();
         let mut jacobian = DMatrix::zeros(rows, n);
         let mut step_jacobian = DMatrix::zeros(records.len(), n);
         for j in 0..n {
-            let mut k = 0;
-            let seeded = values.map(|v| {
-                let d = Dual64::new(*v, if k == j { 1.0 } else { 0.0 });
-                k += 1;
-                d
-            });
-            let (derivative, derived) = pipeline(&seeded)?;
+            let seeded: Vec<Dual64> = values
+                .iter()
+                .enumerate()
+                .map(|(k, v)| Dual64::new(*v, if k == j { 1.0 } else { 0.0 }))
+                .collect();
+            let (derivative, derived, _) = dual_pass(&seeded)?;
             for (i, d) in derivative.to_array().iter().enumerate() {
                 jacobian[(i, j)] = d.eps;
             }
@@ -1172,8 +1453,7 @@ impl MeasuredParameters {
         }
         let inputs: Vec<String> = entries.iter().map(|(k, _)| k.clone()).collect();
         let sigmas: Vec<f64> = entries.iter().map(|(_, m)| m.sigma).collect();
-        let measured: Vec<f64> = entries.iter().map(|(_, m)| m.value).collect();
-        let steps = report::steps(records, &step_jacobian, &inputs, &measured, &sigmas);
+        let steps = report::steps(records, &step_jacobian, &inputs, &values, &sigmas);
         Ok(MeasuredParameters {
             benchmark,
             sigma,
@@ -1181,6 +1461,7 @@ impl MeasuredParameters {
             jacobian,
             covariance,
             steps,
+            rider,
         })
     }
 
