@@ -28,26 +28,24 @@ fn array<'py>(py: Python<'py>, m: &DMatrix<f64>) -> PyResult<Bound<'py, PyArray2
 /// The pipeline on a `*Measured.txt`'s text: a dict with `bicycle` (a NativeBicycle, benchmark
 /// form with σ), `steps` (list of dicts), `inputs` (the measurements' keys, the Jacobian's
 /// columns), `jacobian` (26 × n), `covariance` (26 × 26, the parameter table's order) and
-/// `correlations` (every pair of parameters with σ > 0, largest |ρ| first); with `rider` and
-/// `configuration` (the texts of `<Rider>YeadonMeas.txt` and `<Rider><Bike>YeadonCFG.txt`) the
-/// rider seated and added to the rear frame, and `rider` (mass, centre, inertia in the
-/// benchmark's axes, the configuration on the bicycle, the solve's iterations), else None.
+/// `correlations` (every pair of parameters with σ > 0, largest |ρ| first); with `rider`, the
+/// tuple (the texts of `<Rider>YeadonMeas.txt` and `<Rider><Bike>YeadonCFG.txt`, the rider's
+/// name), the rider seated and added to the rear frame, and `rider` (mass, centre, inertia in
+/// the benchmark's axes, the configuration on the bicycle, the solve's iterations), else None.
 ///
 /// With `periods` (a directory), every period the text lacks is fitted from the rate-gyro
 /// records there, named as BicycleParameters names them after the bicycle (whose name comes
 /// from `file_name`), by whipple-front's `period_from_records`; `fitted` lists them (key,
 /// value, sigma, source).
 #[pyfunction]
-#[pyo3(signature = (text, file_name, strict=false, periods=None, rider=None, configuration=None, rider_name=""))]
+#[pyo3(signature = (text, file_name, strict=false, periods=None, rider=None))]
 pub fn measure<'py>(
     py: Python<'py>,
     text: &str,
     file_name: &str,
     strict: bool,
     periods: Option<std::path::PathBuf>,
-    rider: Option<&str>,
-    configuration: Option<&str>,
-    rider_name: &str,
+    rider: Option<(String, String, String)>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let name = name_from_file_name(file_name, Format::BicycleParametersTxt);
     let (file, result) = py
@@ -69,13 +67,13 @@ pub fn measure<'py>(
                     });
                 }
             };
-            let result = match (rider, configuration) {
-                (Some(rider), Some(configuration)) => MeasuredParameters::with_rider(
+            let result = match &rider {
+                Some((rider, configuration, _)) => MeasuredParameters::with_rider(
                     &file,
                     &read_yeadon_measurements(rider)?,
                     &read_yeadon_configuration(configuration)?,
                 )?,
-                _ => MeasuredParameters::new(&file.measurements)?,
+                None => MeasuredParameters::new(&file.measurements)?,
             };
             Ok((file, result))
         })
@@ -87,10 +85,9 @@ pub fn measure<'py>(
         format!("computed from the bench measurements in {file_name} (Moore 2012 ch. 2)")
     };
     if result.rider.is_some() {
-        let who = if rider_name.is_empty() {
-            "a rider"
-        } else {
-            rider_name
+        let who = match &rider {
+            Some((_, _, name)) if !name.is_empty() => name.as_str(),
+            _ => "a rider",
         };
         name = name.map(|n| format!("{n} with {who}"));
         source.push_str(&format!(

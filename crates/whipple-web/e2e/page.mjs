@@ -1504,7 +1504,7 @@ async function measured() {
 
 await section("measure: the Browser sample's derived numbers as whipple measure prints them, bad input named, load into editor, the eigenvalues of it", async () => {
   await open("?bike=preset:benchmark&tab=measure");
-  check((await page.locator("[data-testid^=ms-drawing-]").count()) === 6, "six drawings of the set-ups");
+  check((await page.locator("[data-testid^=ms-drawing-]").count()) === 7, "seven drawings of the set-ups (the rider's among them)");
   await page.getByTestId("ms-sample").selectOption("browser");
   await measured();
   check((await page.getByTestId("ms-dR").inputValue()) === "27.85" && (await page.getByTestId("ms-dR-sigma").inputValue()) === "0.01", "the sample fills the form: dR = 27.85 ± 0.01 m");
@@ -1562,6 +1562,31 @@ await section("measure: the Browser sample's derived numbers as whipple measure 
   check((await page.locator("[data-testid=eigen-plot] [data-testid=eigen-curve]").count()) >= 4, "and its eigenvalues drawn");
 });
 
+// `whipple measure --raw BrowserMeasured.txt --rider JasonYeadonMeas.txt --configuration
+// JasonBrowserYeadonCFG.txt` prints mB = 93.3600 ± 0.0200 and, through `whipple speeds`,
+// v_w = 5.1347 ± 0.0353 m/s: the page shows the same from the same core.
+await section("measure: Browser with Jason seated as whipple measure --rider seats him; the rider taken off", async () => {
+  await open("?bike=preset:benchmark&tab=measure&ms=s:browser-jason");
+  await measured();
+  const status = await text("ms-rider-status");
+  check(/^Jason \(JasonYeadonMeas\.txt\) seated as JasonBrowserYeadonCFG\.txt: 83\.5/.test(status), `the sample's rider seated: “${status}”`);
+  check((await page.getByTestId("ms-lsp").inputValue()) === "0.24", "the seat and handlebar measurements are the rider section's fields: lsp = 0.24 m");
+  const mB = await page.locator("[data-testid=ms-derived-rider] [data-testid=ms-step-mB]").textContent();
+  check(mB === "93.3600 ± 0.0200", `the rear frame with the rider: mB = ${mB}, as whipple measure --rider prints it`);
+  check(/^Browser with Jason: 26 parameters with σ/.test(await text("ms-meta")), `the summary: ${await text("ms-meta")}`);
+  await page.getByTestId("ms-load").click();
+  await settled();
+  check((await page.locator("#design-name").inputValue()) === "Browser with Jason", "loaded into the editor as “Browser with Jason”");
+  const weave = await waitForText("weave-speed", (t) => /\d/.test(t));
+  check(/^5\.13/.test(weave), `its weave speed ${weave} (whipple speeds on the CLI's file: 5.1347 ± 0.0353 m/s)`);
+  await open("?bike=preset:benchmark&tab=measure&ms=s:browser-jason");
+  await measured();
+  await page.getByTestId("ms-rider-remove").click();
+  await measured();
+  check(/No rider/.test(await text("ms-rider-status")) && /[?&]ms=[^&]*r(%3A|:)none/.test(page.url()), "the rider taken off: said, and the link carries it");
+  check((await page.locator("[data-testid=ms-derived-rider] [data-testid=ms-step-mB]").count()) === 0 && /^Browser: 26/.test(await text("ms-meta")), "the rear frame alone again");
+});
+
 await section("measure at 1280 × 800 and 390 × 844: nothing sticks out; a screenshot", async () => {
   for (const viewport of [{ width: 1280, height: 800 }, { width: 390, height: 844 }]) {
     await open("?bike=preset:benchmark&tab=measure&ms=s:browser", viewport);
@@ -1571,7 +1596,7 @@ await section("measure at 1280 × 800 and 390 × 844: nothing sticks out; a scre
       return { s, l: r.left, t: r.top, r: r.right, b: r.bottom };
     }));
     const out = rects.filter((r) => r.l < 0 || r.r > viewport.width || r.r - r.l < 1 || r.b - r.t < 1).map((r) => r.s);
-    check(out.length === 0 && rects.length === 8, `${viewport.width} px: the controls and the six sections within the width (${out.join(", ") || "none outside"})`);
+    check(out.length === 0 && rects.length === 9, `${viewport.width} px: the controls and the seven sections within the width (${out.join(", ") || "none outside"})`);
     const steps = rects.filter((r) => r.s.startsWith(".ms-step"));
     const overlaps = [];
     for (let i = 0; i < steps.length; i++) for (let j = i + 1; j < steps.length; j++) {

@@ -17,9 +17,12 @@ use serde_json::{Map, Value};
 use whipple::Bicycle;
 use whipple::advanced::io::{Format, name_from_file_name};
 use whipple::advanced::measured::{
-    Correlation, Measured, MeasuredParameters, Step, read_measurements,
+    Correlation, Measured, MeasuredFile, MeasuredParameters, Step, read_measurements,
 };
 use whipple::advanced::parameters::Notice;
+use whipple::advanced::rider::{
+    CONFIGURATION_ANGLES, read_yeadon_configuration, read_yeadon_measurements,
+};
 use whipple::advanced::table::{Form, parameters};
 
 use crate::api::{AppState, Budget, bicycle_json, compute_json, json_body};
@@ -57,6 +60,27 @@ pub(crate) struct MeasureRequest {
     file_name: Option<String>,
     #[serde(default)]
     name: Option<String>,
+    /// The rider's `<Rider>YeadonMeas.txt` (Yeadon's 95 measurements), with `configuration`.
+    #[serde(default)]
+    rider: Option<String>,
+    /// The rider's `<Rider><Bike>YeadonCFG.txt` on this bicycle, with `rider`.
+    #[serde(default)]
+    configuration: Option<String>,
+    /// The rider's name, for the bicycle's (`Browser with Jason`).
+    #[serde(default)]
+    rider_name: Option<String>,
+}
+
+/// The rider seated (`MeasuredParameters::with_rider`): the rider alone in the benchmark's
+/// axes, the joint angles solved and the solve's iterations and residual.
+#[derive(Serialize)]
+struct RiderOut {
+    mass: f64,
+    center_of_mass: [f64; 3],
+    inertia: [[f64; 3]; 3],
+    configuration: Map<String, Value>,
+    iterations: usize,
+    residual: f64,
 }
 
 /// A benchmark parameter computed, with its σ and unit.
@@ -95,6 +119,8 @@ pub(crate) struct MeasureAnswer {
     correlations: Vec<Correlation>,
     /// The bicycle's warnings and notes.
     warnings: Vec<Notice>,
+    /// The rider seated and added to the rear frame, when one was sent.
+    rider: Option<RiderOut>,
 }
 
 fn invalid(field: &str, rule: String) -> ApiError {
@@ -182,7 +208,37 @@ fn measure_request(request: MeasureRequest) -> Result<MeasureAnswer, ApiError> {
     } else {
         file.measurements
     };
-    let result = MeasuredParameters::new(&measurements).map_err(|e| core_error(e, from_json))?;
+    let rider_texts = match (&request.rider, &request.configuration) {
+        (Some(r), Some(c)) => Some((r, c)),
+        (None, None) => None,
+        (Some(_), None) => {
+            return Err(invalid(
+                "configuration",
+                "a rider is seated in a configuration: send `configuration` (the \
+                 <Rider><Bike>YeadonCFG.txt) with `rider`"
+                    .into(),
+            ));
+        }
+        (None, Some(_)) => {
+            return Err(invalid(
+                "rider",
+                "send `rider` (the <Rider>YeadonMeas.txt) with `configuration`".into(),
+            ));
+        }
+    };
+    let result = match rider_texts {
+        None => MeasuredParameters::new(&measurements),
+        Some((rider, configuration)) => MeasuredParameters::with_rider(
+            &MeasuredFile {
+                measurements: measurements.clone(),
+                other: file.other.clone(),
+                fitted: Vec::new(),
+            },
+            &read_yeadon_measurements(rider)?,
+            &read_yeadon_configuration(configuration)?,
+        ),
+    }
+    .map_err(|e| core_error(e, from_json))?;
     let name = request
         .name
         .clone()
@@ -200,6 +256,37 @@ fn measure_request(request: MeasureRequest) -> Result<MeasureAnswer, ApiError> {
         ),
         None => "computed from bench measurements (Moore 2012 ch. 2)".to_string(),
     };
+    let rider_name = request
+        .rider_name
+        .as_deref()
+        .map(str::trim)
+        .filter(|n| !n.is_empty())
+        .map(|n| whipple::advanced::shorten(n, 40));
+    let (name, source) = match (&result.rider, rider_name) {
+        (None, _) => (name, source),
+        (Some(_), who) => {
+            let who = who.unwrap_or_else(|| "a rider".into());
+            (
+                name.map(|n| format!("{n} with {who}")),
+                format!("{source}, with {who} seated (Yeadon 1990; BicycleParameters' add_rider)"),
+            )
+        }
+    };
+    let rider = result.rider.as_ref().map(|seated| {
+        let r = &seated.rider;
+        RiderOut {
+            mass: r.mass,
+            center_of_mass: [r.center_of_mass.x, r.center_of_mass.y, r.center_of_mass.z],
+            inertia: std::array::from_fn(|i| std::array::from_fn(|j| r.inertia[(i, j)])),
+            configuration: CONFIGURATION_ANGLES
+                .iter()
+                .zip(seated.configuration.angles)
+                .map(|((n, _, _), a)| (n.to_string(), Value::from(a)))
+                .collect(),
+            iterations: seated.solve.iterations,
+            residual: seated.solve.residual,
+        }
+    });
     let bicycle = Bicycle {
         name: name.clone(),
         source: Some(source),
@@ -232,6 +319,7 @@ fn measure_request(request: MeasureRequest) -> Result<MeasureAnswer, ApiError> {
         measurements: measurements.entries().into_iter().map(out).collect(),
         other: file.other.into_iter().map(out).collect(),
         warnings: checked.notices,
+        rider,
     })
 }
 
@@ -257,17 +345,43 @@ pub(crate) struct Sample {
     file_name: &'static str,
     source: &'static str,
     text: &'static str,
+    /// The rider's name and files, for a sample with a rider.
+    rider_name: Option<&'static str>,
+    rider_file_name: Option<&'static str>,
+    rider: Option<&'static str>,
+    configuration_file_name: Option<&'static str>,
+    configuration: Option<&'static str>,
 }
 
 /// The samples (see `data/README.md` for their source and licence).
-const SAMPLES: [Sample; 1] = [Sample {
-    name: "browser",
-    title: "Browser (BicycleParameters)",
-    file_name: "BrowserMeasured.txt",
-    source: "Batavus Browser, measured by Moore (2012, ch. 2); BicycleParameters' data set \
-             (BSD 2-Clause)",
-    text: include_str!("../data/BrowserMeasured.txt"),
-}];
+const SAMPLES: [Sample; 2] = [
+    Sample {
+        name: "browser",
+        title: "Browser (BicycleParameters)",
+        file_name: "BrowserMeasured.txt",
+        source: "Batavus Browser, measured by Moore (2012, ch. 2); BicycleParameters' data set \
+                 (BSD 2-Clause)",
+        text: include_str!("../data/BrowserMeasured.txt"),
+        rider_name: None,
+        rider_file_name: None,
+        rider: None,
+        configuration_file_name: None,
+        configuration: None,
+    },
+    Sample {
+        name: "browser-jason",
+        title: "Browser with Jason (BicycleParameters)",
+        file_name: "BrowserMeasured.txt",
+        source: "Batavus Browser and its rider Jason, measured by Moore (2012, ch. 2; Yeadon's \
+                 95 lengths); BicycleParameters' data set (BSD 2-Clause)",
+        text: include_str!("../data/BrowserMeasured.txt"),
+        rider_name: Some("Jason"),
+        rider_file_name: Some("JasonYeadonMeas.txt"),
+        rider: Some(include_str!("../data/JasonYeadonMeas.txt")),
+        configuration_file_name: Some("JasonBrowserYeadonCFG.txt"),
+        configuration: Some(include_str!("../data/JasonBrowserYeadonCFG.txt")),
+    },
+];
 
 pub(crate) async fn samples() -> Json<&'static [Sample]> {
     Json(&SAMPLES[..])

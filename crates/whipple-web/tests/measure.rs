@@ -265,3 +265,116 @@ async fn bad_json_measurements_name_the_key_without_a_line() -> TestResult {
     assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
     Ok(())
 }
+
+const JASON: &str = include_str!("../../whipple/tests/data/yeadon/JasonYeadonMeas.txt");
+const JASON_ON_BROWSER: &str =
+    include_str!("../../whipple/tests/data/yeadon/JasonBrowserYeadonCFG.txt");
+
+/// The sample "Browser with Jason": the rider seated and added to the rear frame, every
+/// parameter and σ the core's `with_rider`, the rider alone given; a rider without his
+/// configuration (or the reverse) and a rider who cannot reach are refused by name.
+#[tokio::test]
+async fn a_rider_is_seated_as_the_core_seats_him() -> TestResult {
+    use whipple::advanced::rider::{read_yeadon_configuration, read_yeadon_measurements};
+    let (_, samples) = send(Method::GET, "/api/measure/samples", None).await?;
+    let sample = &samples[1];
+    assert_eq!(sample["name"], "browser-jason");
+    assert_eq!(sample["rider"].as_str(), Some(JASON));
+    assert_eq!(sample["configuration"].as_str(), Some(JASON_ON_BROWSER));
+    assert_eq!(sample["text"].as_str(), Some(BROWSER));
+    let (status, answer) = post(&json!({
+        "text": BROWSER, "file_name": "BrowserMeasured.txt",
+        "rider": JASON, "configuration": JASON_ON_BROWSER, "rider_name": "Jason",
+    }))
+    .await?;
+    assert_eq!(status, StatusCode::OK, "{answer}");
+    let expected = MeasuredParameters::with_rider(
+        &read_measurements(BROWSER)?,
+        &read_yeadon_measurements(JASON)?,
+        &read_yeadon_configuration(JASON_ON_BROWSER)?,
+    )?;
+    assert_eq!(answer["name"], "Browser with Jason");
+    for (p, value) in parameters(Form::Benchmark)
+        .iter()
+        .zip(expected.benchmark.to_array())
+    {
+        let row = answer["parameters"]
+            .as_array()
+            .and_then(|rows| rows.iter().find(|r| r["key"] == p.key))
+            .ok_or("parameter missing")?;
+        assert_eq!(row["value"].as_f64(), Some(value), "{}", p.key);
+        assert_eq!(
+            row["sigma"].as_f64(),
+            Some(expected.sigma.get(p.key).copied().unwrap_or(0.0)),
+            "{}",
+            p.key
+        );
+    }
+    let rider = expected.rider.as_ref().ok_or("no rider")?;
+    assert_eq!(answer["rider"]["mass"].as_f64(), Some(rider.rider.mass));
+    assert_eq!(
+        answer["rider"]["iterations"].as_u64(),
+        Some(rider.solve.iterations as u64)
+    );
+    assert_eq!(
+        answer["steps"].as_array().map(Vec::len),
+        Some(expected.steps.len())
+    );
+    // The same from the JSON form (the seat and handlebar keys among the measurements).
+    let without = json!({ "text": BROWSER });
+    let (_, plain) = post(&without).await?;
+    assert!(plain["rider"].is_null(), "{plain}");
+    let mut measurements = Map::new();
+    for m in plain["measurements"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .chain(plain["other"].as_array().into_iter().flatten())
+    {
+        measurements.insert(
+            m["key"].as_str().unwrap_or("").to_string(),
+            json!({ "value": m["value"], "sigma": m["sigma"] }),
+        );
+    }
+    let (status, from_json) = post(&json!({
+        "measurements": measurements, "rider": JASON, "configuration": JASON_ON_BROWSER,
+    }))
+    .await?;
+    assert_eq!(status, StatusCode::OK, "{from_json}");
+    assert_eq!(from_json["parameters"], answer["parameters"]);
+
+    let (status, e) = post(&json!({ "text": BROWSER, "rider": JASON })).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(error_of(&e).0, "configuration", "{e}");
+    let (status, e) = post(&json!({ "text": BROWSER, "configuration": JASON_ON_BROWSER })).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(error_of(&e).0, "rider", "{e}");
+    let far = browser_with("LhbF", "1.8930");
+    let (status, e) = post(&json!({
+        "text": browser_with_text(&far, "LhbR", "1.9213"),
+        "rider": JASON, "configuration": JASON_ON_BROWSER,
+    }))
+    .await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{e}");
+    assert!(
+        error_of(&e)
+            .1
+            .contains("the rider cannot reach the handlebar"),
+        "{e}"
+    );
+    Ok(())
+}
+
+/// `text` with one key's line replaced.
+fn browser_with_text(text: &str, key: &str, value: &str) -> String {
+    text.lines()
+        .map(|l| {
+            if l.split('=').next().map(str::trim) == Some(key) {
+                format!("{key} = {value}")
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}

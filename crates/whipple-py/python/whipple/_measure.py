@@ -148,5 +148,5 @@ def measure(source: Union[str, "os.PathLike[str]"], strict: bool = False,
     cfg_text, _ = _text(configuration, ":", "a Yeadon configuration file")
     rider_name = rider_file[: -len("YeadonMeas.txt")] if rider_file.endswith("YeadonMeas.txt") \
         else ""
-    return Measurement(_whipple.measure(text, name, strict, folder, rider_text, cfg_text,
-                                        rider_name))
+    return Measurement(_whipple.measure(text, name, strict, folder,
+                                        (rider_text, cfg_text, rider_name)))

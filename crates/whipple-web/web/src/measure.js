@@ -67,7 +67,7 @@ const SECTIONS = [
     drawing: "hanging",
     fields: [field("mB", "mB", "kg", "rear frame mass"), field("mH", "mH", "kg", "front frame (fork and handlebar) mass")],
     hangings: true,
-    steps: (s) => ["hanging_line", "intersection", "mass_centre", "line_residual"].includes(s.function) || (["mB", "mH"].includes(s.key) && !s.function),
+    steps: (s) => ["hanging_line", "intersection", "mass_centre", "line_residual"].includes(s.function) || (["mB", "mB_frame", "mH"].includes(s.key) && !s.function),
   },
   {
     id: "compound",
@@ -96,7 +96,27 @@ const SECTIONS = [
     ],
     steps: (s) => ["torsional_pendulum_inertia", "planar_inertia", "principal_planar"].includes(s.function),
   },
+  {
+    id: "rider",
+    title: "7 · The rider (optional)",
+    text: "Seat a rider measured for Yeadon's body model — the 95 lengths of a <Rider>YeadonMeas.txt, in the posture of a <Rider><Bike>YeadonCFG.txt — on this bicycle: the hips, knees, shoulders and elbows are solved so that the feet reach the bottom bracket and the hands the grips, placed by the frame's measurements below, and the rider joins the rear frame.",
+    drawing: "rider",
+    fields: [
+      field("lcs", "lcs", "m", "chain stay length, rear hub to bottom bracket"),
+      field("hbb", "hbb", "m", "bottom bracket height above the ground"),
+      field("lst", "lst", "m", "seat tube length, from the bottom bracket"),
+      field("lsp", "lsp", "m", "seat post length, out of the seat tube"),
+      field("lamst", "lamst", "rad", "seat tube angle with the ground, rising backwards"),
+      field("whb", "whb", "m", "handlebar width, between the grips"),
+      field("LhbF", "LhbF", "m", "distance from the front hub to a grip"),
+      field("LhbR", "LhbR", "m", "distance from the rear hub to a grip"),
+    ],
+    rider: true,
+    steps: (s) => ["bottom_bracket", "seat", "handlebar_grips", "seated_configuration", "rider_in_benchmark_frame", "combine_with_rear_frame"].includes(s.function),
+  },
 ];
+/** The rider's seat and handlebar keys: fields of section 7, not kept keys. */
+const RIDER_KEYS = SECTIONS.find((s) => s.rider).fields.map((f) => f.key);
 
 const HANGING_COLUMNS = [
   { prefix: "alpha", unit: "°", hint: "steer axis angle with the horizontal" },
@@ -240,6 +260,34 @@ const DRAWINGS = {
   },
 };
 
+DRAWINGS.rider = {
+  alt: "A rider seated on the bicycle: the bottom bracket at height hbb, lcs from the rear hub; the seat tube of length lst at angle lamst with the ground and the seat post lsp above it; the grips LhbF from the front hub and LhbR from the rear hub; the feet on the bottom bracket, the hands on the grips.",
+  body: () => {
+    const [rear, front, bb] = [[48, 92], [212, 92], [112, 100]];
+    const ang = (72 * Math.PI) / 180;
+    const top = [bb[0] - 70 * Math.cos(ang), bb[1] - 70 * Math.sin(ang)];
+    const seat = [bb[0] - 92 * Math.cos(ang), bb[1] - 92 * Math.sin(ang)];
+    const grip = [178, 34];
+    const f2 = (q) => q.map((x) => x.toFixed(1)).join(" ");
+    const shoulder = [seat[0] + 36, seat[1] - 46];
+    const knee = [seat[0] + 40, seat[1] + 14];
+    return `<line x1="4" y1="132" x2="276" y2="132" stroke="${INK}" stroke-width="1.5"/>
+      ${wheelSvg(rear[0], rear[1], 40)}${wheelSvg(front[0], front[1], 40)}
+      <path d="M ${f2(rear)} L ${f2(bb)} L ${f2(top)} Z M ${f2(top)} L 186 40 L ${f2(front)} M ${f2(bb)} L 188 46 M 186 40 L ${f2(grip)}" fill="none" stroke="${INK}" stroke-width="2.2" stroke-linejoin="round"/>
+      <line x1="${top[0].toFixed(1)}" y1="${top[1].toFixed(1)}" x2="${seat[0].toFixed(1)}" y2="${seat[1].toFixed(1)}" stroke="${ACCENT}" stroke-width="3"/>
+      <path d="M ${f2(seat)} L ${f2(shoulder)} L ${f2([grip[0] - 16, grip[1] - 8])} L ${f2(grip)} M ${f2(seat)} L ${f2(knee)} L ${f2(bb)}" fill="none" stroke="${MUTED}" stroke-width="3" stroke-linecap="round" stroke-linejoin="round"/>
+      <circle cx="${(shoulder[0] + 6).toFixed(1)}" cy="${(shoulder[1] - 14).toFixed(1)}" r="9" fill="none" stroke="${MUTED}" stroke-width="3"/>
+      <line x1="${grip[0]}" y1="${grip[1]}" x2="${front[0]}" y2="${front[1]}" stroke="${ACCENT}" stroke-width="1" stroke-dasharray="4 3"/>
+      <line x1="${grip[0]}" y1="${grip[1]}" x2="${rear[0]}" y2="${rear[1]}" stroke="${ACCENT}" stroke-width="1" stroke-dasharray="4 3"/>
+      ${label(206, 60, "LhbF", "start")}${label(96, 58, "LhbR", "end")}
+      ${label(84, 108, "lcs", "end")}${dim(bb[0], 132, bb[0], bb[1])}${label(bb[0] + 6, 124, "hbb", "start")}
+      ${label(top[0] + 14, top[1] + 40, "lst", "start")}${label(seat[0] - 6, seat[1] + 16, "lsp", "end")}
+      <path d="M ${bb[0] - 24} ${bb[1]} A 24 24 0 0 1 ${f2([bb[0] - 24 * Math.cos(ang), bb[1] - 24 * Math.sin(ang)])}" fill="none" stroke="${ACCENT}" stroke-width="1.2"/>${label(bb[0] - 30, bb[1] - 6, "lamst", "end")}
+      ${label(grip[0] + 8, grip[1] - 6, "grips (whb)", "start", MUTED)}`;
+  },
+  view: "0 -66 280 206",
+};
+
 function drawing(name) {
   const d = DRAWINGS[name];
   const figure = html("figure", { class: "ms-figure" });
@@ -260,7 +308,10 @@ export class MeasurePanel {
     this.sample = ""; // the sample the form started from ("" for a file or nothing)
     this.base = {}; // that sample's measurements {key: [value, sigma]} as text
     this.counts = { B: 3, H: 3 };
-    this.other = []; // keys read and kept (the rider's geometry), written back on save
+    this.other = []; // keys read and kept (not the form's), written back on save
+    this.rider = null; // {name, fileName, text}: the rider's YeadonMeas.txt
+    this.configuration = null; // {fileName, text}: the rider's YeadonCFG.txt on this bicycle
+    this.riderFromSample = false; // the rider came with the sample (the link carries it)
     this.answer = null;
     this.sequence = 0;
     this.timer = 0;
@@ -297,10 +348,70 @@ export class MeasurePanel {
       for (const f of s.fields) fields.append(this.fieldRow(f.key, `${f.label}`, f.unit, f.hint));
       section.append(fields);
       if (s.hangings) section.append(html("div", { id: "ms-hangings", class: "ms-hangings" }));
+      if (s.rider) section.append(this.riderControls());
       section.append(html("div", { id: `ms-derived-${s.id}`, class: "ms-derived", role: "region", tabindex: "0", "aria-label": `Numbers derived in ${s.title}`, "data-testid": `ms-derived-${s.id}` }));
       body.append(section);
     }
     this.drawHangings({});
+    this.showRider();
+  }
+
+  /** The rider's two files: open each, or remove the rider; what is loaded, said. */
+  riderControls() {
+    const open = (id, text, title) => {
+      const input = html("input", { id: `${id}-file`, type: "file", accept: ".txt,text/plain", hidden: true });
+      const button = html("button", { id, class: "btn small", type: "button", "data-testid": id, text, title });
+      button.addEventListener("click", () => input.click());
+      input.addEventListener("change", (e) => during(() => this.openRider(e, id === "ms-rider-open")));
+      return [button, input];
+    };
+    const remove = html("button", { id: "ms-rider-remove", class: "btn small", type: "button", "data-testid": "ms-rider-remove", text: "No rider" });
+    remove.addEventListener("click", () => {
+      this.rider = null;
+      this.configuration = null;
+      this.riderFromSample = false;
+      this.showRider();
+      this.schedule();
+    });
+    return html("div", { class: "ms-rider" },
+      html("div", { class: "ms-buttons" },
+        ...open("ms-rider-open", "Open YeadonMeas.txt…", "The rider's 95 measurements of Yeadon's body model, a <Rider>YeadonMeas.txt"),
+        ...open("ms-configuration-open", "Open YeadonCFG.txt…", "The rider's posture on this bicycle, a <Rider><Bike>YeadonCFG.txt"),
+        remove),
+      html("p", { id: "ms-rider-status", class: "ms-text", "aria-live": "polite", "data-testid": "ms-rider-status" }));
+  }
+
+  async openRider(e, measurements) {
+    const file = e.target.files?.[0];
+    e.target.value = "";
+    if (!file) return;
+    const text = await file.text();
+    if (measurements) this.rider = { name: file.name.replace(/YeadonMeas\.txt$/, "").replace(/\.[^.]*$/, ""), fileName: file.name, text };
+    else this.configuration = { fileName: file.name, text };
+    this.riderFromSample = false;
+    this.showRider();
+    this.schedule();
+  }
+
+  /** Says which rider files are loaded, and what a seated rider weighs. */
+  showRider() {
+    const status = $("ms-rider-status");
+    if (!status) return;
+    const r = this.answer?.rider;
+    if (this.rider && this.configuration) {
+      status.textContent = `${this.rider.name || "The rider"} (${this.rider.fileName}) seated as ${this.configuration.fileName}${r ? `: ${num(r.mass, 4)} kg, joint angles solved in ${r.iterations} Newton steps` : ""}.`;
+    } else if (this.rider || this.configuration) {
+      status.textContent = this.rider ? `${this.rider.fileName} loaded: open the rider's configuration on this bicycle too.` : `${this.configuration.fileName} loaded: open the rider's measurements too.`;
+    } else {
+      status.textContent = "No rider: the rear frame alone.";
+    }
+    $("ms-rider-remove").disabled = !(this.rider || this.configuration);
+  }
+
+  /** The rider's part of a request, when both files are there. */
+  riderBody() {
+    if (!(this.rider && this.configuration)) return {};
+    return { rider: this.rider.text, configuration: this.configuration.text, ...(this.rider.name ? { rider_name: this.rider.name } : {}) };
   }
 
   fieldRow(key, text, unit, hint) {
@@ -379,6 +490,10 @@ export class MeasurePanel {
     const sample = this.samples.find((s) => s.name === name);
     this.sample = sample ? sample.name : "";
     $("ms-sample").value = this.sample;
+    this.riderFromSample = Boolean(sample?.rider && sample?.configuration);
+    this.rider = this.riderFromSample ? { name: sample.rider_name ?? "", fileName: sample.rider_file_name ?? "", text: sample.rider } : null;
+    this.configuration = this.riderFromSample ? { fileName: sample.configuration_file_name ?? "", text: sample.configuration } : null;
+    this.showRider();
     if (!sample) {
       this.base = {};
       this.other = [];
@@ -397,10 +512,10 @@ export class MeasurePanel {
   async readText(text, fileName) {
     const mine = ++this.sequence;
     try {
-      const answer = await api.measure({ text, file_name: fileName });
+      const answer = await api.measure({ text, file_name: fileName, ...this.riderBody() });
       if (mine !== this.sequence) return;
-      this.other = answer.other;
-      this.fillFrom(answer.measurements);
+      this.other = answer.other.filter((o) => !RIDER_KEYS.includes(o.key));
+      this.fillFrom([...answer.measurements, ...answer.other.filter((o) => RIDER_KEYS.includes(o.key))]);
       this.answer = answer;
       this.say(null);
       this.mark([]);
@@ -445,7 +560,7 @@ export class MeasurePanel {
       return null;
     }
     const name = $("ms-name").value.trim();
-    return name ? { measurements, name } : { measurements };
+    return { measurements, ...(name ? { name } : {}), ...this.riderBody() };
   }
 
   /** A computation after the typing pauses; counted as work under way until it is done. */
@@ -525,6 +640,7 @@ export class MeasurePanel {
     $("ms-warnings").replaceChildren(...warnings.map((w) => html("li", { text: w.message })));
     $("ms-warnings").hidden = !warnings.length;
     $("ms-meta").textContent = a ? `${a.name ?? "this bicycle"}: ${a.parameters.length} parameters with σ, ${a.steps.length} steps` : "";
+    this.showRider();
     this.veil(false);
   }
 
@@ -551,6 +667,8 @@ export class MeasurePanel {
   /** The state the link carries: the sample, and the fields that differ from it. */
   inputs() {
     const out = { s: this.sample };
+    // The sample's rider, taken off (files opened here are not carried: too long for a link).
+    if (!this.riderFromSample && this.samples.find((x) => x.name === this.sample)?.rider) out.r = "none";
     const { texts } = this.read();
     for (const [key, [value, sigma]] of Object.entries(texts)) {
       const base = this.base[key] ?? ["", ""];
@@ -567,6 +685,12 @@ export class MeasurePanel {
       this.say(e.message);
       return;
     }
+    if (s.r === "none") {
+      this.rider = null;
+      this.configuration = null;
+      this.riderFromSample = false;
+      this.showRider();
+    }
     const edits = {};
     for (const [k, v] of Object.entries(s)) {
       if (!k.startsWith("k.")) continue;
@@ -577,7 +701,7 @@ export class MeasurePanel {
       const hanging = key.match(/^(?:alpha|a|Tt)([BH])(\d+)$/);
       if (hanging) this.counts[hanging[1]] = Math.min(MAX_HANGINGS, Math.max(this.counts[hanging[1]], Number(hanging[2])));
     }
-    if (Object.keys(edits).length) {
+    if (Object.keys(edits).length || s.r === "none") {
       this.drawHangings(edits);
       await this.compute();
     }
