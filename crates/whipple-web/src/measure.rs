@@ -164,14 +164,8 @@ fn as_text(measurements: &Map<String, Value>) -> Result<String, ApiError> {
                 format!("give {{\"value\": number, \"sigma\": number}}: {e}"),
             )
         })?;
+        // A negative σ is refused by the reader, naming the key.
         let sigma = m.sigma.unwrap_or(0.0);
-        // The file's reader squares σ (a list's σ is √(Σσᵢ²)/n), which would drop its sign.
-        if sigma < 0.0 {
-            return Err(invalid(
-                key,
-                format!("its standard deviation {sigma} must not be negative"),
-            ));
-        }
         // Rust's shortest round-trip form: the reader gets the very numbers sent.
         text.push_str(&format!("{key} = {}+/-{sigma}\n", m.value));
     }
