@@ -333,6 +333,13 @@ pub mod advanced {
             Controllability, ModalControllability, UncontrollableSpeed, UncontrollableSpeeds,
             uncontrollable_speeds,
         };
+        /// The rider as Hess, Moore & Hubbard 2012's controller: nested loops (steer angle, roll
+        /// rate, roll angle, heading, lateral deviation) and a neuromuscular filter, the closed
+        /// loop of HumanControl's `system_state_space.m`, and gains tabulated against speed.
+        pub use crate::linear::{
+            GainLookup, GainTable, HumanController, HumanGains, HumanLoop, LoopInput, LoopState,
+            MAX_GAIN_SPEEDS, NEUROMUSCULAR_DAMPING, NEUROMUSCULAR_FREQUENCY, Neuromuscular, Task,
+        };
     }
     #[doc = "Design studies over one or two parameters."]
     pub mod design {
@@ -388,6 +395,8 @@ pub mod advanced {
         pub use crate::parameters::io::moore2012_yaml;
         /// A principal parameter set (Moore 2019) of a bicycle that carries its rider P.
         pub use crate::parameters::io::principal_yaml;
+        /// HumanControl's gains file (`<Name>SteerGains.txt`) as a gain table.
+        pub use crate::parameters::io::read_gains;
         pub use crate::parameters::io::{
             FORMATS, MAX_FILE_BYTES, UNDETERMINED_FORMAT, json_slice_without_duplicates,
             json_without_duplicates, name_from_file_name, parse, write,

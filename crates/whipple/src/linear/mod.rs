@@ -6,6 +6,7 @@ mod canonical;
 mod characteristic;
 mod controllability;
 mod feedback;
+mod human;
 mod manoeuvre;
 mod response;
 mod riccati;
@@ -22,6 +23,10 @@ pub use controllability::{
     uncontrollable_speeds,
 };
 pub use feedback::{ClosedLoop, Gains, MAX_GENERAL_SWEEP_SPEEDS, MAX_SCHEDULE_SPEEDS};
+pub use human::{
+    GainLookup, GainTable, HumanController, HumanGains, HumanLoop, LoopInput, LoopState,
+    MAX_GAIN_SPEEDS, NEUROMUSCULAR_DAMPING, NEUROMUSCULAR_FREQUENCY, Neuromuscular, Task,
+};
 pub use manoeuvre::{
     MAX_MANOEUVRE_BREAKS, Manoeuvre, ManoeuvreComparison, ManoeuvreMotion, compare_manoeuvre,
 };

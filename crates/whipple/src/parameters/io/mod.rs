@@ -13,6 +13,8 @@
 //! the line and column where known. Files come as their owners wrote them: a UTF-8 byte-order
 //! mark, CRLF line endings and a missing final newline are all accepted.
 
+mod gains;
+pub use gains::read_gains;
 mod json;
 mod keyvalue;
 pub(crate) use keyvalue::extra_meaning;
