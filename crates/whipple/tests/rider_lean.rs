@@ -18,6 +18,7 @@
 
 use nalgebra::{Matrix3, SMatrix};
 use whipple::Canonical;
+use whipple::advanced::nonlinear::LeanModel;
 use whipple::advanced::parameters::{
     MOORE_RIDER_LEAN2012_KEYS, MooreRiderLean2012Parameters, RiderLeanParameters,
 };
@@ -46,9 +47,14 @@ fn matrix<const R: usize, const C: usize>(value: &serde_json::Value) -> SMatrix<
 
 /// The free hinge's matrices at every stored speed.
 fn free_hinge() -> (serde_json::Value, Vec<Speed>) {
+    stored_case(0, "free hinge")
+}
+
+/// One stored case's matrices at every stored speed.
+fn stored_case(index: usize, name: &str) -> (serde_json::Value, Vec<Speed>) {
     let doc: serde_json::Value = serde_json::from_str(DATA).expect("valid JSON");
-    let case = &doc["cases"][0];
-    assert_eq!(case["name"], "free hinge");
+    let case = &doc["cases"][index];
+    assert_eq!(case["name"], name);
     let speeds = case["speeds"]
         .as_array()
         .expect("speeds")
@@ -202,5 +208,105 @@ fn yaw_kinematics() {
     for s in &speeds {
         assert_close("q3' / q7", s.v * per, s.a[(2, 5)], s.v);
         assert_close("q3' / u7", b.c * per, s.a[(2, 10)], 1.0);
+    }
+}
+
+/// Moore's state of each of ours, [φ, δ, φ_r, φ̇, δ̇, φ̇_r] → q4, q7, q9, u4, u7, u9.
+const MOORE_OF_OURS: [usize; 6] = [3, 5, 7, 8, 10, 11];
+
+/// Our five-body model's exact linearization (dual numbers through the non-linear forward
+/// dynamics) against BicycleParameters' `MooreRiderLean2012Model`, every entry of A and B, at
+/// every stored speed (0.5–10 m/s), with the hinge free and with Moore's stiff, damped hinge.
+/// Moore's other rows and columns are the ignorable coordinates (positions, yaw, wheel angles,
+/// the rear wheel's rate u6): their columns in the dynamic rows must be zero, and the yaw row
+/// is [`yaw_kinematics`]'.
+#[test]
+fn linearization_is_moores() {
+    for (index, name, stiffness, damping) in [
+        (0, "free hinge", 0.0, 0.0),
+        (1, "stiff, damped hinge (riderlean.py)", 128.0, 50.0),
+    ] {
+        let (_, speeds) = stored_case(index, name);
+        let mut p = RiderLeanParameters::browser_jason();
+        p.upper_body.stiffness = stiffness;
+        p.upper_body.damping = damping;
+        let model = LeanModel::new(&p).unwrap();
+        let mut worst = 0.0f64;
+        for s in &speeds {
+            let (a, b) = model.linearize(s.v).unwrap();
+            for (i, &mi) in MOORE_OF_OURS.iter().enumerate() {
+                for (j, &mj) in MOORE_OF_OURS.iter().enumerate() {
+                    let theirs = s.a[(mi, mj)];
+                    let e = (a[(i, j)] - theirs).abs() / theirs.abs().max(1.0);
+                    worst = worst.max(e);
+                    assert!(
+                        e <= 1e-10,
+                        "{name}, {} m/s, A[{i}{j}]: {} vs {theirs}",
+                        s.v,
+                        a[(i, j)]
+                    );
+                }
+                for j in 0..3 {
+                    let theirs = s.b[(mi, j)];
+                    let e = (b[(i, j)] - theirs).abs() / theirs.abs().max(1.0);
+                    worst = worst.max(e);
+                    assert!(
+                        e <= 1e-10,
+                        "{name}, {} m/s, B[{i}{j}]: {} vs {theirs}",
+                        s.v,
+                        b[(i, j)]
+                    );
+                }
+                // The ignorable coordinates do not enter the dynamics.
+                for j in [0, 1, 2, 4, 6, 9] {
+                    assert!(s.a[(mi, j)].abs() < 1e-12, "{name}: Moore's A[{mi}][{j}]");
+                }
+            }
+        }
+        println!("{name}: largest difference from Moore's A and B {worst:e}");
+    }
+}
+
+/// The hinge locked, in our own model: the (φ, δ) blocks of M, C₁, K₀, K₂ read from our
+/// five-body linearization (M = B⁻¹ on the three torques, −M A the rest) are the benchmark
+/// model of the rigid rider, to 1e-12.
+#[test]
+fn our_locked_hinge_is_the_rigid_rider() {
+    let p = RiderLeanParameters::browser_jason();
+    let model = LeanModel::new(&p).unwrap();
+    let rigid = Canonical::new(&p.rigid()).unwrap();
+    for v in [0.5, 1.0, 2.0, 4.6, 8.0] {
+        let (a, b) = model.linearize(v).unwrap();
+        let m = Matrix3::from_fn(|i, j| b[(3 + i, j)])
+            .try_inverse()
+            .unwrap();
+        let stiffness = -(m * Matrix3::from_fn(|i, j| a[(3 + i, j)]));
+        let damping = -(m * Matrix3::from_fn(|i, j| a[(3 + i, 3 + j)]));
+        let expected_k = rigid.k0 * rigid.g + rigid.k2 * (v * v);
+        let expected_c = rigid.c1 * v;
+        for i in 0..2 {
+            for j in 0..2 {
+                for (what, ours, theirs, scale) in [
+                    ("M", m[(i, j)], rigid.m[(i, j)], rigid.m.amax()),
+                    (
+                        "gK0 + v²K2",
+                        stiffness[(i, j)],
+                        expected_k[(i, j)],
+                        expected_k.amax(),
+                    ),
+                    (
+                        "vC1",
+                        damping[(i, j)],
+                        expected_c[(i, j)],
+                        expected_c.amax(),
+                    ),
+                ] {
+                    assert!(
+                        (ours - theirs).abs() <= 1e-12 * scale,
+                        "{what}[{i}{j}] at {v} m/s: {ours} vs {theirs}"
+                    );
+                }
+            }
+        }
     }
 }
