@@ -500,11 +500,11 @@ pub mod advanced {
         pub use crate::nonlinear::Simulation;
         pub use crate::nonlinear::rotation;
         pub use crate::nonlinear::{
-            BODY_NAMES, ContactForce, DEFAULT_FALL_ANGLE, FRONT_WHEEL, Inputs, LeanModel,
-            LeanRates, LeanState, MAX_EXPRESSION_DEPTH, MAX_EXPRESSION_LENGTH, MAX_SAMPLES,
-            MAX_STEPS, Progress, ProjectionMethod, ProjectionSettings, REAR_FRAME, REAR_WHEEL,
-            STATE_LEN, State, StateView, TorqueExpression, TorqueFn, Wheel, check_rk4_step,
-            fastest_mode, samples_kept,
+            BODY_NAMES, ContactForce, DEFAULT_FALL_ANGLE, FRONT_WHEEL, Inputs, LEAN_STATE_LEN,
+            LeanModel, LeanRates, LeanSample, LeanState, MAX_EXPRESSION_DEPTH,
+            MAX_EXPRESSION_LENGTH, MAX_SAMPLES, MAX_STEPS, Progress, ProjectionMethod,
+            ProjectionSettings, REAR_FRAME, REAR_WHEEL, STATE_LEN, State, StateView,
+            TorqueExpression, TorqueFn, Wheel, check_rk4_step, fastest_mode, samples_kept,
         };
     }
     #[doc = "Bicycle descriptions: the benchmark and JBike6 forms, checks and their notices."]

@@ -67,7 +67,7 @@ pub use crate::expression::{
 pub(crate) use forward::StateRates;
 pub use forward::{ContactForce, Inputs};
 pub use initial::InitialConditions;
-pub use lean::{LeanModel, LeanRates, LeanState};
+pub use lean::{LEAN_STATE_LEN, LeanModel, LeanRates, LeanSample, LeanState};
 pub use model::Model;
 pub use outcome::{Outcome, Progress, Sample, Simulation, Wheel};
 pub use projection::{ProjectionMethod, ProjectionSettings};
