@@ -13,6 +13,7 @@ mod guard;
 mod linear;
 mod measure;
 mod period;
+mod rider_lean;
 mod side_view;
 mod simulate;
 mod system;
@@ -43,6 +44,7 @@ fn _whipple(m: &Bound<'_, PyModule>) -> PyResult<()> {
     numpy::PyArray1::<f64>::zeros(py, 0, false);
     m.add_class::<bicycle::NativeBicycle>()?;
     m.add_class::<system::NativeLinearSystem>()?;
+    m.add_class::<rider_lean::NativeRiderLean>()?;
     m.add_function(wrap_pyfunction!(bicycle::presets, m)?)?;
     m.add_function(wrap_pyfunction!(bicycle::formats, m)?)?;
     m.add_function(wrap_pyfunction!(bicycle::parameter_table, m)?)?;

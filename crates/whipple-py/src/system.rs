@@ -36,7 +36,11 @@ fn request(
     request_with_states(&inputs, &outputs, &states)
 }
 
-fn matrix<'py>(py: Python<'py>, m: &nalgebra::DMatrix<f64>) -> PyResult<Bound<'py, PyAny>> {
+/// A matrix as a 2-D numpy array.
+pub(crate) fn matrix<'py>(
+    py: Python<'py>,
+    m: &nalgebra::DMatrix<f64>,
+) -> PyResult<Bound<'py, PyAny>> {
     let flat: Vec<f64> = (0..m.nrows())
         .flat_map(|i| (0..m.ncols()).map(move |j| (i, j)))
         .map(|(i, j)| m[(i, j)])

@@ -509,11 +509,11 @@ pub mod advanced {
         pub use crate::nonlinear::Simulation;
         pub use crate::nonlinear::rotation;
         pub use crate::nonlinear::{
-            BODY_NAMES, ContactForce, DEFAULT_FALL_ANGLE, FRONT_WHEEL, Inputs,
-            MAX_EXPRESSION_DEPTH, MAX_EXPRESSION_LENGTH, MAX_SAMPLES, MAX_STEPS, Progress,
-            ProjectionMethod, ProjectionSettings, REAR_FRAME, REAR_WHEEL, STATE_LEN, State,
-            StateView, TorqueExpression, TorqueFn, Wheel, check_rk4_step, fastest_mode,
-            samples_kept,
+            BODY_NAMES, ContactForce, DEFAULT_FALL_ANGLE, FRONT_WHEEL, Inputs, LEAN_STATE_LEN,
+            LeanModel, LeanRates, LeanSample, LeanState, MAX_EXPRESSION_DEPTH,
+            MAX_EXPRESSION_LENGTH, MAX_SAMPLES, MAX_STEPS, Progress, ProjectionMethod,
+            ProjectionSettings, REAR_FRAME, REAR_WHEEL, STATE_LEN, State, StateView,
+            TorqueExpression, TorqueFn, Wheel, check_rk4_step, fastest_mode, samples_kept,
         };
     }
     #[doc = "Bicycle descriptions: the benchmark and JBike6 forms, checks and their notices."]
@@ -537,6 +537,19 @@ pub mod advanced {
         pub use crate::parameters::Jbike6Parameters;
         pub use crate::parameters::jbike6::BENCHMARK_FROM_JBIKE6;
         pub use crate::parameters::{Checked, Notice, Severity};
+        /// Moore 2012's leaning rider: the bicycle with the rider's lower body in its rear
+        /// frame, the upper body G hinged to it, and BicycleParameters' `MooreRiderLean2012`
+        /// keys both ways.
+        ///
+        /// ```
+        /// use whipple::advanced::parameters::RiderLeanParameters;
+        /// let p = RiderLeanParameters::browser_jason();
+        /// assert!((p.upper_body.z_hinge + 1.011421527346159).abs() < 1e-15);
+        /// ```
+        pub use crate::parameters::{
+            MOORE_RIDER_LEAN2012_KEYS, MooreRiderLean2012Parameters, RiderLeanParameters,
+            UPPER_BODY_KEYS, UpperBody,
+        };
         /// Moore 2012's parameterization (BicycleParameters' `Moore2012`) and its conversion
         /// to and from the benchmark form.
         ///

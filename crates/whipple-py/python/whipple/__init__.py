@@ -23,6 +23,7 @@ from ._design import DesignMap, design_map_dask
 from ._measure import Measurement, measure
 from ._period import PeriodFit, fit_period, read_period
 from ._plot import plot_bode, plot_eigenvalues
+from ._rider_lean import RiderLean
 from ._results import Comparison, CriticalSpeeds, Eigen, Sensitivities, Simulation
 from ._system import FrequencyResponse, LinearSystem, Signal, TransferFunction
 from ._turns import SteadyTurn, TurnFamily, Turns, WheelContact
@@ -35,7 +36,7 @@ __all__ = [
     "LinearSystem", "TransferFunction", "FrequencyResponse", "Signal",
     "TimeResponse", "GroundPath", "Lqr", "Controllability", "ModalControllability",
     "UncontrollableSpeeds", "ClosedLoop", "ManoeuvreComparison",
-    "PeriodFit", "fit_period", "read_period",
+    "PeriodFit", "fit_period", "read_period", "RiderLean",
     "DesignMap", "design_map_dask", "measure", "Measurement", "plot_eigenvalues", "plot_bode", "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
     "WhippleError", "ParameterError", "StrictError", "ParseError", "UnknownPresetError",
     "ArgumentError", "LimitError", "NumericalError", "AccuracyLostError", "NoSteadyTurnError",

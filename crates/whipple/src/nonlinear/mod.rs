@@ -33,6 +33,7 @@
 //! | `poses.rs`, `tree.rs`, `forward.rs`, `assembly.rs`, `saddle.rs` | the forward dynamics' stages: poses → tree map (and the rolling rear wheel) → forces → contact rows → TᵀMT → saddle-point solve |
 //! | `reference.rs` | the dense 45 × 45 reference solve that checks [`Model::forward`] |
 //! | `projection.rs` | positions and velocities back onto the constraints |
+//! | `lean.rs` | [`LeanModel`]: the rider's upper body as a fifth body hinged to the rear frame, its forward dynamics, energy and exact linearization |
 //! | `reduced.rs` | the model on the linear model's state [φ, δ, φ̇, δ̇] and in spin-free speeds |
 //! | `settings.rs`, `outcome.rs`, `simulate.rs` | a simulation's settings and bounds, its results, the run itself (rider torques as expressions are the crate's `expression.rs`, shared with the parameter files' values) |
 
@@ -44,6 +45,7 @@ mod contact;
 mod forward;
 mod initial;
 mod joints;
+mod lean;
 mod model;
 mod outcome;
 mod poses;
@@ -65,6 +67,7 @@ pub use crate::expression::{
 pub(crate) use forward::StateRates;
 pub use forward::{ContactForce, Inputs};
 pub use initial::InitialConditions;
+pub use lean::{LEAN_STATE_LEN, LeanModel, LeanRates, LeanSample, LeanState};
 pub use model::Model;
 pub use outcome::{Outcome, Progress, Sample, Simulation, Wheel};
 pub use projection::{ProjectionMethod, ProjectionSettings};

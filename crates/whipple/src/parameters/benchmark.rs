@@ -474,6 +474,24 @@ macro_rules! frame_keys {
 
 const REAR_BODY: FrameKeys = frame_keys!("B");
 const FRONT_FRAME: FrameKeys = frame_keys!("H");
+/// The rider's upper body G of the rider-lean model: the non-linear model and its linearization
+/// see every entry of its tensor.
+const UPPER_BODY: FrameKeys = FrameKeys {
+    affects: "the rider-lean model (non-linear and linearized), which still runs",
+    ..frame_keys!("G")
+};
+
+/// The checks of a frame's tensor ([`BenchmarkParameters::check`]'s for B and H) applied to the
+/// rider's upper body G, under the keys `IGxx`, `IGyy`, `IGzz`, `IGxz`.
+pub(crate) fn upper_body_inertia(
+    i_xx: f64,
+    i_yy: f64,
+    i_zz: f64,
+    i_xz: f64,
+    notices: &mut Vec<Notice>,
+) -> Result<()> {
+    frame_inertia(&UPPER_BODY, i_xx, i_yy, i_zz, i_xz, notices)
+}
 
 fn wheel_inertia(
     keys: &WheelKeys,

@@ -9,6 +9,7 @@ pub(crate) mod measured;
 pub(crate) mod moore2012;
 pub mod presets;
 pub(crate) mod principal;
+pub(crate) mod rider_lean;
 pub(crate) mod steer;
 pub(crate) mod table;
 
@@ -25,6 +26,10 @@ pub(crate) use jbike6::{
 };
 pub use moore2012::{MOORE2012_KEYS, Moore2012Parameters};
 pub use principal::{PRINCIPAL_KEYS, PrincipalBody, PrincipalParameters};
+pub use rider_lean::{
+    MOORE_RIDER_LEAN2012_KEYS, MooreRiderLean2012Parameters, RiderLeanParameters, UPPER_BODY_KEYS,
+    UpperBody,
+};
 pub(crate) use steer::STEER_INERTIA_KEY;
 pub(crate) use table::Form;
 pub(crate) use table::ParameterInfo;

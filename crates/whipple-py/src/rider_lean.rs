@@ -1,0 +1,101 @@
+//! The leaning rider (Moore 2012's rider-lean model): BicycleParameters' `MooreRiderLean2012`
+//! keys in, the library's five-body model and its exact linearization out.
+
+use pyo3::prelude::*;
+use whipple::Bicycle;
+use whipple::Error;
+use whipple::advanced::nonlinear::LeanModel;
+use whipple::advanced::parameters::{
+    Description, MOORE_RIDER_LEAN2012_KEYS, MooreRiderLean2012Parameters,
+};
+
+use crate::bicycle::NativeBicycle;
+use crate::errors::IntoPy;
+use crate::system::matrix;
+
+/// A bicycle with a leaning rider (the native half of `whipple.RiderLean`).
+#[pyclass(name = "NativeRiderLean", module = "whipple._whipple", frozen)]
+pub struct NativeRiderLean {
+    model: LeanModel,
+}
+
+#[pymethods]
+impl NativeRiderLean {
+    /// From (key, value) pairs of BicycleParameters' `MooreRiderLean2012` set: every one of
+    /// the 36 keys once, `v` accepted and ignored, other keys refused; checked by the library.
+    #[staticmethod]
+    fn from_moore_rider_lean2012(py: Python<'_>, items: Vec<(String, f64)>) -> PyResult<Self> {
+        let mut values: [Option<f64>; 36] = [None; 36];
+        for (key, value) in &items {
+            if key == "v" {
+                continue;
+            }
+            let Some(i) = MOORE_RIDER_LEAN2012_KEYS.iter().position(|k| k == key) else {
+                return Err(Error::InvalidParameter {
+                    field: key.clone(),
+                    value: *value,
+                    rule: format!(
+                        "not a key of Moore 2012's rider-lean parameterization ({})",
+                        MOORE_RIDER_LEAN2012_KEYS.join(", ")
+                    ),
+                })
+                .py_err(py);
+            };
+            if values[i].replace(*value).is_some() {
+                return Err(Error::InvalidParameter {
+                    field: key.clone(),
+                    value: *value,
+                    rule: "is given twice".into(),
+                })
+                .py_err(py);
+            }
+        }
+        let missing: Vec<&str> = MOORE_RIDER_LEAN2012_KEYS
+            .iter()
+            .zip(&values)
+            .filter(|(_, v)| v.is_none())
+            .map(|(k, _)| *k)
+            .collect();
+        if let Some(first) = missing.first() {
+            return Err(Error::InvalidParameter {
+                field: first.to_string(),
+                value: f64::NAN,
+                rule: format!("missing: {}", missing.join(", ")),
+            })
+            .py_err(py);
+        }
+        let parameters = MooreRiderLean2012Parameters::from_array(values.map(|v| v.unwrap_or(0.0)))
+            .to_rider_lean()
+            .py_err(py)?;
+        let model = LeanModel::new(&parameters).py_err(py)?;
+        Ok(NativeRiderLean { model })
+    }
+
+    /// BicycleParameters' `MooreRiderLean2012` keys and values, in the order of
+    /// `MOORE_RIDER_LEAN2012_KEYS`.
+    fn moore_rider_lean2012(&self) -> Vec<(&'static str, f64)> {
+        MOORE_RIDER_LEAN2012_KEYS
+            .iter()
+            .copied()
+            .zip(MooreRiderLean2012Parameters::from_rider_lean(self.model.parameters()).to_array())
+            .collect()
+    }
+
+    /// The rigid rider: the hinge locked, the upper body combined into the rear frame.
+    fn rigid(&self, py: Python<'_>) -> PyResult<NativeBicycle> {
+        let bicycle = Bicycle::new(Description::Benchmark(self.model.parameters().rigid()));
+        NativeBicycle::new(py, bicycle, false)
+    }
+
+    /// A (6 × 6) and B (6 × 3) of the exact linearization at `speed`.
+    fn linearize<'py>(
+        &self,
+        py: Python<'py>,
+        speed: f64,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        let (a, b) = self.model.linearize(speed).py_err(py)?;
+        let a = nalgebra::DMatrix::from_fn(6, 6, |i, j| a[(i, j)]);
+        let b = nalgebra::DMatrix::from_fn(6, 3, |i, j| b[(i, j)]);
+        Ok((matrix(py, &a)?, matrix(py, &b)?))
+    }
+}

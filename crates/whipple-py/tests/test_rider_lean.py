@@ -1,0 +1,73 @@
+"""The leaning rider against BicycleParameters' MooreRiderLean2012Model (Moore 2012's
+rider-lean model, its linear equations generated from his dissertation's Autolev source), live:
+every entry of A and B for ``mooreriderlean2012_browser_jason`` at speeds from 0.5 to 10 m/s,
+with the hinge free and stiff and damped; and the hinge locked against the rigid rider's
+benchmark model."""
+
+import numpy as np
+import pytest
+
+import whipple
+from conftest import optional
+
+bp = optional("bicycleparameters", module_level=True)
+
+from bicycleparameters.models import MooreRiderLean2012Model  # noqa: E402
+from bicycleparameters.parameter_dicts import mooreriderlean2012_browser_jason  # noqa: E402
+from bicycleparameters.parameter_sets import MooreRiderLean2012ParameterSet  # noqa: E402
+
+SPEEDS = [0.5, 1.0, 2.5, 4.0, 5.5, 7.0, 10.0]
+# Moore's states q1 q2 q3 q4 q6 q7 q8 q9 u4 u6 u7 u9: ours [φ, δ, φ_r, φ̇, δ̇, φ̇_r] are
+# q4, q7, q9, u4, u7, u9; the others are ignorable (positions, yaw, wheel angles, u6).
+OURS_IN_MOORE = [3, 5, 7, 8, 10, 11]
+IGNORABLE = [0, 1, 2, 4, 6, 9]
+
+
+@pytest.mark.parametrize("k9, c9", [(0.0, 0.0), (128.0, 50.0)])
+def test_linearization_is_moores(k9, c9):
+    par = dict(mooreriderlean2012_browser_jason, k9=k9, c9=c9)
+    theirs = MooreRiderLean2012Model(MooreRiderLean2012ParameterSet(par))
+    ours = whipple.RiderLean.from_moore_rider_lean2012(par)
+    for v in SPEEDS:
+        a_moore, b_moore = theirs.form_state_space_matrices(v=v)
+        a, b = ours.linearize(v)
+        rows = np.ix_(OURS_IN_MOORE, OURS_IN_MOORE)
+        scale_a = np.maximum(1.0, np.abs(a_moore[rows]))
+        assert np.max(np.abs(a - a_moore[rows]) / scale_a) < 1e-10, v
+        b_rows = b_moore[OURS_IN_MOORE]
+        assert np.max(np.abs(b - b_rows) / np.maximum(1.0, np.abs(b_rows))) < 1e-10, v
+        # The ignorable coordinates do not enter Moore's dynamics either.
+        assert np.max(np.abs(a_moore[np.ix_(OURS_IN_MOORE, IGNORABLE)])) < 1e-12
+
+
+def test_moore_keys_round_trip():
+    ours = whipple.RiderLean.from_moore_rider_lean2012(mooreriderlean2012_browser_jason)
+    back = ours.to_moore_rider_lean2012()
+    for key, value in mooreriderlean2012_browser_jason.items():
+        if key != "v":
+            assert back[key] == pytest.approx(value, rel=1e-12, abs=1e-12), key
+
+
+def test_locked_hinge_is_the_rigid_rider():
+    """M = B⁻¹ on the three torques, −M A the rest: their (lean, steer) blocks are the
+    benchmark model of the rigid rider (the upper body combined into the rear frame)."""
+    ours = whipple.RiderLean.from_moore_rider_lean2012(mooreriderlean2012_browser_jason)
+    rigid = ours.rigid()
+    assert rigid.to_dict()["mB"] == pytest.approx(81.86, rel=1e-15)
+    m_r, c1, k0, k2 = rigid.canonical()
+    g = mooreriderlean2012_browser_jason["g"]
+    for v in SPEEDS:
+        a, b = ours.linearize(v)
+        m = np.linalg.inv(b[3:, :])
+        stiffness = -m @ a[3:, :3]
+        damping = -m @ a[3:, 3:]
+        assert np.max(np.abs(m[:2, :2] - m_r)) < 1e-12 * np.max(np.abs(m_r))
+        k = g * k0 + v**2 * k2
+        assert np.max(np.abs(stiffness[:2, :2] - k)) < 1e-12 * np.max(np.abs(k))
+        assert np.max(np.abs(damping[:2, :2] - v * c1)) < 1e-12 * np.max(np.abs(v * c1))
+
+
+def test_a_hinge_above_the_top_is_refused():
+    par = dict(mooreriderlean2012_browser_jason, d4=-2.0)
+    with pytest.raises(whipple.ParameterError, match="zHinge"):
+        whipple.RiderLean.from_moore_rider_lean2012(par)
