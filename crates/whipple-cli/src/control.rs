@@ -124,6 +124,11 @@ enum ControlCommand {
     },
     /// Pole placement for one input: the K (1 × 4) that gives A − B K the poles asked for, and
     /// the check (the closed loop's eigenvalues).
+    /// The bicycle ridden by Hess's human controller (Hess, Moore & Hubbard 2012; HumanControl's
+    /// closed loop): the gains used (a HumanControl gains file, or Hess 2012's rules), the
+    /// closed-loop eigenvalues and each loop's crossover frequency at one speed, or the
+    /// eigenvalues against speed.
+    Hess(crate::hess::HessArgs),
     Place {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
@@ -192,6 +197,7 @@ pub fn run(cx: &RunContext, args: &ControlArgs) -> Result<()> {
             poles,
             format,
         } => crate::feedback::place(cx, bike, *speed, input, poles, *format),
+        ControlCommand::Hess(args) => crate::hess::hess(cx, args),
     }
 }
 

@@ -11,6 +11,7 @@ mod control;
 mod design;
 mod feedback;
 mod figures;
+mod hess;
 mod interrupt;
 mod measure;
 mod output;

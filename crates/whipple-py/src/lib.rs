@@ -10,6 +10,7 @@ mod control;
 mod design;
 mod errors;
 mod guard;
+mod human;
 mod linear;
 mod measure;
 mod period;
@@ -52,6 +53,9 @@ fn _whipple(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(period::fit_period_native, m)?)?;
     m.add_function(wrap_pyfunction!(period::read_period_native, m)?)?;
     m.add_function(wrap_pyfunction!(measure::measure, m)?)?;
+    m.add_function(wrap_pyfunction!(human::check_human_controller, m)?)?;
+    m.add_function(wrap_pyfunction!(human::read_gains_text, m)?)?;
+    m.add_function(wrap_pyfunction!(human::gain_lookup, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_FILE_BYTES", whipple::advanced::io::MAX_FILE_BYTES)?;
     Ok(())

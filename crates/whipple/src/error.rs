@@ -48,6 +48,15 @@ pub enum Error {
         /// The names that exist, comma separated.
         known: String,
     },
+    /// A rule that sets a gain (Hess 2012's damping and crossover rules for the rider's loops)
+    /// cannot be met: `gain` names it as HumanControl's files do (`kDelta`, …).
+    #[error("no `{gain}` meets its rule: {rule}")]
+    GainRuleUnmet {
+        /// The gain (`kDelta`, `kPhiDot`, `kPhi`, `kPsi`, `kY`).
+        gain: String,
+        /// Why not, in words, with the numbers.
+        rule: String,
+    },
     /// A speed, range or step given to an analysis is unusable.
     #[error("invalid {what}: {rule}")]
     InvalidArgument {

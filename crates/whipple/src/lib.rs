@@ -333,6 +333,13 @@ pub mod advanced {
             Controllability, ModalControllability, UncontrollableSpeed, UncontrollableSpeeds,
             uncontrollable_speeds,
         };
+        /// Hess's loops one at a time (open- and closed-loop transfer functions, crossover
+        /// frequencies), gains by Hess 2012's rules, and the ridden bicycle's eigenvalues
+        /// against speed.
+        pub use crate::linear::{
+            Crossover, CrossoverRules, GainSchedule, HumanSweepRow, LoopResponse,
+            LoopTransferFunction, MAX_HUMAN_SWEEP_SPEEDS, RiderLoop, hess_gains, human_eigen_sweep,
+        };
         /// The rider as Hess, Moore & Hubbard 2012's controller: nested loops (steer angle, roll
         /// rate, roll angle, heading, lateral deviation) and a neuromuscular filter, the closed
         /// loop of HumanControl's `system_state_space.m`, and gains tabulated against speed.

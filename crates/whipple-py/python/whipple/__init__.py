@@ -20,6 +20,9 @@ from ._errors import (AccuracyLostError, ArgumentError, LimitError, NoSteadyTurn
 from ._control import (ClosedLoop, Controllability, GroundPath, Lqr, ManoeuvreComparison,
                        ModalControllability, TimeResponse, UncontrollableSpeeds)
 from ._design import DesignMap, design_map_dask
+from ._human import (ExtrapolationWarning, GainLookup, GainTable, HumanController, HumanEigen,
+                     HumanLoop, LoopTransferFunction, RiderLoop, hess_gains, human_eigenvalues,
+                     read_gains)
 from ._measure import Measurement, measure
 from ._period import PeriodFit, fit_period, read_period
 from ._plot import plot_bode, plot_eigenvalues
@@ -37,6 +40,9 @@ __all__ = [
     "TimeResponse", "GroundPath", "Lqr", "Controllability", "ModalControllability",
     "UncontrollableSpeeds", "ClosedLoop", "ManoeuvreComparison",
     "PeriodFit", "fit_period", "read_period", "RiderLean",
+    "HumanController", "HumanLoop", "RiderLoop", "LoopTransferFunction", "GainTable",
+    "GainLookup", "read_gains", "hess_gains", "human_eigenvalues", "HumanEigen",
+    "ExtrapolationWarning",
     "DesignMap", "design_map_dask", "measure", "Measurement", "plot_eigenvalues", "plot_bode", "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
     "WhippleError", "ParameterError", "StrictError", "ParseError", "UnknownPresetError",
     "ArgumentError", "LimitError", "NumericalError", "AccuracyLostError", "NoSteadyTurnError",

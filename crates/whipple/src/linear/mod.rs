@@ -7,6 +7,7 @@ mod characteristic;
 mod controllability;
 mod feedback;
 mod human;
+mod human_loops;
 mod manoeuvre;
 mod response;
 mod riccati;
@@ -26,6 +27,10 @@ pub use feedback::{ClosedLoop, Gains, MAX_GENERAL_SWEEP_SPEEDS, MAX_SCHEDULE_SPE
 pub use human::{
     GainLookup, GainTable, HumanController, HumanGains, HumanLoop, LoopInput, LoopState,
     MAX_GAIN_SPEEDS, NEUROMUSCULAR_DAMPING, NEUROMUSCULAR_FREQUENCY, Neuromuscular, Task,
+};
+pub use human_loops::{
+    Crossover, CrossoverRules, GainSchedule, HumanSweepRow, LoopResponse, LoopTransferFunction,
+    MAX_HUMAN_SWEEP_SPEEDS, RiderLoop, hess_gains, human_eigen_sweep,
 };
 pub use manoeuvre::{
     MAX_MANOEUVRE_BREAKS, Manoeuvre, ManoeuvreComparison, ManoeuvreMotion, compare_manoeuvre,
