@@ -33,7 +33,7 @@ use crate::error::{Error, Result};
 type Complex64 = nalgebra::Complex<f64>;
 
 /// The largest degree [`real_roots`] handles.
-pub(crate) const MAX_DEGREE: usize = 6;
+pub(crate) const MAX_DEGREE: usize = 10;
 
 /// Unit round-off of f64, 2⁻⁵³.
 pub(crate) const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
