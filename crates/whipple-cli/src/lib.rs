@@ -11,6 +11,7 @@ mod control;
 mod design;
 mod feedback;
 mod figures;
+mod hqm;
 mod interrupt;
 mod measure;
 mod output;
