@@ -1,8 +1,8 @@
 //! `whipple control hqm`: Hess's handling quality metric as HumanControl computes it, with the
 //! gains of a HumanControl SteerGains file. At one speed: the gains, whether the roll loop is
 //! stable, and the peak of |HQM(jω)| over frequency (certified by the library); over speeds, a
-//! table of the peaks. `--plot` draws |HQM(jω)| against ω (one speed) or the peak against
-//! speed.
+//! table of the peaks; with `--vary NAME=START:STOP:COUNT`, the peaks against one parameter of
+//! the bicycle at one speed. `--plot` draws |HQM(jω)| against ω (one speed) or the peaks.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -11,7 +11,8 @@ use anyhow::{Context, Result, bail};
 use clap::Args;
 use serde_json::json;
 use whipple::advanced::control::{
-    GainTable, HandlingQuality, HandlingRow, Neuromuscular, handling_against_speed,
+    GainTable, HandlingQuality, HandlingRow, Neuromuscular, handling_against_parameter,
+    handling_against_speed,
 };
 use whipple::advanced::io::read_gains;
 use whipple_report::{Dash, Series, XyPlotOptions, line_plot};
@@ -46,6 +47,11 @@ pub struct HqmArgs {
     /// Speeds START:STOP:STEP in m/s, both ends included: the peak against speed.
     #[arg(long, allow_hyphen_values = true)]
     speeds: Option<String>,
+    /// One parameter of the bicycle varied at --speed, the gains held at that speed's:
+    /// NAME=START:STOP:COUNT as `whipple design` takes its axes (`trail=0:0.2:21`,
+    /// `head_angle_deg=60:80:21`); prints the peak against the parameter.
+    #[arg(long, allow_hyphen_values = true, requires = "speed")]
+    vary: Option<String>,
     /// The neuromuscular filter's natural frequency in rad/s.
     #[arg(long, default_value_t = whipple::advanced::control::NEUROMUSCULAR_FREQUENCY, allow_hyphen_values = true)]
     neuro_frequency: f64,
@@ -122,6 +128,38 @@ pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let (text, figure) = match (args.speed, args.speeds.as_deref()) {
+        (Some(v), None) if args.vary.is_some() => {
+            let spec = args.vary.as_deref().unwrap_or_default();
+            let axis = whipple_front::design::AxisSpec::parse(spec, &bike.bicycle)
+                .context("--vary")?;
+            let lookup = table.at(v).context("--speed")?;
+            if lookup.extrapolated {
+                eprintln!(
+                    "warning: {} m/s is outside {gains_name}'s speeds: the gains are extrapolated",
+                    number(v)?
+                );
+            }
+            let values: Vec<f64> = (0..axis.axis.count).map(|i| axis.axis.si_value(i)).collect();
+            let rows = handling_against_parameter(
+                &bike.bicycle,
+                &axis.axis.parameter,
+                &values,
+                v,
+                &lookup.gains,
+                &neuromuscular,
+            )
+            .with_context(|| format!("the handling quality metric against {}", axis.name))?;
+            let xs: Vec<f64> = (0..rows.len()).map(|i| axis.value(i)).collect();
+            let words = vec![lookup_word(&table, v, lookup.extrapolated); rows.len()];
+            let x_name = format!("{} [{}]", axis.name, axis.unit());
+            let title = format!(
+                "{}: peak HQM against {} at {} m/s ({gains_name})",
+                bike.label,
+                axis.name,
+                number(v)?
+            );
+            sweep(&bike.label, &gains_name, &x_name, &title, &xs, &rows, &words, args)?
+        }
         (Some(v), None) => one_speed(&bike, &table, &gains_name, v, &neuromuscular, args)?,
         (None, Some(speeds)) => {
             let (start, stop, step) = parse_triple(speeds, "--speeds")?;
@@ -134,7 +172,20 @@ pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
             }
             let rows = handling_against_speed(&bike.benchmark, &table, &neuromuscular, &grid)
                 .context("the handling quality metric against speed")?;
-            against_speed(&bike.label, &table, &gains_name, &rows, args)?
+            let extrapolated = rows.iter().filter(|r| r.extrapolated).count();
+            if extrapolated > 0 {
+                eprintln!(
+                    "warning: {extrapolated} of the speeds are outside {gains_name}'s speeds: \
+                     their gains are extrapolated"
+                );
+            }
+            let xs: Vec<f64> = rows.iter().map(|r| r.speed).collect();
+            let words: Vec<&str> = rows
+                .iter()
+                .map(|r| lookup_word(&table, r.speed, r.extrapolated))
+                .collect();
+            let title = format!("{}: peak HQM against speed ({gains_name})", bike.label);
+            sweep(&bike.label, &gains_name, "speed [m/s]", &title, &xs, &rows, &words, args)?
         }
         _ => bail!("give --speed V or --speeds START:STOP:STEP"),
     };
@@ -279,36 +330,36 @@ fn hess_levels(lo: f64, hi: f64) -> [Series; 2] {
     ]
 }
 
-fn against_speed(
+/// A sweep's table (or JSON) and figure: one row per value `xs[i]` of the swept quantity.
+#[allow(clippy::too_many_arguments)]
+fn sweep(
     label: &str,
-    table: &GainTable,
     gains_name: &str,
+    x_name: &str,
+    title: &str,
+    xs: &[f64],
     rows: &[HandlingRow],
+    words: &[&str],
     args: &HqmArgs,
 ) -> Result<Output> {
-    let extrapolated = rows.iter().filter(|r| r.extrapolated).count();
-    if extrapolated > 0 {
-        eprintln!(
-            "warning: {extrapolated} of the speeds are outside {gains_name}'s speeds: their \
-             gains are extrapolated"
-        );
-    }
     let text = match args.format {
         TextFormat::Json => {
             let mut list = Vec::with_capacity(rows.len());
-            for r in rows {
+            for ((x, r), word) in xs.iter().zip(rows).zip(words) {
                 number(r.peak.magnitude)?;
                 list.push(json!({
+                    "value": x,
                     "speed": r.speed,
                     "peak": r.peak.magnitude,
                     "frequency": r.peak.frequency,
                     "certified": r.peak.certified,
                     "roll_loop_stable": r.stable,
-                    "gains_lookup": lookup_word(table, r.speed, r.extrapolated),
+                    "gains_lookup": word,
                     "gains": r.gains.to_array(),
                 }));
             }
-            let doc = json!({"bicycle": label, "gains_file": gains_name, "rows": list});
+            let doc = json!({"bicycle": label, "gains_file": gains_name, "swept": x_name,
+                             "rows": list});
             format!("{}\n", serde_json::to_string_pretty(&doc)?)
         }
         TextFormat::Table => {
@@ -316,18 +367,18 @@ fn against_speed(
             writeln!(t, "bicycle: {label}; gains: {gains_name}")?;
             writeln!(
                 t,
-                "{:>10} {:>12} {:>14} {:>10} {:>13}",
-                "speed", "peak HQM", "ω [rad/s]", "roll loop", "gains"
+                "{:>16} {:>12} {:>14} {:>10} {:>13}",
+                x_name, "peak HQM", "ω [rad/s]", "roll loop", "gains"
             )?;
-            for r in rows {
+            for ((x, r), word) in xs.iter().zip(rows).zip(words) {
                 writeln!(
                     t,
-                    "{:>10} {:>12.6} {:>14.6} {:>10} {:>13}{}",
-                    number(r.speed)?,
+                    "{:>16} {:>12.6} {:>14.6} {:>10} {:>13}{}",
+                    number(*x)?,
                     r.peak.magnitude,
                     r.peak.frequency,
                     if r.stable { "stable" } else { "UNSTABLE" },
-                    lookup_word(table, r.speed, r.extrapolated),
+                    word,
                     if r.peak.certified {
                         ""
                     } else {
@@ -340,14 +391,16 @@ fn against_speed(
     };
     let figure = match args.plot {
         Some(_) => {
-            let points: Vec<(f64, f64)> =
-                rows.iter().map(|r| (r.speed, r.peak.magnitude)).collect();
-            let (lo, hi) = (
-                rows.first().map_or(0.0, |r| r.speed),
-                rows.last().map_or(1.0, |r| r.speed),
-            );
+            let points: Vec<(f64, f64)> = xs
+                .iter()
+                .zip(rows)
+                .map(|(x, r)| (*x, r.peak.magnitude))
+                .collect();
+            let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
             let options = XyPlotOptions {
-                title: Some(format!("{label}: peak HQM against speed ({gains_name})")),
+                title: Some(title.to_string()),
+                x_label: x_name.to_string(),
                 y_label: "max |HQM(jω)|".into(),
                 ..XyPlotOptions::default()
             };

@@ -108,6 +108,45 @@ fn peak_hqm_against_speed_as_json_with_its_figure() {
 }
 
 #[test]
+fn peak_hqm_against_trail_at_one_speed() {
+    let out = stdout(&whipple(&[
+        "control",
+        "hqm",
+        "--bike",
+        &path("BenchmarkPar.txt"),
+        "--gains",
+        &path("gains/BenchmarkSteerGains.txt"),
+        "--speed",
+        "5",
+        "--vary",
+        "c=0.04:0.12:5",
+        "--format",
+        "json",
+    ]));
+    let doc: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+    let rows = doc["rows"].as_array().expect("rows");
+    assert_eq!(rows.len(), 5);
+    // The file's own trail (c = 0.08) gives the one-speed peak.
+    assert_eq!(rows[2]["value"], 0.08);
+    let (peak, _) = library_peak(5.0);
+    assert!((rows[2]["peak"].as_f64().expect("a number") - peak).abs() < 1e-12);
+    assert!(rows[0]["peak"] != rows[4]["peak"]);
+    let err = stderr_of_failure(&whipple(&[
+        "control",
+        "hqm",
+        "--bike",
+        &path("BenchmarkPar.txt"),
+        "--gains",
+        &path("gains/BenchmarkSteerGains.txt"),
+        "--speed",
+        "5",
+        "--vary",
+        "nonsense=0:1:3",
+    ]));
+    assert!(err.contains("--vary") && err.contains("nonsense"), "{err}");
+}
+
+#[test]
 fn bad_input_is_refused_naming_the_option_or_field() {
     let dir = scratch("hqm-bad");
     let bike = path("BenchmarkPar.txt");

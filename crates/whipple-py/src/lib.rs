@@ -10,6 +10,7 @@ mod control;
 mod design;
 mod errors;
 mod guard;
+mod handling;
 mod linear;
 mod measure;
 mod period;
@@ -50,6 +51,11 @@ fn _whipple(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(period::fit_period_native, m)?)?;
     m.add_function(wrap_pyfunction!(period::read_period_native, m)?)?;
     m.add_function(wrap_pyfunction!(measure::measure, m)?)?;
+    m.add_function(wrap_pyfunction!(handling::handling_quality_native, m)?)?;
+    m.add_function(wrap_pyfunction!(
+        handling::handling_against_speed_native,
+        m
+    )?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_FILE_BYTES", whipple::advanced::io::MAX_FILE_BYTES)?;
     Ok(())
