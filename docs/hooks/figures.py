@@ -26,6 +26,8 @@ DATA = ROOT / "crates" / "whipple" / "tests" / "data"
 INPUTS = (
     ("bicycleparameters", (".txt", ".yml")),
     ("humancontrol", (".txt", ".yml")),
+    ("humancontrol/gains", ("SteerGains.txt",)),
+    ("humancontrol/optimal", ("Par.txt",)),
     ("bicycleparameters-yaml", (".txt", ".yml")),
     ("measured", ("Measured.txt",)),
     ("measured/periods", (".mat",)),

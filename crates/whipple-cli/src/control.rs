@@ -122,6 +122,10 @@ enum ControlCommand {
         #[arg(long, value_enum, default_value = "table")]
         format: TextFormat,
     },
+    /// Hess's handling quality metric (HQM) as HumanControl computes it, with the gains of a
+    /// HumanControl SteerGains file: the peak of |HQM(jω)| over frequency (certified) at one
+    /// speed, or against speed; Hess reads peaks below 5 as good handling, above 8 as poor.
+    Hqm(crate::hqm::HqmArgs),
     /// Pole placement for one input: the K (1 × 4) that gives A − B K the poles asked for, and
     /// the check (the closed loop's eigenvalues).
     /// The bicycle ridden by Hess's human controller (Hess, Moore & Hubbard 2012; HumanControl's
@@ -190,6 +194,7 @@ pub fn run(cx: &RunContext, args: &ControlArgs) -> Result<()> {
             inputs,
             format,
         } => crate::feedback::lqr(cx, bike, *speed, speeds.as_deref(), q, r, inputs, *format),
+        ControlCommand::Hqm(hqm) => crate::hqm::run(cx, hqm),
         ControlCommand::Place {
             bike,
             speed,

@@ -12,6 +12,7 @@ mod design;
 mod feedback;
 mod figures;
 mod hess;
+mod hqm;
 mod interrupt;
 mod measure;
 mod output;

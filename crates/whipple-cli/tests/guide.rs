@@ -107,9 +107,11 @@ fn examples(chapter: &str, text: &str) -> Vec<Example> {
 /// The field's files the guide's examples read, copied into the scratch directory: parameter
 /// files, raw bench measurements, an oscillation record and Yeadon riders (folder, and the
 /// endings of the files taken from it). docs/hooks/figures.py copies the same for the figures.
-const INPUTS: [(&str, &[&str]); 6] = [
+const INPUTS: [(&str, &[&str]); 8] = [
     ("bicycleparameters", &[".txt", ".yml"]),
     ("humancontrol", &[".txt", ".yml"]),
+    ("humancontrol/gains", &["SteerGains.txt"]),
+    ("humancontrol/optimal", &["Par.txt"]),
     ("bicycleparameters-yaml", &[".txt", ".yml"]),
     ("measured", &["Measured.txt"]),
     ("measured/periods", &[".mat"]),

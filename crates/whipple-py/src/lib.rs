@@ -11,6 +11,7 @@ mod design;
 mod errors;
 mod guard;
 mod human;
+mod handling;
 mod linear;
 mod measure;
 mod period;
@@ -56,6 +57,11 @@ fn _whipple(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(human::check_human_controller, m)?)?;
     m.add_function(wrap_pyfunction!(human::read_gains_text, m)?)?;
     m.add_function(wrap_pyfunction!(human::gain_lookup, m)?)?;
+    m.add_function(wrap_pyfunction!(handling::handling_quality_native, m)?)?;
+    m.add_function(wrap_pyfunction!(
+        handling::handling_against_speed_native,
+        m
+    )?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_FILE_BYTES", whipple::advanced::io::MAX_FILE_BYTES)?;
     Ok(())

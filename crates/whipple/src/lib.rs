@@ -347,6 +347,13 @@ pub mod advanced {
             GainLookup, GainTable, HumanController, HumanGains, HumanLoop, LoopInput, LoopState,
             MAX_GAIN_SPEEDS, NEUROMUSCULAR_DAMPING, NEUROMUSCULAR_FREQUENCY, Neuromuscular, Task,
         };
+        /// Hess's handling quality metric as HumanControl computes it: its exact transfer
+        /// function, magnitude and certified peak over frequency, against speed and against a
+        /// parameter.
+        pub use crate::linear::{
+            HANDLING_FILTER, HandlingPeak, HandlingQuality, HandlingRow, MAX_HANDLING_POINTS,
+            handling_against_parameter, handling_against_speed,
+        };
     }
     #[doc = "Design studies over one or two parameters."]
     pub mod design {

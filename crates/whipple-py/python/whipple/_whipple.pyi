@@ -107,6 +107,16 @@ def parameter_table(form: str = "benchmark") -> List[Tuple[str, str, str, str, b
 def cli_main(argv: List[str]) -> int: ...
 def measure(text: str, file_name: str, strict: bool = False, periods: Optional[str] = None,
             rider: Optional[Tuple[str, str, str]] = None) -> Dict[str, Any]: ...
+def handling_quality_native(bicycle: NativeBicycle, speed: float, frequencies: List[float],
+                            gains_text: Optional[str] = None,
+                            gains_row: Optional[List[float]] = None,
+                            neuro_frequency: float = 30.0,
+                            neuro_damping: float = 0.707) -> Dict[str, Any]: ...
+def handling_against_speed_native(bicycle: NativeBicycle, speeds: List[float],
+                                  gains_text: Optional[str] = None,
+                                  gains_row: Optional[List[float]] = None,
+                                  neuro_frequency: float = 30.0,
+                                  neuro_damping: float = 0.707) -> Dict[str, Any]: ...
 
 class NativeRiderLean:
     @staticmethod

@@ -6,6 +6,7 @@ mod canonical;
 mod characteristic;
 mod controllability;
 mod feedback;
+mod handling;
 mod human;
 mod human_loops;
 mod manoeuvre;
@@ -24,6 +25,10 @@ pub use controllability::{
     uncontrollable_speeds,
 };
 pub use feedback::{ClosedLoop, Gains, MAX_GENERAL_SWEEP_SPEEDS, MAX_SCHEDULE_SPEEDS};
+pub use handling::{
+    HANDLING_FILTER, HandlingPeak, HandlingQuality, HandlingRow, MAX_HANDLING_POINTS,
+    handling_against_parameter, handling_against_speed,
+};
 pub use human::{
     GainLookup, GainTable, HumanController, HumanGains, HumanLoop, LoopInput, LoopState,
     MAX_GAIN_SPEEDS, NEUROMUSCULAR_DAMPING, NEUROMUSCULAR_FREQUENCY, Neuromuscular, Task,

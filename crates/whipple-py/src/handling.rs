@@ -1,0 +1,149 @@
+//! Hess's handling quality metric from Python: the metric, its certified peak and its peaks
+//! against speed computed by the core (`whipple::advanced::control::HandlingQuality`,
+//! `handling_against_speed`); here only the arguments are read and the results shaped into a
+//! dict of numbers and numpy arrays.
+
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use whipple::Error;
+use whipple::advanced::control::{
+    GainTable, HandlingQuality, HumanGains, MAX_HANDLING_POINTS, Neuromuscular,
+    handling_against_speed,
+};
+use whipple::advanced::io::read_gains;
+
+use crate::bicycle::NativeBicycle;
+use crate::errors::IntoPy;
+
+/// The gains: a SteerGains file's text, or one row of five gains (kDelta … kY) used at every
+/// speed.
+fn table(text: Option<String>, row: Option<Vec<f64>>) -> whipple::Result<GainTable> {
+    match (text, row) {
+        (Some(text), None) => read_gains(&text),
+        (None, Some(row)) => {
+            let k: [f64; 5] = row
+                .as_slice()
+                .try_into()
+                .map_err(|_| Error::InvalidArgument {
+                    what: "gains",
+                    rule: format!(
+                        "five gains (kDelta, kPhiDot, kPhi, kPsi, kY), got {}",
+                        row.len()
+                    ),
+                })?;
+            // One row: the table gives it at every speed; `extrapolated` is then not said.
+            GainTable::new(vec![0.0], vec![HumanGains::from_array(k)])
+        }
+        _ => Err(Error::InvalidArgument {
+            what: "gains",
+            rule: "give a SteerGains file or five gains".into(),
+        }),
+    }
+}
+
+/// HQM of `bicycle` at `speed`: a dict of `frequencies`, `magnitudes` (|HQM(jω)|),
+/// `peak`, `peak_frequency`, `certified`, `stable`, `gains` (the five), `extrapolated`,
+/// `numerator` and `denominator` (lowest power of s first).
+#[pyfunction]
+#[pyo3(signature = (bicycle, speed, frequencies, gains_text=None, gains_row=None, neuro_frequency=30.0, neuro_damping=0.707))]
+#[allow(clippy::too_many_arguments)]
+pub fn handling_quality_native<'py>(
+    py: Python<'py>,
+    bicycle: &NativeBicycle,
+    speed: f64,
+    frequencies: Vec<f64>,
+    gains_text: Option<String>,
+    gains_row: Option<Vec<f64>>,
+    neuro_frequency: f64,
+    neuro_damping: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let bike = bicycle.checked.benchmark;
+    let single_row = gains_row.is_some();
+    let neuromuscular = Neuromuscular {
+        frequency: neuro_frequency,
+        damping: neuro_damping,
+    };
+    let (hqm, extrapolated, peak, magnitudes) = py
+        .detach(|| -> whipple::Result<_> {
+            let table = table(gains_text, gains_row)?;
+            let lookup = table.at(speed)?;
+            let hqm = HandlingQuality::new(&bike, speed, &lookup.gains, &neuromuscular)?;
+            let peak = hqm.peak()?;
+            let magnitudes = hqm.magnitude(&frequencies)?;
+            Ok((hqm, lookup.extrapolated && !single_row, peak, magnitudes))
+        })
+        .py_err(py)?;
+    let d = PyDict::new(py);
+    d.set_item("speed", speed)?;
+    d.set_item("frequencies", PyArray1::from_slice(py, &frequencies))?;
+    d.set_item("magnitudes", PyArray1::from_vec(py, magnitudes))?;
+    d.set_item("peak", peak.magnitude)?;
+    d.set_item("peak_frequency", peak.frequency)?;
+    d.set_item("certified", peak.certified)?;
+    d.set_item("stable", hqm.is_stable())?;
+    d.set_item("gains", hqm.gains().to_array().to_vec())?;
+    d.set_item("extrapolated", extrapolated)?;
+    d.set_item("numerator", PyArray1::from_slice(py, hqm.numerator()))?;
+    d.set_item("denominator", PyArray1::from_slice(py, hqm.denominator()))?;
+    Ok(d)
+}
+
+/// HQM's peak at each of `speeds`: a dict of numpy arrays `speeds`, `peaks`,
+/// `peak_frequencies`, and of booleans `certified`, `stable`, `extrapolated`.
+#[pyfunction]
+#[pyo3(signature = (bicycle, speeds, gains_text=None, gains_row=None, neuro_frequency=30.0, neuro_damping=0.707))]
+pub fn handling_against_speed_native<'py>(
+    py: Python<'py>,
+    bicycle: &NativeBicycle,
+    speeds: Vec<f64>,
+    gains_text: Option<String>,
+    gains_row: Option<Vec<f64>>,
+    neuro_frequency: f64,
+    neuro_damping: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let bike = bicycle.checked.benchmark;
+    let single_row = gains_row.is_some();
+    let neuromuscular = Neuromuscular {
+        frequency: neuro_frequency,
+        damping: neuro_damping,
+    };
+    if speeds.len() > MAX_HANDLING_POINTS {
+        return Err(whipple::Error::LimitExceeded {
+            what: "speeds",
+            rule: format!("at most {MAX_HANDLING_POINTS}, got {}", speeds.len()),
+        })
+        .py_err(py);
+    }
+    let rows = py
+        .detach(|| -> whipple::Result<_> {
+            let table = table(gains_text, gains_row)?;
+            handling_against_speed(&bike, &table, &neuromuscular, &speeds)
+        })
+        .py_err(py)?;
+    let d = PyDict::new(py);
+    d.set_item("speeds", PyArray1::from_slice(py, &speeds))?;
+    d.set_item(
+        "peaks",
+        PyArray1::from_vec(py, rows.iter().map(|r| r.peak.magnitude).collect()),
+    )?;
+    d.set_item(
+        "peak_frequencies",
+        PyArray1::from_vec(py, rows.iter().map(|r| r.peak.frequency).collect()),
+    )?;
+    d.set_item(
+        "certified",
+        rows.iter().map(|r| r.peak.certified).collect::<Vec<bool>>(),
+    )?;
+    d.set_item(
+        "stable",
+        rows.iter().map(|r| r.stable).collect::<Vec<bool>>(),
+    )?;
+    d.set_item(
+        "extrapolated",
+        rows.iter()
+            .map(|r| r.extrapolated && !single_row)
+            .collect::<Vec<bool>>(),
+    )?;
+    Ok(d)
+}
