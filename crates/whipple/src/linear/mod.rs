@@ -7,6 +7,7 @@ mod characteristic;
 mod controllability;
 mod feedback;
 mod human;
+mod lane_change;
 mod manoeuvre;
 mod response;
 mod riccati;
@@ -26,6 +27,10 @@ pub use feedback::{ClosedLoop, Gains, MAX_GENERAL_SWEEP_SPEEDS, MAX_SCHEDULE_SPE
 pub use human::{
     GainLookup, GainTable, HumanController, HumanGains, HumanLoop, LoopInput, LoopState,
     MAX_GAIN_SPEEDS, NEUROMUSCULAR_DAMPING, NEUROMUSCULAR_FREQUENCY, Neuromuscular, Task,
+};
+pub use lane_change::{
+    LaneChange, LaneChangeRun, LaneKind, MAX_LANE_CHANGE_SAMPLES, PATH_FILTER_FREQUENCY,
+    PREVIEW_TIME, lane_change_linear, lane_change_nonlinear,
 };
 pub use manoeuvre::{
     MAX_MANOEUVRE_BREAKS, Manoeuvre, ManoeuvreComparison, ManoeuvreMotion, compare_manoeuvre,
