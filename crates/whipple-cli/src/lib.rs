@@ -12,6 +12,7 @@ mod design;
 mod feedback;
 mod figures;
 mod interrupt;
+mod lane_change;
 mod measure;
 mod output;
 mod period;
