@@ -10,6 +10,7 @@ mod control;
 mod design;
 mod errors;
 mod guard;
+mod lane_change;
 mod linear;
 mod measure;
 mod period;

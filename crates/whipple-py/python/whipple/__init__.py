@@ -20,6 +20,7 @@ from ._errors import (AccuracyLostError, ArgumentError, LimitError, NoSteadyTurn
 from ._control import (ClosedLoop, Controllability, GroundPath, Lqr, ManoeuvreComparison,
                        ModalControllability, TimeResponse, UncontrollableSpeeds)
 from ._design import DesignMap, design_map_dask
+from ._lane_change import lane_change
 from ._measure import Measurement, measure
 from ._period import PeriodFit, fit_period, read_period
 from ._plot import plot_bode, plot_eigenvalues
@@ -35,7 +36,7 @@ __all__ = [
     "LinearSystem", "TransferFunction", "FrequencyResponse", "Signal",
     "TimeResponse", "GroundPath", "Lqr", "Controllability", "ModalControllability",
     "UncontrollableSpeeds", "ClosedLoop", "ManoeuvreComparison",
-    "PeriodFit", "fit_period", "read_period",
+    "PeriodFit", "fit_period", "read_period", "lane_change",
     "DesignMap", "design_map_dask", "measure", "Measurement", "plot_eigenvalues", "plot_bode", "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
     "WhippleError", "ParameterError", "StrictError", "ParseError", "UnknownPresetError",
     "ArgumentError", "LimitError", "NumericalError", "AccuracyLostError", "NoSteadyTurnError",
