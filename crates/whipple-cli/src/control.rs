@@ -149,6 +149,10 @@ enum ControlCommand {
         #[arg(long, value_enum, default_value = "table")]
         format: TextFormat,
     },
+    /// HumanControl's single or double lane change ridden by Hess's controller (the lateral
+    /// task, gains from a SteerGains file) on the linear bicycle (exactly), the non-linear one,
+    /// or both: a CSV of the runs and a figure of the path and the lateral error.
+    LaneChange(crate::lane_change::LaneChangeArgs),
 }
 
 /// Runs `whipple control`.
@@ -203,6 +207,7 @@ pub fn run(cx: &RunContext, args: &ControlArgs) -> Result<()> {
             format,
         } => crate::feedback::place(cx, bike, *speed, input, poles, *format),
         ControlCommand::Hess(args) => crate::hess::hess(cx, args),
+        ControlCommand::LaneChange(args) => crate::lane_change::run(cx, args),
     }
 }
 

@@ -14,6 +14,7 @@ mod figures;
 mod hess;
 mod hqm;
 mod interrupt;
+mod lane_change;
 mod measure;
 mod output;
 mod period;

@@ -217,7 +217,7 @@ pub fn linear(cx: &RunContext, args: &TimeArgs, kind: &Kind) -> Result<()> {
 }
 
 /// A result with six significant digits, for the summaries (the CSV has every digit).
-fn short(x: f64) -> Result<String> {
+pub(crate) fn short(x: f64) -> Result<String> {
     number(x)?;
     let size = x.abs();
     Ok(if x == 0.0 {

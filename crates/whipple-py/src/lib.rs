@@ -12,6 +12,7 @@ mod errors;
 mod guard;
 mod human;
 mod handling;
+mod lane_change;
 mod linear;
 mod measure;
 mod period;

@@ -52,4 +52,4 @@ pub use table::{
 pub use time_series::{SimulationSeries, time_series_plot};
 pub use tornado::{Bar, tornado_plot};
 pub use turns::{HeldCurve, TurnPoint, TurnsData, turns_plot};
-pub use xy::{Marker, Series, XyPlotOptions, line_plot, xy_log_plot};
+pub use xy::{Marker, Series, XyPlotOptions, line_plot, stacked_line_plots, xy_log_plot};

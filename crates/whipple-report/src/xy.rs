@@ -134,12 +134,76 @@ pub fn xy_log_plot(
     build(series, markers, options, true)
 }
 
+/// Several line plots stacked top to bottom in one figure of `size` pixels, each with its own
+/// axes, title and legend (for example a path in the plane above an error against time).
+///
+/// ```
+/// use whipple_report::{stacked_line_plots, Series, XyPlotOptions};
+/// let top = (vec![Series::new("path", vec![(0.0, 0.0), (1.0, 1.0)])], XyPlotOptions::default());
+/// let bottom = (vec![Series::new("error", vec![(0.0, 0.1), (1.0, 0.0)])], XyPlotOptions::default());
+/// let svg = stacked_line_plots(&[top, bottom], (1000, 900))?.to_svg()?;
+/// assert!(svg.contains("path") && svg.contains("error"));
+/// # Ok::<(), whipple_report::Error>(())
+/// ```
+pub fn stacked_line_plots(
+    panels: &[(Vec<Series>, XyPlotOptions)],
+    size: (u32, u32),
+) -> Result<Figure> {
+    if panels.is_empty() {
+        return Err(Error::InvalidArgument {
+            what: "panels",
+            rule: "at least one panel is needed".into(),
+        });
+    }
+    let mut figures = Vec::with_capacity(panels.len());
+    for (series, options) in panels {
+        figures.push(checked(series, &[], options, false)?);
+    }
+    Figure {
+        width: 100,
+        height: 100,
+        content: Content::Stacked(Box::new(XyStack { panels: figures })),
+    }
+    .with_size(size.0, size.1)
+}
+
+/// Line plots one above the other.
+#[derive(Debug, Clone)]
+pub(crate) struct XyStack {
+    panels: Vec<XyFigure>,
+}
+
+impl XyStack {
+    pub(crate) fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        let areas = root.split_evenly((self.panels.len(), 1));
+        for (panel, area) in self.panels.iter().zip(&areas) {
+            panel.draw(area)?;
+        }
+        Ok(())
+    }
+}
+
 fn build(
     series: &[Series],
     markers: &[Marker],
     options: &XyPlotOptions,
     log: bool,
 ) -> Result<Figure> {
+    Figure {
+        width: 100,
+        height: 100,
+        content: Content::Xy(Box::new(checked(series, markers, options, log)?)),
+    }
+    .with_size(options.size.0, options.size.1)
+}
+
+/// A line plot's content, its ranges checked.
+fn checked(
+    series: &[Series],
+    markers: &[Marker],
+    options: &XyPlotOptions,
+    log: bool,
+) -> Result<XyFigure> {
     for (what, r) in [
         ("x axis range", options.x_range),
         ("y axis range", options.y_range),
@@ -153,17 +217,12 @@ fn build(
             }
         }
     }
-    Figure {
-        width: 100,
-        height: 100,
-        content: Content::Xy(Box::new(XyFigure {
-            series: series.to_vec(),
-            markers: markers.to_vec(),
-            options: options.clone(),
-            log,
-        })),
-    }
-    .with_size(options.size.0, options.size.1)
+    Ok(XyFigure {
+        series: series.to_vec(),
+        markers: markers.to_vec(),
+        options: options.clone(),
+        log,
+    })
 }
 
 /// The span of finite values, widened when empty or degenerate.

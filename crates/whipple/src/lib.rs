@@ -354,6 +354,12 @@ pub mod advanced {
             HANDLING_FILTER, HandlingPeak, HandlingQuality, HandlingRow, MAX_HANDLING_POINTS,
             handling_against_parameter, handling_against_speed,
         };
+        /// HumanControl's single and double lane change, ridden by Hess's controller on the
+        /// linear bicycle (exactly) and on the non-linear one.
+        pub use crate::linear::{
+            LaneChange, LaneChangeRun, LaneKind, MAX_LANE_CHANGE_SAMPLES, PATH_FILTER_FREQUENCY,
+            PREVIEW_TIME, lane_change_linear, lane_change_nonlinear,
+        };
     }
     #[doc = "Design studies over one or two parameters."]
     pub mod design {

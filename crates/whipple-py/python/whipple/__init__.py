@@ -24,6 +24,7 @@ from ._human import (ExtrapolationWarning, GainLookup, GainTable, HumanControlle
                      HumanLoop, LoopTransferFunction, RiderLoop, hess_gains, human_eigenvalues,
                      read_gains)
 from ._handling import HandlingQuality, handling_quality
+from ._lane_change import lane_change
 from ._measure import Measurement, measure
 from ._period import PeriodFit, fit_period, read_period
 from ._plot import plot_bode, plot_eigenvalues
@@ -45,6 +46,7 @@ __all__ = [
     "GainLookup", "read_gains", "hess_gains", "human_eigenvalues", "HumanEigen",
     "ExtrapolationWarning",
     "HandlingQuality", "handling_quality",
+    "lane_change",
     "DesignMap", "design_map_dask", "measure", "Measurement", "plot_eigenvalues", "plot_bode", "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
     "WhippleError", "ParameterError", "StrictError", "ParseError", "UnknownPresetError",
     "ArgumentError", "LimitError", "NumericalError", "AccuracyLostError", "NoSteadyTurnError",

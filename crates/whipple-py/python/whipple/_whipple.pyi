@@ -67,6 +67,9 @@ class NativeBicycle:
     def compare_manoeuvre(self, speed: float, lean: float, steer: float,
                           torques: List[Tuple[str, List[float], List[float]]],
                           times: List[float], rtol: float) -> Dict[str, Any]: ...
+    def lane_change(self, speed: float, gains: Optional[List[float]], gains_text: Optional[str],
+                    lane: str, width: Optional[float], model: str, neuro_frequency: float,
+                    neuro_damping: float, rtol: float) -> Dict[str, Any]: ...
     def eig(self, speeds: npt.NDArray[np.float64], tracked: bool = True, parallel: bool = True
             ) -> Tuple[npt.NDArray[np.complex128], npt.NDArray[np.complex128],
                        Optional[List[str]]]: ...

@@ -9,6 +9,7 @@ mod feedback;
 mod handling;
 mod human;
 mod human_loops;
+mod lane_change;
 mod manoeuvre;
 mod response;
 mod riccati;
@@ -36,6 +37,10 @@ pub use human::{
 pub use human_loops::{
     Crossover, CrossoverRules, GainSchedule, HumanSweepRow, LoopResponse, LoopTransferFunction,
     MAX_HUMAN_SWEEP_SPEEDS, RiderLoop, hess_gains, human_eigen_sweep,
+};
+pub use lane_change::{
+    LaneChange, LaneChangeRun, LaneKind, MAX_LANE_CHANGE_SAMPLES, PATH_FILTER_FREQUENCY,
+    PREVIEW_TIME, lane_change_linear, lane_change_nonlinear,
 };
 pub use manoeuvre::{
     MAX_MANOEUVRE_BREAKS, Manoeuvre, ManoeuvreComparison, ManoeuvreMotion, compare_manoeuvre,

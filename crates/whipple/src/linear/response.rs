@@ -470,56 +470,7 @@ impl LinearSystem {
                 format!("{} is not finite ({})", self.states()[k], initial[k]),
             );
         }
-        if times.is_empty() {
-            return bad("times", "at least one sample time is needed".into());
-        }
-        if times.len() > MAX_RESPONSE_TIMES {
-            return Err(Error::LimitExceeded {
-                what: "times",
-                rule: format!(
-                    "at most {MAX_RESPONSE_TIMES} sample times, got {}",
-                    times.len()
-                ),
-            });
-        }
-        let width = n + self.outputs().len();
-        let values = width.saturating_mul(times.len());
-        if values > MAX_RESPONSE_VALUES {
-            return Err(Error::LimitExceeded {
-                what: "times",
-                rule: format!(
-                    "{} sample times of {width} states and outputs are {values} numbers (about {} MB); at most {MAX_RESPONSE_VALUES}",
-                    times.len(),
-                    values / 125_000
-                ),
-            });
-        }
-        for (k, t) in times.iter().enumerate() {
-            if !t.is_finite() {
-                return bad("times", format!("time {} is not finite ({t})", k + 1));
-            }
-            if k == 0 && *t < 0.0 {
-                return bad(
-                    "times",
-                    format!(
-                        "the initial state is at t = 0: the first time must be >= 0, got {}",
-                        short_number(*t)
-                    ),
-                );
-            }
-            if k > 0 && *t <= times[k - 1] {
-                return bad(
-                    "times",
-                    format!(
-                        "must increase: time {} ({} s) is not after time {k} ({} s)",
-                        k + 1,
-                        short_number(*t),
-                        short_number(times[k - 1])
-                    ),
-                );
-            }
-        }
-        Ok(())
+        check_times(times, n + self.outputs().len())
     }
 
     /// The exact response from the state `initial` at t = 0 (one value per state, in the
@@ -549,90 +500,15 @@ impl LinearSystem {
         times: &[f64],
     ) -> Result<TimeResponse> {
         self.check_response(initial, times)?;
-        let m = self.inputs().len();
-        if inputs.len() != m {
-            return Err(Error::InvalidArgument {
-                what: "inputs",
-                rule: format!(
-                    "one signal per input of the system ({m}), got {}",
-                    inputs.len()
-                ),
-            });
-        }
-        let total_knots = inputs.iter().map(|s| s.knots.len()).sum::<usize>();
-        if total_knots > MAX_KNOTS {
-            return Err(Error::LimitExceeded {
-                what: "knots",
-                rule: format!("at most {MAX_KNOTS} knots in all the inputs, got {total_knots}"),
-            });
-        }
-        let t_end = times[times.len() - 1];
-        // The knots strictly inside (0, t_end): where an input may bend or jump.
-        let mut knots: Vec<f64> = inputs
-            .iter()
-            .flat_map(|s| s.knots.iter().copied())
-            .filter(|t| *t > 0.0 && *t < t_end)
-            .collect();
-        knots.sort_by(f64::total_cmp);
-        knots.dedup();
-
+        let (states, outputs) = exact_response(
+            (self.a(), self.b(), self.c(), self.d()),
+            initial,
+            inputs,
+            times,
+        )?;
         let mut result = self.empty_response(times);
-        let mut exponentials = Exponentials {
-            a: self.a(),
-            cached: Vec::new(),
-        };
-        let (a, b) = (self.a(), self.b());
-        let u_at = |t: f64, before: bool| -> DVector<f64> {
-            DVector::from_iterator(
-                m,
-                inputs.iter().map(|s| {
-                    if before {
-                        s.value_before(t)
-                    } else {
-                        s.value(t)
-                    }
-                }),
-            )
-        };
-        let mut x = DVector::from_column_slice(initial);
-        let mut t = 0.0;
-        let mut next_knot = 0;
-        for (k, &sample) in times.iter().enumerate() {
-            while t < sample {
-                let end = match knots.get(next_knot) {
-                    Some(&knot) if knot < sample => {
-                        next_knot += 1;
-                        knot
-                    }
-                    _ => sample,
-                };
-                if end <= t {
-                    continue;
-                }
-                let h = end - t;
-                let (u0, u1) = (u_at(t, false), u_at(end, true));
-                let bu0 = b * &u0;
-                let b_slope = b * ((&u1 - &u0) / h);
-                x = exponentials.with(h, end, |e| {
-                    let mut next = &e.phi * &x + &e.psi1 * &bu0 + &e.psi2 * &b_slope;
-                    // The length used may differ from h by round-off of the times: one Euler
-                    // step over the rest, at the end's input.
-                    let delta = h - e.h;
-                    if delta != 0.0 {
-                        let slope = a * &next + b * &u1;
-                        next += slope * delta;
-                    }
-                    next
-                })?;
-                t = end;
-            }
-            self.record(&mut result, k, &x, &u_at(sample, false));
-        }
-        if !result.states.iter().all(|x| x.is_finite()) {
-            return Err(Error::NonFinite {
-                context: "the time response (it grows beyond double precision)".into(),
-            });
-        }
+        result.states = states;
+        result.outputs = outputs;
         Ok(result)
     }
 
@@ -821,4 +697,167 @@ impl LinearSystem {
         result.states.row_mut(k).copy_from(&x.transpose());
         result.outputs.row_mut(k).copy_from(&y.transpose());
     }
+}
+
+/// The exact response of ẋ = A x + B u, y = C x + D u (the matrices in that order) from
+/// `initial` at t = 0 to the piecewise-linear `inputs` (one per column of B), sampled at
+/// `times`: the states and the outputs, one row per time. The engine behind
+/// [`LinearSystem::response`], for any system (a closed loop with its command filter, say).
+/// Errors name `initial state`, `inputs`, `times` or `knots`.
+pub(crate) fn exact_response(
+    (a, b, c, d): (&DMatrix<f64>, &DMatrix<f64>, &DMatrix<f64>, &DMatrix<f64>),
+    initial: &[f64],
+    inputs: &[InputSignal],
+    times: &[f64],
+) -> Result<(DMatrix<f64>, DMatrix<f64>)> {
+    let n = a.nrows();
+    if initial.len() != n || initial.iter().any(|x| !x.is_finite()) {
+        return Err(Error::InvalidArgument {
+            what: "initial state",
+            rule: format!("{n} finite values, one per state, got {:?}", initial),
+        });
+    }
+    check_times(times, n + c.nrows())?;
+    let m = b.ncols();
+    if inputs.len() != m {
+        return Err(Error::InvalidArgument {
+            what: "inputs",
+            rule: format!(
+                "one signal per input of the system ({m}), got {}",
+                inputs.len()
+            ),
+        });
+    }
+    let total_knots = inputs.iter().map(|s| s.knots.len()).sum::<usize>();
+    if total_knots > MAX_KNOTS {
+        return Err(Error::LimitExceeded {
+            what: "knots",
+            rule: format!("at most {MAX_KNOTS} knots in all the inputs, got {total_knots}"),
+        });
+    }
+    let t_end = times[times.len() - 1];
+    // The knots strictly inside (0, t_end): where an input may bend or jump.
+    let mut knots: Vec<f64> = inputs
+        .iter()
+        .flat_map(|s| s.knots.iter().copied())
+        .filter(|t| *t > 0.0 && *t < t_end)
+        .collect();
+    knots.sort_by(f64::total_cmp);
+    knots.dedup();
+
+    let mut states = DMatrix::zeros(times.len(), a.nrows());
+    let mut outputs = DMatrix::zeros(times.len(), c.nrows());
+    let mut exponentials = Exponentials {
+        a,
+        cached: Vec::new(),
+    };
+    let u_at = |t: f64, before: bool| -> DVector<f64> {
+        DVector::from_iterator(
+            m,
+            inputs.iter().map(|s| {
+                if before {
+                    s.value_before(t)
+                } else {
+                    s.value(t)
+                }
+            }),
+        )
+    };
+    let mut x = DVector::from_column_slice(initial);
+    let mut t = 0.0;
+    let mut next_knot = 0;
+    for (k, &sample) in times.iter().enumerate() {
+        while t < sample {
+            let end = match knots.get(next_knot) {
+                Some(&knot) if knot < sample => {
+                    next_knot += 1;
+                    knot
+                }
+                _ => sample,
+            };
+            if end <= t {
+                continue;
+            }
+            let h = end - t;
+            let (u0, u1) = (u_at(t, false), u_at(end, true));
+            let bu0 = b * &u0;
+            let b_slope = b * ((&u1 - &u0) / h);
+            x = exponentials.with(h, end, |e| {
+                let mut next = &e.phi * &x + &e.psi1 * &bu0 + &e.psi2 * &b_slope;
+                // The length used may differ from h by round-off of the times: one Euler
+                // step over the rest, at the end's input.
+                let delta = h - e.h;
+                if delta != 0.0 {
+                    let slope = a * &next + b * &u1;
+                    next += slope * delta;
+                }
+                next
+            })?;
+            t = end;
+        }
+        let y = c * &x + d * u_at(sample, false);
+        states.row_mut(k).copy_from(&x.transpose());
+        outputs.row_mut(k).copy_from(&y.transpose());
+    }
+    if !states.iter().all(|x| x.is_finite()) {
+        return Err(Error::NonFinite {
+            context: "the time response (it grows beyond double precision)".into(),
+        });
+    }
+    Ok((states, outputs))
+}
+
+/// Checks sample times (at least one, finite, increasing, the first ≥ 0) and the size of a
+/// result holding `width` numbers per time.
+fn check_times(times: &[f64], width: usize) -> Result<()> {
+    let bad = |what: &'static str, rule: String| Err(Error::InvalidArgument { what, rule });
+    if times.is_empty() {
+        return bad("times", "at least one sample time is needed".into());
+    }
+    if times.len() > MAX_RESPONSE_TIMES {
+        return Err(Error::LimitExceeded {
+            what: "times",
+            rule: format!(
+                "at most {MAX_RESPONSE_TIMES} sample times, got {}",
+                times.len()
+            ),
+        });
+    }
+    let values = width.saturating_mul(times.len());
+    if values > MAX_RESPONSE_VALUES {
+        return Err(Error::LimitExceeded {
+            what: "times",
+            rule: format!(
+                "{} sample times of {width} states and outputs are {values} numbers (about {} MB); at most {MAX_RESPONSE_VALUES}",
+                times.len(),
+                values / 125_000
+            ),
+        });
+    }
+    for (k, t) in times.iter().enumerate() {
+        if !t.is_finite() {
+            return bad("times", format!("time {} is not finite ({t})", k + 1));
+        }
+        if k == 0 && *t < 0.0 {
+            return bad(
+                "times",
+                format!(
+                    "the initial state is at t = 0: the first time must be >= 0, got {}",
+                    short_number(*t)
+                ),
+            );
+        }
+        if k > 0 && *t <= times[k - 1] {
+            return bad(
+                "times",
+                format!(
+                    "must increase: time {} ({} s) is not after time {k} ({} s)",
+                    k + 1,
+                    short_number(*t),
+                    short_number(times[k - 1])
+                ),
+            );
+        }
+    }
+    Ok(())
 }

@@ -35,10 +35,12 @@
 //! | `projection.rs` | positions and velocities back onto the constraints |
 //! | `lean.rs` | [`LeanModel`]: the rider's upper body as a fifth body hinged to the rear frame, its forward dynamics, energy and exact linearization |
 //! | `reduced.rs` | the model on the linear model's state [φ, δ, φ̇, δ̇] and in spin-free speeds |
+//! | `carried.rs` | a simulation carrying a controller's states beside the bicycle's (the rider's torque read from them) |
 //! | `settings.rs`, `outcome.rs`, `simulate.rs` | a simulation's settings and bounds, its results, the run itself (rider torques as expressions are the crate's `expression.rs`, shared with the parameter files' values) |
 
 mod assembly;
 mod bodies;
+pub(crate) mod carried;
 mod configuration;
 mod constraints;
 mod contact;
