@@ -157,6 +157,17 @@ fn window(line: &str, column: usize) -> (String, usize) {
 }
 
 /// A parse error with the file name and, where known, the offending line with a caret.
+/// A HumanControl gains file (`*SteerGains.txt`) read for `--gains`: capped in size like a
+/// parameter file, UTF-8, registered as an input (never overwritten by an output), its errors
+/// placed at the line and column.
+pub(crate) fn read_gains_file(path: &Path) -> Result<whipple::advanced::control::GainTable> {
+    let bytes = read_capped(path).with_context(|| format!("--gains {}", path.display()))?;
+    crate::output::register_input(path);
+    let text = String::from_utf8(bytes)
+        .map_err(|_| anyhow!("--gains {}: the file is not UTF-8 text", path.display()))?;
+    whipple::advanced::io::read_gains(&text).map_err(|e| located(e, path, &text))
+}
+
 pub(crate) fn located(error: Error, path: &Path, text: &str) -> anyhow::Error {
     match &error {
         Error::Parse { line, column, .. } if *line > 0 => {

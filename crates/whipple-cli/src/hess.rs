@@ -5,7 +5,7 @@
 //! eigenvalues against speed. Every number is the library's.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -14,7 +14,6 @@ use whipple::advanced::control::{
     CrossoverRules, GainSchedule, GainTable, HumanController, HumanLoop, Neuromuscular, Task,
     hess_gains, human_eigen_sweep,
 };
-use whipple::advanced::io::read_gains;
 
 use crate::TextFormat;
 use crate::bike::{RunContext, load};
@@ -64,14 +63,6 @@ pub struct HessArgs {
     /// Output format.
     #[arg(long, value_enum, default_value = "table")]
     format: TextFormat,
-}
-
-fn read_table(path: &Path) -> Result<GainTable> {
-    let bytes = crate::bike::read_capped(path)?;
-    crate::output::register_input(path);
-    let text = String::from_utf8(bytes)
-        .map_err(|_| anyhow::anyhow!("--gains {}: the file is not UTF-8 text", path.display()))?;
-    read_gains(&text).with_context(|| format!("--gains {}", path.display()))
 }
 
 fn parse_finite(text: &str) -> Result<f64> {
@@ -125,7 +116,11 @@ pub fn hess(cx: &RunContext, args: &HessArgs) -> Result<()> {
         frequency: args.neuro_frequency,
         damping: args.neuro_damping,
     };
-    let table = args.gains.as_deref().map(read_table).transpose()?;
+    let table = args
+        .gains
+        .as_deref()
+        .map(crate::bike::read_gains_file)
+        .transpose()?;
     let source = match &args.gains {
         Some(p) => format!("from {}", p.display()),
         None => "by Hess 2012's rules".to_string(),
@@ -296,13 +291,12 @@ pub fn hess(cx: &RunContext, args: &HessArgs) -> Result<()> {
             )?;
             writeln!(t, "gains {words}:")?;
             let k = gains.to_array();
-            for i in 0..used {
-                writeln!(
-                    t,
-                    "  {:<8} {}",
-                    whipple::advanced::control::HumanGains::NAMES[i],
-                    number(k[i])?
-                )?;
+            for (name, value) in whipple::advanced::control::HumanGains::NAMES
+                .iter()
+                .zip(k)
+                .take(used)
+            {
+                writeln!(t, "  {name:<8} {}", number(value)?)?;
             }
             writeln!(
                 t,

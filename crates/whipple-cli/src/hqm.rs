@@ -5,7 +5,7 @@
 //! the bicycle at one speed. `--plot` draws |HQM(jω)| against ω (one speed) or the peaks.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -14,22 +14,18 @@ use whipple::advanced::control::{
     GainTable, HandlingQuality, HandlingRow, Neuromuscular, handling_against_parameter,
     handling_against_speed,
 };
-use whipple::advanced::io::read_gains;
 use whipple_report::{Dash, Series, XyPlotOptions, line_plot};
 
 use crate::TextFormat;
 use crate::bike::{RunContext, load};
 use crate::commands::emit;
-use crate::output::{Target, number, parse_triple, register_input};
+use crate::output::{Target, number, parse_triple};
 
 /// The most speeds `hqm --speeds` evaluates.
 pub const MAX_HQM_SPEEDS: usize = 100_000;
 
 /// The most points of a drawn |HQM(jω)| curve.
 const PLOT_POINTS: usize = 2000;
-
-/// A gains file larger than this is not HumanControl's (theirs are a few kilobytes).
-const MAX_GAINS_BYTES: u64 = 16 << 20;
 
 /// The arguments of `whipple control hqm`.
 #[derive(Args)]
@@ -70,23 +66,6 @@ pub struct HqmArgs {
     plot: Option<PathBuf>,
 }
 
-fn read_table(path: &Path) -> Result<GainTable> {
-    let size = std::fs::metadata(path)
-        .with_context(|| format!("--gains {}", path.display()))?
-        .len();
-    if size > MAX_GAINS_BYTES {
-        bail!(
-            "--gains {}: {size} bytes, more than the {} MiB a gains file may hold",
-            path.display(),
-            MAX_GAINS_BYTES >> 20
-        );
-    }
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("--gains {}", path.display()))?;
-    register_input(path);
-    read_gains(&text).with_context(|| format!("--gains {}", path.display()))
-}
-
 fn lookup_word(table: &GainTable, v: f64, extrapolated: bool) -> &'static str {
     if extrapolated {
         "extrapolated"
@@ -121,7 +100,7 @@ pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
         damping: args.neuro_damping,
     };
     let bike = load(cx, &args.bike)?;
-    let table = read_table(&args.gains)?;
+    let table = crate::bike::read_gains_file(&args.gains)?;
     let gains_name = args
         .gains
         .file_name()
@@ -130,8 +109,8 @@ pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
     let (text, figure) = match (args.speed, args.speeds.as_deref()) {
         (Some(v), None) if args.vary.is_some() => {
             let spec = args.vary.as_deref().unwrap_or_default();
-            let axis = whipple_front::design::AxisSpec::parse(spec, &bike.bicycle)
-                .context("--vary")?;
+            let axis =
+                whipple_front::design::AxisSpec::parse(spec, &bike.bicycle).context("--vary")?;
             let lookup = table.at(v).context("--speed")?;
             if lookup.extrapolated {
                 eprintln!(
@@ -139,7 +118,9 @@ pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
                     number(v)?
                 );
             }
-            let values: Vec<f64> = (0..axis.axis.count).map(|i| axis.axis.si_value(i)).collect();
+            let values: Vec<f64> = (0..axis.axis.count)
+                .map(|i| axis.axis.si_value(i))
+                .collect();
             let rows = handling_against_parameter(
                 &bike.bicycle,
                 &axis.axis.parameter,
@@ -158,7 +139,16 @@ pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
                 axis.name,
                 number(v)?
             );
-            sweep(&bike.label, &gains_name, &x_name, &title, &xs, &rows, &words, args)?
+            sweep(
+                &bike.label,
+                &gains_name,
+                &x_name,
+                &title,
+                &xs,
+                &rows,
+                &words,
+                args,
+            )?
         }
         (Some(v), None) => one_speed(&bike, &table, &gains_name, v, &neuromuscular, args)?,
         (None, Some(speeds)) => {
@@ -185,7 +175,16 @@ pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
                 .map(|r| lookup_word(&table, r.speed, r.extrapolated))
                 .collect();
             let title = format!("{}: peak HQM against speed ({gains_name})", bike.label);
-            sweep(&bike.label, &gains_name, "speed [m/s]", &title, &xs, &rows, &words, args)?
+            sweep(
+                &bike.label,
+                &gains_name,
+                "speed [m/s]",
+                &title,
+                &xs,
+                &rows,
+                &words,
+                args,
+            )?
         }
         _ => bail!("give --speed V or --speeds START:STOP:STEP"),
     };

@@ -4,7 +4,7 @@
 //! the front contact in the plane above the lateral loop's error against time.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::{Args, ValueEnum};
@@ -12,10 +12,9 @@ use whipple::advanced::control::{
     HumanController, LaneChange, LaneChangeRun, LaneKind, Neuromuscular, Task, lane_change_linear,
     lane_change_nonlinear,
 };
-use whipple::advanced::io::read_gains;
 use whipple_report::{Dash, Series, XyPlotOptions, stacked_line_plots};
 
-use crate::bike::{RunContext, load, located, read_capped};
+use crate::bike::{RunContext, load};
 use crate::output::{self, Target, number};
 use crate::time_response::short;
 
@@ -112,7 +111,7 @@ pub fn run(cx: &RunContext, args: &LaneChangeArgs) -> Result<()> {
         _ => bail!("give the bicycle: --bike FILE|NAME or --preset NAME"),
     };
     let bike = load(cx, bike_arg)?;
-    let table = read_gains_file(&args.gains)?;
+    let table = crate::bike::read_gains_file(&args.gains)?;
     let lookup = table.at(args.speed).map_err(core)?;
     if lookup.extrapolated {
         eprintln!(
@@ -189,14 +188,6 @@ pub fn run(cx: &RunContext, args: &LaneChangeArgs) -> Result<()> {
 /// A core error in the front end's words.
 fn core(error: whipple::Error) -> anyhow::Error {
     anyhow!(whipple_front::message::message(&error))
-}
-
-fn read_gains_file(path: &Path) -> Result<whipple::advanced::control::GainTable> {
-    output::register_input(path);
-    let bytes = read_capped(path).with_context(|| format!("--gains {}", path.display()))?;
-    let text = String::from_utf8(bytes)
-        .map_err(|_| anyhow!("--gains {}: not UTF-8 text", path.display()))?;
-    read_gains(&text).map_err(|e| located(e, path, &text))
 }
 
 fn summary(title: &str, runs: &[(&str, &LaneChangeRun)]) -> Result<String> {
