@@ -126,13 +126,17 @@ enum ControlCommand {
     /// HumanControl SteerGains file: the peak of |HQM(jω)| over frequency (certified) at one
     /// speed, or against speed; Hess reads peaks below 5 as good handling, above 8 as poor.
     Hqm(crate::hqm::HqmArgs),
-    /// Pole placement for one input: the K (1 × 4) that gives A − B K the poles asked for, and
-    /// the check (the closed loop's eigenvalues).
+    /// The design search of BMD 2016: the peak HQM at a design speed minimized over chosen
+    /// parameters within bounds (`--vary trail=0:0.2 --vary head_angle_deg=60:85`), the gains
+    /// set for each candidate by Hess 2012's rules; Nelder–Mead from several starts (local).
+    OptimalHandling(crate::optimal::OptimalArgs),
     /// The bicycle ridden by Hess's human controller (Hess, Moore & Hubbard 2012; HumanControl's
     /// closed loop): the gains used (a HumanControl gains file, or Hess 2012's rules), the
     /// closed-loop eigenvalues and each loop's crossover frequency at one speed, or the
     /// eigenvalues against speed.
     Hess(crate::hess::HessArgs),
+    /// Pole placement for one input: the K (1 × 4) that gives A − B K the poles asked for, and
+    /// the check (the closed loop's eigenvalues).
     Place {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
@@ -207,6 +211,7 @@ pub fn run(cx: &RunContext, args: &ControlArgs) -> Result<()> {
             format,
         } => crate::feedback::place(cx, bike, *speed, input, poles, *format),
         ControlCommand::Hess(args) => crate::hess::hess(cx, args),
+        ControlCommand::OptimalHandling(args) => crate::optimal::run(cx, args),
         ControlCommand::LaneChange(args) => crate::lane_change::run(cx, args),
     }
 }

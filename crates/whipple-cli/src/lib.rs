@@ -16,6 +16,7 @@ mod hqm;
 mod interrupt;
 mod lane_change;
 mod measure;
+mod optimal;
 mod output;
 mod period;
 mod response;

@@ -9,6 +9,7 @@
 use serde::ser::SerializeStruct;
 use serde::{Serialize, Serializer};
 use whipple::Study;
+use whipple::advanced::control::HandlingBound;
 use whipple::advanced::design::{Axis, MAX_AXIS_POINTS, Parameter, StudySettings, aliases};
 use whipple::advanced::table::{Form, parameters};
 use whipple::{Bicycle, Error, Result};
@@ -229,6 +230,82 @@ impl AxisSpec {
     }
 
     /// An SI value of the axis's parameter in the user's units (degrees for a `_deg` axis).
+    pub fn from_si(&self, si: f64) -> f64 {
+        if self.degrees { units::degrees(si) } else { si }
+    }
+}
+
+/// A bounded parameter as the user typed it for the optimal-handling search: `NAME=LOW:HIGH`
+/// (`trail=0:0.2`, `head_angle_deg=60:85`), named as [`AxisSpec`] names its parameter (the
+/// speed is the design speed, not a bound).
+#[derive(Debug, Clone)]
+pub struct BoundSpec {
+    /// The name as the user wrote it.
+    pub name: String,
+    /// Whether the user's values are degrees (the name ends in `_deg`).
+    pub degrees: bool,
+    /// The library's bound, in SI.
+    pub bound: HandlingBound,
+}
+
+impl BoundSpec {
+    /// Parses `NAME=LOW:HIGH` against `base`'s parameters.
+    ///
+    /// ```
+    /// use whipple_front::design::BoundSpec;
+    /// let bike = whipple::presets::find("benchmark")?.bicycle();
+    /// let b = BoundSpec::parse("head_angle_deg=60:85", &bike)?;
+    /// assert!(b.degrees && (b.bound.high - 85f64.to_radians()).abs() < 1e-15);
+    /// assert!(BoundSpec::parse("speed=1:2", &bike).is_err());
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn parse(spec: &str, base: &Bicycle) -> Result<BoundSpec> {
+        let bad = |rule: String| Error::InvalidArgument {
+            what: "bound",
+            rule,
+        };
+        let Some((name, range)) = spec.split_once('=') else {
+            return Err(bad(format!(
+                "expects NAME=LOW:HIGH (for example trail=0:0.2), got `{spec}`"
+            )));
+        };
+        let name = name.trim();
+        let [low, high] = range.split(':').collect::<Vec<&str>>()[..] else {
+            return Err(bad(format!("`{spec}`: expects LOW:HIGH after `{name}=`")));
+        };
+        let number = |t: &str| -> Result<f64> {
+            match t.trim().parse::<f64>() {
+                Ok(x) if x.is_finite() => Ok(x),
+                _ => Err(bad(format!("`{spec}`: `{t}` is not a finite number"))),
+            }
+        };
+        let (low, high) = (number(low)?, number(high)?);
+        if low > high {
+            return Err(bad(format!("`{spec}`: LOW must not exceed HIGH")));
+        }
+        let (parameter, degrees) = resolve(name, base, false).map_err(bad)?;
+        let scale = if degrees { RADIANS_PER_DEGREE } else { 1.0 };
+        Ok(BoundSpec {
+            name: name.to_string(),
+            degrees,
+            bound: HandlingBound {
+                parameter,
+                low: low * scale,
+                high: high * scale,
+            },
+        })
+    }
+
+    /// The unit of the user's values, for labels (`deg` for a `_deg` name).
+    pub fn unit(&self) -> &'static str {
+        if self.degrees {
+            "deg"
+        } else {
+            units::display(self.bound.parameter.unit())
+        }
+    }
+
+    /// An SI value in the user's units.
     pub fn from_si(&self, si: f64) -> f64 {
         if self.degrees { units::degrees(si) } else { si }
     }

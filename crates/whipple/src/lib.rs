@@ -354,6 +354,14 @@ pub mod advanced {
             HANDLING_FILTER, HandlingPeak, HandlingQuality, HandlingRow, MAX_HANDLING_POINTS,
             handling_against_parameter, handling_against_speed,
         };
+        /// The optimal-handling search of BMD 2016: the peak HQM minimized over chosen
+        /// parameters within bounds at a design speed, the gains by Hess 2012's rules for each
+        /// candidate (Nelder–Mead from several starts; local, not certified global).
+        pub use crate::linear::{
+            HandlingBound, HandlingCandidate, HandlingStart, INFEASIBLE_PENALTY,
+            MAX_HANDLING_ITERATIONS, MAX_HANDLING_PARAMETERS, MAX_HANDLING_STARTS, OptimalHandling,
+            OptimalHandlingSettings, UNSTABLE_PENALTY, judge_handling, optimal_handling,
+        };
         /// HumanControl's single and double lane change, ridden by Hess's controller on the
         /// linear bicycle (exactly) and on the non-linear one.
         pub use crate::linear::{

@@ -271,6 +271,39 @@ impl Parameter {
             _ => false,
         }
     }
+
+    /// Its value in a description of its own form (SI), the inverse of [`Parameter::set`];
+    /// `None` for the speed, a description of the other form, or a wheel alias whose two
+    /// wheels differ (it has no single value).
+    ///
+    /// ```
+    /// use whipple::advanced::design::Parameter;
+    /// let bike = whipple::presets::find("benchmark")?.bicycle();
+    /// let head = Parameter::find("head_angle", &bike)?;
+    /// assert!((head.get(&bike.description).unwrap() - 72f64.to_radians()).abs() < 1e-15);
+    /// assert_eq!(Parameter::find("trail", &bike)?.get(&bike.description), Some(0.08));
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn get(&self, description: &Description) -> Option<f64> {
+        match (self, description) {
+            (Parameter::Table(info), Description::Benchmark(b)) if info.form == Form::Benchmark => {
+                b.get(info.key)
+            }
+            (Parameter::Table(info), Description::Jbike6(j)) if info.form == Form::Jbike6 => {
+                j.get(info.key)
+            }
+            (Parameter::HeadAngle, Description::Benchmark(b)) => {
+                Some(std::f64::consts::FRAC_PI_2 - b.lambda)
+            }
+            (Parameter::WheelRadius, Description::Benchmark(b)) if b.r_r == b.r_f => Some(b.r_r),
+            (Parameter::WheelDiameter, Description::Jbike6(j))
+                if j.rear_wheel.diameter == j.front_wheel.diameter =>
+            {
+                Some(j.rear_wheel.diameter)
+            }
+            _ => None,
+        }
+    }
 }
 
 impl Axis {

@@ -11,6 +11,7 @@ mod human;
 mod human_loops;
 mod lane_change;
 mod manoeuvre;
+mod optimal_handling;
 mod response;
 mod riccati;
 mod state_space;
@@ -44,6 +45,11 @@ pub use lane_change::{
 };
 pub use manoeuvre::{
     MAX_MANOEUVRE_BREAKS, Manoeuvre, ManoeuvreComparison, ManoeuvreMotion, compare_manoeuvre,
+};
+pub use optimal_handling::{
+    HandlingBound, HandlingCandidate, HandlingStart, INFEASIBLE_PENALTY, MAX_HANDLING_ITERATIONS,
+    MAX_HANDLING_PARAMETERS, MAX_HANDLING_STARTS, OptimalHandling, OptimalHandlingSettings,
+    UNSTABLE_PENALTY, judge_handling, optimal_handling,
 };
 pub use response::{
     GroundPath, InputSignal, MAX_KNOTS, MAX_RESPONSE_TIMES, MAX_RESPONSE_VALUES, TimeResponse,
