@@ -147,3 +147,100 @@ pub fn handling_against_speed_native<'py>(
     )?;
     Ok(d)
 }
+
+/// A candidate judged, as a dict: `values` (in the user's units, degrees for a `_deg` name),
+/// `cost`, `stable`, `peak`, `peak_frequency`, `certified` (None when refused), `gains`
+/// (None when refused), `refused` (the library's reason, or None).
+fn candidate<'py>(
+    py: Python<'py>,
+    c: &whipple::advanced::control::HandlingCandidate,
+    specs: &[whipple_front::design::BoundSpec],
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let values: Vec<f64> = specs
+        .iter()
+        .zip(&c.values)
+        .map(|(s, &x)| s.from_si(x))
+        .collect();
+    d.set_item("values", PyArray1::from_vec(py, values))?;
+    d.set_item("cost", c.cost)?;
+    d.set_item("stable", c.stable)?;
+    d.set_item("peak", c.peak.map(|p| p.magnitude))?;
+    d.set_item("peak_frequency", c.peak.map(|p| p.frequency))?;
+    d.set_item("certified", c.peak.map(|p| p.certified))?;
+    d.set_item("gains", c.gains.map(|g| g.to_array().to_vec()))?;
+    d.set_item("refused", c.refused.clone())?;
+    Ok(d)
+}
+
+/// BMD 2016's optimal-handling search (`whipple::advanced::control::optimal_handling`) over
+/// `bounds` given as (name, low, high) in the user's units (`head_angle_deg` in degrees), with
+/// the GIL released and Ctrl-C honoured: a dict of `names`, `units`, `base` and `best`
+/// (candidates), `starts` (a list of dicts: `start`, `best`, `evaluations`, `converged`),
+/// `evaluations` and the best `bicycle` (a NativeBicycle).
+#[pyfunction]
+#[pyo3(signature = (bicycle, speed, bounds, starts=6, iterations=2000, neuro_frequency=30.0, neuro_damping=0.707))]
+#[allow(clippy::too_many_arguments)]
+pub fn optimal_handling_native<'py>(
+    py: Python<'py>,
+    bicycle: &NativeBicycle,
+    speed: f64,
+    bounds: Vec<(String, f64, f64)>,
+    starts: usize,
+    iterations: usize,
+    neuro_frequency: f64,
+    neuro_damping: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    use whipple::advanced::control::{OptimalHandlingSettings, optimal_handling};
+    use whipple_front::design::BoundSpec;
+    let base = bicycle.bicycle.clone();
+    let specs = bounds
+        .iter()
+        .map(|(name, low, high)| BoundSpec::parse(&format!("{name}={low}:{high}"), &base))
+        .collect::<whipple::Result<Vec<BoundSpec>>>()
+        .py_err(py)?;
+    let settings = OptimalHandlingSettings {
+        neuromuscular: Neuromuscular {
+            frequency: neuro_frequency,
+            damping: neuro_damping,
+        },
+        starts,
+        max_iterations: iterations,
+        ..OptimalHandlingSettings::at(speed)
+    };
+    let limits: Vec<_> = specs.iter().map(|s| s.bound.clone()).collect();
+    let result = crate::guard::interruptible(py, false, |stop| {
+        optimal_handling(&base, &limits, &settings, stop)
+    })?
+    .py_err(py)?;
+    let d = PyDict::new(py);
+    d.set_item(
+        "names",
+        specs.iter().map(|s| s.name.clone()).collect::<Vec<_>>(),
+    )?;
+    d.set_item("units", specs.iter().map(|s| s.unit()).collect::<Vec<_>>())?;
+    d.set_item("speed", speed)?;
+    d.set_item("base", candidate(py, &result.base, &specs)?)?;
+    d.set_item("best", candidate(py, &result.best, &specs)?)?;
+    let mut runs = Vec::new();
+    for s in &result.starts {
+        let r = PyDict::new(py);
+        let start: Vec<f64> = specs
+            .iter()
+            .zip(&s.start)
+            .map(|(p, &x)| p.from_si(x))
+            .collect();
+        r.set_item("start", PyArray1::from_vec(py, start))?;
+        r.set_item("best", candidate(py, &s.best, &specs)?)?;
+        r.set_item("evaluations", s.evaluations)?;
+        r.set_item("converged", s.converged)?;
+        runs.push(r);
+    }
+    d.set_item("starts", runs)?;
+    d.set_item("evaluations", result.evaluations())?;
+    d.set_item(
+        "bicycle",
+        Bound::new(py, NativeBicycle::new(py, result.bicycle, false)?)?,
+    )?;
+    Ok(d)
+}

@@ -63,6 +63,7 @@ fn _whipple(m: &Bound<'_, PyModule>) -> PyResult<()> {
         handling::handling_against_speed_native,
         m
     )?)?;
+    m.add_function(wrap_pyfunction!(handling::optimal_handling_native, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_FILE_BYTES", whipple::advanced::io::MAX_FILE_BYTES)?;
     Ok(())

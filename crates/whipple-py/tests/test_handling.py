@@ -82,3 +82,32 @@ def test_bad_input_is_refused_naming_the_field(benchmark):
         whipple.handling_quality(benchmark, [46.5, -0.05, 0.0, 0.18, 0.1], speed=5.0)
     with pytest.raises(whipple.ArgumentError, match="speed"):
         whipple.handling_quality(benchmark, GAINS_5)
+
+
+def test_optimal_handling_lowers_the_benchmarks_peak_and_reports_every_start():
+    bike = whipple.Bicycle.preset("benchmark")
+    result = whipple.optimal_handling(
+        bike, 5.0, {"trail": (-0.1, 0.2), "head_angle_deg": (60.0, 85.0)}, starts=3)
+    assert result.names == ["trail", "head_angle_deg"]
+    assert result.units == ["m", "deg"]
+    assert result.best["stable"] and result.best["certified"]
+    assert result.peak < 0.9 * result.base["peak"]
+    assert -0.1 <= result.values["trail"] <= 0.2
+    assert 60.0 <= result.values["head_angle_deg"] <= 85.0
+    assert len(result.starts) == 3
+    assert result.evaluations == sum(s["evaluations"] for s in result.starts)
+    # The best bicycle carries the values, and its own HQM with the best gains is the peak.
+    again = whipple.handling_quality(result.bicycle, result.best["gains"], speed=5.0)
+    assert again.peak == pytest.approx(result.peak, rel=1e-12)
+
+
+def test_optimal_handling_refuses_bad_bounds_naming_them():
+    bike = whipple.Bicycle.preset("benchmark")
+    with pytest.raises(whipple.ArgumentError, match="speed"):
+        whipple.optimal_handling(bike, 5.0, {"speed": (1.0, 2.0)})
+    with pytest.raises(whipple.ArgumentError, match="LOW"):
+        whipple.optimal_handling(bike, 5.0, {"trail": (0.2, 0.1)})
+    with pytest.raises(whipple.ArgumentError, match="vary"):
+        whipple.optimal_handling(bike, 5.0, {"trail": "wide"})
+    with pytest.raises(whipple.WhippleError, match="starts"):
+        whipple.optimal_handling(bike, 5.0, {"trail": (0.0, 0.2)}, starts=0)

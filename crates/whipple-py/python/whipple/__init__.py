@@ -23,7 +23,7 @@ from ._design import DesignMap, design_map_dask
 from ._human import (ExtrapolationWarning, GainLookup, GainTable, HumanController, HumanEigen,
                      HumanLoop, LoopTransferFunction, RiderLoop, hess_gains, human_eigenvalues,
                      read_gains)
-from ._handling import HandlingQuality, handling_quality
+from ._handling import HandlingQuality, OptimalHandling, handling_quality, optimal_handling
 from ._lane_change import lane_change
 from ._measure import Measurement, measure
 from ._period import PeriodFit, fit_period, read_period
@@ -45,7 +45,7 @@ __all__ = [
     "HumanController", "HumanLoop", "RiderLoop", "LoopTransferFunction", "GainTable",
     "GainLookup", "read_gains", "hess_gains", "human_eigenvalues", "HumanEigen",
     "ExtrapolationWarning",
-    "HandlingQuality", "handling_quality",
+    "HandlingQuality", "handling_quality", "OptimalHandling", "optimal_handling",
     "lane_change",
     "DesignMap", "design_map_dask", "measure", "Measurement", "plot_eigenvalues", "plot_bode", "presets", "formats", "parameter_table", "BENCHMARK_KEYS",
     "WhippleError", "ParameterError", "StrictError", "ParseError", "UnknownPresetError",

@@ -7,12 +7,12 @@ results."""
 from __future__ import annotations
 
 import os
-from typing import Any, Optional, Sequence, Union
+from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from . import _whipple
-from ._errors import ArgumentError
+from ._errors import ArgumentError, NumericalError
 
 GainsLike = Union[str, "os.PathLike[str]", Sequence[float]]
 
@@ -114,4 +114,73 @@ def handling_quality(bicycle: Any, gains: GainsLike, speed: Optional[float] = No
                                                            [float(w) for w in grid], **rider))
 
 
-__all__ = ["HandlingQuality", "handling_quality"]
+class OptimalHandling:
+    """The result of :func:`optimal_handling`: ``names`` and ``units`` of the varied
+    parameters; ``base`` and ``best`` (dicts: ``values`` in the user's units, ``cost``,
+    ``stable``, ``peak``, ``peak_frequency``, ``certified``, ``gains``, ``refused``);
+    ``starts`` (a list of dicts: ``start``, ``best``, ``evaluations``, ``converged``);
+    ``evaluations``; ``bicycle``, the best design as a :class:`whipple.Bicycle`.
+
+    A local search from several starts: the best start's result, not a certified global
+    minimum."""
+
+    def __init__(self, values: dict) -> None:
+        from ._bicycle import Bicycle
+
+        for key, value in values.items():
+            setattr(self, key, value)
+        self.bicycle = Bicycle._wrap(values["bicycle"])
+
+    @property
+    def values(self) -> Dict[str, float]:
+        """The best design's varied parameters by name (the user's units)."""
+        return {n: float(x) for n, x in zip(self.names, self.best["values"])}
+
+    @property
+    def peak(self) -> float:
+        """The best design's certified peak HQM."""
+        return float(self.best["peak"])
+
+    def __repr__(self) -> str:
+        return (f"OptimalHandling(values={self.values!r}, peak={self.peak!r}, "
+                f"base_peak={self.base['peak']!r}, starts={len(self.starts)})")
+
+
+def optimal_handling(bicycle: Any, speed: float,
+                     vary: Mapping[str, Tuple[float, float]],
+                     starts: int = 6, iterations: int = 2000,
+                     neuro_frequency: float = 30.0,
+                     neuro_damping: float = 0.707) -> OptimalHandling:
+    """BMD 2016's optimal-handling search: the peak HQM of ``bicycle`` at the design ``speed``
+    [m/s] minimized over the parameters of ``vary`` ({name: (low, high)}, named as design
+    studies name their axes: ``trail``, ``head_angle_deg`` in degrees, ``w``, ``rF``), the
+    rider's gains set for each candidate by Hess 2012's rules. Nelder–Mead from ``starts``
+    starts (the bicycle's own values, then Halton points in the box), each at most
+    ``iterations`` iterations; Ctrl-C honoured. Raises when no start finds a design whose
+    roll and lateral loops are stable.
+
+    >>> import whipple
+    >>> bike = whipple.Bicycle.preset("benchmark")
+    >>> best = whipple.optimal_handling(bike, 5.0, {"trail": (0.0, 0.2)}, starts=2)
+    >>> best.peak < best.base["peak"]
+    True
+    """
+    bounds = []
+    for name, pair in vary.items():
+        try:
+            low, high = (float(x) for x in pair)
+        except (TypeError, ValueError) as error:
+            raise ArgumentError(f"invalid vary[{name!r}]: expects (low, high): {error}") from None
+        bounds.append((str(name), low, high))
+    result = OptimalHandling(_whipple.optimal_handling_native(
+        bicycle._native, float(speed), bounds, starts=int(starts), iterations=int(iterations),
+        neuro_frequency=float(neuro_frequency), neuro_damping=float(neuro_damping)))
+    if not result.best["stable"]:
+        raise NumericalError(
+            f"no start found a design whose roll and lateral loops are stable at {speed} m/s "
+            f"within these bounds (the bicycle itself: "
+            f"{result.base['refused'] or 'unstable'})")
+    return result
+
+
+__all__ = ["HandlingQuality", "handling_quality", "OptimalHandling", "optimal_handling"]

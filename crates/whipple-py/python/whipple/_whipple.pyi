@@ -120,6 +120,10 @@ def handling_against_speed_native(bicycle: NativeBicycle, speeds: List[float],
                                   gains_row: Optional[List[float]] = None,
                                   neuro_frequency: float = 30.0,
                                   neuro_damping: float = 0.707) -> Dict[str, Any]: ...
+def optimal_handling_native(bicycle: NativeBicycle, speed: float,
+                            bounds: List[Tuple[str, float, float]], starts: int = 6,
+                            iterations: int = 2000, neuro_frequency: float = 30.0,
+                            neuro_damping: float = 0.707) -> Dict[str, Any]: ...
 
 class NativeRiderLean:
     @staticmethod
