@@ -165,7 +165,9 @@ pub(crate) fn read_gains_file(path: &Path) -> Result<whipple::advanced::control:
     crate::output::register_input(path);
     let text = String::from_utf8(bytes)
         .map_err(|_| anyhow!("--gains {}: the file is not UTF-8 text", path.display()))?;
-    whipple::advanced::io::read_gains(&text).map_err(|e| located(e, path, &text))
+    whipple::advanced::io::read_gains(&text)
+        .map_err(|e| located(e, path, &text))
+        .context("--gains")
 }
 
 pub(crate) fn located(error: Error, path: &Path, text: &str) -> anyhow::Error {

@@ -15,6 +15,7 @@ mod hess;
 mod hqm;
 mod interrupt;
 mod lane_change;
+mod lean;
 mod measure;
 mod optimal;
 mod output;
@@ -280,6 +281,10 @@ enum Command {
     /// A rider's body from the Yeadon model (95 measurements, 21 joint angles): the body's and
     /// each segment's mass, mass centre and inertia.
     RiderInertia(rider::RiderInertiaArgs),
+    /// The leaning rider (Moore 2012's rider-lean model: the upper body hinged to the rear
+    /// frame): its modes at a speed or against speed beside the rigid rider's, or the
+    /// non-linear motion under a rider lean torque.
+    Rider(lean::RiderArgs),
     /// The families of hands-free steady turns (pseudo-arclength continuation), with a figure of
     /// lean, steer and radius against speed (stable parts bold).
     Turns(turns::TurnsArgs),
@@ -452,6 +457,7 @@ where
         Command::Turn(args) => turns::turn(cx, &args),
         Command::Control(args) => control::run(cx, &args),
         Command::RiderInertia(args) => rider::run(&args),
+        Command::Rider(args) => lean::run(&args),
         Command::Turns(args) => turns::turns(cx, &args),
         Command::Serve {
             port,

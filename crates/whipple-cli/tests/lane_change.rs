@@ -14,7 +14,7 @@ use whipple::advanced::control::{
 
 fn gains_file() -> String {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../whipple/tests/data/humancontrol/BenchmarkSteerGains.txt")
+        .join("../whipple/tests/data/humancontrol/gains/BenchmarkSteerGains.txt")
         .to_string_lossy()
         .into_owned()
 }

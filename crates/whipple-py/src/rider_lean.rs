@@ -3,7 +3,6 @@
 
 use pyo3::prelude::*;
 use whipple::Bicycle;
-use whipple::Error;
 use whipple::advanced::nonlinear::LeanModel;
 use whipple::advanced::parameters::{
     Description, MOORE_RIDER_LEAN2012_KEYS, MooreRiderLean2012Parameters,
@@ -25,46 +24,8 @@ impl NativeRiderLean {
     /// the 36 keys once, `v` accepted and ignored, other keys refused; checked by the library.
     #[staticmethod]
     fn from_moore_rider_lean2012(py: Python<'_>, items: Vec<(String, f64)>) -> PyResult<Self> {
-        let mut values: [Option<f64>; 36] = [None; 36];
-        for (key, value) in &items {
-            if key == "v" {
-                continue;
-            }
-            let Some(i) = MOORE_RIDER_LEAN2012_KEYS.iter().position(|k| k == key) else {
-                return Err(Error::InvalidParameter {
-                    field: key.clone(),
-                    value: *value,
-                    rule: format!(
-                        "not a key of Moore 2012's rider-lean parameterization ({})",
-                        MOORE_RIDER_LEAN2012_KEYS.join(", ")
-                    ),
-                })
-                .py_err(py);
-            };
-            if values[i].replace(*value).is_some() {
-                return Err(Error::InvalidParameter {
-                    field: key.clone(),
-                    value: *value,
-                    rule: "is given twice".into(),
-                })
-                .py_err(py);
-            }
-        }
-        let missing: Vec<&str> = MOORE_RIDER_LEAN2012_KEYS
-            .iter()
-            .zip(&values)
-            .filter(|(_, v)| v.is_none())
-            .map(|(k, _)| *k)
-            .collect();
-        if let Some(first) = missing.first() {
-            return Err(Error::InvalidParameter {
-                field: first.to_string(),
-                value: f64::NAN,
-                rule: format!("missing: {}", missing.join(", ")),
-            })
-            .py_err(py);
-        }
-        let parameters = MooreRiderLean2012Parameters::from_array(values.map(|v| v.unwrap_or(0.0)))
+        let parameters = MooreRiderLean2012Parameters::from_pairs(&items, "MooreRiderLean2012")
+            .py_err(py)?
             .to_rider_lean()
             .py_err(py)?;
         let model = LeanModel::new(&parameters).py_err(py)?;

@@ -13,7 +13,7 @@ import pytest
 import whipple
 from conftest import DATA
 
-GAINS = DATA / "humancontrol-gains"
+GAINS = DATA / "humancontrol" / "gains"
 
 #: HumanControl's names (bicycle_state_space.m) → whipple's.
 NAMES = {"yP": "rear_contact_y", "psi": "yaw", "phi": "lean", "delta": "steer",
@@ -113,9 +113,11 @@ def test_closed_loop_matches_a_transcription_of_system_state_space(benchmark, st
     assert a.shape == A.shape and b.shape == B.shape
     np.testing.assert_allclose(a, A, rtol=1e-12, atol=1e-12 * np.abs(A).max())
     np.testing.assert_allclose(b, B, rtol=1e-12, atol=1e-12 * np.abs(B).max())
-    # The eigenvalues are A's.
+    # The eigenvalues are A's, to the eigenproblem's conditioning: two eigensolvers (faer's,
+    # LAPACK's) on matrices equal to 1e-12 agree to ~1e-9 relative on the 8 × 8 closed loop
+    # at 12 m/s (measured 1.5e-9), so the bound is the condition-aware 1e-8.
     np.testing.assert_allclose(np.sort_complex(ridden.eigenvalues),
-                               np.sort_complex(np.linalg.eigvals(A)), rtol=1e-9, atol=1e-9)
+                               np.sort_complex(np.linalg.eigvals(A)), rtol=1e-8, atol=1e-9)
 
 
 def test_the_neuromuscular_filter_and_gains_reach_the_matrices(benchmark):

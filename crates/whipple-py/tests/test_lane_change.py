@@ -14,7 +14,7 @@ from conftest import optional
 # HumanControl's BenchmarkSteerGains.txt at 5 m/s: kDelta, kPhiDot, kPhi, kPsi, kY.
 GAINS_5 = [46.5457, -0.0522, 12.6611, 0.1849, 0.0959]
 GAINS_FILE = os.path.join(os.path.dirname(__file__), "..", "..", "whipple", "tests", "data",
-                          "humancontrol", "BenchmarkSteerGains.txt")
+                          "humancontrol", "gains", "BenchmarkSteerGains.txt")
 
 
 def matlab_lane_change(kind, speed):

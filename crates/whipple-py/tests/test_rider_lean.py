@@ -68,6 +68,15 @@ def test_locked_hinge_is_the_rigid_rider():
 
 
 def test_a_hinge_above_the_top_is_refused():
-    par = dict(mooreriderlean2012_browser_jason, d4=-2.0)
+    # The hinge 2 m above the rear hub with the upper body's mass centre where it was (l6, G's
+    # centre below the hinge, grows by as much as d4 shrinks): above everything else.
+    base = mooreriderlean2012_browser_jason
+    par = dict(base, d4=-2.0, l6=base["l6"] + base["d4"] + 2.0)
     with pytest.raises(whipple.ParameterError, match="zHinge"):
         whipple.RiderLean.from_moore_rider_lean2012(par)
+    # Moving the hinge and the body together is a (tall) rider, not an error.
+    whipple.RiderLean.from_moore_rider_lean2012(dict(base, d4=-2.0))
+    with pytest.raises(whipple.ParseError, match="d9"):
+        whipple.RiderLean.from_moore_rider_lean2012(dict(base, d9=1.0))
+    with pytest.raises(whipple.ParseError, match="missing"):
+        whipple.RiderLean.from_moore_rider_lean2012({"d1": 1.0})

@@ -425,6 +425,8 @@ pub mod advanced {
         pub use crate::parameters::io::principal_yaml;
         /// HumanControl's gains file (`<Name>SteerGains.txt`) as a gain table.
         pub use crate::parameters::io::read_gains;
+        /// BicycleParameters' `MooreRiderLean2012` set, as a JSON object of its keys.
+        pub use crate::parameters::io::read_moore_rider_lean2012;
         pub use crate::parameters::io::{
             FORMATS, MAX_FILE_BYTES, UNDETERMINED_FORMAT, json_slice_without_duplicates,
             json_without_duplicates, name_from_file_name, parse, write,
@@ -537,11 +539,12 @@ pub mod advanced {
         pub use crate::nonlinear::Simulation;
         pub use crate::nonlinear::rotation;
         pub use crate::nonlinear::{
-            BODY_NAMES, ContactForce, DEFAULT_FALL_ANGLE, FRONT_WHEEL, Inputs, LEAN_STATE_LEN,
-            LeanModel, LeanRates, LeanSample, LeanState, MAX_EXPRESSION_DEPTH,
-            MAX_EXPRESSION_LENGTH, MAX_SAMPLES, MAX_STEPS, Progress, ProjectionMethod,
-            ProjectionSettings, REAR_FRAME, REAR_WHEEL, STATE_LEN, State, StateView,
-            TorqueExpression, TorqueFn, Wheel, check_rk4_step, fastest_mode, samples_kept,
+            BODY_NAMES, ContactForce, DEFAULT_FALL_ANGLE, FRONT_WHEEL, HINGE_LIMIT, Inputs,
+            LEAN_STATE_LEN, LeanForcing, LeanModel, LeanRates, LeanSample, LeanState,
+            MAX_EXPRESSION_DEPTH, MAX_EXPRESSION_LENGTH, MAX_SAMPLES, MAX_STEPS, Progress,
+            ProjectionMethod, ProjectionSettings, REAR_FRAME, REAR_WHEEL, STATE_LEN, State,
+            StateView, TorqueExpression, TorqueFn, Wheel, check_rk4_step, fastest_mode,
+            samples_kept,
         };
     }
     #[doc = "Bicycle descriptions: the benchmark and JBike6 forms, checks and their notices."]

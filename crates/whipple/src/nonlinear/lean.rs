@@ -20,7 +20,9 @@
 //! gives the accelerations. The hinge torque T_r − k φ_r − c φ̇_r acts on G about e_x and its
 //! reaction on B; the rear contact force comes from the momentum balance of all five bodies.
 
-use nalgebra::{Matrix3, RealField, SMatrix, SVector, Vector3, Vector4};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use nalgebra::{Complex, Matrix3, RealField, SMatrix, SVector, Vector3, Vector4};
 use num_dual::Dual64;
 
 use super::Model;
@@ -31,7 +33,7 @@ use super::poses::{Angles, Poses};
 use super::projection::ProjectionSettings;
 use super::rotation;
 use super::saddle;
-use super::settings::MAX_STEPS;
+use super::settings::{DEFAULT_FALL_ANGLE, MAX_STEPS};
 use super::state::{COORDINATES, SPEEDS, STATE_LEN, State};
 use super::topology::{BODIES, FRONT_CONTACT, REAR_FRAME, ROLLING_TREE};
 use crate::analysis::linearize::{VectorField, jacobian};
@@ -98,6 +100,22 @@ pub struct LeanRates<T: RealField + Copy> {
     /// φ̈_r: the hinge's angular acceleration [rad/s²].
     pub lean_acceleration: T,
 }
+
+/// The rider's input to [`LeanModel::simulate_forced`] and how the run may end.
+#[derive(Clone, Copy)]
+pub struct LeanForcing<'a> {
+    /// The rider's torque about the hinge at time t \[N m\] (on the upper body, its reaction
+    /// on the rear frame; right positive).
+    pub hinge_torque: &'a dyn Fn(f64) -> f64,
+    /// End the run when the bicycle falls or the upper body lies across it.
+    pub stop_at_fall: bool,
+    /// Set from another thread to end the run with an error.
+    pub stop: &'a AtomicBool,
+}
+
+/// The hinge angle past which [`LeanModel::simulate_forced`] ends a run: the upper body lies
+/// across the bicycle (90°).
+pub const HINGE_LIMIT: f64 = std::f64::consts::FRAC_PI_2;
 
 /// Length of the leaning rider's first-order state [q; u; φ_r; φ̇_r].
 pub const LEAN_STATE_LEN: usize = STATE_LEN + 2;
@@ -393,10 +411,15 @@ impl LeanModel {
         })
     }
 
-    /// [q̇; u̇; φ̇_r; φ̈_r] of the unforced five bodies (hinge spring and damper included).
-    fn rates(&self, y: &SVector<f64, LEAN_STATE_LEN>) -> Result<SVector<f64, LEAN_STATE_LEN>> {
+    /// [q̇; u̇; φ̇_r; φ̈_r] of the five bodies (hinge spring and damper included) with the
+    /// hinge torque `hinge_torque`.
+    fn rates(
+        &self,
+        y: &SVector<f64, LEAN_STATE_LEN>,
+        hinge_torque: f64,
+    ) -> Result<SVector<f64, LEAN_STATE_LEN>> {
         let state = LeanState::from_vector(y);
-        let d = self.forward(&state, &Inputs::default(), 0.0)?;
+        let d = self.forward(&state, &Inputs::default(), hinge_torque)?;
         let mut out = SVector::<f64, LEAN_STATE_LEN>::zeros();
         out.fixed_rows_mut::<COORDINATES>(0)
             .copy_from(&d.bicycle.q_dot);
@@ -407,10 +430,8 @@ impl LeanModel {
         Ok(out)
     }
 
-    /// The unforced motion from `start` for `duration` seconds: every accepted step of
-    /// `integrator`, the four bodies projected back onto the constraints after each
-    /// ([`Model::project`]; the hinge touches none), recorded with its energy. At most
-    /// [`MAX_STEPS`] steps (a fixed step that needs more is refused before the run).
+    /// The unforced motion from `start` for `duration` seconds: [`LeanModel::simulate_forced`]
+    /// with no hinge torque and no stop.
     pub fn simulate(
         &self,
         start: &LeanState<f64>,
@@ -418,7 +439,45 @@ impl LeanModel {
         integrator: &Integrator,
         projection: &ProjectionSettings,
     ) -> Result<Vec<LeanSample>> {
-        if let Some(steps) = integrator.fixed_steps(duration.max(0.0)) {
+        let never = AtomicBool::new(false);
+        let forcing = LeanForcing {
+            hinge_torque: &|_| 0.0,
+            stop_at_fall: false,
+            stop: &never,
+        };
+        self.simulate_forced(start, duration, integrator, projection, &forcing)
+    }
+
+    /// The motion from `start` for `duration` seconds with the rider's torque about the hinge
+    /// `forcing.hinge_torque(t)` \[N m\] (on the upper body, its reaction on the rear frame): every
+    /// accepted step of `integrator`, the four bodies projected back onto the constraints after
+    /// each ([`Model::project`]; the hinge touches none), recorded with its energy. With
+    /// `forcing.stop_at_fall`, the run ends early when the rear frame leans past [`DEFAULT_FALL_ANGLE`]
+    /// (the bicycle has fallen: the last sample says so) or the hinge past [`HINGE_LIMIT`]
+    /// (without, the mechanics run on, the upper body through the bicycle); `forcing.stop` set by another thread
+    /// ends it with an error (checked every step). At most [`MAX_STEPS`] steps (a fixed step
+    /// that needs more is refused before the run). A torque that is not finite is refused,
+    /// naming the time.
+    pub fn simulate_forced(
+        &self,
+        start: &LeanState<f64>,
+        duration: f64,
+        integrator: &Integrator,
+        projection: &ProjectionSettings,
+        forcing: &LeanForcing<'_>,
+    ) -> Result<Vec<LeanSample>> {
+        let LeanForcing {
+            hinge_torque,
+            stop_at_fall,
+            stop,
+        } = *forcing;
+        if !(duration.is_finite() && duration >= 0.0) {
+            return Err(Error::InvalidArgument {
+                what: "duration",
+                rule: format!("must be finite and not negative, got {duration}"),
+            });
+        }
+        if let Some(steps) = integrator.fixed_steps(duration) {
             if steps > MAX_STEPS {
                 return Err(Error::InvalidArgument {
                     what: "dt",
@@ -426,8 +485,18 @@ impl LeanModel {
                 });
             }
         }
+        let torque = |t: f64| -> Result<f64> {
+            let value = hinge_torque(t);
+            if value.is_finite() {
+                Ok(value)
+            } else {
+                Err(Error::NonFinite {
+                    context: format!("the rider's hinge torque at t = {t} s"),
+                })
+            }
+        };
         let mut y = start.to_vector();
-        let mut slope = self.rates(&y)?;
+        let mut slope = self.rates(&y, torque(0.0)?)?;
         let mut stepper = Stepper::new(integrator, &y, &slope, duration)?;
         let sample = |t: f64, y: &SVector<f64, LEAN_STATE_LEN>| {
             let state = LeanState::from_vector(y);
@@ -438,14 +507,26 @@ impl LeanModel {
             }
         };
         let mut samples = vec![sample(0.0, &y)];
-        let system = |_: f64, y: &SVector<f64, LEAN_STATE_LEN>| self.rates(y);
+        let system = |t: f64, y: &SVector<f64, LEAN_STATE_LEN>| self.rates(y, torque(t)?);
         while !stepper.done() && samples.len() <= MAX_STEPS {
+            if stop.load(Ordering::Relaxed) {
+                return Err(Error::InvalidArgument {
+                    what: "stopped",
+                    rule: "the simulation was stopped before it finished".into(),
+                });
+            }
             let step = stepper.step(&system, &y, &slope)?;
             let mut state = LeanState::from_vector(&step.y);
             self.model.project(&mut state.bicycle, projection)?;
             y = state.to_vector();
-            slope = self.rates(&y)?;
+            slope = self.rates(&y, torque(step.t)?)?;
             samples.push(sample(step.t, &y));
+            if stop_at_fall
+                && (state.bicycle.lean().abs() > DEFAULT_FALL_ANGLE
+                    || state.lean.abs() > HINGE_LIMIT)
+            {
+                break;
+            }
         }
         Ok(samples)
     }
@@ -490,6 +571,15 @@ impl LeanModel {
             steer,
             d.lean_acceleration,
         ]))
+    }
+
+    /// The eigenvalues of [`LeanModel::linearize`]'s A at `speed` (faer's general eigensolver,
+    /// not certified), sorted by decreasing real part: the leaning rider's modes.
+    pub fn eigenvalues(&self, speed: f64) -> Result<Vec<Complex<f64>>> {
+        let (a, _) = self.linearize(speed)?;
+        let mut values = crate::analysis::comparison::general_eigenvalues(&a)?;
+        values.sort_by(|a, b| b.re.total_cmp(&a.re).then(b.im.total_cmp(&a.im)));
+        Ok(values)
     }
 
     /// The exact linearization about upright straight running at `speed`: A (6 × 6) on

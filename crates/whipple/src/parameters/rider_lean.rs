@@ -413,6 +413,47 @@ impl<T: RealField + Copy> MooreRiderLean2012Parameters<T> {
 }
 
 impl MooreRiderLean2012Parameters<f64> {
+    /// From (key, value) pairs of BicycleParameters' `MooreRiderLean2012` set: every one of the
+    /// 36 keys once, `v` accepted and ignored, other keys refused. Errors are
+    /// [`Error::Parse`] of `format` naming the key (unknown, given twice, missing).
+    pub fn from_pairs(pairs: &[(String, f64)], format: &'static str) -> Result<Self> {
+        let fail = |field: &str, message: String| Error::Parse {
+            format,
+            field: Some(field.to_string()),
+            line: 0,
+            column: 0,
+            message,
+        };
+        let mut values: [Option<f64>; 36] = [None; 36];
+        for (key, value) in pairs {
+            if key == "v" {
+                continue;
+            }
+            let Some(i) = MOORE_RIDER_LEAN2012_KEYS.iter().position(|k| k == key) else {
+                return Err(fail(
+                    key,
+                    format!(
+                        "`{key}` is not a key of Moore 2012's rider-lean parameterization ({})",
+                        MOORE_RIDER_LEAN2012_KEYS.join(", ")
+                    ),
+                ));
+            };
+            if values[i].replace(*value).is_some() {
+                return Err(fail(key, format!("`{key}` is given twice")));
+            }
+        }
+        let missing: Vec<&str> = MOORE_RIDER_LEAN2012_KEYS
+            .iter()
+            .zip(&values)
+            .filter(|(_, v)| v.is_none())
+            .map(|(k, _)| *k)
+            .collect();
+        if let Some(first) = missing.first() {
+            return Err(fail(first, format!("missing keys: {}", missing.join(", "))));
+        }
+        Ok(Self::from_array(values.map(|v| v.unwrap_or(0.0))))
+    }
+
     /// BicycleParameters' `mooreriderlean2012_browser_jason` (`parameter_dicts.py`,
     /// BicycleParameters 1.5, BSD-2-Clause; from Moore's dissertation source,
     /// `src/extensions/lean/riderlean.py`): the Browser with Jason's legs in C and his upper

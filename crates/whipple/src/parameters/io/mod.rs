@@ -19,6 +19,8 @@ mod json;
 mod keyvalue;
 pub(crate) use keyvalue::extra_meaning;
 mod matlab;
+mod rider_lean;
+pub use rider_lean::read_moore_rider_lean2012;
 mod tree;
 mod write;
 pub use write::{moore2012_yaml, principal_yaml};
