@@ -31,6 +31,8 @@ if [ -f crates/whipple-bench/benches/linearize.rs ]; then
     echo "== whipple: linearization (criterion)"
     cargo bench -q -p whipple-bench --bench linearize 2>&1 | grep -E "^[a-z]|time:"
 fi
+echo "== whipple: the rider (criterion)"
+cargo bench -q -p whipple-bench --bench rider 2>&1 | grep -E "^rider|time:"
 echo "== PyDy: the same motion"
 cargo build -q --release -p whipple-cli
 /usr/bin/time -f "whipple simulate CLI: %e s wall, %U s user" target/release/whipple simulate \
