@@ -19,7 +19,7 @@ use whipple_report::{Dash, Series, XyPlotOptions, line_plot};
 use crate::TextFormat;
 use crate::bike::{RunContext, load};
 use crate::commands::emit;
-use crate::output::{Target, number, parse_triple};
+use crate::output::{number, parse_triple};
 
 /// The most speeds `hqm --speeds` evaluates.
 pub const MAX_HQM_SPEEDS: usize = 100_000;
@@ -78,23 +78,7 @@ fn lookup_word(table: &GainTable, v: f64, extrapolated: bool) -> &'static str {
 
 /// Runs `whipple control hqm`.
 pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
-    let out = args
-        .out
-        .as_deref()
-        .map(|p| Target::check("--out", p))
-        .transpose()?;
-    let plot = args
-        .plot
-        .as_deref()
-        .map(|p| {
-            whipple_report::Format::from_path(p)
-                .with_context(|| format!("--plot {}", p.display()))?;
-            Target::check("--plot", p)
-        })
-        .transpose()?;
-    if let (Some(o), Some(p)) = (&out, &plot) {
-        crate::output::distinct(o, p)?;
-    }
+    let (out, plot) = crate::output::table_and_plot(args.out.as_deref(), args.plot.as_deref())?;
     let neuromuscular = Neuromuscular {
         frequency: args.neuro_frequency,
         damping: args.neuro_damping,

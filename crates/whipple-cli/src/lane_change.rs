@@ -15,7 +15,7 @@ use whipple::advanced::control::{
 use whipple_report::{Dash, Series, XyPlotOptions, stacked_line_plots};
 
 use crate::bike::{RunContext, load};
-use crate::output::{self, Target, number};
+use crate::output::{self, number};
 use crate::time_response::short;
 
 /// Which bicycle model rides the lane change.
@@ -83,19 +83,10 @@ pub enum LaneArg {
 
 /// Runs `whipple control lane-change`.
 pub fn run(cx: &RunContext, args: &LaneChangeArgs) -> Result<()> {
-    let out = Target::check("--out", &args.out)?;
-    let plot = args
-        .plot
-        .as_deref()
-        .map(|p| {
-            whipple_report::Format::from_path(p)
-                .with_context(|| format!("--plot {}", p.display()))?;
-            Target::check("--plot", p)
-        })
-        .transpose()?;
-    if let Some(plot) = &plot {
-        output::distinct(&out, plot)?;
-    }
+    let (out, plot) = output::table_and_plot(Some(&args.out), args.plot.as_deref())?;
+    let Some(out) = out else {
+        bail!("--out is required");
+    };
     if !(args.speed.is_finite() && args.speed > 0.0) {
         bail!(
             "--speed must be a positive finite number of m/s, got {}",

@@ -20,7 +20,7 @@ use whipple_report::{Series, XyPlotOptions, line_plot};
 
 use crate::TextFormat;
 use crate::bike::read_capped;
-use crate::output::{self, Target, number, parse_triple};
+use crate::output::{self, number, parse_triple};
 use crate::time_response::short;
 
 /// The most speeds `whipple rider --speeds` takes.
@@ -242,23 +242,7 @@ fn simulate(
         Some(d) => bail!("--torque-duration must be a non-negative number of seconds, got {d}"),
         None => f64::INFINITY,
     };
-    let out = args
-        .out
-        .as_deref()
-        .map(|p| Target::check("--out", p))
-        .transpose()?;
-    let plot = args
-        .plot
-        .as_deref()
-        .map(|p| {
-            whipple_report::Format::from_path(p)
-                .with_context(|| format!("--plot {}", p.display()))?;
-            Target::check("--plot", p)
-        })
-        .transpose()?;
-    if let (Some(o), Some(p)) = (&out, &plot) {
-        output::distinct(o, p)?;
-    }
+    let (out, plot) = crate::output::table_and_plot(args.out.as_deref(), args.plot.as_deref())?;
     let start = model
         .initial_state(
             &InitialConditions::upright(speed),
