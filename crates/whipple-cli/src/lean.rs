@@ -128,7 +128,8 @@ pub fn run(args: &RiderArgs) -> Result<()> {
         .map_err(core)
         .context("the rigid rider (the hinge locked)")?;
     let speeds = match (args.speed, args.speeds.as_deref()) {
-        (Some(v), None) => vec![v],
+        (Some(v), None) if v.is_finite() => vec![v],
+        (Some(_), None) => bail!("--speed must be a finite number of m/s"),
         (None, Some(text)) => {
             let (a, b, step) = parse_triple(text, "--speeds")?;
             let grid = whipple::speed_grid(a, b, step).context("--speeds")?;
@@ -147,12 +148,10 @@ pub fn run(args: &RiderArgs) -> Result<()> {
     }
     let mut rows = Vec::with_capacity(speeds.len());
     for &v in &speeds {
-        let lean = model.eigenvalues(v).map_err(core).with_context(|| {
-            format!(
-                "the leaning rider's modes at {} m/s",
-                short(v).unwrap_or_default()
-            )
-        })?;
+        let lean = model
+            .eigenvalues(v)
+            .map_err(core)
+            .with_context(|| format!("the leaning rider's modes at {v} m/s"))?;
         let locked = eigenvalues(&rigid, v)
             .map_err(core)
             .context("the rigid rider's modes")?;

@@ -398,9 +398,11 @@ fn check_request(controller: &HumanController, lane: &LaneChange, speed: f64) ->
 /// let lane = LaneChange::humancontrol(LaneKind::Double);
 /// let run = lane_change_linear(&BenchmarkParameters::meijaard2007(), 5.0, &rider, &lane)?;
 /// assert_eq!(run.times.len(), 501);
-/// // Two metres over and back: the bicycle follows the command to within a few centimetres.
-/// let worst = run.error.iter().fold(0.0_f64, |m, e| m.max(e.abs()));
-/// assert!(worst < 0.2, "{worst}");
+/// // Two metres over and back: the front contact keeps within 0.34 m of the road (the rider's
+/// // error, against the path previewed 2.75 s ahead, is larger by design: 1.48 m).
+/// let road = run.path.iter().zip(&run.front_y).fold(0.0_f64, |m, (p, y)| m.max((p - y).abs()));
+/// assert!(road < 0.34, "{road}");
+/// assert!(run.front_y.iter().any(|&y| y > 1.95));
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub fn lane_change_linear(

@@ -532,10 +532,11 @@ pub fn optimal_handling(
     if stop.load(Ordering::Relaxed) {
         return Err(stopped());
     }
+    // Among the starts only: the base may lie outside the bounds, and the first start (the
+    // base clamped into them) keeps its start whenever nothing better was found.
     let best = results
         .iter()
         .map(|s| &s.best)
-        .chain(std::iter::once(&base_candidate))
         .min_by(|a, b| a.cost.total_cmp(&b.cost))
         .cloned()
         .unwrap_or_else(|| base_candidate.clone());
@@ -630,6 +631,24 @@ mod tests {
             high: 2.0,
         }];
         assert!(message(&speed, &settings).contains("design speed"));
+    }
+
+    #[test]
+    fn the_best_design_lies_within_the_bounds_even_when_the_bicycle_does_not() {
+        let bike = presets::find("benchmark").unwrap().bicycle();
+        // The benchmark's trail, 0.08 m, is outside [0.1, 0.2].
+        let bounds = [bound(&bike, "trail", 0.1, 0.2)];
+        let mut settings = OptimalHandlingSettings::at(5.0);
+        settings.starts = 2;
+        let stop = AtomicBool::new(false);
+        let result = optimal_handling(&bike, &bounds, &settings, &stop).unwrap();
+        assert_eq!(result.base.values, vec![0.08]);
+        assert_eq!(result.starts[0].start, vec![0.1]);
+        assert!(
+            (0.1..=0.2).contains(&result.best.values[0]),
+            "{:?}",
+            result.best
+        );
     }
 
     #[test]

@@ -587,6 +587,12 @@ impl LeanModel {
     /// rear frame, steer torque, the upper body's hinge torque), by dual numbers through
     /// [`LeanModel::forward`] (no derivative written by hand).
     pub fn linearize(&self, speed: f64) -> Result<(SMatrix<f64, 6, 6>, SMatrix<f64, 6, 3>)> {
+        if !speed.is_finite() {
+            return Err(Error::InvalidArgument {
+                what: "speed",
+                rule: format!("must be a finite number of m/s, got {speed}"),
+            });
+        }
         let a = jacobian(&LeanField { model: self, speed }, &SVector::zeros())?;
         let mut b = SMatrix::<f64, 6, 3>::zeros();
         let x = SVector::<Dual64, 6>::zeros();
