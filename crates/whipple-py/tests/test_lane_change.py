@@ -118,3 +118,17 @@ def test_bad_requests_name_the_argument():
         whipple.lane_change(bike, GAINS_5, 5.0, model="both_ways")
     with pytest.warns(whipple.ParameterWarning, match="extrapolated"):
         whipple.lane_change(bike, GAINS_FILE, 13.0, model="linear")
+
+
+def test_the_run_plots_the_road_and_both_paths():
+    optional("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    bike = whipple.Bicycle.preset("benchmark")
+    run = whipple.lane_change(bike, GAINS_5, 5.0)
+    ax = run.plot()
+    assert [line.get_label() for line in ax.get_lines()] == [
+        "road (the path, preview delayed)", "front contact y_Q, linear",
+        "front contact y_Q, nonlinear"]
+    assert np.array_equal(ax.get_lines()[2].get_ydata(), run["nonlinear"]["front_y"])

@@ -17,10 +17,32 @@ from ._errors import ArgumentError, ParameterWarning
 _MAX_GAINS_BYTES = 16 << 20
 
 
+class LaneChangeRun(Dict[str, Any]):
+    """The dict :func:`lane_change` returns, with :meth:`plot`."""
+
+    def plot(self, ax: Any = None) -> Any:
+        """The road (the path, preview delayed) and the front contact's path in the plane for
+        each model run, on matplotlib axes (new ones when ``ax`` is None)."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots()
+        runs = [(name, self[name]) for name in ("linear", "nonlinear") if self.get(name)]
+        if runs:
+            first = runs[0][1]
+            ax.plot(first["front_x"], first["path"], "k--", label="road (the path, preview delayed)")
+        for name, run in runs:
+            ax.plot(run["front_x"], run["front_y"], label=f"front contact y_Q, {name}")
+        ax.set_xlabel("distance along x [m]")
+        ax.set_ylabel("lateral position y [m]")
+        ax.legend()
+        return ax
+
+
 def lane_change(bicycle: Any, gains: Union[str, "os.PathLike[str]", Sequence[float]],
                 speed: float, lane: str = "double", model: str = "both",
                 width: Optional[float] = None, neuro_frequency: float = 30.0,
-                neuro_damping: float = 0.707, rtol: float = 1e-9) -> Dict[str, Any]:
+                neuro_damping: float = 0.707, rtol: float = 1e-9) -> LaneChangeRun:
     """HumanControl's single or double lane change at ``speed`` [m/s], ridden by Hess's
     controller (the lateral task) on the linear bicycle (exactly), the non-linear one, or both.
 
@@ -32,7 +54,7 @@ def lane_change(bicycle: Any, gains: Union[str, "os.PathLike[str]", Sequence[flo
     ``"linear"``, ``"nonlinear"`` or ``"both"``. ``neuro_frequency`` [rad/s] and
     ``neuro_damping``: the neuromuscular filter. ``rtol``: the non-linear run's tolerance.
 
-    Returns a dict: ``gains`` (the five used), ``extrapolated``, and ``linear`` and
+    Returns a dict (:class:`LaneChangeRun`, whose ``plot()`` draws the paths): ``gains`` (the five used), ``extrapolated``, and ``linear`` and
     ``nonlinear`` (None for a model not run), each a dict of numpy arrays at the path's 501
     sample times: ``time`` [s], ``path`` (the road: the path delayed by the preview) [m],
     ``command`` y_c (the path through the path filter) [m], ``front_x`` (distance travelled)
@@ -65,7 +87,7 @@ def lane_change(bicycle: Any, gains: Union[str, "os.PathLike[str]", Sequence[flo
     if result["extrapolated"]:
         warnings.warn(f"{speed} m/s is outside the gains file's speeds: the gains are "
                       "extrapolated, as HumanControl warns", ParameterWarning, stacklevel=2)
-    return result
+    return LaneChangeRun(result)
 
 
-__all__ = ["lane_change"]
+__all__ = ["lane_change", "LaneChangeRun"]
