@@ -1,7 +1,7 @@
 //! `whipple control hess`: the bicycle ridden by Hess's human controller (Hess, Moore &
 //! Hubbard 2012; HumanControl's closed loop). At one speed: the gains used (from a HumanControl
 //! gains file, interpolated in speed and said when extrapolated, or by Hess 2012's rules), the
-//! closed loop's eigenvalues and each loop's crossover frequency; over `--speeds A:B:N` the
+//! closed loop's eigenvalues and each loop's crossover frequency; over `--speeds START:STOP:STEP` the
 //! eigenvalues against speed. Every number is the library's.
 
 use std::fmt::Write as _;
@@ -46,8 +46,8 @@ pub struct HessArgs {
         required_unless_present = "speeds"
     )]
     speed: Option<f64>,
-    /// Speeds A:B:N in m/s: N speeds from A to B, both included; prints the eigenvalues
-    /// against speed.
+    /// Speeds START:STOP:STEP in m/s, both ends included; prints the eigenvalues against
+    /// speed.
     #[arg(long, allow_hyphen_values = true)]
     speeds: Option<String>,
     /// The task: heading (ψ command, four loops) or lateral (front contact's lateral
@@ -65,35 +65,17 @@ pub struct HessArgs {
     format: TextFormat,
 }
 
-fn parse_finite(text: &str) -> Result<f64> {
-    match text.trim().parse::<f64>() {
-        Ok(x) if x.is_finite() => Ok(x),
-        _ => bail!("--speeds: `{text}` is not a finite number"),
-    }
-}
-
-/// `A:B:N`: N speeds from A to B.
+/// `START:STOP:STEP` in m/s, both ends included, as every `--speeds` of the CLI.
 fn parse_speeds(text: &str) -> Result<Vec<f64>> {
-    let parts: Vec<&str> = text.split(':').collect();
-    if parts.len() != 3 {
-        bail!("--speeds expects A:B:N (N speeds from A to B), got `{text}`");
+    let (start, stop, step) = crate::output::parse_triple(text, "--speeds")?;
+    let grid = whipple::speed_grid(start, stop, step).context("--speeds")?;
+    if grid.len() > MAX_HESS_SPEEDS {
+        bail!(
+            "--speeds: at most {MAX_HESS_SPEEDS} speeds, got {}",
+            grid.len()
+        );
     }
-    let (a, b) = (parse_finite(parts[0])?, parse_finite(parts[1])?);
-    let n: usize = parts[2].trim().parse().map_err(|_| {
-        anyhow::anyhow!(
-            "--speeds: N must be a whole number of speeds, got `{}`",
-            parts[2]
-        )
-    })?;
-    if n == 0 || n > MAX_HESS_SPEEDS {
-        bail!("--speeds: N must be between 1 and {MAX_HESS_SPEEDS}, got {n}");
-    }
-    if n == 1 {
-        return Ok(vec![a]);
-    }
-    Ok((0..n)
-        .map(|k| a + (b - a) * k as f64 / (n - 1) as f64)
-        .collect())
+    Ok(grid)
 }
 
 fn gains_words(source: &str, extrapolated: bool, speed: f64, table: Option<&GainTable>) -> String {
@@ -213,7 +195,7 @@ pub fn hess(cx: &RunContext, args: &HessArgs) -> Result<()> {
         return emit(&text, None);
     }
     let Some(speed) = args.speed else {
-        bail!("give --speed V or --speeds A:B:N");
+        bail!("give --speed V or --speeds START:STOP:STEP");
     };
     let (gains, extrapolated) = match &table {
         Some(t) => {
