@@ -14,7 +14,7 @@ use whipple::advanced::control::{
     GainTable, HandlingQuality, HandlingRow, Neuromuscular, handling_against_parameter,
     handling_against_speed,
 };
-use whipple_report::{Dash, Series, XyPlotOptions, line_plot};
+use whipple_report::{Dash, Marker, Series, XyPlotOptions, line_plot};
 
 use crate::TextFormat;
 use crate::bike::{RunContext, load};
@@ -381,6 +381,18 @@ fn sweep(
                 .collect();
             let lo = xs.iter().copied().fold(f64::INFINITY, f64::min);
             let hi = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            // Where the roll loop is unstable the metric means nothing: marked (the first five
+            // such values; the table names them all).
+            let markers: Vec<Marker> = xs
+                .iter()
+                .zip(rows)
+                .filter(|(_, r)| !r.stable)
+                .take(5)
+                .map(|(&x, _)| Marker {
+                    x,
+                    label: "roll loop unstable".into(),
+                })
+                .collect();
             let options = XyPlotOptions {
                 title: Some(title.to_string()),
                 x_label: x_name.to_string(),
@@ -389,7 +401,7 @@ fn sweep(
             };
             let mut series = vec![Series::new("peak HQM", points).coloured(0)];
             series.extend(hess_levels(lo, hi));
-            Some(line_plot(&series, &[], &options)?)
+            Some(line_plot(&series, &markers, &options)?)
         }
         None => None,
     };

@@ -570,6 +570,19 @@ impl GainTable {
         for i in 0..5 {
             k[i] = g0[i] + t * (g1[i] - g0[i]);
         }
+        // Finite rows can still extrapolate past double precision (two speeds a hair apart,
+        // a speed far outside them): say so rather than hand on an infinite gain.
+        if let Some(i) = k.iter().position(|x| !x.is_finite()) {
+            return Err(Error::NonFinite {
+                context: format!(
+                    "`{}` interpolated at {} m/s from the table's speeds {} and {}",
+                    HumanGains::NAMES[i],
+                    short_number(speed),
+                    short_number(v0),
+                    short_number(v1)
+                ),
+            });
+        }
         Ok(GainLookup {
             gains: HumanGains::from_array(k),
             extrapolated,
@@ -659,6 +672,17 @@ mod tests {
         let slope = (115.379 - 78.2238) / (12.0 - 8.34);
         assert!((beyond.gains.k_delta - (115.379 + slope)).abs() < 1e-9);
         assert!(table.at(1.0).unwrap().extrapolated);
+        // Extrapolated past double precision: refused, naming the gain.
+        let steep = GainTable::new(
+            vec![1.0, 1.0 + 1e-15],
+            vec![
+                HumanGains::from_array([1.0; 5]),
+                HumanGains::from_array([1e300; 5]),
+            ],
+        )
+        .unwrap();
+        let err = steep.at(1e3).unwrap_err();
+        assert!(err.to_string().contains("`kDelta`"), "{err}");
     }
 
     #[test]
