@@ -108,6 +108,7 @@ pub fn app_bound_to(limits: Limits, bound: IpAddr) -> Router {
         .route("/api/map/design", post(crate::design::design_at))
         .route("/api/turn", post(crate::turns::turn))
         .route("/api/study", post(crate::design::study))
+        .route("/api/ridden", post(crate::ridden::ridden))
         .fallback(not_found)
         .method_not_allowed_fallback(method_not_allowed)
         .layer(DefaultBodyLimit::max(limits.max_body_bytes))

@@ -152,6 +152,9 @@ impl From<Error> for ApiError {
             | Error::SingularDynamics { .. } => ApiError::new(unprocessable, "numerical", message),
             // The turn asked for does not exist (or is not reached from straight running).
             Error::NoSteadyTurn { .. } => ApiError::new(unprocessable, "no_steady_turn", message),
+            Error::GainRuleUnmet { gain, rule } => {
+                ApiError::new(unprocessable, "gain_rule_unmet", message).at(gain, rule)
+            }
             _ => ApiError::internal(message),
         }
     }

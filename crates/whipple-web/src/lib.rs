@@ -35,6 +35,7 @@ mod frequency;
 pub mod geometry;
 mod measure;
 pub mod modes;
+mod ridden;
 pub mod simulation;
 mod time;
 mod turns;
