@@ -2,7 +2,9 @@
 //! `LeanModel`): the modes of the linearized model at a speed or against speed beside the rigid
 //! rider's (the hinge locked), and the non-linear motion under a rider lean torque at the hinge.
 //! The parameters are BicycleParameters' `MooreRiderLean2012` set, Moore's Browser with Jason
-//! unless `--moore FILE` gives another (a JSON object of its 36 keys).
+//! unless `--moore FILE` gives another (a JSON object of its 36 keys), or `--bike`: any bicycle
+//! with its rider, Jason's upper body split off its rear frame (the library's
+//! `RiderLeanParameters::split`).
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -13,12 +15,13 @@ use serde_json::json;
 use whipple::advanced::eigen::{Complex64, eigenvalues};
 use whipple::advanced::integrate::Integrator;
 use whipple::advanced::io::read_moore_rider_lean2012;
-use whipple::advanced::nonlinear::{LeanForcing, LeanModel, ProjectionSettings};
+use whipple::advanced::nonlinear::{LeanForcing, LeanModel, MAX_STEPS, ProjectionSettings};
 use whipple::advanced::parameters::RiderLeanParameters;
 use whipple::{Canonical, InitialConditions};
 use whipple_report::{Series, XyPlotOptions, line_plot};
 
 use crate::TextFormat;
+use crate::bike::RunContext;
 use crate::bike::read_capped;
 use crate::output::{self, number, parse_triple};
 use crate::time_response::short;
@@ -32,8 +35,13 @@ pub struct RiderArgs {
     /// BicycleParameters' `MooreRiderLean2012` parameter set as a JSON object of its 36 keys
     /// (`json.dump(parameter_set.parameters, f)`); default Moore's Browser with Jason
     /// (`mooreriderlean2012_browser_jason`).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "bike")]
     moore: Option<PathBuf>,
+    /// A bicycle with its rider (a preset or a parameter file, as every command's --bike):
+    /// Jason's upper body (from the Browser with Jason set) split off its rear frame and hinged
+    /// at Jason's hinge; refused where it does not fit inside the bicycle's rider.
+    #[arg(long)]
+    bike: Option<String>,
     /// The hinge's passive stiffness in N m/rad (Moore's k9), replacing the file's.
     #[arg(long, allow_hyphen_values = true)]
     hinge_stiffness: Option<f64>,
@@ -110,8 +118,26 @@ fn core(error: whipple::Error) -> anyhow::Error {
 }
 
 /// Runs `whipple rider`.
-pub fn run(args: &RiderArgs) -> Result<()> {
-    let (mut p, label) = parameters(args.moore.as_deref())?;
+pub fn run(cx: &RunContext, args: &RiderArgs) -> Result<()> {
+    let (mut p, label) = match &args.bike {
+        None => parameters(args.moore.as_deref())?,
+        Some(arg) => {
+            let loaded = crate::bike::load(cx, arg)?;
+            let jason = RiderLeanParameters::browser_jason().upper_body;
+            let p = RiderLeanParameters::split(&loaded.benchmark, jason)
+                .map_err(core)
+                .with_context(|| {
+                    format!(
+                        "Jason's upper body ({} kg, Moore 2012) cannot lean on {}",
+                        jason.m, loaded.label
+                    )
+                })?;
+            (
+                p,
+                format!("{} with Jason's upper body leaning", loaded.label),
+            )
+        }
+    };
     if let Some(k) = args.hinge_stiffness {
         p.upper_body.stiffness = k;
     }
@@ -260,6 +286,7 @@ fn simulate(
                 hinge_torque: &|t| if t <= until { torque } else { 0.0 },
                 stop_at_fall: true,
                 stop: crate::interrupt::flag(),
+                max_steps: MAX_STEPS,
             },
         )
         .map_err(core)

@@ -457,7 +457,7 @@ where
         Command::Turn(args) => turns::turn(cx, &args),
         Command::Control(args) => control::run(cx, &args),
         Command::RiderInertia(args) => rider::run(&args),
-        Command::Rider(args) => lean::run(&args),
+        Command::Rider(args) => lean::run(cx, &args),
         Command::Turns(args) => turns::turns(cx, &args),
         Command::Serve {
             port,

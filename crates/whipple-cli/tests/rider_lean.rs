@@ -41,6 +41,54 @@ fn the_leaning_riders_modes_are_the_librarys_beside_the_rigid_riders() {
     assert_eq!(rows[2]["stable"], false);
 }
 
+/// `--bike`: Jason's upper body split off any bicycle's rider (the library's split), the
+/// modes the library's for that split; refused, saying why, where it does not fit.
+#[test]
+fn a_bicycle_with_its_rider_leans_with_jasons_upper_body() {
+    let doc = json(&[
+        "rider",
+        "--bike",
+        "schwinn-crown",
+        "--speed",
+        "5",
+        "--hinge-stiffness",
+        "800",
+        "--format",
+        "json",
+    ]);
+    let schwinn = whipple::presets::find("schwinn-crown")
+        .expect("preset")
+        .bicycle()
+        .benchmark()
+        .expect("benchmark");
+    let jason = RiderLeanParameters::browser_jason().upper_body;
+    let upper_body = whipple::advanced::parameters::UpperBody {
+        stiffness: 800.0,
+        ..jason
+    };
+    let p = RiderLeanParameters::split(&schwinn, upper_body).expect("split");
+    let expected = LeanModel::new(&p)
+        .expect("model")
+        .eigenvalues(5.0)
+        .expect("eigenvalues");
+    let got = doc["rows"][0]["eigenvalues"]
+        .as_array()
+        .expect("eigenvalues");
+    for (z, e) in got.iter().zip(&expected) {
+        assert_eq!(z[0].as_f64(), Some(e.re));
+        assert_eq!(z[1].as_f64(), Some(e.im));
+    }
+    let message = stderr_of_failure(&whipple(&["rider", "--bike", "benchmark", "--speed", "5"]));
+    assert!(
+        message.contains("cannot lean on benchmark") && message.contains("does not fit"),
+        "{message}"
+    );
+    let message = stderr_of_failure(&whipple(&[
+        "rider", "--bike", "browser", "--moore", "x.json", "--speed", "5",
+    ]));
+    assert!(message.contains("cannot be used with"), "{message}");
+}
+
 #[test]
 fn a_moore_file_is_read_and_bad_ones_are_refused_naming_the_key() {
     let dir = scratch("rider-lean-moore");

@@ -5,7 +5,8 @@ use pyo3::prelude::*;
 use whipple::Bicycle;
 use whipple::advanced::nonlinear::LeanModel;
 use whipple::advanced::parameters::{
-    Description, MOORE_RIDER_LEAN2012_KEYS, MooreRiderLean2012Parameters,
+    Description, MOORE_RIDER_LEAN2012_KEYS, MooreRiderLean2012Parameters, RiderLeanParameters,
+    UpperBody,
 };
 
 use crate::bicycle::NativeBicycle;
@@ -28,6 +29,28 @@ impl NativeRiderLean {
             .py_err(py)?
             .to_rider_lean()
             .py_err(py)?;
+        let model = LeanModel::new(&parameters).py_err(py)?;
+        Ok(NativeRiderLean { model })
+    }
+
+    /// A bicycle with its rider, Jason's upper body (of the Browser with Jason set) split off
+    /// its rear frame, hinged at Jason's hinge with this stiffness and damping; refused where
+    /// it does not fit inside the bicycle's rider (the library's `RiderLeanParameters::split`).
+    #[staticmethod]
+    fn from_bicycle(
+        py: Python<'_>,
+        bike: &NativeBicycle,
+        hinge_stiffness: f64,
+        hinge_damping: f64,
+    ) -> PyResult<Self> {
+        let jason = RiderLeanParameters::browser_jason().upper_body;
+        let upper_body = UpperBody {
+            stiffness: hinge_stiffness,
+            damping: hinge_damping,
+            ..jason
+        };
+        let parameters =
+            RiderLeanParameters::split(&bike.checked.benchmark, upper_body).py_err(py)?;
         let model = LeanModel::new(&parameters).py_err(py)?;
         Ok(NativeRiderLean { model })
     }

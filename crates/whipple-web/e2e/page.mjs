@@ -617,6 +617,51 @@ await section("simulation: overlay, linear prediction, CSV, time axis ending whe
   check(last <= Math.max(end, 4) + 1, `the time axis ends near the longest run shown (ticks to ${last} s; this run ended at ${end} s, the earlier at 4 s)`);
 });
 
+await section("simulation: the rider's upper body leans on a hinge, drawn, read out, in the link; refused where it does not fit", async () => {
+  await open("?bike=preset:schwinn-crown");
+  await page.getByTestId("tab-sim").click();
+  check(await page.getByTestId("sim-rider-k").isDisabled(), "the hinge's fields wait for the rider box");
+  await page.getByTestId("sim-rider").check();
+  check(await page.getByTestId("sim-steer-torque").isDisabled() && await page.getByTestId("sim-from-turn").isDisabled(), "with the leaning rider the torques and the held turn are not used");
+  await page.fill("#sim-speed", "5");
+  await page.fill("#sim-lean-rate", "0");
+  await page.fill("#sim-duration", "2");
+  await page.click("[data-testid=sim-run]");
+  const outcome = await ran((t) => t.startsWith("completed"));
+  check(/2 s without falling/.test(outcome), `the run completes: "${outcome}"`);
+  check((await page.locator("[data-testid=sim-rider-curve]").count()) === 1, "the upper body's lean on the hinge is drawn against time");
+  check((await page.locator("[data-testid=sim-linear-curve]").count()) === 0 && /rigid rider only/.test(await page.locator("#sim-linear-note").textContent()), "no rigid-rider linear model beside it, and that is said");
+  const meta = await page.locator("#sim-meta").textContent();
+  check(/leaning rider k 800, c 50/.test(meta) && /T_r 20 for 0.5 s/.test(meta), `the run is named by its rider: "${meta}"`);
+  await page.getByTestId("sim-scrub").fill("0.4");
+  const lean = number(await text("sim-rider-readout"));
+  check(lean > 0.5, `the read-out shows the upper body leaning right under the torque at 0.4 s: ${lean}°`);
+  // The answer's fifth pose drawn: the frames carry the upper body (checked through the API).
+  const bike = await page.evaluate(async () => (await (await fetch("/api/presets/schwinn-crown")).json()));
+  const answer = await page.evaluate(async (b) => (await fetch("/api/simulate", { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify({ bike: b.bike ?? b, speed: 5, duration: 0.1, rider: { hinge_stiffness: 800, hinge_damping: 50 } }) })).json(), bike);
+  check(answer.frames?.[0]?.bodies?.length === 5 && answer.geometry?.upper_body?.mass === 48.816, "the server's frames carry the upper body's pose");
+  const csv = await downloadOf(() => page.click("[data-testid=sim-csv]"));
+  check(csv.text.split("\n")[2].includes("rider_lean_deg"), "the CSV has the upper body's lean");
+  // The link carries the rider; a reload restores it.
+  const link = page.url();
+  check(/rider%3Alean/.test(link) && /rk%3A800/.test(link), "the link carries the leaning rider");
+  await open(new URL(link).search);
+  await page.getByTestId("tab-sim").click();
+  check(await page.getByTestId("sim-rider").isChecked() && (await page.getByTestId("sim-rider-k").inputValue()) === "800" && await page.getByTestId("sim-steer-torque").isDisabled(), "a reload restores the rider and keeps the torques off");
+  // Bad input: text in a hinge field; a bicycle whose rider cannot hold Jason's upper body.
+  await page.fill("#sim-rider-c", "soft");
+  await page.click("[data-testid=sim-run]");
+  await waitForText("sim-message", (t) => /hinge damping must be a number/.test(t));
+  check(await page.getByTestId("sim-rider-c").evaluate((e) => e.classList.contains("invalid")), "the damping field is marked");
+  await open("?bike=preset:benchmark");
+  await page.getByTestId("tab-sim").click();
+  await page.getByTestId("sim-rider").check();
+  await page.fill("#sim-duration", "1");
+  await page.click("[data-testid=sim-run]");
+  const refusal = await waitForText("sim-message", (t) => /does not fit/.test(t));
+  check(/Jason's upper body/.test(refusal) && /refused/.test(await text("sim-outcome")), `the benchmark bicycle's rider cannot hold it, said: "${refusal.slice(0, 120)}…"`);
+});
+
 await section("degrees, precision, display names", async () => {
   await open("?bike=preset:schwinn-crown");
   const options = await page.$$eval("#bike-select option", (os) => os.map((o) => o.textContent));

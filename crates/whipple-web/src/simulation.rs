@@ -12,7 +12,11 @@ use axum::http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use whipple::BenchmarkParameters;
-use whipple::advanced::nonlinear::{ContactForce, Outcome, Sample};
+use whipple::advanced::nonlinear::{
+    BodyPose, ContactForce, DEFAULT_FALL_ANGLE, HINGE_LIMIT, Inputs, LeanForcing, LeanModel,
+    LeanSample, Outcome, Sample,
+};
+use whipple::advanced::parameters::{RiderLeanParameters, UpperBody};
 use whipple::advanced::turns::{Held, SteadyTurn, TurnSettings, held_turn};
 use whipple::{InitialConditions, Model, SimulationSettings, simulate};
 use whipple_front::simulation::{IntegratorKind, SimulationRequest, TorqueInput};
@@ -71,6 +75,35 @@ pub struct SimulateRequest {
     /// `steer_torque` is given; `lean_rate` and `steer_rate` perturb it; no `steer_deg`.
     #[serde(default)]
     pub from_turn: bool,
+    /// The rider's upper body free to lean on a hinge (Moore 2012's rider-lean model, the
+    /// library's `LeanModel`); absent, the rider is rigid.
+    #[serde(default)]
+    pub rider: Option<RiderLeanRequest>,
+}
+
+/// The leaning rider of `POST /api/simulate`: Jason's upper body (BicycleParameters'
+/// `mooreriderlean2012_browser_jason`, as `whipple rider`) split off the bicycle's rear frame
+/// (the library's `RiderLeanParameters::split`), hinged to it at Jason's hinge, with the
+/// hinge's stiffness and damping and the rider's torque about the hinge. The bicycle is then
+/// hands free: `steer_torque`, `lean_torque` and `from_turn` are not taken with it.
+#[derive(Deserialize, Debug, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct RiderLeanRequest {
+    /// k: the hinge's passive stiffness [N m/rad] (default 0).
+    #[serde(default)]
+    pub hinge_stiffness: f64,
+    /// c: the hinge's passive damping [N m s/rad] (default 0).
+    #[serde(default)]
+    pub hinge_damping: f64,
+    /// The rider's torque about the hinge [N m] (on the upper body, its reaction on the rear
+    /// frame; right positive), held for `torque_duration` (default 0).
+    #[serde(default)]
+    pub torque: f64,
+    /// How long the torque acts [s] from the start (default: the whole run).
+    pub torque_duration: Option<f64>,
+    /// φ_r₀: the upper body's initial lean relative to the rear frame \[deg\] (default 0).
+    #[serde(default)]
+    pub lean_deg: f64,
 }
 
 /// A torque that was given (`null` is not one).
@@ -81,6 +114,8 @@ fn given<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<TorqueInput>, 
 /// A checked request: everything [`run`] needs.
 #[derive(Debug)]
 pub struct Plan {
+    /// With `rider`: the leaning rider's request, checked.
+    rider: Option<RiderLeanRequest>,
     initial: InitialConditions,
     settings: SimulationSettings,
     /// With `from_turn`: the library's request, to be made again from the turn in [`run`].
@@ -152,6 +187,9 @@ pub fn check(request: &SimulateRequest, limits: &Limits) -> Result<Plan, ApiErro
             "must not be given with `from_turn` (the turn sets the steer)".into(),
         ));
     }
+    if let Some(rider) = &request.rider {
+        check_rider(request, rider)?;
+    }
     let (initial, settings) = library.validate().map_err(library_error)?;
     let from_turn = request.from_turn.then(|| FromTurn {
         speed: request.speed,
@@ -160,10 +198,64 @@ pub fn check(request: &SimulateRequest, limits: &Limits) -> Result<Plan, ApiErro
         request: library,
     });
     Ok(Plan {
+        rider: request.rider,
         initial,
         settings,
         from_turn,
     })
+}
+
+/// The leaning rider's own rules; the upper body and the hinge are checked by the library.
+fn check_rider(request: &SimulateRequest, rider: &RiderLeanRequest) -> Result<(), ApiError> {
+    let hands_free = "with `rider` the bicycle is hands free (only the rider's torque about \
+                      the hinge acts): give 0";
+    if request.steer_torque.as_ref().is_some_and(|t| !is_zero(t)) {
+        return Err(invalid("steer_torque", hands_free.into()));
+    }
+    if !is_zero(&request.lean_torque) {
+        return Err(invalid("lean_torque", hands_free.into()));
+    }
+    if request.from_turn {
+        return Err(invalid(
+            "from_turn",
+            "the held turn is the rigid rider's: not taken with `rider`".into(),
+        ));
+    }
+    let finite = |field: &str, value: f64| {
+        if value.is_finite() {
+            Ok(())
+        } else {
+            Err(invalid(
+                field,
+                format!("must be a finite number, got {value}"),
+            ))
+        }
+    };
+    finite("rider.hinge_stiffness", rider.hinge_stiffness)?;
+    finite("rider.hinge_damping", rider.hinge_damping)?;
+    finite("rider.torque", rider.torque)?;
+    if rider.lean_deg.abs() >= 90.0 || !rider.lean_deg.is_finite() {
+        return Err(invalid(
+            "rider.lean_deg",
+            format!(
+                "the upper body's lean must be below 90° in size (across the bicycle), got {}",
+                rider.lean_deg
+            ),
+        ));
+    }
+    if let Some(d) = rider.torque_duration {
+        if !(d.is_finite() && d >= 0.0) {
+            return Err(invalid(
+                "rider.torque_duration",
+                format!("must be a finite number of seconds, not negative, got {d}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn is_zero(torque: &TorqueInput) -> bool {
+    matches!(torque, TorqueInput::Constant(x) if *x == 0.0)
 }
 
 /// How a run ended: a machine-readable kind, the time, and a sentence for people.
@@ -239,8 +331,12 @@ pub struct Frame {
     pub rear_force: Force,
     /// Ground force on the front wheel \[N\].
     pub front_force: Force,
-    /// Rear wheel, rear frame (with the rider), front frame, front wheel.
-    pub bodies: [Pose; 4],
+    /// Rear wheel, rear frame (with the rider, or with the rider's lower body when the upper
+    /// body leans), front frame, front wheel; then the upper body when it leans.
+    pub bodies: Vec<Pose>,
+    /// φ_r: the upper body's lean relative to the rear frame \[rad\], when it leans.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rider_lean: Option<f64>,
 }
 
 /// Where the drawing's points sit in the bodies' own axes (x forward, y right, z down, parallel
@@ -261,8 +357,25 @@ pub struct DrawingGeometry {
     pub front_hub_in_front_frame: [f64; 3],
     /// Unit steer axis, pointing down, in either frame's axes.
     pub steer_axis: [f64; 3],
-    /// Masses of the rear wheel, rear frame with rider, front frame, front wheel \[kg\].
+    /// Masses of the rear wheel, rear frame with rider (or with the lower body), front frame,
+    /// front wheel \[kg\].
     pub masses: [f64; 4],
+    /// The leaning upper body, when it leans.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub upper_body: Option<UpperBodyDrawing>,
+}
+
+/// The leaning upper body G in the drawing.
+#[derive(Serialize, Debug)]
+pub struct UpperBodyDrawing {
+    /// m_G \[kg\].
+    pub mass: f64,
+    /// The hinge line's point nearest G's centre of mass, in G's axes from that centre \[m\].
+    pub hinge_in_upper_body: [f64; 3],
+    /// The hinge's stiffness [N m/rad].
+    pub hinge_stiffness: f64,
+    /// The hinge's damping [N m s/rad].
+    pub hinge_damping: f64,
 }
 
 /// The answer of `POST /api/simulate`.
@@ -313,26 +426,28 @@ fn describe(outcome: &Outcome, duration: f64, max_steps: usize) -> OutcomeJson {
     }
 }
 
+fn pose(p: &BodyPose) -> Pose {
+    let (x, r) = (p.position, p.rotation);
+    // Narrowed to f32 on purpose (see `Pose`).
+    let f = |v: f64| v as f32;
+    Pose {
+        position: [f(x.x), f(x.y), f(x.z)],
+        rotation: [
+            f(r[(0, 0)]),
+            f(r[(0, 1)]),
+            f(r[(0, 2)]),
+            f(r[(1, 0)]),
+            f(r[(1, 1)]),
+            f(r[(1, 2)]),
+            f(r[(2, 0)]),
+            f(r[(2, 1)]),
+            f(r[(2, 2)]),
+        ],
+    }
+}
+
 fn frame(model: &Model, s: &Sample) -> Frame {
-    let bodies = model.sample_poses(s).map(|p| {
-        let (x, r) = (p.position, p.rotation);
-        // Narrowed to f32 on purpose (see `Pose`).
-        let f = |v: f64| v as f32;
-        Pose {
-            position: [f(x.x), f(x.y), f(x.z)],
-            rotation: [
-                f(r[(0, 0)]),
-                f(r[(0, 1)]),
-                f(r[(0, 2)]),
-                f(r[(1, 0)]),
-                f(r[(1, 1)]),
-                f(r[(1, 2)]),
-                f(r[(2, 0)]),
-                f(r[(2, 1)]),
-                f(r[(2, 2)]),
-            ],
-        }
-    });
+    let bodies = model.sample_poses(s).iter().map(pose).collect();
     Frame {
         t: s.t,
         lean: s.lean,
@@ -347,6 +462,7 @@ fn frame(model: &Model, s: &Sample) -> Frame {
         rear_force: s.rear.into(),
         front_force: s.front.into(),
         bodies,
+        rider_lean: None,
     }
 }
 
@@ -374,6 +490,9 @@ pub fn run(
     max_steps: usize,
     stop: Arc<AtomicBool>,
 ) -> Result<SimulateResponse, ApiError> {
+    if let Some(rider) = plan.rider {
+        return run_rider(name, parameters, plan, rider, max_steps, stop);
+    }
     let model = Model::new(parameters)?;
     let at_start = |error: whipple::Error| {
         // The initial state comes from the request's numbers and the bicycle.
@@ -420,17 +539,7 @@ pub fn run(
         error @ whipple::Error::StepTooLarge { .. } => ApiError::from(error),
         other => at_start(other),
     })?;
-    let g = &model.bodies().geometry;
-    let geometry = DrawingGeometry {
-        rear_wheel_radius: model.parameters().r_r,
-        front_wheel_radius: model.parameters().r_f,
-        rear_hub_in_rear_frame: g.rear_hub_in_b.into(),
-        steer_point_in_rear_frame: g.steer_point_in_b.into(),
-        steer_point_in_front_frame: g.steer_point_in_h.into(),
-        front_hub_in_front_frame: g.front_hub_in_h.into(),
-        steer_axis: g.steer_axis.into(),
-        masses: model.bodies().body.map(|b| b.mass),
-    };
+    let geometry = drawing(&model, None);
     let frames = thin(&simulation.samples)
         .into_iter()
         .map(|s| frame(&model, s))
@@ -449,5 +558,182 @@ pub fn run(
         geometry,
         frames,
         turn,
+    })
+}
+
+/// The drawing's fixed geometry of a bicycle (and its leaning upper body).
+fn drawing(model: &Model, upper_body: Option<UpperBodyDrawing>) -> DrawingGeometry {
+    let g = &model.bodies().geometry;
+    DrawingGeometry {
+        rear_wheel_radius: model.parameters().r_r,
+        front_wheel_radius: model.parameters().r_f,
+        rear_hub_in_rear_frame: g.rear_hub_in_b.into(),
+        steer_point_in_rear_frame: g.steer_point_in_b.into(),
+        steer_point_in_front_frame: g.steer_point_in_h.into(),
+        front_hub_in_front_frame: g.front_hub_in_h.into(),
+        steer_axis: g.steer_axis.into(),
+        masses: model.bodies().body.map(|b| b.mass),
+        upper_body,
+    }
+}
+
+/// Runs a checked request with the leaning rider: the library's `LeanModel` of the bicycle
+/// with Jason's upper body split off its rear frame, under the rider's hinge torque.
+fn run_rider(
+    name: Option<String>,
+    parameters: &BenchmarkParameters,
+    plan: Plan,
+    rider: RiderLeanRequest,
+    max_steps: usize,
+    stop: Arc<AtomicBool>,
+) -> Result<SimulateResponse, ApiError> {
+    let jason = RiderLeanParameters::browser_jason().upper_body;
+    let upper_body = UpperBody {
+        stiffness: rider.hinge_stiffness,
+        damping: rider.hinge_damping,
+        ..jason
+    };
+    let field = |error: whipple::Error| -> ApiError {
+        match error {
+            whipple::Error::InvalidParameter { field, rule, .. } => match field.as_str() {
+                "kLean" => invalid("rider.hinge_stiffness", rule),
+                "cLean" => invalid("rider.hinge_damping", rule),
+                // Jason's upper body against the bicycle's rear frame: the bicycle's fault.
+                _ => unprocessable(
+                    "invalid_parameter",
+                    "bike",
+                    rule.clone(),
+                    format!(
+                        "Jason's upper body ({} kg, Moore 2012) cannot lean on this bicycle: \
+                         {rule}",
+                        jason.m
+                    ),
+                ),
+            },
+            other => ApiError::from(other),
+        }
+    };
+    let p = RiderLeanParameters::split(parameters, upper_body).map_err(field)?;
+    let model = LeanModel::new(&p).map_err(field)?;
+    let lean = radians(rider.lean_deg);
+    let start = model
+        .initial_state(&plan.initial, lean, 0.0)
+        .map_err(|error| {
+            let rule = error.to_string();
+            ApiError::from(error).at(INITIAL_FIELDS, rule)
+        })?;
+    let duration = plan.settings.duration;
+    let until = rider.torque_duration.unwrap_or(f64::INFINITY);
+    let torque = rider.torque;
+    let hinge_torque = move |t: f64| if t <= until { torque } else { 0.0 };
+    let samples = model
+        .simulate_forced(
+            &start,
+            duration,
+            &plan.settings.integrator,
+            &plan.settings.projection,
+            &LeanForcing {
+                hinge_torque: &hinge_torque,
+                stop_at_fall: true,
+                stop: &stop,
+                max_steps,
+            },
+        )
+        .map_err(|error| match error {
+            error @ whipple::Error::InvalidArgument { what: "dt", .. } => library_error(error),
+            error @ whipple::Error::InvalidArgument {
+                what: "stopped", ..
+            } => ApiError::from(error),
+            other => ApiError::from(other),
+        })?;
+    let last = samples.last().copied().unwrap_or(LeanSample {
+        t: 0.0,
+        state: start,
+        energy: model.energy(&start),
+    });
+    let steps = samples.len().saturating_sub(1);
+    let bicycle = model.bicycle();
+    let outcome = if last.state.bicycle.lean().abs() > DEFAULT_FALL_ANGLE {
+        describe(
+            &Outcome::Fell {
+                t: last.t,
+                lean: last.state.bicycle.lean(),
+            },
+            duration,
+            max_steps,
+        )
+    } else if last.state.lean.abs() > HINGE_LIMIT {
+        OutcomeJson {
+            kind: "fell",
+            t: last.t,
+            wheel: None,
+            message: format!(
+                "the upper body fell across the bicycle at t = {:.2} s (its lean on the hinge \
+                 passed 90°); a stiffer or more damped hinge holds it",
+                last.t
+            ),
+        }
+    } else if last.t < duration * (1.0 - 1e-12) {
+        OutcomeJson {
+            kind: "step_limit",
+            t: last.t,
+            wheel: None,
+            message: format!(
+                "ended at t = {:.2} s: this server's limit of {max_steps} steps; loosen rtol or \
+                 simulate a shorter time",
+                last.t
+            ),
+        }
+    } else {
+        describe(&Outcome::Completed, duration, max_steps)
+    };
+    let mut frames = Vec::new();
+    let mut next = 0.0;
+    for (i, s) in samples.iter().enumerate() {
+        if s.t < next - 1e-9 && i + 1 != samples.len() {
+            continue;
+        }
+        next = ((s.t * FRAME_RATE + 1e-6).floor() + 1.0) / FRAME_RATE;
+        let rates = model
+            .forward(&s.state, &Inputs::default(), hinge_torque(s.t))
+            .map_err(ApiError::from)?;
+        let view = bicycle.observe(&s.state.bicycle);
+        frames.push(Frame {
+            t: s.t,
+            lean: view.lean,
+            steer: view.steer,
+            lean_rate: view.lean_rate,
+            steer_rate: view.steer_rate,
+            yaw: view.yaw,
+            speed: view.speed,
+            energy: s.energy,
+            rear_contact: [view.rear_contact_x, view.rear_contact_y],
+            front_contact: [view.front_contact_x, view.front_contact_y],
+            rear_force: rates.bicycle.contact[0].into(),
+            front_force: rates.bicycle.contact[1].into(),
+            bodies: model.body_poses(&s.state).iter().map(pose).collect(),
+            rider_lean: Some(s.state.lean),
+        });
+    }
+    let hinge = model.hinge_in_upper_body();
+    let geometry = drawing(
+        bicycle,
+        Some(UpperBodyDrawing {
+            mass: upper_body.m,
+            hinge_in_upper_body: hinge.into(),
+            hinge_stiffness: upper_body.stiffness,
+            hinge_damping: upper_body.damping,
+        }),
+    );
+    Ok(SimulateResponse {
+        name,
+        outcome,
+        duration,
+        steps,
+        frame_rate: FRAME_RATE,
+        pulled_down_from_start: Vec::new(),
+        geometry,
+        frames,
+        turn: None,
     })
 }

@@ -1611,3 +1611,166 @@ async fn a_parsed_file_is_named_without_the_parameter_sets_suffix() -> TestResul
     }
     Ok(())
 }
+
+/// The leaning rider (`rider`): Jason's upper body split off the Schwinn Crown's rider, a
+/// 20 N m pulse for 0.5 s about a stiff, damped hinge at 5 m/s. Five poses per frame, the
+/// upper body at Jason's place at the start, leaning right under the torque while the bicycle
+/// leans left (the reaction on the rear frame); the run completes.
+#[tokio::test]
+async fn simulate_with_the_leaning_rider() -> TestResult {
+    let app = app(Limits::default());
+    let rider = json!({"hinge_stiffness": 800.0, "hinge_damping": 50.0, "torque": 20.0, "torque_duration": 0.5});
+    let request = simulation(
+        json!({"bike": preset_json("schwinn-crown")?, "speed": 5.0, "lean_rate": 0.0, "rider": rider}),
+    )?;
+    let (status, body) = post(&app, "/api/simulate", &request).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert_eq!(body["outcome"]["kind"], "completed", "{}", body["outcome"]);
+    let upper = &body["geometry"]["upper_body"];
+    assert!(approx(&upper["mass"], 48.816, 1e-12), "{upper}");
+    assert!(approx(&upper["hinge_stiffness"], 800.0, 0.0));
+    let frames = body["frames"].as_array().ok_or("frames")?;
+    let first = &frames[0];
+    assert_eq!(first["bodies"].as_array().map(Vec::len), Some(5));
+    let g = &first["bodies"][4]["position"];
+    // Jason's upper body: xG 0.2312, zG −1.2830 m (single precision in the frames).
+    assert!(
+        approx(&g[0], 0.231_223_5, 1e-6)
+            && approx(&g[1], 0.0, 1e-6)
+            && approx(&g[2], -1.283_035, 1e-6),
+        "{g}"
+    );
+    let at = |t: f64| {
+        frames
+            .iter()
+            .find(|f| f["t"].as_f64().is_some_and(|ft| ft >= t))
+    };
+    let half = at(0.5).ok_or("a frame at 0.5 s")?;
+    let (rider_lean, lean) = (
+        half["rider_lean"].as_f64().ok_or("rider_lean")?,
+        half["lean"].as_f64().ok_or("lean")?,
+    );
+    assert!(
+        rider_lean > 0.0 && lean < 0.0,
+        "rider {rider_lean}, bicycle {lean}"
+    );
+    // The lean model's reaction forces carry the rider's weight: both normal forces together.
+    let weight = first["rear_force"]["normal"].as_f64().ok_or("n")?
+        + first["front_force"]["normal"].as_f64().ok_or("n")?;
+    let bike = whipple::presets::find("schwinn-crown")?
+        .bicycle()
+        .benchmark()?;
+    let total = bike.m_r + bike.m_b + bike.m_h + bike.m_f;
+    assert!(
+        (weight - total * bike.g).abs() < 1e-6 * weight,
+        "{weight} vs {}",
+        total * bike.g
+    );
+    Ok(())
+}
+
+/// With the hinge free the upper body falls over it: the run ends and says so. With a
+/// stiff undamped hinge and no torque the energy is conserved.
+#[tokio::test]
+async fn the_leaning_rider_falls_or_keeps_its_energy() -> TestResult {
+    let app = app(Limits::default());
+    let bike = preset_json("schwinn-crown")?;
+    let free = simulation(
+        json!({"bike": bike, "speed": 5.0, "lean_rate": 0.0, "duration": 5.0, "rider": {"lean_deg": 2.0}}),
+    )?;
+    let (status, body) = post(&app, "/api/simulate", &free).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    assert_eq!(body["outcome"]["kind"], "fell", "{}", body["outcome"]);
+    let message = body["outcome"]["message"].as_str().unwrap_or("");
+    assert!(
+        message.contains("upper body fell") || message.contains("fell"),
+        "{message}"
+    );
+    let stiff = simulation(
+        json!({"bike": bike, "speed": 5.0, "lean_rate": 0.0, "duration": 2.0, "integrator": "adaptive", "rtol": 1e-10, "rider": {"lean_deg": 3.0, "hinge_stiffness": 1500.0}}),
+    )?;
+    let (status, body) = post(&app, "/api/simulate", &stiff).await?;
+    assert_eq!(status, StatusCode::OK, "{body}");
+    let frames = body["frames"].as_array().ok_or("frames")?;
+    let energy: Vec<f64> = frames.iter().filter_map(|f| f["energy"].as_f64()).collect();
+    let drift = energy
+        .iter()
+        .map(|e| (e - energy[0]).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        drift < 1e-6 * energy[0].abs(),
+        "drift {drift} of {}",
+        energy[0]
+    );
+    assert!(
+        frames
+            .iter()
+            .any(|f| f["rider_lean"].as_f64().is_some_and(|r| r < 0.0)),
+        "the upper body swings back"
+    );
+    Ok(())
+}
+
+/// What the leaning rider refuses, each naming its field.
+#[tokio::test]
+async fn the_leaning_rider_refuses_naming_the_field() -> TestResult {
+    let app = app(Limits::default());
+    let schwinn = preset_json("schwinn-crown")?;
+    let cases = [
+        (
+            json!({"bike": preset_json("benchmark")?, "rider": {}}),
+            "bike",
+            "does not fit",
+        ),
+        (
+            json!({"bike": preset_json("browser")?, "rider": {}}),
+            "bike",
+            "lighter",
+        ),
+        (
+            json!({"bike": schwinn, "rider": {}, "steer_torque": 1.0}),
+            "steer_torque",
+            "hands free",
+        ),
+        (
+            json!({"bike": schwinn, "rider": {}, "lean_torque": "t"}),
+            "lean_torque",
+            "hands free",
+        ),
+        (
+            json!({"bike": schwinn, "rider": {}, "from_turn": true}),
+            "from_turn",
+            "rigid rider",
+        ),
+        (
+            json!({"bike": schwinn, "rider": {"lean_deg": 95.0}}),
+            "rider.lean_deg",
+            "below 90",
+        ),
+        (
+            json!({"bike": schwinn, "rider": {"hinge_stiffness": -1.0}}),
+            "rider.hinge_stiffness",
+            "passive",
+        ),
+        (
+            json!({"bike": schwinn, "rider": {"torque_duration": -1.0}}),
+            "rider.torque_duration",
+            "not negative",
+        ),
+    ];
+    for (fields, field, words) in cases {
+        let (status, body) = post(&app, "/api/simulate", &simulation(fields.clone())?).await?;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{fields}: {body}");
+        assert_eq!(body["error"]["field"], field, "{body}");
+        let message = body["error"]["message"].as_str().unwrap_or("");
+        assert!(message.contains(words), "{message}");
+    }
+    let (status, body) = post(
+        &app,
+        "/api/simulate",
+        &simulation(json!({"bike": schwinn, "rider": {"hinge": 1}}))?,
+    )
+    .await?;
+    assert!(status.is_client_error(), "{body}");
+    Ok(())
+}

@@ -34,6 +34,18 @@ class RiderLean:
         items = [(str(k), float(v)) for k, v in d.items()]
         return cls(_whipple.NativeRiderLean.from_moore_rider_lean2012(items))
 
+    @classmethod
+    def from_bicycle(cls, bike: Bicycle, hinge_stiffness: float = 0.0,
+                     hinge_damping: float = 0.0) -> "RiderLean":
+        """A bicycle with its rider (any form), Jason's upper body (48.8 kg, of the Browser with
+        Jason set, Moore 2012) taken off its rear frame and hinged to it at Jason's hinge, with
+        the hinge's stiffness [N m/rad] and damping [N m s/rad]; the rear frame keeps the frame
+        and the rider's lower body. Raises ``whipple.InvalidParameter`` where Jason's upper
+        body does not fit inside the bicycle's rider (the benchmark bicycle's, a bicycle
+        without a rider). ``rigid()`` gives the bicycle back."""
+        return cls(_whipple.NativeRiderLean.from_bicycle(
+            bike._native, float(hinge_stiffness), float(hinge_damping)))
+
     def to_moore_rider_lean2012(self) -> Dict[str, float]:
         """BicycleParameters' ``MooreRiderLean2012`` keys and values."""
         return dict(self._native.moore_rider_lean2012())

@@ -25,6 +25,17 @@ const TORQUES = [
   ["sim-steer-torque", "steer_torque"],
   ["sim-lean-torque", "lean_torque"],
 ];
+/**
+ * The leaning rider (Moore 2012's rider-lean model): the request's `rider` fields and the
+ * link's keys. The torque's duration may be empty (the whole run).
+ */
+const RIDER = [
+  ["sim-rider-k", "hinge_stiffness", "rk"],
+  ["sim-rider-c", "hinge_damping", "rc"],
+  ["sim-rider-torque", "torque", "rt"],
+  ["sim-rider-for", "torque_duration", "rd"],
+  ["sim-rider-lean", "lean_deg", "rl"],
+];
 /** Runs kept: the current one and up to this many earlier ones, overlaid. */
 const KEEP = 4;
 
@@ -49,6 +60,12 @@ function runLabel(r) {
   if (r.steer_torque && r.steer_torque !== 0) parts.push(`T_δ ${r.steer_torque}`);
   if (r.lean_torque && r.lean_torque !== 0) parts.push(`T_φ ${r.lean_torque}`);
   if (r.from_turn) parts.push("held turn");
+  if (r.rider) {
+    const h = r.rider;
+    parts.push(`leaning rider k ${num(h.hinge_stiffness)}, c ${num(h.hinge_damping)}`);
+    if (h.torque) parts.push(`T_r ${num(h.torque)}${h.torque_duration !== undefined ? ` for ${num(h.torque_duration)} s` : ""}`);
+    if (h.lean_deg) parts.push(`φ_r₀ ${num(h.lean_deg)}°`);
+  }
   return parts.join(", ");
 }
 
@@ -90,6 +107,8 @@ export class SimPanel {
     });
     $("sim-linear").addEventListener("change", () => this.drawPlots());
     $("sim-from-turn").addEventListener("change", () => this.noteTurn());
+    $("sim-rider").addEventListener("change", () => this.noteRider());
+    this.noteRider();
     this.setEnabled(false);
   }
 
@@ -160,7 +179,23 @@ export class SimPanel {
     const out = {};
     for (const [id, key] of [...INPUTS, ...TORQUES]) out[key] = $(id).value;
     if ($("sim-from-turn").checked) out.turn = "held";
+    if ($("sim-rider").checked) {
+      out.rider = "lean";
+      for (const [id, , key] of RIDER) out[key] = $(id).value;
+    }
     return out;
+  }
+
+  /**
+   * With the leaning rider the bicycle is hands free (the server's rule): the torques and the
+   * held turn are not used, and the rider's fields are.
+   */
+  noteRider() {
+    const on = $("sim-rider").checked;
+    for (const [id] of RIDER) $(id).disabled = !on;
+    for (const id of ["sim-steer-torque", "sim-lean-torque", "sim-from-turn"]) $(id).disabled = on;
+    if (on) $("sim-from-turn").checked = false;
+    if (!on) this.noteTurn();
   }
 
   /** On a held turn the turn sets the steer and its torque: those inputs are not used. */
@@ -198,14 +233,17 @@ export class SimPanel {
     }
     if (values.speed !== undefined) this.speedEdited = true;
     $("sim-from-turn").checked = values.turn === "held";
+    $("sim-rider").checked = values.rider === "lean";
+    for (const [id, , key] of RIDER) if (values[key] !== undefined) $(id).value = values[key];
     this.noteTurn();
+    this.noteRider();
     this.noteSpeed();
   }
 
   /** The request for the inputs, or null (the field flagged) when one is not a number. */
   request() {
     const request = { bike: this.bike() };
-    for (const [id] of [...INPUTS, ...TORQUES]) $(id).classList.remove("invalid");
+    for (const [id] of [...INPUTS, ...TORQUES, ...RIDER]) $(id).classList.remove("invalid");
     for (const [id, key] of INPUTS) {
       const x = parseNumber($(id).value);
       if (x === null) {
@@ -221,7 +259,23 @@ export class SimPanel {
       if (text === "") request[key] = 0;
       else request[key] = x === null ? text : x;
     }
-    if ($("sim-from-turn").checked) {
+    if ($("sim-rider").checked) {
+      // Hands free: only the rider's torque about the hinge acts.
+      request.steer_torque = 0;
+      request.lean_torque = 0;
+      request.rider = {};
+      for (const [id, key] of RIDER) {
+        const text = $(id).value.trim();
+        if (key === "torque_duration" && text === "") continue;
+        const x = parseNumber(text);
+        if (x === null) {
+          $(id).classList.add("invalid");
+          this.refused(`${$(id).dataset.label} must be a number.`);
+          return null;
+        }
+        request.rider[key] = x;
+      }
+    } else if ($("sim-from-turn").checked) {
       // The turn's steer and its holding torque (the server's), not the inputs'.
       request.from_turn = true;
       request.steer_deg = 0;
@@ -254,7 +308,8 @@ export class SimPanel {
       }
       const result = await api.simulate(request);
       const run = { request, result, label: runLabel(request), linear: null };
-      const handsFree = request.steer_torque === 0 && request.lean_torque === 0;
+      // The linear model beside is the rigid rider's: not drawn with the leaning one.
+      const handsFree = request.steer_torque === 0 && request.lean_torque === 0 && !request.rider;
       if (handsFree) {
         const end = result.frames[result.frames.length - 1].t;
         const { bike, speed, lean_deg, steer_deg, lean_rate, steer_rate } = request;
@@ -262,14 +317,14 @@ export class SimPanel {
       }
       this.runs = [run, ...this.runs].slice(0, KEEP);
       this.load(result);
-      $("sim-linear-note").textContent = handsFree ? "" : "linear model: hands-free runs only";
+      $("sim-linear-note").textContent = handsFree ? "" : request.rider ? "linear model: rigid rider only" : "linear model: hands-free runs only";
       this.onRun(request);
       await this.ensureView();
       this.view?.load(result);
       this.seek(0);
       this.play();
     } catch (e) {
-      const input = [...INPUTS, ...TORQUES].find(([, key]) => key === e.field);
+      const input = [...INPUTS, ...TORQUES].find(([, key]) => key === e.field) ?? RIDER.find(([, key]) => `rider.${key}` === e.field);
       if (input) $(input[0]).classList.add("invalid");
       this.refused(e.message);
     } finally {
@@ -311,9 +366,11 @@ export class SimPanel {
       "# angles in degrees, rates in rad/s, positions in m; linear_*: the linear model from the same initial state (hands free)",
     ];
     const linear = run.linear;
-    lines.push(["t", "lean_deg", "steer_deg", "lean_rate", "steer_rate", "yaw_deg", "speed", "rear_x", "rear_y", "front_x", "front_y", ...(linear ? ["linear_lean_deg", "linear_steer_deg"] : [])].join(","));
+    const leaning = run.result.frames[0]?.rider_lean !== undefined;
+    lines.push(["t", "lean_deg", "steer_deg", "lean_rate", "steer_rate", "yaw_deg", "speed", "rear_x", "rear_y", "front_x", "front_y", ...(leaning ? ["rider_lean_deg"] : []), ...(linear ? ["linear_lean_deg", "linear_steer_deg"] : [])].join(","));
     run.result.frames.forEach((f, i) => {
       const row = [f.t, f.lean * DEG, f.steer * DEG, f.lean_rate, f.steer_rate, f.yaw * DEG, f.speed, ...f.rear_contact, ...f.front_contact];
+      if (leaning) row.push(f.rider_lean * DEG);
       if (linear) row.push(linear.lean[i] * DEG, linear.steer[i] * DEG);
       lines.push(row.map((x) => (x === undefined ? "" : String(x))).join(","));
     });
@@ -363,6 +420,8 @@ export class SimPanel {
     $("sim-lean-readout").textContent = fixed(f.lean * DEG, 1);
     $("sim-steer-readout").textContent = fixed(f.steer * DEG, 1);
     $("sim-v-readout").textContent = fixed(f.speed, 2);
+    $("sim-rider-readout-row").hidden = f.rider_lean === undefined;
+    if (f.rider_lean !== undefined) $("sim-rider-readout").textContent = fixed(f.rider_lean * DEG, 1);
     this.view?.show(i);
     this.timePlot.cursor(i);
     this.trackPlot.cursor(i);

@@ -6,7 +6,7 @@ import { svg, html, num } from "./format.js";
 import { Chart, nearest, legend } from "./chart.js";
 
 const INK = "#1f2937";
-export const SIM_COLOURS = { lean: "#2563eb", steer: "#d97706", rear: "#374151", front: "#dc2626" };
+export const SIM_COLOURS = { lean: "#2563eb", steer: "#d97706", rider: "#7c3aed", rear: "#374151", front: "#dc2626" };
 /** Earlier runs kept for comparison, faint, one colour pair each. */
 const OVERLAY = [["#93c5fd", "#fcd34d"], ["#a5b4fc", "#fdba74"], ["#99f6e4", "#fca5a5"], ["#c4b5fd", "#fde68a"]];
 const DEG = 180 / Math.PI;
@@ -41,7 +41,7 @@ export class TimePlot extends Chart {
   extent() {
     const end = Math.max(...this.runs.map((r) => r.result.frames[r.result.frames.length - 1].t), 1e-3);
     let y = 1;
-    for (const r of this.runs) for (const f of r.result.frames) y = Math.max(y, Math.abs(f.lean * DEG), Math.abs(f.steer * DEG));
+    for (const r of this.runs) for (const f of r.result.frames) y = Math.max(y, Math.abs(f.lean * DEG), Math.abs(f.steer * DEG), Math.abs((f.rider_lean ?? 0) * DEG));
     y = Math.min(y * 1.08, 180);
     return { x0: 0, x1: end, y0: -y, y1: y };
   }
@@ -51,8 +51,9 @@ export class TimePlot extends Chart {
     for (const r of this.runs) {
       for (const f of r.result.frames) {
         if (f.t < x0 || f.t > x1) continue;
-        lo = Math.min(lo, f.lean * DEG, f.steer * DEG);
-        hi = Math.max(hi, f.lean * DEG, f.steer * DEG);
+        const r = (f.rider_lean ?? 0) * DEG;
+        lo = Math.min(lo, f.lean * DEG, f.steer * DEG, r);
+        hi = Math.max(hi, f.lean * DEG, f.steer * DEG, r);
       }
     }
     return hi > lo ? { y0: lo, y1: hi } : null;
@@ -80,9 +81,12 @@ export class TimePlot extends Chart {
     const t = run.result.frames.map((fr) => fr.t);
     curves.append(svg("path", { d: path(t, run.result.frames.map((fr) => fr.lean * DEG), X, Y), stroke: SIM_COLOURS.lean, "stroke-width": 1.8, "data-testid": "sim-lean-curve" }));
     curves.append(svg("path", { d: path(t, run.result.frames.map((fr) => fr.steer * DEG), X, Y), stroke: SIM_COLOURS.steer, "stroke-width": 1.8 }));
+    const leaning = run.result.frames[0].rider_lean !== undefined;
+    if (leaning) curves.append(svg("path", { d: path(t, run.result.frames.map((fr) => fr.rider_lean * DEG), X, Y), stroke: SIM_COLOURS.rider, "stroke-width": 1.8, "data-testid": "sim-rider-curve" }));
     root.append(curves);
     const seg = (colour, dash, w = 2.5) => (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: colour, "stroke-width": w, "stroke-dasharray": dash });
     const items = [{ draw: seg(SIM_COLOURS.lean), text: "lean φ" }, { draw: seg(SIM_COLOURS.steer), text: "steer δ" }];
+    if (leaning) items.push({ draw: seg(SIM_COLOURS.rider), text: "upper body's lean on the hinge φ_r" });
     if (run.linear) items.push({ draw: seg(INK, "5 3", 1.2), text: "linear model" });
     this.runs.slice(1).forEach((r, k) => items.push({ draw: seg(OVERLAY[k % OVERLAY.length][0]), text: r.label }));
     f.legendBottom = legend(root, items, f.left, f.legendWidth, 10.5);
@@ -105,6 +109,7 @@ export class TimePlot extends Chart {
     const row = (name, colour, value) => rows.push(html("div", { class: "tt-row" }, html("span", { class: "tt-dot", style: `background:${colour}` }), html("span", { class: "tt-mode", text: name }), html("span", { class: "tt-val", text: value })));
     row("lean φ", SIM_COLOURS.lean, `${num(fr.lean * DEG)}°`);
     row("steer δ", SIM_COLOURS.steer, `${num(fr.steer * DEG)}°`);
+    if (fr.rider_lean !== undefined) row("upper body φ_r", SIM_COLOURS.rider, `${num(fr.rider_lean * DEG)}°`);
     const dots = [{ x: f.X(fr.t), y: f.Y(fr.lean * DEG), colour: SIM_COLOURS.lean }, { x: f.X(fr.t), y: f.Y(fr.steer * DEG), colour: SIM_COLOURS.steer }];
     if (run.linear) {
       const j = nearest(run.linear.t, fr.t);

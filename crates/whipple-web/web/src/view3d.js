@@ -13,7 +13,7 @@ import {
 } from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 
-const COLOURS = { frame: 0x2563eb, fork: 0xdc2626, tyre: 0x1f2937, spoke: 0x9ca3af, hub: 0x6b7280, rearTrack: 0x374151, frontTrack: 0xdc2626 };
+const COLOURS = { rider: 0x7c3aed, frame: 0x2563eb, fork: 0xdc2626, tyre: 0x1f2937, spoke: 0x9ca3af, hub: 0x6b7280, rearTrack: 0x374151, frontTrack: 0xdc2626 };
 const TRACK_LIFT = -0.002; // tracks drawn just above the ground (z is down)
 
 const v3 = (a) => new Vector3(a[0], a[1], a[2]);
@@ -169,6 +169,31 @@ export class SimView {
     frontFrame.add(new Mesh(new SphereGeometry(0.035, 16, 12), forkMaterial));
 
     this.bodies = [rearWheel, rearFrame, frontFrame, frontWheel];
+    // The leaning upper body G (origin: its centre of mass): the torso from the hinge through
+    // the centre on to the shoulders, a head above, the centre-of-mass symbol; and the hinge
+    // line, a short bar along the rear frame's x axis.
+    if (g.upper_body) {
+      const upper = new Group();
+      upper.matrixAutoUpdate = false;
+      this.world.add(upper);
+      const riderMaterial = new MeshStandardMaterial({ color: COLOURS.rider, roughness: 0.55 });
+      const hinge = v3(g.upper_body.hinge_in_upper_body);
+      const up = new Vector3().sub(hinge); // from the hinge to the centre
+      const length = Math.max(up.length(), 0.05);
+      up.normalize();
+      // Shoulders about twice as far from the hinge as the centre of mass (a seated torso).
+      const shoulders = hinge.clone().addScaledVector(up, 2 * length);
+      upper.add(tube(hinge, shoulders, 0.085, riderMaterial));
+      const head = new Mesh(new SphereGeometry(0.095, 20, 14), riderMaterial);
+      head.position.copy(shoulders.clone().addScaledVector(up, 0.17));
+      upper.add(head);
+      const gSymbol = new Mesh(new SphereGeometry(0.085, 32, 16), new MeshStandardMaterial({ map: centreOfMassTexture(), roughness: 0.6 }));
+      gSymbol.name = "upper-body-centre-of-mass";
+      upper.add(gSymbol);
+      upper.add(tube(hinge.clone().add(new Vector3(-0.12, 0, 0)), hinge.clone().add(new Vector3(0.12, 0, 0)), 0.02, new MeshStandardMaterial({ color: COLOURS.hub })));
+      this.bodies.push(upper);
+      symbol.scale.setScalar(0.7); // the rear frame's symbol: the frame and the rider's legs
+    }
     this.frames = result.frames;
     this.tracks = [track(this.frames.length, COLOURS.rearTrack), track(this.frames.length, COLOURS.frontTrack)];
     this.frames.forEach((f, i) => {

@@ -34,7 +34,7 @@ use super::projection::ProjectionSettings;
 use super::rotation;
 use super::saddle;
 use super::settings::{DEFAULT_FALL_ANGLE, MAX_STEPS};
-use super::state::{COORDINATES, SPEEDS, STATE_LEN, State};
+use super::state::{BodyPose, COORDINATES, SPEEDS, STATE_LEN, State};
 use super::topology::{BODIES, FRONT_CONTACT, REAR_FRAME, ROLLING_TREE};
 use crate::analysis::linearize::{VectorField, jacobian};
 use crate::error::{Error, Result};
@@ -111,6 +111,9 @@ pub struct LeanForcing<'a> {
     pub stop_at_fall: bool,
     /// Set from another thread to end the run with an error.
     pub stop: &'a AtomicBool,
+    /// At most this many steps (and never more than [`MAX_STEPS`]): the run ends there, its
+    /// samples kept, as a budget's end (a server's, which bounds a run's time and memory).
+    pub max_steps: usize,
 }
 
 /// The hinge angle past which [`LeanModel::simulate_forced`] ends a run: the upper body lies
@@ -222,6 +225,27 @@ impl LeanModel {
         let x = s.position(REAR_FRAME) + rb * h + rg * cg;
         let v = s.velocity(REAR_FRAME) + rb * w_b.cross(&h) + rg * w_g.cross(&cg);
         (rg, x, w_g, v)
+    }
+
+    /// The five bodies' poses in a state: the four of [`Model::body_poses`] and the upper
+    /// body G's last (its origin its centre of mass, its axes turned from the rear frame's by
+    /// the hinge angle about their x axis).
+    pub fn body_poses(&self, state: &LeanState<f64>) -> [BodyPose; BODIES + 1] {
+        let four = self.model.body_poses(&state.bicycle);
+        let (rotation, position, _, _) = self.upper_body(state);
+        std::array::from_fn(|k| {
+            if k < BODIES {
+                four[k]
+            } else {
+                BodyPose { position, rotation }
+            }
+        })
+    }
+
+    /// The hinge line's point nearest G's centre of mass (straight above or below it in the
+    /// reference configuration), in G's axes from that centre \[m\].
+    pub fn hinge_in_upper_body(&self) -> Vector3<f64> {
+        -self.centre_in_g
     }
 
     /// Total mechanical energy: the four bodies', G's kinetic and potential energy and the
@@ -444,6 +468,7 @@ impl LeanModel {
             hinge_torque: &|_| 0.0,
             stop_at_fall: false,
             stop: &never,
+            max_steps: MAX_STEPS,
         };
         self.simulate_forced(start, duration, integrator, projection, &forcing)
     }
@@ -470,7 +495,9 @@ impl LeanModel {
             hinge_torque,
             stop_at_fall,
             stop,
+            max_steps,
         } = *forcing;
+        let max_steps = max_steps.min(MAX_STEPS);
         if !(duration.is_finite() && duration >= 0.0) {
             return Err(Error::InvalidArgument {
                 what: "duration",
@@ -478,10 +505,10 @@ impl LeanModel {
             });
         }
         if let Some(steps) = integrator.fixed_steps(duration) {
-            if steps > MAX_STEPS {
+            if steps > max_steps {
                 return Err(Error::InvalidArgument {
                     what: "dt",
-                    rule: format!("{steps} steps exceed the limit of {MAX_STEPS}"),
+                    rule: format!("{steps} steps exceed the limit of {max_steps}"),
                 });
             }
         }
@@ -508,7 +535,7 @@ impl LeanModel {
         };
         let mut samples = vec![sample(0.0, &y)];
         let system = |t: f64, y: &SVector<f64, LEAN_STATE_LEN>| self.rates(y, torque(t)?);
-        while !stepper.done() && samples.len() <= MAX_STEPS {
+        while !stepper.done() && samples.len() <= max_steps {
             if stop.load(Ordering::Relaxed) {
                 return Err(Error::InvalidArgument {
                     what: "stopped",

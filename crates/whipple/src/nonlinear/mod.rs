@@ -81,7 +81,7 @@ pub use settings::{
 };
 pub use simulate::{check_rk4_step, fastest_mode, simulate};
 pub(crate) use state::{BODY_PITCH, BODY_YAW};
-pub use state::{STATE_LEN, State, StateView};
+pub use state::{BodyPose, STATE_LEN, State, StateView};
 pub(crate) use topology::BODIES;
 #[cfg(test)]
 pub(crate) use topology::FRONT_FRAME;

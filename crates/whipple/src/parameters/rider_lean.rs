@@ -158,6 +158,97 @@ impl<T: RealField + Copy> RiderLeanParameters<T> {
 }
 
 impl RiderLeanParameters<f64> {
+    /// The bicycle `rigid`, whose rear frame B holds the whole rider, with `upper_body` freed to
+    /// lean: B less G (the inverse of [`RiderLeanParameters::rigid`]: the remainder's mass
+    /// m_B − m_G, its centre the mass-weighted difference, its tensor by the parallel-axis
+    /// theorem), then [`RiderLeanParameters::check`]ed. The rear frame then holds the frame and
+    /// the rider's lower body. Refused (naming `mG`) when G is not lighter than B or B less G
+    /// is not a body (its tensor not positive semi-definite: G does not fit inside B).
+    ///
+    /// ```
+    /// use whipple::advanced::parameters::RiderLeanParameters;
+    /// let p = RiderLeanParameters::browser_jason();
+    /// let again = RiderLeanParameters::split(&p.rigid(), p.upper_body)?;
+    /// assert!((again.bicycle.i_bxz - p.bicycle.i_bxz).abs() < 1e-12);
+    /// // A heavier upper body than the whole rear frame is refused.
+    /// let heavy = whipple::advanced::parameters::UpperBody { m: 500.0, ..p.upper_body };
+    /// assert!(RiderLeanParameters::split(&p.rigid(), heavy).is_err());
+    /// # Ok::<(), whipple::Error>(())
+    /// ```
+    pub fn split(rigid: &BenchmarkParameters, upper_body: UpperBody) -> Result<Self> {
+        let g = upper_body;
+        if !(g.m.is_finite() && g.m > 0.0) {
+            return Err(invalid(
+                "mG",
+                g.m,
+                "the rider's upper body must have a positive mass".into(),
+            ));
+        }
+        if g.m >= rigid.m_b {
+            return Err(invalid(
+                "mG",
+                g.m,
+                format!(
+                    "the upper body must be lighter than the rear frame it leaves (mB = {} kg)",
+                    short_number(rigid.m_b)
+                ),
+            ));
+        }
+        let whole = PlaneBody {
+            m: rigid.m_b,
+            x: rigid.x_b,
+            z: rigid.z_b,
+            i_xx: rigid.i_bxx,
+            i_yy: rigid.i_byy,
+            i_zz: rigid.i_bzz,
+            i_xz: rigid.i_bxz,
+        };
+        let less = PlaneBody {
+            m: -g.m,
+            i_xx: -g.i_xx,
+            i_yy: -g.i_yy,
+            i_zz: -g.i_zz,
+            i_xz: -g.i_xz,
+            ..g.plane_body()
+        };
+        let rest = PlaneBody::combine(&[whole, less]);
+        // A plane body's tensor is positive semi-definite when its yy entry and its xz block
+        // are; a little slack for the round-off of the subtraction.
+        let slack = 1e-12 * (rigid.i_bxx.abs() + rigid.i_byy.abs() + rigid.i_bzz.abs());
+        let block = rest.i_xx * rest.i_zz - rest.i_xz * rest.i_xz;
+        if rest.i_xx < -slack || rest.i_zz < -slack || rest.i_yy < -slack || block < -slack * slack
+        {
+            return Err(invalid(
+                "mG",
+                g.m,
+                format!(
+                    "the rear frame less this upper body is not a body (its inertia tensor \
+                     IBxx {}, IByy {}, IBzz {}, IBxz {} kg m² is not positive semi-definite): \
+                     the upper body does not fit inside the rear frame's rider",
+                    short_number(rest.i_xx),
+                    short_number(rest.i_yy),
+                    short_number(rest.i_zz),
+                    short_number(rest.i_xz)
+                ),
+            ));
+        }
+        let p = RiderLeanParameters {
+            bicycle: BenchmarkParameters {
+                m_b: rest.m,
+                x_b: rest.x,
+                z_b: rest.z,
+                i_bxx: rest.i_xx.max(0.0),
+                i_byy: rest.i_yy.max(0.0),
+                i_bzz: rest.i_zz.max(0.0),
+                i_bxz: rest.i_xz,
+                ..*rigid
+            },
+            upper_body: g,
+        };
+        p.check()?;
+        Ok(p)
+    }
+
     /// The Browser bicycle with Jason seated, his legs in the rear frame and his upper body
     /// free to lean: BicycleParameters' `mooreriderlean2012_browser_jason` (Moore 2012, from
     /// his inertia model of Jason on the Browser; BicycleParameters 1.5, BSD-2-Clause),
