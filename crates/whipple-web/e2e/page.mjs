@@ -1397,6 +1397,170 @@ await section("control at 1280 × 800 and 390 × 844: nothing overlaps, nothing 
   }
 });
 
+/** Until the Ridden tab has drawn an answer (its summary says the gains) and the page has settled. */
+async function riddenDrawn(test = () => true) {
+  await waitFor("the Ridden tab's answer", async () => {
+    const s = await page.getByTestId("rd-summary").textContent({ timeout: 1_000 });
+    const veiled = await page.getByTestId("rd-summary").evaluate((e) => e.classList.contains("stale"));
+    return (/gains at/.test(s ?? "") && !veiled && test(s)) || s;
+  }, 60_000);
+  await settled(60_000);
+  return text("rd-summary");
+}
+/** /api/ridden asked directly, with the preset's own bicycle, as the page's default form asks. */
+const riddenDirect = (preset, { speed = 5, lane = "double", speeds = { start: 1, stop: 10, step: 0.25 } } = {}) => page.evaluate(async ({ preset, speed, lane, speeds }) => {
+  const bike = await (await fetch(`/api/presets/${preset}`)).json();
+  const r = await fetch("/api/ridden", { method: "POST", headers: { "content-type": "application/json" }, body: JSON.stringify({ bike, speed, lane, speeds }) });
+  return { status: r.status, body: await r.json() };
+}, { preset, speed, lane, speeds });
+const largest = (run) => Math.max(...run.front_y.map((y, i) => Math.abs(y - run.road[i])));
+
+await section("ridden: the lane change and the peak HQM against speed, the summary as /api/ridden answers, CSV, the link", async () => {
+  await open("?tab=ridden");
+  const said = await riddenDrawn();
+  const lanes = async (id) => page.locator(`[data-testid=rd-lane-plot] [data-testid=${id}]`).count();
+  const nonlinearNote = await page.getByTestId("rd-nonlinear-note").isVisible();
+  check((await lanes("rd-road")) === 1 && (await lanes("rd-linear")) === 1 && !(await page.getByTestId("rd-linear-note").isVisible()), "the lane change in the plane: the road and the linear model's front contact drawn, near the road");
+  check((await lanes("rd-nonlinear")) === 1 || (nonlinearNote && /Only the linear model is drawn/.test(await text("rd-nonlinear-note"))), `the non-linear model's front contact drawn, or why not said (${nonlinearNote ? await text("rd-nonlinear-note") : "drawn"})`);
+  const curve = await page.$eval("[data-testid=rd-hqm-plot] [data-testid=rd-hqm-curve]", (p) => p.getAttribute("d"));
+  check(/L/.test(curve), "the peak HQM against speed drawn");
+  const level = await page.$$eval("[data-testid=rd-hqm-plot] [data-testid=rd-hqm-level-label]", (ts) => ts.map((t) => t.textContent));
+  check(level.length === 1 && /HQM = 5/.test(level[0]) && /good handling/.test(level[0]), `the HQM = 5 level drawn and labelled (“${level[0]}”)`);
+  // The summary's numbers are the API's.
+  const direct = await riddenDirect("schwinn-crown");
+  check(direct.status === 200, `POST /api/ridden answers the Schwinn Crown (${direct.status})`);
+  const a = direct.body;
+  const gains = await page.$$eval("[data-testid=rd-gain]", (es) => es.map((e) => ({ name: e.dataset.name, value: Number(e.dataset.value), text: e.textContent })));
+  check(gains.length === 5 && gains.every((g, k) => g.name === a.gain_names[k] && g.value === a.gains[k]), `the five gains shown are the API's: ${gains.map((g) => `${g.name} ${g.value}`).join(", ")}`);
+  const points = Number(await page.getByTestId("rd-summary").getAttribute("data-points"));
+  check(points === a.hqm.length && a.hqm.length === 37, `the HQM at the API's ${a.hqm.length} speeds (1 to 10 by 0.25) drawn: ${points}`);
+  const dev = await page.getByTestId("rd-deviation").evaluate((e) => ({ linear: Number(e.dataset.linear), nonlinear: e.dataset.nonlinear }));
+  check(Math.abs(dev.linear - largest(a.linear)) < 1e-12 && (a.nonlinear ? Math.abs(Number(dev.nonlinear) - largest(a.nonlinear)) < 1e-12 : dev.nonlinear === ""), `the largest deviations from the road are the API's samples': linear ${dev.linear} m, non-linear ${dev.nonlinear || "–"} m`);
+  const at5 = a.hqm.find((r) => r.speed === 5);
+  const shownPeak = await page.getByTestId("rd-hqm-at").getAttribute("data-peak");
+  check(at5 && (at5.peak === null ? shownPeak === "" : Number(shownPeak) === at5.peak), `the peak HQM at 5 m/s is the API's: ${at5?.peak} (“${await text("rd-hqm-at")}”)`);
+  const gaps = a.hqm.filter((r) => r.peak === null).length;
+  const marked = await page.locator("[data-testid=rd-hqm-plot] [data-testid=rd-hqm-gap-marker]").count();
+  check(marked === gaps, `each speed without a peak marked (${marked} of ${gaps}: ${a.hqm.filter((r) => r.peak === null).map((r) => r.speed).join(", ") || "none"})`);
+  console.log(`  Schwinn Crown, double lane change at 5 m/s: ${said}`);
+  // The hover read-out.
+  const box = await plotBox("rd-hqm-plot");
+  await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.6);
+  const tip = await waitForText("rd-hqm-plot-tooltip", (t) => /v = /.test(t));
+  check(/peak HQM|no peak/.test(tip), `the HQM plot reads out under the pointer: “${tip}”`);
+  // CSV of both plots.
+  const hqmCsv = await downloadOf(() => page.getByTestId("rd-csv-hqm").click());
+  const hqmLines = hqmCsv.text.trim().split("\n");
+  check(/schwinn.*hqm\.csv$/i.test(hqmCsv.name) && hqmLines[1] === "speed,peak,frequency,stable,reason" && hqmLines.length === 2 + 37, `the HQM as CSV: ${hqmCsv.name}, ${hqmLines.length - 2} speeds`);
+  const laneCsv = await downloadOf(() => page.getByTestId("rd-csv-lane").click());
+  const laneLines = laneCsv.text.trim().split("\n");
+  check(/lane-change-double-v5\.csv$/.test(laneCsv.name) && laneLines[1].startsWith("x_linear,y_linear,road_linear") && laneLines.length === 2 + a.linear.front_x.length, `the lane change as CSV: ${laneCsv.name}, ${laneLines.length - 2} samples`);
+  // Another choice, then the link: everything comes back.
+  await page.getByTestId("rd-speed").fill("4");
+  await page.getByTestId("rd-from").fill("2");
+  await page.getByTestId("rd-step").fill("0.5");
+  await page.getByTestId("rd-lane").selectOption("single");
+  const single = await riddenDrawn((t) => /gains at 4 m\/s/.test(t));
+  check(Number(await page.getByTestId("rd-summary").getAttribute("data-points")) === 17 && /single lane change at 4 m\/s/.test(await text("rd-meta")), `the single lane change at 4 m/s, the HQM at 17 speeds: “${single}”`);
+  const link = page.url();
+  check(/[?&]rd=/.test(link) && /tab=ridden/.test(link), "the link holds the tab and its choices");
+  // At 1.5 m/s the non-linear Schwinn Crown falls during the lane change: said in words, the
+  // linear model still drawn.
+  await page.getByTestId("rd-speed").fill("1.5");
+  await page.getByTestId("rd-speed").press("Enter");
+  await riddenDrawn((t) => /gains at 1\.5 m\/s/.test(t));
+  const fell = await text("rd-nonlinear-note");
+  check(/did not complete/.test(fell) && /fell/.test(fell) && /Only the linear model is drawn/.test(fell) && (await lanes("rd-nonlinear")) === 0 && (await lanes("rd-linear")) === 1, `a non-linear run that falls is said beside the plot: “${fell}”`);
+  check(/non-linear – \(not completed\)/.test(await text("rd-deviation")), `and the summary says so: “${await text("rd-deviation")}”`);
+  // There the rider's loops are unstable (the HQM sweep shades 1 to 2.25 m/s): the exact linear
+  // run diverges, which is said, the road kept in view.
+  const diverged = await text("rd-linear-note");
+  check(/leaves the road/.test(diverged) && /unstable at 1\.5 m\/s/.test(diverged) && (await lanes("rd-lane-outside")) === 1, `the linear run's divergence is said, the road kept in view: “${diverged}”`);
+  const shot = join(tmpdir(), "whipple-e2e-ridden-diverged.png");
+  await page.locator("#plots").screenshot({ path: shot });
+  console.log(`  screenshot: ${shot}`);
+  await page.goBack();
+  await riddenDrawn((t) => /gains at 4 m\/s/.test(t));
+  await page.goto("about:blank");
+  await open(new URL(link).search);
+  const again = await riddenDrawn();
+  const restored = await page.evaluate(() => ["rd-speed", "rd-lane", "rd-from", "rd-to", "rd-step"].map((id) => document.getElementById(id).value).join("|"));
+  check(restored === "4|single|2|10|0.5" && again === single, `the link restores the choices (${restored}) and the same summary`);
+});
+
+await section("ridden: bad input is named and marked, the last result veiled; recomputed when the bicycle is edited", async () => {
+  await open("?bike=preset:benchmark&tab=ridden");
+  const first = await riddenDrawn();
+  const veils = () => page.locator("[data-testid=rd-lane-plot] [data-testid=stale-veil], [data-testid=rd-hqm-plot] [data-testid=stale-veil]").count();
+  const invalid = (id) => page.getByTestId(id).getAttribute("aria-invalid");
+  const refused = async (id, value, pattern, what) => {
+    await page.getByTestId(id).fill(value);
+    await page.getByTestId(id).press("Enter");
+    await settled();
+    const message = await waitForText("rd-message", (t) => pattern.test(t));
+    check((await invalid(id)) === "true" && (await veils()) === 2 && (await page.getByTestId("rd-summary").evaluate((e) => e.classList.contains("stale"))), `${what}: “${message}”, the field marked, both plots and the summary veiled`);
+  };
+  await refused("rd-speed", "abc", /lane change's speed must be a number/, "letters in the speed");
+  await refused("rd-speed", "50", /from 1 to 20 m\/s/, "a speed of 50 m/s");
+  await page.getByTestId("rd-speed").fill("5");
+  await refused("rd-step", "0.001", /more than 500/, "a step giving 9,001 speeds");
+  check((await invalid("rd-speed")) === "false", "the speed, mended, is no longer marked");
+  // 20 m/s is within the bounds, but no k_δ meets Hess's rule for the benchmark there: the
+  // server's 422 gain_rule_unmet, said as it is.
+  await page.getByTestId("rd-step").fill("0.25");
+  await refused("rd-speed", "20", /no `kDelta` meets its rule/, "20 m/s, where no gain meets Hess's rule (422 gain_rule_unmet)");
+  await page.getByTestId("rd-speed").fill("5");
+  await page.getByTestId("rd-speed").press("Enter");
+  const mended = await riddenDrawn();
+  check(mended === first && !(await page.getByTestId("rd-message").isVisible()) && (await veils()) === 0, "mended: the same answer again, the message gone, nothing veiled");
+  // The bicycle edited: the rider's gains are set again for it.
+  const before = await page.$$eval("[data-testid=rd-gain]", (es) => es.map((e) => e.dataset.value).join(","));
+  await page.getByTestId("param-c").fill("0.05");
+  await riddenDrawn((t) => t !== first);
+  const after = await page.$$eval("[data-testid=rd-gain]", (es) => es.map((e) => e.dataset.value).join(","));
+  check(after !== before, `a shorter trail sets other gains (${after})`);
+  // Text in the bicycle's form veils the tab with the form's reason.
+  await page.getByTestId("param-c").fill("abc");
+  await waitFor("the veil", async () => (await veils()) === 2);
+  check(/not recomputed/.test(await page.getByTestId("rd-summary").getAttribute("data-stale")), "text in the bicycle's form veils the Ridden tab");
+});
+
+await section("ridden at 1440 × 900, 1280 × 800 and 390 × 844: nothing overlaps, nothing sticks out", async () => {
+  for (const viewport of [{ width: 1440, height: 900 }, { width: 1280, height: 800 }, { width: 390, height: 844 }]) {
+    await open("?bike=preset:benchmark&tab=ridden", viewport);
+    await riddenDrawn();
+    const blocks = ["#rd-form", "#rd-summary", "#rd-lane-plot", "#rd-hqm-plot"];
+    const rects = await page.evaluate((sels) => sels.map((s) => {
+      const r = document.querySelector(s).getBoundingClientRect();
+      return { s, l: r.left, t: r.top, r: r.right, b: r.bottom };
+    }), blocks);
+    const out = rects.filter((r) => r.l < 0 || r.r > viewport.width || r.r - r.l < 1 || r.b - r.t < 1).map((r) => r.s);
+    check(out.length === 0, `${viewport.width} px: every block within the width (${out.join(", ") || "none outside"})`);
+    const overlaps = [];
+    for (let i = 0; i < rects.length; i++) {
+      for (let j = i + 1; j < rects.length; j++) {
+        const [a, b] = [rects[i], rects[j]];
+        if (Math.min(a.r, b.r) - Math.max(a.l, b.l) > 1 && Math.min(a.b, b.b) - Math.max(a.t, b.t) > 1) overlaps.push(`${a.s} × ${b.s}`);
+      }
+    }
+    check(overlaps.length === 0, `${viewport.width} px: no two blocks overlap (${overlaps.join(", ") || "none"})`);
+    const size = (s) => rects.find((r) => r.s === s);
+    const [lane, hqm] = [size("#rd-lane-plot"), size("#rd-hqm-plot")];
+    check(lane.b - lane.t >= 190 && hqm.b - hqm.t >= 190 && lane.r - lane.l >= 300 && hqm.r - hqm.l >= 300, `${viewport.width} px: room for the plots (${Math.round(lane.r - lane.l)} × ${Math.round(lane.b - lane.t)} and ${Math.round(hqm.r - hqm.l)} × ${Math.round(hqm.b - hqm.t)} px)`);
+    const panel = await page.evaluate(() => document.querySelector("#plots").getBoundingClientRect().bottom);
+    const last = Math.max(...rects.map((r) => r.b));
+    check(last <= panel + 1, `${viewport.width} px: the plots end inside their panel (${Math.round(last)} ≤ ${Math.round(panel)})`);
+    const form = await page.evaluate(() => { const e = document.querySelector("#rd-form"); return { scroll: e.scrollWidth, client: e.clientWidth }; });
+    check(form.scroll <= form.client + 1, `${viewport.width} px: the form's controls fit it (${form.scroll} of ${form.client} px)`);
+    const { scroll, inner } = await page.evaluate(() => ({ scroll: document.documentElement.scrollWidth, inner: window.innerWidth }));
+    check(scroll <= inner, `${viewport.width} px: no sideways scroll (${scroll} px)`);
+    const shot = join(tmpdir(), `whipple-e2e-ridden-${viewport.width}.png`);
+    if (viewport.width < 500) await page.locator("#plots").screenshot({ path: shot });
+    else await page.screenshot({ path: shot });
+    console.log(`  screenshot: ${shot}`);
+  }
+});
+
 const timeCurves = (plot, testid = "resp-time-curve") => page.locator(`[data-testid=${plot}] [data-testid=${testid}]`).count();
 /** The last point of a plot's first linear curve, in the plot's pixels. */
 const lastPoint = (plot) => page.$eval(`[data-testid=${plot}] [data-testid=resp-time-curve]`, (p) => p.getAttribute("d").split(/[ML]/).filter(Boolean).at(-1));
@@ -1690,6 +1854,10 @@ await section("accessibility: axe-core finds nothing; headings", async () => {
   await page.locator("[data-testid=ctl-plot] [data-testid=eigen-curve]").first().waitFor({ timeout: 15_000 });
   await settled();
   await run("control tab");
+  await page.getByTestId("tab-ridden").click();
+  await page.locator("[data-testid=rd-hqm-plot] [data-testid=rd-hqm-curve]").first().waitFor({ timeout: 60_000 });
+  await settled(60_000);
+  await run("ridden tab");
   await page.getByTestId("tab-sens").click();
   await page.getByTestId("sens-tornado").waitFor({ timeout: 15_000 });
   await run("sensitivity tab");

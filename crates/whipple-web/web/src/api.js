@@ -73,6 +73,10 @@ export const api = {
    * scheduled}, speeds}: the gain used, the closed loop's eigenvalues in /api/eigen's shape and
    * its certified critical speeds. */
   closedLoop: (request) => call("POST", "/api/linear/closed_loop", request),
+  /** The bicycle ridden by Hess's controller, `request` {bike, speed, lane: "single" | "double",
+   * speeds: {start, stop, step}}: the gains by Hess 2012's rules at `speed`, HumanControl's lane
+   * change on the linear and the non-linear bicycle, and the certified peak HQM at every speed. */
+  ridden: (request) => call("POST", "/api/ridden", request),
   /** Bench measurements to a bicycle, `request` {text, file_name} (a *Measured.txt) or
    * {measurements: {key: {value, sigma}}, name}: {name, bike, parameters, steps, measurements,
    * other, correlations, warnings}. */

@@ -17,6 +17,7 @@ import { SimPanel } from "./sim.js";
 import { ModesPanel } from "./modes.js";
 import { ResponsePanel } from "./response.js";
 import { ControlPanel } from "./control.js";
+import { RiddenPanel } from "./ridden.js";
 import { SensitivityPanel } from "./sensitivity.js";
 import { MapPanel } from "./map.js";
 import { MeasurePanel } from "./measure.js";
@@ -28,7 +29,7 @@ const clone = (x) => JSON.parse(JSON.stringify(x));
 const same = (a, b) => JSON.stringify(a) === JSON.stringify(b);
 const DEFAULT_PRESET = "schwinn-crown";
 const MAX_COMPARED = 5;
-const VIEWS = ["eigen", "locus", "modes", "resp", "control", "sens", "map", "sim", "measure"];
+const VIEWS = ["eigen", "locus", "modes", "resp", "control", "ridden", "sens", "map", "sim", "measure"];
 
 const state = {
   presets: [],
@@ -78,6 +79,7 @@ const modes = new ModesPanel({
 });
 const response = new ResponsePanel({ bike: () => clone(state.bike), label: () => currentLabel(), onChange: () => remember(true) });
 const control = new ControlPanel({ bike: () => clone(state.bike), speeds: () => speedGrid(), openLoop: () => state.eigen, label: () => currentLabel(), ylim: () => yLimit(), onChange: () => remember(true) });
+const ridden = new RiddenPanel({ bike: () => clone(state.bike), label: () => currentLabel(), onChange: () => remember(true) });
 const sensitivity = new SensitivityPanel({ bike: () => clone(state.bike), label: () => currentLabel(), onChange: () => remember(true) });
 const designMap = new MapPanel({
   bike: () => clone(state.bike),
@@ -500,6 +502,8 @@ async function recompute() {
   else response.invalidate();
   if (state.view === "control") control.compute();
   else control.invalidate();
+  if (state.view === "ridden") ridden.compute();
+  else ridden.invalidate();
   if (state.view === "sens") sensitivity.compute();
   // A map of another bicycle is never shown: computed now, or again when its tab opens.
   if (state.view === "map") designMap.compute();
@@ -577,6 +581,7 @@ function drawAll() {
   modes.veil(staleReason({ speeds: false }));
   if (state.view === "resp" && staleReason({ speeds: false })) response.veil(staleReason({ speeds: false }));
   if (state.view === "control" && staleReason()) control.veil(staleReason());
+  if (state.view === "ridden" && staleReason({ speeds: false })) ridden.veil(staleReason({ speeds: false }));
   if (!state.eigen) return;
   const designs = designsShown();
   const stale = staleReason();
@@ -648,6 +653,7 @@ function showView(view, { push = true } = {}) {
   document.querySelector(".layout").classList.toggle("ctl-active", view === "control");
   document.querySelector(".layout").classList.toggle("sim-active", view === "sim");
   document.querySelector(".layout").classList.toggle("resp-active", view === "resp");
+  document.querySelector(".layout").classList.toggle("rd-active", view === "ridden");
   document.querySelector(".layout").classList.toggle("ms-active", view === "measure");
   for (const tab of document.querySelectorAll(".tab[data-view]")) {
     const on = tab.dataset.view === view;
@@ -660,6 +666,7 @@ function showView(view, { push = true } = {}) {
   // Before the first bicycle is loaded there is nothing to compute: recompute() does it then.
   if (view === "resp" && state.bike && !response.fresh) response.compute();
   if (view === "control" && state.bike && state.eigen && !control.fresh) control.compute();
+  if (view === "ridden" && state.bike && state.eigen && !ridden.fresh) ridden.compute();
   if (view === "sens" && state.bike) sensitivity.compute();
   if (view === "map" && state.bike && !designMap.answer) designMap.compute();
   // three.js is fetched when the Simulation tab first opens, not with the page.
@@ -697,6 +704,7 @@ function snapshot() {
     mode: $("mode-speed").value,
     resp: response.inputs(),
     control: control.inputs(),
+    ridden: ridden.inputs(),
     measure: state.view === "measure" || measure.sample || measure.answer ? measure.inputs() : null,
     sim: sim.inputs(),
     sens: sensitivity.quantity,
@@ -739,6 +747,7 @@ async function applyUrl() {
     }
     if (s.resp) response.setInputs(s.resp);
     if (s.control) control.setInputs(s.control);
+    if (s.ridden) ridden.setInputs(s.ridden);
     if (s.measure) await measure.setInputs(s.measure);
     if (s.sim) sim.setInputs(s.sim);
     if (s.sens) sensitivity.setQuantity(s.sens);

@@ -170,11 +170,14 @@ class BodePlot extends Chart {
   }
 }
 
-/** Curves y(x) (x increasing), each {x, y, colour, dashed, name, testid}: the time plots and
- * the path in the plane. */
-class CurvePlot extends Chart {
-  constructor(container, { label, xLabel, yLabel, unit, flipY = false }) {
-    super(container, { label, xLabel, yLabel, flipY, minHeight: 140, margin: { left: 56, right: 14, top: 36, bottom: 38 }, testid: container.dataset.testid });
+/** Curves y(x) (x increasing), each {x, y, colour, dashed, name, testid}: the time plots, the
+ * path in the plane, and (extended in ridden.js) the lane change and the peak HQM against
+ * speed. A y that is null or not finite leaves a gap; each series is read out at its own x
+ * nearest the cursor's. A subclass may draw under the curves (`underlay(root, frame)`) and add
+ * legend entries (`legendItems()`). */
+export class CurvePlot extends Chart {
+  constructor(container, { label, xLabel, yLabel, unit, flipY = false, minHeight = 140 }) {
+    super(container, { label, xLabel, yLabel, flipY, minHeight, margin: { left: 56, right: 14, top: 36, bottom: 38 }, testid: container.dataset.testid });
     this.unit = unit;
     this.series = null;
   }
@@ -215,16 +218,27 @@ class CurvePlot extends Chart {
 
   render(root, f) {
     const { X, Y } = f;
+    this.underlay?.(root, f);
     const curves = svg("g", { "clip-path": f.clip, fill: "none", "stroke-linejoin": "round" });
     for (const s of this.series) {
-      const d = s.y.map((y, i) => `${i ? "L" : "M"}${X(s.x[i]).toFixed(1)} ${Y(y).toFixed(1)}`).join("");
-      curves.append(svg("path", { d, stroke: s.colour, "stroke-width": s.dashed ? 1.8 : 2, "stroke-dasharray": s.dashed ? "6 4" : "none", "data-testid": s.testid, "data-name": s.name }));
+      let d = "";
+      let pen = false;
+      s.y.forEach((y, i) => {
+        if (y === null || !Number.isFinite(y)) {
+          pen = false;
+          return;
+        }
+        d += `${pen ? "L" : "M"}${X(s.x[i]).toFixed(1)} ${Y(y).toFixed(1)}`;
+        pen = true;
+      });
+      curves.append(svg("path", { d, stroke: s.colour, "stroke-width": s.width ?? (s.dashed ? 1.8 : 2), "stroke-dasharray": s.dashed ? "6 4" : "none", "data-testid": s.testid, "data-name": s.name }));
     }
     root.append(curves);
     const items = this.series.map((s) => ({
-      draw: (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: s.colour, "stroke-width": 2, "stroke-dasharray": s.dashed ? "5 3" : "none" }),
+      draw: (x, y) => svg("line", { x1: x, y1: y, x2: x + 18, y2: y, stroke: s.colour, "stroke-width": s.width ?? 2, "stroke-dasharray": s.dashed ? "5 3" : "none" }),
       text: s.name,
     }));
+    items.push(...(this.legendItems?.() ?? []));
     f.legendBottom = legend(root, items, f.left, f.legendWidth, 11);
   }
 
@@ -235,9 +249,10 @@ class CurvePlot extends Chart {
     const rows = [html("div", { class: "tt-v", text: `${this.xLabel.split(" [")[0]} = ${num(xs[i])}` })];
     const dots = [];
     for (const s of this.series) {
-      const y = s.y[i];
-      rows.push(html("div", { class: "tt-row" }, html("span", { class: "tt-dot", style: `background:${s.colour}` }), html("span", { class: "tt-mode", text: s.name }), html("span", { class: "tt-val", text: `${num(y)} ${this.unit}` })));
-      if (Number.isFinite(y)) dots.push({ x: f.X(s.x[i]), y: f.Y(y), colour: s.colour });
+      const j = s.x === xs ? i : nearest(s.x, xs[i]);
+      const y = s.y[j];
+      rows.push(html("div", { class: "tt-row" }, html("span", { class: "tt-dot", style: `background:${s.colour}` }), html("span", { class: "tt-mode", text: s.name }), html("span", { class: "tt-val", text: Number.isFinite(y) ? `${num(y)} ${this.unit}` : "–" })));
+      if (Number.isFinite(y)) dots.push({ x: f.X(s.x[j]), y: f.Y(y), colour: s.colour });
     }
     return { rows, dots, x: f.X(xs[i]) };
   }

@@ -5,11 +5,12 @@
 //   def=BASE64URL                    a whole bicycle (a design, a file, a conversion), as JSON
 //   cmp=preset:benchmark,…           the designs compared
 //   v=0:10:0.01  y=10                speeds and the vertical axis' limit
-//   tab=eigen|locus|modes|resp|control|sens|map|sim|measure  the bottom panel
+//   tab=eigen|locus|modes|resp|control|ridden|sens|map|sim|measure  the bottom panel
 //   mv=5                             the speed of the Modes tab
 //   rs=kind:bode;in:steer_torque;out:lean;v:5;cmp:3, 5, 7   the Response tab's choices
 //   ctl=m:gains;in:steer_torque;k:-100,10,-20,0;q:1,1,1,1;r:1;v:5;s:0   the Control tab's
 //                                    choices (K's rows separated by /; s:1 LQR at every speed)
+//   rd=v:5;lane:double;from:1;to:10;step:0.25   the Ridden tab's choices, as typed
 //   ms=s:browser;k.dR:27.9/0.01    the Measure tab: the sample it started from and the fields
 //                                    that differ from it (value/σ as typed)
 //   sim=speed:4.6;lean_rate:0.5;…    the simulation's inputs, as typed
@@ -78,6 +79,7 @@ export function readUrl() {
     mode: q.get("mv"),
     resp: q.get("rs") ? pairs(q.get("rs")) : null,
     control: q.get("ctl") ? pairs(q.get("ctl")) : null,
+    ridden: q.get("rd") ? pairs(q.get("rd")) : null,
     measure: q.get("ms") ? pairs(q.get("ms")) : null,
     sim: q.get("sim") ? pairs(q.get("sim")) : null,
     sens: q.get("sq"),
@@ -99,6 +101,7 @@ export function writeUrl(s, push) {
   if (s.mode) q.set("mv", s.mode);
   if (s.resp) q.set("rs", joinPairs(s.resp));
   if (s.control) q.set("ctl", joinPairs(s.control));
+  if (s.ridden) q.set("rd", joinPairs(s.ridden));
   if (s.measure) q.set("ms", joinPairs(s.measure));
   if (s.sim) q.set("sim", joinPairs(s.sim));
   if (s.sens) q.set("sq", s.sens);
