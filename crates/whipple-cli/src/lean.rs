@@ -15,9 +15,9 @@ use serde_json::json;
 use whipple::advanced::eigen::{Complex64, eigenvalues};
 use whipple::advanced::integrate::Integrator;
 use whipple::advanced::io::read_moore_rider_lean2012;
-use whipple::advanced::nonlinear::{LeanForcing, LeanModel, MAX_STEPS, ProjectionSettings};
+use whipple::advanced::nonlinear::{HINGE_LIMIT, LeanForcing, LeanModel, Outcome, TorqueFn};
 use whipple::advanced::parameters::RiderLeanParameters;
-use whipple::{Canonical, InitialConditions};
+use whipple::{Canonical, InitialConditions, SimulationSettings};
 use whipple_report::{Series, XyPlotOptions, line_plot};
 
 use crate::TextFormat;
@@ -276,40 +276,43 @@ fn simulate(
         )
         .map_err(core)?;
     let torque = args.lean_torque;
-    let samples = model
-        .simulate_forced(
+    let hinge_torque: TorqueFn = Box::new(move |t, _| if t <= until { torque } else { 0.0 });
+    let settings = SimulationSettings {
+        integrator: Integrator::adaptive(args.rtol),
+        duration,
+        ..SimulationSettings::default()
+    };
+    let run = model
+        .simulate(
             &start,
-            duration,
-            &Integrator::adaptive(args.rtol),
-            &ProjectionSettings::default(),
+            &settings,
             &LeanForcing {
-                hinge_torque: &|t| if t <= until { torque } else { 0.0 },
-                stop_at_fall: true,
-                stop: crate::interrupt::flag(),
-                max_steps: MAX_STEPS,
+                hinge_torque: Some(&hinge_torque),
+                hinge_limit: HINGE_LIMIT,
             },
         )
         .map_err(core)
         .context("the leaning rider's simulation")?;
-    let bicycle = model.bicycle();
-    let rows: Vec<[f64; 8]> = samples
+    let rows: Vec<[f64; 8]> = run
+        .simulation
+        .samples
         .iter()
-        .map(|s| {
-            let b = &s.state.bicycle;
+        .zip(&run.rider)
+        .map(|(s, [rider_lean, rider_lean_rate])| {
             [
                 s.t,
-                b.lean(),
-                bicycle.steer(&b.q),
-                s.state.lean,
-                b.lean_rate(),
-                bicycle.steer_rate(b),
-                s.state.lean_rate,
+                s.lean,
+                s.steer,
+                *rider_lean,
+                s.lean_rate,
+                s.steer_rate,
+                *rider_lean_rate,
                 s.energy,
             ]
         })
         .collect();
+    let outcome = &run.simulation.outcome;
     let last = rows.last().copied().unwrap_or([0.0; 8]);
-    let fell = last[0] < duration - 1e-12;
     let mut finished = Vec::new();
     if let Some(target) = &out {
         let mut text =
@@ -374,13 +377,8 @@ fn simulate(
             None => String::new(),
         }
     )?;
-    if fell {
-        writeln!(
-            t,
-            "the run ended at t = {} s: the bicycle fell (lean past 60°) or the upper body lay \
-             across it (hinge past 90°)",
-            short(last[0])?
-        )?;
+    if *outcome != Outcome::Completed {
+        writeln!(t, "the run ended: {outcome:.3}")?;
     }
     writeln!(
         t,

@@ -203,7 +203,10 @@ fn a_lean_torque_pulse_leans_the_rider_and_the_run_is_written_whole() {
         "--lean-torque",
         "5",
     ]));
-    assert!(out.contains("the run ended at"), "{out}");
+    assert!(
+        out.contains("the run ended: the rider's upper body fell across the bicycle at t = "),
+        "{out}"
+    );
     let error = stderr_of_failure(&whipple(&["rider", "--speed", "5", "--simulate", "-1"]));
     assert!(error.contains("--simulate"), "{error}");
 }

@@ -622,7 +622,7 @@ await section("simulation: the rider's upper body leans on a hinge, drawn, read 
   await page.getByTestId("tab-sim").click();
   check(await page.getByTestId("sim-rider-k").isDisabled(), "the hinge's fields wait for the rider box");
   await page.getByTestId("sim-rider").check();
-  check(await page.getByTestId("sim-steer-torque").isDisabled() && await page.getByTestId("sim-from-turn").isDisabled(), "with the leaning rider the torques and the held turn are not used");
+  check(!(await page.getByTestId("sim-steer-torque").isDisabled()) && await page.getByTestId("sim-from-turn").isDisabled(), "with the leaning rider the torques still act and the held turn is not used");
   await page.fill("#sim-speed", "5");
   await page.fill("#sim-lean-rate", "0");
   await page.fill("#sim-duration", "2");
@@ -647,7 +647,7 @@ await section("simulation: the rider's upper body leans on a hinge, drawn, read 
   check(/rider%3Alean/.test(link) && /rk%3A800/.test(link), "the link carries the leaning rider");
   await open(new URL(link).search);
   await page.getByTestId("tab-sim").click();
-  check(await page.getByTestId("sim-rider").isChecked() && (await page.getByTestId("sim-rider-k").inputValue()) === "800" && await page.getByTestId("sim-steer-torque").isDisabled(), "a reload restores the rider and keeps the torques off");
+  check(await page.getByTestId("sim-rider").isChecked() && (await page.getByTestId("sim-rider-k").inputValue()) === "800" && await page.getByTestId("sim-from-turn").isDisabled(), "a reload restores the rider and keeps the held turn off");
   // Bad input: text in a hinge field; a bicycle whose rider cannot hold Jason's upper body.
   await page.fill("#sim-rider-c", "soft");
   await page.click("[data-testid=sim-run]");

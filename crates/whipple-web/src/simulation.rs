@@ -13,8 +13,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use whipple::BenchmarkParameters;
 use whipple::advanced::nonlinear::{
-    BodyPose, ContactForce, DEFAULT_FALL_ANGLE, HINGE_LIMIT, Inputs, LeanForcing, LeanModel,
-    LeanSample, Outcome, Sample,
+    BodyPose, ContactForce, HINGE_LIMIT, LeanForcing, LeanModel, Outcome, Sample, TorqueFn,
 };
 use whipple::advanced::parameters::{RiderLeanParameters, UpperBody};
 use whipple::advanced::turns::{Held, SteadyTurn, TurnSettings, held_turn};
@@ -84,8 +83,8 @@ pub struct SimulateRequest {
 /// The leaning rider of `POST /api/simulate`: Jason's upper body (BicycleParameters'
 /// `mooreriderlean2012_browser_jason`, as `whipple rider`) split off the bicycle's rear frame
 /// (the library's `RiderLeanParameters::split`), hinged to it at Jason's hinge, with the
-/// hinge's stiffness and damping and the rider's torque about the hinge. The bicycle is then
-/// hands free: `steer_torque`, `lean_torque` and `from_turn` are not taken with it.
+/// hinge's stiffness and damping and the rider's torque about the hinge, beside the request's
+/// steer and lean torques; `from_turn` (the rigid rider's turn) is not taken with it.
 #[derive(Deserialize, Debug, Clone, Copy)]
 #[serde(deny_unknown_fields)]
 pub struct RiderLeanRequest {
@@ -207,14 +206,6 @@ pub fn check(request: &SimulateRequest, limits: &Limits) -> Result<Plan, ApiErro
 
 /// The leaning rider's own rules; the upper body and the hinge are checked by the library.
 fn check_rider(request: &SimulateRequest, rider: &RiderLeanRequest) -> Result<(), ApiError> {
-    let hands_free = "with `rider` the bicycle is hands free (only the rider's torque about \
-                      the hinge acts): give 0";
-    if request.steer_torque.as_ref().is_some_and(|t| !is_zero(t)) {
-        return Err(invalid("steer_torque", hands_free.into()));
-    }
-    if !is_zero(&request.lean_torque) {
-        return Err(invalid("lean_torque", hands_free.into()));
-    }
     if request.from_turn {
         return Err(invalid(
             "from_turn",
@@ -252,10 +243,6 @@ fn check_rider(request: &SimulateRequest, rider: &RiderLeanRequest) -> Result<()
         }
     }
     Ok(())
-}
-
-fn is_zero(torque: &TorqueInput) -> bool {
-    matches!(torque, TorqueInput::Constant(x) if *x == 0.0)
 }
 
 /// How a run ended: a machine-readable kind, the time, and a sentence for people.
@@ -467,14 +454,17 @@ fn frame(model: &Model, s: &Sample) -> Frame {
 }
 
 /// The samples at about [`FRAME_RATE`] per simulated second: the first sample at or after each
-/// frame time, and always the first and the last.
-fn thin(samples: &[Sample]) -> Vec<&Sample> {
-    let mut frames: Vec<&Sample> = Vec::new();
+/// frame time, and always the first and the last (their indices).
+fn thin_indices(samples: &[Sample]) -> Vec<usize> {
+    let mut frames = Vec::new();
     let mut next = 0.0;
-    let good: Vec<&Sample> = samples.iter().filter(|s| s.is_finite()).collect();
-    for (i, s) in good.iter().enumerate() {
-        if s.t >= next - 1e-9 || i + 1 == good.len() {
-            frames.push(s);
+    let good: Vec<usize> = (0..samples.len())
+        .filter(|&i| samples[i].is_finite())
+        .collect();
+    for (k, &i) in good.iter().enumerate() {
+        let s = &samples[i];
+        if s.t >= next - 1e-9 || k + 1 == good.len() {
+            frames.push(i);
             // The next frame's time; the tolerance keeps a sample at k/60 from counting twice.
             next = ((s.t * FRAME_RATE + 1e-6).floor() + 1.0) / FRAME_RATE;
         }
@@ -540,9 +530,9 @@ pub fn run(
         other => at_start(other),
     })?;
     let geometry = drawing(&model, None);
-    let frames = thin(&simulation.samples)
+    let frames = thin_indices(&simulation.samples)
         .into_iter()
-        .map(|s| frame(&model, s))
+        .map(|i| frame(&model, &simulation.samples[i]))
         .collect();
     Ok(SimulateResponse {
         name,
@@ -622,99 +612,43 @@ fn run_rider(
             let rule = error.to_string();
             ApiError::from(error).at(INITIAL_FIELDS, rule)
         })?;
-    let duration = plan.settings.duration;
+    let settings = SimulationSettings {
+        stop: Some(stop),
+        ..plan.settings
+    };
+    let duration = settings.duration;
     let until = rider.torque_duration.unwrap_or(f64::INFINITY);
     let torque = rider.torque;
-    let hinge_torque = move |t: f64| if t <= until { torque } else { 0.0 };
-    let samples = model
-        .simulate_forced(
+    let hinge_torque: TorqueFn = Box::new(move |t, _| if t <= until { torque } else { 0.0 });
+    let run = model
+        .simulate(
             &start,
-            duration,
-            &plan.settings.integrator,
-            &plan.settings.projection,
+            &settings,
             &LeanForcing {
-                hinge_torque: &hinge_torque,
-                stop_at_fall: true,
-                stop: &stop,
-                max_steps,
+                hinge_torque: Some(&hinge_torque),
+                hinge_limit: HINGE_LIMIT,
             },
         )
         .map_err(|error| match error {
-            error @ whipple::Error::InvalidArgument { what: "dt", .. } => library_error(error),
-            error @ whipple::Error::InvalidArgument {
-                what: "stopped", ..
-            } => ApiError::from(error),
+            // A step too coarse for the run names `dt` or `rtol`, not the initial state.
+            error @ whipple::Error::StepTooLarge { .. } => ApiError::from(error),
+            error @ whipple::Error::InvalidArgument { .. } => library_error(error),
             other => ApiError::from(other),
         })?;
-    let last = samples.last().copied().unwrap_or(LeanSample {
-        t: 0.0,
-        state: start,
-        energy: model.energy(&start),
-    });
-    let steps = samples.len().saturating_sub(1);
     let bicycle = model.bicycle();
-    let outcome = if last.state.bicycle.lean().abs() > DEFAULT_FALL_ANGLE {
-        describe(
-            &Outcome::Fell {
-                t: last.t,
-                lean: last.state.bicycle.lean(),
-            },
-            duration,
-            max_steps,
-        )
-    } else if last.state.lean.abs() > HINGE_LIMIT {
-        OutcomeJson {
-            kind: "fell",
-            t: last.t,
-            wheel: None,
-            message: format!(
-                "the upper body fell across the bicycle at t = {:.2} s (its lean on the hinge \
-                 passed 90°); a stiffer or more damped hinge holds it",
-                last.t
-            ),
-        }
-    } else if last.t < duration * (1.0 - 1e-12) {
-        OutcomeJson {
-            kind: "step_limit",
-            t: last.t,
-            wheel: None,
-            message: format!(
-                "ended at t = {:.2} s: this server's limit of {max_steps} steps; loosen rtol or \
-                 simulate a shorter time",
-                last.t
-            ),
-        }
-    } else {
-        describe(&Outcome::Completed, duration, max_steps)
-    };
-    let mut frames = Vec::new();
-    let mut next = 0.0;
-    for (i, s) in samples.iter().enumerate() {
-        if s.t < next - 1e-9 && i + 1 != samples.len() {
-            continue;
-        }
-        next = ((s.t * FRAME_RATE + 1e-6).floor() + 1.0) / FRAME_RATE;
-        let rates = model
-            .forward(&s.state, &Inputs::default(), hinge_torque(s.t))
-            .map_err(ApiError::from)?;
-        let view = bicycle.observe(&s.state.bicycle);
-        frames.push(Frame {
-            t: s.t,
-            lean: view.lean,
-            steer: view.steer,
-            lean_rate: view.lean_rate,
-            steer_rate: view.steer_rate,
-            yaw: view.yaw,
-            speed: view.speed,
-            energy: s.energy,
-            rear_contact: [view.rear_contact_x, view.rear_contact_y],
-            front_contact: [view.front_contact_x, view.front_contact_y],
-            rear_force: rates.bicycle.contact[0].into(),
-            front_force: rates.bicycle.contact[1].into(),
-            bodies: model.body_poses(&s.state).iter().map(pose).collect(),
-            rider_lean: Some(s.state.lean),
-        });
-    }
+    let simulation = &run.simulation;
+    let kept: Vec<usize> = thin_indices(&simulation.samples);
+    let frames = kept
+        .into_iter()
+        .map(|i| {
+            let (s, [rider_lean, _]) = (&simulation.samples[i], run.rider[i]);
+            Frame {
+                bodies: model.sample_poses(s, rider_lean).iter().map(pose).collect(),
+                rider_lean: Some(rider_lean),
+                ..frame(bicycle, s)
+            }
+        })
+        .collect();
     let hinge = model.hinge_in_upper_body();
     let geometry = drawing(
         bicycle,
@@ -727,11 +661,15 @@ fn run_rider(
     );
     Ok(SimulateResponse {
         name,
-        outcome,
+        outcome: describe(&simulation.outcome, duration, max_steps),
         duration,
-        steps,
+        steps: simulation.steps,
         frame_rate: FRAME_RATE,
-        pulled_down_from_start: Vec::new(),
+        pulled_down_from_start: simulation
+            .pulled_down_from_start
+            .iter()
+            .map(|w| w.name())
+            .collect(),
         geometry,
         frames,
         turn: None,

@@ -540,7 +540,7 @@ pub mod advanced {
         pub use crate::nonlinear::rotation;
         pub use crate::nonlinear::{
             BODY_NAMES, BodyPose, ContactForce, DEFAULT_FALL_ANGLE, FRONT_WHEEL, HINGE_LIMIT,
-            Inputs, LEAN_STATE_LEN, LeanForcing, LeanModel, LeanRates, LeanSample, LeanState,
+            Inputs, LEAN_STATE_LEN, LeanForcing, LeanModel, LeanRates, LeanSimulation, LeanState,
             MAX_EXPRESSION_DEPTH, MAX_EXPRESSION_LENGTH, MAX_SAMPLES, MAX_STEPS, Progress,
             ProjectionMethod, ProjectionSettings, REAR_FRAME, REAR_WHEEL, STATE_LEN, State,
             StateView, TorqueExpression, TorqueFn, Wheel, check_rk4_step, fastest_mode,

@@ -187,15 +187,15 @@ export class SimPanel {
   }
 
   /**
-   * With the leaning rider the bicycle is hands free (the server's rule): the torques and the
-   * held turn are not used, and the rider's fields are.
+   * With the leaning rider the rider's fields are used and the held turn (the rigid rider's)
+   * is not (the server's rule); the steer and lean torques act as without it.
    */
   noteRider() {
     const on = $("sim-rider").checked;
     for (const [id] of RIDER) $(id).disabled = !on;
-    for (const id of ["sim-steer-torque", "sim-lean-torque", "sim-from-turn"]) $(id).disabled = on;
+    $("sim-from-turn").disabled = on;
     if (on) $("sim-from-turn").checked = false;
-    if (!on) this.noteTurn();
+    this.noteTurn();
   }
 
   /** On a held turn the turn sets the steer and its torque: those inputs are not used. */
@@ -260,9 +260,6 @@ export class SimPanel {
       else request[key] = x === null ? text : x;
     }
     if ($("sim-rider").checked) {
-      // Hands free: only the rider's torque about the hinge acts.
-      request.steer_torque = 0;
-      request.lean_torque = 0;
       request.rider = {};
       for (const [id, key] of RIDER) {
         const text = $(id).value.trim();

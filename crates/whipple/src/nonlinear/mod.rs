@@ -70,7 +70,7 @@ pub(crate) use forward::StateRates;
 pub use forward::{ContactForce, Inputs};
 pub use initial::InitialConditions;
 pub use lean::{
-    HINGE_LIMIT, LEAN_STATE_LEN, LeanForcing, LeanModel, LeanRates, LeanSample, LeanState,
+    HINGE_LIMIT, LEAN_STATE_LEN, LeanForcing, LeanModel, LeanRates, LeanSimulation, LeanState,
 };
 pub use model::Model;
 pub use outcome::{Outcome, Progress, Sample, Simulation, Wheel};

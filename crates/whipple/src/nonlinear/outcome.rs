@@ -72,6 +72,14 @@ pub enum Outcome {
         /// Lean at that time \[rad\].
         lean: f64,
     },
+    /// The leaning rider's upper body passed its hinge limit at time t (interpolated within the
+    /// step): it lies across the bicycle (`super::LeanModel`).
+    UpperBodyFell {
+        /// Time of the crossing \[s\].
+        t: f64,
+        /// The upper body's lean on the hinge at that time \[rad\].
+        lean: f64,
+    },
     /// A wheel's normal force became negative at time t (interpolated within the step).
     WheelLifted {
         /// Time \[s\].
@@ -118,12 +126,13 @@ pub enum Outcome {
 const FALLING_DEG: f64 = 20.0;
 
 impl Outcome {
-    /// A machine-readable name: `completed`, `fell`, `wheel_lifted`, `projection_failed`,
-    /// `non_finite_state`, `step_limit`, `stopped` or `failed`.
+    /// A machine-readable name: `completed`, `fell`, `upper_body_fell`, `wheel_lifted`,
+    /// `projection_failed`, `non_finite_state`, `step_limit`, `stopped` or `failed`.
     pub fn kind(&self) -> &'static str {
         match self {
             Outcome::Completed => "completed",
             Outcome::Fell { .. } => "fell",
+            Outcome::UpperBodyFell { .. } => "upper_body_fell",
             Outcome::WheelLifted { .. } => "wheel_lifted",
             Outcome::ProjectionFailed { .. } => "projection_failed",
             Outcome::NonFiniteState { .. } => "non_finite_state",
@@ -138,6 +147,7 @@ impl Outcome {
         match self {
             Outcome::Completed => None,
             Outcome::Fell { t, .. }
+            | Outcome::UpperBodyFell { t, .. }
             | Outcome::WheelLifted { t, .. }
             | Outcome::ProjectionFailed { t, .. }
             | Outcome::NonFiniteState { t }
@@ -152,7 +162,10 @@ impl Outcome {
     pub fn is_failure(&self) -> bool {
         !matches!(
             self,
-            Outcome::Completed | Outcome::Fell { .. } | Outcome::WheelLifted { .. }
+            Outcome::Completed
+                | Outcome::Fell { .. }
+                | Outcome::UpperBodyFell { .. }
+                | Outcome::WheelLifted { .. }
         )
     }
 }
@@ -167,6 +180,13 @@ impl fmt::Display for Outcome {
             Outcome::Fell { t, lean } => write!(
                 f,
                 "fell: |lean| passed the fall angle at {} (lean {:.2} deg)",
+                at(*t),
+                lean.to_degrees()
+            ),
+            Outcome::UpperBodyFell { t, lean } => write!(
+                f,
+                "the rider's upper body fell across the bicycle at {} (its lean on the hinge \
+                 {:.1} deg)",
                 at(*t),
                 lean.to_degrees()
             ),

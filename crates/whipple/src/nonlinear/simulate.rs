@@ -19,7 +19,7 @@ use std::sync::atomic::Ordering;
 use nalgebra::SVector;
 
 use super::Model;
-use super::forward::{Inputs, StateRates};
+use super::forward::{ContactForce, Inputs, StateRates};
 use super::outcome::{Outcome, Progress, RunExtremes, Sample, Simulation, Wheel};
 use super::poses::Poses;
 use super::settings::{SimulationSettings, TorqueFn};
@@ -95,6 +95,103 @@ impl OdeSystem<STATE_LEN> for BicycleOde<'_> {
     }
 }
 
+/// What a run steps: the four bodies ([`BicycleOde`]) or the four with more bodies and states
+/// of their own (the leaning rider's `LeanOde`), as an ODE on a first-order vector of length
+/// `N` whose first [`STATE_LEN`] entries are the four bodies' [q; u]. One loop steps them all:
+/// projection of the four bodies onto the constraints after each step, the energy balance,
+/// the fall, a lifted wheel and the mechanism's own events, samples, progress and stop.
+pub(crate) trait Mechanism<const N: usize>: OdeSystem<N> {
+    /// The whole state.
+    type State: Copy;
+    /// What a sample keeps of the state beyond the four bodies' [`Sample`].
+    type Record: Copy;
+    /// The four bodies' model.
+    fn model(&self) -> &Model;
+    /// The state of a first-order vector.
+    fn from_vector(y: &SVector<f64, N>) -> Self::State;
+    /// The first-order vector of a state.
+    fn to_vector(state: &Self::State) -> SVector<f64, N>;
+    /// The four bodies' part of a state.
+    fn bicycle(state: &Self::State) -> &State<f64>;
+    /// The same, to project it.
+    fn bicycle_mut(state: &mut Self::State) -> &mut State<f64>;
+    /// The rates and the ground forces on the rear and front wheel at (t, state).
+    fn evaluate(
+        &self,
+        t: f64,
+        state: &Self::State,
+    ) -> Result<(SVector<f64, N>, [ContactForce<f64>; 2])>;
+    /// The total mechanical energy \[J\].
+    fn energy(&self, state: &Self::State) -> f64;
+    /// The power of the inputs and of any damper at (t, state) \[W\].
+    fn power(&self, t: f64, state: &Self::State) -> f64;
+    /// What a sample keeps of the state besides the [`Sample`].
+    fn record(state: &Self::State) -> Self::Record;
+    /// An event of the mechanism's own within the step from (t0, s0) to (t1, s1): its time and
+    /// outcome.
+    fn own_event(
+        &self,
+        _t0: f64,
+        _s0: &Self::State,
+        _t1: f64,
+        _s1: &Self::State,
+    ) -> Option<(f64, Outcome)> {
+        None
+    }
+}
+
+impl Mechanism<STATE_LEN> for BicycleOde<'_> {
+    type State = State<f64>;
+    type Record = ();
+
+    fn model(&self) -> &Model {
+        self.model
+    }
+
+    fn from_vector(y: &SVector<f64, STATE_LEN>) -> State<f64> {
+        State::from_vector(y)
+    }
+
+    fn to_vector(state: &State<f64>) -> SVector<f64, STATE_LEN> {
+        state.to_vector()
+    }
+
+    fn bicycle(state: &State<f64>) -> &State<f64> {
+        state
+    }
+
+    fn bicycle_mut(state: &mut State<f64>) -> &mut State<f64> {
+        state
+    }
+
+    fn evaluate(
+        &self,
+        t: f64,
+        state: &State<f64>,
+    ) -> Result<(SVector<f64, STATE_LEN>, [ContactForce<f64>; 2])> {
+        let d = self.derivatives(t, state)?;
+        Ok((d.to_vector(), d.contact))
+    }
+
+    fn energy(&self, state: &State<f64>) -> f64 {
+        self.model.energy(state)
+    }
+
+    fn power(&self, t: f64, state: &State<f64>) -> f64 {
+        BicycleOde::power(self, t, state)
+    }
+
+    fn record(_: &State<f64>) {}
+}
+
+/// A finished run of a [`Mechanism`]: the four bodies' [`Simulation`], each sample's record,
+/// and the last state reached.
+pub(crate) struct MechanismRun<M: Mechanism<N>, const N: usize> {
+    pub(crate) simulation: Simulation,
+    pub(crate) records: Vec<M::Record>,
+    pub(crate) final_state: M::State,
+}
+
 /// The upright linearized bicycle's fastest mode at `speed`: the eigenvalue of A(v) largest in
 /// size (at low speed the castering mode, at very low speed the capsize and inverted-pendulum
 /// pair). `None` when the linear model cannot be formed for these parameters.
@@ -126,7 +223,12 @@ pub fn fastest_mode(model: &Model, speed: f64) -> Option<Complex64> {
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub fn check_rk4_step(model: &Model, speed: f64, dt: f64) -> Result<()> {
-    let Some(lambda) = fastest_mode(model, speed) else {
+    check_rk4_mode(fastest_mode(model, speed), speed, dt)
+}
+
+/// [`check_rk4_step`] for a fastest mode `lambda` found elsewhere (the leaning rider's).
+pub(crate) fn check_rk4_mode(lambda: Option<Complex64>, speed: f64, dt: f64) -> Result<()> {
+    let Some(lambda) = lambda else {
         return Ok(());
     };
     let size = lambda.norm();
@@ -175,38 +277,56 @@ pub fn simulate(
         steer_torque: settings.steer_torque.as_ref(),
         lean_torque: settings.lean_torque.as_ref(),
     };
-    let mut run = Run::start(&ode, initial, settings)?;
+    Ok(run_mechanism(&ode, initial, settings)?.simulation)
+}
+
+/// Runs a [`Mechanism`] from `initial` (its four bodies projected onto the constraints first)
+/// for `settings.duration`: [`simulate`]'s loop for any mechanism (settings already checked).
+pub(crate) fn run_mechanism<M: Mechanism<N>, const N: usize>(
+    mechanism: &M,
+    initial: M::State,
+    settings: &SimulationSettings,
+) -> Result<MechanismRun<M, N>> {
+    let mut run = Run::start(mechanism, initial, settings)?;
     let outcome = run.until_done()?;
     // The last state reached is always a sample, thinned or not.
-    if let Some(last) = run.pending.take() {
+    if let Some((last, record)) = run.pending.take() {
         run.samples.push(last);
+        run.records.push(record);
     }
-    Ok(Simulation {
-        extremes: run.extremes,
-        outcome,
+    Ok(MechanismRun {
+        simulation: Simulation {
+            extremes: run.extremes,
+            outcome,
+            final_state: *M::bicycle(&run.state),
+            steps: run.steps,
+            rejected_steps: run.stepper.rejected(),
+            pulled_down_from_start: Wheel::BOTH
+                .into_iter()
+                .zip(run.watched)
+                .filter(|(_, watched)| !watched)
+                .map(|(wheel, _)| wheel)
+                .collect(),
+            samples: run.samples,
+        },
+        records: run.records,
         final_state: run.state,
-        steps: run.steps,
-        rejected_steps: run.stepper.rejected(),
-        pulled_down_from_start: Wheel::BOTH
-            .into_iter()
-            .zip(run.watched)
-            .filter(|(_, watched)| !watched)
-            .map(|(wheel, _)| wheel)
-            .collect(),
-        samples: run.samples,
     })
 }
 
-/// A run under way: the last accepted (projected) state, its derivatives and the samples.
-struct Run<'a> {
-    ode: &'a BicycleOde<'a>,
+/// A run under way: the last accepted (projected) state, its rates and ground forces, and the
+/// samples.
+struct Run<'a, M: Mechanism<N>, const N: usize> {
+    ode: &'a M,
     settings: &'a SimulationSettings,
     stepper: Stepper,
-    state: State<f64>,
-    derivatives: StateRates<f64>,
+    state: M::State,
+    derivatives: SVector<f64, N>,
+    contact: [ContactForce<f64>; 2],
     samples: Vec<Sample>,
+    records: Vec<M::Record>,
     /// The last accepted step's sample when it was thinned out.
-    pending: Option<Sample>,
+    pending: Option<(Sample, M::Record)>,
     extremes: RunExtremes,
     steps: usize,
     /// Lift-off is a normal force turning negative; a wheel pulled down from the start is not
@@ -231,28 +351,27 @@ impl From<Outcome> for End {
     }
 }
 
-impl<'a> Run<'a> {
+impl<'a, M: Mechanism<N>, const N: usize> Run<'a, M, N> {
     /// Projects the initial state, evaluates it and records the first sample.
-    fn start(
-        ode: &'a BicycleOde<'a>,
-        initial: State<f64>,
-        settings: &'a SimulationSettings,
-    ) -> Result<Self> {
+    fn start(ode: &'a M, initial: M::State, settings: &'a SimulationSettings) -> Result<Self> {
         let mut state = initial;
-        let (report, poses) = ode.model.project_posed(&mut state, &settings.projection)?;
-        let derivatives = ode.derivatives(0.0, &state)?;
+        let (report, poses) = ode
+            .model()
+            .project_posed(M::bicycle_mut(&mut state), &settings.projection)?;
+        let (derivatives, contact) = ode.evaluate(0.0, &state)?;
         let stepper = Stepper::new(
             &settings.integrator,
-            &state.to_vector(),
-            &derivatives.to_vector(),
+            &M::to_vector(&state),
+            &derivatives,
             settings.duration,
         )?;
         let first = sample(
-            ode.model,
+            ode.model(),
             0.0,
-            &state,
+            M::bicycle(&state),
             &poses,
-            &derivatives,
+            contact,
+            ode.energy(&state),
             report.residual,
         );
         Ok(Run {
@@ -261,11 +380,13 @@ impl<'a> Run<'a> {
             stepper,
             state,
             derivatives,
+            contact,
             samples: vec![first],
+            records: vec![M::record(&state)],
             pending: None,
             extremes: RunExtremes::start(&first),
             steps: 0,
-            watched: derivatives.contact.map(|c| c.normal >= 0.0),
+            watched: contact.map(|c| c.normal >= 0.0),
             power: ode.power(0.0, &state),
             work: 0.0,
             work_size: 0.0,
@@ -275,7 +396,7 @@ impl<'a> Run<'a> {
     /// Steps until the end time, an event or a failure; `Err` for a step too coarse for the
     /// run.
     fn until_done(&mut self) -> Result<Outcome> {
-        let lean = self.state.lean();
+        let lean = M::bicycle(&self.state).lean();
         if lean.abs() > self.settings.fall_angle {
             return Ok(Outcome::Fell { t: 0.0, lean });
         }
@@ -299,7 +420,7 @@ impl<'a> Run<'a> {
     /// The energy balance after the step from t0 to the sample `s` (its state `next`): the
     /// rider's work by the trapezoidal rule, and [`Error::StepTooLarge`] when E − E₀ − W has
     /// drifted beyond [`MAX_ENERGY_DRIFT`] of the balance's scale.
-    fn check_energy(&mut self, t0: f64, next: &State<f64>, s: &Sample) -> Result<()> {
+    fn check_energy(&mut self, t0: f64, next: &M::State, s: &Sample) -> Result<()> {
         let power = self.ode.power(s.t, next);
         let work = 0.5 * (self.power + power) * (s.t - t0);
         self.power = power;
@@ -343,23 +464,22 @@ impl<'a> Run<'a> {
     /// One accepted step: integrate, project, evaluate, record, look for events. The outcome
     /// that ends the run, if any, is the error, as is a step too coarse for the run.
     fn advance(&mut self) -> std::result::Result<(), End> {
-        let (t, model) = (self.stepper.t(), self.ode.model);
-        let y = self.state.to_vector();
+        let (t, model) = (self.stepper.t(), self.ode.model());
+        let y = M::to_vector(&self.state);
         let Step {
             t: t_new,
             y: y_new,
             dense,
-        } = self
-            .stepper
-            .step(self.ode, &y, &self.derivatives.to_vector())
-            .map_err(|failure| match failure {
+        } = self.stepper.step(self.ode, &y, &self.derivatives).map_err(
+            |failure| match failure {
                 StepFailure::StepSizeTooSmall => Outcome::StepSizeTooSmall { t },
                 StepFailure::Evaluation(error) => failed(t, error),
                 StepFailure::NonFinite { t } => Outcome::NonFiniteState { t },
-            })?;
-        let mut next = State::from_vector(&y_new);
+            },
+        )?;
+        let mut next = M::from_vector(&y_new);
         let (report, poses) = model
-            .project_posed(&mut next, &self.settings.projection)
+            .project_posed(M::bicycle_mut(&mut next), &self.settings.projection)
             .map_err(|error| match error {
                 Error::ProjectionDiverged {
                     iterations,
@@ -371,19 +491,28 @@ impl<'a> Run<'a> {
                 },
                 error => failed(t_new, error),
             })?;
-        let d_new = self
+        let (d_new, contact) = self
             .ode
-            .derivatives(t_new, &next)
+            .evaluate(t_new, &next)
             .map_err(|error| failed(t_new, error))?;
         self.steps += 1;
-        let recorded = sample(model, t_new, &next, &poses, &d_new, report.residual);
+        let recorded = sample(
+            model,
+            t_new,
+            M::bicycle(&next),
+            &poses,
+            contact,
+            self.ode.energy(&next),
+            report.residual,
+        );
         self.check_energy(t, &next, &recorded).map_err(End::Error)?;
         self.extremes.observe(&recorded);
         if self.steps % self.settings.sample_every.max(1) == 0 {
             self.samples.push(recorded);
+            self.records.push(M::record(&next));
             self.pending = None;
         } else {
-            self.pending = Some(recorded);
+            self.pending = Some((recorded, M::record(&next)));
         }
         if let Some(progress) = &self.settings.progress {
             progress(Progress {
@@ -392,31 +521,33 @@ impl<'a> Run<'a> {
                 steps: self.steps,
             });
         }
-        let event = self.first_event(t, &next, &d_new, t_new, dense.as_ref());
+        let event = self.first_event(t, &next, contact, t_new, dense.as_ref());
         self.state = next;
         self.derivatives = d_new;
+        self.contact = contact;
         event.map_or(Ok(()), |outcome| Err(outcome.into()))
     }
 
     /// The first event within the step from (t0, the current state) to (t1, `next`): a fall
-    /// (located on the dense output where there is one, linearly otherwise) or a wheel's normal
-    /// force turning negative (linearly).
+    /// (located on the dense output where there is one, linearly otherwise), a wheel's normal
+    /// force turning negative (linearly) or the mechanism's own.
     fn first_event(
         &self,
         t0: f64,
-        next: &State<f64>,
-        d_new: &StateRates<f64>,
+        next: &M::State,
+        contact: [ContactForce<f64>; 2],
         t1: f64,
-        dense: Option<&DenseOutput<STATE_LEN>>,
+        dense: Option<&DenseOutput<N>>,
     ) -> Option<Outcome> {
-        let (lean0, lean1) = (self.state.lean(), next.lean());
+        let (lean0, lean1) = (M::bicycle(&self.state).lean(), M::bicycle(next).lean());
         let fall = self.settings.fall_angle;
         let mut events: Vec<(f64, Outcome)> = Vec::new();
         if lean1.abs() > fall {
             let (t_fall, lean) = match dense {
                 Some(dense) => {
-                    let t_fall = fall_time(dense, t0, t1, fall);
-                    (t_fall, State::from_vector(&dense.at(t_fall)).lean())
+                    let lean = |t: f64| M::bicycle(&M::from_vector(&dense.at(t))).lean();
+                    let t_fall = fall_time(lean, t0, t1, fall);
+                    (t_fall, lean(t_fall))
                 }
                 None => {
                     let t_fall = crossing(t0, lean0.abs() - fall, t1, lean1.abs() - fall);
@@ -427,7 +558,7 @@ impl<'a> Run<'a> {
         }
         if self.settings.stop_on_lift_off {
             for (i, wheel) in Wheel::BOTH.into_iter().enumerate() {
-                let (n0, n1) = (self.derivatives.contact[i].normal, d_new.contact[i].normal);
+                let (n0, n1) = (self.contact[i].normal, contact[i].normal);
                 if self.watched[i] && n1 < 0.0 {
                     let t = crossing(t0, n0, t1, n1);
                     events.push((
@@ -441,6 +572,7 @@ impl<'a> Run<'a> {
                 }
             }
         }
+        events.extend(self.ode.own_event(t0, &self.state, t1, next));
         events
             .into_iter()
             .min_by(|a, b| a.0.total_cmp(&b.0))
@@ -460,13 +592,15 @@ fn digits4(x: f64) -> String {
     }
 }
 
-/// The sample of a projected state.
+/// The sample of a projected state (its four bodies', with the mechanism's ground forces and
+/// energy).
 fn sample(
     model: &Model,
     t: f64,
     state: &State<f64>,
     poses: &Poses<f64>,
-    d: &StateRates<f64>,
+    contact: [ContactForce<f64>; 2],
+    energy: f64,
     position_residual: f64,
 ) -> Sample {
     let view = model.observe_at(poses, state);
@@ -486,11 +620,11 @@ fn sample(
         front_x: view.front_contact_x,
         front_y: view.front_contact_y,
         speed: view.speed,
-        energy: model.energy(state),
+        energy,
         position_residual,
         velocity_residual: model.velocity_residual_at(poses, state).amax(),
-        rear: d.contact[0],
-        front: d.contact[1],
+        rear: contact[0],
+        front: contact[1],
     }
 }
 
@@ -503,7 +637,7 @@ fn failed(t: f64, error: Error) -> Outcome {
 }
 
 /// Time at which a quantity going linearly from g0 (at t0) to g1 (at t1) crosses zero.
-fn crossing(t0: f64, g0: f64, t1: f64, g1: f64) -> f64 {
+pub(crate) fn crossing(t0: f64, g0: f64, t1: f64, g1: f64) -> f64 {
     if g1 == g0 {
         t1
     } else {
@@ -514,9 +648,10 @@ fn crossing(t0: f64, g0: f64, t1: f64, g1: f64) -> f64 {
 /// Bisection bound for locating the fall on the adaptive integrator's dense output.
 const EVENT_ITERATIONS: usize = 60;
 
-/// The time in [t0, t1] where |lean| reaches `fall` on the dense output, by bisection.
-fn fall_time(dense: &DenseOutput<STATE_LEN>, t0: f64, t1: f64, fall: f64) -> f64 {
-    let g = |t: f64| State::from_vector(&dense.at(t)).lean().abs() - fall;
+/// The time in [t0, t1] where |lean(t)| reaches `fall` (the lean on the dense output), by
+/// bisection.
+fn fall_time(lean: impl Fn(f64) -> f64, t0: f64, t1: f64, fall: f64) -> f64 {
+    let g = |t: f64| lean(t).abs() - fall;
     let (mut lo, mut hi) = (t0, t1);
     if g(lo) > 0.0 {
         return t0;
