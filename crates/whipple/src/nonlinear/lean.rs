@@ -288,7 +288,7 @@ impl Mechanism<LEAN_STATE_LEN> for LeanOde<'_> {
         if power.is_finite() { power } else { 0.0 }
     }
 
-    fn record(state: &LeanState<f64>) -> [f64; 2] {
+    fn record(&self, state: &LeanState<f64>) -> [f64; 2] {
         [state.lean, state.lean_rate]
     }
 

@@ -157,6 +157,33 @@ impl Outcome {
         }
     }
 
+    /// The same outcome `dt` seconds later (a run started at t = dt reports local times).
+    pub(crate) fn delayed(self, dt: f64) -> Outcome {
+        match self {
+            Outcome::Completed => Outcome::Completed,
+            Outcome::Fell { t, lean } => Outcome::Fell { t: t + dt, lean },
+            Outcome::UpperBodyFell { t, lean } => Outcome::UpperBodyFell { t: t + dt, lean },
+            Outcome::WheelLifted { t, wheel, lean } => Outcome::WheelLifted {
+                t: t + dt,
+                wheel,
+                lean,
+            },
+            Outcome::ProjectionFailed {
+                t,
+                iterations,
+                residual,
+            } => Outcome::ProjectionFailed {
+                t: t + dt,
+                iterations,
+                residual,
+            },
+            Outcome::NonFiniteState { t } => Outcome::NonFiniteState { t: t + dt },
+            Outcome::StepSizeTooSmall { t } => Outcome::StepSizeTooSmall { t: t + dt },
+            Outcome::Stopped { t } => Outcome::Stopped { t: t + dt },
+            Outcome::Failed { t, error } => Outcome::Failed { t: t + dt, error },
+        }
+    }
+
     /// True when the computation failed (rather than the bicycle doing something): every
     /// outcome but completing, falling and lifting a wheel.
     pub fn is_failure(&self) -> bool {

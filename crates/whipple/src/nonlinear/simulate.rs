@@ -126,7 +126,7 @@ pub(crate) trait Mechanism<const N: usize>: OdeSystem<N> {
     /// The power of the inputs and of any damper at (t, state) \[W\].
     fn power(&self, t: f64, state: &Self::State) -> f64;
     /// What a sample keeps of the state besides the [`Sample`].
-    fn record(state: &Self::State) -> Self::Record;
+    fn record(&self, state: &Self::State) -> Self::Record;
     /// An event of the mechanism's own within the step from (t0, s0) to (t1, s1): its time and
     /// outcome.
     fn own_event(
@@ -181,7 +181,7 @@ impl Mechanism<STATE_LEN> for BicycleOde<'_> {
         BicycleOde::power(self, t, state)
     }
 
-    fn record(_: &State<f64>) {}
+    fn record(&self, _: &State<f64>) {}
 }
 
 /// A finished run of a [`Mechanism`]: the four bodies' [`Simulation`], each sample's record,
@@ -382,7 +382,7 @@ impl<'a, M: Mechanism<N>, const N: usize> Run<'a, M, N> {
             derivatives,
             contact,
             samples: vec![first],
-            records: vec![M::record(&state)],
+            records: vec![ode.record(&state)],
             pending: None,
             extremes: RunExtremes::start(&first),
             steps: 0,
@@ -509,10 +509,10 @@ impl<'a, M: Mechanism<N>, const N: usize> Run<'a, M, N> {
         self.extremes.observe(&recorded);
         if self.steps % self.settings.sample_every.max(1) == 0 {
             self.samples.push(recorded);
-            self.records.push(M::record(&next));
+            self.records.push(self.ode.record(&next));
             self.pending = None;
         } else {
-            self.pending = Some((recorded, M::record(&next)));
+            self.pending = Some((recorded, self.ode.record(&next)));
         }
         if let Some(progress) = &self.settings.progress {
             progress(Progress {
