@@ -1,6 +1,7 @@
 //! The rider: Hess's gains by the rules, the closed loop's A and B (HumanControl's
 //! `system_state_space.m`), the handling quality metric and its certified peak, the double lane
-//! change on the linear and the non-linear bicycle, and BMD 2016's optimal-handling search;
+//! change on the linear and the non-linear bicycle, the leaning rider pushed (Browser with
+//! Jason), and BMD 2016's optimal-handling search;
 //! all for the benchmark bicycle at 5 m/s. HumanControl's README reports, in MATLAB, A, B, C, D
 //! in 0.029 s and a lane change simulated in 0.185 s; BMD 2016's CMA-ES search ran on Simulink.
 //!
@@ -17,6 +18,10 @@ use whipple::advanced::control::{
     lane_change_linear, lane_change_nonlinear, optimal_handling,
 };
 use whipple::advanced::design::Parameter;
+use whipple::advanced::integrate::Integrator;
+use whipple::advanced::nonlinear::{LeanForcing, LeanModel, TorqueFn};
+use whipple::advanced::parameters::RiderLeanParameters;
+use whipple::{InitialConditions, SimulationSettings};
 
 fn benches(c: &mut Criterion) {
     let bike = BenchmarkParameters::meijaard2007();
@@ -50,6 +55,30 @@ fn benches(c: &mut Criterion) {
     group.bench_function("double_lane_change_nonlinear_5ms", |b| {
         b.iter(|| {
             lane_change_nonlinear(black_box(&bike), 5.0, &controller, &lane, 1e-9).expect("a run")
+        })
+    });
+    // The leaning rider (Browser with Jason, a stiff damped hinge): a 20 N m, 0.5 s push of the
+    // upper body and 5 s of motion, as `whipple rider --simulate 5` (Dormand–Prince, rtol 1e-9).
+    let mut lean = RiderLeanParameters::browser_jason();
+    (lean.upper_body.stiffness, lean.upper_body.damping) = (800.0, 50.0);
+    let lean = LeanModel::new(&lean).expect("a model");
+    let start = lean
+        .initial_state(&InitialConditions::upright(5.0), 0.0, 0.0)
+        .expect("a state");
+    let push: TorqueFn = Box::new(|t, _| if t <= 0.5 { 20.0 } else { 0.0 });
+    group.bench_function("leaning_rider_push_5s", |b| {
+        b.iter(|| {
+            let settings = SimulationSettings {
+                integrator: Integrator::adaptive(1e-9),
+                duration: 5.0,
+                ..SimulationSettings::default()
+            };
+            let forcing = LeanForcing {
+                hinge_torque: Some(&push),
+                ..LeanForcing::default()
+            };
+            lean.simulate(black_box(&start), &settings, &forcing)
+                .expect("a run")
         })
     });
     let base = whipple::presets::find("benchmark")
