@@ -12,6 +12,7 @@ mod human_loops;
 mod lane_change;
 mod manoeuvre;
 mod optimal_handling;
+mod poly;
 mod response;
 mod riccati;
 mod state_space;
