@@ -53,7 +53,7 @@ type Complex64 = Complex<f64>;
 /// The handling filter's numerator 400 and denominator s² + 40 s + 400 (HumanControl's
 /// `handlingFilterNum`, `handlingFilterDen`): a critically damped second-order filter at
 /// 20 rad/s.
-pub const HANDLING_FILTER: [f64; 3] = [400.0, 40.0, 400.0];
+pub(crate) const HANDLING_FILTER: [f64; 3] = [400.0, 40.0, 400.0];
 
 /// The most frequencies, speeds or parameter values one handling-quality call evaluates.
 pub const MAX_HANDLING_POINTS: usize = 1_000_000;

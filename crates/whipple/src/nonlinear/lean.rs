@@ -121,7 +121,7 @@ pub struct LeanForcing<'a> {
 pub const HINGE_LIMIT: f64 = std::f64::consts::FRAC_PI_2;
 
 /// Length of the leaning rider's first-order state [q; u; φ_r; φ̇_r].
-pub const LEAN_STATE_LEN: usize = STATE_LEN + 2;
+pub(crate) const LEAN_STATE_LEN: usize = STATE_LEN + 2;
 
 /// One recorded instant of [`LeanModel::simulate`].
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -56,12 +56,13 @@ pub struct UpperBody<T = f64> {
 }
 
 /// The keys of [`UpperBody`], in the order of [`UpperBody::to_array`].
-pub const UPPER_BODY_KEYS: [&str; 10] = [
+pub(crate) const UPPER_BODY_KEYS: [&str; 10] = [
     "mG", "xG", "zG", "IGxx", "IGyy", "IGzz", "IGxz", "zHinge", "kLean", "cLean",
 ];
 
 impl<T: RealField + Copy> UpperBody<T> {
-    /// The values in the order of [`UPPER_BODY_KEYS`].
+    /// The values in the order of the fields (keys `mG`, `xG`, `zG`, `IGxx`, `IGyy`, `IGzz`,
+    /// `IGxz`, `zHinge`, `kLean`, `cLean`).
     pub fn to_array(&self) -> [T; 10] {
         [
             self.m,
@@ -77,7 +78,7 @@ impl<T: RealField + Copy> UpperBody<T> {
         ]
     }
 
-    /// From the values in the order of [`UPPER_BODY_KEYS`].
+    /// From the values in the order of [`Self::to_array`].
     pub fn from_array(v: [T; 10]) -> Self {
         let [m, x, z, i_xx, i_yy, i_zz, i_xz, z_hinge, stiffness, damping] = v;
         UpperBody {
