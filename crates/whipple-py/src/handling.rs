@@ -6,39 +6,75 @@
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use whipple::Error;
 use whipple::advanced::control::{
     GainTable, HandlingQuality, HumanGains, MAX_HANDLING_POINTS, Neuromuscular,
     handling_against_speed,
 };
 use whipple::advanced::io::read_gains;
+use whipple::{BenchmarkParameters, Error};
 
 use crate::bicycle::NativeBicycle;
 use crate::errors::IntoPy;
 
-/// The gains: a SteerGains file's text, or one row of five gains (kDelta … kY) used at every
-/// speed.
-fn table(text: Option<String>, row: Option<Vec<f64>>) -> whipple::Result<GainTable> {
-    match (text, row) {
-        (Some(text), None) => read_gains(&text),
-        (None, Some(row)) => {
-            let k: [f64; 5] = row
-                .as_slice()
-                .try_into()
-                .map_err(|_| Error::InvalidArgument {
-                    what: "gains",
-                    rule: format!(
-                        "five gains (kDelta, kPhiDot, kPhi, kPsi, kY), got {}",
-                        row.len()
-                    ),
-                })?;
-            // One row: the table gives it at every speed; `extrapolated` is then not said.
-            GainTable::new(vec![0.0], vec![HumanGains::from_array(k)])
+/// The neuromuscular filter of the arguments `neuro_frequency` and `neuro_damping`.
+fn neuromuscular(frequency: f64, damping: f64) -> Neuromuscular {
+    Neuromuscular { frequency, damping }
+}
+
+/// The arguments HQM and its sweep against speed share: the bicycle's benchmark form, the
+/// gains as given (read by [`Setup::table`] inside the computation) and the neuromuscular
+/// filter.
+struct Setup {
+    bike: BenchmarkParameters,
+    gains_text: Option<String>,
+    gains_row: Option<Vec<f64>>,
+    neuromuscular: Neuromuscular,
+}
+
+impl Setup {
+    fn new(
+        bicycle: &NativeBicycle,
+        gains_text: Option<String>,
+        gains_row: Option<Vec<f64>>,
+        neuro_frequency: f64,
+        neuro_damping: f64,
+    ) -> Self {
+        Setup {
+            bike: bicycle.checked.benchmark,
+            gains_text,
+            gains_row,
+            neuromuscular: neuromuscular(neuro_frequency, neuro_damping),
         }
-        _ => Err(Error::InvalidArgument {
-            what: "gains",
-            rule: "give a SteerGains file or five gains".into(),
-        }),
+    }
+
+    /// Whether the gains were given as one row: the table gives it at every speed, and
+    /// `extrapolated` is then not said.
+    fn single_row(&self) -> bool {
+        self.gains_row.is_some()
+    }
+
+    /// The gains: a SteerGains file's text, or one row of five gains (kDelta … kY) used at
+    /// every speed.
+    fn table(&self) -> whipple::Result<GainTable> {
+        match (&self.gains_text, &self.gains_row) {
+            (Some(text), None) => read_gains(text),
+            (None, Some(row)) => {
+                let Ok(k) = <[f64; 5]>::try_from(row.as_slice()) else {
+                    return Err(Error::InvalidArgument {
+                        what: "gains",
+                        rule: format!(
+                            "five gains (kDelta, kPhiDot, kPhi, kPsi, kY), got {}",
+                            row.len()
+                        ),
+                    });
+                };
+                GainTable::new(vec![0.0], vec![HumanGains::from_array(k)])
+            }
+            _ => Err(Error::InvalidArgument {
+                what: "gains",
+                rule: "give a SteerGains file or five gains".into(),
+            }),
+        }
     }
 }
 
@@ -58,20 +94,22 @@ pub fn handling_quality_native<'py>(
     neuro_frequency: f64,
     neuro_damping: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let bike = bicycle.checked.benchmark;
-    let single_row = gains_row.is_some();
-    let neuromuscular = Neuromuscular {
-        frequency: neuro_frequency,
-        damping: neuro_damping,
-    };
+    let setup = Setup::new(
+        bicycle,
+        gains_text,
+        gains_row,
+        neuro_frequency,
+        neuro_damping,
+    );
     let (hqm, extrapolated, peak, magnitudes) = py
         .detach(|| -> whipple::Result<_> {
-            let table = table(gains_text, gains_row)?;
-            let lookup = table.at(speed)?;
-            let hqm = HandlingQuality::new(&bike, speed, &lookup.gains, &neuromuscular)?;
+            let lookup = setup.table()?.at(speed)?;
+            let hqm =
+                HandlingQuality::new(&setup.bike, speed, &lookup.gains, &setup.neuromuscular)?;
             let peak = hqm.peak()?;
             let magnitudes = hqm.magnitude(&frequencies)?;
-            Ok((hqm, lookup.extrapolated && !single_row, peak, magnitudes))
+            let extrapolated = lookup.extrapolated && !setup.single_row();
+            Ok((hqm, extrapolated, peak, magnitudes))
         })
         .py_err(py)?;
     let d = PyDict::new(py);
@@ -102,12 +140,13 @@ pub fn handling_against_speed_native<'py>(
     neuro_frequency: f64,
     neuro_damping: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let bike = bicycle.checked.benchmark;
-    let single_row = gains_row.is_some();
-    let neuromuscular = Neuromuscular {
-        frequency: neuro_frequency,
-        damping: neuro_damping,
-    };
+    let setup = Setup::new(
+        bicycle,
+        gains_text,
+        gains_row,
+        neuro_frequency,
+        neuro_damping,
+    );
     if speeds.len() > MAX_HANDLING_POINTS {
         return Err(whipple::Error::LimitExceeded {
             what: "speeds",
@@ -117,8 +156,8 @@ pub fn handling_against_speed_native<'py>(
     }
     let rows = py
         .detach(|| -> whipple::Result<_> {
-            let table = table(gains_text, gains_row)?;
-            handling_against_speed(&bike, &table, &neuromuscular, &speeds)
+            let table = setup.table()?;
+            handling_against_speed(&setup.bike, &table, &setup.neuromuscular, &speeds)
         })
         .py_err(py)?;
     let d = PyDict::new(py);
@@ -142,7 +181,7 @@ pub fn handling_against_speed_native<'py>(
     d.set_item(
         "extrapolated",
         rows.iter()
-            .map(|r| r.extrapolated && !single_row)
+            .map(|r| r.extrapolated && !setup.single_row())
             .collect::<Vec<bool>>(),
     )?;
     Ok(d)
@@ -200,10 +239,7 @@ pub fn optimal_handling_native<'py>(
         .collect::<whipple::Result<Vec<BoundSpec>>>()
         .py_err(py)?;
     let settings = OptimalHandlingSettings {
-        neuromuscular: Neuromuscular {
-            frequency: neuro_frequency,
-            damping: neuro_damping,
-        },
+        neuromuscular: neuromuscular(neuro_frequency, neuro_damping),
         starts,
         max_iterations: iterations,
         ..OptimalHandlingSettings::at(speed)

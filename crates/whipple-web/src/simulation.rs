@@ -98,7 +98,7 @@ pub struct RiderLeanRequest {
     /// frame; right positive), held for `torque_duration` (default 0).
     #[serde(default)]
     pub torque: f64,
-    /// How long the torque acts [s] from the start (default: the whole run).
+    /// How long the torque acts \[s\] from the start (default: the whole run).
     pub torque_duration: Option<f64>,
     /// φ_r₀: the upper body's initial lean relative to the rear frame \[deg\] (default 0).
     #[serde(default)]

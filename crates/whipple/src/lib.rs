@@ -347,26 +347,26 @@ pub mod advanced {
             GainLookup, GainTable, HumanController, HumanGains, HumanLoop, LoopInput, LoopState,
             MAX_GAIN_SPEEDS, NEUROMUSCULAR_DAMPING, NEUROMUSCULAR_FREQUENCY, Neuromuscular, Task,
         };
-        /// Hess's handling quality metric as HumanControl computes it: its exact transfer
-        /// function, magnitude and certified peak over frequency, against speed and against a
-        /// parameter.
-        pub use crate::linear::{
-            HANDLING_FILTER, HandlingPeak, HandlingQuality, HandlingRow, MAX_HANDLING_POINTS,
-            handling_against_parameter, handling_against_speed,
-        };
         /// The optimal-handling search of BMD 2016: the peak HQM minimized over chosen
         /// parameters within bounds at a design speed, the gains by Hess 2012's rules for each
         /// candidate (Nelder–Mead from several starts; local, not certified global).
         pub use crate::linear::{
-            HandlingBound, HandlingCandidate, HandlingStart, INFEASIBLE_PENALTY,
-            MAX_HANDLING_ITERATIONS, MAX_HANDLING_PARAMETERS, MAX_HANDLING_STARTS, OptimalHandling,
-            OptimalHandlingSettings, UNSTABLE_PENALTY, judge_handling, optimal_handling,
+            HandlingBound, HandlingCandidate, HandlingStart, MAX_HANDLING_ITERATIONS,
+            MAX_HANDLING_PARAMETERS, MAX_HANDLING_STARTS, OptimalHandling, OptimalHandlingSettings,
+            judge_handling, optimal_handling,
+        };
+        /// Hess's handling quality metric as HumanControl computes it: its exact transfer
+        /// function, magnitude and certified peak over frequency, against speed and against a
+        /// parameter.
+        pub use crate::linear::{
+            HandlingPeak, HandlingQuality, HandlingRow, MAX_HANDLING_POINTS,
+            handling_against_parameter, handling_against_speed,
         };
         /// HumanControl's single and double lane change, ridden by Hess's controller on the
         /// linear bicycle (exactly) and on the non-linear one.
         pub use crate::linear::{
-            LaneChange, LaneChangeRun, LaneKind, MAX_LANE_CHANGE_SAMPLES, PATH_FILTER_FREQUENCY,
-            PREVIEW_TIME, lane_change_linear, lane_change_nonlinear,
+            LaneChange, LaneChangeRun, LaneKind, MAX_LANE_CHANGE_SAMPLES, lane_change_linear,
+            lane_change_nonlinear,
         };
     }
     #[doc = "Design studies over one or two parameters."]
@@ -540,7 +540,7 @@ pub mod advanced {
         pub use crate::nonlinear::rotation;
         pub use crate::nonlinear::{
             BODY_NAMES, BodyPose, ContactForce, DEFAULT_FALL_ANGLE, FRONT_WHEEL, HINGE_LIMIT,
-            Inputs, LEAN_STATE_LEN, LeanForcing, LeanModel, LeanRates, LeanSimulation, LeanState,
+            Inputs, LeanForcing, LeanModel, LeanRates, LeanSimulation, LeanState,
             MAX_EXPRESSION_DEPTH, MAX_EXPRESSION_LENGTH, MAX_SAMPLES, MAX_STEPS, Progress,
             ProjectionMethod, ProjectionSettings, REAR_FRAME, REAR_WHEEL, STATE_LEN, State,
             StateView, TorqueExpression, TorqueFn, Wheel, check_rk4_step, fastest_mode,
@@ -578,8 +578,7 @@ pub mod advanced {
         /// assert!((p.upper_body.z_hinge + 1.011421527346159).abs() < 1e-15);
         /// ```
         pub use crate::parameters::{
-            MOORE_RIDER_LEAN2012_KEYS, MooreRiderLean2012Parameters, RiderLeanParameters,
-            UPPER_BODY_KEYS, UpperBody,
+            MOORE_RIDER_LEAN2012_KEYS, MooreRiderLean2012Parameters, RiderLeanParameters, UpperBody,
         };
         /// Moore 2012's parameterization (BicycleParameters' `Moore2012`) and its conversion
         /// to and from the benchmark form.

@@ -60,10 +60,7 @@ impl<const N: usize> BoundedPolynomial<N> {
     /// The value at x (Horner, real arithmetic).
     #[inline]
     pub fn eval(&self, x: f64) -> f64 {
-        self.coefficients
-            .iter()
-            .rev()
-            .fold(0.0, |acc, &c| acc * x + c)
+        horner_real(&self.coefficients, x)
     }
 
     /// The value at x and a rigorous bound on its distance from the value of any polynomial
@@ -266,6 +263,12 @@ impl RealRoots {
 /// a double root linearly, where the accuracy is limited by the problem itself, and the
 /// iteration stops when its corrections stop shrinking).
 const MAX_ABERTH_ITERATIONS: usize = 80;
+
+/// Σ `c[k]` xᵏ at a real x (lowest power first; 0 for no coefficients) by Horner's scheme.
+#[inline]
+pub(crate) fn horner_real(c: &[f64], x: f64) -> f64 {
+    c.iter().rev().fold(0.0, |acc, &ck| acc * x + ck)
+}
 
 /// p(z) and p'(z) of Σ `c[k]` zᵏ (lowest power first, at least one coefficient) by Horner's
 /// scheme.

@@ -9,7 +9,7 @@
 use nalgebra::{DMatrix, Matrix2};
 
 use super::Canonical;
-use crate::analysis::roots::BoundedPolynomial;
+use crate::analysis::roots::{BoundedPolynomial, horner_real};
 use crate::error::{Error, Result};
 
 /// Degree in λ and in v.
@@ -200,7 +200,7 @@ impl CharacteristicPolynomial {
         let mut e = [0.0; DEGREE + 1];
         let av = v.abs();
         for (k, row) in self.magnitudes.iter().enumerate() {
-            e[k] = gamma * row.iter().rev().fold(0.0, |acc, &c| acc * av + c);
+            e[k] = gamma * horner_real(row, av);
         }
         e
     }
@@ -210,7 +210,7 @@ impl CharacteristicPolynomial {
     pub fn at_speed(&self, v: f64) -> [f64; DEGREE + 1] {
         let mut a = [0.0; DEGREE + 1];
         for (k, row) in self.coefficients.iter().enumerate() {
-            a[k] = row.iter().rev().fold(0.0, |acc, &c| acc * v + c);
+            a[k] = horner_real(row, v);
         }
         a
     }

@@ -41,11 +41,10 @@
 use nalgebra::Complex;
 
 use super::human::{GainTable, HumanGains, Neuromuscular};
+use super::poly::{Poly, ratio};
 use super::system::{Input, LinearSystem, Output, StateVariable, SystemRequest};
 use crate::analysis::design::Parameter;
-use crate::analysis::roots::{
-    BoundedPolynomial, RealRoot, UNIT_ROUNDOFF, approximate, horner, real_roots,
-};
+use crate::analysis::roots::{BoundedPolynomial, RealRoot, UNIT_ROUNDOFF, approximate, real_roots};
 use crate::error::{Error, Result, short_number};
 use crate::parameters::{BenchmarkParameters, Bicycle};
 
@@ -54,88 +53,10 @@ type Complex64 = Complex<f64>;
 /// The handling filter's numerator 400 and denominator s² + 40 s + 400 (HumanControl's
 /// `handlingFilterNum`, `handlingFilterDen`): a critically damped second-order filter at
 /// 20 rad/s.
-pub const HANDLING_FILTER: [f64; 3] = [400.0, 40.0, 400.0];
+pub(crate) const HANDLING_FILTER: [f64; 3] = [400.0, 40.0, 400.0];
 
 /// The most frequencies, speeds or parameter values one handling-quality call evaluates.
 pub const MAX_HANDLING_POINTS: usize = 1_000_000;
-
-/// A polynomial in s or x, lowest power first, each coefficient with the sum of the absolute
-/// values of the terms it was formed from.
-type Sized = Vec<(f64, f64)>;
-
-fn sized(c: &[f64]) -> Sized {
-    c.iter().map(|x| (*x, x.abs())).collect()
-}
-
-fn add(a: &Sized, b: &Sized) -> Sized {
-    (0..a.len().max(b.len()))
-        .map(|k| {
-            let (x, mx) = a.get(k).copied().unwrap_or((0.0, 0.0));
-            let (y, my) = b.get(k).copied().unwrap_or((0.0, 0.0));
-            (x + y, mx + my)
-        })
-        .collect()
-}
-
-fn mul(a: &Sized, b: &Sized) -> Sized {
-    if a.is_empty() || b.is_empty() {
-        return Vec::new();
-    }
-    let mut out = vec![(0.0, 0.0); a.len() + b.len() - 1];
-    for (i, (x, mx)) in a.iter().enumerate() {
-        for (j, (y, my)) in b.iter().enumerate() {
-            out[i + j].0 += x * y;
-            out[i + j].1 += mx * my;
-        }
-    }
-    out
-}
-
-fn scale(a: &Sized, k: f64) -> Sized {
-    a.iter().map(|(x, m)| (x * k, m * k.abs())).collect()
-}
-
-/// Times s.
-fn shift(a: &Sized) -> Sized {
-    if a.is_empty() {
-        return Vec::new();
-    }
-    let mut out = vec![(0.0, 0.0)];
-    out.extend_from_slice(a);
-    out
-}
-
-/// |p(jω)|² as a polynomial in x = ω²: the coefficient of xᵐ is Σ_{i+j=2m} (−1)^{m+j} pᵢ pⱼ.
-fn magnitude_squared(p: &Sized) -> Sized {
-    if p.is_empty() {
-        return Vec::new();
-    }
-    let n = p.len() - 1;
-    (0..=n)
-        .map(|m| {
-            let mut value = 0.0;
-            let mut size = 0.0;
-            for i in 0..=(2 * m).min(n) {
-                let j = 2 * m - i;
-                if j > n {
-                    continue;
-                }
-                let sign = if (m + j) % 2 == 0 { 1.0 } else { -1.0 };
-                value += sign * p[i].0 * p[j].0;
-                size += p[i].1 * p[j].1;
-            }
-            (value, size)
-        })
-        .collect()
-}
-
-fn derivative(p: &Sized) -> Sized {
-    p.iter()
-        .enumerate()
-        .skip(1)
-        .map(|(k, (x, m))| (k as f64 * x, k as f64 * m))
-        .collect()
-}
 
 /// The highest degree the certified peak's polynomial P reaches (A of degree 3 and B of 8 give
 /// 10).
@@ -256,26 +177,27 @@ impl HandlingQuality {
         let steer = system.transfer_function(1, 0)?;
         let (w, z) = (neuromuscular.frequency, neuromuscular.damping);
         let (k_delta, k_phi_dot, k_phi) = (gains.k_delta, gains.k_phi_dot, gains.k_phi);
-        let n_phi = sized(&lean.numerator);
-        let n_delta = sized(&steer.numerator);
-        let d = sized(&lean.characteristic);
-        let q = sized(&[w * w, 2.0 * z * w, 1.0]);
+        let n_phi = Poly::from_coefficients(&lean.numerator);
+        let n_delta = Poly::from_coefficients(&steer.numerator);
+        let d = Poly::from_coefficients(&lean.characteristic);
+        let q = Poly::from_coefficients(&[w * w, 2.0 * z * w, 1.0]);
         // Δ = Q D + ω² k_δ (k_φ̇ (k_φ + s) N_φ + N_δ)
-        let loop_gain = add(
-            &scale(&add(&scale(&n_phi, k_phi), &shift(&n_phi)), k_phi_dot),
-            &n_delta,
-        );
-        let roll_loop = add(&mul(&q, &d), &scale(&loop_gain, w * w * k_delta));
+        let loop_gain = n_phi
+            .scale(k_phi)
+            .add(&n_phi.shift(1))
+            .scale(k_phi_dot)
+            .add(&n_delta);
+        let roll_loop = q.mul(&d).add(&loop_gain.scale(w * w * k_delta));
         // HQM = −400 ω² k_δ (k_φ̇ s N_φ + N_δ) / ((s² + 40 s + 400) Δ)
-        let numerator = scale(
-            &add(&scale(&shift(&n_phi), k_phi_dot), &n_delta),
-            -HANDLING_FILTER[0] * w * w * k_delta,
-        );
-        let filter = sized(&[HANDLING_FILTER[2], HANDLING_FILTER[1], 1.0]);
-        let denominator = mul(&filter, &roll_loop);
-        let plain = |p: &Sized| p.iter().map(|(x, _)| *x).collect::<Vec<f64>>();
+        let numerator = n_phi
+            .shift(1)
+            .scale(k_phi_dot)
+            .add(&n_delta)
+            .scale(-HANDLING_FILTER[0] * w * w * k_delta);
+        let filter = Poly::from_coefficients(&[HANDLING_FILTER[2], HANDLING_FILTER[1], 1.0]);
+        let denominator = filter.mul(&roll_loop);
         let (numerator, denominator, roll_loop) =
-            (plain(&numerator), plain(&denominator), plain(&roll_loop));
+            (numerator.values(), denominator.values(), roll_loop.values());
         if numerator.iter().chain(&denominator).any(|x| !x.is_finite()) {
             return Err(Error::NonFinite {
                 context: "the handling quality metric (gains or speed too large)".into(),
@@ -342,17 +264,7 @@ impl HandlingQuality {
 
     /// HQM(s) at any complex s (Horner's scheme, in 1/s beyond |s| = 1).
     pub fn eval(&self, s: Complex64) -> Complex64 {
-        if s.norm() <= 1.0 {
-            let (n, _) = horner(&self.numerator, s);
-            let (d, _) = horner(&self.denominator, s);
-            return n / d;
-        }
-        let w = s.inv();
-        let reversed = |c: &[f64]| c.iter().rev().copied().collect::<Vec<f64>>();
-        let (n, _) = horner(&reversed(&self.numerator), w);
-        let (d, _) = horner(&reversed(&self.denominator), w);
-        let excess = self.numerator.len() as i32 - self.denominator.len() as i32;
-        s.powi(excess) * n / d
+        ratio(&self.numerator, &self.denominator, s)
     }
 
     /// |HQM(jω)| at each ω of `frequencies` \[rad/s\]. Errors name `frequencies`: a value
@@ -400,12 +312,12 @@ impl HandlingQuality {
                 ),
             });
         }
-        let a = magnitude_squared(&sized(&self.numerator));
-        let b = magnitude_squared(&sized(&self.denominator));
-        let p = add(
-            &mul(&derivative(&a), &b),
-            &scale(&mul(&a, &derivative(&b)), -1.0),
-        );
+        let a = Poly::from_coefficients(&self.numerator).magnitude_squared();
+        let b = Poly::from_coefficients(&self.denominator).magnitude_squared();
+        let p = a
+            .derivative()
+            .mul(&b)
+            .add(&a.mul(&b.derivative()).scale(-1.0));
         if p.len() > PEAK_DEGREE + 1 {
             return Err(Error::InvalidArgument {
                 what: "polynomial",
@@ -420,7 +332,7 @@ impl HandlingQuality {
         let mut coefficients = [0.0; PEAK_DEGREE + 1];
         let mut bounds = [0.0; PEAK_DEGREE + 1];
         let mut power = 1.0;
-        for (k, (c, size)) in p.iter().enumerate() {
+        for (k, (c, size)) in p.terms().iter().enumerate() {
             coefficients[k] = c * power;
             // Forming |N|², |D|², their derivatives, products and difference: a few dozen
             // roundings of at most one unit each per term, bounded generously.
@@ -489,7 +401,8 @@ impl HandlingQuality {
 
 /// A power of two σ that balances the coefficients of p(σ t): the geometric mean of the ratios
 /// |c₀/cₙ|^{1/n}, rounded to a power of two.
-fn balance(p: &Sized) -> f64 {
+fn balance(p: &Poly) -> f64 {
+    let p = p.terms();
     let first = p.iter().position(|(c, _)| *c != 0.0);
     let last = p.iter().rposition(|(c, _)| *c != 0.0);
     match (first, last) {

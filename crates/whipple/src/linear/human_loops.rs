@@ -59,6 +59,7 @@
 //! lower frequency, which is not the rule's). None: [`Error::GainRuleUnmet`] naming the gain.
 
 use super::human::{GainTable, HumanController, HumanGains, HumanLoop, Neuromuscular, Task};
+use super::poly::{Poly, eval, ratio};
 use super::system::{LinearSystem, Output, StateVariable};
 use crate::analysis::eigen::Complex64;
 use crate::analysis::roots::{BoundedPolynomial, RealRoot, UNIT_ROUNDOFF, real_roots};
@@ -161,7 +162,7 @@ pub struct LoopTransferFunction {
 impl LoopTransferFunction {
     /// The value at any complex s (Horner's scheme; in 1/s beyond |s| = 1).
     pub fn eval(&self, s: Complex64) -> Complex64 {
-        poly_ratio(&self.numerator, &self.denominator, s)
+        ratio(&self.numerator, &self.denominator, s)
     }
 
     /// |G(iω)| at each ω \[rad/s\].
@@ -230,33 +231,7 @@ impl Default for CrossoverRules {
 }
 
 // ---------------------------------------------------------------------------------------
-// Polynomials, lowest power first.
-
-fn poly_mul(a: &[f64], b: &[f64]) -> Vec<f64> {
-    if a.is_empty() || b.is_empty() {
-        return Vec::new();
-    }
-    let mut out = vec![0.0; a.len() + b.len() - 1];
-    for (i, x) in a.iter().enumerate() {
-        for (j, y) in b.iter().enumerate() {
-            out[i + j] += x * y;
-        }
-    }
-    out
-}
-
-fn poly_add_scaled(a: &[f64], b: &[f64], k: f64) -> Vec<f64> {
-    let n = a.len().max(b.len());
-    (0..n)
-        .map(|i| a.get(i).copied().unwrap_or(0.0) + k * b.get(i).copied().unwrap_or(0.0))
-        .collect()
-}
-
-fn poly_shift(a: &[f64], k: usize) -> Vec<f64> {
-    let mut out = vec![0.0; k];
-    out.extend_from_slice(a);
-    out
-}
+// Polynomials, lowest power first ([`Poly`]; their values here, the sizes unused).
 
 fn trim(mut a: Vec<f64>) -> Vec<f64> {
     while a.last() == Some(&0.0) {
@@ -266,32 +241,13 @@ fn trim(mut a: Vec<f64>) -> Vec<f64> {
 }
 
 /// Cancels the powers of s that numerator and denominator share (exact zeros at the low end).
-fn cancel_s(mut n: Vec<f64>, mut d: Vec<f64>) -> (Vec<f64>, Vec<f64>) {
+fn cancel_s(n: &Poly, d: &Poly) -> (Vec<f64>, Vec<f64>) {
+    let (mut n, mut d) = (n.values(), d.values());
     while n.len() > 1 && d.len() > 1 && n[0] == 0.0 && d[0] == 0.0 {
         n.remove(0);
         d.remove(0);
     }
     (trim(n), trim(d))
-}
-
-fn horner_c(c: &[f64], z: Complex64) -> Complex64 {
-    c.iter()
-        .rev()
-        .fold(Complex64::new(0.0, 0.0), |acc, x| acc * z + x)
-}
-
-/// N(s)/D(s), in 1/s beyond |s| = 1 so that neither overflows.
-fn poly_ratio(n: &[f64], d: &[f64], s: Complex64) -> Complex64 {
-    if n.is_empty() {
-        return Complex64::new(0.0, 0.0);
-    }
-    if s.norm() <= 1.0 || d.is_empty() {
-        return horner_c(n, s) / horner_c(d, s);
-    }
-    let w = s.inv();
-    let rev = |c: &[f64]| c.iter().rev().copied().collect::<Vec<f64>>();
-    let excess = n.len() as i32 - d.len() as i32;
-    s.powi(excess) * horner_c(&rev(n), w) / horner_c(&rev(d), w)
 }
 
 /// A polynomial of up to [`ROOT_COEFFICIENTS`] coefficients with round-off bounds (a relative
@@ -381,8 +337,8 @@ fn crossings(n: &[f64], d: &[f64]) -> Result<Vec<Crossover>> {
 /// The open-loop polynomials of the five loops over one denominator: q s^K c and
 /// N_i = ω² s^{K − k_i} n_i (loops inner first).
 struct LoopPolynomials {
-    base: Vec<f64>,
-    numerators: Vec<Vec<f64>>,
+    base: Poly,
+    numerators: Vec<Poly>,
 }
 
 impl LoopPolynomials {
@@ -404,14 +360,19 @@ impl LoopPolynomials {
         }
         let k_max = tfs.iter().map(|t| t.integrators).max().unwrap_or(0);
         let (w, z) = (neuromuscular.frequency, neuromuscular.damping);
-        let q = [w * w, 2.0 * z * w, 1.0];
-        let c = tfs[0].characteristic;
-        let base = poly_mul(&q, &poly_shift(&c, k_max));
+        let q = Poly::from_coefficients(&[w * w, 2.0 * z * w, 1.0]);
+        let c = Poly::from_coefficients(&tfs[0].characteristic);
+        let base = q.mul(&c.shift(k_max));
         let numerators = tfs
             .iter()
             .map(|t| {
-                let n: Vec<f64> = t.numerator.iter().map(|x| x * w * w).collect();
-                poly_shift(&n, k_max - t.integrators)
+                let n = Poly::from_coefficients(&t.numerator).scale(w).scale(w);
+                if n.is_empty() {
+                    // G ≡ 0 (k = 0): K zero coefficients all the same (`Poly::shift` leaves
+                    // the zero polynomial empty).
+                    return Poly::from_coefficients(&vec![0.0; k_max - t.integrators]);
+                }
+                n.shift(k_max - t.integrators)
             })
             .collect();
         Ok(LoopPolynomials { base, numerators })
@@ -430,10 +391,10 @@ impl LoopPolynomials {
     }
 
     /// q s^K c + Σ_{m<i} g_m N_m.
-    fn denominator_below(&self, i: usize, g: &[f64; 5]) -> Vec<f64> {
+    fn denominator_below(&self, i: usize, g: &[f64; 5]) -> Poly {
         let mut d = self.base.clone();
         for (n, gm) in self.numerators.iter().zip(g).take(i) {
-            d = poly_add_scaled(&d, n, *gm);
+            d = d.add_scaled(n, *gm);
         }
         d
     }
@@ -442,10 +403,10 @@ impl LoopPolynomials {
         let i = l.index();
         let g = Self::forward_gains(gains);
         let below = self.denominator_below(i, &g);
-        let numerator: Vec<f64> = self.numerators[i].iter().map(|x| x * g[i]).collect();
-        let closed_den = poly_add_scaled(&below, &numerator, 1.0);
-        let (on, od) = cancel_s(numerator.clone(), below);
-        let (cn, cd) = cancel_s(numerator, closed_den);
+        let numerator = self.numerators[i].scale(g[i]);
+        let closed_den = below.add_scaled(&numerator, 1.0);
+        let (on, od) = cancel_s(&numerator, &below);
+        let (cn, cd) = cancel_s(&numerator, &closed_den);
         let crossovers = crossings(&on, &od)?;
         Ok(LoopResponse {
             rider_loop: l,
@@ -531,7 +492,7 @@ fn damping_ray_gains(p0: &[f64], p1: &[f64], zeta: f64) -> Result<Vec<(f64, f64)
             continue;
         }
         let s = u * w;
-        let k = -(horner_c(p0, s) / horner_c(p1, s));
+        let k = -(eval(p0, s) / eval(p1, s));
         if k.re.is_finite() {
             out.push((k.re, w));
         }
@@ -623,9 +584,8 @@ pub fn hess_gains(
     }
     let open = LinearSystem::new(bike, speed, &probe.open_loop_request(&[]))?;
     let polys = LoopPolynomials::new(&open, neuromuscular)?;
-    let strip = |p: Vec<f64>, q: Vec<f64>| cancel_s(p, q);
     // k_δ: P₀ = q s^K c, P₁ = N_δ.
-    let (p0, p1) = strip(polys.base.clone(), polys.numerators[0].clone());
+    let (p0, p1) = cancel_s(&polys.base, &polys.numerators[0]);
     let candidates = damping_ray_gains(&p0, &p1, rules.steer_damping)?;
     let k_delta = pick_gain(
         &candidates,
@@ -635,9 +595,9 @@ pub fn hess_gains(
         rules.steer_damping,
     )?;
     // k_φ̇: P₀ = q s^K c + k_δ N_δ, P₁ = k_δ N_φ̇.
-    let g0 = poly_add_scaled(&polys.base, &polys.numerators[0], k_delta);
-    let n1: Vec<f64> = polys.numerators[1].iter().map(|x| x * k_delta).collect();
-    let (p0, p1) = strip(g0, n1);
+    let g0 = polys.base.add_scaled(&polys.numerators[0], k_delta);
+    let n1 = polys.numerators[1].scale(k_delta);
+    let (p0, p1) = cancel_s(&g0, &n1);
     let candidates = damping_ray_gains(&p0, &p1, rules.roll_rate_damping)?;
     let k_phi_dot = pick_gain(
         &candidates,
@@ -650,7 +610,11 @@ pub fn hess_gains(
     for (i, w) in (2..5).zip(rules.crossovers) {
         let g = LoopPolynomials::forward_gains(&HumanGains::from_array(k));
         let below = polys.denominator_below(i, &g);
-        let at = poly_ratio(&polys.numerators[i], &below, Complex64::new(0.0, w)) * g[i];
+        let at = ratio(
+            &polys.numerators[i].values(),
+            &below.values(),
+            Complex64::new(0.0, w),
+        ) * g[i];
         let m = at.norm();
         if !(m.is_finite() && m > 0.0) {
             return Err(Error::GainRuleUnmet {

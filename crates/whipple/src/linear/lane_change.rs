@@ -46,9 +46,9 @@ use crate::nonlinear::{DEFAULT_FALL_ANGLE, InitialConditions, Inputs, Model, Out
 use crate::parameters::BenchmarkParameters;
 
 /// HumanControl's path filter natural frequency ω_p \[rad/s\] (`generate_data.m`).
-pub const PATH_FILTER_FREQUENCY: f64 = 2.4;
+pub(crate) const PATH_FILTER_FREQUENCY: f64 = 2.4;
 /// HumanControl's preview time τ for steer control \[s\] (`generate_data.m`).
-pub const PREVIEW_TIME: f64 = 2.75;
+pub(crate) const PREVIEW_TIME: f64 = 2.75;
 /// The most sample intervals one lane change may have.
 pub const MAX_LANE_CHANGE_SAMPLES: usize = 100_000;
 

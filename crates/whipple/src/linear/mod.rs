@@ -12,6 +12,7 @@ mod human_loops;
 mod lane_change;
 mod manoeuvre;
 mod optimal_handling;
+mod poly;
 mod response;
 mod riccati;
 mod state_space;
@@ -28,8 +29,8 @@ pub use controllability::{
 };
 pub use feedback::{ClosedLoop, Gains, MAX_GENERAL_SWEEP_SPEEDS, MAX_SCHEDULE_SPEEDS};
 pub use handling::{
-    HANDLING_FILTER, HandlingPeak, HandlingQuality, HandlingRow, MAX_HANDLING_POINTS,
-    handling_against_parameter, handling_against_speed,
+    HandlingPeak, HandlingQuality, HandlingRow, MAX_HANDLING_POINTS, handling_against_parameter,
+    handling_against_speed,
 };
 pub use human::{
     GainLookup, GainTable, HumanController, HumanGains, HumanLoop, LoopInput, LoopState,
@@ -40,16 +41,16 @@ pub use human_loops::{
     MAX_HUMAN_SWEEP_SPEEDS, RiderLoop, hess_gains, human_eigen_sweep,
 };
 pub use lane_change::{
-    LaneChange, LaneChangeRun, LaneKind, MAX_LANE_CHANGE_SAMPLES, PATH_FILTER_FREQUENCY,
-    PREVIEW_TIME, lane_change_linear, lane_change_nonlinear,
+    LaneChange, LaneChangeRun, LaneKind, MAX_LANE_CHANGE_SAMPLES, lane_change_linear,
+    lane_change_nonlinear,
 };
 pub use manoeuvre::{
     MAX_MANOEUVRE_BREAKS, Manoeuvre, ManoeuvreComparison, ManoeuvreMotion, compare_manoeuvre,
 };
 pub use optimal_handling::{
-    HandlingBound, HandlingCandidate, HandlingStart, INFEASIBLE_PENALTY, MAX_HANDLING_ITERATIONS,
+    HandlingBound, HandlingCandidate, HandlingStart, MAX_HANDLING_ITERATIONS,
     MAX_HANDLING_PARAMETERS, MAX_HANDLING_STARTS, OptimalHandling, OptimalHandlingSettings,
-    UNSTABLE_PENALTY, judge_handling, optimal_handling,
+    judge_handling, optimal_handling,
 };
 pub use response::{
     GroundPath, InputSignal, MAX_KNOTS, MAX_RESPONSE_TIMES, MAX_RESPONSE_VALUES, TimeResponse,

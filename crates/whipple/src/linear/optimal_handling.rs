@@ -46,10 +46,10 @@ use crate::parameters::Bicycle;
 
 /// The cost of a candidate whose roll loop or lateral loop is unstable, before the term in its
 /// largest real part: above any stable candidate's peak HQM in the field's bicycles.
-pub const UNSTABLE_PENALTY: f64 = 1.0e3;
+pub(crate) const UNSTABLE_PENALTY: f64 = 1.0e3;
 
 /// The cost of a candidate the library refuses (an invalid bicycle, no gain meeting a rule).
-pub const INFEASIBLE_PENALTY: f64 = 1.0e6;
+pub(crate) const INFEASIBLE_PENALTY: f64 = 1.0e6;
 
 /// The most starts one search takes.
 pub const MAX_HANDLING_STARTS: usize = 256;

@@ -26,74 +26,14 @@ use nalgebra::DMatrix;
 
 use super::CharacteristicPolynomial;
 use super::characteristic::{GeneralSpeedPolynomials, Pencil};
+use super::poly::{Poly, eval};
 use super::system::{Input, LinearSystem, StateVariable};
 use crate::analysis::eigen::{Complex64, eigenvalues, eigenvalues_with};
 use crate::analysis::roots::{
-    BoundedPolynomial, RealRoot, Unpaired, approximate, horner, pair_conjugates, real_roots,
+    BoundedPolynomial, RealRoot, Unpaired, approximate, pair_conjugates, real_roots,
 };
 use crate::error::{Error, Result, short_number};
 use crate::parameters::BenchmarkParameters;
-
-/// A polynomial in s, lowest power first, each coefficient with the sum of the absolute
-/// values of the terms it was formed from.
-#[derive(Debug, Clone, PartialEq)]
-struct Poly(Vec<(f64, f64)>);
-
-impl Poly {
-    fn constant(x: f64) -> Self {
-        Poly(vec![(x, x.abs())])
-    }
-
-    fn zero() -> Self {
-        Poly(Vec::new())
-    }
-
-    fn add(&self, other: &Poly) -> Poly {
-        let n = self.0.len().max(other.0.len());
-        Poly(
-            (0..n)
-                .map(|k| {
-                    let (a, ma) = self.0.get(k).copied().unwrap_or((0.0, 0.0));
-                    let (b, mb) = other.0.get(k).copied().unwrap_or((0.0, 0.0));
-                    (a + b, ma + mb)
-                })
-                .collect(),
-        )
-    }
-
-    fn mul(&self, other: &Poly) -> Poly {
-        if self.0.is_empty() || other.0.is_empty() {
-            return Poly::zero();
-        }
-        let mut out = vec![(0.0, 0.0); self.0.len() + other.0.len() - 1];
-        for (i, (a, ma)) in self.0.iter().enumerate() {
-            for (j, (b, mb)) in other.0.iter().enumerate() {
-                out[i + j].0 += a * b;
-                out[i + j].1 += ma * mb;
-            }
-        }
-        Poly(out)
-    }
-
-    fn scale(&self, x: f64) -> Poly {
-        Poly(self.0.iter().map(|(a, m)| (a * x, m * x.abs())).collect())
-    }
-
-    /// Times s^k.
-    fn shift(&self, k: usize) -> Poly {
-        if self.0.is_empty() {
-            return Poly::zero();
-        }
-        let mut out = vec![(0.0, 0.0); k];
-        out.extend_from_slice(&self.0);
-        Poly(out)
-    }
-
-    /// A coefficient is an exact cancellation when it is within round-off of its terms' size.
-    fn negligible((value, size): (f64, f64)) -> bool {
-        value.abs() <= 64.0 * f64::EPSILON * size
-    }
-}
 
 /// A signal as polynomials on φ(s) and δ(s) over s^integrators.
 #[derive(Debug, Clone, PartialEq)]
@@ -140,7 +80,7 @@ fn states_in_lean_steer(system: &LinearSystem) -> Result<Vec<LeanSteer>> {
     let mut rows: Vec<Option<LeanSteer>> = vec![None; states.len()];
     for (i, s) in states.iter().enumerate() {
         let one = Poly::constant(1.0);
-        let rate = Poly(vec![(0.0, 0.0), (1.0, 1.0)]);
+        let rate = Poly::from_terms(vec![(0.0, 0.0), (1.0, 1.0)]);
         let (lean, steer) = match s {
             StateVariable::Lean => (one, Poly::zero()),
             StateVariable::Steer => (Poly::zero(), one),
@@ -271,14 +211,13 @@ impl TransferFunction {
             return Complex64::new(0.0, 0.0);
         }
         if s.norm() <= 1.0 {
-            let (n, _) = horner(&self.numerator, s);
-            let (d, _) = horner(&self.characteristic, s);
+            let (n, d) = (eval(&self.numerator, s), eval(&self.characteristic, s));
             return n / (d * s.powi(self.integrators as i32));
         }
         let w = s.inv();
         let reversed = |c: &[f64]| c.iter().rev().copied().collect::<Vec<f64>>();
-        let (n, _) = horner(&reversed(&self.numerator), w);
-        let (d, _) = horner(&reversed(&self.characteristic), w);
+        let n = eval(&reversed(&self.numerator), w);
+        let d = eval(&reversed(&self.characteristic), w);
         let excess = self.numerator.len() as i32 - 1 - 4 - self.integrators as i32;
         s.powi(excess) * n / d
     }
@@ -422,7 +361,7 @@ impl LinearSystem {
             let k2 = v * v * pencil.k2[(i, j)];
             let c0 = pencil.c0[(i, j)];
             let c1 = v * pencil.c1[(i, j)];
-            Poly(vec![
+            Poly::from_terms(vec![
                 (k[(i, j)], k0.abs() + k1.abs() + k2.abs()),
                 (c[(i, j)], c0.abs() + c1.abs()),
                 (m[(i, j)], m[(i, j)].abs()),
@@ -442,10 +381,10 @@ impl LinearSystem {
         let mut numerator = o.lean.mul(&adj_lean).add(&o.steer.mul(&adj_steer));
         let feedthrough = self.d()[(output, input)];
         if feedthrough != 0.0 {
-            let den = Poly(characteristic.iter().map(|a| (*a, a.abs())).collect());
+            let den = Poly::from_coefficients(&characteristic);
             numerator = numerator.add(&den.shift(o.integrators).scale(feedthrough));
         }
-        let mut coefficients = numerator.0;
+        let mut coefficients = numerator.into_terms();
         while coefficients.last().is_some_and(|c| Poly::negligible(*c)) {
             coefficients.pop();
         }

@@ -128,7 +128,7 @@ impl Default for LeanForcing<'_> {
 pub const HINGE_LIMIT: f64 = std::f64::consts::FRAC_PI_2;
 
 /// Length of the leaning rider's first-order state [q; u; φ_r; φ̇_r].
-pub const LEAN_STATE_LEN: usize = STATE_LEN + 2;
+pub(crate) const LEAN_STATE_LEN: usize = STATE_LEN + 2;
 
 /// A run of [`LeanModel::simulate`]: the four bodies' [`Simulation`] (the same samples,
 /// events and extremes as [`crate::simulate`]'s; each sample's energy the five bodies' with the

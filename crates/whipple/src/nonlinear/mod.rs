@@ -69,9 +69,7 @@ pub use crate::expression::{
 pub(crate) use forward::StateRates;
 pub use forward::{ContactForce, Inputs};
 pub use initial::InitialConditions;
-pub use lean::{
-    HINGE_LIMIT, LEAN_STATE_LEN, LeanForcing, LeanModel, LeanRates, LeanSimulation, LeanState,
-};
+pub use lean::{HINGE_LIMIT, LeanForcing, LeanModel, LeanRates, LeanSimulation, LeanState};
 pub use model::Model;
 pub use outcome::{Outcome, Progress, Sample, Simulation, Wheel};
 pub use projection::{ProjectionMethod, ProjectionSettings};

@@ -154,7 +154,7 @@ pub struct StateView {
 ///
 /// A point `p_body` given in the body's axes relative to its origin lies at
 /// `position + rotation * p_body` in the world. Every origin is the body's centre of mass (the
-/// hubs for the wheels), and the attachment points in body axes are in [`super::Geometry`].
+/// hubs for the wheels), and the attachment points in body axes are in [`super::Model::bodies`]'s geometry.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BodyPose {
     /// Position of the body's origin (its centre of mass), world axes \[m\].

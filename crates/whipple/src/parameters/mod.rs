@@ -27,8 +27,7 @@ pub(crate) use jbike6::{
 pub use moore2012::{MOORE2012_KEYS, Moore2012Parameters};
 pub use principal::{PRINCIPAL_KEYS, PrincipalBody, PrincipalParameters};
 pub use rider_lean::{
-    MOORE_RIDER_LEAN2012_KEYS, MooreRiderLean2012Parameters, RiderLeanParameters, UPPER_BODY_KEYS,
-    UpperBody,
+    MOORE_RIDER_LEAN2012_KEYS, MooreRiderLean2012Parameters, RiderLeanParameters, UpperBody,
 };
 pub(crate) use steer::STEER_INERTIA_KEY;
 pub(crate) use table::Form;

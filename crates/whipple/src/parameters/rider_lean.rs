@@ -25,7 +25,7 @@ use nalgebra::RealField;
 
 use super::benchmark::upper_body_inertia;
 use super::jbike6::PlaneBody;
-use super::{BenchmarkParameters, Moore2012Parameters, Notice};
+use super::{BenchmarkParameters, MOORE2012_KEYS, Moore2012Parameters, Notice};
 use crate::error::{Error, Result, short_number};
 
 /// The rider's upper body G and its hinge, SI units, benchmark axes (x forward, z down, origin
@@ -56,12 +56,13 @@ pub struct UpperBody<T = f64> {
 }
 
 /// The keys of [`UpperBody`], in the order of [`UpperBody::to_array`].
-pub const UPPER_BODY_KEYS: [&str; 10] = [
+pub(crate) const UPPER_BODY_KEYS: [&str; 10] = [
     "mG", "xG", "zG", "IGxx", "IGyy", "IGzz", "IGxz", "zHinge", "kLean", "cLean",
 ];
 
 impl<T: RealField + Copy> UpperBody<T> {
-    /// The values in the order of [`UPPER_BODY_KEYS`].
+    /// The values in the order of the fields (keys `mG`, `xG`, `zG`, `IGxx`, `IGyy`, `IGzz`,
+    /// `IGxz`, `zHinge`, `kLean`, `cLean`).
     pub fn to_array(&self) -> [T; 10] {
         [
             self.m,
@@ -77,7 +78,7 @@ impl<T: RealField + Copy> UpperBody<T> {
         ]
     }
 
-    /// From the values in the order of [`UPPER_BODY_KEYS`].
+    /// From the values in the order of [`Self::to_array`].
     pub fn from_array(v: [T; 10]) -> Self {
         let [m, x, z, i_xx, i_yy, i_zz, i_xz, z_hinge, stiffness, damping] = v;
         UpperBody {
@@ -365,87 +366,48 @@ pub const MOORE_RIDER_LEAN2012_KEYS: [&str; 36] = [
     "l4", "l5", "l6", "mc", "md", "me", "mf", "mg", "rf", "rr",
 ];
 
+/// The keys of [`MOORE_RIDER_LEAN2012_KEYS`] beyond [`MOORE2012_KEYS`]: the upper body's and
+/// its hinge's, in the order of `MooreRiderLean2012Parameters::rider_array`.
+const RIDER_KEYS: [&str; 10] = [
+    "d4", "l5", "l6", "mg", "ig11", "ig22", "ig31", "ig33", "k9", "c9",
+];
+
+/// The position of `key` in [`MOORE_RIDER_LEAN2012_KEYS`] (each of [`MOORE2012_KEYS`] and
+/// [`RIDER_KEYS`] is there).
+fn rider_lean_index(key: &str) -> Option<usize> {
+    MOORE_RIDER_LEAN2012_KEYS.iter().position(|k| *k == key)
+}
+
 impl<T: RealField + Copy> MooreRiderLean2012Parameters<T> {
-    /// The values in the order of [`MOORE_RIDER_LEAN2012_KEYS`].
-    pub fn to_array(&self) -> [T; 36] {
-        let w = &self.whipple;
+    /// The values of [`RIDER_KEYS`], in its order.
+    fn rider_array(&self) -> [T; 10] {
         [
-            self.c9, w.d1, w.d2, w.d3, self.d4, w.g, w.ic11, w.ic22, w.ic31, w.ic33, w.id11,
-            w.id22, w.ie11, w.ie22, w.ie31, w.ie33, w.if11, w.if22, self.ig11, self.ig22,
-            self.ig31, self.ig33, self.k9, w.l1, w.l2, w.l3, w.l4, self.l5, self.l6, w.mc, w.md,
-            w.me, w.mf, self.mg, w.rf, w.rr,
+            self.d4, self.l5, self.l6, self.mg, self.ig11, self.ig22, self.ig31, self.ig33,
+            self.k9, self.c9,
         ]
     }
 
-    /// From the values in the order of [`MOORE_RIDER_LEAN2012_KEYS`].
+    /// The values in the order of [`MOORE_RIDER_LEAN2012_KEYS`]: the four bodies' by
+    /// [`Moore2012Parameters::to_array`], then the upper body's and its hinge's, each put at its
+    /// key's place.
+    pub fn to_array(&self) -> [T; 36] {
+        let mut out = [T::zero(); 36];
+        let whipple = MOORE2012_KEYS.iter().zip(self.whipple.to_array());
+        for (key, value) in whipple.chain(RIDER_KEYS.iter().zip(self.rider_array())) {
+            if let Some(i) = rider_lean_index(key) {
+                out[i] = value;
+            }
+        }
+        out
+    }
+
+    /// From the values in the order of [`MOORE_RIDER_LEAN2012_KEYS`]: the four bodies by
+    /// [`Moore2012Parameters::from_array`], each value taken from its key's place.
     pub fn from_array(v: [T; 36]) -> Self {
-        let [
-            c9,
-            d1,
-            d2,
-            d3,
-            d4,
-            g,
-            ic11,
-            ic22,
-            ic31,
-            ic33,
-            id11,
-            id22,
-            ie11,
-            ie22,
-            ie31,
-            ie33,
-            if11,
-            if22,
-            ig11,
-            ig22,
-            ig31,
-            ig33,
-            k9,
-            l1,
-            l2,
-            l3,
-            l4,
-            l5,
-            l6,
-            mc,
-            md,
-            me,
-            mf,
-            mg,
-            rf,
-            rr,
-        ] = v;
+        let at = |key: &str| rider_lean_index(key).map_or(T::zero(), |i| v[i]);
+        let [d4, l5, l6, mg, ig11, ig22, ig31, ig33, k9, c9] = RIDER_KEYS.map(at);
         MooreRiderLean2012Parameters {
-            whipple: Moore2012Parameters {
-                rf,
-                rr,
-                d1,
-                d2,
-                d3,
-                l1,
-                l2,
-                l3,
-                l4,
-                mc,
-                md,
-                me,
-                mf,
-                ic11,
-                ic22,
-                ic31,
-                ic33,
-                id11,
-                id22,
-                ie11,
-                ie22,
-                ie31,
-                ie33,
-                if11,
-                if22,
-                g,
-            },
+            whipple: Moore2012Parameters::from_array(MOORE2012_KEYS.map(at)),
             d4,
             l5,
             l6,
@@ -600,6 +562,25 @@ mod tests {
 
     fn close(a: f64, b: f64, tol: f64) -> bool {
         (a - b).abs() <= tol * b.abs().max(1.0)
+    }
+
+    /// The keys are Moore 2012's and the upper body's, each once; from_array puts each value
+    /// at its key's field and to_array reads it back.
+    #[test]
+    fn arrays_follow_the_keys() {
+        let mut keys: Vec<&str> = MOORE2012_KEYS.iter().chain(&RIDER_KEYS).copied().collect();
+        let mut expected = MOORE_RIDER_LEAN2012_KEYS.to_vec();
+        keys.sort_unstable();
+        expected.sort_unstable();
+        assert_eq!(keys, expected);
+        let v: [f64; 36] = std::array::from_fn(|i| i as f64);
+        let p = MooreRiderLean2012Parameters::from_array(v);
+        assert_eq!(p.to_array(), v);
+        for (key, x) in MOORE2012_KEYS.iter().zip(p.whipple.to_array()) {
+            assert_eq!(MOORE_RIDER_LEAN2012_KEYS[x as usize], *key);
+        }
+        assert_eq!(MOORE_RIDER_LEAN2012_KEYS[p.d4 as usize], "d4");
+        assert_eq!(MOORE_RIDER_LEAN2012_KEYS[p.c9 as usize], "c9");
     }
 
     /// Moore → ours → Moore gives every key back to 1e-12.
