@@ -5,8 +5,15 @@
 //! (esbuild, then gzip and brotli from Node's zlib) from there, reading `web/src` and
 //! `web/index.html` and writing `OUT_DIR/assets`: the content-hashed files, their compressed
 //! copies and `assets.rs`, the table `src/assets.rs` includes.
-//! Nothing is written into the source tree. Cargo reruns this script only when a front-end
-//! source, the package files or this script change.
+//! Cargo reruns this script only when a front-end source, the package files, `prebuilt/` or
+//! this script change.
+//!
+//! Without Node.js (a user's `cargo install` or `pip install`: Node is a developer's tool), the
+//! page is the one built before and kept in `prebuilt/` (the same files and `manifest.json`,
+//! without `assets.rs`), and `assets.rs` is written here from its manifest. With Node, the page
+//! is built from the sources, and the test `tests/prebuilt.rs` fails when `prebuilt/` is not
+//! exactly what they build; `WHIPPLE_WEB_UPDATE_PREBUILT=1 cargo build -p whipple-web` writes
+//! it again (the one time this script writes into the source tree).
 //!
 //! Environment: `NPM` and `NODE` name the programs to run (default `npm` and `node`).
 
@@ -35,13 +42,28 @@ fn build() -> Result<(), String> {
     ] {
         println!("cargo:rerun-if-changed={path}");
     }
+    println!("cargo:rerun-if-changed=prebuilt");
     println!("cargo:rerun-if-env-changed=NPM");
     println!("cargo:rerun-if-env-changed=NODE");
+    println!("cargo:rerun-if-env-changed=WHIPPLE_WEB_UPDATE_PREBUILT");
 
     let npm = env::var("NPM").unwrap_or_else(|_| default_program("npm"));
     let node = env::var("NODE").unwrap_or_else(|_| default_program("node"));
-    check_tool(&npm, "npm")?;
-    check_tool(&node, "node")?;
+    let prebuilt = manifest.join("prebuilt");
+    if let Err(missing) = check_tool(&npm, "npm").and_then(|()| check_tool(&node, "node")) {
+        if !prebuilt.join("manifest.json").is_file() {
+            return Err(missing);
+        }
+        println!(
+            "cargo:warning=whipple-web: no Node.js here, so the page embedded is the prebuilt one \
+             (crates/whipple-web/prebuilt), built from these sources with Node"
+        );
+        embed_prebuilt(&prebuilt, &out.join("assets"))?;
+        // No browser tests without Node's packages; no built page to compare with prebuilt/.
+        println!("cargo:rustc-env=WHIPPLE_WEB_NODE_MODULES=");
+        println!("cargo:rustc-env=WHIPPLE_WEB_BUILT_ASSETS=");
+        return Ok(());
+    }
 
     let npm_dir = out.join("npm");
     fs::create_dir_all(&npm_dir).map_err(|e| format!("creating {}: {e}", npm_dir.display()))?;
@@ -92,7 +114,91 @@ fn build() -> Result<(), String> {
         "cargo:rustc-env=WHIPPLE_WEB_NODE_MODULES={}",
         npm_dir.join("node_modules").display()
     );
+    // tests/prebuilt.rs compares these with prebuilt/.
+    println!(
+        "cargo:rustc-env=WHIPPLE_WEB_BUILT_ASSETS={}",
+        assets.display()
+    );
+    if env::var("WHIPPLE_WEB_UPDATE_PREBUILT").is_ok_and(|v| v == "1") {
+        update_prebuilt(&assets, &prebuilt)?;
+    }
     Ok(())
+}
+
+/// The files of a built page that `prebuilt/` keeps: all but `assets.rs`, whose paths are this
+/// build's.
+fn page_files(dir: &Path) -> Result<Vec<String>, String> {
+    let mut names = Vec::new();
+    for entry in fs::read_dir(dir).map_err(|e| format!("reading {}: {e}", dir.display()))? {
+        let entry = entry.map_err(|e| format!("reading {}: {e}", dir.display()))?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if name != "assets.rs" && entry.path().is_file() {
+            names.push(name);
+        }
+    }
+    names.sort();
+    Ok(names)
+}
+
+/// Replaces `prebuilt/` with the page just built (`WHIPPLE_WEB_UPDATE_PREBUILT=1`).
+fn update_prebuilt(assets: &Path, prebuilt: &Path) -> Result<(), String> {
+    if prebuilt.is_dir() {
+        fs::remove_dir_all(prebuilt)
+            .map_err(|e| format!("removing {}: {e}", prebuilt.display()))?;
+    }
+    fs::create_dir_all(prebuilt).map_err(|e| format!("creating {}: {e}", prebuilt.display()))?;
+    for name in page_files(assets)? {
+        fs::copy(assets.join(&name), prebuilt.join(&name))
+            .map_err(|e| format!("copying {name} into {}: {e}", prebuilt.display()))?;
+    }
+    Ok(())
+}
+
+/// Writes `assets/assets.rs` for the page in `prebuilt/`: one `Asset` per entry of its
+/// `manifest.json` (`[{name, type, hash, immutable, …}]`, as `web/build.mjs` writes it), the
+/// bodies included from `prebuilt/`.
+fn embed_prebuilt(prebuilt: &Path, assets: &Path) -> Result<(), String> {
+    let manifest: serde_json::Value = serde_json::from_str(&read(&prebuilt.join("manifest.json"))?)
+        .map_err(|e| format!("prebuilt/manifest.json: {e}"))?;
+    let entries = manifest
+        .as_array()
+        .ok_or("prebuilt/manifest.json: not a list")?;
+    let mut rows = String::new();
+    for entry in entries {
+        let text = |key: &str| {
+            entry[key]
+                .as_str()
+                .map(str::to_owned)
+                .ok_or_else(|| format!("prebuilt/manifest.json: an entry without `{key}`"))
+        };
+        let (name, content_type, hash) = (text("name")?, text("type")?, text("hash")?);
+        let immutable = entry["immutable"]
+            .as_bool()
+            .ok_or("prebuilt/manifest.json: an entry without `immutable`")?;
+        let file = |suffix: &str| -> Result<String, String> {
+            let path = prebuilt.join(format!("{name}{suffix}"));
+            if !path.is_file() {
+                return Err(format!("prebuilt/ lacks {name}{suffix}"));
+            }
+            Ok(format!("{:?}", path.display().to_string()))
+        };
+        rows.push_str(&format!(
+            "    Asset {{\n        name: {name:?},\n        content_type: {content_type:?},\n        \
+             hash: {hash:?},\n        immutable: {immutable},\n        identity: include_bytes!({}),\n        \
+             gzip: include_bytes!({}),\n        brotli: include_bytes!({}),\n    }},\n",
+            file("")?,
+            file(".gz")?,
+            file(".br")?
+        ));
+    }
+    fs::create_dir_all(assets).map_err(|e| format!("creating {}: {e}", assets.display()))?;
+    write(
+        &assets.join("assets.rs"),
+        &format!(
+            "// Written by build.rs from prebuilt/manifest.json: the page's files, embedded.\n\
+             pub(crate) static ASSETS: &[Asset] = &[\n{rows}];\n"
+        ),
+    )
 }
 
 fn default_program(name: &str) -> String {
