@@ -47,6 +47,12 @@ fn build() -> Result<(), String> {
     println!("cargo:rerun-if-env-changed=NODE");
     println!("cargo:rerun-if-env-changed=WHIPPLE_WEB_UPDATE_PREBUILT");
 
+    // Without the server (the API alone, for the static site's WebAssembly module) there is
+    // no page to embed.
+    if env::var_os("CARGO_FEATURE_SERVER").is_none() {
+        return Ok(());
+    }
+
     let npm = env::var("NPM").unwrap_or_else(|_| default_program("npm"));
     let node = env::var("NODE").unwrap_or_else(|_| default_program("node"));
     let prebuilt = manifest.join("prebuilt");

@@ -1,25 +1,21 @@
-//! The router: the page, its assets and the JSON API described in `openapi.json`.
+//! The JSON API described in `openapi.json`, without a transport: [`ROUTES`] names each
+//! endpoint's handler, which reads the request and returns the work to do as a [`Job`]. The
+//! server (`server.rs`) runs the jobs on its computing pool under its limits; [`answer`] runs
+//! one at once, for a caller without a server (the static site's WebAssembly module), so that
+//! both answer with the same bytes and the same messages.
 //!
 //! Bicycles travel as the JSON layout of the parameter files (`{"name", "source",
 //! "benchmark": {...}}` or `{..., "jbike6": {...}}`) and are read and written by
 //! `whipple::advanced::io`, so the API, the CLI and the files agree on every key and rule.
 
-use std::net::{IpAddr, Ipv4Addr};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::AtomicBool;
 
-use axum::body::Bytes;
-use axum::extract::rejection::{BytesRejection, PathRejection};
-use axum::extract::{DefaultBodyLimit, Path, Request, State};
-use axum::http::{HeaderValue, StatusCode, header};
-use axum::middleware::{self, Next};
-use axum::response::{IntoResponse, Response};
-use axum::routing::{get, post};
-use axum::{Json, Router};
+use bytes::Bytes;
+use http::StatusCode;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
-use tokio::sync::{OwnedSemaphorePermit, Semaphore, TryAcquireError};
 use whipple::advanced::io;
 use whipple::advanced::io::Format;
 use whipple::advanced::parameters::Description;
@@ -32,29 +28,14 @@ use whipple::presets::PRESETS;
 use whipple::{Bicycle, Canonical};
 use whipple::{CriticalSpeeds, critical_speeds, eigen_sweep, speed_grid};
 
-use crate::closed_loop::closed_loop;
+use crate::Limits;
 use crate::error::{ApiError, quoted_field};
 use crate::geometry::{SideView, side_view};
-use crate::modes::{self as mode_api, ModesRequest, ModesResponse, ResponseRequest};
+use crate::modes::{self as mode_api, ModesRequest, ResponseRequest};
 use crate::simulation::{self, SimulateRequest};
-use crate::{Limits, assets};
 
 /// The OpenAPI 3 description of every `/api` route (served at `/api/openapi.json`).
 pub const OPENAPI: &str = include_str!("openapi.json");
-
-#[derive(Clone)]
-pub(crate) struct AppState {
-    pub(crate) limits: Limits,
-    /// The address the server is bound to: a Host naming it is accepted (see `access`).
-    bound: IpAddr,
-    /// Slots of the heavy work (maps, studies, simulations, sweeps, sensitivities, responses).
-    heavy: Arc<Semaphore>,
-    /// Heavy requests waiting for a slot now.
-    heavy_waiting: Arc<AtomicUsize>,
-    /// Slots of the interactive work (validate, convert, parse, critical speeds, modes,
-    /// turns): its own, so that it never waits behind heavy work.
-    interactive: Arc<Semaphore>,
-}
 
 /// Which computing slots a request's work takes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -65,210 +46,245 @@ pub(crate) enum Budget {
     Heavy,
 }
 
-/// The whole application for a server on a loopback address: page, assets and API, with the
-/// body-size limit, the request timeout, the Host, Origin and Content-Type checks and JSON
-/// errors for unknown paths and methods.
-pub fn app(limits: Limits) -> Router {
-    app_bound_to(limits, IpAddr::V4(Ipv4Addr::LOCALHOST))
+/// The work a request asks for, once read and checked: run with a stop flag (set once nobody
+/// waits for the answer any more), it returns the answer's JSON.
+pub(crate) type Work = Box<dyn FnOnce(Arc<AtomicBool>) -> Result<Vec<u8>, ApiError> + Send>;
+
+/// A request read and checked, its work still to do.
+#[cfg_attr(not(feature = "server"), allow(dead_code))]
+pub(crate) struct Job {
+    /// The slots it takes on the server.
+    pub(crate) budget: Budget,
+    /// What a client whose request timed out should ask for instead.
+    pub(crate) advice: &'static str,
+    pub(crate) work: Work,
 }
 
-/// [`app`] for a server bound to `bound`: a Host header naming that address is accepted as
-/// well as the loopback names.
-pub fn app_bound_to(limits: Limits, bound: IpAddr) -> Router {
-    let state = AppState {
-        limits,
-        bound,
-        heavy: Arc::new(Semaphore::new(limits.max_concurrent_computations.max(1))),
-        heavy_waiting: Arc::new(AtomicUsize::new(0)),
-        interactive: Arc::new(Semaphore::new(limits.max_interactive_computations.max(1))),
-    };
-    Router::new()
-        .route("/", get(assets::index))
-        .route("/assets/{name}", get(assets::file))
-        .route("/api/health", get(health))
-        .route("/api/openapi.json", get(openapi))
-        .route("/api/presets", get(list_presets))
-        .route("/api/presets/{name}", get(get_preset))
-        .route("/api/bike/validate", post(validate))
-        .route("/api/bike/toml", post(to_toml))
-        .route("/api/bike/parse", post(parse_file))
-        .route("/api/parameters", get(parameter_table))
-        .route("/api/sensitivity", post(sensitivity))
-        .route("/api/eigen", post(eigen))
-        .route("/api/speeds", post(speeds))
-        .route("/api/simulate", post(simulate))
-        .route("/api/modes", post(modes))
-        .route("/api/linear/response", post(linear_response))
-        .route("/api/linear/frequency", post(crate::frequency::frequency))
-        .route("/api/linear/time", post(crate::time::time))
-        .route("/api/linear/closed_loop", post(closed_loop))
-        .route("/api/measure", post(crate::measure::measure))
-        .route("/api/measure/samples", get(crate::measure::samples))
-        .route("/api/map", post(crate::design::map))
-        .route("/api/map/design", post(crate::design::design_at))
-        .route("/api/turn", post(crate::turns::turn))
-        .route("/api/study", post(crate::design::study))
-        .route("/api/ridden", post(crate::ridden::ridden))
-        .fallback(not_found)
-        .method_not_allowed_fallback(method_not_allowed)
-        .layer(DefaultBodyLimit::max(limits.max_body_bytes))
-        .layer(middleware::from_fn(compress_json))
-        .layer(middleware::from_fn_with_state(state.clone(), guard))
-        .with_state(state)
-}
-
-/// JSON answers past this many bytes are sent gzip-compressed to a client that accepts it.
-const COMPRESS_FROM_BYTES: usize = 1024;
-
-/// JSON answers past this many bytes are compressed on the blocking pool, not on the runtime.
-const COMPRESS_ASIDE_FROM_BYTES: usize = 256 * 1024;
-
-/// Sends a JSON answer gzip-compressed (fast level: a design map's columns shrink about three
-/// times) where the request accepts gzip and the answer is long enough to gain from it; the
-/// page's first load asked for 279 KB of JSON uncompressed.
-async fn compress_json(request: Request, next: Next) -> Response {
-    let gzip = crate::assets::accepts_gzip(
-        request
-            .headers()
-            .get(header::ACCEPT_ENCODING)
-            .and_then(|v| v.to_str().ok()),
-    );
-    let response = next.run(request).await;
-    let is_json = response
-        .headers()
-        .get(header::CONTENT_TYPE)
-        .and_then(|v| v.to_str().ok())
-        .is_some_and(|t| t.starts_with("application/json"));
-    if !gzip || !is_json || response.headers().contains_key(header::CONTENT_ENCODING) {
-        return response;
-    }
-    let (mut parts, body) = response.into_parts();
-    // The answers are built whole in memory (compute_json); nothing is streamed here.
-    let Ok(bytes) = axum::body::to_bytes(body, usize::MAX).await else {
-        return ApiError::internal("the answer could not be read back for compression")
-            .into_response();
-    };
-    parts
-        .headers
-        .insert(header::VARY, HeaderValue::from_static("accept-encoding"));
-    if bytes.len() < COMPRESS_FROM_BYTES {
-        return Response::from_parts(parts, axum::body::Body::from(bytes));
-    }
-    let length = bytes.len();
-    let compress = move || -> std::io::Result<Vec<u8>> {
-        use std::io::Write;
-        let mut encoder = flate2::write::GzEncoder::new(
-            Vec::with_capacity(bytes.len() / 4),
-            flate2::Compression::fast(),
-        );
-        encoder.write_all(&bytes)?;
-        encoder.finish()
-    };
-    let compressed = if length < COMPRESS_ASIDE_FROM_BYTES {
-        compress()
-    } else {
-        match tokio::task::spawn_blocking(compress).await {
-            Ok(result) => result,
-            Err(e) => Err(std::io::Error::other(e.to_string())),
-        }
-    };
-    match compressed {
-        Ok(body) => {
-            parts.headers.remove(header::CONTENT_LENGTH);
-            parts
-                .headers
-                .insert(header::CONTENT_ENCODING, HeaderValue::from_static("gzip"));
-            Response::from_parts(parts, axum::body::Body::from(body))
-        }
-        Err(e) => {
-            ApiError::internal(format!("the answer could not be compressed: {e}")).into_response()
+impl Job {
+    /// Work whose answer is written as JSON when it ends (on the computing thread: a map's or
+    /// a simulation's answer is megabytes, whose writing must not hold up anything else).
+    pub(crate) fn json<T: Serialize + 'static>(
+        budget: Budget,
+        advice: &'static str,
+        work: impl FnOnce(Arc<AtomicBool>) -> Result<T, ApiError> + Send + 'static,
+    ) -> Job {
+        Job {
+            budget,
+            advice,
+            work: Box::new(move |stop| {
+                let answer = work(stop)?;
+                to_json(&answer)
+            }),
         }
     }
 }
 
-/// Refuses requests from elsewhere (Host 421, Origin 403, Content-Type 415: see `access`),
-/// bounds each request's total time (408) and marks every answer `nosniff`.
-async fn guard(State(state): State<AppState>, request: Request, next: Next) -> Response {
-    let limit = state.limits.request_timeout;
-    let checked = crate::access::check(request.method(), request.headers(), state.bound);
-    let answer = async move {
-        match checked {
-            Ok(()) => next.run(request).await,
-            Err(refused) => refused.into_response(),
+fn to_json<T: Serialize + ?Sized>(answer: &T) -> Result<Vec<u8>, ApiError> {
+    serde_json::to_vec(answer)
+        .map_err(|e| ApiError::internal(format!("the answer could not be written: {e}")))
+}
+
+/// How an endpoint answers.
+#[derive(Clone, Copy)]
+pub(crate) enum Handler {
+    /// A GET of fixed data, answered at once; the argument is the path's `{name}` (decoded),
+    /// empty for a path without one.
+    Get(fn(&str) -> Result<Vec<u8>, ApiError>),
+    /// A POST of a JSON body: read and checked against the limits, its work returned.
+    Post(fn(&Limits, Bytes) -> Result<Job, ApiError>),
+}
+
+/// One endpoint: its path (`{name}` for the one templated segment) and its handler.
+pub(crate) struct Route {
+    pub(crate) path: &'static str,
+    pub(crate) handler: Handler,
+}
+
+const fn get(path: &'static str, answer: fn(&str) -> Result<Vec<u8>, ApiError>) -> Route {
+    Route {
+        path,
+        handler: Handler::Get(answer),
+    }
+}
+
+const fn post(path: &'static str, prepare: fn(&Limits, Bytes) -> Result<Job, ApiError>) -> Route {
+    Route {
+        path,
+        handler: Handler::Post(prepare),
+    }
+}
+
+/// Every endpoint of `openapi.json`, the one table the server routes and [`answer`] reads.
+pub(crate) const ROUTES: &[Route] = &[
+    get("/api/health", health),
+    get("/api/openapi.json", openapi),
+    get("/api/presets", list_presets),
+    get("/api/presets/{name}", get_preset),
+    post("/api/bike/validate", validate),
+    post("/api/bike/toml", to_toml),
+    post("/api/bike/parse", parse_file),
+    get("/api/parameters", parameter_table),
+    post("/api/sensitivity", sensitivity),
+    post("/api/eigen", eigen),
+    post("/api/speeds", speeds),
+    post("/api/simulate", simulate),
+    post("/api/modes", modes),
+    post("/api/linear/response", linear_response),
+    post("/api/linear/frequency", crate::frequency::frequency),
+    post("/api/linear/time", crate::time::time),
+    post("/api/linear/closed_loop", crate::closed_loop::closed_loop),
+    post("/api/measure", crate::measure::measure),
+    get("/api/measure/samples", crate::measure::samples),
+    post("/api/map", crate::design::map),
+    post("/api/map/design", crate::design::design_at),
+    post("/api/turn", crate::turns::turn),
+    post("/api/study", crate::design::study),
+    post("/api/ridden", crate::ridden::ridden),
+];
+
+/// An answer without a server: its HTTP status and JSON body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Answer {
+    /// The status the server would answer with.
+    pub status: u16,
+    /// The JSON body, byte for byte the server's (uncompressed).
+    pub body: Vec<u8>,
+}
+
+/// Answers one API request at once, on this thread, as the server would: `method` (`GET`,
+/// `POST`), `path` (`/api/eigen`, `/api/presets/benchmark`; percent-encoded as in a URL) and
+/// the body. The same handlers, limits and messages as the server's; what only a server has
+/// (computing slots, time limits, Host and Origin checks, compression) is left out: a caller
+/// stops long work by setting `stop`, or by dropping the thread it runs on.
+pub fn answer(
+    method: &str,
+    path: &str,
+    body: &[u8],
+    limits: &Limits,
+    stop: Arc<AtomicBool>,
+) -> Answer {
+    let result = route(method, path, body, limits).and_then(|job| match job {
+        Routed::Now(bytes) => Ok(bytes),
+        Routed::Work(job) => (job.work)(stop),
+    });
+    match result {
+        Ok(body) => Answer { status: 200, body },
+        Err(error) => Answer {
+            status: error.status.as_u16(),
+            body: error.json(),
+        },
+    }
+}
+
+enum Routed {
+    Now(Vec<u8>),
+    Work(Job),
+}
+
+fn route(method: &str, path: &str, body: &[u8], limits: &Limits) -> Result<Routed, ApiError> {
+    let path = path.split(['?', '#']).next().unwrap_or(path);
+    for route in ROUTES {
+        let name = match route.path.find('{') {
+            Some(brace) => match path.strip_prefix(&route.path[..brace]) {
+                Some(rest) if !rest.is_empty() && !rest.contains('/') => Some(rest),
+                _ => continue,
+            },
+            None if route.path == path => None,
+            None => continue,
+        };
+        return match (route.handler, method) {
+            (Handler::Get(answer), "GET") => {
+                let name = match name {
+                    Some(encoded) => percent_decoded(encoded)?,
+                    None => String::new(),
+                };
+                answer(&name).map(Routed::Now)
+            }
+            (Handler::Post(prepare), "POST") => {
+                if body.len() > limits.max_body_bytes {
+                    return Err(too_large());
+                }
+                prepare(limits, Bytes::copy_from_slice(body)).map(Routed::Work)
+            }
+            _ => Err(method_not_allowed(method, path)),
+        };
+    }
+    Err(not_found(path))
+}
+
+/// A path segment decoded as a URL's (`%2F` to `/`), refused when not UTF-8 once decoded.
+fn percent_decoded(segment: &str) -> Result<String, ApiError> {
+    let bytes = segment.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let hex = |b: u8| (b as char).to_digit(16);
+        match (
+            bytes[i],
+            bytes.get(i + 1).copied().and_then(hex),
+            bytes.get(i + 2).copied().and_then(hex),
+        ) {
+            (b'%', Some(hi), Some(lo)) => {
+                out.push((hi * 16 + lo) as u8);
+                i += 3;
+            }
+            (b, _, _) => {
+                out.push(b);
+                i += 1;
+            }
         }
-    };
-    let mut response = match tokio::time::timeout(limit, answer).await {
-        Ok(response) => response,
-        Err(_) => ApiError::new(
-            StatusCode::REQUEST_TIMEOUT,
-            "timeout",
-            format!(
-                "the request took longer than the server's limit of {} s",
-                limit.as_secs_f64()
-            ),
-        )
-        .into_response(),
-    };
-    response.headers_mut().insert(
-        header::X_CONTENT_TYPE_OPTIONS,
-        HeaderValue::from_static("nosniff"),
-    );
-    response
-}
-
-async fn not_found(request: Request) -> ApiError {
-    ApiError::new(
-        StatusCode::NOT_FOUND,
-        "not_found",
-        format!(
-            "no such page or endpoint: {} (the API is described at /api/openapi.json)",
-            request.uri().path()
-        ),
-    )
-}
-
-async fn method_not_allowed(request: Request) -> ApiError {
-    ApiError::new(
-        StatusCode::METHOD_NOT_ALLOWED,
-        "method_not_allowed",
-        format!(
-            "{} is not allowed on {} (see /api/openapi.json)",
-            request.method(),
-            request.uri().path()
-        ),
-    )
-}
-
-/// The request body: 413 past the size limit, 400 when it cannot be read.
-fn body_bytes(body: Result<Bytes, BytesRejection>) -> Result<Bytes, ApiError> {
-    body.map_err(|rejection| {
-        if rejection.status() == StatusCode::PAYLOAD_TOO_LARGE {
-            ApiError::new(
-                StatusCode::PAYLOAD_TOO_LARGE,
-                "too_large",
-                "the request body is larger than the server's limit",
-            )
-        } else {
-            ApiError::new(
-                StatusCode::BAD_REQUEST,
-                "bad_request",
-                rejection.body_text(),
-            )
-        }
+    }
+    String::from_utf8(out).map_err(|_| {
+        undecodable_name(&format!(
+            "the path segment `{}` is not UTF-8 once decoded",
+            whipple::advanced::shorten(segment, 40)
+        ))
     })
 }
 
-/// Reads a JSON body: 413 past the size limit, 400 when it is not JSON, 422 when it is JSON of
-/// the wrong shape.
-pub(crate) fn json_body<T: DeserializeOwned>(
-    body: Result<Bytes, BytesRejection>,
-) -> Result<T, ApiError> {
-    let bytes = body_bytes(body)?;
+/// 404 for a path no endpoint has.
+pub(crate) fn not_found(path: &str) -> ApiError {
+    ApiError::new(
+        StatusCode::NOT_FOUND,
+        "not_found",
+        format!("no such page or endpoint: {path} (the API is described at /api/openapi.json)"),
+    )
+}
+
+/// 405 for a method an endpoint does not take.
+pub(crate) fn method_not_allowed(method: &str, path: &str) -> ApiError {
+    ApiError::new(
+        StatusCode::METHOD_NOT_ALLOWED,
+        "method_not_allowed",
+        format!("{method} is not allowed on {path} (see /api/openapi.json)"),
+    )
+}
+
+/// 413 for a body past the limit.
+pub(crate) fn too_large() -> ApiError {
+    ApiError::new(
+        StatusCode::PAYLOAD_TOO_LARGE,
+        "too_large",
+        "the request body is larger than the server's limit",
+    )
+}
+
+/// 404 for a preset's name that cannot be decoded.
+pub(crate) fn undecodable_name(why: &str) -> ApiError {
+    ApiError::new(
+        StatusCode::NOT_FOUND,
+        "not_found",
+        format!("no such preset: {why}"),
+    )
+}
+
+/// Reads a JSON body: 400 when it is not JSON, 422 when it is JSON of the wrong shape.
+pub(crate) fn json_body<T: DeserializeOwned>(bytes: &[u8]) -> Result<T, ApiError> {
     // A key named twice in one object is refused (serde_json would keep the last one), as in
     // every parameter file; then the body is read into its documented shape.
-    whipple::advanced::io::json_slice_without_duplicates(&bytes)
+    whipple::advanced::io::json_slice_without_duplicates(bytes)
         .map(drop)
-        .and_then(|()| serde_json::from_slice(&bytes))
+        .and_then(|()| serde_json::from_slice(bytes))
         .map_err(|e| {
             use serde_json::error::Category;
             match e.classify() {
@@ -317,159 +333,21 @@ pub(crate) fn bicycle_json(bike: &Bicycle) -> Result<Value, ApiError> {
     serde_json::from_str(&text).map_err(|e| ApiError::internal(e.to_string()))
 }
 
-/// Sets its flag when dropped: when the request's future ends, whether the work finished, its
-/// time ran out or the client went away.
-struct StopOnDrop(Arc<AtomicBool>);
-
-impl Drop for StopOnDrop {
-    fn drop(&mut self) {
-        self.0.store(true, Ordering::Relaxed);
-    }
-}
-
-/// Leaves the heavy waiting line when dropped (served, refused or gone).
-struct InLine(Arc<AtomicUsize>);
-
-impl Drop for InLine {
-    fn drop(&mut self) {
-        self.0.fetch_sub(1, Ordering::Relaxed);
-    }
-}
-
-/// Seconds a client told "busy" is asked to wait before trying again (`Retry-After`).
-const RETRY_AFTER_SECONDS: u64 = 2;
-
-fn busy(message: String) -> ApiError {
-    ApiError::new(StatusCode::SERVICE_UNAVAILABLE, "busy", message).retry_after(RETRY_AFTER_SECONDS)
-}
-
-/// A computing slot of `budget`: at once when one is free; else, for heavy work, a place in a
-/// waiting line of at most `max_waiting_heavy` (503 `busy` at once past it); then at most
-/// `queue_timeout` of waiting (503 `busy`).
-async fn slot(state: &AppState, budget: Budget) -> Result<OwnedSemaphorePermit, ApiError> {
-    let limits = state.limits;
-    let (slots, what) = match budget {
-        Budget::Interactive => (&state.interactive, "interactive"),
-        Budget::Heavy => (&state.heavy, "heavy"),
-    };
-    match slots.clone().try_acquire_owned() {
-        Ok(permit) => return Ok(permit),
-        Err(TryAcquireError::Closed) => {
-            return Err(ApiError::internal("the computing pool is closed"));
-        }
-        Err(TryAcquireError::NoPermits) => {}
-    }
-    let _in_line = match budget {
-        Budget::Interactive => None,
-        Budget::Heavy => {
-            let ahead = state.heavy_waiting.fetch_add(1, Ordering::Relaxed);
-            let place = InLine(state.heavy_waiting.clone());
-            if ahead >= limits.max_waiting_heavy {
-                return Err(busy(format!(
-                    "the server is busy: all {} slots for heavy work (maps, studies, \
-                     simulations, sweeps) are taken and {ahead} requests wait for one, the \
-                     server's limit; try again in {RETRY_AFTER_SECONDS} s",
-                    limits.max_concurrent_computations.max(1)
-                )));
-            }
-            Some(place)
-        }
-    };
-    tokio::time::timeout(limits.queue_timeout, slots.clone().acquire_owned())
-        .await
-        .map_err(|_| {
-            busy(format!(
-                "the server is busy: no {what} computing slot came free within {} s; try again",
-                limits.queue_timeout.as_secs_f64()
-            ))
-        })?
-        .map_err(|_| ApiError::internal("the computing pool is closed"))
-}
-
-/// Runs CPU-heavy work on the blocking pool, a bounded number at a time per `budget`, within
-/// the limits; `advice` ends the timeout's message (what to ask for instead). The work gets a
-/// stop flag, set once nobody waits for its result any more (time up, client gone): work that
-/// can stop early (a simulation, a map) should, to give its computing slot back.
-pub(crate) async fn compute<T: Send + 'static>(
-    state: &AppState,
-    budget: Budget,
-    advice: &str,
-    work: impl FnOnce(Arc<AtomicBool>) -> Result<T, ApiError> + Send + 'static,
-) -> Result<T, ApiError> {
-    let limits = state.limits;
-    let permit = slot(state, budget).await?;
-    let stop = StopOnDrop(Arc::new(AtomicBool::new(false)));
-    let flag = stop.0.clone();
-    // Taken before the work starts: a busy machine may run all of it before this thread
-    // goes on.
-    let started = std::time::Instant::now();
-    let task = tokio::task::spawn_blocking(move || {
-        // The slot stays taken until the work ends, even if the client has gone.
-        let _permit = permit;
-        work(flag)
-    });
-    match tokio::time::timeout(limits.compute_timeout, task).await {
-        // The timer fires on its own coarse ticks: work that ends past the limit before the
-        // tick is over the limit all the same, so the answer does not depend on the race.
-        Ok(Ok(result)) if started.elapsed() <= limits.compute_timeout => result,
-        Ok(Err(join)) => Err(ApiError::internal(format!(
-            "the computation failed: {join}"
-        ))),
-        Ok(Ok(_)) | Err(_) => Err(ApiError::new(
-            StatusCode::SERVICE_UNAVAILABLE,
-            "timeout",
-            format!(
-                "the computation took longer than the server's limit of {} s; {advice}",
-                limits.compute_timeout.as_secs_f64()
-            ),
-        )),
-    }
-}
-
-/// [`compute`], the answer written as JSON on the computing thread too: a map's or a
-/// simulation's answer is megabytes, whose writing must not hold up the threads that answer
-/// everything else.
-pub(crate) async fn compute_json<T: Serialize + 'static>(
-    state: &AppState,
-    budget: Budget,
-    advice: &str,
-    work: impl FnOnce(Arc<AtomicBool>) -> Result<T, ApiError> + Send + 'static,
-) -> Result<Response, ApiError> {
-    let bytes = compute(state, budget, advice, move |stop| {
-        let answer = work(stop)?;
-        serde_json::to_vec(&answer)
-            .map_err(|e| ApiError::internal(format!("the answer could not be written: {e}")))
-    })
-    .await?;
-    Ok((
-        [(
-            header::CONTENT_TYPE,
-            HeaderValue::from_static("application/json"),
-        )],
-        bytes,
-    )
-        .into_response())
-}
-
 #[derive(Serialize)]
 struct Health {
     status: &'static str,
     version: &'static str,
 }
 
-async fn health() -> Json<Health> {
-    Json(Health {
+fn health(_: &str) -> Result<Vec<u8>, ApiError> {
+    to_json(&Health {
         status: "ok",
         version: env!("CARGO_PKG_VERSION"),
     })
 }
 
-async fn openapi() -> Response {
-    (
-        [(header::CONTENT_TYPE, "application/json")],
-        OPENAPI.to_string(),
-    )
-        .into_response()
+fn openapi(_: &str) -> Result<Vec<u8>, ApiError> {
+    Ok(OPENAPI.as_bytes().to_vec())
 }
 
 #[derive(Serialize)]
@@ -490,9 +368,9 @@ fn form_name(description: &Description) -> &'static str {
     }
 }
 
-async fn list_presets() -> Json<Vec<PresetSummary>> {
-    Json(
-        PRESETS
+fn list_presets(_: &str) -> Result<Vec<u8>, ApiError> {
+    to_json(
+        &PRESETS
             .iter()
             .map(|p| PresetSummary {
                 name: p.name,
@@ -502,21 +380,13 @@ async fn list_presets() -> Json<Vec<PresetSummary>> {
                 form: form_name(&(p.description)()),
                 measured: !p.measurements.is_empty(),
             })
-            .collect(),
+            .collect::<Vec<_>>(),
     )
 }
 
-async fn get_preset(name: Result<Path<String>, PathRejection>) -> Result<Json<Value>, ApiError> {
-    // A name that is not UTF-8 once decoded (`/api/presets/%ff`) is answered in JSON too.
-    let Path(name) = name.map_err(|rejection| {
-        ApiError::new(
-            StatusCode::NOT_FOUND,
-            "not_found",
-            format!("no such preset: {}", rejection.body_text()),
-        )
-    })?;
-    let preset = presets::find(&name)?;
-    Ok(Json(bicycle_json(&preset.bicycle())?))
+fn get_preset(name: &str) -> Result<Vec<u8>, ApiError> {
+    let preset = presets::find(name)?;
+    to_json(&bicycle_json(&preset.bicycle())?)
 }
 
 #[derive(Deserialize)]
@@ -546,23 +416,16 @@ struct Validated {
     warnings: Vec<Notice>,
 }
 
-async fn validate(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Json<Validated>, ApiError> {
-    let bytes = body_bytes(body)?;
-    compute(
-        &state,
+fn validate(_: &Limits, bytes: Bytes) -> Result<Job, ApiError> {
+    Ok(Job::json(
         Budget::Interactive,
         "send a smaller bicycle",
-        move |_| validate_bike(bytes),
-    )
-    .await
-    .map(Json)
+        move |_| validate_bike(&bytes),
+    ))
 }
 
-fn validate_bike(bytes: Bytes) -> Result<Validated, ApiError> {
-    let request: BikeRequest = json_body(Ok(bytes))?;
+fn validate_bike(bytes: &[u8]) -> Result<Validated, ApiError> {
+    let request: BikeRequest = json_body(bytes)?;
     let bike = bicycle(&request.bike)?;
     let checked = bike.check()?;
     let benchmark = checked.benchmark;
@@ -586,25 +449,18 @@ struct TomlText {
     toml: String,
 }
 
-async fn to_toml(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Json<TomlText>, ApiError> {
-    let bytes = body_bytes(body)?;
-    compute(
-        &state,
+fn to_toml(_: &Limits, bytes: Bytes) -> Result<Job, ApiError> {
+    Ok(Job::json(
         Budget::Interactive,
         "send a smaller bicycle",
         move |_| {
-            let request: BikeRequest = json_body(Ok(bytes))?;
+            let request: BikeRequest = json_body(&bytes)?;
             let bike = bicycle(&request.bike)?;
             Ok(TomlText {
                 toml: io::write(&bike, Format::Toml)?,
             })
         },
-    )
-    .await
-    .map(Json)
+    ))
 }
 
 #[derive(Deserialize)]
@@ -627,19 +483,14 @@ struct Parsed {
     warnings: Vec<Notice>,
 }
 
-async fn parse_file(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Json<Parsed>, ApiError> {
-    let bytes = body_bytes(body)?;
+fn parse_file(_: &Limits, bytes: Bytes) -> Result<Job, ApiError> {
     // Parsing a file of up to the body limit is work: on the computing pool, not the
     // workers that answer `/api/health`.
-    compute(
-        &state,
+    Ok(Job::json(
         Budget::Interactive,
         "send a smaller file",
         move |_| {
-            let request: ParseRequest = json_body(Ok(bytes))?;
+            let request: ParseRequest = json_body(&bytes)?;
             let format = if request.format == "auto" {
                 Format::detect(request.file_name.as_deref().unwrap_or(""), &request.text)?
             } else {
@@ -673,9 +524,7 @@ async fn parse_file(
                 warnings: bike.notices.clone(),
             })
         },
-    )
-    .await
-    .map(Json)
+    ))
 }
 
 #[derive(Serialize)]
@@ -690,8 +539,8 @@ struct ParameterTable {
 /// The one parameter table of the library: every parameter of both forms with its key, path,
 /// symbol, unit, description and whether the linear model sees it, and which JBike6 entries
 /// each benchmark key comes from.
-async fn parameter_table() -> Json<ParameterTable> {
-    Json(ParameterTable {
+fn parameter_table(_: &str) -> Result<Vec<u8>, ApiError> {
+    to_json(&ParameterTable {
         benchmark: table::parameters(Form::Benchmark),
         jbike6: table::parameters(Form::Jbike6),
         jbike6_sources: whipple::advanced::parameters::BENCHMARK_FROM_JBIKE6
@@ -722,16 +571,12 @@ struct SensitivityResponse {
     warnings: Vec<Notice>,
 }
 
-async fn sensitivity(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Response, ApiError> {
-    let request: SensitivityRequest = json_body(body)?;
+fn sensitivity(_: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    let request: SensitivityRequest = json_body(&body)?;
     let bike = bicycle(&request.bike)?;
     let (lo, hi) = SpeedRange::bounds(request.range);
     let speed = request.speed;
-    compute_json(
-        &state,
+    Ok(Job::json(
         Budget::Heavy,
         "ask for a narrower range",
         move |_| {
@@ -747,8 +592,7 @@ async fn sensitivity(
                 warnings: checked.notices,
             })
         },
-    )
-    .await
+    ))
 }
 
 #[derive(Deserialize, Clone, Copy, Debug)]
@@ -832,20 +676,17 @@ pub(crate) fn check_grid(grid: SpeedGrid, max_speeds: usize) -> Result<f64, ApiE
     Ok(count)
 }
 
-async fn eigen(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Response, ApiError> {
-    let request: EigenRequest = json_body(body)?;
+fn eigen(limits: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    let request: EigenRequest = json_body(&body)?;
     let bike = bicycle(&request.bike)?;
     let grid = request.speeds;
-    let count = check_grid(grid, state.limits.max_speeds)?;
+    let count = check_grid(grid, limits.max_speeds)?;
     let budget = if count <= INTERACTIVE_SPEEDS {
         Budget::Interactive
     } else {
         Budget::Heavy
     };
-    compute_json(&state, budget, "ask for fewer speeds", move |_| {
+    Ok(Job::json(budget, "ask for fewer speeds", move |_| {
         let benchmark = bike.benchmark()?;
         let canonical = Canonical::new(&benchmark)?;
         let speeds = speed_grid(grid.start, grid.stop, grid.step)?;
@@ -870,8 +711,7 @@ async fn eigen(
             eigenvalues,
             critical,
         })
-    })
-    .await
+    }))
 }
 
 /// A speed range; `hi` null or left out for no upper end.
@@ -899,185 +739,55 @@ struct SpeedsRequest {
     range: Option<SpeedRange>,
 }
 
-async fn speeds(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Json<CriticalSpeeds>, ApiError> {
-    let request: SpeedsRequest = json_body(body)?;
+fn speeds(_: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    let request: SpeedsRequest = json_body(&body)?;
     let bike = bicycle(&request.bike)?;
     let (lo, hi) = SpeedRange::bounds(request.range);
-    let result = compute(
-        &state,
+    Ok(Job::json(
         Budget::Interactive,
         "ask for a narrower range",
         move |_| {
             let canonical = Canonical::new(&bike.benchmark()?)?;
             Ok(critical_speeds(&canonical, lo, hi)?)
         },
-    )
-    .await?;
-    Ok(Json(result))
+    ))
 }
 
-async fn simulate(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Response, ApiError> {
-    let request: SimulateRequest = json_body(body)?;
+fn simulate(limits: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    let request: SimulateRequest = json_body(&body)?;
     let bike = bicycle(&request.bike)?;
-    let plan = simulation::check(&request, &state.limits)?;
-    let max_steps = state.limits.max_sim_steps;
-    compute_json(
-        &state,
+    let plan = simulation::check(&request, limits)?;
+    let max_steps = limits.max_sim_steps;
+    Ok(Job::json(
         Budget::Heavy,
         "simulate a shorter time or use a larger dt",
         move |stop| {
             let benchmark = bike.benchmark()?;
             simulation::run(bike.name.clone(), &benchmark, plan, max_steps, stop)
         },
-    )
-    .await
+    ))
 }
 
-async fn modes(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Json<ModesResponse>, ApiError> {
-    let request: ModesRequest = json_body(body)?;
+fn modes(_: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    let request: ModesRequest = json_body(&body)?;
     let bike = bicycle(&request.bike)?;
     let speed = mode_api::check_modes(&request)?;
-    let response = compute(&state, Budget::Interactive, "try again", move |_| {
+    Ok(Job::json(Budget::Interactive, "try again", move |_| {
         let canonical = Canonical::new(&bike.benchmark()?)?;
         mode_api::modes(bike.name.clone(), &canonical, speed)
-    })
-    .await?;
-    Ok(Json(response))
+    }))
 }
 
-async fn linear_response(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Response, ApiError> {
-    let request: ResponseRequest = json_body(body)?;
+fn linear_response(limits: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    let request: ResponseRequest = json_body(&body)?;
     let bike = bicycle(&request.bike)?;
-    let plan = mode_api::check_response(&request, &state.limits)?;
-    compute_json(
-        &state,
+    let plan = mode_api::check_response(&request, limits)?;
+    Ok(Job::json(
         Budget::Heavy,
         "ask for a shorter time or a larger dt",
         move |_| {
             let canonical = Canonical::new(&bike.benchmark()?)?;
             mode_api::response(bike.name.clone(), &canonical, plan)
         },
-    )
-    .await
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Work that ends past the limit is over it, even when it ends before the timer's next
-    /// tick (about a millisecond): 200 µs of work against a 1 µs limit is a timeout every time.
-    #[tokio::test]
-    async fn work_past_the_limit_is_a_timeout_whatever_the_timer_tick() {
-        let state = AppState {
-            limits: Limits {
-                compute_timeout: std::time::Duration::from_micros(1),
-                ..Limits::default()
-            },
-            bound: IpAddr::V4(Ipv4Addr::LOCALHOST),
-            heavy: Arc::new(Semaphore::new(1)),
-            heavy_waiting: Arc::new(AtomicUsize::new(0)),
-            interactive: Arc::new(Semaphore::new(1)),
-        };
-        for _ in 0..20 {
-            let result = compute(&state, Budget::Interactive, "wait less", |_| {
-                let until = std::time::Instant::now() + std::time::Duration::from_micros(200);
-                while std::time::Instant::now() < until {
-                    std::hint::spin_loop();
-                }
-                Ok(())
-            })
-            .await;
-            assert!(matches!(result, Err(ref e) if e.status == StatusCode::SERVICE_UNAVAILABLE));
-        }
-    }
-
-    /// Work whose result nobody waits for any more is told to stop: after a timeout the flag
-    /// is set while the work still runs, so a simulation gives its computing slot back instead
-    /// of running to its step limit.
-    #[tokio::test]
-    async fn timed_out_work_is_told_to_stop() {
-        let limits = Limits {
-            compute_timeout: std::time::Duration::from_millis(20),
-            ..Limits::default()
-        };
-        let state = AppState {
-            limits,
-            bound: IpAddr::V4(Ipv4Addr::LOCALHOST),
-            heavy: Arc::new(Semaphore::new(1)),
-            heavy_waiting: Arc::new(AtomicUsize::new(0)),
-            interactive: Arc::new(Semaphore::new(1)),
-        };
-        let saw_stop = Arc::new(AtomicBool::new(false));
-        let seen = saw_stop.clone();
-        let result = compute(&state, Budget::Heavy, "wait less", move |stop| {
-            // Bounded: 30 s at most, unless told to stop.
-            let until = std::time::Instant::now() + std::time::Duration::from_secs(30);
-            while std::time::Instant::now() < until {
-                if stop.load(Ordering::Relaxed) {
-                    seen.store(true, Ordering::Relaxed);
-                    return Ok(());
-                }
-                std::thread::sleep(std::time::Duration::from_millis(1));
-            }
-            Ok(())
-        })
-        .await;
-        assert!(matches!(result, Err(ref e) if e.status == StatusCode::SERVICE_UNAVAILABLE));
-        // The slot comes back as soon as the work has stopped, long before its 30 s.
-        let permit = tokio::time::timeout(
-            std::time::Duration::from_secs(10),
-            state.heavy.clone().acquire_owned(),
-        )
-        .await;
-        assert!(matches!(permit, Ok(Ok(_))), "the slot did not come back");
-        assert!(saw_stop.load(Ordering::Relaxed));
-    }
-
-    /// The page calls only endpoints the OpenAPI document describes.
-    #[test]
-    fn page_uses_only_documented_endpoints() -> Result<(), serde_json::Error> {
-        let doc: Value = serde_json::from_str(OPENAPI)?;
-        let paths: Vec<String> = doc["paths"]
-            .as_object()
-            .map(|p| p.keys().cloned().collect())
-            .unwrap_or_default();
-        let text = assets::script_text();
-        let script = text.as_str();
-        let mut used = Vec::new();
-        let mut rest = script;
-        while let Some(at) = rest.find("/api/") {
-            let tail = &rest[at..];
-            let end = tail
-                .find(|c: char| !(c.is_ascii_alphanumeric() || "/._-".contains(c)))
-                .unwrap_or(tail.len());
-            used.push(tail[..end].to_string());
-            rest = &tail[end..];
-        }
-        assert!(used.len() >= 6, "found {used:?}");
-        for path in used {
-            let documented = paths.iter().any(|p| match p.find('{') {
-                // A templated path: the script builds it from its fixed prefix.
-                Some(brace) => path == p[..brace],
-                None => path == *p,
-            });
-            assert!(
-                documented,
-                "the page calls {path}, which openapi.json does not describe"
-            );
-        }
-        Ok(())
-    }
+    ))
 }

@@ -7,11 +7,8 @@
 //! Python take); the numbers are the library's (`ClosedLoop`, `LinearSystem::lqr`,
 //! `lqr_schedule`); this module only checks the request and shapes the answer.
 
-use axum::body::Bytes;
-use axum::extract::State;
-use axum::extract::rejection::BytesRejection;
-use axum::http::StatusCode;
-use axum::response::Response;
+use bytes::Bytes;
+use http::StatusCode;
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
@@ -19,9 +16,9 @@ use whipple::advanced::control::{ClosedLoop, Gains, MAX_SCHEDULE_SPEEDS, lqr_sch
 use whipple::advanced::linear::{Input, LinearSystem, Output, StateVariable, SystemRequest};
 use whipple::{CriticalSpeeds, speed_grid};
 
+use crate::Limits;
 use crate::api::{
-    AppState, Budget, EigenColumn, INTERACTIVE_SPEEDS, SpeedGrid, bicycle, check_grid,
-    compute_json, json_body,
+    Budget, EigenColumn, INTERACTIVE_SPEEDS, Job, SpeedGrid, bicycle, check_grid, json_body,
 };
 use crate::error::ApiError;
 
@@ -445,21 +442,17 @@ fn answer(
     })
 }
 
-pub(crate) async fn closed_loop(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Response, ApiError> {
-    let request: ClosedLoopRequest = json_body(body)?;
+pub(crate) fn closed_loop(limits: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    let request: ClosedLoopRequest = json_body(&body)?;
     let bike = bicycle(&request.bike)?;
-    let (plan, count) = check(&request, state.limits.max_speeds)?;
+    let (plan, count) = check(&request, limits.max_speeds)?;
     let budget = if count <= INTERACTIVE_SPEEDS {
         Budget::Interactive
     } else {
         Budget::Heavy
     };
-    compute_json(&state, budget, "ask for fewer speeds", move |_| {
+    Ok(Job::json(budget, "ask for fewer speeds", move |_| {
         let benchmark = bike.benchmark()?;
         answer(bike.name.clone(), &benchmark, plan)
-    })
-    .await
+    }))
 }

@@ -1,19 +1,16 @@
 //! `/api/map` and `/api/study`: design studies computed by `whipple::advanced::design` within
 //! the server's limits, answered as columns (one array per quantity, row-major).
 
-use axum::Json;
-use axum::body::Bytes;
-use axum::extract::State;
-use axum::extract::rejection::BytesRejection;
-use axum::http::StatusCode;
-use axum::response::Response;
+use bytes::Bytes;
+use http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use whipple::advanced::design::{DesignStatus, Shard, StudySettings};
 use whipple::advanced::modes::Mode;
 use whipple_front::design::{AxisSpec, DesignStudy};
 
-use crate::api::{AppState, Budget, SpeedRange, bicycle, bicycle_json, compute_json, json_body};
+use crate::Limits;
+use crate::api::{Budget, Job, SpeedRange, bicycle, bicycle_json, json_body};
 use crate::error::ApiError;
 
 /// A map or study request: axes as `NAME=START:STOP:COUNT`, as in the CLI.
@@ -98,10 +95,8 @@ pub(crate) struct DesignAtRequest {
 
 /// One design of a map or study as a bicycle, in the parameter files' JSON layout (what the
 /// page loads into its editor when a cell is clicked).
-pub(crate) async fn design_at(
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Json<Value>, ApiError> {
-    let request: DesignAtRequest = json_body(body)?;
+pub(crate) fn design_at(_: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    let request: DesignAtRequest = json_body(&body)?;
     let bike = bicycle(&request.bike)?;
     let x = axis(&request.x, &bike, "x")?;
     let y = match &request.y {
@@ -109,16 +104,14 @@ pub(crate) async fn design_at(
         None => None,
     };
     let study = DesignStudy::new(bike, x, y, StudySettings::default())?;
-    let design = study.study.bicycle_at(request.index)?;
-    Ok(Json(serde_json::json!({ "bike": bicycle_json(&design)? })))
+    Ok(Job::json(Budget::Interactive, "try again", move |_| {
+        let design = study.study.bicycle_at(request.index)?;
+        Ok(serde_json::json!({ "bike": bicycle_json(&design)? }))
+    }))
 }
 
-async fn run(
-    state: AppState,
-    body: Result<Bytes, BytesRejection>,
-    two: bool,
-) -> Result<Response, ApiError> {
-    let request: DesignRequest = json_body(body)?;
+fn run(limits: &Limits, body: Bytes, two: bool) -> Result<Job, ApiError> {
+    let request: DesignRequest = json_body(&body)?;
     let bike = bicycle(&request.bike)?;
     if two != request.y.is_some() {
         return Err(ApiError::new(
@@ -145,7 +138,7 @@ async fn run(
         band: request.band,
     };
     let study = DesignStudy::new(bike, x, y, options)?;
-    let limit = state.limits.max_designs as u64;
+    let limit = limits.max_designs as u64;
     if study.study.len() > limit {
         return Err(ApiError::new(
             StatusCode::UNPROCESSABLE_ENTITY,
@@ -157,8 +150,7 @@ async fn run(
         )
         .at("x", format!("at most {limit} designs per request")));
     }
-    compute_json(
-        &state,
+    Ok(Job::json(
         Budget::Heavy,
         "ask for fewer designs",
         move |stop| {
@@ -235,20 +227,13 @@ async fn run(
             })?;
             Ok(r)
         },
-    )
-    .await
+    ))
 }
 
-pub(crate) async fn map(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Response, ApiError> {
-    run(state, body, true).await
+pub(crate) fn map(limits: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    run(limits, body, true)
 }
 
-pub(crate) async fn study(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Response, ApiError> {
-    run(state, body, false).await
+pub(crate) fn study(limits: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    run(limits, body, false)
 }

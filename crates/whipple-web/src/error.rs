@@ -1,8 +1,7 @@
 //! The API's one error shape: `{"error": {"kind", "message", "field", "rule", ...}}` with the
 //! HTTP status that fits, built from the library's typed errors where they are the cause.
 
-use axum::http::StatusCode;
-use axum::response::{IntoResponse, Response};
+use http::StatusCode;
 use serde::Serialize;
 use whipple::Error;
 
@@ -180,10 +179,34 @@ struct Envelope<'a> {
     error: &'a ErrorBody,
 }
 
-impl IntoResponse for ApiError {
-    fn into_response(self) -> Response {
-        let mut response =
-            (self.status, axum::Json(Envelope { error: &self.body })).into_response();
+impl ApiError {
+    /// The JSON body answered: `{"error": {...}}`.
+    pub fn json(&self) -> Vec<u8> {
+        // Strings, numbers and options only: writing it cannot fail; were it to, the kind
+        // and message still go out.
+        serde_json::to_vec(&Envelope { error: &self.body }).unwrap_or_else(|_| {
+            format!(
+                "{{\"error\":{{\"kind\":\"{}\",\"message\":\"the error could not be written\"}}}}",
+                self.body.kind
+            )
+            .into_bytes()
+        })
+    }
+}
+
+#[cfg(feature = "server")]
+impl axum::response::IntoResponse for ApiError {
+    fn into_response(self) -> axum::response::Response {
+        use axum::http::{HeaderValue, header};
+        let mut response = (
+            self.status,
+            [(
+                header::CONTENT_TYPE,
+                HeaderValue::from_static("application/json"),
+            )],
+            self.json(),
+        )
+            .into_response();
         if let Some(seconds) = self.retry_after {
             response
                 .headers_mut()

@@ -5,18 +5,16 @@
 //! `whipple_front::system` (the names the CLI and Python take), the numbers are the library's
 //! (`LinearSystem::transfer_function`, `origin_zero_speeds`); this module only shapes them.
 
-use axum::body::Bytes;
-use axum::extract::State;
-use axum::extract::rejection::BytesRejection;
-use axum::http::StatusCode;
-use axum::response::Response;
+use bytes::Bytes;
+use http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use whipple::advanced::linear::{
     Input, LinearSystem, Output, StateVariable, SystemRequest, TransferFunction, origin_zero_speeds,
 };
 
-use crate::api::{AppState, Budget, bicycle, compute_json, json_body};
+use crate::Limits;
+use crate::api::{Budget, Job, bicycle, json_body};
 use crate::error::ApiError;
 
 /// The most speeds one request compares.
@@ -295,22 +293,17 @@ fn answer(
     })
 }
 
-pub(crate) async fn frequency(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Response, ApiError> {
-    let request: FrequencyRequest = json_body(body)?;
+pub(crate) fn frequency(_: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    let request: FrequencyRequest = json_body(&body)?;
     let bike = bicycle(&request.bike)?;
     let plan = check(&request)?;
     // At most 16 speeds × 2,000 frequencies: milliseconds, asked for as the slider moves.
-    compute_json(
-        &state,
+    Ok(Job::json(
         Budget::Interactive,
         "ask for fewer speeds or frequencies",
         move |_| {
             let benchmark = bike.benchmark()?;
             answer(bike.name.clone(), &benchmark, &plan)
         },
-    )
-    .await
+    ))
 }

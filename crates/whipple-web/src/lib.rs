@@ -24,10 +24,13 @@
 //! ```
 #![warn(missing_docs)]
 
+#[cfg(feature = "server")]
 mod access;
 mod api;
+#[cfg(feature = "server")]
 mod assets;
 mod closed_loop;
+#[cfg(feature = "server")]
 mod connection;
 mod design;
 mod error;
@@ -36,16 +39,21 @@ pub mod geometry;
 mod measure;
 pub mod modes;
 mod ridden;
+#[cfg(feature = "server")]
+mod server;
 pub mod simulation;
 mod time;
 mod turns;
 
-use std::future::Future;
-use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 use std::time::Duration;
 
-pub use api::{app, app_bound_to};
+#[cfg(feature = "server")]
+pub use serve::{ServeError, ServeOptions, Server, run, serve};
+
+pub use api::{Answer, OPENAPI, answer};
 pub use error::{ApiError, ErrorBody};
+#[cfg(feature = "server")]
+pub use server::{app, app_bound_to};
 
 /// Bounds that keep the server responsive whatever it is asked.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -117,163 +125,174 @@ impl Default for Limits {
     }
 }
 
-/// Where and how to serve.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ServeOptions {
-    /// Address to listen on (default 127.0.0.1, reachable from this machine only).
-    pub address: IpAddr,
-    /// Port to listen on (default 8080; 0 picks a free one).
-    pub port: u16,
-    /// Open the page in the system's browser once listening (default false).
-    pub open: bool,
-    /// Bounds on requests (see [`Limits`]).
-    pub limits: Limits,
-}
+/// `whipple serve`'s options, server and entry points.
+#[cfg(feature = "server")]
+mod serve {
+    use std::future::Future;
+    use std::net::{IpAddr, Ipv4Addr, SocketAddr};
 
-impl Default for ServeOptions {
-    fn default() -> Self {
-        ServeOptions {
-            address: IpAddr::V4(Ipv4Addr::LOCALHOST),
-            port: 8080,
-            open: false,
-            limits: Limits::default(),
+    use crate::{Limits, connection};
+
+    /// Where and how to serve.
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct ServeOptions {
+        /// Address to listen on (default 127.0.0.1, reachable from this machine only).
+        pub address: IpAddr,
+        /// Port to listen on (default 8080; 0 picks a free one).
+        pub port: u16,
+        /// Open the page in the system's browser once listening (default false).
+        pub open: bool,
+        /// Bounds on requests (see [`Limits`]).
+        pub limits: Limits,
+    }
+
+    impl Default for ServeOptions {
+        fn default() -> Self {
+            ServeOptions {
+                address: IpAddr::V4(Ipv4Addr::LOCALHOST),
+                port: 8080,
+                open: false,
+                limits: Limits::default(),
+            }
         }
     }
-}
 
-/// What can stop the server.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum ServeError {
-    /// The address could not be bound (in use, not local, not permitted).
-    #[error("cannot listen on {address}")]
-    Bind {
-        /// The address asked for.
+    /// What can stop the server.
+    #[derive(Debug, thiserror::Error)]
+    #[non_exhaustive]
+    pub enum ServeError {
+        /// The address could not be bound (in use, not local, not permitted).
+        #[error("cannot listen on {address}")]
+        Bind {
+            /// The address asked for.
+            address: SocketAddr,
+            /// Why.
+            source: std::io::Error,
+        },
+        /// The async runtime could not be started.
+        #[error("cannot start the async runtime")]
+        Runtime(#[source] std::io::Error),
+        /// Serving failed after start.
+        #[error("the server failed")]
+        Serve(#[source] std::io::Error),
+    }
+
+    /// A bound, not yet serving, server: bind first to learn the port (for `port: 0`).
+    #[derive(Debug)]
+    pub struct Server {
+        listener: tokio::net::TcpListener,
+        limits: Limits,
         address: SocketAddr,
-        /// Why.
-        source: std::io::Error,
-    },
-    /// The async runtime could not be started.
-    #[error("cannot start the async runtime")]
-    Runtime(#[source] std::io::Error),
-    /// Serving failed after start.
-    #[error("the server failed")]
-    Serve(#[source] std::io::Error),
-}
+    }
 
-/// A bound, not yet serving, server: bind first to learn the port (for `port: 0`).
-#[derive(Debug)]
-pub struct Server {
-    listener: tokio::net::TcpListener,
-    limits: Limits,
-    address: SocketAddr,
-}
-
-impl Server {
-    /// Binds the listening socket.
-    pub async fn bind(options: &ServeOptions) -> Result<Server, ServeError> {
-        let wanted = SocketAddr::new(options.address, options.port);
-        let listener = tokio::net::TcpListener::bind(wanted)
-            .await
-            .map_err(|source| ServeError::Bind {
+    impl Server {
+        /// Binds the listening socket.
+        pub async fn bind(options: &ServeOptions) -> Result<Server, ServeError> {
+            let wanted = SocketAddr::new(options.address, options.port);
+            let listener = tokio::net::TcpListener::bind(wanted)
+                .await
+                .map_err(|source| ServeError::Bind {
+                    address: wanted,
+                    source,
+                })?;
+            let address = listener.local_addr().map_err(|source| ServeError::Bind {
                 address: wanted,
                 source,
             })?;
-        let address = listener.local_addr().map_err(|source| ServeError::Bind {
-            address: wanted,
-            source,
-        })?;
-        Ok(Server {
-            listener,
-            limits: options.limits,
-            address,
-        })
+            Ok(Server {
+                listener,
+                limits: options.limits,
+                address,
+            })
+        }
+
+        /// The address actually bound.
+        pub fn local_addr(&self) -> SocketAddr {
+            self.address
+        }
+
+        /// The page's address, `http://IP:PORT/`.
+        pub fn url(&self) -> String {
+            format!("http://{}/", self.address)
+        }
+
+        /// Serves until `shutdown` completes, then finishes the requests under way (for at most
+        /// the request timeout). Each connection is bounded by [`Limits::header_timeout`] and
+        /// [`Limits::idle_timeout`], and at most [`Limits::max_connections`] are served at once.
+        pub async fn serve_until(
+            self,
+            shutdown: impl Future<Output = ()> + Send + 'static,
+        ) -> Result<(), ServeError> {
+            connection::serve(self.listener, self.limits, self.address.ip(), shutdown).await;
+            Ok(())
+        }
     }
 
-    /// The address actually bound.
-    pub fn local_addr(&self) -> SocketAddr {
-        self.address
-    }
-
-    /// The page's address, `http://IP:PORT/`.
-    pub fn url(&self) -> String {
-        format!("http://{}/", self.address)
-    }
-
-    /// Serves until `shutdown` completes, then finishes the requests under way (for at most
-    /// the request timeout). Each connection is bounded by [`Limits::header_timeout`] and
-    /// [`Limits::idle_timeout`], and at most [`Limits::max_connections`] are served at once.
-    pub async fn serve_until(
-        self,
-        shutdown: impl Future<Output = ()> + Send + 'static,
-    ) -> Result<(), ServeError> {
-        connection::serve(self.listener, self.limits, self.address.ip(), shutdown).await;
-        Ok(())
-    }
-}
-
-/// Binds, says where on standard error, opens the browser when asked, and serves until Ctrl-C.
-pub async fn serve(options: ServeOptions) -> Result<(), ServeError> {
-    let server = Server::bind(&options).await?;
-    let url = server.url();
-    eprintln!("whipple serve: the page is at {url} (Ctrl-C to stop)");
-    if !options.address.is_loopback() {
-        eprintln!(
-            "whipple serve: warning: listening on {}, which other machines may reach",
-            options.address
-        );
-    }
-    if options.address.is_unspecified() {
-        eprintln!(
-            "whipple serve: note: requests are answered only when addressed to 127.0.0.1, \
+    /// Binds, says where on standard error, opens the browser when asked, and serves until Ctrl-C.
+    pub async fn serve(options: ServeOptions) -> Result<(), ServeError> {
+        let server = Server::bind(&options).await?;
+        let url = server.url();
+        eprintln!("whipple serve: the page is at {url} (Ctrl-C to stop)");
+        if !options.address.is_loopback() {
+            eprintln!(
+                "whipple serve: warning: listening on {}, which other machines may reach",
+                options.address
+            );
+        }
+        if options.address.is_unspecified() {
+            eprintln!(
+                "whipple serve: note: requests are answered only when addressed to 127.0.0.1, \
              localhost, [::1] or {} itself (Host header); to serve other machines, give this \
              machine's own address with --address",
-            options.address
-        );
-    }
-    if options.open {
-        open_browser(&url);
-    }
-    server
-        .serve_until(async {
-            // If Ctrl-C cannot be listened for, serve until killed.
-            if tokio::signal::ctrl_c().await.is_err() {
-                std::future::pending::<()>().await;
-            }
-        })
-        .await
-}
-
-/// [`serve`] on a new multi-threaded runtime, blocking until Ctrl-C.
-pub fn run(options: ServeOptions) -> Result<(), ServeError> {
-    tokio::runtime::Builder::new_multi_thread()
-        .enable_all()
-        .build()
-        .map_err(ServeError::Runtime)?
-        .block_on(serve(options))
-}
-
-/// Asks the desktop to open `url`; reports on standard error when it cannot.
-fn open_browser(url: &str) {
-    let mut command = if cfg!(target_os = "macos") {
-        std::process::Command::new("open")
-    } else if cfg!(windows) {
-        let mut c = std::process::Command::new("cmd");
-        c.args(["/C", "start", ""]);
-        c
-    } else {
-        std::process::Command::new("xdg-open")
-    };
-    command
-        .arg(url)
-        .stdin(std::process::Stdio::null())
-        .stdout(std::process::Stdio::null())
-        .stderr(std::process::Stdio::null());
-    match command.spawn() {
-        // Reap the opener when it exits, so that it leaves no zombie behind.
-        Ok(mut child) => {
-            std::thread::spawn(move || child.wait());
+                options.address
+            );
         }
-        Err(e) => eprintln!("whipple serve: could not open a browser ({e}); open {url} yourself"),
+        if options.open {
+            open_browser(&url);
+        }
+        server
+            .serve_until(async {
+                // If Ctrl-C cannot be listened for, serve until killed.
+                if tokio::signal::ctrl_c().await.is_err() {
+                    std::future::pending::<()>().await;
+                }
+            })
+            .await
+    }
+
+    /// [`serve`] on a new multi-threaded runtime, blocking until Ctrl-C.
+    pub fn run(options: ServeOptions) -> Result<(), ServeError> {
+        tokio::runtime::Builder::new_multi_thread()
+            .enable_all()
+            .build()
+            .map_err(ServeError::Runtime)?
+            .block_on(serve(options))
+    }
+
+    /// Asks the desktop to open `url`; reports on standard error when it cannot.
+    fn open_browser(url: &str) {
+        let mut command = if cfg!(target_os = "macos") {
+            std::process::Command::new("open")
+        } else if cfg!(windows) {
+            let mut c = std::process::Command::new("cmd");
+            c.args(["/C", "start", ""]);
+            c
+        } else {
+            std::process::Command::new("xdg-open")
+        };
+        command
+            .arg(url)
+            .stdin(std::process::Stdio::null())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null());
+        match command.spawn() {
+            // Reap the opener when it exits, so that it leaves no zombie behind.
+            Ok(mut child) => {
+                std::thread::spawn(move || child.wait());
+            }
+            Err(e) => {
+                eprintln!("whipple serve: could not open a browser ({e}); open {url} yourself")
+            }
+        }
     }
 }

@@ -6,12 +6,8 @@
 //! benchmark parameters with σ, every step of the report, the largest correlations, and the
 //! bicycle's warnings. `GET /api/measure/samples` gives the tab's sample files.
 
-use axum::Json;
-use axum::body::Bytes;
-use axum::extract::State;
-use axum::extract::rejection::BytesRejection;
-use axum::http::StatusCode;
-use axum::response::Response;
+use bytes::Bytes;
+use http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 use whipple::Bicycle;
@@ -25,7 +21,8 @@ use whipple::advanced::rider::{
 };
 use whipple::advanced::table::{Form, parameters};
 
-use crate::api::{AppState, Budget, bicycle_json, compute_json, json_body};
+use crate::Limits;
+use crate::api::{Budget, Job, bicycle_json, json_body};
 use crate::error::ApiError;
 
 /// The most keys a JSON request may give (the 24 measurements, 16 hangings of three keys for
@@ -317,18 +314,13 @@ fn measure_request(request: MeasureRequest) -> Result<MeasureAnswer, ApiError> {
     })
 }
 
-pub(crate) async fn measure(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Response, ApiError> {
-    let request: MeasureRequest = json_body(body)?;
-    compute_json(
-        &state,
+pub(crate) fn measure(_: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    let request: MeasureRequest = json_body(&body)?;
+    Ok(Job::json(
         Budget::Interactive,
         "send fewer measurements",
         move |_| measure_request(request),
-    )
-    .await
+    ))
 }
 
 /// A sample of raw measurements the page offers to start from.
@@ -377,6 +369,7 @@ const SAMPLES: [Sample; 2] = [
     },
 ];
 
-pub(crate) async fn samples() -> Json<&'static [Sample]> {
-    Json(&SAMPLES[..])
+pub(crate) fn samples(_: &str) -> Result<Vec<u8>, ApiError> {
+    serde_json::to_vec(&SAMPLES[..])
+        .map_err(|e| ApiError::internal(format!("the answer could not be written: {e}")))
 }

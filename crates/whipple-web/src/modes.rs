@@ -3,7 +3,7 @@
 //! prediction the page draws beside a simulation of the non-linear bicycle). Both only call
 //! the library ([`mode_shapes`], [`StateSpace::free_response`]) and shape its answer as JSON.
 
-use axum::http::StatusCode;
+use http::StatusCode;
 use nalgebra::Vector4;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;

@@ -7,11 +7,8 @@
 
 use std::sync::atomic::Ordering;
 
-use axum::body::Bytes;
-use axum::extract::State;
-use axum::extract::rejection::BytesRejection;
-use axum::http::StatusCode;
-use axum::response::Response;
+use bytes::Bytes;
+use http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use whipple::advanced::control::{
@@ -21,7 +18,8 @@ use whipple::advanced::control::{
 };
 use whipple::speed_grid;
 
-use crate::api::{AppState, Budget, SpeedGrid, bicycle, check_grid, compute_json, json_body};
+use crate::Limits;
+use crate::api::{Budget, Job, SpeedGrid, bicycle, check_grid, json_body};
 use crate::error::ApiError;
 
 /// The slowest lane change asked for [m/s]: its 250 m take 250 s of the non-linear model.
@@ -116,11 +114,8 @@ fn invalid(field: &str, rule: String) -> ApiError {
 }
 
 /// `POST /api/ridden`.
-pub(crate) async fn ridden(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Response, ApiError> {
-    let request: RiddenRequest = json_body(body)?;
+pub(crate) fn ridden(_: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    let request: RiddenRequest = json_body(&body)?;
     let bike = bicycle(&request.bike)?;
     let speed = request.speed;
     if !(speed.is_finite() && (MIN_LANE_SPEED..=MAX_LANE_SPEED).contains(&speed)) {
@@ -143,53 +138,61 @@ pub(crate) async fn ridden(
     };
     let grid = request.speeds;
     check_grid(grid, MAX_HQM_SPEEDS)?;
-    compute_json(&state, Budget::Heavy, "ask for fewer speeds", move |stop| {
-        let benchmark = bike.benchmark()?;
-        let speeds = speed_grid(grid.start, grid.stop, grid.step)
-            .map_err(|e| ApiError::from(e).in_field("speeds"))?;
-        let nm = Neuromuscular::default();
-        let gains = hess_gains(&benchmark, speed, &nm, &CrossoverRules::default())
-            .map_err(|e| ApiError::from(e).in_field("speed"))?;
-        let controller = HumanController::new(Task::Lateral, gains, nm)?;
-        let path = LaneChange::humancontrol(lane);
-        let linear = lane_change_linear(&benchmark, speed, &controller, &path)?;
-        let (nonlinear, nonlinear_error) =
-            match lane_change_nonlinear(&benchmark, speed, &controller, &path, NONLINEAR_RTOL) {
+    Ok(Job::json(
+        Budget::Heavy,
+        "ask for fewer speeds",
+        move |stop| {
+            let benchmark = bike.benchmark()?;
+            let speeds = speed_grid(grid.start, grid.stop, grid.step)
+                .map_err(|e| ApiError::from(e).in_field("speeds"))?;
+            let nm = Neuromuscular::default();
+            let gains = hess_gains(&benchmark, speed, &nm, &CrossoverRules::default())
+                .map_err(|e| ApiError::from(e).in_field("speed"))?;
+            let controller = HumanController::new(Task::Lateral, gains, nm)?;
+            let path = LaneChange::humancontrol(lane);
+            let linear = lane_change_linear(&benchmark, speed, &controller, &path)?;
+            let (nonlinear, nonlinear_error) = match lane_change_nonlinear(
+                &benchmark,
+                speed,
+                &controller,
+                &path,
+                NONLINEAR_RTOL,
+            ) {
                 Ok(run) => (Some(Run::of(&run)), None),
                 Err(e) => (None, Some(e.to_string())),
             };
-        let mut hqm = Vec::with_capacity(speeds.len());
-        for &v in &speeds {
-            if stop.load(Ordering::Relaxed) {
-                return Err(ApiError::internal("stopped"));
+            let mut hqm = Vec::with_capacity(speeds.len());
+            for &v in &speeds {
+                if stop.load(Ordering::Relaxed) {
+                    return Err(ApiError::internal("stopped"));
+                }
+                let judged = judge_handling(&bike, &[], &[], &OptimalHandlingSettings::at(v));
+                // A peak is shown only where both loops are stable: elsewhere it means nothing.
+                let peak = judged.peak.filter(|_| judged.stable);
+                let reason = match (&judged.refused, judged.stable) {
+                    (Some(why), _) => Some(why.clone()),
+                    (None, false) => Some("the roll or the lateral loop is unstable".to_string()),
+                    (None, true) => None,
+                };
+                hqm.push(HqmRow {
+                    speed: v,
+                    peak: peak.map(|p| p.magnitude),
+                    frequency: peak.map(|p| p.frequency),
+                    stable: judged.stable,
+                    reason,
+                });
             }
-            let judged = judge_handling(&bike, &[], &[], &OptimalHandlingSettings::at(v));
-            // A peak is shown only where both loops are stable: elsewhere it means nothing.
-            let peak = judged.peak.filter(|_| judged.stable);
-            let reason = match (&judged.refused, judged.stable) {
-                (Some(why), _) => Some(why.clone()),
-                (None, false) => Some("the roll or the lateral loop is unstable".to_string()),
-                (None, true) => None,
-            };
-            hqm.push(HqmRow {
-                speed: v,
-                peak: peak.map(|p| p.magnitude),
-                frequency: peak.map(|p| p.frequency),
-                stable: judged.stable,
-                reason,
-            });
-        }
-        Ok(RiddenResponse {
-            name: bike.name.clone(),
-            speed,
-            lane: lane.name(),
-            gains: gains.to_array(),
-            gain_names: HumanGains::NAMES,
-            linear: Run::of(&linear),
-            nonlinear,
-            nonlinear_error,
-            hqm,
-        })
-    })
-    .await
+            Ok(RiddenResponse {
+                name: bike.name.clone(),
+                speed,
+                lane: lane.name(),
+                gains: gains.to_array(),
+                gain_names: HumanGains::NAMES,
+                linear: Run::of(&linear),
+                nonlinear,
+                nonlinear_error,
+                hqm,
+            })
+        },
+    ))
 }

@@ -5,18 +5,16 @@
 //! tab draws as time plots and paths. The numbers are the library's (`LinearSystem::response`,
 //! `TimeResponse::ground_path`, `compare_manoeuvre`); this module only shapes them.
 
-use axum::body::Bytes;
-use axum::extract::State;
-use axum::extract::rejection::BytesRejection;
-use axum::http::StatusCode;
-use axum::response::Response;
+use bytes::Bytes;
+use http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use whipple::advanced::linear::{
     Input, InputSignal, LinearSystem, Manoeuvre, ManoeuvreMotion, StateVariable, compare_manoeuvre,
 };
 
-use crate::api::{AppState, Budget, bicycle, compute_json, json_body};
+use crate::Limits;
+use crate::api::{Budget, Job, bicycle, json_body};
 use crate::error::ApiError;
 
 /// The longest simulated time one request asks for [s].
@@ -409,11 +407,8 @@ fn answer(
     })
 }
 
-pub(crate) async fn time(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Response, ApiError> {
-    let request: TimeRequest = json_body(body)?;
+pub(crate) fn time(_: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    let request: TimeRequest = json_body(&body)?;
     let bike = bicycle(&request.bike)?;
     let plan = check(&request)?;
     // The linear response is milliseconds (exact, one matrix exponential per interval length);
@@ -423,14 +418,12 @@ pub(crate) async fn time(
     } else {
         Budget::Interactive
     };
-    compute_json(
-        &state,
+    Ok(Job::json(
         budget,
         "ask for fewer samples or a shorter duration",
         move |_| {
             let benchmark = bike.benchmark()?;
             answer(bike.name.clone(), &benchmark, &plan)
         },
-    )
-    .await
+    ))
 }

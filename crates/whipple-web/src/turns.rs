@@ -1,17 +1,15 @@
 //! `POST /api/turn`: one held steady turn of the non-linear bicycle, the steer torque that holds
 //! it and its stability (`whipple::advanced::turns`, what `whipple turn` prints).
 
-use axum::Json;
-use axum::body::Bytes;
-use axum::extract::State;
-use axum::extract::rejection::BytesRejection;
-use axum::http::StatusCode;
+use bytes::Bytes;
+use http::StatusCode;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use whipple::Model;
 use whipple::advanced::turns::{Held, Stability, SteadyTurn, TurnSettings, held_turn, stability};
 
-use crate::api::{AppState, Budget, bicycle, compute, json_body};
+use crate::Limits;
+use crate::api::{Budget, Job, bicycle, json_body};
 use crate::error::ApiError;
 
 /// The body of `POST /api/turn`: the speed of the rear contact and exactly one of the lean, the
@@ -50,11 +48,8 @@ fn field(what: &str) -> &str {
     }
 }
 
-pub(crate) async fn turn(
-    State(state): State<AppState>,
-    body: Result<Bytes, BytesRejection>,
-) -> Result<Json<TurnResponse>, ApiError> {
-    let request: TurnRequest = json_body(body)?;
+pub(crate) fn turn(_: &Limits, body: Bytes) -> Result<Job, ApiError> {
+    let request: TurnRequest = json_body(&body)?;
     let bike = bicycle(&request.bike)?;
     let (given, given_field) = match (request.lean_deg, request.steer_deg, request.radius) {
         (Some(lean), None, None) => (Held::Lean(lean.to_radians()), "lean_deg"),
@@ -70,8 +65,7 @@ pub(crate) async fn turn(
         }
     };
     let speed = request.speed;
-    let response = compute(
-        &state,
+    Ok(Job::json(
         Budget::Interactive,
         "ask for a smaller lean or steer",
         move |_| {
@@ -102,7 +96,5 @@ pub(crate) async fn turn(
                 stability_error,
             })
         },
-    )
-    .await?;
-    Ok(Json(response))
+    ))
 }

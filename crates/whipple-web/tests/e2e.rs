@@ -27,6 +27,17 @@ const SCRIPTS: &[(&str, &str)] = &[
     ),
 ];
 
+/// The same scripts against the static site (`crates/whipple-wasm/build-site`), whose folder
+/// `WHIPPLE_SITE` names, served by Python's plain static file server; `page.mjs` also compares
+/// the site's answers with a `whipple serve`'s, bit for bit.
+const SITE_SCRIPTS: &[(&str, &str)] = &[
+    ("static_site_in_headless_chromium", "test.mjs"),
+    (
+        "static_site_plots_links_modes_layouts_offline_in_headless_chromium",
+        "page.mjs",
+    ),
+];
+
 /// One browser run must end within this.
 const LIMIT: Duration = Duration::from_secs(300);
 
@@ -57,19 +68,46 @@ fn main() {
              *** Install it with `apt-get install -y chromium` (or set CHROMIUM). ***\n"
         );
     }
-    let trials = SCRIPTS
+    let site = std::env::var_os("WHIPPLE_SITE").map(PathBuf::from);
+    if site.is_none() {
+        let reason = if required() {
+            "it is required here (WHIPPLE_E2E_REQUIRED=1): the tests fail"
+        } else {
+            "its tests are IGNORED"
+        };
+        eprintln!(
+            "\n*** whipple-web e2e: no static site (WHIPPLE_SITE names the folder \
+             crates/whipple-wasm/build-site writes); {reason}. ***\n"
+        );
+    }
+    let mut trials: Vec<Trial> = SCRIPTS
         .iter()
         .map(|&(name, script)| {
             let browser = browser.clone();
-            Trial::test(name, move || run_script(script, &browser))
+            Trial::test(name, move || run_script(script, &browser, None))
                 .with_ignored_flag(!present && !required())
         })
         .collect();
+    trials.extend(SITE_SCRIPTS.iter().map(|&(name, script)| {
+        let browser = browser.clone();
+        let folder = site.clone();
+        Trial::test(name, move || match &folder {
+            Some(folder) => run_script(script, &browser, Some(folder)),
+            None => Err(
+                "the static site is required here (WHIPPLE_E2E_REQUIRED=1): build it \
+                 with crates/whipple-wasm/build-site DIR and set WHIPPLE_SITE=DIR"
+                    .into(),
+            ),
+        })
+        .with_ignored_flag((!present || site.is_none()) && !required())
+    }));
     libtest_mimic::run(&args, trials).exit();
 }
 
-/// Serves the page on an ephemeral loopback port and runs one script against it.
-fn run_script(script: &str, browser: &str) -> Result<(), Failed> {
+/// Serves the page on an ephemeral loopback port and runs one script against it; with `site`,
+/// against that static site served by a plain static file server, the server beside it for
+/// comparison.
+fn run_script(script: &str, browser: &str, site: Option<&Path>) -> Result<(), Failed> {
     if !Path::new(browser).exists() {
         return Err(format!(
             "the e2e tests are required here (WHIPPLE_E2E_REQUIRED=1) but there is no Chromium at \
@@ -101,9 +139,17 @@ fn run_script(script: &str, browser: &str) -> Result<(), Failed> {
             .join("e2e")
             .join(script);
         let browser = browser.to_string();
-        let outcome = tokio::task::spawn_blocking(move || run_node(&path, &url, &browser))
-            .await
-            .map_err(|e| format!("the browser run panicked: {e}"))?;
+        let site = site.map(Path::to_path_buf);
+        let outcome = tokio::task::spawn_blocking(move || match site {
+            None => run_node(&path, &url, &browser, &[]),
+            Some(folder) => {
+                let files = StaticServer::start(&folder)?;
+                let env = [("E2E_BACKEND", "site".to_string()), ("E2E_SERVER", url)];
+                run_node(&path, &files.url, &browser, &env)
+            }
+        })
+        .await
+        .map_err(|e| format!("the browser run panicked: {e}"))?;
         let _ = stop.send(());
         serving
             .await
@@ -113,11 +159,73 @@ fn run_script(script: &str, browser: &str) -> Result<(), Failed> {
     })
 }
 
-/// Runs `node SCRIPT URL`, killing it past [`LIMIT`].
-fn run_node(script: &Path, url: &str, chromium: &str) -> Result<(), Failed> {
+/// Python's `http.server` serving a folder on an ephemeral loopback port: a plain static file
+/// server, as a user's `python3 -m http.server` (no compression, no API). Ended when dropped.
+struct StaticServer {
+    child: std::process::Child,
+    url: String,
+}
+
+impl StaticServer {
+    fn start(folder: &Path) -> Result<StaticServer, Failed> {
+        use std::io::BufRead;
+        let mut child = Command::new("python3")
+            .args([
+                "-u",
+                "-m",
+                "http.server",
+                "--bind",
+                "127.0.0.1",
+                "--directory",
+            ])
+            .arg(folder)
+            .arg("0")
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .map_err(|e| format!("cannot start python3 -m http.server: {e}"))?;
+        // "Serving HTTP on 127.0.0.1 port 41234 (http://127.0.0.1:41234/) ..."
+        let first = child.stdout.take().and_then(|out| {
+            std::io::BufReader::new(out)
+                .lines()
+                .next()
+                .and_then(Result::ok)
+        });
+        let url = first.as_deref().and_then(|line| {
+            let from = line.find("(http://")? + 1;
+            let to = from + line[from..].find(')')?;
+            Some(line[from..to].to_string())
+        });
+        match url {
+            Some(url) => Ok(StaticServer { child, url }),
+            None => {
+                let _ = child.kill();
+                let _ = child.wait();
+                Err(format!("python3 -m http.server did not say where it serves: {first:?}").into())
+            }
+        }
+    }
+}
+
+impl Drop for StaticServer {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Runs `node SCRIPT URL` with `env`, killing it past [`LIMIT`].
+fn run_node(
+    script: &Path,
+    url: &str,
+    chromium: &str,
+    env: &[(&str, String)],
+) -> Result<(), Failed> {
     let mut child = Command::new("node")
         .arg(script)
         .arg(url)
+        .envs(env.iter().map(|(k, v)| (k, v)))
         .env("WHIPPLE_WEB_NODE_MODULES", env!("WHIPPLE_WEB_NODE_MODULES"))
         .env("CHROMIUM", chromium)
         .env("E2E_TIMEOUT_MS", (LIMIT.as_millis() - 10_000).to_string())

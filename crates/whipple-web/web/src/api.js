@@ -1,5 +1,6 @@
 // The page's only contact with the server: the endpoints of /api/openapi.json.
 import { during } from "./work.js";
+import { answer, inBrowser } from "./backend.js";
 
 /** An error answered by the API: {kind, message, field, rule} plus the HTTP status. */
 export class ApiError extends Error {
@@ -18,6 +19,20 @@ function call(method, path, body) {
 }
 
 async function request(method, path, body) {
+  if (inBrowser) {
+    // The static site: the same request answered by the WebAssembly module (backend.js).
+    const { status, text } = await answer(method, path, body === undefined ? undefined : JSON.stringify(body));
+    let data = null;
+    try {
+      data = JSON.parse(text);
+    } catch {
+      data = null;
+    }
+    if (status !== 200) {
+      throw new ApiError(status, data?.error ?? { kind: "http", message: `HTTP ${status}` });
+    }
+    return data;
+  }
   let response;
   try {
     response = await fetch(path, {

@@ -6,6 +6,7 @@
 
 import "./style.css";
 import { api } from "./api.js";
+import { inBrowser } from "./backend.js";
 import { begin, during } from "./work.js";
 import { listDesigns, saveDesign, deleteDesign, findDesign } from "./store.js";
 import { Editor, parseNumber } from "./editor.js";
@@ -974,6 +975,11 @@ new ResizeObserver(() => {
 }).observe($("side-view"));
 
 // ---- start --------------------------------------------------------------------------------
+
+// The static site keeps its files for offline use (its service worker, sw.js beside the page).
+if (inBrowser && "serviceWorker" in navigator) {
+  navigator.serviceWorker.register("sw.js").catch((e) => console.warn(`offline use is unavailable: ${e.message}`));
+}
 
 (async () => {
   try {
