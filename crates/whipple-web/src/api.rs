@@ -1,4 +1,4 @@
-//! The JSON API described in `openapi.json`, without a transport: [`ROUTES`] names each
+//! The JSON API described in `openapi.json`, without a transport: [`routes`] names each
 //! endpoint's handler, which reads the request and returns the work to do as a [`Job`]. The
 //! server (`server.rs`) runs the jobs on its computing pool under its limits; [`answer`] runs
 //! one at once, for a caller without a server (the static site's WebAssembly module), so that
@@ -8,6 +8,8 @@
 //! "benchmark": {...}}` or `{..., "jbike6": {...}}`) and are read and written by
 //! `whipple::advanced::io`, so the API, the CLI and the files agree on every key and rule.
 
+use std::cell::RefCell;
+use std::rc::Rc;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
 
@@ -114,18 +116,27 @@ const fn post(path: &'static str, prepare: fn(&Limits, Bytes) -> Result<Job, Api
     }
 }
 
-/// Every endpoint of `openapi.json`, the one table the server routes and [`answer`] reads.
-pub(crate) const ROUTES: &[Route] = &[
+/// The endpoints the page's first view asks for (the presets, the parameter table, a bicycle
+/// checked and its eigenvalues with the critical speeds and σ): the first rows of the one table
+/// of endpoints, [`routes`]. Without the crate feature `all-routes` they are the only ones
+/// compiled, so that the static site's first module holds a third of the whole (its worker
+/// loads the whole module for any other endpoint, `web/src/worker.js`).
+pub(crate) const FIRST_VIEW: &[Route] = &[
     get("/api/health", health),
-    get("/api/openapi.json", openapi),
     get("/api/presets", list_presets),
     get("/api/presets/{name}", get_preset),
+    get("/api/parameters", parameter_table),
     post("/api/bike/validate", validate),
+    post("/api/eigen", eigen),
+];
+
+/// The other endpoints of `openapi.json`: the rest of [`routes`].
+#[cfg(feature = "all-routes")]
+const REST: &[Route] = &[
+    get("/api/openapi.json", openapi),
     post("/api/bike/toml", to_toml),
     post("/api/bike/parse", parse_file),
-    get("/api/parameters", parameter_table),
     post("/api/sensitivity", sensitivity),
-    post("/api/eigen", eigen),
     post("/api/speeds", speeds),
     post("/api/simulate", simulate),
     post("/api/modes", modes),
@@ -141,6 +152,20 @@ pub(crate) const ROUTES: &[Route] = &[
     post("/api/study", crate::design::study),
     post("/api/ridden", crate::ridden::ridden),
 ];
+#[cfg(not(feature = "all-routes"))]
+const REST: &[Route] = &[];
+
+/// Every endpoint of `openapi.json` compiled in, the one table the server routes and
+/// [`answer`] reads: [`FIRST_VIEW`], then the rest (with the feature `all-routes`).
+pub(crate) fn routes() -> impl Iterator<Item = &'static Route> {
+    FIRST_VIEW.iter().chain(REST)
+}
+
+/// Whether this build answers `path` (`/api/eigen`; a query is ignored): every path of
+/// `openapi.json` with the feature `all-routes`, the first view's alone without it.
+pub fn answers(path: &str) -> bool {
+    matching(path).is_some()
+}
 
 /// An answer without a server: its HTTP status and JSON body.
 #[derive(Debug, Clone, PartialEq)]
@@ -176,40 +201,84 @@ pub fn answer(
     }
 }
 
+/// A hook told `(done, total)` as long work advances.
+pub type ProgressHook = Rc<dyn Fn(u64, u64)>;
+
+thread_local! {
+    /// The progress hook of the answer running on this thread ([`answer_with_progress`]).
+    static PROGRESS: RefCell<Option<ProgressHook>> = const { RefCell::new(None) };
+}
+
+/// [`answer`], with `progress(done, total)` called as long work advances (a map's or a
+/// study's designs, after every chunk of them), on this thread: the static site's worker
+/// passes it on to the page. The server has no such hook; its page shows the time taken.
+pub fn answer_with_progress(
+    method: &str,
+    path: &str,
+    body: &[u8],
+    limits: &Limits,
+    stop: Arc<AtomicBool>,
+    progress: ProgressHook,
+) -> Answer {
+    /// Takes the hook away again however the answer ends.
+    struct Hooked;
+    impl Drop for Hooked {
+        fn drop(&mut self) {
+            PROGRESS.with(|hook| hook.borrow_mut().take());
+        }
+    }
+    PROGRESS.with(|hook| *hook.borrow_mut() = Some(progress));
+    let _hooked = Hooked;
+    answer(method, path, body, limits, stop)
+}
+
+/// Tells the hook of [`answer_with_progress`], if this thread has one, how far the work is.
+pub(crate) fn report_progress(done: u64, total: u64) {
+    let hook = PROGRESS.with(|hook| hook.borrow().clone());
+    if let Some(hook) = hook {
+        hook(done, total);
+    }
+}
+
 enum Routed {
     Now(Vec<u8>),
     Work(Job),
 }
 
+/// The route for `path` and its `{name}` segment (still percent-encoded), if any.
+fn matching(path: &str) -> Option<(&'static Route, Option<&str>)> {
+    let path = path.split(['?', '#']).next().unwrap_or(path);
+    routes().find_map(|route| match route.path.find('{') {
+        Some(brace) => match path.strip_prefix(&route.path[..brace]) {
+            Some(rest) if !rest.is_empty() && !rest.contains('/') => Some((route, Some(rest))),
+            _ => None,
+        },
+        None if route.path == path => Some((route, None)),
+        None => None,
+    })
+}
+
 fn route(method: &str, path: &str, body: &[u8], limits: &Limits) -> Result<Routed, ApiError> {
     let path = path.split(['?', '#']).next().unwrap_or(path);
-    for route in ROUTES {
-        let name = match route.path.find('{') {
-            Some(brace) => match path.strip_prefix(&route.path[..brace]) {
-                Some(rest) if !rest.is_empty() && !rest.contains('/') => Some(rest),
-                _ => continue,
-            },
-            None if route.path == path => None,
-            None => continue,
-        };
-        return match (route.handler, method) {
-            (Handler::Get(answer), "GET") => {
-                let name = match name {
-                    Some(encoded) => percent_decoded(encoded)?,
-                    None => String::new(),
-                };
-                answer(&name).map(Routed::Now)
+    let Some((route, name)) = matching(path) else {
+        return Err(not_found(path));
+    };
+    match (route.handler, method) {
+        (Handler::Get(answer), "GET") => {
+            let name = match name {
+                Some(encoded) => percent_decoded(encoded)?,
+                None => String::new(),
+            };
+            answer(&name).map(Routed::Now)
+        }
+        (Handler::Post(prepare), "POST") => {
+            if body.len() > limits.max_body_bytes {
+                return Err(too_large());
             }
-            (Handler::Post(prepare), "POST") => {
-                if body.len() > limits.max_body_bytes {
-                    return Err(too_large());
-                }
-                prepare(limits, Bytes::copy_from_slice(body)).map(Routed::Work)
-            }
-            _ => Err(method_not_allowed(method, path)),
-        };
+            prepare(limits, Bytes::copy_from_slice(body)).map(Routed::Work)
+        }
+        _ => Err(method_not_allowed(method, path)),
     }
-    Err(not_found(path))
 }
 
 /// A path segment decoded as a URL's (`%2F` to `/`), refused when not UTF-8 once decoded.
@@ -790,4 +859,69 @@ fn linear_response(limits: &Limits, body: Bytes) -> Result<Job, ApiError> {
             mode_api::response(bike.name.clone(), &canonical, plan)
         },
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_first_view_is_answered_by_every_build_and_the_rest_with_all_routes() {
+        for route in FIRST_VIEW {
+            assert!(
+                answers(&route.path.replace("{name}", "benchmark")),
+                "{}",
+                route.path
+            );
+        }
+        assert!(answers("/api/presets/benchmark?x=1"));
+        assert!(!answers("/api/presets/"));
+        assert!(!answers("/api/nowhere"));
+        assert_eq!(answers("/api/map"), cfg!(feature = "all-routes"));
+        assert_eq!(answers("/api/openapi.json"), cfg!(feature = "all-routes"));
+        assert_eq!(
+            routes().count(),
+            if cfg!(feature = "all-routes") {
+                24
+            } else {
+                FIRST_VIEW.len()
+            }
+        );
+    }
+
+    #[test]
+    #[cfg(feature = "all-routes")]
+    fn a_maps_progress_is_reported_chunk_by_chunk_and_only_to_its_own_answer() {
+        let seen = Rc::new(RefCell::new(Vec::new()));
+        let into = Rc::clone(&seen);
+        let bike = answer(
+            "GET",
+            "/api/presets/benchmark",
+            b"",
+            &Limits::default(),
+            Arc::default(),
+        );
+        let bike: Value = serde_json::from_slice(&bike.body).unwrap();
+        let body = serde_json::json!({"bike": bike, "x": "trail=0.02:0.2:300", "y": "head_angle_deg=60:80:150"});
+        let body = serde_json::to_vec(&body).unwrap();
+        let answered = answer_with_progress(
+            "POST",
+            "/api/map",
+            &body,
+            &Limits::default(),
+            Arc::default(),
+            Rc::new(move |done, total| into.borrow_mut().push((done, total))),
+        );
+        assert_eq!(
+            answered.status,
+            200,
+            "{}",
+            String::from_utf8_lossy(&answered.body)
+        );
+        let seen = seen.borrow().clone();
+        // 45,000 designs: a chunk of 32,768, then the rest.
+        assert_eq!(seen, vec![(32_768, 45_000), (45_000, 45_000)]);
+        // The hook went with its answer: the next answer reports to nobody.
+        assert!(PROGRESS.with(|hook| hook.borrow().is_none()));
+    }
 }

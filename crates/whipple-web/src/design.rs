@@ -182,7 +182,10 @@ fn run(limits: &Limits, body: Bytes, two: bool) -> Result<Job, ApiError> {
                 band_margin: options.band.map(|_| Vec::with_capacity(n)),
             };
             let finite = |x: Option<f64>| x.filter(|v| v.is_finite());
+            let mut done = 0u64;
             study.study.run(Shard::WHOLE, &stop, |rows| {
+                done += rows.len() as u64;
+                crate::api::report_progress(done, n as u64);
                 for row in rows {
                     let q = &row.quantities;
                     let ok = row.status == DesignStatus::Ok;

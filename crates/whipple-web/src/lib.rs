@@ -23,6 +23,9 @@
 //! # Ok::<(), whipple_web::ServeError>(())
 //! ```
 #![warn(missing_docs)]
+// Without the feature `all-routes` (the static site's first module) only the first view's
+// endpoints are compiled in: the other handlers are left unused, on purpose.
+#![cfg_attr(not(feature = "all-routes"), allow(dead_code, unused_imports))]
 
 #[cfg(feature = "server")]
 mod access;
@@ -50,7 +53,7 @@ use std::time::Duration;
 #[cfg(feature = "server")]
 pub use serve::{ServeError, ServeOptions, Server, run, serve};
 
-pub use api::{Answer, OPENAPI, answer};
+pub use api::{Answer, OPENAPI, ProgressHook, answer, answer_with_progress, answers};
 pub use error::{ApiError, ErrorBody};
 #[cfg(feature = "server")]
 pub use server::{app, app_bound_to};

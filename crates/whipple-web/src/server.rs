@@ -1,4 +1,4 @@
-//! The server: the router (the page, its assets and the API of [`crate::api::ROUTES`]), its
+//! The server: the router (the page, its assets and the API of [`crate::api::routes`]), its
 //! guards (Host, Origin, Content-Type, time, compression) and the computing slots that run each
 //! endpoint's [`Job`] on the blocking pool.
 
@@ -16,7 +16,7 @@ use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
 use tokio::sync::{OwnedSemaphorePermit, Semaphore, TryAcquireError};
 
-use crate::api::{Budget, Handler, Job, ROUTES};
+use crate::api::{Budget, Handler, Job, routes};
 use crate::error::ApiError;
 use crate::{Limits, assets};
 
@@ -55,7 +55,7 @@ pub fn app_bound_to(limits: Limits, bound: IpAddr) -> Router {
         .route("/", get(assets::index))
         .route("/assets/{name}", get(assets::file));
     // The API: every route of the one table the static site's module answers from too.
-    for route in ROUTES {
+    for route in routes() {
         router = match route.handler {
             Handler::Get(answer) if route.path.contains('{') => router.route(
                 route.path,

@@ -1,13 +1,16 @@
 // Builds the static site: node site.mjs PKG_DIR OUT_DIR
-// PKG_DIR holds wasm-bindgen's output for crates/whipple-wasm (whipple_wasm.js and
-// whipple_wasm_bg.wasm); OUT_DIR receives a folder any static host serves:
+// PKG_DIR holds wasm-bindgen's output for crates/whipple-wasm's two builds (whipple_wasm.js and
+// whipple_wasm_bg.wasm): first/ (the first view's endpoints) and whole/ (every endpoint, the
+// feature all-routes); OUT_DIR receives a folder any static host serves:
 //   index.html                     the page, answering its API in the browser (data-backend="wasm")
 //   assets/app-HASH.js, .css       the page's code and style sheet (as `whipple serve`'s)
-//   assets/worker-HASH.js          the Web Worker that runs the module
-//   assets/whipple-HASH.wasm       whipple's API compiled to WebAssembly
+//   assets/worker-HASH.js          the Web Worker that runs the modules
+//   assets/whipple-first-HASH.wasm the first view's endpoints compiled to WebAssembly
+//   assets/whipple-HASH.wasm       whipple's whole API, loaded when a request needs it
 //   assets/view3d-HASH.js, ...     code loaded later (three.js with the Simulation tab)
 //   sw.js                          the service worker that keeps every file for offline use
-//   manifest.json                  [{name, bytes, gzip, brotli}] of every file, for the size budget
+//   manifest.json                  [{name, bytes, gzip, brotli, first}] of every file, for the size
+//                                  budget (`first`: the first view loads it)
 // Run by crates/whipple-wasm/build-site, which builds the module first.
 import { build } from "esbuild";
 import { createHash } from "node:crypto";
@@ -27,10 +30,15 @@ mkdirSync(assets, { recursive: true });
 
 const hash = (bytes) => createHash("sha256").update(bytes).digest("hex").slice(0, 8).toUpperCase();
 
-// The module, under a name that changes with its content (cached for good).
-const wasm = readFileSync(join(pkg, "whipple_wasm_bg.wasm"));
-const wasmName = `whipple-${hash(wasm)}.wasm`;
-writeFileSync(join(assets, wasmName), wasm);
+// The modules, under names that change with their content (cached for good).
+const module = (build, stem) => {
+  const wasm = readFileSync(join(pkg, build, "whipple_wasm_bg.wasm"));
+  const name = `${stem}-${hash(wasm)}.wasm`;
+  writeFileSync(join(assets, name), wasm);
+  return name;
+};
+const wasmName = module("whole", "whipple");
+const firstName = module("first", "whipple-first");
 
 const common = {
   bundle: true,
@@ -49,8 +57,8 @@ const worker = await build({
   entryPoints: { worker: join(web, "src", "worker.js") },
   outdir: assets,
   entryNames: "[name]-[hash]",
-  alias: { "whipple-wasm": join(pkg, "whipple_wasm.js") },
-  define: { WHIPPLE_WASM: JSON.stringify(`./${wasmName}`) },
+  alias: { "whipple-wasm": join(pkg, "whole", "whipple_wasm.js"), "whipple-wasm-first": join(pkg, "first", "whipple_wasm.js") },
+  define: { WHIPPLE_WASM: JSON.stringify(`./${wasmName}`), WHIPPLE_WASM_FIRST: JSON.stringify(`./${firstName}`) },
 });
 const workerName = Object.keys(worker.metafile.outputs).map((p) => resolve(p)).find((p) => p.endsWith(".js"));
 if (!workerName) throw new Error("esbuild wrote no worker");
@@ -111,15 +119,18 @@ self.addEventListener("fetch", (event) => {
 `);
 files.push("sw.js");
 
+// What the first view loads: the page, its code and style, the worker and the first module
+// (not the whole module, three.js or the service worker, which fetches the rest afterwards).
+const firstView = (name) => name === "index.html" || /^assets\/(app|worker|whipple-first)-/.test(name);
 const manifest = files.map((name) => {
   const bytes = readFileSync(join(out, name));
   const gzip = gzipSync(bytes, { level: 9 }).length;
   const brotli = brotliCompressSync(bytes, {
     params: { [constants.BROTLI_PARAM_QUALITY]: 11, [constants.BROTLI_PARAM_SIZE_HINT]: bytes.length },
   }).length;
-  return { name, bytes: bytes.length, gzip, brotli };
+  return { name, bytes: bytes.length, gzip, brotli, first: firstView(name) };
 });
 writeFileSync(join(out, "manifest.json"), `${JSON.stringify(manifest, null, 1)}\n`);
 const total = (key, pick = () => true) => manifest.filter(pick).reduce((s, f) => s + f[key], 0);
-const first = (f) => !/^assets\/(view3d|chunk)-/.test(f.name);
+const first = (f) => f.first;
 console.log(`site: ${files.length} files in ${out}; first view ${(total("brotli", first) / 1024).toFixed(0)} KB brotli, ${(total("gzip", first) / 1024).toFixed(0)} KB gzip (all: ${(total("bytes") / 1024).toFixed(0)} KB)`);

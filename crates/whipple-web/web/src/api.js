@@ -13,15 +13,19 @@ export class ApiError extends Error {
   }
 }
 
-/** One request, counted as work under way until its answer has been handled ([during]). */
-function call(method, path, body) {
-  return during(() => request(method, path, body));
+/** One request, counted as work under way until its answer has been handled ([during]).
+ * `options`: {signal} to cancel it (an ApiError of kind "cancelled" then), {onProgress(done,
+ * total)} told how far long work is (the static site's maps; a server tells nothing). */
+function call(method, path, body, options = {}) {
+  return during(() => request(method, path, body, options));
 }
 
-async function request(method, path, body) {
+const cancelled = () => new ApiError(499, { kind: "cancelled", message: "cancelled" });
+
+async function request(method, path, body, options) {
   if (inBrowser) {
     // The static site: the same request answered by the WebAssembly module (backend.js).
-    const { status, text } = await answer(method, path, body === undefined ? undefined : JSON.stringify(body));
+    const { status, text } = await answer(method, path, body === undefined ? undefined : JSON.stringify(body), options);
     let data = null;
     try {
       data = JSON.parse(text);
@@ -39,11 +43,15 @@ async function request(method, path, body) {
       method,
       headers: body === undefined ? {} : { "content-type": "application/json" },
       body: body === undefined ? undefined : JSON.stringify(body),
+      // The server stops the work once nobody waits for its answer.
+      signal: options.signal,
     });
   } catch (e) {
+    if (options.signal?.aborted) throw cancelled();
     throw new ApiError(0, { kind: "network", message: `the server cannot be reached (${e.message}); is \`whipple serve\` still running?` });
   }
   const data = await response.json().catch(() => null);
+  if (options.signal?.aborted) throw cancelled();
   if (!response.ok) {
     throw new ApiError(response.status, data?.error ?? { kind: "http", message: `HTTP ${response.status}` });
   }
@@ -63,9 +71,9 @@ export const api = {
   /** `request`: {bike, speed, lean_deg, steer_deg, lean_rate, steer_rate, duration, ...}. */
   simulate: (request) => call("POST", "/api/simulate", request),
   /** A design map: `request` {bike, x, y, speed?} with axes NAME=START:STOP:COUNT. */
-  map: (request) => call("POST", "/api/map", request),
+  map: (request, options) => call("POST", "/api/map", request, options),
   /** A one-parameter study: `request` {bike, x, speed?}, as /api/map without y. */
-  study: (request) => call("POST", "/api/study", request),
+  study: (request, options) => call("POST", "/api/study", request, options),
   /** One design of a map, `request` {bike, x, y, index}: {bike} in the files' JSON layout. */
   mapDesign: (request) => call("POST", "/api/map/design", request),
   /** Exact sensitivities of v_w, v_c and the stable width to every parameter; σ of the speeds. */

@@ -11,7 +11,7 @@ const WORKER = typeof WHIPPLE_WORKER === "string" ? WHIPPLE_WORKER : null;
 /** Whether this page answers its API in the browser (the static site). */
 export const inBrowser = WORKER !== null && document.documentElement.dataset.backend === "wasm";
 
-// Heavy endpoints, as the server's budgets sort them (crates/whipple-web/src/api.rs ROUTES):
+// Heavy endpoints, as the server's budgets sort them (crates/whipple-web/src/api.rs routes()):
 // only a choice of worker, never of answer.
 const HEAVY = new Set([
   "/api/map", "/api/study", "/api/simulate", "/api/sensitivity", "/api/linear/response",
@@ -23,6 +23,7 @@ class Lane {
     this.name = name;
     this.worker = null;
     this.next = 1;
+    // id → {request, resolve, onProgress}: the requests posted to the worker and not answered.
     this.waiting = new Map();
   }
 
@@ -30,6 +31,10 @@ class Lane {
     const worker = new Worker(new URL(WORKER, import.meta.url), { type: "module", name: `whipple ${this.name}` });
     worker.onmessage = ({ data }) => {
       const done = this.waiting.get(data.id);
+      if (data.progress) {
+        done?.onProgress?.(...data.progress);
+        return;
+      }
       if (done) {
         this.waiting.delete(data.id);
         done.resolve(data);
@@ -55,12 +60,30 @@ class Lane {
     this.waiting.clear();
   }
 
-  call(method, path, body) {
+  /** Stops request `id`: its worker ends at once (a module cannot be interrupted otherwise), the
+   * request is answered as cancelled, and the others it held are asked again of a fresh one. */
+  cancel(id) {
+    const done = this.waiting.get(id);
+    if (!done) return;
+    this.waiting.delete(id);
+    this.worker?.terminate();
+    this.worker = null;
+    const body = new TextEncoder().encode(JSON.stringify({ error: { kind: "cancelled", message: "cancelled", field: null, rule: null } }));
+    done.resolve({ status: 499, body });
+    if (this.waiting.size === 0) return;
+    this.start();
+    for (const [other, { request }] of this.waiting) this.worker.postMessage({ id: other, ...request, body: request.body.slice() });
+  }
+
+  call(method, path, body, { signal, onProgress } = {}) {
     if (!this.worker) this.start();
     const id = this.next++;
     return new Promise((resolve) => {
-      this.waiting.set(id, { resolve });
-      this.worker.postMessage({ id, method, path, body });
+      // A copy stays here, should the request have to be asked again (cancel).
+      const request = { method, path, body };
+      this.waiting.set(id, { request, resolve, onProgress });
+      signal?.addEventListener("abort", () => this.cancel(id), { once: true });
+      this.worker.postMessage({ id, method, path, body: body.slice() });
     });
   }
 }
@@ -72,13 +95,16 @@ const lanes = { interactive: new Lane("interactive"), heavy: new Lane("heavy") }
 const asked = [];
 globalThis.whippleAsked = asked;
 
-/** One request answered in the browser: {status, text}, as a server's answer would be. */
-export async function answer(method, path, bodyText) {
+/** One request answered in the browser: {status, text}, as a server's answer would be.
+ * `options`: {signal} (an AbortSignal: a request aborted is answered 499, kind "cancelled"),
+ * {onProgress(done, total)} (long work's progress, a map's designs). */
+export async function answer(method, path, bodyText, options = {}) {
   asked.push(`${method} ${path}`);
   if (asked.length > 200) asked.splice(0, asked.length - 200);
   const lane = HEAVY.has(path) ? lanes.heavy : lanes.interactive;
   const body = bodyText === undefined ? new Uint8Array(0) : new TextEncoder().encode(bodyText);
-  const reply = await lane.call(method, path, body);
+  if (options.signal?.aborted) return { status: 499, text: JSON.stringify({ error: { kind: "cancelled", message: "cancelled", field: null, rule: null } }) };
+  const reply = await lane.call(method, path, body, options);
   return { status: reply.status, text: new TextDecoder().decode(reply.body) };
 }
 
@@ -94,7 +120,7 @@ if (inBrowser) {
     const method = (init.method ?? request?.method ?? "GET").toUpperCase();
     let body = init.body ?? (request && method !== "GET" ? await request.text() : undefined);
     if (body !== undefined && typeof body !== "string") body = await new Response(body).text();
-    const { status, text } = await answer(method, url.pathname, body);
+    const { status, text } = await answer(method, url.pathname, body, { signal: init.signal ?? request?.signal });
     return new Response(text, { status, headers: { "content-type": "application/json" } });
   };
 }

@@ -85,6 +85,9 @@ export class MapPanel {
     this.onChange = onChange ?? (() => {});
     this.onLoad = onLoad ?? (() => {});
     this.answer = null;
+    // A map under way can be stopped (the server stops its work once the request is dropped;
+    // the static site ends the worker that runs it).
+    $("map-cancel").addEventListener("click", () => this.controller?.abort());
     $("map-form").addEventListener("submit", (e) => {
       e.preventDefault();
       this.compute();
@@ -132,6 +135,7 @@ export class MapPanel {
 
   /** Forgets the map (the bicycle changed): the tab computes it again when it opens. */
   invalidate() {
+    this.controller?.abort();
     this.sequence = (this.sequence ?? 0) + 1;
     this.answer = null;
     this.pending = false;
@@ -168,11 +172,28 @@ export class MapPanel {
     const mine = (this.sequence = (this.sequence ?? 0) + 1);
     this.key = key;
     this.pending = true;
+    // A map asked for supersedes the one under way: that one stops.
+    this.controller?.abort();
+    const controller = (this.controller = new AbortController());
     $("map-meta").textContent = "computing…";
+    $("map-cancel").hidden = false;
     for (const id of ["map-x", "map-y", "map-speed", "map-band"]) $(id).classList.remove("invalid");
     const started = performance.now();
+    // How far it is: the designs done (the static site tells them), else the time taken.
+    const shown = (done, total) => {
+      if (mine !== this.sequence) return;
+      const seconds = num((performance.now() - started) / 1000, 1);
+      $("map-meta").textContent = total ? `computing… ${done.toLocaleString("en")} of ${total.toLocaleString("en")} designs, ${seconds} s` : `computing… ${seconds} s`;
+    };
+    const ticking = setInterval(() => this.progress || shown(), 500);
+    const onProgress = (done, total) => {
+      this.progress = [done, total];
+      shown(done, total);
+    };
+    this.progress = null;
     try {
-      const answer = await (request.y ? api.map(request) : api.study(request));
+      const options = { signal: controller.signal, onProgress };
+      const answer = await (request.y ? api.map(request, options) : api.study(request, options));
       if (mine !== this.sequence) return;
       this.pending = false;
       $("map-message").hidden = true;
@@ -186,6 +207,15 @@ export class MapPanel {
       this.pending = false;
       this.key = null;
       this.answer = null;
+      if (e.kind === "cancelled") {
+        // Stopped by the Cancel button: no map, and the header says so.
+        $("map-meta").textContent = `cancelled after ${num((performance.now() - started) / 1000, 1)} s; Compute asks again`;
+        $("map-message").hidden = true;
+        const canvas = $("map-canvas");
+        canvas.getContext("2d").clearRect(0, 0, canvas.width, canvas.height);
+        $("map-legend").replaceChildren();
+        return;
+      }
       $("map-meta").textContent = "";
       const field = { x: "map-x", y: "map-y", speed: "map-speed", band: "map-band", range: "map-band" }[e.field];
       if (field) $(field).classList.add("invalid");
@@ -194,6 +224,9 @@ export class MapPanel {
       const canvas = $("map-canvas");
       canvas.getContext("2d").clearRect(0, 0, canvas.width, canvas.height);
       $("map-legend").replaceChildren();
+    } finally {
+      clearInterval(ticking);
+      if (mine === this.sequence) $("map-cancel").hidden = true;
     }
   }
 
