@@ -1021,7 +1021,7 @@ await section("design map: a map under way says how far it is, and Cancel stops 
   const stopped = await waitForText("map-meta", (t) => /^cancelled after/.test(t), 10_000);
   await settled();
   check(await page.getByTestId("map-cancel").isHidden(), `cancelled: "${stopped}", the Cancel button gone`);
-  check((await page.getByTestId("map-legend").textContent()) === "" && (await page.getByTestId("map-message").isHidden()), "no map and no error stay after a cancel");
+  check((await page.getByTestId("map-legend").textContent()) === "" && (await page.getByTestId("map-axes").textContent()) === "" && (await page.getByTestId("map-message").isHidden()), "no map, axes or error stay after a cancel");
   // Asked again, the same map is computed whole (the static site's worker was ended and
   // starts again), the designs counted as they come where the back end tells them.
   await page.getByTestId("map-run").click();

@@ -214,6 +214,7 @@ export class MapPanel {
         const canvas = $("map-canvas");
         canvas.getContext("2d").clearRect(0, 0, canvas.width, canvas.height);
         $("map-legend").replaceChildren();
+        $("map-axes").textContent = "";
         return;
       }
       $("map-meta").textContent = "";
