@@ -1028,6 +1028,19 @@ await section("design map: a map under way says how far it is, and Cancel stops 
   await waitFor("Cancel shown while the map runs", async () => (await page.getByTestId("map-cancel").isVisible()) || /500 × 500/.test(await text("map-meta")), 10_000);
   const done = await waitForText("map-meta", (t) => /500 × 500 designs/.test(t), 90_000);
   check(/\(\d+ computed/.test(done) && (await page.getByTestId("map-cancel").isHidden()), `then computed whole: ${done}`);
+  // fetch("/api/...") aborted rejects as a fetch does, whichever back end answers it.
+  const aborted = await page.evaluate(async () => {
+    const bike = await (await fetch("/api/presets/benchmark")).json();
+    const stop = new AbortController();
+    const asked = fetch("/api/map", { method: "POST", body: JSON.stringify({ bike, x: "trail=0:0.2:400", y: "head_angle_deg=60:85:400" }), signal: stop.signal });
+    stop.abort();
+    try {
+      return `answered ${(await asked).status}`;
+    } catch (e) {
+      return e.name;
+    }
+  });
+  check(aborted === "AbortError", `an aborted fetch of /api/map rejects with an AbortError: ${aborted}`);
   const seen = await page.evaluate(() => globalThis.metaSeen);
   const counted = seen.filter((t) => /^computing… [\d,]+ of 250,000 designs, [\d.]+ s$/.test(t));
   if (site) check(counted.length >= 2 && counted.at(-1).startsWith("computing… 250,000 of"), `its progress shown, chunk by chunk: ${counted.join(" | ")}`);

@@ -120,7 +120,10 @@ if (inBrowser) {
     const method = (init.method ?? request?.method ?? "GET").toUpperCase();
     let body = init.body ?? (request && method !== "GET" ? await request.text() : undefined);
     if (body !== undefined && typeof body !== "string") body = await new Response(body).text();
-    const { status, text } = await answer(method, url.pathname, body, { signal: init.signal ?? request?.signal });
+    const signal = init.signal ?? request?.signal;
+    const { status, text } = await answer(method, url.pathname, body, { signal });
+    // Aborted, it rejects as a fetch does.
+    if (signal?.aborted) throw new DOMException("The operation was aborted.", "AbortError");
     return new Response(text, { status, headers: { "content-type": "application/json" } });
   };
 }
