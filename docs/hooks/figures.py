@@ -1,13 +1,15 @@
 """MkDocs hook: the guide's figures are made by the commands the guide shows, at every build.
 
-Each ```sh block line of a chapter that runs `whipple ... --plot F` or `--figure F`, where the
-guide shows `img/F`, is run in a scratch folder (with the field's parameter files the examples
+Each ```sh block line of a chapter that runs `whipple ... --plot F`, `--figure F` or `--out F`,
+where the guide shows `img/F` (or `--report DIR`, where it shows `img/DIR/NAME`: a file of the
+report), is run in a scratch folder (with the field's parameter files the examples
 read) by the whipple binary named in $WHIPPLE_GUIDE_BIN (docs/build-guide builds it), and its F
 becomes the page's img/F. A command that fails fails the build, so a figure can never be older
 than the program: none of these figures is kept in the repository.
 """
 
 import os
+import re
 import shlex
 import shutil
 import subprocess
@@ -33,7 +35,8 @@ INPUTS = (
     ("measured/periods", (".mat",)),
     ("yeadon", ("YeadonMeas.txt", "YeadonCFG.txt")),
 )
-FIGURE_OPTIONS = ("--plot", "--figure")
+FIGURE_OPTIONS = ("--plot", "--figure", "--out")
+REPORT_OPTION = "--report"
 # One command's bound: the slowest (a design map) takes seconds.
 TIMEOUT = 300
 
@@ -61,7 +64,8 @@ def _commands(text):
 
 
 def _figures():
-    """{figure name: (chapter, line, words)} for every figure a chapter both makes and shows."""
+    """{figure's path in the scratch folder: (chapter, line, words)} for every figure a chapter
+    both makes and shows."""
     wanted = {}
     for page in sorted(GUIDE.glob("*.md")):
         text = page.read_text(encoding="utf-8")
@@ -69,6 +73,10 @@ def _figures():
             for option, value in zip(words, words[1:]):
                 if option in FIGURE_OPTIONS and f"](img/{value})" in text:
                     wanted.setdefault(value, (page.name, line, words))
+                if option == REPORT_OPTION:
+                    folder = value.rstrip("/")
+                    for shown in re.findall(rf"\]\(img/({re.escape(folder)}/[^)\s]+)\)", text):
+                        wanted.setdefault(shown, (page.name, line, words))
     return wanted
 
 
@@ -85,12 +93,17 @@ def on_files(files, config):
         for path in sorted((DATA / sub).iterdir()):
             if path.name.endswith(endings):
                 shutil.copy(path, _scratch / path.name)
+    done = {}
     for name, (chapter, line, words) in sorted(_figures().items()):
-        try:
-            run = subprocess.run([binary, *words[1:]], cwd=_scratch, capture_output=True,
-                                 text=True, timeout=TIMEOUT)
-        except subprocess.TimeoutExpired:
-            raise PluginError(f"docs/guide/{chapter}:{line}: no answer in {TIMEOUT} s")
+        # A command that makes several figures (a report) runs once.
+        key = (chapter, line)
+        if key not in done:
+            try:
+                done[key] = subprocess.run([binary, *words[1:]], cwd=_scratch,
+                                           capture_output=True, text=True, timeout=TIMEOUT)
+            except subprocess.TimeoutExpired:
+                raise PluginError(f"docs/guide/{chapter}:{line}: no answer in {TIMEOUT} s")
+        run = done[key]
         made = _scratch / name
         if run.returncode != 0 or not made.is_file():
             raise PluginError(f"docs/guide/{chapter}:{line}: `{' '.join(words)}` failed "

@@ -1,10 +1,13 @@
-//! The user guide's shell examples run: every line of a ```sh block in docs/guide/*.md that
-//! starts with `whipple ` is run against the real binary, chapter by chapter in a scratch
-//! directory holding the field's parameter files the guide names (so later commands can read
-//! what earlier ones wrote). A command must succeed and write every `--out`, `--plot` and
-//! `--report` it names, unless its comment says `(fails)`: then it must fail with a message.
+//! The user guide's and the README's shell examples run: every line of a ```sh block in
+//! docs/guide/*.md and README.md that starts with `whipple `, and every `$ whipple ` line of a
+//! guide's ```output block (whose output docs/hooks/outputs.py inserts at build time), is run
+//! against the real binary, page by page in a scratch directory holding the field's parameter
+//! files the guide names (so later commands can read what earlier ones wrote). A command must
+//! succeed and write every `--out`, `--plot` and `--report` it names, unless its comment says
+//! `(fails)` or it ends an ```output fails block: then it must fail with a message.
 //! `whipple serve` (which runs until stopped) is the only command not run; the web page has its
-//! own tests (crates/whipple-web).
+//! own tests (crates/whipple-web). The README's ```text blocks that begin with `$ whipple ` show
+//! exactly what the command prints today (`WHIPPLE_UPDATE_README=1` writes them again).
 
 mod common;
 
@@ -68,20 +71,47 @@ fn split(line: &str) -> (Vec<String>, String) {
     (words, String::new())
 }
 
-/// Every `whipple ...` line of the ```sh blocks of one chapter (lines ending in `\` continued).
+/// Which kind of fenced block a line is in.
+#[derive(Clone, Copy, PartialEq)]
+enum Block {
+    Prose,
+    Shell,
+    Output { fails: bool },
+    Other,
+}
+
+/// Every `whipple ...` line of the ```sh blocks of one page and every `$ whipple ...` line of
+/// its ```output blocks (lines ending in `\` continued).
 fn examples(chapter: &str, text: &str) -> Vec<Example> {
-    let mut found = Vec::new();
-    let mut in_sh = false;
+    let mut found: Vec<Example> = Vec::new();
+    let mut block = Block::Prose;
     let mut pending: Option<(usize, String)> = None;
     for (n, line) in text.lines().enumerate() {
         let trimmed = line.trim();
         if trimmed.starts_with("```") {
-            in_sh = !in_sh && trimmed == "```sh";
+            if let Block::Output { fails: true } = block {
+                if let Some(last) = found.last_mut() {
+                    last.fails = true;
+                }
+            }
+            block = match (block, trimmed) {
+                (Block::Prose, "```sh") => Block::Shell,
+                (Block::Prose, "```output") => Block::Output { fails: false },
+                (Block::Prose, "```output fails") => Block::Output { fails: true },
+                (Block::Prose, _) => Block::Other,
+                _ => Block::Prose,
+            };
             continue;
         }
-        if !in_sh {
-            continue;
-        }
+        let trimmed = match block {
+            Block::Shell => trimmed,
+            Block::Output { .. } => match (trimmed.strip_prefix("$ "), &pending) {
+                (Some(command), None) => command,
+                (None, Some(_)) => trimmed,
+                _ => panic!("{chapter}:{}: an output block holds `$ whipple` lines only", n + 1),
+            },
+            Block::Prose | Block::Other => continue,
+        };
         let (start, joined) = match pending.take() {
             Some((start, before)) => (start, format!("{before} {trimmed}")),
             None => (n + 1, trimmed.to_string()),
@@ -91,6 +121,10 @@ fn examples(chapter: &str, text: &str) -> Vec<Example> {
             continue;
         }
         if !joined.starts_with("whipple ") {
+            assert!(
+                block == Block::Shell,
+                "{chapter}:{start}: an output block holds `$ whipple` lines only"
+            );
             continue;
         }
         let (words, comment) = split(&joined);
@@ -140,7 +174,18 @@ fn outputs(words: &[String]) -> Vec<&str> {
         .collect()
 }
 
+/// The pages whose examples run, as (path from the repository's root, text): the guide's
+/// chapters and the README.
 fn chapters() -> Vec<(String, String)> {
+    let mut pages = guide_chapters();
+    pages.push((
+        "README.md".into(),
+        fs::read_to_string(root().join("README.md")).expect("the README"),
+    ));
+    pages
+}
+
+fn guide_chapters() -> Vec<(String, String)> {
     let dir = root().join("docs/guide");
     let mut files: Vec<PathBuf> = fs::read_dir(&dir)
         .expect("docs/guide")
@@ -151,12 +196,11 @@ fn chapters() -> Vec<(String, String)> {
     files
         .into_iter()
         .map(|p| {
-            let name = p
-                .file_stem()
-                .expect("a chapter name")
-                .to_string_lossy()
-                .into();
-            (name, fs::read_to_string(&p).expect("a chapter"))
+            let name = p.file_name().expect("a chapter name").to_string_lossy();
+            (
+                format!("docs/guide/{name}"),
+                fs::read_to_string(&p).expect("a chapter"),
+            )
         })
         .collect()
 }
@@ -195,7 +239,8 @@ fn every_shell_example_of_the_guide_runs() {
         if found.is_empty() {
             continue;
         }
-        let dir = common::scratch(&format!("guide-{chapter}"));
+        let scratch_name = chapter.replace(['/', '.'], "-");
+        let dir = common::scratch(&format!("guide-{scratch_name}"));
         copy_inputs(&dir);
         for example in found {
             let Example {
@@ -214,10 +259,7 @@ fn every_shell_example_of_the_guide_runs() {
                 .output()
                 .expect("the whipple binary runs");
             let stderr = String::from_utf8_lossy(&done.stderr);
-            let place = format!(
-                "docs/guide/{chapter}.md:{line}: whipple {}",
-                words.join(" ")
-            );
+            let place = format!("{chapter}:{line}: whipple {}", words.join(" "));
             if *fails {
                 assert!(
                     !done.status.success(),
@@ -268,5 +310,102 @@ fn every_shell_example_of_the_guide_runs() {
             commands_seen.contains(command),
             "the guide has no example of `whipple {command}`"
         );
+    }
+}
+
+/// A README block that shows output: ```text whose first line is `$ whipple ...`; its start and
+/// end (byte offsets of the text between the fences) and the command's words.
+fn readme_outputs(text: &str) -> Vec<(usize, usize, Vec<String>)> {
+    let mut found = Vec::new();
+    let mut rest = 0;
+    while let Some(open) = text[rest..].find("```text\n$ whipple ") {
+        let start = rest + open + "```text\n".len();
+        let end = start
+            + text[start..]
+                .find("\n```")
+                .expect("a closed ```text block in the README")
+            + 1;
+        let first = text[start..end].lines().next().unwrap_or_default();
+        let (words, _) = split(&first["$ ".len()..]);
+        found.push((start, end, words[1..].to_vec()));
+        rest = end;
+    }
+    found
+}
+
+/// The README's output blocks show exactly what their commands print today (standard output,
+/// then standard error), run in an empty folder as a newcomer would; its figures under
+/// docs/readme are exactly what the README's command that names them draws.
+/// `WHIPPLE_UPDATE_README=1` writes both again.
+#[test]
+fn the_readme_shows_what_its_commands_print() {
+    let path = root().join("README.md");
+    let text = fs::read_to_string(&path).expect("the README");
+    let update = std::env::var_os("WHIPPLE_UPDATE_README").is_some();
+    let dir = common::scratch("guide-readme-outputs");
+    let mut fresh = text.clone();
+    let blocks = readme_outputs(&text);
+    assert!(!blocks.is_empty(), "the README shows no command's output");
+    for (start, end, words) in blocks.into_iter().rev() {
+        let done = Command::new(env!("CARGO_BIN_EXE_whipple"))
+            .args(&words)
+            .current_dir(&dir)
+            .output()
+            .expect("the whipple binary runs");
+        assert!(
+            done.status.success(),
+            "README: whipple {}: {}",
+            words.join(" "),
+            String::from_utf8_lossy(&done.stderr)
+        );
+        let shown = format!(
+            "$ whipple {}\n{}{}",
+            words.join(" "),
+            String::from_utf8_lossy(&done.stdout),
+            String::from_utf8_lossy(&done.stderr)
+        );
+        if update {
+            fresh.replace_range(start..end, &shown);
+        } else {
+            assert_eq!(
+                text[start..end],
+                shown,
+                "README.md shows an old output of `whipple {}`: \
+                 WHIPPLE_UPDATE_README=1 cargo test -p whipple-cli --test guide writes it again",
+                words.join(" ")
+            );
+        }
+    }
+    let mut figures = 0;
+    for shown in text.split("](docs/readme/").skip(1) {
+        let name = &shown[..shown.find(')').expect("a closed image link")];
+        let (_, _, words) = examples("README.md", &text)
+            .into_iter()
+            .map(|e| (e.chapter, e.line, e.words))
+            .find(|(_, _, w)| w.windows(2).any(|p| p[0] == "--plot" && p[1] == name))
+            .unwrap_or_else(|| panic!("no README command draws docs/readme/{name}"));
+        let done = Command::new(env!("CARGO_BIN_EXE_whipple"))
+            .args(&words)
+            .current_dir(&dir)
+            .output()
+            .expect("the whipple binary runs");
+        assert!(done.status.success(), "README: whipple {}", words.join(" "));
+        let drawn = fs::read(dir.join(name)).expect("the figure drawn");
+        let kept = root().join("docs/readme").join(name);
+        if update {
+            fs::write(&kept, &drawn).expect("write the README's figure");
+        } else {
+            assert!(
+                fs::read(&kept).ok().as_deref() == Some(&drawn[..]),
+                "docs/readme/{name} is not what `whipple {}` draws today: \
+                 WHIPPLE_UPDATE_README=1 cargo test -p whipple-cli --test guide writes it again",
+                words.join(" ")
+            );
+        }
+        figures += 1;
+    }
+    assert!(figures >= 1, "the README shows no figure drawn by whipple");
+    if update && fresh != text {
+        fs::write(&path, fresh).expect("write the README");
     }
 }

@@ -1,7 +1,8 @@
 """Published reference values the Python tests compare against, each with its source in words:
 the one copy of each number in the Python tests (the Rust tests read the same numbers from the
 `whipple-reference` crate, the browser tests from crates/whipple-web/e2e/reference.mjs). The
-tolerances stay with the tests.
+tolerances stay with the tests. The guide's validation chapter (docs/hooks/validation.py) shows
+the same numbers beside whipple's.
 
 Meijaard, Papadopoulos, Ruina & Schwab 2007, "Linearized dynamics equations for the balance and
 steer of a bicycle: a benchmark and review", Proc. R. Soc. A 463:1955–1982
@@ -40,3 +41,54 @@ WEAVE_SPEED = 4.29238253634111
 WEAVE_FREQUENCY = 3.43503384866144
 #: Meijaard 2007, Table 2: v_c, the capsize speed [m/s].
 CAPSIZE_SPEED = 6.02426201538837
+
+
+# Basu-Mandal, Chatterjee & Papadopoulos 2007, "Hands-free circular motions of a benchmark
+# bicycle", Proc. R. Soc. A 463:1983–2003 (doi:10.1098/rspa.2007.1849), Table 1: the non-linear
+# benchmark bicycle's accelerations at one general state (digits as transcribed in
+# moorepants/DynamicistToolKit, dtk/bicycle.py). Their coordinates: x, y, z of the rear wheel
+# centre (z up, x backward when θ = 0); θ yaw, ψ lean (π/2 upright), φ rear frame pitch (π
+# upright), ψ_f steer, β_r, β_f wheel rotations; all with the opposite sense of whipple's (yaw
+# right, lean right, nose up, steer right, wheel rotation about the axle pointing right).
+BASU_MANDAL_STATE = {
+    "x": 0.0, "y": 0.0, "z": 0.2440472102925,
+    "theta": 0.0, "psi": 0.9501292851472, "phi": 3.1257073014894, "psif": 0.2311385135743,
+    "betar": 0.0, "betaf": 0.0,
+    "xd": -2.8069345714545, "yd": -0.1480982396001, "zd": 0.1058778746261,
+    "thetad": 0.7830033527065, "psid": 0.6068425835418, "phid": -0.0119185528069,
+    "psifd": 0.4859824687093, "betard": 8.912989661489, "betafd": 8.0133620584155,
+}
+#: Basu-Mandal 2007, Table 1's output, in their names and senses.
+BASU_MANDAL_NAMES = ["ẍ", "ÿ", "z̈", "θ̈", "ψ̈", "φ̈", "ψ̈_f", "β̈_r", "β̈_f"]
+BASU_MANDAL_OUTPUT = [-0.5041626315047, -0.3449706619454, -1.460452833298, 0.8353281706379,
+                      -7.8555281128244, 0.1205543897884, -4.6198904039403, 1.8472554144217,
+                      2.454807290455]
+
+
+def basu_mandal_accelerations(bike):
+    """whipple's accelerations of `bike` (the benchmark) at Basu-Mandal's Table 1 state, in their
+    names' order and senses; with the largest holonomic and velocity residual of the state and
+    the rear wheel centre (whipple's axes), which their state puts at (-x, y, -z)."""
+    import math
+
+    s = BASU_MANDAL_STATE
+    r_r = bike.to_dict()["rR"]
+    # Their rear contact from the wheel centre: r_R cos ψ to the left across the heading.
+    contact = (-s["x"] - r_r * math.sin(s["theta"]) * math.cos(s["psi"]),
+               s["y"] - r_r * math.cos(s["theta"]) * math.cos(s["psi"]))
+    out = bike.accelerations(
+        yaw=-s["theta"], lean=math.pi / 2 - s["psi"], pitch=math.pi - s["phi"], steer=-s["psif"],
+        wheel_angles=(-s["betar"], -s["betaf"]), rear_contact=contact,
+        hub_velocity=(-s["xd"], s["yd"], -s["zd"]), yaw_rate=-s["thetad"],
+        lean_rate=-s["psid"], pitch_rate=-s["phid"], steer_rate=-s["psifd"],
+        wheel_rates=(-s["betard"], -s["betafd"]))
+    a = out["hub_acceleration"]
+    yaw, lean, pitch = out["angle_accelerations"]
+    rear, front = out["wheel_accelerations"]
+    ours = [-a[0], a[1], -a[2], -yaw, -lean, -pitch, -out["steer_acceleration"], -rear, -front]
+    return [float(x) for x in ours], out
+
+# Dressel, "Benchmarking a fully non-linear bicycle model with JBike6" (Cornell, 2003-2015): the
+# largest difference between the eigenvalues of the non-linear model differenced about upright
+# running and JBike6's linear ones, over 0-10 m/s, just under this, near the capsize speed.
+DRESSEL_FD_PEAK = 1.5e-5

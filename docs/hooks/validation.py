@@ -1,0 +1,223 @@
+"""MkDocs hook: the validation chapter's tables, computed at this build.
+
+Each line `<!-- validation: NAME -->` of docs/guide/validation.md becomes a table that puts the
+published numbers beside whipple's and their difference, with the command that reproduces
+whipple's. The published numbers come from their one Python home,
+crates/whipple-py/tests/reference.py (the Python tests compare against the same), and from
+BicycleParameters' own results kept with the test data (reference.json); whipple's come from
+running the commands shown, by the binary in $WHIPPLE_GUIDE_BIN (docs/build-guide builds it),
+and, for the one number the command line does not print (Basu-Mandal's accelerations), from
+the installed Python package. Nothing here computes dynamics: it reads, subtracts and formats.
+An unknown name, a table left out or a command that fails fails the build.
+"""
+
+import importlib.util
+import json
+import math
+import os
+import re
+import shlex
+import subprocess
+from pathlib import Path
+
+from mkdocs.exceptions import PluginError
+
+ROOT = Path(__file__).resolve().parents[2]
+DATA = ROOT / "crates" / "whipple" / "tests" / "data"
+CHAPTER = "guide/validation.md"
+MARKER = re.compile(r"^<!-- validation: ([a-z0-9-]+) -->[ \t]*$", re.M)
+TIMEOUT = 600
+
+
+def _reference():
+    path = ROOT / "crates" / "whipple-py" / "tests" / "reference.py"
+    spec = importlib.util.spec_from_file_location("whipple_published_reference", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _json(command, cwd=None):
+    """whipple's JSON answer to `command` (as shown in the chapter)."""
+    binary = os.environ.get("WHIPPLE_GUIDE_BIN")
+    if not binary or not Path(binary).is_file():
+        raise PluginError("the validation chapter runs whipple: set WHIPPLE_GUIDE_BIN to a built "
+                          "whipple binary (docs/build-guide does)")
+    words = shlex.split(command)
+    try:
+        run = subprocess.run([binary, *words[1:]], cwd=cwd, capture_output=True, text=True,
+                             timeout=TIMEOUT)
+    except subprocess.TimeoutExpired:
+        raise PluginError(f"{CHAPTER}: `{command}` gave no answer in {TIMEOUT} s")
+    if run.returncode != 0:
+        raise PluginError(f"{CHAPTER}: `{command}` failed ({run.returncode}): {run.stderr.strip()}")
+    return json.loads(run.stdout)
+
+
+def _num(x):
+    """A number as its shortest round-trip form (the published ones as printed)."""
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        raise PluginError(f"{CHAPTER}: a number to show is {x}")
+    return repr(float(x))
+
+
+def _sci(x):
+    """A small number in two digits: 4.4e-15, or 0."""
+    if x == 0:
+        return "0"
+    mantissa, exponent = f"{x:.1e}".split("e")
+    return f"{mantissa}e{int(exponent)}"
+
+
+def _diff(a, b):
+    return _sci(abs(a - b))
+
+
+def _table(head, rows, command, note="", how=None):
+    worst = max((abs(p - o) for *_, p, o in rows), default=0.0)
+    lines = [f"Reproduce: {how or f'`{command}`'}", ""]
+    lines.append("| " + " | ".join([*head, "published", "whipple", "difference"]) + " |")
+    lines.append("|" + "---|" * (len(head) + 3))
+    for *labels, published, ours in rows:
+        lines.append("| " + " | ".join([*labels, _num(published), _num(ours), _diff(published, ours)])
+                     + " |")
+    lines += ["", f"Largest difference: {_sci(worst)}{note}.", ""]
+    return "\n".join(lines)
+
+
+def _matrices(ref):
+    command = "whipple matrices --bike benchmark --format json"
+    ours = _json(command)
+    rows = []
+    for name in ("M", "C1", "K0", "K2"):
+        for i in range(2):
+            for j in range(2):
+                rows.append((f"{name}[{i + 1},{j + 1}]", getattr(ref, name)[i][j], ours[name][i][j]))
+    return _table(["entry"], rows, command, " (the published entries are rounded to 14 decimals)")
+
+
+def _table_2(ref):
+    command = "whipple eig --bike benchmark --speeds 0:10:1 --format json"
+    ours = {round(r["v"], 9): r["eigenvalues"] for r in _json(command)["rows"]}
+    rows = []
+    at_rest = sorted((e["re"] for e in ours[0.0]), reverse=True)
+    for k, (published, mine) in enumerate(zip(ref.AT_REST, at_rest)):
+        rows.append(("0", f"real eigenvalue {k + 1}", published, mine))
+    for v, weave_re, weave_im, capsize, castering in ref.TABLE_2:
+        found = ours[round(v, 9)]
+        weave = next(e for e in found if e["mode"] == "weave" and e["im"] > 0)
+        cap = next(e for e in found if e["mode"] == "capsize")
+        cas = next(e for e in found if e["mode"] == "castering")
+        label = f"{v:g}"
+        rows += [(label, "weave, real part", weave_re, weave["re"]),
+                 (label, "weave, imaginary part", weave_im, weave["im"]),
+                 (label, "capsize", capsize, cap["re"]),
+                 (label, "castering", castering, cas["re"])]
+    return _table(["v [m/s]", "eigenvalue [1/s]"], rows, command,
+                  " (Table 2 carries round-off of up to about 6e-13)")
+
+
+def _speeds(ref):
+    command = "whipple speeds --bike benchmark --format json"
+    ours = _json(command)
+    pair = next(c for c in ours["crossings"] if c["kind"] == "pair")
+    rows = [("double-root speed v_d [m/s]", ref.DOUBLE_ROOT_SPEED, ours["double_root_speed"]),
+            ("double eigenvalue at v_d [1/s]", ref.DOUBLE_ROOT_EIGENVALUE,
+             ours["double_root_eigenvalue"]),
+            ("weave speed v_w [m/s]", ref.WEAVE_SPEED, ours["weave_speed"]),
+            ("weave frequency at v_w [rad/s]", ref.WEAVE_FREQUENCY, pair["frequency"]),
+            ("capsize speed v_c [m/s]", ref.CAPSIZE_SPEED, ours["capsize_speed"])]
+    return _table(["quantity"], rows, command)
+
+
+def _basu_mandal(ref):
+    import whipple
+
+    ours, out = ref.basu_mandal_accelerations(whipple.Bicycle.preset("benchmark"))
+    rows = [(name, p, o) for name, p, o in zip(ref.BASU_MANDAL_NAMES, ref.BASU_MANDAL_OUTPUT, ours)]
+    how = ("in Python, `whipple.Bicycle.preset(\"benchmark\").accelerations(...)` at the "
+           "paper's state, converted to its conventions by `basu_mandal_accelerations` of "
+           "crates/whipple-py/tests/reference.py")
+    text = _table(["acceleration (their names and senses)"], rows, None,
+                  " (the published values carry 13 significant digits)", how=how)
+    residuals = (f"The state lies on the constraints: largest holonomic residual "
+                 f"{_sci(out['holonomic_residual'])} m, velocity residual "
+                 f"{_sci(out['velocity_residual'])} m/s.")
+    return text + "\n" + residuals + "\n"
+
+
+def _dressel(ref):
+    command = "whipple validate --bike schwinn-crown --speeds 0:10:0.01 --format json"
+    ours = _json(command)
+    peaks = {}
+    for method in ("fd", "ad"):
+        worst = max(ours["rows"], key=lambda r: r["methods"][method]["max_abs_diff"])
+        peaks[method] = (worst["methods"][method]["max_abs_diff"], worst["v"])
+    fd, ad = peaks["fd"], peaks["ad"]
+    v_c = ours["capsize_speed"]
+    return "\n".join([
+        f"Reproduce: `{command}`",
+        "",
+        "| largest eigenvalue difference, non-linear against linear, 0–10 m/s | the study | whipple |",
+        "|---|---|---|",
+        f"| finite differences over the full state (the study's method) | just under "
+        f"{_sci(ref.DRESSEL_FD_PEAK)}, near v_c | {_sci(fd[0])} at {fd[1]:.2f} m/s (v_c = {v_c:.3f} m/s) |",
+        f"| exact derivatives, reduced to lean and steer | — | {_sci(ad[0])} at {ad[1]:.2f} m/s |",
+        "",
+    ])
+
+
+def _bicycleparameters(ref):
+    reference = json.loads((DATA / "bicycleparameters" / "reference.json").read_text())
+    version = reference["bicycleparameters"]
+    lines = ["Reproduce, in `crates/whipple/tests/data` of a clone: "
+             "`whipple speeds --bike FILE --range 0:20 --format json`", "",
+             f"| file | BicycleParameters {version} | whipple | difference |", "|---|---|---|---|"]
+    worst, compared = 0.0, 0
+
+    def show(ranges):
+        return "; ".join(f"{a:.12g} .. {b:.12g}" for a, b in ranges)
+
+    for name, entry in sorted(reference["files"].items()):
+        if "bicycleparameters_error" in entry:
+            mine = _json(f"whipple speeds --bike {name} --range 0:20 --format json", cwd=DATA)
+            lines.append(f"| `{name}` | fails: {entry['bicycleparameters_error']} | "
+                         f"{show(mine['stable_speed_ranges'])} | — |")
+            continue
+        mine = _json(f"whipple speeds --bike {name} --range 0:20 --format json", cwd=DATA)
+        theirs, ours = entry["stable_speed_ranges"], mine["stable_speed_ranges"]
+        if len(theirs) != len(ours):
+            raise PluginError(f"{CHAPTER}: {name}: {len(ours)} stable ranges, BicycleParameters "
+                              f"{len(theirs)}")
+        difference = max((abs(a - b) for t, o in zip(theirs, ours) for a, b in zip(t, o)),
+                         default=0.0)
+        worst, compared = max(worst, difference), compared + 1
+        lines.append(f"| `{name}` | {show(theirs)} | {show(ours)} | {_sci(difference)} |")
+    lines += ["", f"{compared} files compared; largest difference {_sci(worst)} m/s (the ends "
+              "printed to 12 significant digits; BicycleParameters' ends are its root finder's, "
+              "to 1e-14; 20 m/s is the end of the range searched, not a critical speed).", ""]
+    return "\n".join(lines)
+
+
+TABLES = {
+    "meijaard2007-matrices": _matrices,
+    "meijaard2007-table-2": _table_2,
+    "meijaard2007-speeds": _speeds,
+    "basu-mandal2007-table-1": _basu_mandal,
+    "dressel-study": _dressel,
+    "bicycleparameters": _bicycleparameters,
+}
+
+
+def on_page_markdown(markdown, page, config, files):
+    if page.file.src_uri != CHAPTER:
+        if MARKER.search(markdown):
+            raise PluginError(f"docs/{page.file.src_uri}: validation tables belong in {CHAPTER}")
+        return markdown
+    ref = _reference()
+    found = MARKER.findall(markdown)
+    unknown = sorted(set(found) - set(TABLES))
+    missing = sorted(set(TABLES) - set(found))
+    if unknown or missing:
+        raise PluginError(f"docs/{CHAPTER}: unknown tables {unknown}, tables left out {missing}")
+    return MARKER.sub(lambda m: TABLES[m.group(1)](ref), markdown)
