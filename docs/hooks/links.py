@@ -5,7 +5,7 @@
   static server both show it; with `use_directory_urls: false` every link of the site is a
   file's name and works from the file system too.
 - After the build, every href and src of every HTML page of the site (the chapters, the
-  notebooks, rustdoc's pages) that points inside the site must name a file that exists, and
+  notebooks, rustdoc's pages; not the 404 page, whose links are absolute by design) that points inside the site must name a file that exists, and
   its #anchor, when it has one and points into a chapter or a design note, an id of that page.
   A broken link fails the build, naming the page and the link. Links to other sites are not
   fetched (the build runs offline).
@@ -24,6 +24,8 @@ HOME = "guide/index.html"
 # shards, source listings of other crates, settings.html, help.html); those are checked by
 # rustdoc itself (`-D warnings`), not here.
 RUSTDOC = "api/rust/"
+# MkDocs' 404 page is served in place of any missing path, so its links are absolute on purpose.
+NOT_FOUND_PAGE = "404.html"
 
 
 class _Links(HTMLParser):
@@ -83,6 +85,8 @@ def on_post_build(config):
     cache, broken, checked = {}, [], 0
     for page in sorted(site.rglob("*.html")):
         rel = page.relative_to(site).as_posix()
+        if rel == NOT_FOUND_PAGE:
+            continue
         in_rustdoc = rel.startswith(RUSTDOC)
         for link in _parse(page, cache).links:
             found = _target(site, page, link)

@@ -108,7 +108,10 @@ fn examples(chapter: &str, text: &str) -> Vec<Example> {
             Block::Output { .. } => match (trimmed.strip_prefix("$ "), &pending) {
                 (Some(command), None) => command,
                 (None, Some(_)) => trimmed,
-                _ => panic!("{chapter}:{}: an output block holds `$ whipple` lines only", n + 1),
+                _ => panic!(
+                    "{chapter}:{}: an output block holds `$ whipple` lines only",
+                    n + 1
+                ),
             },
             Block::Prose | Block::Other => continue,
         };

@@ -38,6 +38,21 @@ const SITE_SCRIPTS: &[(&str, &str)] = &[
     ),
 ];
 
+/// The user guide's screenshots (the names of docs/screenshots/*.png), taken of the page this
+/// build serves by `e2e/shots.mjs` with `SHOTS_GUIDE=1`, into `guide-screenshots` under the
+/// target folder; the guide's build (docs/hooks/screenshots.py) shows them in place of the
+/// copies kept in docs/screenshots, so the guide pictures the page of the same build.
+const GUIDE_SHOTS: (&str, &str) = ("guide_screenshots_in_headless_chromium", "shots.mjs");
+
+/// Where the guide's screenshots go: `guide-screenshots` in `CARGO_TARGET_DIR`, else in the
+/// workspace's `target`.
+fn guide_screenshots() -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../target"))
+        .join("guide-screenshots")
+}
+
 /// One browser run must end within this: `page.mjs` takes about 260 s on CI's two cores with
 /// another build beside it; a run that hangs is stopped here.
 const LIMIT: Duration = Duration::from_secs(480);
@@ -85,15 +100,22 @@ fn main() {
         .iter()
         .map(|&(name, script)| {
             let browser = browser.clone();
-            Trial::test(name, move || run_script(script, &browser, None))
-                .with_ignored_flag(!present && !required())
+            Trial::test(name, move || {
+                run_script(script, &browser, None, &Run::default())
+            })
+            .with_ignored_flag(!present && !required())
         })
         .collect();
+    trials.push({
+        let browser = browser.clone();
+        Trial::test(GUIDE_SHOTS.0, move || take_guide_screenshots(&browser))
+            .with_ignored_flag(!present && !required())
+    });
     trials.extend(SITE_SCRIPTS.iter().map(|&(name, script)| {
         let browser = browser.clone();
         let folder = site.clone();
         Trial::test(name, move || match &folder {
-            Some(folder) => run_script(script, &browser, Some(folder)),
+            Some(folder) => run_script(script, &browser, Some(folder), &Run::default()),
             None => Err(
                 "the static site is required here (WHIPPLE_E2E_REQUIRED=1): build it \
                  with crates/whipple-wasm/build-site DIR and set WHIPPLE_SITE=DIR"
@@ -105,10 +127,46 @@ fn main() {
     libtest_mimic::run(&args, trials).exit();
 }
 
+/// What a script is given besides the page's address: more arguments and environment.
+#[derive(Default)]
+struct Run {
+    args: Vec<String>,
+    env: Vec<(&'static str, String)>,
+}
+
+/// The guide's screenshots into a fresh folder, which replaces the last one only when every
+/// screenshot was taken (whole or not at all).
+fn take_guide_screenshots(browser: &str) -> Result<(), Failed> {
+    let done = guide_screenshots();
+    let partial = done.with_extension("partial");
+    let _ = std::fs::remove_dir_all(&partial);
+    std::fs::create_dir_all(&partial).map_err(|e| format!("{}: {e}", partial.display()))?;
+    let run = Run {
+        args: vec![partial.display().to_string(), "390,1280".into()],
+        env: vec![("SHOTS_GUIDE", "1".into())],
+    };
+    run_script(GUIDE_SHOTS.1, browser, None, &run)?;
+    let kept = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../docs/screenshots");
+    for entry in std::fs::read_dir(&kept).map_err(|e| format!("{}: {e}", kept.display()))? {
+        let name = entry.map_err(|e| e.to_string())?.file_name();
+        if !partial.join(&name).is_file() {
+            return Err(format!(
+                "shots.mjs took no {} (docs/screenshots has it): add its state to GUIDE there",
+                name.to_string_lossy()
+            )
+            .into());
+        }
+    }
+    let _ = std::fs::remove_dir_all(&done);
+    std::fs::rename(&partial, &done).map_err(|e| format!("{}: {e}", done.display()))?;
+    println!("e2e: the guide's screenshots are in {}", done.display());
+    Ok(())
+}
+
 /// Serves the page on an ephemeral loopback port and runs one script against it; with `site`,
 /// against that static site served by a plain static file server, the server beside it for
 /// comparison.
-fn run_script(script: &str, browser: &str, site: Option<&Path>) -> Result<(), Failed> {
+fn run_script(script: &str, browser: &str, site: Option<&Path>, run: &Run) -> Result<(), Failed> {
     if !Path::new(browser).exists() {
         return Err(format!(
             "the e2e tests are required here (WHIPPLE_E2E_REQUIRED=1) but there is no Chromium at \
@@ -141,12 +199,14 @@ fn run_script(script: &str, browser: &str, site: Option<&Path>) -> Result<(), Fa
             .join(script);
         let browser = browser.to_string();
         let site = site.map(Path::to_path_buf);
+        let (args, extra) = (run.args.clone(), run.env.clone());
         let outcome = tokio::task::spawn_blocking(move || match site {
-            None => run_node(&path, &url, &browser, &[]),
+            None => run_node(&path, &url, &args, &browser, &extra),
             Some(folder) => {
                 let files = StaticServer::start(&folder)?;
-                let env = [("E2E_BACKEND", "site".to_string()), ("E2E_SERVER", url)];
-                run_node(&path, &files.url, &browser, &env)
+                let mut env = vec![("E2E_BACKEND", "site".to_string()), ("E2E_SERVER", url)];
+                env.extend(extra);
+                run_node(&path, &files.url, &args, &browser, &env)
             }
         })
         .await
@@ -216,16 +276,18 @@ impl Drop for StaticServer {
     }
 }
 
-/// Runs `node SCRIPT URL` with `env`, killing it past [`LIMIT`].
+/// Runs `node SCRIPT URL ARGS...` with `env`, killing it past [`LIMIT`].
 fn run_node(
     script: &Path,
     url: &str,
+    args: &[String],
     chromium: &str,
     env: &[(&str, String)],
 ) -> Result<(), Failed> {
     let mut child = Command::new("node")
         .arg(script)
         .arg(url)
+        .args(args)
         .envs(env.iter().map(|(k, v)| (k, v)))
         .env("WHIPPLE_WEB_NODE_MODULES", env!("WHIPPLE_WEB_NODE_MODULES"))
         .env("CHROMIUM", chromium)
