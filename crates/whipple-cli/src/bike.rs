@@ -12,12 +12,14 @@ use whipple::{BenchmarkParameters, Bicycle, Error, presets};
 /// to every command that reads a bicycle. Never kept in a global: runs may share a process
 /// (the Python package runs the command in the interpreter's process, from any thread), each
 /// with its own options.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Default)]
 pub struct RunContext {
     /// `--bike-format`: the file format, overriding extension and content.
     pub format: Option<Format>,
     /// `--strict`: warnings are errors.
     pub strict: bool,
+    /// `--set NAME=VALUE`: the changes made to every `--bike` read, in the order given.
+    pub changes: Vec<(String, f64)>,
 }
 
 /// A loaded bicycle, checked, with a label for titles and messages and its warnings and notes
@@ -91,6 +93,14 @@ pub fn load(cx: &RunContext, arg: &str) -> Result<LoadedBike> {
             let label = bicycle.name.clone().unwrap_or_else(|| arg.to_string());
             (label, bicycle)
         }
+    };
+    let (label, bicycle) = if opts.changes.is_empty() {
+        (label, bicycle)
+    } else {
+        let changed = whipple_front::design::replace(&bicycle, &opts.changes)
+            .map_err(|e| anyhow!(whipple_front::message::message(&e)))
+            .with_context(|| format!("--set on {label}"))?;
+        (format!("{label}{}", whipple_front::design::EDITED), changed)
     };
     let checked = bicycle
         .check()

@@ -57,6 +57,11 @@ struct Cli {
     /// errors.
     #[arg(long, global = true)]
     strict: bool,
+    /// Change a parameter of the --bike before anything is computed: NAME=VALUE, repeatable
+    /// (`--set head_angle_deg=72 --set trail=0.05`); NAME as a design axis takes it (a key, an
+    /// alias such as trail, a JBike6 key or TOML path; `_deg` after an angle for degrees).
+    #[arg(long = "set", global = true, value_name = "NAME=VALUE")]
+    set: Vec<String>,
 }
 
 fn parse_format(name: &str) -> Result<whipple::advanced::io::Format, String> {
@@ -334,6 +339,19 @@ enum Command {
     Measure(measure::MeasureArgs),
 }
 
+/// Whether the command reads a `--bike` (what `--set` changes).
+fn reads_a_bike(command: &Command) -> bool {
+    !matches!(
+        command,
+        Command::Presets
+            | Command::Merge { .. }
+            | Command::Serve { .. }
+            | Command::RiderInertia(_)
+            | Command::Period(_)
+            | Command::Measure(_)
+    )
+}
+
 /// Runs the `whipple` command with `args` (the program name first, as in `std::env::args_os`)
 /// and returns its exit status: 0 on success, 1 when the command failed (its message is on
 /// standard error), 2 for a usage error (clap's message); `--help` and `--version` print and
@@ -357,9 +375,27 @@ where
         // directory is left, and the message says what was not written.
         interrupt::install();
     }
+    let changes = cli
+        .set
+        .iter()
+        .map(|text| whipple_front::design::parse_change(text))
+        .collect::<whipple::Result<Vec<_>>>()
+        .map_err(|e| anyhow::anyhow!(whipple_front::message::message(&e)));
+    let changes = match changes {
+        Ok(changes) => changes,
+        Err(error) => {
+            eprintln!("error: --set: {error:#}");
+            return 1;
+        }
+    };
+    if !changes.is_empty() && !reads_a_bike(&cli.command) {
+        eprintln!("error: --set changes the --bike, and this command reads no --bike");
+        return 1;
+    }
     let cx = &bike::RunContext {
         format: cli.format_in,
         strict: cli.strict,
+        changes,
     };
     let result = match cli.command {
         Command::Presets => commands::presets(),

@@ -4,10 +4,12 @@
 //! against the real binary, page by page in a scratch directory holding the field's parameter
 //! files the guide names (so later commands can read what earlier ones wrote). A command must
 //! succeed and write every `--out`, `--plot` and `--report` it names, unless its comment says
-//! `(fails)` or it ends an ```output fails block: then it must fail with a message.
-//! `whipple serve` (which runs until stopped) is the only command not run; the web page has its
-//! own tests (crates/whipple-web). The README's ```text blocks that begin with `$ whipple ` show
-//! exactly what the command prints today (`WHIPPLE_UPDATE_README=1` writes them again).
+//! `(fails)` or it ends an ```output fails block: then it must fail with a message. Not run
+//! here: `whipple serve` (which runs until stopped; the web page has its own tests in
+//! crates/whipple-web) and the output blocks run in a folder of the repository (`$ cd DIR`
+//! first), which the guide's build runs there. The README's ```text blocks that begin with
+//! `$ whipple ` show exactly what the command prints today (`WHIPPLE_UPDATE_README=1` writes
+//! them again).
 
 mod common;
 
@@ -101,6 +103,12 @@ fn examples(chapter: &str, text: &str) -> Vec<Example> {
                 (Block::Prose, _) => Block::Other,
                 _ => Block::Prose,
             };
+            continue;
+        }
+        // An output block run in a folder of the repository (`$ cd DIR` first) is run there by
+        // the guide's build (docs/hooks/outputs.py), not in this scratch directory.
+        if let (Block::Output { .. }, Some(_)) = (block, trimmed.strip_prefix("$ cd ")) {
+            block = Block::Other;
             continue;
         }
         let trimmed = match block {

@@ -148,6 +148,39 @@ pub fn replace(base: &Bicycle, changes: &[(String, f64)]) -> Result<Bicycle> {
     Ok(bicycle)
 }
 
+/// One change typed as `NAME=VALUE` (`head_angle_deg=72`, `trail=0.05`: the command line's
+/// `--set`), for [`replace`], which resolves the name: the name as written and the value, a
+/// finite number. An error names the text as typed.
+///
+/// ```
+/// use whipple_front::design::parse_change;
+/// assert_eq!(parse_change("head_angle_deg=72")?, ("head_angle_deg".to_string(), 72.0));
+/// assert!(parse_change("trail").is_err() && parse_change("trail=inf").is_err());
+/// # Ok::<(), whipple::Error>(())
+/// ```
+pub fn parse_change(text: &str) -> Result<(String, f64)> {
+    let bad = |rule: String| Error::InvalidArgument {
+        what: "change",
+        rule,
+    };
+    let Some((name, value)) = text.split_once('=') else {
+        return Err(bad(format!(
+            "expects NAME=VALUE (for example head_angle_deg=72), got `{text}`"
+        )));
+    };
+    let name = name.trim();
+    if name.is_empty() {
+        return Err(bad(format!("`{text}`: no NAME before `=`")));
+    }
+    match value.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok((name.to_string(), x)),
+        _ => Err(bad(format!(
+            "`{text}`: `{}` is not a finite number",
+            value.trim()
+        ))),
+    }
+}
+
 /// What an edited bicycle's name ends with (the page's compare names an edited design so).
 pub const EDITED: &str = " (edited)";
 

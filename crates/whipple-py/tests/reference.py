@@ -92,3 +92,9 @@ def basu_mandal_accelerations(bike):
 # largest difference between the eigenvalues of the non-linear model differenced about upright
 # running and JBike6's linear ones, over 0-10 m/s, just under this, near the capsize speed.
 DRESSEL_FD_PEAK = 1.5e-5
+
+# Moore, Hubbard & Hess, "An optimal handling bicycle", Proc. BMD 2016: the design speeds [m/s]
+# of the optimal bicycles whose parameters and gains HumanControl publishes
+# (Optimal<NN>Par.txt, Optimal<NN>SteerGains.txt), each reported to handle better (a lower peak
+# of Hess's handling quality metric) than the benchmark bicycle at its design speed.
+BMD2016_DESIGN_SPEEDS = [2, 4, 5, 6, 8]
