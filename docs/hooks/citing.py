@@ -4,7 +4,7 @@ The workspace's Cargo.toml is the one home of the version and of the repository'
 build fails, naming the file, when CITATION.bib (which the guide's "How to cite" page includes),
 CITATION.cff, the README's BibTeX, the guide's `repo_url` or the Python package's URLs disagree
 with it, so that filling the address in once and building the guide shows every place still
-to change.
+to change; docs/set-repository-url fills a new address in everywhere at once.
 """
 
 import re
@@ -51,5 +51,6 @@ def on_config(config):
         if not url.startswith(repository):
             problems.append(f"crates/whipple-py/pyproject.toml: {name} {url} is not under {repository}")
     if problems:
-        raise PluginError("how to cite whipple disagrees with Cargo.toml: " + "; ".join(problems))
+        raise PluginError("how to cite whipple disagrees with Cargo.toml: " + "; ".join(problems)
+                          + " (docs/set-repository-url rewrites the address everywhere)")
     return config
