@@ -228,6 +228,42 @@ def _bmd2016(ref):
     return "\n".join(lines)
 
 
+def _pydy(ref):
+    """The non-linear model against independent trajectories (sympy/PyDy, Kane's method,
+    scipy's DOP853 at 1e-13; bench/trajectory_references.py), at each run's last time."""
+    reference = json.loads((DATA / "references.json").read_text())
+    bikes = {"benchmark": "benchmark", "Schwinn Crown": "schwinn-crown"}
+    quantities = ["lean", "steer", "lean_rate", "steer_rate", "yaw", "x", "y", "front_x",
+                  "front_y", "speed"]
+    out, worst = [], 0.0
+    for run in reference["trajectories"]:
+        bike = next(v for k, v in bikes.items() if run["name"].startswith(k))
+        last = run["samples"][-1]
+        initial = run["initial"]
+        args = [f"--bike {bike}", f"--speed {initial['speed']!r}",
+                f"--duration {last['t']!r}", "--integrator adaptive --rtol 1e-12"]
+        for name in ("lean", "steer"):
+            if initial[name]:
+                args.append(f"--{name} {math.degrees(initial[name])!r}")
+        for name in ("lean_rate", "steer_rate"):
+            if initial[name]:
+                args.append(f"--{name.replace('_', '-')} {initial[name]!r}")
+        for name, expression in (run.get("torques") or {}).items():
+            args.append(f"--{name}-torque '{expression}'")
+        command = "whipple simulate " + " ".join(args) + " --format json"
+        mine = _json(command)
+        end = mine["samples"][-1]
+        if abs(end["t"] - last["t"]) > 1e-12:
+            raise PluginError(f"{CHAPTER}: `{command}` ended at t = {end['t']}, not {last['t']}")
+        rows = [(q, last[q], end[q]) for q in quantities]
+        worst = max([worst] + [abs(a - b) for _, a, b in rows])
+        out.append(f"**{run['name']}**, at t = {last['t']:g} s " + ("(before the fall)" if
+                   run.get("fall_angle") else "") + "\n")
+        out.append(_table(["quantity (rad, rad/s, m, m/s)"], rows, command).replace(
+            "| published |", "| PyDy |"))
+    return "\n".join(out)
+
+
 TABLES = {
     "meijaard2007-matrices": _matrices,
     "meijaard2007-table-2": _table_2,
@@ -236,6 +272,7 @@ TABLES = {
     "dressel-study": _dressel,
     "bicycleparameters": _bicycleparameters,
     "bmd2016-handling": _bmd2016,
+    "pydy-trajectories": _pydy,
 }
 
 
