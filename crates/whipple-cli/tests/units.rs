@@ -121,7 +121,11 @@ fn file_keys_in_a_unit_that_does_not_fit_or_twice_are_refused() {
             "mB_deg = 85.0",
             "`mB_deg`: `mB` is not an angle",
         ),
-        ("g = 9.81", "g = 9.81\nc = 0.08", "give the same parameter twice"),
+        (
+            "g = 9.81",
+            "g = 9.81\nc = 0.08",
+            "give the same parameter twice",
+        ),
         ("w_mm = 1020", "w_mm = nan", "w_mm"),
     ] {
         let file = designer_file("units-refused", &DESIGNER.replacen(from, to, 1));
