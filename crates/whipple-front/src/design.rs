@@ -29,10 +29,11 @@ pub struct AxisSpec {
     pub axis: Axis,
 }
 
-/// The answers' layout of an axis: `name`, `parameter`, `start`, `stop`, `count`, `degrees`.
+/// The answers' layout of an axis: `name`, `parameter`, `start`, `stop`, `count`, `degrees`,
+/// `unit` (of `start` and `stop` as typed: `deg`, `mm`, `km/h`, or the table's).
 impl Serialize for AxisSpec {
     fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
-        let mut s = serializer.serialize_struct("Axis", 6)?;
+        let mut s = serializer.serialize_struct("Axis", 7)?;
         s.serialize_field("name", &self.name)?;
         s.serialize_field("parameter", &self.axis.parameter)?;
         s.serialize_field("start", &self.axis.start)?;
@@ -42,6 +43,7 @@ impl Serialize for AxisSpec {
             "degrees",
             &(self.typed == UserUnit::Typed(TypedUnit::Degrees)),
         )?;
+        s.serialize_field("unit", self.unit())?;
         s.end()
     }
 }
@@ -654,7 +656,7 @@ mod tests {
         let json = serde_json_text(&axis);
         assert_eq!(
             json,
-            r#"{"name":"head_angle_deg","parameter":{"kind":"benchmark","name":"head_angle"},"start":60.0,"stop":80.0,"count":3,"degrees":true}"#
+            r#"{"name":"head_angle_deg","parameter":{"kind":"benchmark","name":"head_angle"},"start":60.0,"stop":80.0,"count":3,"degrees":true,"unit":"deg"}"#
         );
         Ok(())
     }
