@@ -41,7 +41,7 @@ pub struct LaneChangeArgs {
     /// kY), interpolated linearly at the speed.
     #[arg(long)]
     gains: PathBuf,
-    /// Forward speed in m/s (or km/h after it: 18km/h).
+    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
     #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
     speed: f64,
     /// Single or double lane change (HumanControl's: 2 m over at 35 m, slope 0.2, back within

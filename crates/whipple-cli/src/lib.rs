@@ -35,7 +35,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 /// The units rule, under every command's help.
 const UNITS_HELP: &str = "Units: a speed is in m/s, or in km/h with km/h after the value \
 (--speed 18km/h, --range 15:25km/h, --speeds 10:30:0.5km/h, --speeds 3,5,7km/h, \
---x speed=10:30:21km/h); results print in m/s. A parameter's name takes _mm after a length and \
+--x speed=10:30:21km/h); results print in m/s (a design axis prints its values as typed). A parameter's name takes _mm after a length and \
 _deg after an angle, in design axes (--x trail_mm=40:120:81) and in TOML and JSON files \
 (c_mm = 80, lam_deg = 18).";
 
@@ -173,7 +173,7 @@ enum Command {
     Eig {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Speeds START:STOP:STEP in m/s (or km/h after them), both ends included.
+        /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s), both ends included.
         #[arg(long, default_value = "0:10:0.1", allow_hyphen_values = true)]
         speeds: String,
         /// Output format.
@@ -200,7 +200,7 @@ enum Command {
     Modes {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Forward speed in m/s (or km/h after it: 18km/h).
+        /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
         #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
         speed: f64,
         /// Output format.
@@ -211,7 +211,7 @@ enum Command {
     Speeds {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Speed range LO:HI in m/s (or km/h after them); HI may be `inf` (default: every speed v >= 0).
+        /// Speed range LO:HI in m/s (or km/h after them; results print in m/s); HI may be `inf` (default: every speed v >= 0).
         #[arg(long, allow_hyphen_values = true)]
         range: Option<String>,
         /// Output format.
@@ -270,10 +270,10 @@ enum Command {
     Sensitivity {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Also the derivatives of the weave's and capsize's real parts at this speed [m/s, or km/h after it: 18km/h].
+        /// Also the derivatives of the weave's and capsize's real parts at this speed [m/s, or km/h after it: 18km/h; results print in m/s].
         #[arg(value_parser = crate::speed_arg, long)]
         speed: Option<f64>,
-        /// Speed range LO:HI searched for the critical speeds, in m/s (or km/h after them).
+        /// Speed range LO:HI searched for the critical speeds, in m/s (or km/h after them; results print in m/s).
         #[arg(long, default_value = "0:20", allow_hyphen_values = true)]
         range: String,
         /// Output format.
@@ -320,7 +320,7 @@ enum Command {
     Validate {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Speeds START:STOP:STEP in m/s (or km/h after them), both ends included.
+        /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s), both ends included.
         #[arg(long, default_value = "0:10:0.01", allow_hyphen_values = true)]
         speeds: String,
         /// Linearization: the study's finite differences, exact derivatives, or both.

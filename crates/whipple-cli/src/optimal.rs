@@ -27,7 +27,7 @@ use crate::time_response::short;
 pub struct OptimalArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     bike: String,
-    /// The design speed in m/s (or km/h after it: 18km/h).
+    /// The design speed in m/s (or km/h after it: 18km/h; results print in m/s).
     #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
     speed: f64,
     /// A varied parameter and its bounds, NAME=LOW:HIGH, named as `whipple design` names its

@@ -28,7 +28,7 @@ pub enum ResponseCommand {
     Bode {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Forward speeds in m/s (or km/h after them), separated by commas.
+        /// Forward speeds in m/s (or km/h after them; results print in m/s), separated by commas.
         #[arg(long, default_value = "3,5,7", allow_hyphen_values = true)]
         speeds: String,
         /// An input, repeatable: lean_torque, steer_torque, lateral_force:X,Z (the point of

@@ -21,7 +21,7 @@ use crate::output::{self, Target, number};
 pub struct TimeArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     bike: String,
-    /// Forward speed in m/s (or km/h after it: 18km/h).
+    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
     #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
     speed: f64,
     /// An output, repeatable (default: lean, steer, yaw and rear_contact_y); the names of
@@ -381,7 +381,7 @@ fn series(
 pub struct ManoeuvreArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     bike: String,
-    /// Forward speed in m/s (or km/h after it: 18km/h).
+    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
     #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
     speed: f64,
     /// Steer torque [N m] against time: step:T:A, pulse:T:D:A, linear:T1=U1,T2=U2,… or

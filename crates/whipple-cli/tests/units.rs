@@ -214,7 +214,10 @@ fn design_axes_take_millimetres() {
         "--format",
         "csv",
     ]));
-    assert!(out.contains("trail_mm") && out.contains(r#""unit":"mm""#), "{out}");
+    assert!(
+        out.contains("trail_mm") && out.contains(r#""unit":"mm""#),
+        "{out}"
+    );
     assert!(out.lines().any(|l| l.starts_with("1,1,80,")), "{out}");
 }
 
