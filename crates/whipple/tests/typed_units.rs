@@ -221,4 +221,46 @@ proptest! {
         }
         prop_assert_eq!(parse(&written, Format::Toml).unwrap(), a);
     }
+
+    /// The same for every length and angle of the JBike6 table, in its TOML tables.
+    #[test]
+    fn jbike6_suffixed_and_si_give_the_same_bicycle(
+        typed in prop::collection::vec(-1e4f64..1e4, 64),
+    ) {
+        let crown = whipple::presets::find("schwinn-crown").unwrap().bicycle();
+        let toml = write(&crown, Format::Toml).unwrap();
+        let (mut suffixed, mut plain) = (String::new(), String::new());
+        let mut table = String::new();
+        let mut k = 0;
+        for line in toml.lines() {
+            if let Some(t) = line.strip_prefix("[jbike6.").and_then(|t| t.strip_suffix(']')) {
+                table = format!("{t}.");
+            }
+            let field = line.split(" = ").next().unwrap_or("");
+            let path = format!("{table}{field}");
+            let p = parameters(Form::Jbike6).iter().find(|p| p.path == path);
+            match p.and_then(|p| TypedUnit::ALL.into_iter().find(|u| u.fits(p.unit))) {
+                Some(u) if line.contains(" = ") => {
+                    let x = typed[k % typed.len()];
+                    k += 1;
+                    suffixed.push_str(&format!("{field}{} = {x:?}\n", u.suffix()));
+                    plain.push_str(&format!("{field} = {:?}\n", u.to_si(x)));
+                }
+                _ => {
+                    suffixed.push_str(line);
+                    suffixed.push('\n');
+                    plain.push_str(line);
+                    plain.push('\n');
+                }
+            }
+        }
+        prop_assert!(k > 20, "{} lengths and angles in\n{}", k, toml);
+        let a = parse(&suffixed, Format::Toml).unwrap();
+        let b = parse(&plain, Format::Toml).unwrap();
+        let bits = |bike: &Bicycle| bike.description.values().iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        prop_assert_eq!(bits(&a), bits(&b));
+        prop_assert_eq!(a.units.len(), k);
+        let back = parse(&write(&a, Format::Toml).unwrap(), Format::Toml).unwrap();
+        prop_assert_eq!(bits(&back), bits(&a));
+    }
 }
