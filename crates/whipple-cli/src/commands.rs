@@ -111,15 +111,17 @@ pub fn convert(
     let bicycle = if keep_form {
         bike.bicycle.clone()
     } else {
-        let sigma = if bike.bicycle.jbike6().is_none() {
-            bike.bicycle.sigma.clone()
+        let (sigma, units) = if bike.bicycle.jbike6().is_none() {
+            (bike.bicycle.sigma.clone(), bike.bicycle.units.clone())
         } else {
-            // The sigmas of the JBike6 form do not carry over to the combined bodies.
+            // The sigmas and units typed of the JBike6 form do not carry over to the combined
+            // bodies.
             Default::default()
         };
         Bicycle {
             description: Description::Benchmark(bike.benchmark),
             sigma,
+            units,
             ..bike.bicycle.clone()
         }
     };

@@ -38,15 +38,15 @@ pub struct HessArgs {
     /// at 2, 1, 0.5 rad/s).
     #[arg(long)]
     rules: bool,
-    /// Forward speed in m/s.
-    #[arg(
+    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
+    #[arg(value_parser = crate::speed_arg,
         long,
         allow_hyphen_values = true,
         conflicts_with = "speeds",
         required_unless_present = "speeds"
     )]
     speed: Option<f64>,
-    /// Speeds START:STOP:STEP in m/s, both ends included; prints the eigenvalues against
+    /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s), both ends included; prints the eigenvalues against
     /// speed.
     #[arg(long, allow_hyphen_values = true)]
     speeds: Option<String>,

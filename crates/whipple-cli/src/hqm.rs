@@ -37,10 +37,10 @@ pub struct HqmArgs {
     /// said so.
     #[arg(long)]
     gains: PathBuf,
-    /// Forward speed in m/s.
-    #[arg(long, allow_hyphen_values = true, conflicts_with = "speeds")]
+    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
+    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true, conflicts_with = "speeds")]
     speed: Option<f64>,
-    /// Speeds START:STOP:STEP in m/s, both ends included: the peak against speed.
+    /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s), both ends included: the peak against speed.
     #[arg(long, allow_hyphen_values = true)]
     speeds: Option<String>,
     /// One parameter of the bicycle varied at --speed, the gains held at that speed's:

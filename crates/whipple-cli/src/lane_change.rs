@@ -41,8 +41,8 @@ pub struct LaneChangeArgs {
     /// kY), interpolated linearly at the speed.
     #[arg(long)]
     gains: PathBuf,
-    /// Forward speed in m/s.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
+    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
     speed: f64,
     /// Single or double lane change (HumanControl's: 2 m over at 35 m, slope 0.2, back within
     /// 60 m; 250 m in 500 intervals; preview 2.75 s; path filter 2.4 rad/s).

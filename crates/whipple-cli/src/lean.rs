@@ -48,10 +48,10 @@ pub struct RiderArgs {
     /// The hinge's passive damping in N m s/rad (Moore's c9), replacing the file's.
     #[arg(long, allow_hyphen_values = true)]
     hinge_damping: Option<f64>,
-    /// Forward speed in m/s: the modes at this speed (and the speed of --simulate).
-    #[arg(long, allow_hyphen_values = true, conflicts_with = "speeds")]
+    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s): the modes at this speed (and the speed of --simulate).
+    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true, conflicts_with = "speeds")]
     speed: Option<f64>,
-    /// Speeds START:STOP:STEP in m/s: the modes against speed.
+    /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s): the modes against speed.
     #[arg(long, allow_hyphen_values = true)]
     speeds: Option<String>,
     /// Simulate the non-linear bicycle for this many seconds from upright running at --speed.

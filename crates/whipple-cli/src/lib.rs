@@ -32,10 +32,17 @@ use std::ffi::OsString;
 
 use clap::{Parser, Subcommand, ValueEnum};
 
+/// The units rule, under every command's help.
+const UNITS_HELP: &str = "Units: a speed is in m/s, or in km/h with km/h after the value \
+(--speed 18km/h, --range 15:25km/h, --speeds 10:30:0.5km/h, --speeds 3,5,7km/h, \
+--x speed=10:30:21km/h); results print in m/s (a design axis prints its values as typed). A parameter's name takes _mm after a length and \
+_deg after an angle, in design axes (--x trail_mm=40:120:81) and in TOML and JSON files \
+(c_mm = 80, lam_deg = 18).";
+
 /// Dynamics of the Whipple bicycle: benchmark parameters, linearized stability, eigenvalues,
 /// critical speeds and drawings (the successor of JBike6).
 #[derive(Parser)]
-#[command(name = "whipple", version, about, long_about = None)]
+#[command(name = "whipple", version, about, long_about = None, after_help = UNITS_HELP)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -62,6 +69,14 @@ struct Cli {
     /// alias such as trail, a JBike6 key or TOML path; `_deg` after an angle for degrees).
     #[arg(long = "set", global = true, value_name = "NAME=VALUE")]
     set: Vec<String>,
+}
+
+/// A speed option as typed (`4.6`, `18km/h`), in m/s: whipple-front's one reading of speeds.
+fn speed_arg(text: &str) -> Result<f64, String> {
+    whipple_front::units::speed(text).map_err(|e| match e {
+        whipple::Error::InvalidArgument { rule, .. } => rule,
+        other => other.to_string(),
+    })
 }
 
 fn parse_format(name: &str) -> Result<whipple::advanced::io::Format, String> {
@@ -163,7 +178,7 @@ enum Command {
     Eig {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Speeds START:STOP:STEP in m/s, both ends included.
+        /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s), both ends included.
         #[arg(long, default_value = "0:10:0.1", allow_hyphen_values = true)]
         speeds: String,
         /// Output format.
@@ -190,8 +205,8 @@ enum Command {
     Modes {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Forward speed in m/s.
-        #[arg(long, allow_hyphen_values = true)]
+        /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
+        #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
         speed: f64,
         /// Output format.
         #[arg(long, value_enum, default_value = "table")]
@@ -201,7 +216,7 @@ enum Command {
     Speeds {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Speed range LO:HI in m/s; HI may be `inf` (default: every speed v >= 0).
+        /// Speed range LO:HI in m/s (or km/h after them; results print in m/s); HI may be `inf` (default: every speed v >= 0).
         #[arg(long, allow_hyphen_values = true)]
         range: Option<String>,
         /// Output format.
@@ -212,7 +227,7 @@ enum Command {
     Map {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// The x axis: NAME=START:STOP:COUNT (for example trail=0:0.2:401; `_deg` for degrees).
+        /// The x axis: NAME=START:STOP:COUNT (for example trail=0:0.2:401; `_deg` for degrees, `_mm` for millimetres).
         #[arg(long, allow_hyphen_values = true)]
         x: String,
         /// The y axis: NAME=START:STOP:COUNT (for example head_angle_deg=60:80:401, or speed=0:10:101).
@@ -260,10 +275,10 @@ enum Command {
     Sensitivity {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Also the derivatives of the weave's and capsize's real parts at this speed [m/s].
-        #[arg(long)]
+        /// Also the derivatives of the weave's and capsize's real parts at this speed [m/s, or km/h after it: 18km/h; results print in m/s].
+        #[arg(value_parser = crate::speed_arg, long)]
         speed: Option<f64>,
-        /// Speed range LO:HI searched for the critical speeds, in m/s.
+        /// Speed range LO:HI searched for the critical speeds, in m/s (or km/h after them; results print in m/s).
         #[arg(long, default_value = "0:20", allow_hyphen_values = true)]
         range: String,
         /// Output format.
@@ -310,7 +325,7 @@ enum Command {
     Validate {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Speeds START:STOP:STEP in m/s, both ends included.
+        /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s), both ends included.
         #[arg(long, default_value = "0:10:0.01", allow_hyphen_values = true)]
         speeds: String,
         /// Linearization: the study's finite differences, exact derivatives, or both.

@@ -27,8 +27,8 @@ use crate::time_response::short;
 pub struct OptimalArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     bike: String,
-    /// The design speed in m/s.
-    #[arg(long, allow_hyphen_values = true)]
+    /// The design speed in m/s (or km/h after it: 18km/h; results print in m/s).
+    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
     speed: f64,
     /// A varied parameter and its bounds, NAME=LOW:HIGH, named as `whipple design` names its
     /// axes (`trail=0:0.2`, `head_angle_deg=60:85`, `w=0.8:1.4`, `rF=0.2:0.5`); repeat for

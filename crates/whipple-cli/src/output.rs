@@ -789,16 +789,19 @@ pub fn number(x: f64) -> Result<String> {
         .ok_or_else(|| anyhow!("a computed result is not a finite number ({x})"))
 }
 
-/// Parses `START:STOP:STEP` into three finite numbers.
+/// Parses speeds `START:STOP:STEP` into three finite numbers of m/s: `km/h` after them
+/// (`10:30:0.5km/h`) gives them in km/h (whipple-front's [`split_speed`](whipple_front::units::split_speed)).
 pub fn parse_triple(text: &str, option: &str) -> Result<(f64, f64, f64)> {
-    let parts: Vec<&str> = text.split(':').collect();
+    let (numbers, unit) = whipple_front::units::split_speed(text)
+        .map_err(|e| anyhow!("{option}: {}", crate::speeds::rule_of(e)))?;
+    let parts: Vec<&str> = numbers.split(':').collect();
     if parts.len() != 3 {
-        bail!("{option} expects START:STOP:STEP, got `{text}`");
+        bail!("{option} expects START:STOP:STEP (km/h after them for km/h), got `{text}`");
     }
     Ok((
-        parse_finite(parts[0], option)?,
-        parse_finite(parts[1], option)?,
-        parse_finite(parts[2], option)?,
+        unit.to_si(parse_finite(parts[0], option)?),
+        unit.to_si(parse_finite(parts[1], option)?),
+        unit.to_si(parse_finite(parts[2], option)?),
     ))
 }
 

@@ -28,7 +28,7 @@ pub enum ResponseCommand {
     Bode {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Forward speeds in m/s, separated by commas.
+        /// Forward speeds in m/s (or km/h after them; results print in m/s), separated by commas.
         #[arg(long, default_value = "3,5,7", allow_hyphen_values = true)]
         speeds: String,
         /// An input, repeatable: lean_torque, steer_torque, lateral_force:X,Z (the point of
@@ -199,16 +199,24 @@ struct Bode<'a> {
     gains: Option<&'a str>,
 }
 
-/// Speeds as typed, `3,5,7`, each finite.
+/// Speeds as typed, `3,5,7` (m/s) or `10,18,25km/h`, each finite.
 fn parse_speeds(text: &str) -> Result<Vec<f64>> {
-    let speeds = text
+    let (numbers, unit) = whipple_front::units::split_speed(text)
+        .map_err(|e| anyhow!("--speeds: {}", crate::speeds::rule_of(e)))?;
+    let speeds = numbers
         .split(',')
         .map(|s| {
             let s = s.trim();
             s.parse::<f64>()
                 .ok()
                 .filter(|v| v.is_finite())
-                .ok_or_else(|| anyhow!("--speeds: `{s}` is not a finite number of m/s"))
+                .map(|v| unit.to_si(v))
+                .ok_or_else(|| {
+                    anyhow!(
+                        "--speeds: `{s}` is not a finite number of {}",
+                        unit.symbol()
+                    )
+                })
         })
         .collect::<Result<Vec<f64>>>()?;
     if speeds.len() > MAX_SPEEDS {

@@ -34,8 +34,8 @@ pub enum IntegratorChoice {
 pub struct SimulateArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     pub bike: String,
-    /// Forward speed v in m/s.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Forward speed v in m/s (or km/h after it: 18km/h; results print in m/s).
+    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
     pub speed: f64,
     /// Initial lean in degrees (right positive), below 90 in size.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]

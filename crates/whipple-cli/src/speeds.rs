@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result, anyhow, bail};
 use serde_json::json;
 use whipple::CriticalSpeeds;
 use whipple::advanced::sensitivity;
@@ -14,10 +14,25 @@ use crate::bike::{RunContext, load};
 use crate::commands::{emit, optional, round_sigma, round_to_sigma, with_sigma};
 use crate::output::number;
 
-/// Parses `LO:HI` where either end may be `inf` (or left empty: `4:` is every speed from 4 m/s
-/// up, `:10` every speed up to 10 m/s).
+/// The rule of a whipple-front error about an argument, without its `speed: ` prefix.
+pub fn rule_of(e: whipple::Error) -> String {
+    match e {
+        whipple::Error::InvalidArgument { rule, .. } => rule,
+        other => other.to_string(),
+    }
+}
+
+/// Parses speeds `LO:HI` where either end may be `inf` (or left empty: `4:` is every speed from
+/// 4 m/s up, `:10` every speed up to 10 m/s); `km/h` after them (`15:25km/h`) gives them in km/h.
 pub fn parse_range(text: &str, option: &str) -> Result<(f64, f64)> {
-    let parts: Vec<&str> = text.split(':').collect();
+    let (numbers, unit) =
+        whipple_front::units::split_speed(text).map_err(|e| anyhow!("{option}: {}", rule_of(e)))?;
+    let (lo, hi) = parse_range_numbers(numbers, text, option)?;
+    Ok((unit.to_si(lo), unit.to_si(hi)))
+}
+
+fn parse_range_numbers(numbers: &str, text: &str, option: &str) -> Result<(f64, f64)> {
+    let parts: Vec<&str> = numbers.split(':').collect();
     if parts.len() != 2 {
         bail!("{option} expects LO:HI (HI may be `inf`), got `{text}`");
     }

@@ -21,8 +21,8 @@ use crate::output::{self, Target, number};
 pub struct TimeArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     bike: String,
-    /// Forward speed in m/s.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
+    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
     speed: f64,
     /// An output, repeatable (default: lean, steer, yaw and rear_contact_y); the names of
     /// `whipple response bode --help`.
@@ -381,8 +381,8 @@ fn series(
 pub struct ManoeuvreArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     bike: String,
-    /// Forward speed in m/s.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
+    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
     speed: f64,
     /// Steer torque [N m] against time: step:T:A, pulse:T:D:A, linear:T1=U1,T2=U2,… or
     /// constant:T1=U1,… (for example pulse:0:0.5:1, 1 N m for half a second).

@@ -23,8 +23,8 @@ use crate::speeds::parse_range;
 pub struct TurnArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     pub bike: String,
-    /// Speed of the rear contact in m/s.
-    #[arg(long, allow_hyphen_values = true)]
+    /// Speed of the rear contact in m/s (or km/h after it: 18km/h; results print in m/s).
+    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
     pub speed: f64,
     /// Lean in degrees (right positive): the held turn at this lean.
     #[arg(long, allow_hyphen_values = true, group = "given")]
@@ -48,7 +48,7 @@ pub struct TurnArgs {
 pub struct TurnsArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     pub bike: String,
-    /// Speeds traced, LO:HI in m/s (default 0:20).
+    /// Speeds traced, LO:HI in m/s (or km/h after them; results print in m/s) (default 0:20).
     #[arg(long, allow_hyphen_values = true)]
     pub range: Option<String>,
     /// Output format of the summary.

@@ -14,31 +14,36 @@ use whipple::advanced::design::{Axis, MAX_AXIS_POINTS, Parameter, StudySettings,
 use whipple::advanced::table::{Form, parameters};
 use whipple::{Bicycle, Error, Result};
 
-use crate::units::{self, RADIANS_PER_DEGREE};
+use crate::units::{self, TypedUnit, UserUnit};
 
-/// An axis as the user typed it: the name as written (`head_angle_deg`), whether its values are
-/// degrees, and the library's axis (whose `start`, `stop` and values are in the user's units,
+/// An axis as the user typed it: the name as written (`head_angle_deg`), the unit of its values
+/// (degrees after `_deg`, millimetres after `_mm`, km/h after a speed's values), and the library's axis (whose `start`, `stop` and values are in the user's units,
 /// `scale` taking them to SI).
 #[derive(Debug, Clone, PartialEq)]
 pub struct AxisSpec {
     /// The name as the user wrote it (`trail`, `head_angle_deg`, `mrider`, `speed`).
     pub name: String,
-    /// Whether the user's values are degrees (the name ends in `_deg`).
-    pub degrees: bool,
+    /// The unit of the user's values.
+    pub typed: UserUnit,
     /// The parameter and its grid.
     pub axis: Axis,
 }
 
-/// The answers' layout of an axis: `name`, `parameter`, `start`, `stop`, `count`, `degrees`.
+/// The answers' layout of an axis: `name`, `parameter`, `start`, `stop`, `count`, `degrees`,
+/// `unit` (of `start` and `stop` as typed: `deg`, `mm`, `km/h`, or the table's).
 impl Serialize for AxisSpec {
     fn serialize<S: Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
-        let mut s = serializer.serialize_struct("Axis", 6)?;
+        let mut s = serializer.serialize_struct("Axis", 7)?;
         s.serialize_field("name", &self.name)?;
         s.serialize_field("parameter", &self.axis.parameter)?;
         s.serialize_field("start", &self.axis.start)?;
         s.serialize_field("stop", &self.axis.stop)?;
         s.serialize_field("count", &self.axis.count)?;
-        s.serialize_field("degrees", &self.degrees)?;
+        s.serialize_field(
+            "degrees",
+            &(self.typed == UserUnit::Typed(TypedUnit::Degrees)),
+        )?;
+        s.serialize_field("unit", self.unit())?;
         s.end()
     }
 }
@@ -51,48 +56,80 @@ fn known_names(base: &Bicycle, speed: bool) -> String {
     let speed = if speed { "; speed" } else { "" };
     match form {
         Form::Benchmark => format!(
-            "the benchmark keys {}; {}{speed}; _deg after an angle",
+            "the benchmark keys {}; {}{speed}; _deg after an angle, _mm after a length",
             keys.join(", "),
             aliases(form).join(", ")
         ),
         Form::Jbike6 => format!(
             "{}, {} (or their TOML paths: rider.m, rider.xcm, rider.I[1], ...){speed}; _deg \
-             after an angle",
+             after an angle, _mm after a length",
             keys.join(", "),
             aliases(form).join(", ")
         ),
     }
 }
 
-/// A parameter's name as people type it (`trail`, `head_angle_deg`, `c`, `rider.m`,
-/// `speed`): the library's [`Parameter`] of `base`'s form ([`Parameter::named`]) and whether
-/// its values are degrees (`_deg`, only after an angle). The error is the rule broken, naming
-/// the name as typed; `speed` says whether the speed is a name here.
+/// A parameter's name as people type it (`trail`, `head_angle_deg`, `trail_mm`, `c`,
+/// `rider.m`, `speed`): the library's [`Parameter`] of `base`'s form ([`Parameter::named`]) and
+/// the unit its suffix names (`_deg` only after an angle, `_mm` only after a length: the
+/// table's units). The error is the rule broken, naming the name as typed; `speed` says whether
+/// the speed is a name here.
 fn resolve(
     name: &str,
     base: &Bicycle,
     speed: bool,
-) -> std::result::Result<(Parameter, bool), String> {
-    let (stem, degrees) = units::strip_degrees(name);
-    let parameter = match Parameter::named(stem, base) {
+) -> std::result::Result<(Parameter, Option<TypedUnit>), String> {
+    let named = |n: &str| match Parameter::named(n, base) {
         Some(Parameter::Speed) if !speed => None,
         other => other,
     };
-    let Some(parameter) = parameter else {
+    if let Some(parameter) = named(name) {
+        return Ok((parameter, None));
+    }
+    let (stem, typed) = units::strip_unit(name);
+    let (Some(parameter), Some(unit)) = (named(stem), typed) else {
         return Err(format!(
             "`{name}` is not a parameter of this bicycle (known: {})",
             known_names(base, speed)
         ));
     };
-    if degrees {
-        if parameter == Parameter::Speed {
-            return Err("speed has no `_deg` form".into());
-        }
-        if !parameter.is_angle() {
-            return Err(format!("`{name}`: `{stem}` is not an angle"));
-        }
+    if parameter == Parameter::Speed {
+        return Err(format!(
+            "speed has no `{}` form (give km/h after its values: speed=10:30:21km/h)",
+            unit.suffix()
+        ));
     }
-    Ok((parameter, degrees))
+    if !unit.fits(parameter.unit()) {
+        return Err(format!("`{name}`: {}", unit.misfit(stem)));
+    }
+    Ok((parameter, Some(unit)))
+}
+
+/// The unit of the values typed after `name=` (`10:30:21km/h` for the speed) and the values'
+/// text without it; km/h after anything but the speed is refused.
+fn values_unit<'a>(
+    name: &str,
+    values: &'a str,
+    parameter: Parameter,
+    typed: Option<TypedUnit>,
+) -> std::result::Result<(&'a str, UserUnit), String> {
+    if parameter != Parameter::Speed {
+        let tail = values.trim_end();
+        let kmh = tail.len() >= units::KMH_SUFFIX.len()
+            && tail.is_char_boundary(tail.len() - units::KMH_SUFFIX.len())
+            && tail[tail.len() - units::KMH_SUFFIX.len()..].eq_ignore_ascii_case(units::KMH_SUFFIX);
+        if kmh {
+            return Err(format!(
+                "`{name}` is not a speed: only the speed takes a unit after its values (`km/h`)"
+            ));
+        }
+        return Ok((values, typed.map_or(UserUnit::Si, UserUnit::Typed)));
+    }
+    let (numbers, speed_unit) = units::split_speed(values).map_err(|e| match e {
+        Error::InvalidArgument { rule, .. } => rule,
+        other => other.to_string(),
+    })?;
+    Ok((numbers, UserUnit::Speed(speed_unit)))
 }
 
 /// The bicycle with parameters changed by the names a design axis takes (a table key such as
@@ -122,12 +159,11 @@ pub fn replace(base: &Bicycle, changes: &[(String, f64)]) -> Result<Bicycle> {
             value: *value,
             rule,
         };
-        let (parameter, degrees) = resolve(name.trim(), base, false).map_err(refuse)?;
-        let si = if degrees {
-            value * RADIANS_PER_DEGREE
-        } else {
-            *value
-        };
+        let (parameter, typed) = resolve(name.trim(), base, false).map_err(refuse)?;
+        if !value.is_finite() {
+            return Err(refuse("must be a finite number".into()));
+        }
+        let si = typed.map_or(*value, |u| u.to_si(*value));
         if !parameter.set(&mut bicycle.description, si) {
             return Err(refuse(format!(
                 "not a parameter of this bicycle (known: {})",
@@ -196,7 +232,7 @@ impl AxisSpec {
     /// use whipple::presets;
     /// let crown = presets::find("schwinn-crown")?.bicycle();
     /// let axis = AxisSpec::parse("head_angle_deg=60:80:401", &crown)?;
-    /// assert!(axis.degrees && axis.axis.count == 401 && (axis.value(200) - 70.0).abs() < 1e-12);
+    /// assert!(axis.unit() == "deg" && axis.axis.count == 401 && (axis.value(200) - 70.0).abs() < 1e-12);
     /// assert_eq!(axis.unit(), "deg");
     /// # Ok::<(), whipple::Error>(())
     /// ```
@@ -208,6 +244,8 @@ impl AxisSpec {
             )));
         };
         let name = name.trim();
+        let (parameter, typed) = resolve(name, base, true).map_err(bad)?;
+        let (grid, unit) = values_unit(name, grid, parameter, typed).map_err(bad)?;
         let parts: Vec<&str> = grid.split(':').collect();
         let [start, stop, count] = parts[..] else {
             return Err(bad(format!(
@@ -236,11 +274,10 @@ impl AxisSpec {
                 "`{spec}`: COUNT must lie in 1..={MAX_AXIS_POINTS}, got {count}"
             )));
         }
-        let (parameter, degrees) = resolve(name, base, true).map_err(bad)?;
-        let scale = if degrees { RADIANS_PER_DEGREE } else { 1.0 };
+        let scale = unit.to_si(1.0);
         Ok(AxisSpec {
             name: name.to_string(),
-            degrees,
+            typed: unit,
             axis: Axis::scaled(parameter, start, stop, count, scale)?,
         })
     }
@@ -251,20 +288,16 @@ impl AxisSpec {
         self.axis.value(i)
     }
 
-    /// The unit of the user's values, for labels: `deg` for an angle typed in degrees,
-    /// otherwise the parameter table's unit as printed (`m`, `kg`, `kg m²`, `rad`, `m/s²`,
+    /// The unit of the user's values, for labels: `deg` for an angle typed in degrees, `mm` for
+    /// a length in millimetres, `km/h` for speeds typed so, otherwise the parameter table's unit as printed (`m`, `kg`, `kg m²`, `rad`, `m/s²`,
     /// `m/s` for the speed).
     pub fn unit(&self) -> &'static str {
-        if self.degrees {
-            "deg"
-        } else {
-            units::display(self.axis.parameter.unit())
-        }
+        self.typed.label(self.axis.parameter.unit())
     }
 
     /// An SI value of the axis's parameter in the user's units (degrees for a `_deg` axis).
     pub fn from_si(&self, si: f64) -> f64 {
-        if self.degrees { units::degrees(si) } else { si }
+        self.typed.from_si(si)
     }
 }
 
@@ -275,8 +308,8 @@ impl AxisSpec {
 pub struct BoundSpec {
     /// The name as the user wrote it.
     pub name: String,
-    /// Whether the user's values are degrees (the name ends in `_deg`).
-    pub degrees: bool,
+    /// The unit of the user's values (`_deg`, `_mm` or SI).
+    pub typed: UserUnit,
     /// The library's bound, in SI.
     pub bound: HandlingBound,
 }
@@ -288,7 +321,7 @@ impl BoundSpec {
     /// use whipple_front::design::BoundSpec;
     /// let bike = whipple::presets::find("benchmark")?.bicycle();
     /// let b = BoundSpec::parse("head_angle_deg=60:85", &bike)?;
-    /// assert!(b.degrees && (b.bound.high - 85f64.to_radians()).abs() < 1e-15);
+    /// assert!(b.unit() == "deg" && (b.bound.high - 85f64.to_radians()).abs() < 1e-15);
     /// assert!(BoundSpec::parse("speed=1:2", &bike).is_err());
     /// # Ok::<(), whipple::Error>(())
     /// ```
@@ -316,31 +349,27 @@ impl BoundSpec {
         if low > high {
             return Err(bad(format!("`{spec}`: LOW must not exceed HIGH")));
         }
-        let (parameter, degrees) = resolve(name, base, false).map_err(bad)?;
-        let scale = if degrees { RADIANS_PER_DEGREE } else { 1.0 };
+        let (parameter, typed) = resolve(name, base, false).map_err(bad)?;
+        let unit = typed.map_or(UserUnit::Si, UserUnit::Typed);
         Ok(BoundSpec {
             name: name.to_string(),
-            degrees,
+            typed: unit,
             bound: HandlingBound {
                 parameter,
-                low: low * scale,
-                high: high * scale,
+                low: unit.to_si(low),
+                high: unit.to_si(high),
             },
         })
     }
 
     /// The unit of the user's values, for labels (`deg` for a `_deg` name).
     pub fn unit(&self) -> &'static str {
-        if self.degrees {
-            "deg"
-        } else {
-            units::display(self.bound.parameter.unit())
-        }
+        self.typed.label(self.bound.parameter.unit())
     }
 
     /// An SI value in the user's units.
     pub fn from_si(&self, si: f64) -> f64 {
-        if self.degrees { units::degrees(si) } else { si }
+        self.typed.from_si(si)
     }
 }
 
@@ -457,7 +486,7 @@ mod tests {
     fn units_are_read_from_the_parameter_table() -> Result<()> {
         let benchmark = bike("benchmark");
         let head = AxisSpec::parse("head_angle_deg=60:80:3", &benchmark)?;
-        assert!(head.degrees);
+        assert_eq!(head.typed, UserUnit::Typed(TypedUnit::Degrees));
         assert_eq!(head.unit(), "deg");
         assert_eq!(head.value(1), 70.0);
         assert_eq!(
@@ -465,7 +494,7 @@ mod tests {
             70f64.to_radians().to_bits()
         );
         let lam = AxisSpec::parse("lam=0.1:0.3:3", &benchmark)?;
-        assert_eq!((lam.unit(), lam.degrees), ("rad", false));
+        assert_eq!((lam.unit(), lam.typed), ("rad", UserUnit::Si));
         for (spec, unit) in [
             ("IBxx=5:15:3", "kg m²"),
             ("w=0.9:1.1:3", "m"),
@@ -509,6 +538,56 @@ mod tests {
         }
     }
 
+    /// `_mm` after a length, km/h after the speed's values: the same rule as the files'.
+    #[test]
+    fn lengths_take_millimetres_and_speeds_km_per_h() -> Result<()> {
+        let benchmark = bike("benchmark");
+        let trail = AxisSpec::parse("trail_mm=50:100:3", &benchmark)?;
+        assert_eq!(trail.unit(), "mm");
+        assert_eq!(trail.value(1), 75.0);
+        assert_eq!(trail.from_si(0.075), 75.0);
+        let speed = AxisSpec::parse("speed=18:36:3km/h", &benchmark)?;
+        assert_eq!(speed.unit(), "km/h");
+        assert_eq!(speed.axis.scale, 1.0 / 3.6);
+        let edited = replace(
+            &benchmark,
+            &[
+                ("c_mm".into(), 80.0),
+                ("w_mm".into(), 1020.0),
+                ("lam_deg".into(), 18.0),
+            ],
+        )?;
+        let values = edited.description.values();
+        assert_eq!(
+            (values[0], values[1], values[2]),
+            (1.02, 0.08, 18f64.to_radians())
+        );
+        let bound = BoundSpec::parse("trail_mm=0:200", &benchmark)?;
+        assert_eq!((bound.unit(), bound.bound.high), ("mm", 0.2));
+        for (spec, words) in [
+            ("IBxx_mm=0:1:3", "`IBxx_mm`: `IBxx` is not a length"),
+            (
+                "head_angle_mm=0:1:3",
+                "`head_angle_mm`: `head_angle` is not a length",
+            ),
+            ("speed_mm=0:1:3", "speed has no `_mm` form"),
+            ("trail=0:1:3km/h", "`trail` is not a speed"),
+            ("speed=0:1:3mph", "`mph` is not a unit of speed"),
+        ] {
+            let err = AxisSpec::parse(spec, &benchmark).unwrap_err().to_string();
+            assert!(err.contains(words), "{spec}: {err}");
+        }
+        let err = replace(&benchmark, &[("mB_mm".into(), 1.0)])
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("`mB_mm`: `mB` is not a length"), "{err}");
+        let err = replace(&benchmark, &[("c_mm".into(), f64::NAN)])
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("c_mm") && err.contains("finite"), "{err}");
+        Ok(())
+    }
+
     #[test]
     fn bad_specs_are_refused_naming_the_spec() {
         let benchmark = bike("benchmark");
@@ -536,7 +615,14 @@ mod tests {
             ),
             ("trail_deg=0:1:3", "`trail_deg`: `trail` is not an angle"),
             ("IBxx_deg=0:1:3", "`IBxx_deg`: `IBxx` is not an angle"),
-            ("speed_deg=0:1:3", "speed has no `_deg` form"),
+            (
+                "speed_deg=0:1:3",
+                "speed has no `_deg` form (give km/h after its values: speed=10:30:21km/h)",
+            ),
+            (
+                "trail=0:1:x",
+                "`trail=0:1:x`: COUNT `x` must be a whole number ≥ 1",
+            ),
         ] {
             assert_eq!(rule(spec, &benchmark), words, "{spec}");
         }
@@ -569,7 +655,7 @@ mod tests {
                 AxisSpec::parse(key, &crown)?,
             );
             assert_eq!(by_path.axis, by_key.axis, "{path}");
-            assert_eq!(by_path.degrees, by_key.degrees, "{path}");
+            assert_eq!(by_path.typed, by_key.typed, "{path}");
         }
         Ok(())
     }
@@ -603,7 +689,7 @@ mod tests {
         let json = serde_json_text(&axis);
         assert_eq!(
             json,
-            r#"{"name":"head_angle_deg","parameter":{"kind":"benchmark","name":"head_angle"},"start":60.0,"stop":80.0,"count":3,"degrees":true}"#
+            r#"{"name":"head_angle_deg","parameter":{"kind":"benchmark","name":"head_angle"},"start":60.0,"stop":80.0,"count":3,"degrees":true,"unit":"deg"}"#
         );
         Ok(())
     }

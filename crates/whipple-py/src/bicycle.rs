@@ -86,7 +86,8 @@ impl NativeBicycle {
     /// A bicycle in the benchmark form from (key, value, sigma) triples with BicycleParameters'
     /// keys (`w`, `c`, `lam`, `g`, `rR`, `mR`, `IRxx`, …; its optional `yB`, `IBxy`, `IRzz`, …
     /// too): read by the library's BicycleParameters reader, so the same rules apply as to a
-    /// `<Name>Benchmark.txt` file.
+    /// `<Name>Benchmark.txt` file. Keys take `_mm` after a length and `_deg` after an angle
+    /// (`c_mm`, `lam_deg`; σ in the same unit), as TOML and JSON files do.
     #[staticmethod]
     #[pyo3(signature = (items, name=None, source=None, strict=false))]
     fn from_items(
@@ -96,6 +97,10 @@ impl NativeBicycle {
         source: Option<String>,
         strict: bool,
     ) -> PyResult<Self> {
+        // `c_mm`, `lam_deg`, …: in SI by whipple-front, the one reading of the units people use.
+        let (items, units) =
+            whipple_front::units::si_items(&items, whipple::advanced::table::Form::Benchmark)
+                .py_err(py)?;
         let mut text = String::new();
         for (key, value, sigma) in &items {
             if key.is_empty() || key.contains(['=', '#', '\n', '\r']) || key.trim() != key {
@@ -134,6 +139,7 @@ impl NativeBicycle {
             .py_err(py)?;
         bicycle.name = name.or(bicycle.name);
         bicycle.source = source.or(bicycle.source);
+        bicycle.units = units.into_iter().collect();
         Self::new(py, bicycle, strict)
     }
 

@@ -658,7 +658,10 @@ pub mod advanced {
     }
     #[doc = "The one parameter table: names, keys, symbols, units and meanings of every parameter."]
     pub mod table {
-        pub use crate::parameters::table::{Form, ParameterInfo, index_of, key_doc, parameters};
+        pub use crate::parameters::table::{
+            Form, MILLIMETRES_PER_METRE, ParameterInfo, RADIANS_PER_DEGREE, TypedUnit, find_typed,
+            index_of, key_doc, parameters,
+        };
     }
     #[doc = "Steady turns of the non-linear model: held and hands-free."]
     pub mod turns {

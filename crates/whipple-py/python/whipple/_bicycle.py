@@ -142,7 +142,13 @@ class Bicycle:
         critical speeds. The same rules as a BicycleParameters ``.txt`` file apply (its optional
         ``yB``, ``IBxy``, ``IRzz``, … keys included). ``'IAlamlam'``, the front assembly's
         moment of inertia about the steer axis, may stand for ``'IHzz'``, which is then derived
-        (see :meth:`front_assembly_steer_inertia`)."""
+        (see :meth:`front_assembly_steer_inertia`).
+
+        Keys take their unit as a suffix, as TOML and JSON files do: ``_mm`` after a length
+        (``'c_mm': 80``, ``'w_mm': 1020``, ``'rR_mm'``, ``'xB_mm'``, …) and ``_deg`` after an
+        angle (``'lam_deg': 18``), the σ in the same unit; a suffix after a key of another
+        quantity (``'IBxx_mm'``) or one key in two units (``'c'`` and ``'c_mm'``) raises
+        :class:`ParameterError`. :meth:`to_dict` is SI."""
         items = []
         for key, value in d.items():
             try:

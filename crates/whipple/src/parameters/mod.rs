@@ -32,6 +32,7 @@ pub use rider_lean::{
 pub(crate) use steer::STEER_INERTIA_KEY;
 pub(crate) use table::Form;
 pub(crate) use table::ParameterInfo;
+pub(crate) use table::TypedUnit;
 
 use crate::error::Result;
 
@@ -98,6 +99,10 @@ pub struct Bicycle {
     pub extras: Vec<Extra>,
     /// What reading the file found worth saying (unused keys, redundant values that disagree).
     pub notices: Vec<Notice>,
+    /// The unit each parameter was typed in where it was not SI, by file key as `sigma` is
+    /// (`c` → millimetres for a TOML or JSON file's `c_mm`): the values themselves are SI; the
+    /// TOML and JSON writers write these keys back in the unit read. Empty for SI.
+    pub units: BTreeMap<String, TypedUnit>,
 }
 
 impl Default for Description {

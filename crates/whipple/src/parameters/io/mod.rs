@@ -9,7 +9,10 @@
 //! `jbike6` table (`wheelbase`, `head_angle`, `trail`, optional `gravity`, and the tables
 //! `rear_wheel`, `front_wheel`, `rider`, `frame`, `rack`, `fork`, `basket`), and an optional
 //! `extra` table of keys other models use. A value is a number or `{ value = 9.2, sigma = 0.1 }`
-//! (a standard deviation). Unknown and missing keys are errors; every error names the key, and
+//! (a standard deviation). A key may carry its unit as a suffix, `_mm` after a length and `_deg`
+//! after an angle (`c_mm = 80`, `lam_deg = 18`, σ in the same unit; [`TypedUnit`](crate::advanced::table::TypedUnit)):
+//! the value is read in SI, the unit kept in `Bicycle::units` and written back by the TOML and
+//! JSON writers. Unknown and missing keys are errors; every error names the key, and
 //! the line and column where known. Files come as their owners wrote them: a UTF-8 byte-order
 //! mark, CRLF line endings and a missing final newline are all accepted.
 

@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use super::keyvalue::extra_meaning;
 use super::{Format, error_at, line_column, parse_number};
 use crate::error::{Result, shorten};
-use crate::parameters::table::Form;
+use crate::parameters::table::{Form, TypedUnit, find_typed};
 use crate::parameters::{
     BENCHMARK_TABLE, BenchmarkParameters, Bicycle, Description, Extra, JBIKE6_GRAVITY,
     JBIKE6_TABLE, Jbike6Parameters, Notice, STEER_INERTIA_KEY,
@@ -306,8 +306,56 @@ impl Reader {
         }
     }
 
+    /// A parameter's value as written under `name` (`c`, `c_mm`, `rider.x_mm`), in SI units:
+    /// value and σ converted from the suffix's unit, which is recorded under the file key `key`
+    /// for the writers; σ is kept under `key`.
+    fn typed(
+        &self,
+        node: &Node,
+        name: &str,
+        key: &str,
+        unit: Option<TypedUnit>,
+        bike: &mut Bicycle,
+    ) -> Result<f64> {
+        let mut sigma = BTreeMap::new();
+        let x = self.number(node, name, &mut sigma)?;
+        let convert = |x: f64| unit.map_or(x, |u| u.to_si(x));
+        if let Some(s) = sigma.get(name) {
+            bike.sigma.insert(key.to_string(), convert(*s));
+        }
+        match unit {
+            Some(u) => bike.units.insert(key.to_string(), u),
+            None => bike.units.remove(key),
+        };
+        Ok(convert(x))
+    }
+
+    /// Refuses a parameter given twice, in two units (`c` and `c_mm`), naming both.
+    fn once(
+        &self,
+        written: &mut [Option<String>],
+        i: usize,
+        name: &str,
+        node: &Node,
+    ) -> Result<()> {
+        if let Some(first) = &written[i] {
+            return Err(self.err(
+                node,
+                name,
+                format!(
+                    "`{}` and `{}` give the same parameter twice: keep one",
+                    shorten(first, 40),
+                    shorten(name, 40)
+                ),
+            ));
+        }
+        written[i] = Some(name.to_string());
+        Ok(())
+    }
+
     fn benchmark(&self, node: &Node, bike: &mut Bicycle) -> Result<BenchmarkParameters> {
         let mut values: [Option<f64>; 26] = [None; 26];
+        let mut written: Vec<Option<String>> = vec![None; BENCHMARK_TABLE.len()];
         let mut steer: Option<(f64, &Node)> = None;
         for (key, n) in entries(node) {
             if key == STEER_INERTIA_KEY {
@@ -326,7 +374,9 @@ impl Reader {
                 steer = Some((value, n));
                 continue;
             }
-            let Some(i) = BENCHMARK_TABLE.iter().position(|p| p.key == key) else {
+            let found = find_typed(Form::Benchmark, key)
+                .map_err(|rule| self.err(n, key, format!("`{}`: {rule}", shorten(key, 40))))?;
+            let Some((i, unit)) = found else {
                 return Err(self.err(
                     n,
                     key,
@@ -343,7 +393,8 @@ impl Reader {
                     ),
                 ));
             };
-            values[i] = Some(self.number(n, key, &mut bike.sigma)?);
+            self.once(&mut written, i, key, n)?;
+            values[i] = Some(self.typed(n, key, BENCHMARK_TABLE[i].key, unit, bike)?);
         }
         if let Some((_, n)) = steer {
             let ihzz = BENCHMARK_TABLE
@@ -391,6 +442,7 @@ impl Reader {
 
     fn jbike6(&self, node: &Node, bike: &mut Bicycle) -> Result<Jbike6Parameters> {
         let mut values: Vec<Option<f64>> = vec![None; JBIKE6_TABLE.len()];
+        let mut written: Vec<Option<String>> = vec![None; JBIKE6_TABLE.len()];
         let bodies = [
             "rear_wheel",
             "front_wheel",
@@ -444,7 +496,10 @@ impl Reader {
                         }
                         continue;
                     }
-                    let Some(i) = JBIKE6_TABLE.iter().position(|t| t.path == path) else {
+                    let found = find_typed(Form::Jbike6, &path).map_err(|rule| {
+                        self.err(v, &path, format!("`{}`: {rule}", shorten(&path, 60)))
+                    })?;
+                    let Some((i, unit)) = found else {
                         let allowed: Vec<&str> = JBIKE6_TABLE
                             .iter()
                             .filter_map(|t| t.path.strip_prefix(&format!("{key}.")))
@@ -465,18 +520,23 @@ impl Reader {
                             ),
                         ));
                     };
-                    values[i] = Some(self.number(v, JBIKE6_TABLE[i].key, &mut bike.sigma)?);
+                    self.once(&mut written, i, &path, v)?;
+                    values[i] = Some(self.typed(v, &path, JBIKE6_TABLE[i].key, unit, bike)?);
                 }
                 continue;
             }
-            let Some(i) = JBIKE6_TABLE.iter().position(|t| t.path == key) else {
+            let found = find_typed(Form::Jbike6, key)
+                .map_err(|rule| self.err(n, key, format!("`{}`: {rule}", shorten(key, 40))))?;
+            let Some((i, unit)) = found.filter(|(i, _)| !JBIKE6_TABLE[*i].path.contains('.'))
+            else {
                 return Err(self.err(n, key, format!(
                     "unknown key `{}` in the jbike6 table (keys: wheelbase, head_angle, trail, gravity, {})",
                     shorten(key, 40),
                     bodies.join(", ")
                 )));
             };
-            values[i] = Some(self.number(n, key, &mut bike.sigma)?);
+            self.once(&mut written, i, key, n)?;
+            values[i] = Some(self.typed(n, key, JBIKE6_TABLE[i].key, unit, bike)?);
         }
         if values[3].is_none() {
             values[3] = Some(JBIKE6_GRAVITY);

@@ -6,6 +6,7 @@ use crate::error::{Error, Result};
 use crate::parameters::{
     BENCHMARK_TABLE, Bicycle, Description, Extra, JBIKE6_TABLE, Jbike6Parameters, MOORE2012_KEYS,
     Moore2012Parameters, PRINCIPAL_KEYS, ParameterInfo, PrincipalBody, PrincipalParameters,
+    TypedUnit,
 };
 
 pub(crate) fn write(bike: &Bicycle, format: Format) -> Result<String> {
@@ -103,18 +104,68 @@ fn comment_text(s: &str) -> String {
         .collect()
 }
 
-fn value_toml(bike: &Bicycle, key: &str, x: f64) -> String {
-    match bike.sigma.get(key) {
-        Some(s) if *s > 0.0 => format!("{{ value = {}, sigma = {} }}", number(x), number(*s)),
-        _ => number(x),
+fn value_toml((x, sigma): (f64, Option<f64>)) -> String {
+    match sigma {
+        Some(s) => format!("{{ value = {}, sigma = {} }}", number(x), number(s)),
+        None => number(x),
     }
 }
 
-fn value_json(bike: &Bicycle, key: &str, x: f64) -> String {
-    match bike.sigma.get(key) {
-        Some(s) if *s > 0.0 => format!("{{ \"value\": {}, \"sigma\": {} }}", number(x), number(*s)),
-        _ => number(x),
+fn value_json((x, sigma): (f64, Option<f64>)) -> String {
+    match sigma {
+        Some(s) => format!("{{ \"value\": {}, \"sigma\": {} }}", number(x), number(s)),
+        None => number(x),
     }
+}
+
+/// One parameter as the TOML and JSON writers write it: the suffix of its name, its value and
+/// its σ (when > 0), in the unit it was read in ([`Bicycle::units`]: `c_mm = 80.0`) where value
+/// and σ both read back bit for bit, otherwise in SI.
+fn entry(bike: &Bicycle, key: &str, x: f64) -> (&'static str, (f64, Option<f64>)) {
+    let sigma = bike.sigma.get(key).copied().filter(|s| *s > 0.0);
+    if let Some(&unit) = bike.units.get(key) {
+        let value = typed_back(unit, x);
+        let typed_sigma = sigma.map(|s| typed_back(unit, s));
+        if let (Some(v), None | Some(Some(_))) = (value, typed_sigma) {
+            return (unit.suffix(), (v, typed_sigma.flatten()));
+        }
+    }
+    ("", (x, sigma))
+}
+
+/// The comment of a key written in a typed unit: `trail [mm]`.
+fn doc_in(p: &ParameterInfo, suffix: &str) -> String {
+    match TypedUnit::strip(suffix) {
+        ("", Some(unit)) => format!("{} [{}]", p.description, unit.symbol()),
+        _ => p.doc(),
+    }
+}
+
+/// The shortest decimal in `unit` that reads back as `si` bit for bit (`0.08` m is `80` mm),
+/// if one of at most 17 significant digits does.
+pub(crate) fn typed_back(unit: TypedUnit, si: f64) -> Option<f64> {
+    let u = unit.from_si(si);
+    if !u.is_finite() {
+        return None;
+    }
+    // The digits of `u` rounded to 1, 2, … 17 significant digits, and the last one ±1 (u may be
+    // an ulp away from the decimal typed).
+    (0..17).find_map(|digits| {
+        let text = format!("{u:.digits$e}");
+        let (mantissa, exponent) = text.split_once('e')?;
+        let exponent: i32 = exponent.parse().ok()?;
+        let integer: i64 = mantissa.replace('.', "").parse().ok()?;
+        [
+            integer,
+            integer - integer.signum(),
+            integer + integer.signum(),
+        ]
+        .into_iter()
+        .find_map(|m| {
+            let d: f64 = format!("{m}e{}", exponent - digits as i32).parse().ok()?;
+            (unit.to_si(d).to_bits() == si.to_bits()).then_some(d)
+        })
+    })
 }
 
 fn extra_toml(e: &Extra) -> String {
@@ -126,6 +177,10 @@ fn extra_toml(e: &Extra) -> String {
         (None, _) => toml_string(&e.text),
     }
 }
+
+/// The TOML comment of a file with keys in the units people use.
+const TYPED_NOTE: &str =
+    "# Keys ending in _mm are in millimetres, in _deg in degrees; all others SI.\n";
 
 /// TOML written by hand (rather than by serde) so that every key carries its unit and meaning,
 /// read from the parameter table.
@@ -143,21 +198,28 @@ fn toml(bike: &Bicycle) -> String {
     let values = bike.description.values();
     match &bike.description {
         Description::Benchmark(_) => {
+            if !bike.units.is_empty() {
+                out.push_str(TYPED_NOTE);
+            }
             out.push_str(
                 "# Benchmark parameters (Meijaard et al. 2007, Table 1). SI units, radians.\n\
                  # Axes: x forward, y right, z down, origin at the rear contact (z < 0 is above ground).\n\
                  [benchmark]\n",
             );
             for (p, x) in BENCHMARK_TABLE.iter().zip(&values) {
+                let (suffix, value) = entry(bike, p.key, *x);
                 out.push_str(&format!(
-                    "{} = {} # {}\n",
+                    "{}{suffix} = {} # {}\n",
                     p.key,
-                    value_toml(bike, p.key, *x),
-                    p.doc()
+                    value_toml(value),
+                    doc_in(p, suffix)
                 ));
             }
         }
         Description::Jbike6(_) => {
+            if !bike.units.is_empty() {
+                out.push_str(TYPED_NOTE);
+            }
             out.push_str(
                 "# JBike6 form. SI units, radians. Axes: x forward from the rear contact, y up.\n\
                  # I = [I11, I22, Izz]: principal moments about the centre of mass, axis 1 at alpha\n\
@@ -175,16 +237,17 @@ fn toml(bike: &Bicycle) -> String {
                 }
                 if field.starts_with("I[") {
                     let items: Vec<String> = (0..3)
-                        .map(|i| value_toml(bike, JBIKE6_TABLE[k + i].key, values[k + i]))
+                        .map(|i| value_toml(entry(bike, JBIKE6_TABLE[k + i].key, values[k + i]).1))
                         .collect();
                     out.push_str(&format!("I = [{}] # [kg m^2]\n", items.join(", ")));
                     k += 3;
                     continue;
                 }
+                let (suffix, value) = entry(bike, p.key, values[k]);
                 out.push_str(&format!(
-                    "{field} = {} # {}\n",
-                    value_toml(bike, p.key, values[k]),
-                    p.doc()
+                    "{field}{suffix} = {} # {}\n",
+                    value_toml(value),
+                    doc_in(p, suffix)
                 ));
                 k += 1;
             }
@@ -225,7 +288,10 @@ fn json(bike: &Bicycle) -> String {
             let items: Vec<String> = BENCHMARK_TABLE
                 .iter()
                 .zip(&values)
-                .map(|(p, x)| format!("    \"{}\": {}", p.key, value_json(bike, p.key, *x)))
+                .map(|(p, x)| {
+                    let (suffix, value) = entry(bike, p.key, *x);
+                    format!("    \"{}{suffix}\": {}", p.key, value_json(value))
+                })
                 .collect();
             fields.push(format!("  \"benchmark\": {{\n{}\n  }}", items.join(",\n")));
         }
@@ -237,11 +303,8 @@ fn json(bike: &Bicycle) -> String {
                 let p = &JBIKE6_TABLE[k];
                 match p.path.split_once('.') {
                     None => {
-                        top.push(format!(
-                            "    \"{}\": {}",
-                            p.path,
-                            value_json(bike, p.key, values[k])
-                        ));
+                        let (suffix, value) = entry(bike, p.key, values[k]);
+                        top.push(format!("    \"{}{suffix}\": {}", p.path, value_json(value)));
                         k += 1;
                     }
                     Some((table, field)) => {
@@ -250,16 +313,18 @@ fn json(bike: &Bicycle) -> String {
                         }
                         let entry = if field.starts_with("I[") {
                             let items: Vec<String> = (0..3)
-                                .map(|i| value_json(bike, JBIKE6_TABLE[k + i].key, values[k + i]))
+                                .map(|i| {
+                                    value_json(
+                                        entry(bike, JBIKE6_TABLE[k + i].key, values[k + i]).1,
+                                    )
+                                })
                                 .collect();
                             k += 3;
                             format!("      \"I\": [{}]", items.join(", "))
                         } else {
                             k += 1;
-                            format!(
-                                "      \"{field}\": {}",
-                                value_json(bike, p.key, values[k - 1])
-                            )
+                            let (suffix, value) = entry(bike, p.key, values[k - 1]);
+                            format!("      \"{field}{suffix}\": {}", value_json(value))
                         };
                         if let Some(g) = groups.last_mut() {
                             g.1.push(entry);

@@ -1,0 +1,271 @@
+//! The units people use (issue 33): `_mm` and `_deg` keys in TOML and JSON files, written back
+//! in the unit read; km/h after any speed argument; errors naming what was typed.
+
+mod common;
+
+use common::{scratch, stderr_of_failure, stdout, whipple};
+
+/// The benchmark bicycle with a designer's keys: mm, degrees, σ in mm.
+const DESIGNER: &str = r#"name = "designer"
+[benchmark]
+w_mm = 1020
+c_mm = { value = 80, sigma = 1 }
+lam_deg = 18
+g = 9.81
+rR_mm = 300
+mR = 2.0
+IRxx = 0.0603
+IRyy = 0.12
+xB_mm = 300
+zB_mm = -900
+mB = 85.0
+IBxx = 9.2
+IByy = 11.0
+IBzz = 2.8
+IBxz = 2.4
+xH_mm = 900
+zH_mm = -700
+mH = 4.0
+IHxx = 0.05892
+IHyy = 0.06
+IHzz = 0.00708
+IHxz = -0.00756
+rF_mm = 350
+mF = 3.0
+IFxx = 0.1405
+IFyy = 0.28
+"#;
+
+fn designer_file(dir: &str, text: &str) -> String {
+    let path = scratch(dir).join("designer.toml");
+    std::fs::write(&path, text).unwrap();
+    path.to_string_lossy().into_owned()
+}
+
+/// The shortest text of a speed typed in km/h, in m/s: what the same run takes in m/s.
+fn ms(kmh: f64) -> String {
+    format!("{:?}", kmh / 3.6)
+}
+
+#[test]
+fn convert_writes_keys_back_in_the_unit_read() {
+    let file = designer_file("units-convert", DESIGNER);
+    let toml = stdout(&whipple(&["convert", "--bike", &file, "--to", "toml"]));
+    for line in [
+        "w_mm = 1020.0 ",
+        "c_mm = { value = 80.0, sigma = 1.0 } ",
+        "lam_deg = 18.0 ",
+        "xB_mm = 300.0 ",
+        "zB_mm = -900.0 ",
+        "mB = 85.0 ",
+    ] {
+        assert!(toml.contains(line), "{line} in\n{toml}");
+    }
+    let json = stdout(&whipple(&["convert", "--bike", &file, "--to", "json"]));
+    assert!(
+        json.contains("\"c_mm\": { \"value\": 80.0, \"sigma\": 1.0 }"),
+        "{json}"
+    );
+    // The field's formats are SI.
+    let txt = stdout(&whipple(&["convert", "--bike", &file, "--to", "bp-txt"]));
+    assert!(txt.contains("c = 0.08+/-0.001"), "{txt}");
+    // What convert wrote reads back to the same bicycle: the same critical speeds.
+    let again = designer_file("units-convert-again", &toml);
+    let speeds = |f: &str| stdout(&whipple(&["speeds", "--bike", f]));
+    assert_eq!(speeds(&again), speeds(&file));
+}
+
+/// The same bicycle typed in SI and in the designer's units gives the same results.
+#[test]
+fn millimetres_and_degrees_are_the_same_bicycle() {
+    let file = designer_file("units-same", DESIGNER);
+    let si = DESIGNER
+        .replace("w_mm = 1020", "w = 1.02")
+        .replace(
+            "c_mm = { value = 80, sigma = 1 }",
+            "c = { value = 0.08, sigma = 0.001 }",
+        )
+        .replace("lam_deg = 18", &format!("lam = {:?}", 18f64.to_radians()))
+        .replace("rR_mm = 300", "rR = 0.3")
+        .replace("xB_mm = 300", "xB = 0.3")
+        .replace("zB_mm = -900", "zB = -0.9")
+        .replace("xH_mm = 900", "xH = 0.9")
+        .replace("zH_mm = -700", "zH = -0.7")
+        .replace("rF_mm = 350", "rF = 0.35");
+    let si_file = designer_file("units-same-si", &si);
+    for args in [["speeds"].as_slice(), &["eig", "--speeds", "4:6:1"]] {
+        let run = |f: &str| {
+            let mut a = args.to_vec();
+            a.extend(["--bike", f]);
+            stdout(&whipple(&a))
+        };
+        assert_eq!(run(&file), run(&si_file), "{args:?}");
+    }
+}
+
+#[test]
+fn file_keys_in_a_unit_that_does_not_fit_or_twice_are_refused() {
+    for (from, to, words) in [
+        (
+            "IBxx = 9.2",
+            "IBxx_mm = 9.2",
+            "`IBxx_mm`: `IBxx` is not a length",
+        ),
+        (
+            "lam_deg = 18",
+            "lam_mm = 18",
+            "`lam_mm`: `lam` is not a length",
+        ),
+        (
+            "mB = 85.0",
+            "mB_deg = 85.0",
+            "`mB_deg`: `mB` is not an angle",
+        ),
+        (
+            "g = 9.81",
+            "g = 9.81\nc = 0.08",
+            "give the same parameter twice",
+        ),
+        ("w_mm = 1020", "w_mm = nan", "w_mm"),
+    ] {
+        let file = designer_file("units-refused", &DESIGNER.replacen(from, to, 1));
+        let err = stderr_of_failure(&whipple(&["show", "--bike", &file]));
+        assert!(err.contains(words), "{to}: {err}");
+    }
+    // A negative radius in mm is refused by the same checks as in m.
+    let file = designer_file(
+        "units-negative",
+        &DESIGNER.replace("rR_mm = 300", "rR_mm = -300"),
+    );
+    let err = stderr_of_failure(&whipple(&["show", "--bike", &file]));
+    assert!(err.contains("rR"), "{err}");
+}
+
+/// km/h after any speed argument: the same run as its value in m/s.
+#[test]
+fn speeds_take_km_per_h_after_the_value() {
+    let same = |kmh: &[&str], si: &[&str]| {
+        assert_eq!(stdout(&whipple(kmh)), stdout(&whipple(si)), "{kmh:?}");
+    };
+    let (a, b) = (ms(15.0), ms(25.0));
+    same(
+        &["speeds", "--bike", "benchmark", "--range", "15:25km/h"],
+        &[
+            "speeds",
+            "--bike",
+            "benchmark",
+            "--range",
+            &format!("{a}:{b}"),
+        ],
+    );
+    same(
+        &["speeds", "--bike", "benchmark", "--range", "15:km/h"],
+        &["speeds", "--bike", "benchmark", "--range", &format!("{a}:")],
+    );
+    let (start, stop, step) = (ms(10.0), ms(30.0), ms(5.0));
+    same(
+        &["eig", "--bike", "benchmark", "--speeds", "10:30:5km/h"],
+        &[
+            "eig",
+            "--bike",
+            "benchmark",
+            "--speeds",
+            &format!("{start}:{stop}:{step}"),
+        ],
+    );
+    same(
+        &["modes", "--bike", "benchmark", "--speed", "18km/h"],
+        &["modes", "--bike", "benchmark", "--speed", &ms(18.0)],
+    );
+    same(
+        &["modes", "--bike", "benchmark", "--speed", "4.6m/s"],
+        &["modes", "--bike", "benchmark", "--speed", "4.6"],
+    );
+    same(
+        &[
+            "study",
+            "--bike",
+            "benchmark",
+            "--vary",
+            "trail_mm=60:100:3",
+            "--range",
+            "0:36km/h",
+        ],
+        &[
+            "study",
+            "--bike",
+            "benchmark",
+            "--vary",
+            "trail_mm=60:100:3",
+            "--range",
+            &format!("0:{}", ms(36.0)),
+        ],
+    );
+}
+
+#[test]
+fn design_axes_take_millimetres() {
+    let out = stdout(&whipple(&[
+        "study",
+        "--bike",
+        "benchmark",
+        "--vary",
+        "trail_mm=60:100:3",
+        "--format",
+        "csv",
+    ]));
+    assert!(
+        out.contains("trail_mm") && out.contains(r#""unit":"mm""#),
+        "{out}"
+    );
+    assert!(out.lines().any(|l| l.starts_with("1,1,80,")), "{out}");
+}
+
+#[test]
+fn units_that_do_not_fit_are_refused_naming_what_was_typed() {
+    for (args, words) in [
+        (
+            vec!["modes", "--bike", "benchmark", "--speed", "18kph"],
+            "`18kph`: `kph` is not a unit of speed",
+        ),
+        (
+            vec!["modes", "--bike", "benchmark", "--speed", "nan"],
+            "`nan`: `nan` is not a finite number",
+        ),
+        (
+            vec!["speeds", "--bike", "benchmark", "--range", "15:25mph"],
+            "--range: `15:25mph`: `mph` is not a unit of speed",
+        ),
+        (
+            vec!["eig", "--bike", "benchmark", "--speeds", "0:10:1_mm"],
+            "--speeds: `0:10:1_mm`: `_mm` is not a unit of speed",
+        ),
+        (
+            vec!["study", "--bike", "benchmark", "--vary", "trail=0:1:3km/h"],
+            "`trail` is not a speed",
+        ),
+        (
+            vec!["study", "--bike", "benchmark", "--vary", "IBxx_mm=0:1:3"],
+            "`IBxx_mm`: `IBxx` is not a length",
+        ),
+        (
+            vec!["study", "--bike", "benchmark", "--vary", "lam_mm=0:1:3"],
+            "`lam_mm`: `lam` is not a length",
+        ),
+        (
+            vec![
+                "simulate",
+                "--bike",
+                "benchmark",
+                "--speed",
+                "5",
+                "--duration",
+                "5km/h",
+            ],
+            "5km/h",
+        ),
+    ] {
+        let err = stderr_of_failure(&whipple(&args));
+        assert!(err.contains(words), "{args:?}: {err}");
+    }
+}
