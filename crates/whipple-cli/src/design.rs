@@ -91,12 +91,13 @@ impl Quantity {
         }
     }
 
-    /// The legend's two lines for the outline.
+    /// The legend's two lines for the outline (the band's ends short enough for the legend:
+    /// a band typed in km/h is 4.4444–6.3889 m/s, not sixteen digits each).
     fn outline(self, band: Option<(f64, f64)>) -> [String; 2] {
         match (self, band) {
             (Quantity::StableOver, Some((a, b))) => [
                 "self-stable over".to_string(),
-                format!("{a}–{b} m/s (inside)"),
+                format!("{}–{} m/s (inside)", legend_speed(a), legend_speed(b)),
             ],
             _ => [
                 "self-stable range".to_string(),
@@ -864,4 +865,33 @@ pub fn merge(
     }
     let _ = Quantity::from_column;
     Ok(())
+}
+
+/// A speed for a legend: as typed when that is short (`4`, `6.5`), else to four decimals.
+fn legend_speed(v: f64) -> String {
+    let typed = format!("{v}");
+    if typed.len() <= 7 {
+        typed
+    } else {
+        let rounded = format!("{v:.4}");
+        rounded
+            .trim_end_matches('0')
+            .trim_end_matches('.')
+            .to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::legend_speed;
+
+    #[test]
+    fn legend_speeds_are_short() {
+        assert_eq!(legend_speed(4.0), "4");
+        assert_eq!(legend_speed(6.5), "6.5");
+        assert_eq!(legend_speed(16.0 / 3.6), "4.4444");
+        assert_eq!(legend_speed(23.0 / 3.6), "6.3889");
+        assert_eq!(legend_speed(20.0 / 3.6), "5.5556");
+        assert_eq!(legend_speed(25.2 / 3.6), "7");
+    }
 }
