@@ -933,6 +933,37 @@ await section("measured files: every field shows its value and σ, kept through 
   check(await page.locator("#modified").isHidden(), "retyping the shown values leaves the bicycle unmodified");
 });
 
+await section("a file typed in millimetres and degrees reads in SI and is saved in the units it was typed in", async () => {
+  await open("?bike=preset:benchmark");
+  const si = (await downloadOf(() => page.click("#save-toml"))).text;
+  const typed = si
+    .replace(/^w = 1\.02 #/m, "w_mm = 1020 #")
+    .replace(/^c = 0\.08 #/m, "c_mm = 80 #")
+    .replace(/^lam = 0\.3141592653589793 #/m, "lam_deg = 18 #")
+    .replace(/^name = .*$/m, 'name = "typed in mm"');
+  check(/^c_mm = 80 #/m.test(typed) && /^lam_deg = 18 #/m.test(typed) && /^w_mm = 1020 #/m.test(typed), "a TOML file with w_mm, c_mm and lam_deg");
+  await page.setInputFiles("#file-input", { name: "typed.toml", mimeType: "application/toml", buffer: Buffer.from(typed) });
+  await waitFor("the typed file in the editor", async () => (await page.inputValue("#design-name")) === "typed in mm", 15_000);
+  await settled();
+  check((await page.inputValue("[data-testid=param-c]")) === "0.08" && (await page.inputValue("[data-testid=param-w]")) === "1.02", `the fields read SI: c ${await page.inputValue("[data-testid=param-c]")} m, w ${await page.inputValue("[data-testid=param-w]")} m`);
+  check(/^4\.2924/.test(await text("weave-speed")), `the benchmark's weave speed: ${await text("weave-speed")}`);
+  const back = (await downloadOf(() => page.click("#save-toml"))).text;
+  check(/^w_mm = 1020(\.0)? /m.test(back) && /^c_mm = 80(\.0)? /m.test(back) && /^lam_deg = 18(\.0)? /m.test(back) && !/^c = /m.test(back), `Save TOML writes the keys as typed: ${back.match(/^(w_mm|c_mm|lam_deg) = [^ ]*/gm)?.join(", ")}`);
+  // An edit is written in the unit the key was typed in; My designs keeps the units over a reload.
+  await page.getByTestId("param-c").fill("0.07");
+  await settled();
+  await page.click("#save-design");
+  await page.reload();
+  await page.waitForSelector("body[data-ready=true]", { timeout: 20_000 });
+  await waitFor("the saved design after a reload", async () => (await page.inputValue("#design-name")) === "typed in mm", 15_000);
+  await settled();
+  const again = (await downloadOf(() => page.click("#save-toml"))).text;
+  check(/^c_mm = 70(\.0)? /m.test(again) && /^lam_deg = 18(\.0)? /m.test(again), `after an edit and a reload: ${again.match(/^(c_mm|lam_deg) = [^ ]*/gm)?.join(", ")}`);
+  // A preset has no typed units: its TOML is SI.
+  await open("?bike=preset:benchmark");
+  check(/^c = 0\.08 /m.test((await downloadOf(() => page.click("#save-toml"))).text), "a preset is saved in SI");
+});
+
 await section("sensitivity: exact elasticities as a tornado and a table", async () => {
   await open("?bike=preset:benchmark&tab=sens");
   await page.getByTestId("sens-tornado").waitFor({ timeout: 15_000 });

@@ -396,10 +396,78 @@ pub(crate) fn bicycle(value: &Value) -> Result<Bicycle, ApiError> {
     })
 }
 
-/// A bicycle in the files' JSON layout.
+/// A bicycle in the files' JSON layout, every value in SI units: the page's fields and every
+/// answer of the API are SI. The units a file was typed in (`c_mm`, `lam_deg`) travel apart
+/// ([`typed_units`], `units` of `POST /api/bike/parse` and `POST /api/bike/toml`).
 pub(crate) fn bicycle_json(bike: &Bicycle) -> Result<Value, ApiError> {
-    let text = io::write(bike, Format::Json)?;
+    let text = if bike.units.is_empty() {
+        io::write(bike, Format::Json)?
+    } else {
+        let si = Bicycle {
+            units: Default::default(),
+            ..bike.clone()
+        };
+        io::write(&si, Format::Json)?
+    };
     serde_json::from_str(&text).map_err(|e| ApiError::internal(e.to_string()))
+}
+
+/// The units a bicycle's parameters were typed in, by key, as their symbols (`c` → `mm`,
+/// `lam` → `deg`): what `POST /api/bike/parse` answers besides the SI bicycle.
+fn typed_units(bike: &Bicycle) -> std::collections::BTreeMap<String, &'static str> {
+    bike.units
+        .iter()
+        .map(|(key, unit)| (key.clone(), unit.symbol()))
+        .collect()
+}
+
+/// The units a client asks a bicycle to be written in (`{"c": "mm", "lam": "deg"}`, as
+/// `POST /api/bike/parse` gave them), checked against the bicycle's form: each key must be one
+/// of its parameters, and the unit one that quantity takes (`mm` a length, `deg` an angle).
+fn with_typed_units(
+    mut bike: Bicycle,
+    units: &std::collections::BTreeMap<String, String>,
+) -> Result<Bicycle, ApiError> {
+    let form = match bike.description {
+        Description::Benchmark(_) => Form::Benchmark,
+        Description::Jbike6(_) => Form::Jbike6,
+    };
+    for (key, symbol) in units {
+        let field = format!("units.{key}");
+        let refuse = |message: String, expected: &str| {
+            ApiError::new(StatusCode::UNPROCESSABLE_ENTITY, "invalid_request", message)
+                .at(&field, expected)
+        };
+        let Some(unit) = table::TypedUnit::ALL
+            .into_iter()
+            .find(|u| u.symbol() == symbol)
+        else {
+            return Err(refuse(
+                format!(
+                    "`{}`: the units a parameter is written in are mm and deg",
+                    whipple::advanced::shorten(symbol, 40)
+                ),
+                "mm or deg",
+            ));
+        };
+        match table::find_typed(form, &format!("{key}{}", unit.suffix())) {
+            Ok(Some((_, Some(_)))) => {
+                bike.units.insert(key.clone(), unit);
+            }
+            Ok(_) => {
+                return Err(refuse(
+                    format!(
+                        "`{}` is not a parameter of this bicycle's {} form",
+                        whipple::advanced::shorten(key, 40),
+                        form_name(&bike.description)
+                    ),
+                    "a parameter of the bicycle's form",
+                ));
+            }
+            Err(rule) => return Err(refuse(rule, "a unit the quantity takes")),
+        }
+    }
+    Ok(bike)
 }
 
 #[derive(Serialize)]
@@ -518,13 +586,22 @@ struct TomlText {
     toml: String,
 }
 
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TomlRequest {
+    bike: Value,
+    /// The units to write keys in, as `POST /api/bike/parse` answered them (`{"c": "mm"}`).
+    #[serde(default)]
+    units: std::collections::BTreeMap<String, String>,
+}
+
 fn to_toml(_: &Limits, bytes: Bytes) -> Result<Job, ApiError> {
     Ok(Job::json(
         Budget::Interactive,
         "send a smaller bicycle",
         move |_| {
-            let request: BikeRequest = json_body(&bytes)?;
-            let bike = bicycle(&request.bike)?;
+            let request: TomlRequest = json_body(&bytes)?;
+            let bike = with_typed_units(bicycle(&request.bike)?, &request.units)?;
             Ok(TomlText {
                 toml: io::write(&bike, Format::Toml)?,
             })
@@ -548,6 +625,9 @@ struct Parsed {
     bike: Value,
     /// The format read (useful with `auto`).
     format: &'static str,
+    /// The units the file typed its parameters in where not SI, by key (`{"c": "mm"}`); the
+    /// bicycle itself is SI. Give them back to `POST /api/bike/toml` to write the file in them.
+    units: std::collections::BTreeMap<String, &'static str>,
     /// What reading found: keys of other models, redundant values that disagree.
     warnings: Vec<Notice>,
 }
@@ -590,6 +670,7 @@ fn parse_file(_: &Limits, bytes: Bytes) -> Result<Job, ApiError> {
             Ok(Parsed {
                 bike: bicycle_json(&bike)?,
                 format: format.name(),
+                units: typed_units(&bike),
                 warnings: bike.notices.clone(),
             })
         },

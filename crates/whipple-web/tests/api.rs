@@ -255,6 +255,81 @@ async fn toml_round_trip() -> TestResult {
     Ok(())
 }
 
+/// A file typed in millimetres and degrees: the bicycle comes back in SI (what the page's
+/// fields read) with the units apart, and the TOML written with those units back has the keys
+/// and digits typed; units that do not fit are refused naming them.
+#[tokio::test]
+async fn units_typed_in_a_file_travel_apart_and_come_back() -> TestResult {
+    let app = app(Limits::default());
+    let (_, plain) = post(
+        &app,
+        "/api/bike/toml",
+        &json!({ "bike": preset_json("benchmark")? }),
+    )
+    .await?;
+    let text = plain["toml"]
+        .as_str()
+        .unwrap_or_default()
+        .replace("\nc = 0.08 #", "\nc_mm = 80 #")
+        .replace("\nlam = 0.3141592653589793 #", "\nlam_deg = 18 #");
+    assert!(
+        text.contains("c_mm = 80") && text.contains("lam_deg = 18"),
+        "{text}"
+    );
+    let (status, parsed) = post(
+        &app,
+        "/api/bike/parse",
+        &json!({"text": text, "format": "toml"}),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::OK);
+    assert_eq!(parsed["bike"]["benchmark"]["c"], 0.08);
+    assert!(parsed["bike"]["benchmark"].get("c_mm").is_none());
+    assert_eq!(parsed["units"], json!({"c": "mm", "lam": "deg"}));
+    // Read from a preset or an SI file: no units.
+    let (_, si) = post(
+        &app,
+        "/api/bike/parse",
+        &json!({"text": plain["toml"], "format": "toml"}),
+    )
+    .await?;
+    assert_eq!(si["units"], json!({}));
+    let (status, written) = post(
+        &app,
+        "/api/bike/toml",
+        &json!({ "bike": parsed["bike"], "units": parsed["units"] }),
+    )
+    .await?;
+    assert_eq!(status, StatusCode::OK);
+    let toml = written["toml"].as_str().unwrap_or_default();
+    assert!(
+        toml.contains("c_mm = 80") && toml.contains("lam_deg = 18"),
+        "{toml}"
+    );
+    assert!(
+        !toml.contains("\nc = ") && !toml.contains("\nlam = "),
+        "{toml}"
+    );
+    for (units, field, words) in [
+        (json!({"IBxx": "mm"}), "units.IBxx", "is not a length"),
+        (json!({"c": "deg"}), "units.c", "is not an angle"),
+        (json!({"c": "inch"}), "units.c", "mm and deg"),
+        (json!({"nope": "mm"}), "units.nope", "not a parameter"),
+    ] {
+        let (status, body) = post(
+            &app,
+            "/api/bike/toml",
+            &json!({ "bike": parsed["bike"], "units": units }),
+        )
+        .await?;
+        assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY, "{units}");
+        assert_eq!(body["error"]["field"], field, "{body}");
+        let message = body["error"]["message"].as_str().unwrap_or_default();
+        assert!(message.contains(words), "{units}: {message}");
+    }
+    Ok(())
+}
+
 /// Meijaard et al. 2007, Table 2 (doi:10.1098/rspa.2007.1857); JBike6's Schwinn Crown 7.9807.
 #[tokio::test]
 async fn eigen_sweep_and_critical_speeds() -> TestResult {

@@ -65,7 +65,8 @@ export const api = {
   preset: (name) => call("GET", `/api/presets/${encodeURIComponent(name)}`),
   validate: (bike) => call("POST", "/api/bike/validate", { bike }),
   eigen: (bike, speeds) => call("POST", "/api/eigen", { bike, speeds }),
-  toml: (bike) => call("POST", "/api/bike/toml", { bike }),
+  /** `units`: the units a file typed its keys in ({c: "mm"}, as `parse` gave them), written back so. */
+  toml: (bike, units) => call("POST", "/api/bike/toml", units && Object.keys(units).length ? { bike, units } : { bike }),
   /** A file's text in `format` (or "auto": told from `fileName` and the text). */
   parse: (text, format, fileName) => call("POST", "/api/bike/parse", { text, format, file_name: fileName }),
   /** `request`: {bike, speed, lean_deg, steer_deg, lean_rate, steer_rate, duration, ...}. */

@@ -39,6 +39,7 @@ const state = {
   base: null, // the bicycle as picked (preset or saved design): edits are relative to it
   baseKey: "", // the picker's key of `base` (a conversion changes `key`, not the base)
   bike: null,
+  units: null, // the units the design's file typed keys in ({c: "mm"}): Save TOML writes them so
   form: "jbike6",
   validated: null,
   eigen: null,
@@ -191,7 +192,7 @@ function currentLabel() {
 
 /** Picks a bicycle. Unsaved edits of the one left are kept for an undo. */
 async function select(key, { edits = null, def = null, keepMessage = false } = {}) {
-  const leaving = state.bike && isModified() ? { key: state.key, baseKey: state.baseKey, designId: state.designId, base: clone(state.base), bike: clone(state.bike), form: state.form, label: currentLabel() } : null;
+  const leaving = state.bike && isModified() ? { key: state.key, baseKey: state.baseKey, designId: state.designId, base: clone(state.base), bike: clone(state.bike), units: state.units, form: state.form, label: currentLabel() } : null;
   try {
     const base = def ?? (await bikeFor(key));
     state.key = key;
@@ -199,6 +200,7 @@ async function select(key, { edits = null, def = null, keepMessage = false } = {
     state.designId = key.startsWith("design:") ? key.slice(7) : null;
     state.base = clone(base);
     state.bike = clone(base);
+    state.units = state.designId ? (findDesign(state.designId)?.units ?? null) : null;
     if (edits) applyEdits(state.bike, edits);
     state.form = state.bike.jbike6 ? "jbike6" : "benchmark";
     state.validated = null;
@@ -227,6 +229,7 @@ async function restore(saved) {
   state.designId = saved.designId;
   state.base = saved.base;
   state.bike = saved.bike;
+  state.units = saved.units ?? null;
   state.form = saved.form;
   state.validated = null;
   $("design-name").value = state.bike.name ?? "";
@@ -336,6 +339,8 @@ function convertToBenchmark() {
     return;
   }
   state.bike = { ...(state.bike.name ? { name: `${state.bike.name} (benchmark form)` } : {}), ...(state.bike.source ? { source: state.bike.source } : {}), benchmark: clone(state.validated.benchmark) };
+  // The JBike6 form's keys are gone: its file's units do not carry over to the combined bodies.
+  state.units = null;
   state.designId = null;
   state.key = "converted:";
   $("design-name").value = state.bike.name ?? "";
@@ -834,7 +839,7 @@ $("save-design").addEventListener("click", () => {
   const name = state.bike.name || "My design";
   state.bike.name = name;
   $("design-name").value = name;
-  const design = saveDesign({ id: state.designId ?? undefined, name, bike: clone(state.bike) });
+  const design = saveDesign({ id: state.designId ?? undefined, name, bike: clone(state.bike), units: state.units });
   state.designId = design.id;
   state.key = `design:${design.id}`;
   state.baseKey = state.key;
@@ -870,7 +875,7 @@ $("delete-design").addEventListener("click", async () => {
 $("save-toml").addEventListener("click", async () => {
   if (refuseSave("as TOML")) return;
   try {
-    const { toml } = await api.toml(state.bike);
+    const { toml } = await api.toml(state.bike, state.units);
     download(`${slug(state.bike.name ?? currentLabel())}.toml`, toml, "application/toml");
   } catch (e) {
     say(e.message, "error");
@@ -901,7 +906,7 @@ async function openFile(e) {
   // BicycleParameters' and HumanControl's .txt and YAML files are told apart by the server.
   const format = ext === "json" ? "json" : ext === "m" ? "m" : ext === "toml" ? "toml" : "auto";
   try {
-    const { bike } = await api.parse(await file.text(), format, file.name);
+    const { bike, units } = await api.parse(await file.text(), format, file.name);
     bike.name = bike.name ?? file.name.replace(/\.[^.]*$/, "");
     const designs = listDesigns();
     // The same file opened twice is the same design; another bicycle of the same name gets a
@@ -916,7 +921,7 @@ async function openFile(e) {
     let name = bike.name;
     for (let n = 2; designs.some((d) => d.name === name); n += 1) name = `${bike.name} (${n})`;
     bike.name = name;
-    const design = saveDesign({ name, bike });
+    const design = saveDesign({ name, bike, units });
     await select(`design:${design.id}`);
     if ($("message").hidden || $("message").dataset.source === "undo") say(`Loaded ${file.name} into My designs${name !== file.name.replace(/\.[^.]*$/, "") ? ` as “${name}”` : ""}.`);
     remember(true);

@@ -16,10 +16,11 @@ function writeAll(designs) {
   localStorage.setItem(KEY, JSON.stringify(designs));
 }
 
-/** Saves (or replaces, by id) a design and returns it. */
-export function saveDesign({ id, name, bike }) {
+/** Saves (or replaces, by id) a design and returns it; `units` (optional) are the units its file
+ * typed keys in ({c: "mm"}), which Save TOML writes them in again. */
+export function saveDesign({ id, name, bike, units }) {
   const designs = listDesigns();
-  const design = { id: id ?? `d${Date.now().toString(36)}${Math.random().toString(36).slice(2, 6)}`, name, bike, saved: new Date().toISOString() };
+  const design = { id: id ?? `d${Date.now().toString(36)}${Math.random().toString(36).slice(2, 6)}`, name, bike, ...(units && Object.keys(units).length ? { units } : {}), saved: new Date().toISOString() };
   const rest = designs.filter((d) => d.id !== design.id);
   writeAll([design, ...rest]);
   return design;
