@@ -2,9 +2,10 @@
 
 Each ```sh block line of a chapter that runs `whipple ... --plot F`, `--figure F` or `--out F`,
 where the guide shows `img/F` (or `--report DIR`, where it shows `img/DIR/NAME`: a file of the
-report), is run in a scratch folder (with the field's parameter files the examples
-read) by the whipple binary named in $WHIPPLE_GUIDE_BIN (docs/build-guide builds it), and its F
-becomes the page's img/F. A command that fails fails the build, so a figure can never be older
+report), is run in a scratch folder (holding the field's files the examples read, written by
+`whipple examples`, as a chapter's own `whipple examples --out .` writes them) by the whipple
+binary named in $WHIPPLE_GUIDE_BIN (docs/build-guide builds it), and its F becomes the page's
+img/F. A command that fails fails the build, so a figure can never be older
 than the program: none of these figures is kept in the repository.
 """
 
@@ -22,19 +23,6 @@ from mkdocs.structure.files import File
 
 ROOT = Path(__file__).resolve().parents[2]
 GUIDE = ROOT / "docs" / "guide"
-DATA = ROOT / "crates" / "whipple" / "tests" / "data"
-# The folders of the field's files the guide's examples name, and the endings of the files taken
-# from each (as crates/whipple-cli/tests/guide.rs copies them for the same commands).
-INPUTS = (
-    ("bicycleparameters", (".txt", ".yml")),
-    ("humancontrol", (".txt", ".yml")),
-    ("humancontrol/gains", ("SteerGains.txt",)),
-    ("humancontrol/optimal", ("Par.txt",)),
-    ("bicycleparameters-yaml", (".txt", ".yml")),
-    ("measured", ("Measured.txt",)),
-    ("measured/periods", (".mat",)),
-    ("yeadon", ("YeadonMeas.txt", "YeadonCFG.txt")),
-)
 FIGURE_OPTIONS = ("--plot", "--figure", "--out")
 REPORT_OPTION = "--report"
 # One command's bound: the slowest (a design map) takes seconds.
@@ -89,10 +77,11 @@ def on_files(files, config):
             "the guide's figures are made by its commands: set WHIPPLE_GUIDE_BIN to a built "
             "whipple binary (docs/build-guide does)")
     _scratch = Path(tempfile.mkdtemp(prefix="whipple-guide-figures."))
-    for sub, endings in INPUTS:
-        for path in sorted((DATA / sub).iterdir()):
-            if path.name.endswith(endings):
-                shutil.copy(path, _scratch / path.name)
+    # The field's files the chapters' commands read, as `whipple examples --out .` writes them.
+    made = subprocess.run([binary, "examples", "--out", str(_scratch)], capture_output=True,
+                          text=True, timeout=TIMEOUT)
+    if made.returncode != 0:
+        raise PluginError(f"`whipple examples` failed ({made.returncode}): {made.stderr.strip()}")
     done = {}
     for name, (chapter, line, words) in sorted(_figures().items()):
         # A command that makes several figures (a report) runs once.

@@ -3,9 +3,8 @@
 A fenced block opened with ```output holds commands only, one `$ whipple ...` per line (a
 trailing `\\` continues a line). At every build the block's commands run in order, in a new
 empty folder (as a reader who has just installed whipple would run them: a file a command reads
-must be written by an earlier line of the same block; or, when the block's first line is
-`$ cd DIR` with DIR a folder of the repository, in a copy of that folder, as a reader with a
-clone would run them there), by the whipple binary named in
+must be written by an earlier line of the same block: `$ whipple examples --out .` writes the
+field's files), by the whipple binary named in
 $WHIPPLE_GUIDE_BIN (docs/build-guide builds it). The page then shows a ```text block with each
 command and what it printed (standard output and standard error as the terminal interleaves
 them). A command that fails fails the build, unless the block is opened with ```output fails:
@@ -24,8 +23,6 @@ from pathlib import Path
 
 from mkdocs.exceptions import PluginError
 
-ROOT = Path(__file__).resolve().parents[2]
-
 # One command's bound: the slowest shown takes a second or two.
 TIMEOUT = 300
 _FENCE = re.compile(r"^```output( fails)?[ \t]*\n(.*?)^```[ \t]*$", re.M | re.S)
@@ -43,15 +40,11 @@ def _commands(body, where):
         if line.endswith("\\"):
             pending = line[:-1].rstrip()
             continue
-        if line.startswith("$ cd ") and not commands:
-            commands.append((line[2:], shlex.split(line[2:])))
-            continue
         if not line.startswith("$ whipple "):
-            raise PluginError(f"{where}: an output block holds `$ whipple ...` lines (after one "
-                              f"`$ cd DIR` first) only, not `{line}`")
+            raise PluginError(f"{where}: an output block holds `$ whipple ...` lines only, not `{line}`")
         command = line[2:]
         commands.append((command, shlex.split(command, comments=True)))
-    if pending or not [c for c in commands if c[1][0] == "whipple"]:
+    if pending or not commands:
         raise PluginError(f"{where}: an output block with no complete command")
     return commands
 
@@ -60,13 +53,6 @@ def _run(binary, commands, must_fail, where):
     folder = Path(tempfile.mkdtemp(prefix="whipple-guide-output."))
     shown = []
     try:
-        if commands[0][1][0] == "cd":
-            command, words = commands.pop(0)
-            source = (ROOT / words[1]).resolve() if len(words) == 2 else None
-            if source is None or not source.is_dir() or ROOT not in source.parents:
-                raise PluginError(f"{where}: `{command}`: not a folder of the repository")
-            shutil.copytree(source, folder, dirs_exist_ok=True)
-            shown.append(f"$ {command}\n")
         for i, (command, words) in enumerate(commands):
             last = i == len(commands) - 1
             try:

@@ -9,6 +9,7 @@ mod bike;
 mod commands;
 mod control;
 mod design;
+mod examples;
 mod feedback;
 mod figures;
 mod hess;
@@ -144,6 +145,14 @@ pub enum FileFormat {
 enum Command {
     /// List the named bicycles with their sources.
     Presets,
+    /// Write the field's example files the user guide's commands read (BicycleParameters' and
+    /// HumanControl's parameter files, raw bench measurements, pendulum records, Yeadon riders)
+    /// into a folder, with their sources and licences.
+    Examples {
+        /// The folder to write them into (created when missing).
+        #[arg(long)]
+        out: std::path::PathBuf,
+    },
     /// Show a bicycle's parameters (JBike6 form where known, and the benchmark form).
     Show {
         #[arg(long, help = whipple_front::formats::bike_help())]
@@ -359,6 +368,7 @@ fn reads_a_bike(command: &Command) -> bool {
     !matches!(
         command,
         Command::Presets
+            | Command::Examples { .. }
             | Command::Merge { .. }
             | Command::Serve { .. }
             | Command::RiderInertia(_)
@@ -414,6 +424,7 @@ where
     };
     let result = match cli.command {
         Command::Presets => commands::presets(),
+        Command::Examples { out } => examples::examples(&out),
         Command::Show { bike } => commands::show(cx, &bike),
         Command::Convert {
             bike,

@@ -1,15 +1,14 @@
-//! The user guide's and the README's shell examples run: every line of a ```sh block in
-//! docs/guide/*.md and README.md that starts with `whipple `, and every `$ whipple ` line of a
-//! guide's ```output block (whose output docs/hooks/outputs.py inserts at build time), is run
-//! against the real binary, page by page in a scratch directory holding the field's parameter
-//! files the guide names (so later commands can read what earlier ones wrote). A command must
-//! succeed and write every `--out`, `--plot` and `--report` it names, unless its comment says
-//! `(fails)` or it ends an ```output fails block: then it must fail with a message. Not run
-//! here: `whipple serve` (which runs until stopped; the web page has its own tests in
-//! crates/whipple-web) and the output blocks run in a folder of the repository (`$ cd DIR`
-//! first), which the guide's build runs there. The README's ```text blocks that begin with
-//! `$ whipple ` show exactly what the command prints today (`WHIPPLE_UPDATE_README=1` writes
-//! them again).
+//! The user guide's and the README's shell examples run exactly as written from an install:
+//! every line of a ```sh block in docs/guide/*.md and README.md that starts with `whipple `, and
+//! every `$ whipple ` line of a guide's ```output block (whose output docs/hooks/outputs.py
+//! inserts at build time), is run against the real binary, page by page in an empty scratch
+//! directory (so later commands read what earlier ones wrote, and the field's files only after
+//! the page's own `whipple examples --out .`). A command must succeed and write every `--out`,
+//! `--plot` and `--report` it names, unless its comment says `(fails)` or it ends an
+//! ```output fails block: then it must fail with a message. `whipple serve` (which runs until
+//! stopped) is the only command not run; the web page has its own tests in crates/whipple-web.
+//! The README's ```text blocks that begin with `$ whipple ` show exactly what the command
+//! prints today (`WHIPPLE_UPDATE_README=1` writes them again).
 
 mod common;
 
@@ -105,12 +104,6 @@ fn examples(chapter: &str, text: &str) -> Vec<Example> {
             };
             continue;
         }
-        // An output block run in a folder of the repository (`$ cd DIR` first) is run there by
-        // the guide's build (docs/hooks/outputs.py), not in this scratch directory.
-        if let (Block::Output { .. }, Some(_)) = (block, trimmed.strip_prefix("$ cd ")) {
-            block = Block::Other;
-            continue;
-        }
         let trimmed = match block {
             Block::Shell => trimmed,
             Block::Output { .. } => match (trimmed.strip_prefix("$ "), &pending) {
@@ -147,33 +140,6 @@ fn examples(chapter: &str, text: &str) -> Vec<Example> {
         });
     }
     found
-}
-
-/// The field's files the guide's examples read, copied into the scratch directory: parameter
-/// files, raw bench measurements, an oscillation record and Yeadon riders (folder, and the
-/// endings of the files taken from it). docs/hooks/figures.py copies the same for the figures.
-const INPUTS: [(&str, &[&str]); 8] = [
-    ("bicycleparameters", &[".txt", ".yml"]),
-    ("humancontrol", &[".txt", ".yml"]),
-    ("humancontrol/gains", &["SteerGains.txt"]),
-    ("humancontrol/optimal", &["Par.txt"]),
-    ("bicycleparameters-yaml", &[".txt", ".yml"]),
-    ("measured", &["Measured.txt"]),
-    ("measured/periods", &[".mat"]),
-    ("yeadon", &["YeadonMeas.txt", "YeadonCFG.txt"]),
-];
-
-fn copy_inputs(dir: &Path) {
-    let data = root().join("crates/whipple/tests/data");
-    for (sub, endings) in INPUTS {
-        for entry in fs::read_dir(data.join(sub)).expect("test data") {
-            let path = entry.expect("test data entry").path();
-            let name = path.file_name().expect("a file name").to_string_lossy();
-            if endings.iter().any(|e| name.ends_with(e)) {
-                fs::copy(&path, dir.join(&*name)).expect("copy a parameter file");
-            }
-        }
-    }
 }
 
 /// The files a command says it writes.
@@ -251,8 +217,9 @@ fn every_shell_example_of_the_guide_runs() {
             continue;
         }
         let scratch_name = chapter.replace(['/', '.'], "-");
+        // Empty, as a reader's folder is: a page reads the field's files only after its own
+        // `whipple examples --out .`.
         let dir = common::scratch(&format!("guide-{scratch_name}"));
-        copy_inputs(&dir);
         for example in found {
             let Example {
                 chapter,
