@@ -985,7 +985,7 @@ await section("sensitivity: exact elasticities as a tornado and a table", async 
 
 await section("design map: a certified map over two parameters, read out under the cursor", async () => {
   await open("?bike=preset:benchmark&tab=map");
-  const meta = await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
+  const meta = await waitForText("map-meta", (t) => /designs \(/.test(t), 20_000);
   check(/51 × 51 designs \(2601 computed\)/.test(meta), `the default map: ${meta}`);
   // The base design (trail 0.08 m, head angle 72°) sits on the grid: cell (26, 24).
   const box = await page.getByTestId("map-canvas").boundingBox();
@@ -1005,7 +1005,7 @@ await section("design map: a certified map over two parameters, read out under t
   await waitFor("the clicked design in the editor", async () => (await page.inputValue("[data-testid=param-c]")) === "0.1");
   const lam = await page.inputValue("[data-testid=param-lam]");
   check(Math.abs(Number(lam) - 20) < 1e-9, `the steer axis tilt follows the head angle: λ = ${lam}° (90° − 70°)`);
-  await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
+  await waitForText("map-meta", (t) => /designs \(/.test(t), 20_000);
   await page.mouse.move(...at(30, 20));
   const own = await waitForText("map-readout", (t) => /trail = 0\.1,/.test(t));
   check(/v_w|m\/s/.test(own), `the map follows the loaded design: ${own}`);
@@ -1019,7 +1019,7 @@ await section("design map: a certified map over two parameters, read out under t
   check(/x|trail/.test(message) && (await page.getByTestId("map-x").evaluate((i) => i.classList.contains("invalid"))), `a malformed axis is refused, naming it: "${message}"`);
   // With y empty: the one-parameter study, v_w and v_c against trail.
   await open("?bike=preset:benchmark&tab=map");
-  await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
+  await waitForText("map-meta", (t) => /designs \(/.test(t), 20_000);
   await page.getByTestId("map-x").fill("trail=0:0.2:41");
   await page.getByTestId("map-y").fill("");
   await page.getByTestId("map-run").click();
@@ -1035,7 +1035,7 @@ await section("design map: a certified map over two parameters, read out under t
 
 await section("design map: a map under way says how far it is, and Cancel stops it", async () => {
   await open("?bike=preset:benchmark&tab=map");
-  await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
+  await waitForText("map-meta", (t) => /designs \(/.test(t), 20_000);
   // Every text the header shows, as it changes.
   await page.evaluate(() => {
     const meta = document.querySelector("[data-testid=map-meta]");
@@ -1080,7 +1080,7 @@ await section("design map: a map under way says how far it is, and Cancel stops 
 
 await section("design map: self-stable over a band, the qualifying designs outlined", async () => {
   await open("?bike=preset:benchmark&tab=map");
-  await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
+  await waitForText("map-meta", (t) => /designs \(/.test(t), 20_000);
   const box = await page.getByTestId("map-canvas").boundingBox();
   const area = JSON.parse(await page.getByTestId("map-canvas").getAttribute("data-area"));
   const at = (ix, iy) => [box.x + area.x + ((ix + 0.5) / 51) * area.w, box.y + area.y + (1 - (iy + 0.5) / 51) * area.h];
@@ -1092,7 +1092,7 @@ await section("design map: self-stable over a band, the qualifying designs outli
   // qualifies with margins 0.2076 below and 0.5243 above.
   await page.getByTestId("map-band").fill("4.5:5.5");
   await page.getByTestId("map-run").click();
-  await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
+  await waitForText("map-meta", (t) => /designs \(/.test(t), 20_000);
   await waitFor("the qualifying designs counted", async () => Number(await page.getByTestId("map-canvas").getAttribute("data-qualifying")) > 0);
   await page.mouse.move(...at(26, 24));
   const below = (4.5 - WEAVE_SPEED).toFixed(4);
@@ -1981,7 +1981,7 @@ await section("accessibility: axe-core finds nothing; headings", async () => {
   await page.getByTestId("sens-tornado").waitFor({ timeout: 15_000 });
   await run("sensitivity tab");
   await page.getByTestId("tab-map").click();
-  await waitForText("map-meta", (t) => /designs/.test(t), 20_000);
+  await waitForText("map-meta", (t) => /designs \(/.test(t), 20_000);
   await run("design map tab");
   await page.getByTestId("tab-measure").click();
   await page.getByTestId("ms-sample").selectOption("browser");

@@ -143,7 +143,7 @@ try {
     }
     if (want("14-design-map")) {
       await ready("?bike=preset:schwinn-crown&tab=map");
-      await page.waitForFunction(() => /designs/.test(document.querySelector("[data-testid=map-meta]")?.textContent ?? ""), null, { timeout: 20_000 });
+      await page.waitForFunction(() => /designs \(/.test(document.querySelector("[data-testid=map-meta]")?.textContent ?? ""), null, { timeout: 20_000 });
       // In view, so that the pointer is over the map and its read-out is drawn (on a phone the map
       // lies below the fold).
       await page.getByTestId("map-canvas").scrollIntoViewIfNeeded();

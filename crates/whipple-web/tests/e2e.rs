@@ -53,7 +53,7 @@ fn guide_screenshots() -> PathBuf {
         .join("guide-screenshots")
 }
 
-/// One browser run must end within this: `page.mjs` takes about 260 s on CI's two cores with
+/// One browser run must end within this: `page.mjs` takes about 110–150 s on CI's two cores with
 /// another build beside it; a run that hangs is stopped here.
 const LIMIT: Duration = Duration::from_secs(480);
 
