@@ -14,45 +14,18 @@ default xtol of 1.49e-8) is tightened to xtol = 1e-14 here: with its default its
 Values to 1e-12 relative; BicycleParameters and yeadon come from PyPI in the test environment
 only, never as dependencies; without them these cross-checks skip with the reason."""
 
-import copy
-import importlib.util
-import io
-import os
-import shutil
-import warnings
-from contextlib import redirect_stdout
-
-import numpy as np
 import pytest
 
 import whipple
 from conftest import DATA, optional
+from crosscheck import (RIDDEN as CASES, RIDER_KEYS, UNREACHABLE, add_rider_ours as ours,
+                        add_rider_theirs as theirs, bicycleparameters_layout, nominal,
+                        rider_values, worst)
 
 RAW = DATA / "measured"
 RIDERS = DATA / "yeadon"
-CASES = [("Browser", "Jason"), ("Browserins", "Jason"), ("Rigid", "Jason"),
-         ("Balanceassistv1", "Jason"), ("Rigidcl", "Charlie"), ("Rigidcl", "Luke"),
-         ("Gyro", "Child")]
-#: Jason cannot reach Stratos' handlebar: refused by whipple, not converged in BicycleParameters.
-UNREACHABLE = ("Stratos", "Jason")
-RIDER_KEYS = ["mB", "xB", "yB", "zB", "IBxx", "IByy", "IBzz", "IBxz"]
 SOLVED = ["PJ1extension", "J1J2flexion", "CA1extension", "CA1adduction", "CA1rotation",
           "A1A2extension"]
-
-
-def ours(bike, rider):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", whipple.ParameterWarning)
-        return whipple.measure(RAW / f"{bike}Measured.txt",
-                               rider=RIDERS / f"{rider}YeadonMeas.txt",
-                               configuration=RIDERS / f"{rider}{bike}YeadonCFG.txt")
-
-
-def _corrections():
-    spec = importlib.util.spec_from_file_location("yeadon_expected", RIDERS / "expected.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 @pytest.fixture(scope="module")
@@ -64,71 +37,9 @@ def bp():
 
 @pytest.fixture(scope="module")
 def data_dir(tmp_path_factory):
-    root = tmp_path_factory.mktemp("bp-riders")
-    for bike, rider in CASES + [UNREACHABLE]:
-        target = root / "bicycles" / bike / "RawData"
-        target.mkdir(parents=True, exist_ok=True)
-        shutil.copy(RAW / f"{bike}Measured.txt", target)
-        folder = root / "riders" / rider / "RawData"
-        folder.mkdir(parents=True, exist_ok=True)
-        shutil.copy(RIDERS / f"{rider}YeadonMeas.txt", folder)
-        shutil.copy(RIDERS / f"{rider}{bike}YeadonCFG.txt", folder)
-    return root
-
-
-def theirs(bp, data_dir, bike, rider, corrected=True, xtol=1e-14, report=None):
-    """BicycleParameters' add_rider after calculate_from_measured (forced, from the raw file):
-    the benchmark parameters with the rider (ufloats), the rider alone, the configuration."""
-    import scipy.optimize
-    import yeadon
-    import bicycleparameters.rider as bp_rider
-
-    fix = _corrections()
-    original_fsolve = bp_rider.fsolve
-    cwd = os.getcwd()
-    try:
-        fix.patch(fix.CORRECTED if corrected else fix.ORIGINAL)
-        # yeadon scales its class-level densities in place by a file's totalmass: start afresh.
-        yeadon.Human.segmental_densities = copy.deepcopy(fix.ORIGINAL_DENSITIES)
-        def fsolve(f, x0):
-            options = {} if xtol is None else {"xtol": xtol}
-            solution, _, ier, _ = scipy.optimize.fsolve(f, x0, full_output=True, **options)
-            if report is not None:
-                report.append((ier, float(np.abs(f(solution)).max())))
-            return solution
-
-        bp_rider.fsolve = fsolve
-        os.chdir(data_dir)
-        with warnings.catch_warnings(), redirect_stdout(io.StringIO()):
-            warnings.simplefilter("ignore")
-            bicycle = bp.Bicycle(bike, pathToData=str(data_dir), forceRawCalc=True)
-            bicycle.add_rider(rider, reCalc=True)
-        return (bicycle.parameters["Benchmark"], bicycle.riderPar["Benchmark"],
-                dict(bicycle.human.CFG))
-    finally:
-        os.chdir(cwd)
-        bp_rider.fsolve = original_fsolve
-        fix.patch(fix.ORIGINAL)
-        yeadon.Human.segmental_densities = copy.deepcopy(fix.ORIGINAL_DENSITIES)
-
-
-def nominal(x):
-    return float(getattr(x, "nominal_value", x))
-
-
-def worst(values, expected, keys):
-    out = {}
-    for key in keys:
-        v = nominal(expected[key])
-        out[key] = abs(values[key] - v) / max(abs(v), 1e-300)
-    return out
-
-
-def rider_values(got):
-    r = got.rider
-    c, i = r["center_of_mass"], r["inertia"]
-    return {"mB": r["mass"], "xB": c[0], "yB": c[1], "zB": c[2], "IBxx": i[0][0],
-            "IByy": i[1][1], "IBzz": i[2][2], "IBxz": i[0][2]}
+    cases = CASES + [UNREACHABLE]
+    return bicycleparameters_layout(tmp_path_factory.mktemp("bp-riders"),
+                                    sorted({b for b, _ in cases}), cases)
 
 
 @pytest.mark.parametrize("bike,rider", CASES, ids=[f"{b}-{r}" for b, r in CASES])

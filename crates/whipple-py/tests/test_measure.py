@@ -4,34 +4,17 @@ copied from BicycleParameters' data set) computed by both, every parameter to 1e
 and every σ to 1e-9 relative. BicycleParameters 1.5.2 comes from PyPI in the test environment
 only (ci-test), never as a dependency; without it these cross-checks skip with the reason."""
 
-import io
-import os
-import shutil
 import warnings
-from contextlib import redirect_stdout
 
 import numpy as np
 import pytest
 
 import whipple
 from conftest import DATA, optional
+from crosscheck import (MEASURED as NAMES, bicycleparameters_layout, measured_differences,
+                        measured_ours as ours, measured_theirs as theirs)
 
 RAW = DATA / "measured"
-# Every bicycle of BicycleParameters' data set with raw data (data/bicycles/*/RawData/ at the
-# commit the README names): all of them but Silver, whose file lacks dF (both refuse it,
-# below). Balanceassistv1, Gyro, Rigid and Rigidcl measure the geometry as perpendicular
-# distances; Rigid and Rigidcl the fork and handlebar apart; Gyro has a flywheel.
-NAMES = ["Balanceassistv1", "Browser", "Browserins", "Crescendo", "Fisher", "Gyro", "Pista",
-         "Rigid", "Rigidcl", "Stratos", "Yellow", "Yellowrev"]
-# Keys BicycleParameters passes through unchanged from the raw file (the lateral force's
-# point): not computed, whipple keeps them with the file's other keys.
-PASSED_THROUGH = {"xcl", "zcl"}
-
-
-def ours(name):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", whipple.ParameterWarning)
-        return whipple.measure(RAW / f"{name}Measured.txt")
 
 
 def test_measure_reads_a_path_or_text():
@@ -81,87 +64,21 @@ def bp():
 
 @pytest.fixture(scope="module")
 def data_dir(tmp_path_factory):
-    """BicycleParameters' layout, bicycles/<Name>/RawData/<Name>Measured.txt, around the raw
-    files of the core's tests (no Parameters folder: it must compute from the raw data)."""
-    root = tmp_path_factory.mktemp("bp-raw")
-    for name in NAMES + ["Silver"]:
-        target = root / "bicycles" / name / "RawData"
-        target.mkdir(parents=True)
-        shutil.copy(RAW / f"{name}Measured.txt", target)
-    return root
-
-
-def exact_lambda_from_abc(original):
-    """BicycleParameters' ``lambda_from_abc`` with λ's exact first-order uncertainty.
-
-    BicycleParameters solves F(λ) = sin λ − (rF − rR + c cos λ)/(a + b) = 0 by Newton's method
-    on the nominal values and returns λ with the σ of its starting guess atan(c/(a + b)), as a
-    new independent variable (its source says so: "This is not true!"). whipple carries the
-    implicit derivative ∂λ/∂x = −F_x/F_λ. Here the same root comes from BicycleParameters'
-    own function, and λ is rebuilt as that linear function of rF, rR, a, b, c, so that every
-    σ downstream is BicycleParameters' pipeline with only this one step made exact."""
-    import math
-
-    def exact(rF, rR, a, b, c):
-        lam = original(rF, rR, a, b, c).nominal_value
-        ab = a.nominal_value + b.nominal_value
-        s, co = math.sin(lam), math.cos(lam)
-        f_lam = co + c.nominal_value * s / ab
-        f_ab = (rF.nominal_value - rR.nominal_value + c.nominal_value * co) / ab ** 2
-        dev = lambda u: u - u.nominal_value  # noqa: E731 - the ufloat's linear part
-        linear = (-dev(rF) / ab + dev(rR) / ab - co * dev(c) / ab
-                  + f_ab * (dev(a) + dev(b)))
-        return lam - linear / f_lam
-
-    return exact
-
-
-def theirs(bp, data_dir, name, exact_tilt=True):
-    """BicycleParameters' calculate_from_measured on the raw file (forced, as its users run
-    it): the benchmark parameters as uncertainties' ufloats. With ``exact_tilt`` the tilt
-    from perpendicular distances carries its exact derivative (:func:`exact_lambda_from_abc`;
-    the values are BicycleParameters' own)."""
-    cwd = os.getcwd()
-    original = bp.geometry.lambda_from_abc
-    try:
-        os.chdir(data_dir)
-        if exact_tilt:
-            bp.geometry.lambda_from_abc = exact_lambda_from_abc(original)
-        with warnings.catch_warnings(), redirect_stdout(io.StringIO()):
-            warnings.simplefilter("ignore")
-            bike = bp.Bicycle(name, pathToData=str(data_dir), forceRawCalc=True)
-        return bike.parameters["Benchmark"]
-    finally:
-        bp.geometry.lambda_from_abc = original
-        os.chdir(cwd)
+    """BicycleParameters' layout around the raw files of the core's tests."""
+    return bicycleparameters_layout(tmp_path_factory.mktemp("bp-raw"), NAMES + ["Silver"])
 
 
 @pytest.mark.parametrize("name", NAMES)
 def test_measure_matches_bicycleparameters(bp, data_dir, name):
     expected = theirs(bp, data_dir, name)
-    got = ours(name)
-    values, sigma = got.bicycle.to_dict(), got.bicycle.sigma
-    # The other parts BicycleParameters computes (fork S, handlebar G, flywheel D) are the
-    # bicycle's extras.
-    for e in got.bicycle.extras:
-        values[e["key"]] = e["value"]
-        sigma[e["key"]] = e["sigma"] or 0.0
-    keys = set(expected) - PASSED_THROUGH
-    assert keys >= set(whipple.BENCHMARK_KEYS)
-    assert set(values) == keys, f"{name}: ours {sorted(values)} vs theirs {sorted(keys)}"
-    worst_value, worst_sigma = 0.0, 0.0
-    for key in sorted(keys):
-        # A value without σ in the file (Balanceassistv1's g) stays a plain float.
-        v = float(getattr(expected[key], "nominal_value", expected[key]))
-        s = float(getattr(expected[key], "std_dev", 0.0))
-        dv = abs(values[key] - v) / max(abs(v), 1e-300)
-        assert dv <= 1e-12, f"{name} {key}: {values[key]!r} vs BicycleParameters' {v!r}"
-        ours_s = sigma.get(key, 0.0)
-        ds = abs(ours_s - s) / max(abs(s), 1e-300) if s != 0.0 else abs(ours_s)
-        assert ds <= 1e-9, f"{name} {key}: σ {ours_s!r} vs BicycleParameters' {s!r}"
-        worst_value, worst_sigma = max(worst_value, dv), max(worst_sigma, ds)
-    print(f"{name}: largest relative difference {worst_value:.2e} (values), "
-          f"{worst_sigma:.2e} (σ)")
+    differences, ours_keys, their_keys = measured_differences(expected, ours(name))
+    assert their_keys >= set(whipple.BENCHMARK_KEYS)
+    assert ours_keys == their_keys, f"{name}: ours {sorted(ours_keys)} vs theirs {sorted(their_keys)}"
+    for key, (dv, ds) in differences.items():
+        assert dv <= 1e-12, f"{name} {key}: value {dv:.2e} from BicycleParameters'"
+        assert ds <= 1e-9, f"{name} {key}: σ {ds:.2e} from BicycleParameters'"
+    print(f"{name}: largest relative difference {max(d for d, _ in differences.values()):.2e} "
+          f"(values), {max(s for _, s in differences.values()):.2e} (σ)")
 
 
 @pytest.mark.parametrize("name", ["Balanceassistv1", "Gyro", "Rigid"])

@@ -12,32 +12,19 @@ from conftest import optional
 
 bp = optional("bicycleparameters", module_level=True)
 
-from bicycleparameters.models import MooreRiderLean2012Model  # noqa: E402
 from bicycleparameters.parameter_dicts import mooreriderlean2012_browser_jason  # noqa: E402
-from bicycleparameters.parameter_sets import MooreRiderLean2012ParameterSet  # noqa: E402
-
-SPEEDS = [0.5, 1.0, 2.5, 4.0, 5.5, 7.0, 10.0]
-# Moore's states q1 q2 q3 q4 q6 q7 q8 q9 u4 u6 u7 u9: ours [φ, δ, φ_r, φ̇, δ̇, φ̇_r] are
-# q4, q7, q9, u4, u7, u9; the others are ignorable (positions, yaw, wheel angles, u6).
-OURS_IN_MOORE = [3, 5, 7, 8, 10, 11]
-IGNORABLE = [0, 1, 2, 4, 6, 9]
+from crosscheck import (RIDER_LEAN_HINGES, RIDER_LEAN_SPEEDS as SPEEDS,  # noqa: E402
+                        rider_lean_differences, rider_lean_pair)
 
 
-@pytest.mark.parametrize("k9, c9", [(0.0, 0.0), (128.0, 50.0)])
+@pytest.mark.parametrize("k9, c9", RIDER_LEAN_HINGES)
 def test_linearization_is_moores(k9, c9):
-    par = dict(mooreriderlean2012_browser_jason, k9=k9, c9=c9)
-    theirs = MooreRiderLean2012Model(MooreRiderLean2012ParameterSet(par))
-    ours = whipple.RiderLean.from_moore_rider_lean2012(par)
+    theirs, ours = rider_lean_pair(dict(mooreriderlean2012_browser_jason, k9=k9, c9=c9))
     for v in SPEEDS:
-        a_moore, b_moore = theirs.form_state_space_matrices(v=v)
-        a, b = ours.linearize(v)
-        rows = np.ix_(OURS_IN_MOORE, OURS_IN_MOORE)
-        scale_a = np.maximum(1.0, np.abs(a_moore[rows]))
-        assert np.max(np.abs(a - a_moore[rows]) / scale_a) < 1e-10, v
-        b_rows = b_moore[OURS_IN_MOORE]
-        assert np.max(np.abs(b - b_rows) / np.maximum(1.0, np.abs(b_rows))) < 1e-10, v
+        da, db, ignorable = rider_lean_differences(theirs, ours, v)
+        assert da < 1e-10 and db < 1e-10, v
         # The ignorable coordinates do not enter Moore's dynamics either.
-        assert np.max(np.abs(a_moore[np.ix_(OURS_IN_MOORE, IGNORABLE)])) < 1e-12
+        assert ignorable < 1e-12, v
 
 
 def test_moore_keys_round_trip():
