@@ -2,8 +2,10 @@
 //! examples --out DIR`: BicycleParameters' and HumanControl's parameter files, BicycleParameters'
 //! raw bench measurements and pendulum records, and Yeadon riders — the copies kept with the
 //! library's tests (`crates/whipple/tests/data`), each folder's README (their sources and
-//! licences) and THIRD-PARTY.md beside them. A crate built outside the repository (from its
-//! package alone) bundles none, and the command says so.
+//! licences) and THIRD-PARTY.md beside them. They are found beside this crate, in the
+//! repository and in the Python package's sdist (which holds the core crate's package, its
+//! test data and THIRD-PARTY.md included); this crate built from its own package alone bundles
+//! none, and the command says so.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -26,7 +28,9 @@ const INPUTS: [(&str, &[&str]); 8] = [
 fn main() {
     let manifest = PathBuf::from(env::var("CARGO_MANIFEST_DIR").expect("cargo sets it"));
     let data = manifest.join("../whipple/tests/data");
-    let third_party = manifest.join("../../THIRD-PARTY.md");
+    // The licences: THIRD-PARTY.md, through the core crate (its package carries it, so a build
+    // from the Python sdist, which holds the core crate's package, bundles the files too).
+    let third_party = manifest.join("../whipple/THIRD-PARTY.md");
     println!("cargo:rerun-if-changed={}", data.display());
     println!("cargo:rerun-if-changed={}", third_party.display());
     let mut files: Vec<(String, PathBuf)> = Vec::new();
