@@ -28,11 +28,22 @@ const INPUTS: [(&str, &[&str]); 8] = [
 fn main() {
     let manifest = PathBuf::from(env::var("CARGO_MANIFEST_DIR").expect("cargo sets it"));
     let data = manifest.join("../whipple/tests/data");
-    // The licences: THIRD-PARTY.md, through the core crate (its package carries it, so a build
-    // from the Python sdist, which holds the core crate's package, bundles the files too).
-    let third_party = manifest.join("../whipple/THIRD-PARTY.md");
+    // The licences: the repository's THIRD-PARTY.md, else the core crate's (a link to it in the
+    // repository, which the crate's package, and so the Python sdist, carries as a file; a
+    // checkout without links, as on Windows, has the root's).
+    let candidates = [
+        manifest.join("../../THIRD-PARTY.md"),
+        manifest.join("../whipple/THIRD-PARTY.md"),
+    ];
     println!("cargo:rerun-if-changed={}", data.display());
-    println!("cargo:rerun-if-changed={}", third_party.display());
+    for c in &candidates {
+        println!("cargo:rerun-if-changed={}", c.display());
+    }
+    let third_party = candidates
+        .iter()
+        .find(|c| c.is_file())
+        .cloned()
+        .unwrap_or_else(|| candidates[0].clone());
     let mut files: Vec<(String, PathBuf)> = Vec::new();
     if data.is_dir() && third_party.is_file() {
         for (sub, endings) in INPUTS {
