@@ -964,6 +964,45 @@ await section("a file typed in millimetres and degrees reads in SI and is saved 
   check(/^c = 0\.08 /m.test((await downloadOf(() => page.click("#save-toml"))).text), "a preset is saved in SI");
 });
 
+await section("units typed in the page's fields: mm and degrees in the editor, km/h in the speeds, saved as typed", async () => {
+  await open("?bike=preset:benchmark");
+  // 70 mm of trail: `whipple speeds --bike benchmark --set c=0.07` gives v_w 4.173324515661374.
+  await page.getByTestId("param-c").fill("70 mm");
+  const weave = await waitForText("weave-speed", (t) => /^4\.17/.test(t), 15_000);
+  check(/^4\.1733/.test(weave), `"70 mm" of trail is 0.07 m: v_w ${weave} (the CLI: 4.1733)`);
+  await page.getByTestId("param-lam").fill("18 deg");
+  await settled();
+  const typed = (await downloadOf(() => page.click("#save-toml"))).text;
+  check(/^c_mm = 70(\.0)? /m.test(typed) && /^lam_deg = 18(\.0)? /m.test(typed) && !/^c = /m.test(typed), `Save TOML writes them as typed: ${typed.match(/^(c_mm|c|lam_deg|lam) = [^ ]*/gm)?.join(", ")}`);
+  // The SI unit typed drops the suffix again.
+  await page.getByTestId("param-c").fill("0.08 m");
+  await settled();
+  const si = (await downloadOf(() => page.click("#save-toml"))).text;
+  check(/^c = 0\.08 /m.test(si) && !/^c_mm/m.test(si) && /^lam_deg = 18(\.0)? /m.test(si), `"0.08 m" is written as c again: ${si.match(/^(c_mm|c|lam_deg) = [^ ]*/gm)?.join(", ")}`);
+  // A unit the field does not take is named, and nothing is sent.
+  await page.getByTestId("param-c").fill("70 km/h");
+  const wrong = await waitForText("error-c", (t) => t !== "", 5_000);
+  check(/not a number of mm or m/.test(wrong), `a speed's unit in a length's field: "${wrong}"`);
+  await page.getByTestId("param-c").fill("0.08");
+  await settled();
+  // Speeds in km/h: 0 to 36 km/h is 0 to 10 m/s.
+  await page.fill("#v-stop", "36 km/h");
+  await page.fill("#v-step", "0.036 km/h");
+  await page.press("#v-step", "Enter");
+  const meta = await waitForText("critical-meta", (t) => /^linear model, 0 – 10 m\/s$/.test(t), 15_000);
+  check(/^4\.2924/.test(await text("weave-speed")), `v up to "36 km/h" in steps of "0.036 km/h": "${meta}", v_w ${await text("weave-speed")}`);
+  // The design map's speed and band in km/h (both back ends: read from the page, not the wire).
+  await open("?bike=preset:benchmark&tab=map");
+  await waitForText("map-meta", (t) => /designs \(/.test(t), 20_000);
+  await page.selectOption("[data-testid=map-quantity]", "band_margin");
+  await page.getByTestId("map-speed").fill("18 km/h");
+  await page.getByTestId("map-band").fill("16:23 km/h");
+  await page.getByTestId("map-run").click();
+  const legend = await waitForText("map-legend", (t) => /self-stable at every speed/.test(t), 20_000);
+  const wrongFields = await page.$$eval("#map-speed.invalid, #map-band.invalid", (l) => l.length);
+  check(/self-stable at every speed 4\.44\d*–6\.38\d* m\/s/.test(legend) && wrongFields === 0, `"16:23 km/h" is the band 4.444–6.389 m/s, "18 km/h" a speed: "${legend}"`);
+});
+
 await section("sensitivity: exact elasticities as a tornado and a table", async () => {
   await open("?bike=preset:benchmark&tab=sens");
   await page.getByTestId("sens-tornado").waitFor({ timeout: 15_000 });

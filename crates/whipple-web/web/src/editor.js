@@ -6,12 +6,52 @@ import { html, inputText, num } from "./format.js";
 
 const DEG = 180 / Math.PI;
 
-/** Parses what was typed; null when it is not a finite number. */
-export function parseNumber(text) {
-  const t = text.trim().replace(/^−/, "-").replace(",", ".");
+/**
+ * The units a field of each kind also takes, typed after the number (as the CLI and the files
+ * take them: `trail_mm`, `lam_deg`, `--range 15:25km/h`): [symbol, the value in the field's
+ * unit, the unit a file writes the key in ("" for the field's own, SI, which files need no
+ * suffix for)]. A length field is in m, an angle field in degrees, a speed field in m/s; the
+ * conversions are the library's (x / 1000 m, x / 3.6 m/s), so that "62 mm" here is the 0.062 m
+ * a file's `c_mm = 62` reads as, to the bit.
+ */
+const TYPED_UNITS = {
+  length: [["mm", (x) => x / 1000, "mm"], ["m", (x) => x, ""]],
+  angle: [["°", (x) => x, "deg"], ["deg", (x) => x, "deg"], ["rad", (x) => x * DEG, ""]],
+  speed: [["km/h", (x) => x / 3.6, null], ["m/s", (x) => x, null]],
+};
+
+/** The units `kind` takes, for messages: "m or mm". */
+export function unitsOf(kind) {
+  return (TYPED_UNITS[kind] ?? []).map(([u]) => u).join(" or ");
+}
+
+/**
+ * Parses what was typed into a field of `kind` ("length", "angle", "speed" or null for a bare
+ * number): {value, unit} in the field's unit, `unit` the unit a file would write the key in
+ * when one was typed ("mm", "deg", "" for SI), undefined when none was; null when the text is
+ * not a finite number, or names a unit the field does not take. A decimal comma is a point.
+ */
+export function parseQuantity(text, kind = null) {
+  let t = String(text ?? "").trim().replace(/^−/, "-").replace(",", ".");
+  let convert = (x) => x;
+  let unit;
+  for (const [symbol, to, written] of TYPED_UNITS[kind] ?? []) {
+    if (t.endsWith(symbol)) {
+      t = t.slice(0, -symbol.length).trim();
+      convert = to;
+      unit = written ?? undefined;
+      break;
+    }
+  }
   if (t === "" || !/^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(t)) return null;
-  const x = Number(t);
-  return Number.isFinite(x) ? x : null;
+  const x = convert(Number(t));
+  return Number.isFinite(x) ? { value: x, unit } : null;
+}
+
+/** Parses what was typed; null when it is not a finite number. `kind` as [parseQuantity]'s:
+ *  a speed field takes "20 km/h", a length field "62 mm". */
+export function parseNumber(text, kind = null) {
+  return parseQuantity(text, kind)?.value ?? null;
 }
 
 /** The number of a field: itself, or the value of a measured {value, sigma}. */
@@ -19,19 +59,29 @@ export function valueOf(raw) {
   return raw !== null && typeof raw === "object" ? raw.value : raw;
 }
 
-/** What is wrong with text that is not a number. */
-function notANumber(text) {
-  return text.trim() === "" ? "empty: type a number" : "not a number";
+/** What is wrong with text that is not a number (of `kind`, which takes these units). */
+function notANumber(text, kind = null) {
+  if (text.trim() === "") return "empty: type a number";
+  return kind ? `not a number of ${unitsOf(kind)}` : "not a number";
+}
+
+/** The kind of quantity a parameter's field holds, for the units it also takes. */
+function kindOf(spec) {
+  if (spec.angle) return "angle";
+  return spec.unit === "m" ? "length" : null;
 }
 
 export class Editor {
   /** `onInput(path, value, part)` is called for every valid number typed (angles in radians;
    * `part` "value", or "sigma" for the σ of a measured value);
-   * `onLocal()` whenever a field starts or stops holding text that is not a number. */
-  constructor(container, onInput, onLocal = () => {}) {
+   * `onLocal()` whenever a field starts or stops holding text that is not a number;
+   * `onUnit(key, unit)` when a value is typed with a unit ("mm", "deg"; "" for SI), so that a
+   * saved file writes the key in it (`c_mm`). */
+  constructor(container, onInput, onLocal = () => {}, onUnit = () => {}) {
     this.container = container;
     this.onInput = onInput;
     this.onLocal = onLocal;
+    this.onUnit = onUnit;
     this.inputs = [];
   }
 
@@ -136,16 +186,21 @@ export class Editor {
    */
   listen(input, spec, cell, part, exact, hint) {
     const shown = input.value.trim();
+    const kind = kindOf(spec);
     input.addEventListener("input", () => {
-      const x = parseNumber(input.value);
+      const q = parseQuantity(input.value, kind);
       const wasLocal = input.classList.contains("local");
-      if (x === null) {
-        this.markLocal(input, notANumber(input.value));
+      if (q === null) {
+        this.markLocal(input, notANumber(input.value, kind));
         if (!wasLocal) this.onLocal();
         return;
       }
+      const x = q.value;
       this.unmarkLocal(input);
-      if (spec.angle && hint) this.suggestDegrees(spec, input, x, hint);
+      if (part === "value" && q.unit !== undefined) this.onUnit(cell.lib, q.unit);
+      // Degrees typed with their unit (or radians with theirs) are no slip to point out.
+      if (spec.angle && hint && q.unit === undefined) this.suggestDegrees(spec, input, x, hint);
+      else if (spec.angle && hint) this.suggestDegrees({ ...spec, plausible: undefined }, input, x, hint);
       const typed = spec.angle ? x / DEG : x;
       this.onInput(cell.path, input.value.trim() === shown && Number.isFinite(exact) ? exact : typed, part);
       if (wasLocal) this.onLocal();

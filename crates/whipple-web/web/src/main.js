@@ -65,6 +65,14 @@ const editor = new Editor(
     remember(false);
   },
   () => schedule(),
+  // A value typed with a unit ("62 mm", "18 deg") is written in it by Save TOML (`c_mm`), one
+  // typed with the SI unit ("0.062 m") without a suffix.
+  (key, unit) => {
+    const units = { ...(state.units ?? {}) };
+    if (unit) units[key] = unit;
+    else delete units[key];
+    state.units = Object.keys(units).length ? units : null;
+  },
 );
 const plot = new EigenPlot($("eigen-plot"));
 const locus = new LocusPlot($("locus-plot"));
@@ -372,7 +380,7 @@ $("design-name").addEventListener("input", () => {
 // ---- computing ----------------------------------------------------------------------------
 
 function speedGrid() {
-  const read = (id) => parseNumber($(id).value);
+  const read = (id) => parseNumber($(id).value, "speed");
   return { start: read("v-start"), stop: read("v-stop"), step: read("v-step") };
 }
 
@@ -449,7 +457,7 @@ async function recompute() {
   const grid = speedGrid();
   for (const id of ["v-start", "v-stop", "v-step"]) $(id).classList.remove("invalid");
   if (Object.values(grid).some((x) => x === null)) {
-    for (const id of ["v-start", "v-stop", "v-step"]) if (parseNumber($(id).value) === null) $(id).classList.add("invalid");
+    for (const id of ["v-start", "v-stop", "v-step"]) if (parseNumber($(id).value, "speed") === null) $(id).classList.add("invalid");
     $("eigen-message").textContent = "The speeds must be numbers.";
     $("eigen-message").hidden = false;
     // The results of the last speeds stay, veiled: they are not those the fields ask for.

@@ -6,6 +6,7 @@
 // NAME=START:STOP:COUNT; the base design is marked, and the cell under the cursor is read out.
 
 import { api } from "./api.js";
+import { parseNumber } from "./editor.js";
 import { html, num, ramp, ticks, tickLabel, FONT } from "./format.js";
 
 /** Where v sits on a diverging scale over `range`: 0.5 at zero, 0 at the lowest value (when
@@ -39,10 +40,13 @@ export const MAP_QUANTITIES = {
 export function parseBand(text) {
   const t = text.trim();
   if (t === "") return null;
-  const parts = t.split(":");
-  const [a, b] = parts.map((p) => Number(p.trim()));
+  // km/h after the band applies to both ends, as the CLI's `--band 16:23km/h`.
+  const kmh = /km\/h$/.test(t);
+  const parts = t.split(":").map((p) => (kmh ? p.trim().replace(/km\/h$/, "") : p));
+  // Each end in m/s, or in km/h where it says so; both in km/h when the band ends in it.
+  const [a, b] = parts.map((p) => parseNumber(p, kmh ? null : "speed")).map((x) => (x === null ? NaN : kmh ? x / 3.6 : x));
   if (parts.length !== 2 || parts.some((p) => p.trim() === "") || !Number.isFinite(a) || !Number.isFinite(b)) {
-    return { error: `the band is A:B in m/s (for example 4:8), not “${t}”` };
+    return { error: `the band is A:B in m/s or km/h (for example 4:8, or 16:23 km/h), not “${t}”` };
   }
   if (!(a < b)) return { error: `the band's A must be less than its B, got ${t}` };
   return [a, b];
@@ -146,8 +150,8 @@ export class MapPanel {
     const request = { bike: this.bike(), x: $("map-x").value.trim() };
     const y = $("map-y").value.trim();
     if (y) request.y = y;
-    const speed = Number($("map-speed").value);
-    if ($("map-speed").value.trim() !== "" && Number.isFinite(speed)) request.speed = speed;
+    const speed = parseNumber($("map-speed").value, "speed");
+    if ($("map-speed").value.trim() !== "" && speed !== null) request.speed = speed;
     const band = parseBand($("map-band").value);
     const bandMissing = !band && $("map-quantity").value === "band_margin" && request.y;
     if (band?.error || bandMissing) {

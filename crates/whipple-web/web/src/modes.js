@@ -93,7 +93,7 @@ export class ModesPanel {
   }
 
   speed() {
-    return parseNumber($("mode-speed").value);
+    return parseNumber($("mode-speed").value, "speed");
   }
 
   /** A speed to look at: the middle of the self-stable range unless one was typed. */

@@ -35,7 +35,7 @@ export function parseSpeeds(text) {
   const parts = String(text ?? "").split(/[,\s;]+/).filter(Boolean);
   const out = [];
   for (const p of parts) {
-    const v = parseNumber(p);
+    const v = parseNumber(p, "speed");
     if (v === null) return null;
     out.push(v);
   }

@@ -241,12 +241,12 @@ export class RiddenPanel {
       this.veil("not recomputed: see the message above");
       return null;
     };
-    const speed = parseNumber($("rd-speed").value);
+    const speed = parseNumber($("rd-speed").value, "speed");
     if (speed === null) return refuse(`The lane change's speed must be a number of m/s (got “${$("rd-speed").value.trim()}”).`, ["rd-speed"]);
     if (!(speed >= MIN_SPEED && speed <= MAX_SPEED)) return refuse(`The lane change's speed must lie from ${MIN_SPEED} to ${MAX_SPEED} m/s (got ${num(speed)} m/s).`, ["rd-speed"]);
     const grid = {};
     for (const [k, id, what] of [["start", "rd-from", "from"], ["stop", "rd-to", "to"], ["step", "rd-step", "step"]]) {
-      grid[k] = parseNumber($(id).value);
+      grid[k] = parseNumber($(id).value, "speed");
       if (grid[k] === null) return refuse(`The HQM speeds' “${what}” must be a number of m/s (got “${$(id).value.trim()}”).`, [id]);
     }
     if (!(grid.step > 0)) return refuse("The HQM speeds' step must be positive.", ["rd-step"]);

@@ -158,7 +158,7 @@ export class SimPanel {
 
   /** A word under a negative speed: the bicycle then rides backwards. */
   noteSpeed() {
-    const v = parseNumber($("sim-speed").value);
+    const v = parseNumber($("sim-speed").value, "speed");
     const note = $("sim-speed-note");
     note.textContent = v !== null && v < 0 ? `v = ${num(v)} m/s: riding backwards` : "";
     note.hidden = !note.textContent;
@@ -245,7 +245,7 @@ export class SimPanel {
     const request = { bike: this.bike() };
     for (const [id] of [...INPUTS, ...TORQUES, ...RIDER]) $(id).classList.remove("invalid");
     for (const [id, key] of INPUTS) {
-      const x = parseNumber($(id).value);
+      const x = parseNumber($(id).value, key === "speed" ? "speed" : null);
       if (x === null) {
         $(id).classList.add("invalid");
         this.refused(`${$(id).dataset.label} must be a number.`);
