@@ -455,7 +455,7 @@ pub fn modes(cx: &RunContext, arg: &str, speed: f64, format: TextFormat) -> Resu
             for (pair, label) in &pairs {
                 let l = pair.value;
                 let x = pair.vector;
-                let ratio = if x[0].norm() > 0.0 {
+                let ratio = if whipple::math::norm(x[0]) > 0.0 {
                     x[1] / x[0]
                 } else {
                     x[1] * f64::INFINITY
@@ -499,17 +499,16 @@ pub fn modes(cx: &RunContext, arg: &str, speed: f64, format: TextFormat) -> Resu
                         z.re,
                         if z.im < 0.0 { '-' } else { '+' },
                         z.im.abs(),
-                        z.norm(),
-                        z.arg().to_degrees()
+                        whipple::math::norm(z),
+                        whipple::math::arg(z).to_degrees()
                     )?;
                 }
                 if ratio.re.is_finite() && ratio.im.is_finite() {
                     writeln!(
                         t,
                         "    steer/lean  {:.6} at {:.3} deg",
-                        ratio.norm(),
-                        nalgebra::Complex::new(ratio.re + 0.0, ratio.im + 0.0)
-                            .arg()
+                        whipple::math::norm(ratio),
+                        whipple::math::arg(nalgebra::Complex::new(ratio.re + 0.0, ratio.im + 0.0))
                             .to_degrees()
                     )?;
                 }
@@ -540,13 +539,13 @@ pub(crate) fn with_sigma(v: f64, sigma: Option<f64>, unit: &str) -> Result<Strin
 
 /// A standard deviation to three significant digits.
 pub(crate) fn round_sigma(s: f64) -> String {
-    let digits = (2 - s.abs().log10().floor() as i32).max(0) as usize;
+    let digits = (2 - whipple::math::log10(s.abs()).floor() as i32).max(0) as usize;
     format!("{s:.digits$}")
 }
 
 /// A value to the decimals of its three-digit standard deviation.
 pub(crate) fn round_to_sigma(v: f64, s: f64) -> String {
-    let digits = (2 - s.abs().log10().floor() as i32).max(0) as usize;
+    let digits = (2 - whipple::math::log10(s.abs()).floor() as i32).max(0) as usize;
     format!("{v:.digits$}")
 }
 
@@ -559,8 +558,8 @@ fn eigen_sigma_bands(bike: &LoadedBike, s: &whipple::EigenSweep) -> Result<Vec<[
         let mut out = [(f64::NAN, f64::NAN); 4];
         for (k, l) in row.iter().enumerate() {
             let nearest = sig.iter().min_by(|a, b| {
-                let da = (a.re - l.re).hypot(a.im - l.im);
-                let db = (b.re - l.re).hypot(b.im - l.im);
+                let da = whipple::math::hypot(a.re - l.re, a.im - l.im);
+                let db = whipple::math::hypot(b.re - l.re, b.im - l.im);
                 da.total_cmp(&db)
             });
             if let Some(e) = nearest {

@@ -292,9 +292,8 @@ fn controllability(
                     let label = shapes
                         .iter()
                         .min_by(|a, b| {
-                            (a.pair.value - m.eigenvalue)
-                                .norm()
-                                .total_cmp(&(b.pair.value - m.eigenvalue).norm())
+                            whipple::math::norm(a.pair.value - m.eigenvalue)
+                                .total_cmp(&whipple::math::norm(b.pair.value - m.eigenvalue))
                         })
                         .map_or("mode", |s| s.mode.name());
                     (label, m.eigenvalue, m.measure)

@@ -65,7 +65,7 @@ fn shown(values: &[f64]) -> Result<Vec<String>> {
     }
     let largest = values.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let decimals = if largest > 0.0 {
-        (9 - largest.log10().floor() as i32).clamp(0, 20) as usize
+        (9 - whipple::math::log10(largest).floor() as i32).clamp(0, 20) as usize
     } else {
         0
     };

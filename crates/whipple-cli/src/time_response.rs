@@ -223,7 +223,7 @@ pub(crate) fn short(x: f64) -> Result<String> {
     Ok(if x == 0.0 {
         "0".to_string()
     } else if (1e-3..1e6).contains(&size) {
-        let decimals = (5 - size.log10().floor() as i32).clamp(0, 8) as usize;
+        let decimals = (5 - whipple::math::log10(size).floor() as i32).clamp(0, 8) as usize;
         let text = format!("{x:.decimals$}");
         if text.contains('.') {
             text.trim_end_matches('0').trim_end_matches('.').to_string()
@@ -354,7 +354,7 @@ fn series(
         .map(|k| {
             (
                 path.rear_x[k] + w,
-                path.rear_y[k] + w * path.yaw[k] - c * steer[k] * lambda.cos(),
+                path.rear_y[k] + w * path.yaw[k] - c * steer[k] * whipple::math::cos(lambda),
             )
         })
         .collect();

@@ -47,7 +47,10 @@ fn period_of_a_csv_record_by_column_name() {
     let rows: String = (0..1000)
         .map(|i| {
             let t = i as f64 * 0.005;
-            format!("{t},{}\n", 2.0 + (-0.1 * t).exp() * (5.0 * t).sin())
+            format!(
+                "{t},{}\n",
+                2.0 + whipple::math::exp(-0.1 * t) * whipple::math::sin(5.0 * t)
+            )
         })
         .collect();
     std::fs::write(&path, format!("t,rate gyro\n{rows}")).expect("written");

@@ -311,13 +311,13 @@ pub fn log_grid(start: f64, stop: f64, count: usize) -> Result<Vec<f64>> {
             format!("START must be below STOP, got {start} and {stop}"),
         ));
     }
-    let (a, b) = (start.ln(), stop.ln());
+    let (a, b) = (whipple::math::ln(start), whipple::math::ln(stop));
     let last = (count - 1) as f64;
     Ok((0..count)
         .map(|k| match k {
             0 => start,
             _ if k == count - 1 => stop,
-            _ => (a + (b - a) * k as f64 / last).exp(),
+            _ => whipple::math::exp(a + (b - a) * k as f64 / last),
         })
         .collect())
 }

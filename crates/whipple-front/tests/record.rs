@@ -78,7 +78,11 @@ fn csv_records_by_header_number_and_rate() -> Result<(), Error> {
     let rows: String = (0..400)
         .map(|i| {
             let t = i as f64 * 0.01;
-            format!("{t},{},{}\n", 7.0, (-0.02 * t).exp() * (3.0 * t).cos())
+            format!(
+                "{t},{},{}\n",
+                7.0,
+                whipple::math::exp(-0.02 * t) * whipple::math::cos(3.0 * t)
+            )
         })
         .collect();
     let text = format!("# a comment\ntime,temperature,gyro\n{rows}");

@@ -44,22 +44,32 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let t: Vec<f64> = (0..=600).map(|i| i as f64 * 0.01).collect();
     let lean: Vec<f64> = t
         .iter()
-        .map(|t| 0.08 * (-0.4 * t).exp() * (4.5 * t).sin())
+        .map(|t| 0.08 * whipple::math::exp(-0.4 * t) * whipple::math::sin(4.5 * t))
         .collect();
     let steer: Vec<f64> = t
         .iter()
-        .map(|t| 0.05 * (-0.4 * t).exp() * (4.5 * t + 1.0).cos())
+        .map(|t| 0.05 * whipple::math::exp(-0.4 * t) * whipple::math::cos(4.5 * t + 1.0))
         .collect();
     let heading: Vec<f64> = t.iter().map(|t| 0.15 * t).collect();
     let rear: Vec<(f64, f64)> = t
         .iter()
         .zip(&heading)
-        .map(|(t, h)| (5.0 / 0.15 * h.sin(), 5.0 / 0.15 * (1.0 - h.cos()) + 0.0 * t))
+        .map(|(t, h)| {
+            (
+                5.0 / 0.15 * whipple::math::sin(*h),
+                5.0 / 0.15 * (1.0 - whipple::math::cos(*h)) + 0.0 * t,
+            )
+        })
         .collect();
     let front = rear
         .iter()
         .zip(&heading)
-        .map(|(p, h)| (p.0 + 1.02 * h.cos(), p.1 + 1.02 * h.sin()))
+        .map(|(p, h)| {
+            (
+                p.0 + 1.02 * whipple::math::cos(*h),
+                p.1 + 1.02 * whipple::math::sin(*h),
+            )
+        })
         .collect();
     let series = whipple_report::SimulationSeries {
         title: "benchmark, 5 m/s, lean 0.08 rad (synthetic)".into(),

@@ -478,7 +478,7 @@ fn shows_imaginary(values: &[whipple::advanced::eigen::Complex64; 4], k: usize) 
     }
     l.im < 0.0
         && !values.iter().enumerate().any(|(j, m)| {
-            let scale = 1e-9 * (1.0 + l.norm());
+            let scale = 1e-9 * (1.0 + whipple::math::norm(l));
             j != k && (m.im + l.im).abs() <= scale && (m.re - l.re).abs() <= scale
         })
 }

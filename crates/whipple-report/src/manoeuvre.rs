@@ -140,8 +140,8 @@ impl ManoeuvreFigure {
         });
         let (y0, y1) = if hi > 0.0 {
             (
-                10f64.powf(lo.log10().floor()).max(hi * 1e-12),
-                10f64.powf(hi.log10().ceil()),
+                whipple::math::powf(10f64, whipple::math::log10(lo).floor()).max(hi * 1e-12),
+                whipple::math::powf(10f64, whipple::math::log10(hi).ceil()),
             )
         } else {
             (1e-16, 1.0)

@@ -151,7 +151,13 @@ impl SideViewFigure {
     fn rider_points(&self, g: &Geometry) -> (P, P, P) {
         let hip = add(g.saddle, (0.0, 0.06));
         let lean = 50f64.to_radians();
-        let shoulder = add(hip, (0.55 * lean.cos(), 0.55 * lean.sin()));
+        let shoulder = add(
+            hip,
+            (
+                0.55 * whipple::math::cos(lean),
+                0.55 * whipple::math::sin(lean),
+            ),
+        );
         let head = add(shoulder, (0.1, 0.17));
         (hip, shoulder, head)
     }
@@ -364,7 +370,10 @@ fn circle(centre: P, r: f64) -> Vec<P> {
     (0..=240)
         .map(|i| {
             let a = i as f64 * std::f64::consts::TAU / 240.0;
-            (centre.0 + r * a.cos(), centre.1 + r * a.sin())
+            (
+                centre.0 + r * whipple::math::cos(a),
+                centre.1 + r * whipple::math::sin(a),
+            )
         })
         .collect()
 }
@@ -382,7 +391,10 @@ fn cm_symbol<DB: DrawingBackend, CT: plotters::coord::CoordTranslate<From = P>>(
         let mut quarter = vec![at];
         quarter.extend((0..=12).map(|i| {
             let a = start + i as f64 * std::f64::consts::FRAC_PI_2 / 12.0;
-            (at.0 + r * a.cos(), at.1 + r * a.sin())
+            (
+                at.0 + r * whipple::math::cos(a),
+                at.1 + r * whipple::math::sin(a),
+            )
         }));
         area.draw(&Polygon::new(quarter, colour.filled()))
             .or_draw(FIGURE)?;

@@ -252,10 +252,10 @@ impl XyFigure {
             .iter()
             .flat_map(|s| s.points.iter().map(|p| p.1));
         if self.log {
-            let (lo, hi) = span(ys.filter(|&y| y > 0.0).map(f64::log10));
+            let (lo, hi) = span(ys.filter(|&y| y > 0.0).map(whipple::math::log10));
             (
-                10f64.powf(lo.floor()),
-                10f64.powf(hi.ceil().max(lo.floor() + 1.0)),
+                whipple::math::powf(10f64, lo.floor()),
+                whipple::math::powf(10f64, hi.ceil().max(lo.floor() + 1.0)),
             )
         } else {
             let (lo, hi) = span(ys);
@@ -301,19 +301,28 @@ impl XyFigure {
             let rect = Rect {
                 x0,
                 x1,
-                y0: y0.log10(),
-                y1: y1.log10(),
+                y0: whipple::math::log10(y0),
+                y1: whipple::math::log10(y1),
             };
             for (i, s) in self.series.iter().enumerate() {
                 let logged: Vec<(f64, f64)> = s
                     .points
                     .iter()
-                    .map(|&(x, y)| (x, if y > 0.0 { y.log10() } else { f64::NAN }))
+                    .map(|&(x, y)| {
+                        (
+                            x,
+                            if y > 0.0 {
+                                whipple::math::log10(y)
+                            } else {
+                                f64::NAN
+                            },
+                        )
+                    })
                     .collect();
                 for run in clip_polyline(&logged, &rect) {
                     let back = run
                         .into_iter()
-                        .map(|(x, ly)| (x, 10f64.powf(ly).clamp(y0, y1)))
+                        .map(|(x, ly)| (x, whipple::math::powf(10f64, ly).clamp(y0, y1)))
                         .collect();
                     draw_run(area, back, colour(i, s).stroke_width(2), s.dash, FIGURE)?;
                 }

@@ -209,8 +209,14 @@ fn synthetic_time_series_renders() -> TestResult {
     let t: Vec<f64> = (0..200).map(|i| i as f64 * 0.02).collect();
     let series = SimulationSeries {
         title: "synthetic".into(),
-        lean: t.iter().map(|t| 0.1 * (3.0 * t).sin()).collect(),
-        steer: t.iter().map(|t| 0.05 * (3.0 * t).cos()).collect(),
+        lean: t
+            .iter()
+            .map(|t| 0.1 * whipple::math::sin(3.0 * t))
+            .collect(),
+        steer: t
+            .iter()
+            .map(|t| 0.05 * whipple::math::cos(3.0 * t))
+            .collect(),
         speed: vec![4.0; t.len()],
         rear_contact: t.iter().map(|t| (4.0 * t, 0.1 * t * t)).collect(),
         front_contact: t.iter().map(|t| (4.0 * t + 1.0, 0.1 * t * t)).collect(),

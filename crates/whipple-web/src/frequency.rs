@@ -199,7 +199,9 @@ fn at_speed(
     let g: TransferFunction = system.transfer_function(0, 0)?;
     let zero_response = g.numerator.is_empty();
     let zeros = g.zeros()?;
-    let largest = zeros.iter().fold(0.0f64, |m, z| m.max(z.norm()));
+    let largest = zeros
+        .iter()
+        .fold(0.0f64, |m, z| m.max(whipple::math::norm(z)));
     let zeros = zeros
         .into_iter()
         .map(|z| Zero {

@@ -69,6 +69,7 @@ mod error;
 mod expression;
 mod integrate;
 mod linear;
+pub mod math;
 mod nonlinear;
 mod parameters;
 mod rider;

@@ -165,7 +165,7 @@ impl SideView {
         {
             let half = body.ellipse.map_or([0.0, 0.0], |e| {
                 let [a, b] = e.semi_axes;
-                let (s, c) = e.angle.sin_cos();
+                let (s, c) = crate::math::sin_cos(e.angle);
                 [
                     (a * a * c * c + b * b * s * s).sqrt(),
                     (a * a * s * s + b * b * c * c).sqrt(),
@@ -207,7 +207,7 @@ pub(crate) fn benchmark_ellipse(
     let mean = 0.5 * (ixx + izz);
     let radius = (0.25 * (ixx - izz).powi(2) + ixz * ixz).sqrt();
     // The larger principal moment's axis lies at θ from x toward +z (down), so at −θ with y up.
-    let theta = 0.5 * (2.0 * ixz).atan2(ixx - izz);
+    let theta = 0.5 * crate::math::atan2(2.0 * ixz, ixx - izz);
     ellipse(mass, mean + radius, mean - radius, iyy, -theta)
 }
 
@@ -223,7 +223,7 @@ fn scale(a: Point, k: f64) -> Point {
 /// separate bodies when it was described in that form.
 pub fn side_view(p: &BenchmarkParameters, jbike6: Option<&Jbike6Parameters>) -> SideView {
     let ground_point = [p.w + p.c, 0.0];
-    let up = [-p.lambda.sin(), p.lambda.cos()];
+    let up = [-crate::math::sin(p.lambda), crate::math::cos(p.lambda)];
     let rear_hub = [0.0, p.r_r];
     let front_hub = [p.w, p.r_f];
     let along = |s: f64| add(ground_point, scale(up, s));
@@ -240,7 +240,7 @@ pub fn side_view(p: &BenchmarkParameters, jbike6: Option<&Jbike6Parameters>) -> 
     let wheel = p.r_r.max(p.r_f).max(0.15);
     let bottom_bracket = [0.4 * p.w, 0.8 * wheel];
     let seat_angle = 17f64.to_radians();
-    let tube = [-seat_angle.sin(), seat_angle.cos()];
+    let tube = [-crate::math::sin(seat_angle), crate::math::cos(seat_angle)];
     let length = ((head_top[1] + 0.03 - bottom_bracket[1]) / tube[1]).max(0.2);
     let seat_cluster = add(bottom_bracket, scale(tube, length));
     let saddle = add(seat_cluster, scale(tube, 0.12));
@@ -383,7 +383,7 @@ mod tests {
         assert!((e.semi_axes[0] - a).abs() < 1e-12 && (e.semi_axes[1] - b).abs() < 1e-12);
         // Rotated into the benchmark's axes (z down) by θ: the same ellipse comes back.
         let theta: f64 = 0.3;
-        let (s, co) = theta.sin_cos();
+        let (s, co) = crate::math::sin_cos(theta);
         // Tensor in (x, z) with the first principal axis at −θ from x toward +z.
         let ixx = i1 * co * co + i2 * s * s;
         let izz = i1 * s * s + i2 * co * co;

@@ -154,7 +154,7 @@ fn max_real(c: &Canonical, v: f64) -> Result<(f64, f64)> {
         .iter()
         .map(|z| z.re)
         .fold(f64::NEG_INFINITY, f64::max);
-    let scale = values.iter().map(|z| z.norm()).fold(1.0, f64::max);
+    let scale = values.iter().map(whipple::math::norm).fold(1.0, f64::max);
     Ok((re, scale))
 }
 
@@ -176,7 +176,7 @@ fn agrees_with_a_dense_scan(c: &Canonical, lo: f64, hi: f64) -> Result<usize> {
     if hi > 50.0 {
         let end = hi.min(1e6);
         for k in 1..=2000 {
-            scan.push(50.0 * (end / 50.0).powf(k as f64 / 2000.0));
+            scan.push(50.0 * whipple::math::powf(end / 50.0, k as f64 / 2000.0));
         }
     }
     let mut cuts: Vec<f64> = s.crossings.iter().map(|x| x.speed).collect();

@@ -124,7 +124,7 @@ fn the_kalman_matrix_and_the_modes_agree_with_the_certified_speeds() {
                     Vec<_>,
                 ) = modes
                     .iter()
-                    .partition(|m| (m.eigenvalue - speed.eigenvalue).norm() < 1e-6);
+                    .partition(|m| whipple::math::norm(m.eigenvalue - speed.eigenvalue) < 1e-6);
                 assert_eq!(lost_mode.len(), 1, "{input} at {v}: {modes:?} vs {speed:?}");
                 assert!(lost_mode[0].measure < 1e-12, "{modes:?}");
                 assert!(others.iter().all(|m| m.measure > 1e-6), "{modes:?}");
@@ -186,7 +186,7 @@ fn modal_controllability_matches_independent_left_eigenvectors() {
                 let ell: Vec<Complex<f64>> = v_t.row(k).iter().map(|z| z.conj()).collect();
                 let ell_norm = ell.iter().map(|z| z.norm_sqr()).sum::<f64>().sqrt();
                 let dot: Complex<f64> = ell.iter().zip(&b).map(|(l, x)| l * x).sum();
-                let independent = dot.norm() / (ell_norm * b_norm);
+                let independent = whipple::math::norm(dot) / (ell_norm * b_norm);
                 assert!(
                     (independent - mode.measure).abs() < 1e-9,
                     "{input} at {v}: {} vs {independent}",

@@ -190,7 +190,7 @@ fn position_projection_reports_divergence() -> Result<()> {
     let model = benchmark()?;
     let mut q = upright(&model, 5.0)?.q;
     for (i, x) in q.iter_mut().enumerate() {
-        *x += 0.3 * ((i as f64) * 0.9).sin();
+        *x += 0.3 * whipple::math::sin((i as f64) * 0.9);
     }
     for method in [ProjectionMethod::LeastNorm, ProjectionMethod::Coordinates] {
         let params = ProjectionSettings {

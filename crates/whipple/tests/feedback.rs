@@ -38,7 +38,7 @@ fn set_distance(a: &[Complex64], b: &[Complex64]) -> f64 {
             .iter()
             .enumerate()
             .filter(|(j, _)| !taken[*j])
-            .map(|(j, y)| (j, (x - y).norm()))
+            .map(|(j, y)| (j, whipple::math::norm(x - y)))
             .min_by(|p, q| p.1.total_cmp(&q.1))
             .expect("as many as a");
         taken[j] = true;
@@ -187,7 +187,7 @@ fn lqr_schedule_is_stable_at_every_scheduled_speed_and_certified_between() -> Re
     let sweep = closed.eigen_sweep(&sweep_speeds)?;
     for (v, row) in sweep.speeds.iter().zip(&sweep.eigenvalues) {
         let general = closed.eigenvalues(*v)?;
-        let scale = general.iter().map(|z| z.norm()).fold(1.0, f64::max);
+        let scale = general.iter().map(whipple::math::norm).fold(1.0, f64::max);
         assert!(set_distance(row, &general) < 1e-12 * scale, "{v} m/s");
     }
     Ok(())
@@ -230,16 +230,19 @@ fn closed_loop_polynomial_eigenvalues_equal_those_of_a_minus_bk() -> Result<(), 
             if system.states().len() > 4 {
                 let all = closed.eigenvalues(*v)?;
                 assert_eq!(all.len(), system.states().len());
-                let zeros = all.iter().filter(|z| z.norm() < 1e-5).count();
+                let zeros = all
+                    .iter()
+                    .filter(|z| whipple::math::norm(**z) < 1e-5)
+                    .count();
                 assert_eq!(zeros, system.states().len() - 4, "{all:?}");
             }
-            let scale = general.iter().map(|z| z.norm()).fold(1.0, f64::max);
+            let scale = general.iter().map(whipple::math::norm).fold(1.0, f64::max);
             // Near a double root the eigenvalues themselves are ill-conditioned (they move
             // by ε scale² / gap): the tolerance widens there, and only there.
             let mut gap = f64::INFINITY;
             for i in 0..4 {
                 for j in 0..i {
-                    gap = gap.min((row[i] - row[j]).norm());
+                    gap = gap.min(whipple::math::norm(row[i] - row[j]));
                 }
             }
             let conditioning = (scale / gap).max(1.0);
@@ -644,7 +647,10 @@ fn a_path_control_loop_is_swept_by_the_general_solver() -> Result<(), Error> {
     // order (sorted by real part) and as every transposition of the tracked order.
     for (k, pair) in rows.windows(2).enumerate() {
         let cost = |row: &[Complex64]| -> f64 {
-            row.iter().zip(&pair[0]).map(|(a, b)| (a - b).norm()).sum()
+            row.iter()
+                .zip(&pair[0])
+                .map(|(a, b)| whipple::math::norm(a - b))
+                .sum()
         };
         let tracked = cost(&pair[1]);
         assert!(tracked <= cost(&closed.eigenvalues(speeds[k + 1])?) + 1e-12);
@@ -692,10 +698,10 @@ fn closed_loop_eigenvectors_satisfy_the_eigen_equation() -> Result<(), Error> {
                 assert!((x.norm() - 1.0).abs() < 1e-14);
                 let pivot = x
                     .iter()
-                    .max_by(|p, q| p.norm().total_cmp(&q.norm()))
+                    .max_by(|p, q| whipple::math::norm(**p).total_cmp(&whipple::math::norm(**q)))
                     .unwrap();
                 assert!(pivot.im.abs() < 1e-15 && pivot.re > 0.0);
-                let scale = 1.0 + value.norm() + a.norm();
+                let scale = 1.0 + whipple::math::norm(value) + a.norm();
                 worst = worst.max((&a * &x - x.clone() * value).norm() / scale);
             }
         }

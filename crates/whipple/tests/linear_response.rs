@@ -125,7 +125,7 @@ fn modal_solution(
         let br = &v_inv * (&b * r.map(|x| C64::new(x, 0.0)));
         for i in 0..n {
             let l = lambda[i];
-            let e = (l * h).exp();
+            let e = whipple::math::complex_exp(l * h);
             let phi1 = (e - 1.0) / l;
             let phi2 = (e - 1.0 - l * h) / (l * l);
             z[i] = e * z[i] + phi1 * bu0[i] + phi2 * br[i];

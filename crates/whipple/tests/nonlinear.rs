@@ -63,8 +63,8 @@ fn basu_state(model: &Model) -> State<f64> {
     // Rear contact from the rear wheel centre (the contact is r_R cos ψ to the left of the
     // centre's ground projection, across the heading).
     let contact = [
-        -X - r_r * THETA.sin() * PSI.cos(),
-        Y - r_r * THETA.cos() * PSI.cos(),
+        -X - r_r * whipple::math::sin(THETA) * whipple::math::cos(PSI),
+        Y - r_r * whipple::math::cos(THETA) * whipple::math::cos(PSI),
     ];
     let q = model.configuration([yaw, lean, pitch], steer, [-BETAR, -BETAF], contact);
     let hub = Vector3::new(q[0], q[1], q[2]);
@@ -346,7 +346,7 @@ fn velocity_projection_is_the_least_norm_correction() -> Result<()> {
         })?;
         let mut disturbed = state;
         for (i, u) in disturbed.u.iter_mut().enumerate() {
-            *u += 0.05 * ((i as f64) * 1.7).sin();
+            *u += 0.05 * whipple::math::sin((i as f64) * 1.7);
         }
         let (d, _) = model.velocity_rows(&disturbed);
         let (d, u) = (
@@ -584,7 +584,7 @@ fn long_runs_far_from_the_origin_complete() -> Result<()> {
             "{speed} m/s for {duration} s"
         );
         let last = run.samples.last().expect("samples");
-        let distance = last.x.hypot(last.y);
+        let distance = whipple::math::hypot(last.x, last.y);
         assert!(distance > 1000.0, "{speed} m/s: only {distance} m out");
         let e0 = run.samples[0].energy;
         let drift = run
@@ -928,7 +928,7 @@ fn a_step_beyond_rk4s_stability_bound_is_refused() -> Result<()> {
     let lambda = fastest_mode(&model, 4.6).expect("the benchmark's linear model");
     // The castering mode, real and fast.
     assert!(lambda.im == 0.0 && lambda.re < -10.0, "{lambda}");
-    let bound = 2.5 / lambda.norm();
+    let bound = 2.5 / whipple::math::norm(lambda);
     let result = simulate(
         &model,
         start,
@@ -945,7 +945,7 @@ fn a_step_beyond_rk4s_stability_bound_is_refused() -> Result<()> {
     };
     assert_eq!((what, value, suggested), ("dt", 0.25, 0.05));
     assert!(reason.contains("stability bound"), "{reason}");
-    assert!(suggested * lambda.norm() <= 1.0);
+    assert!(suggested * whipple::math::norm(lambda) <= 1.0);
     // Just inside the bound the step is accepted, just outside refused.
     assert!(check_rk4_step(&model, 4.6, bound * 0.999).is_ok());
     assert!(check_rk4_step(&model, 4.6, bound * 1.001).is_err());

@@ -19,7 +19,7 @@ impl Noise {
         ((self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 + 0.5) / (1u64 << 53) as f64
     }
     fn normal(&mut self) -> f64 {
-        (-2.0 * self.uniform().ln()).sqrt() * (TAU * self.uniform()).cos()
+        (-2.0 * whipple::math::ln(self.uniform())).sqrt() * whipple::math::cos(TAU * self.uniform())
     }
 }
 
@@ -40,7 +40,8 @@ fn record(
     let signal = time
         .iter()
         .map(|t| {
-            1.2 + (-zeta * omega_n * t).exp() * (0.8 * (omega_d * t + 0.7).sin())
+            1.2 + whipple::math::exp(-zeta * omega_n * t)
+                * (0.8 * whipple::math::sin(omega_d * t + 0.7))
                 + noise * stream.normal()
         })
         .collect();

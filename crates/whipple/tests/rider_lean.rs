@@ -152,7 +152,7 @@ fn lean_couplings_in_closed_form() {
     let (_, speeds) = free_hinge();
     let p = RiderLeanParameters::browser_jason();
     let (b, g) = (&p.bicycle, &p.upper_body);
-    let mu = b.c * b.lambda.cos() / b.w;
+    let mu = b.c * whipple::math::cos(b.lambda) / b.w;
     let d = g.z - g.z_hinge;
     let m_expected = [
         ((0, 2), g.i_xx + g.m * g.z * d),
@@ -204,7 +204,7 @@ fn lean_couplings_in_closed_form() {
 fn yaw_kinematics() {
     let (_, speeds) = free_hinge();
     let b = RiderLeanParameters::browser_jason().bicycle;
-    let per = b.lambda.cos() / b.w;
+    let per = whipple::math::cos(b.lambda) / b.w;
     for s in &speeds {
         assert_close("q3' / q7", s.v * per, s.a[(2, 5)], s.v);
         assert_close("q3' / u7", b.c * per, s.a[(2, 10)], 1.0);
@@ -397,5 +397,7 @@ fn upper_body_pose() {
     assert!(hinge.y.abs() < 1e-12);
     // Leaning right (positive) moves the centre above the hinge to the right (+y).
     let d = poses[4].position - hinge;
-    assert!((d.y - (p.upper_body.z_hinge - p.upper_body.z) * 0.3_f64.sin()).abs() < 1e-12);
+    assert!(
+        (d.y - (p.upper_body.z_hinge - p.upper_body.z) * whipple::math::sin(0.3_f64)).abs() < 1e-12
+    );
 }

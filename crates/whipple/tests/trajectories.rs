@@ -183,7 +183,7 @@ fn rk4_follows_the_independent_trajectories() -> Result<()> {
     for scenario in scenarios() {
         let (coarse, where_coarse) = rk4_difference(&scenario, 2e-3)?;
         let (fine, where_fine) = rk4_difference(&scenario, 1e-3)?;
-        let order = (coarse / fine).log2();
+        let order = whipple::math::log2(coarse / fine);
         println!(
             "{}: RK4 dt = 2 ms {coarse:.2e} ({where_coarse}), 1 ms {fine:.2e} ({where_fine}), order {order:.2}",
             scenario["name"]

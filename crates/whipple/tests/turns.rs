@@ -51,7 +51,7 @@ fn held_turn_residuals_at_round_off() -> Result<()> {
     let r = turn.rear_radius.expect("a turn");
     assert!((r * turn.yaw_rate - turn.speed).abs() < 1e-12 * turn.speed);
     // Roughly the point-mass balance tan φ ≈ v²/(gR) (the bicycle is not a point mass, so loose).
-    let tan = 11.5f64.to_radians().tan();
+    let tan = whipple::math::tan(11.5f64.to_radians());
     let balance = turn.speed * turn.speed / (9.81 * turn.mass_centre_radius.expect("turn"));
     assert!((balance / tan - 1.0).abs() < 0.1, "{balance} vs {tan}");
     Ok(())
@@ -371,10 +371,11 @@ fn simulation_started_on_a_held_turn_stays_on_it() -> Result<()> {
         worst = worst
             .max((s.lean - turn.lean).abs())
             .max((s.steer - turn.steer).abs())
-            .max(((s.x - cx).hypot(s.y - cy) - radius).abs() / radius);
+            .max((whipple::math::hypot(s.x - cx, s.y - cy) - radius).abs() / radius);
     }
     let last = run.samples.last().expect("samples");
-    let angle = (last.y - cy).atan2(last.x - cx) - (0.0 - cy).atan2(0.0 - cx);
+    let angle =
+        whipple::math::atan2(last.y - cy, last.x - cx) - whipple::math::atan2(0.0 - cy, 0.0 - cx);
     let travelled = angle.rem_euclid(std::f64::consts::TAU) * radius;
     println!("deviation {worst:e}, travelled {travelled} in {} s", last.t);
     assert!(worst < 1e-7, "{worst:e}");
@@ -422,7 +423,7 @@ fn perturbations_grow_or_decay_at_the_eigenvalue_rate() -> Result<()> {
         let mut checked = 0;
         let mut worst = 0.0f64;
         for sample in run.samples.iter().filter(|x| x.t >= 1.0) {
-            let predicted = d0 * (lambda.re * sample.t).exp();
+            let predicted = d0 * whipple::math::exp(lambda.re * sample.t);
             let measured = sample.lean - turn.lean;
             worst = worst.max((measured / predicted - 1.0).abs());
             checked += 1;

@@ -87,14 +87,14 @@ pub(crate) fn certified_roots(
     let floor = 1e-12 * poly.rest_rate();
     for z in &roots {
         let (p, dp) = horner(&a, *z);
-        let size = z.norm();
+        let size = crate::math::norm(z);
         let mut slack = 0.0;
         let mut power = 1.0;
         for k in 0..5 {
             slack += (e[k] + gamma8 * a[k].abs()) * power;
             power *= size;
         }
-        let radius = (p.norm() + slack) / dp.norm();
+        let radius = (crate::math::norm(p) + slack) / crate::math::norm(dp);
         let allowed = EIGENVALUE_TOLERANCE * size + floor;
         // A NaN radius (an overflow) is refused too.
         if radius.is_nan() || radius > allowed {
@@ -123,10 +123,10 @@ fn largest_real_cubic_root(b: f64, c: f64, d: f64) -> f64 {
     let r = (2.0 * b * b * b - 9.0 * b * c + 27.0 * d) / 54.0;
     let mut t = if r * r < q * q * q {
         // Three real roots: trigonometric form, the largest one.
-        let theta = (r / (q * q * q).sqrt()).clamp(-1.0, 1.0).acos();
-        -2.0 * q.sqrt() * (theta / 3.0).cos() - b / 3.0
+        let theta = crate::math::acos((r / (q * q * q).sqrt()).clamp(-1.0, 1.0));
+        -2.0 * q.sqrt() * crate::math::cos(theta / 3.0) - b / 3.0
     } else {
-        let a = -r.signum() * (r.abs() + (r * r - q * q * q).sqrt()).cbrt();
+        let a = -r.signum() * crate::math::cbrt(r.abs() + (r * r - q * q * q).sqrt());
         let bb = if a != 0.0 { q / a } else { 0.0 };
         (a + bb) - b / 3.0
     };
@@ -231,7 +231,7 @@ pub fn quartic_roots(a: &[f64; 5]) -> Result<[Complex64; 4]> {
         // Fall back to points on a circle of the Cauchy bound's radius.
         let radius = 1.0 + monic[..4].iter().fold(0.0f64, |m, c| m.max(c.abs()));
         for (k, r) in z.iter_mut().enumerate() {
-            *r = Complex64::from_polar(radius, 0.4 + k as f64 * std::f64::consts::FRAC_PI_2);
+            *r = crate::math::from_polar(radius, 0.4 + k as f64 * std::f64::consts::FRAC_PI_2);
         }
     }
     // Separate coincident first guesses so that Aberth's corrections stay finite.
@@ -395,7 +395,7 @@ pub(crate) fn second_order_eigenvector(
     } else {
         rows[1]
     };
-    let q = if r0.norm() == 0.0 && r1.norm() == 0.0 {
+    let q = if crate::math::norm(r0) == 0.0 && crate::math::norm(r1) == 0.0 {
         Vector2::new(Complex64::new(1.0, 0.0), Complex64::new(0.0, 0.0))
     } else {
         Vector2::new(-r1, r0)

@@ -13,7 +13,7 @@
 //! /// The pendulum θ̈ = −sin θ in first-order form.
 //! struct Pendulum;
 //! impl VectorField<2> for Pendulum {
-//!     fn eval<T: RealField + Copy>(&self, x: &SVector<T, 2>) -> whipple::Result<SVector<T, 2>> {
+//!     fn eval<T: Real>(&self, x: &SVector<T, 2>) -> whipple::Result<SVector<T, 2>> {
 //!         Ok(Vector2::new(x[1], -x[0].sin()))
 //!     }
 //! }
@@ -25,7 +25,8 @@
 //! # Ok::<(), whipple::Error>(())
 //! ```
 
-use nalgebra::{RealField, SMatrix, SVector};
+use crate::math::Real;
+use nalgebra::{SMatrix, SVector};
 use num_dual::Dual64;
 
 use crate::error::{Error, Result};
@@ -33,7 +34,7 @@ use crate::error::{Error, Result};
 /// A vector field ẋ = f(x) on N states, evaluable on any scalar type (f64, dual numbers).
 pub trait VectorField<const N: usize> {
     /// f(x).
-    fn eval<T: RealField + Copy>(&self, x: &SVector<T, N>) -> Result<SVector<T, N>>;
+    fn eval<T: Real>(&self, x: &SVector<T, N>) -> Result<SVector<T, N>>;
 }
 
 /// The exact Jacobian ∂f/∂x at `x0` by forward-mode automatic differentiation: one pass of

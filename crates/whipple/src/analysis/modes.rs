@@ -296,7 +296,9 @@ pub fn mode_shapes(canonical: &Canonical, speed: f64) -> Result<[ModeShape; 4]> 
         let mode = if speed >= 0.0 {
             values
                 .iter()
-                .position(|l| (l - pair.value).norm() <= 1e-9 * (1.0 + l.norm()))
+                .position(|l| {
+                    crate::math::norm(l - pair.value) <= 1e-9 * (1.0 + crate::math::norm(l))
+                })
                 .map_or(Mode::Unclassified, |k| sweep.modes[k])
         } else {
             Mode::Unclassified

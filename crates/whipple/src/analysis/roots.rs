@@ -421,7 +421,7 @@ pub(crate) fn approximate(c: &[f64], z: &mut [Complex64]) {
             let lead = c[n];
             let mut radius = 0.0f64;
             for (k, &ck) in c.iter().enumerate().take(n) {
-                let r = (ck / lead).abs().powf(1.0 / (n - k) as f64);
+                let r = crate::math::powf((ck / lead).abs(), 1.0 / (n - k) as f64);
                 radius = radius.max(r);
             }
             if !(radius > 0.0 && radius.is_finite()) {
@@ -429,7 +429,10 @@ pub(crate) fn approximate(c: &[f64], z: &mut [Complex64]) {
             }
             for (k, zk) in z.iter_mut().enumerate().take(n) {
                 let angle = 0.4 + std::f64::consts::TAU * k as f64 / n as f64;
-                *zk = Complex64::new(radius * angle.cos(), radius * angle.sin());
+                *zk = Complex64::new(
+                    radius * crate::math::cos(angle),
+                    radius * crate::math::sin(angle),
+                );
             }
             aberth(c, &mut z[..n]);
         }
@@ -491,17 +494,17 @@ fn certify(c: &[f64], e: &[f64], roots: &mut [RealRoot; MAX_DEGREE]) -> usize {
     let mut radius = [0.0f64; MAX_DEGREE];
     for i in 0..d {
         let (p, _) = horner(c, z[i]);
-        let az = z[i].norm();
+        let az = crate::math::norm(z[i]);
         // Σ|cₖ||z|ᵏ, for the bound on Horner's round-off.
         let size = c.iter().rev().fold(0.0, |acc, &ck| acc * az + ck.abs());
         let slack = e.iter().rev().fold(0.0, |acc, &ek| acc * az + ek);
         let eval_error = 8.0 * (d + 1) as f64 * UNIT_ROUNDOFF * size;
-        let numerator =
-            (p.norm() + eval_error + slack) * (1.0 + 8.0 * UNIT_ROUNDOFF) + TINY * (1.0 + az);
+        let numerator = (crate::math::norm(p) + eval_error + slack) * (1.0 + 8.0 * UNIT_ROUNDOFF)
+            + TINY * (1.0 + az);
         let mut denominator = lead_lower;
         for j in 0..d {
             if j != i {
-                denominator *= (z[i] - z[j]).norm();
+                denominator *= crate::math::norm(z[i] - z[j]);
             }
         }
         denominator *= 1.0 - 4.0 * (d + 1) as f64 * UNIT_ROUNDOFF;
@@ -521,7 +524,7 @@ fn certify(c: &[f64], e: &[f64], roots: &mut [RealRoot; MAX_DEGREE]) -> usize {
         let mut changed = false;
         for i in 0..d {
             for j in 0..i {
-                let gap = (z[i] - z[j]).norm();
+                let gap = crate::math::norm(z[i] - z[j]);
                 if gap <= radius[i] + radius[j] && component[i] != component[j] {
                     let (a, b) = (
                         component[i].min(component[j]),

@@ -273,8 +273,10 @@ impl ParameterDerivatives {
             .iter()
             .map(|&l| {
                 let (_, dp) = horner(&a, l);
-                let size = (0..5).fold(0.0, |s, k| s + a[k].abs() * l.norm().powi(k as i32));
-                if dp.norm() <= 1e-9 * size.max(scale) {
+                let size = (0..5).fold(0.0, |s, k| {
+                    s + a[k].abs() * crate::math::norm(l).powi(k as i32)
+                });
+                if crate::math::norm(dp) <= 1e-9 * size.max(scale) {
                     return (l, None);
                 }
                 let d = da
@@ -587,9 +589,9 @@ pub fn sensitivities(
             let k = (0..4)
                 .find(|k| sweep.modes[*k] == mode && (mode != Mode::Weave || last[*k].im >= 0.0))?;
             let target = last[k];
-            let (l, dl) = derivs
-                .iter()
-                .min_by(|a, b| (a.0 - target).norm().total_cmp(&(b.0 - target).norm()))?;
+            let (l, dl) = derivs.iter().min_by(|a, b| {
+                crate::math::norm(a.0 - target).total_cmp(&crate::math::norm(b.0 - target))
+            })?;
             Some((
                 l.re,
                 dl.as_ref().map(|dl| dl.iter().map(|z| z.re).collect()),

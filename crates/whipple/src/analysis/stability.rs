@@ -1032,7 +1032,7 @@ fn double_eigenvalue(sp: &SpeedPolynomials, nu: f64) -> Result<Option<f64>> {
     let mut gap = f64::INFINITY;
     for i in 0..4 {
         for j in 0..i {
-            let d = (roots[i] - roots[j]).norm();
+            let d = crate::math::norm(roots[i] - roots[j]);
             if d < gap {
                 gap = d;
                 best = Some(0.5 * (roots[i].re + roots[j].re));

@@ -33,7 +33,8 @@
 //! # Ok::<(), whipple::Error>(())
 //! ```
 
-use nalgebra::{DMatrix, DVector, Matrix2x3, RealField, SMatrix, SVector, Vector3, Vector4};
+use crate::math::Real;
+use nalgebra::{DMatrix, DVector, Matrix2x3, SMatrix, SVector, Vector3, Vector4};
 use num_dual::Dual64;
 use serde::Serialize;
 
@@ -48,11 +49,11 @@ use crate::nonlinear::{
 };
 
 #[inline]
-fn c<T: RealField + Copy>(x: f64) -> T {
+fn c<T: Real>(x: f64) -> T {
     nalgebra::convert(x)
 }
 
-fn re<T: RealField + Copy>(x: T) -> f64 {
+fn re<T: Real>(x: T) -> f64 {
     nalgebra::try_convert::<T, f64>(x).unwrap_or(f64::NAN)
 }
 
@@ -141,7 +142,7 @@ pub struct WheelContact {
 
 impl From<ContactForce<f64>> for WheelContact {
     fn from(f: ContactForce<f64>) -> Self {
-        let tangential = f.longitudinal.hypot(f.lateral);
+        let tangential = crate::math::hypot(f.longitudinal, f.lateral);
         WheelContact {
             normal: f.normal,
             longitudinal: f.longitudinal,
@@ -213,7 +214,7 @@ impl SteadyTurn {
 }
 
 /// The model evaluated at (φ, δ, v, T_δ) with φ̇ = δ̇ = 0.
-struct Evaluation<T: RealField + Copy> {
+struct Evaluation<T: Real> {
     state: State<T>,
     d: StateRates<T>,
     /// φ̈, δ̈.
@@ -226,9 +227,9 @@ struct Evaluation<T: RealField + Copy> {
 }
 
 /// The rear hub's forward acceleration d/dt (v_hub · h(ψ)) with h the horizontal heading.
-fn hub_speed_rate<T: RealField + Copy>(state: &State<T>, d: &StateRates<T>) -> T {
+fn hub_speed_rate<T: Real>(state: &State<T>, d: &StateRates<T>) -> T {
     let yaw = state.q[6 * REAR_FRAME + BODY_YAW];
-    let (s, co) = yaw.sin_cos();
+    let (s, co) = crate::math::sin_cos(yaw);
     let v = state.velocity(REAR_WHEEL);
     let a = d.u_dot.fixed_rows::<3>(6 * REAR_WHEEL).into_owned();
     let yaw_rate = d.q_dot[6 * REAR_FRAME + BODY_YAW];
@@ -236,13 +237,13 @@ fn hub_speed_rate<T: RealField + Copy>(state: &State<T>, d: &StateRates<T>) -> T
 }
 
 /// The rear frame's angular velocity in world axes.
-fn frame_rate_world<T: RealField + Copy>(model: &Model, state: &State<T>) -> Vector3<T> {
+fn frame_rate_world<T: Real>(model: &Model, state: &State<T>) -> Vector3<T> {
     let _ = model;
     let ang = state.angles(REAR_FRAME);
     crate::nonlinear::rotation::matrix(ang.x, ang.y, ang.z) * state.angular_velocity(REAR_FRAME)
 }
 
-fn evaluate<T: RealField + Copy>(
+fn evaluate<T: Real>(
     model: &Model,
     lean: T,
     steer: T,
@@ -560,7 +561,7 @@ pub fn held_turn(
     }
     let (steer_per_lean, torque_per_lean) = linear_ratios(model, speed)?;
     let p = model.parameters();
-    let cos_lambda = p.lambda.cos();
+    let cos_lambda = crate::math::cos(p.lambda);
     let parts = match index {
         Some(_) => ((target.abs() / settings.max_step).ceil() as usize).clamp(1, 10_000),
         None => 10,
@@ -696,7 +697,7 @@ pub(crate) struct TurnField<'a> {
 }
 
 impl VectorField<5> for TurnField<'_> {
-    fn eval<T: RealField + Copy>(&self, x: &SVector<T, 5>) -> Result<SVector<T, 5>> {
+    fn eval<T: Real>(&self, x: &SVector<T, 5>) -> Result<SVector<T, 5>> {
         let state = self
             .model
             .reduced_state(&Vector4::new(x[0], x[1], x[2], x[3]), x[4])?;
@@ -760,16 +761,16 @@ pub fn stability(model: &Model, turn: &SteadyTurn) -> Result<Stability> {
     let x0 = SVector::<f64, 5>::from([turn.lean, turn.steer, 0.0, 0.0, turn.hub_speed]);
     let a = jacobian(&field, &x0)?;
     let mut values = general_eigenvalues(&a)?;
-    let scale = values.iter().map(|z| z.norm()).fold(1.0, f64::max);
+    let scale = values.iter().map(crate::math::norm).fold(1.0, f64::max);
     let (k, zero) = values
         .iter()
         .enumerate()
-        .min_by(|a, b| a.1.norm().total_cmp(&b.1.norm()))
+        .min_by(|a, b| crate::math::norm(a.1).total_cmp(&crate::math::norm(b.1)))
         .map(|(k, z)| (k, *z))
         .ok_or_else(|| Error::NonFinite {
             context: "the eigenvalues of a steady turn".into(),
         })?;
-    if zero.norm() > 1e-7 * scale {
+    if crate::math::norm(zero) > 1e-7 * scale {
         return Err(Error::AccuracyLost {
             quantity: "the stability of a steady turn".into(),
             reason: format!(

@@ -52,7 +52,7 @@ pub(crate) fn round_down_125(x: f64) -> f64 {
     if !(x.is_finite() && x > 0.0) {
         return x;
     }
-    let decade = 10f64.powf(x.log10().floor());
+    let decade = crate::math::powf(10f64, crate::math::log10(x).floor());
     let mantissa = x / decade;
     let m = if mantissa >= 5.0 - 1e-9 {
         5.0

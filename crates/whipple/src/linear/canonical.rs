@@ -1,7 +1,8 @@
 //! The canonical matrices of the linearized Whipple bicycle from the closed-form expressions of
 //! Meijaard et al. 2007, Appendix A, with the paper's intermediate names.
 
-use nalgebra::{Matrix2, RealField};
+use crate::math::Real;
+use nalgebra::Matrix2;
 
 use crate::error::Result;
 use crate::parameters::BenchmarkParameters;
@@ -55,14 +56,14 @@ pub(crate) struct Intermediates<T = f64> {
     pub s_a: T,
 }
 
-impl<T: RealField + Copy> Intermediates<T> {
+impl<T: Real> Intermediates<T> {
     /// Appendix A of Meijaard 2007 (eqs. A1–A22), line by line. A wheel of zero radius (a skate)
     /// has no spin inertia (validation guarantees it) and contributes no gyroscopic term.
     #[inline]
     pub(crate) fn new(p: &BenchmarkParameters<T>) -> Self {
         let two: T = nalgebra::convert(2.0);
         let zero = T::zero();
-        let (sin_l, cos_l) = p.lambda.sin_cos();
+        let (sin_l, cos_l) = crate::math::sin_cos(p.lambda);
         let m_t = p.m_r + p.m_b + p.m_h + p.m_f;
         let x_t = (p.x_b * p.m_b + p.x_h * p.m_h + p.w * p.m_f) / m_t;
         let z_t = (-p.r_r * p.m_r + p.z_b * p.m_b + p.z_h * p.m_h - p.r_f * p.m_f) / m_t;
@@ -151,7 +152,7 @@ impl Canonical {
     }
 }
 
-impl<T: RealField + Copy> Canonical<T> {
+impl<T: Real> Canonical<T> {
     /// The canonical matrices of parameters on any scalar, without validation: the f64 path is
     /// [`Canonical::new`] (which validates first); dual-number parameters give the exact
     /// derivatives of every entry.
@@ -160,7 +161,7 @@ impl<T: RealField + Copy> Canonical<T> {
         let two: T = nalgebra::convert(2.0);
         let zero = T::zero();
         let a = Intermediates::new(p);
-        let (sin_l, cos_l) = p.lambda.sin_cos();
+        let (sin_l, cos_l) = crate::math::sin_cos(p.lambda);
         let m = Matrix2::new(
             a.i_txx,
             a.i_alx + a.mu * a.i_txz,

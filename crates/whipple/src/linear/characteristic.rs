@@ -170,11 +170,7 @@ impl CharacteristicPolynomial {
         };
         let rest = poly.at_speed(0.0);
         poly.rest_rate = (0..DEGREE)
-            .map(|k| {
-                (rest[k] / rest[DEGREE])
-                    .abs()
-                    .powf(1.0 / (DEGREE - k) as f64)
-            })
+            .map(|k| crate::math::powf((rest[k] / rest[DEGREE]).abs(), 1.0 / (DEGREE - k) as f64))
             .fold(0.0f64, f64::max);
         poly
     }
@@ -483,7 +479,7 @@ fn entries(canonical: &Canonical) -> Result<(Entries, f64, i32)> {
         return Err(accuracy_lost("every matrix entry is zero".into()));
     }
     // Common power-of-two scale (exact): the largest entry in [0.5, 1).
-    let exponent = largest.log2().floor() as i32 + 1;
+    let exponent = crate::math::log2(largest).floor() as i32 + 1;
     let scale = 2f64.powi(-exponent);
     let mut out = [[Tracked::ZERO; 4]; 4];
     for (mi, m) in mats.iter().enumerate() {
@@ -729,7 +725,7 @@ impl GeneralSpeedPolynomials {
         if largest == 0.0 {
             return Err(accuracy_lost("every matrix entry is zero".into()));
         }
-        let exponent = largest.log2().floor() as i32 + 1;
+        let exponent = crate::math::log2(largest).floor() as i32 + 1;
         let scale = 2f64.powi(-exponent);
         let mut e = [[Tracked::ZERO; 4]; 6];
         for (mi, m) in mats.iter().enumerate() {

@@ -300,11 +300,11 @@ fn common_root(canonical: &Canonical, f: Vector2<f64>, speed: f64) -> Complex64 
                 vec![Complex64::new(-c[0] / c[1], 0.0)]
             };
         }
-        let disc = Complex64::new(c[1] * c[1] - 4.0 * c[2] * c[0], 0.0).sqrt();
+        let disc = crate::math::complex_sqrt(Complex64::new(c[1] * c[1] - 4.0 * c[2] * c[0], 0.0));
         // The root of larger magnitude first, the other from the product (no cancellation).
         let sign = if c[1] >= 0.0 { 1.0 } else { -1.0 };
         let big = -(c[1] + sign * disc) / (2.0 * c[2]);
-        let small = if big.norm() > 0.0 {
+        let small = if crate::math::norm(big) > 0.0 {
             Complex64::new(c[0] / c[2], 0.0) / big
         } else {
             Complex64::new(0.0, 0.0)
@@ -312,13 +312,15 @@ fn common_root(canonical: &Canonical, f: Vector2<f64>, speed: f64) -> Complex64 
         vec![big, small]
     };
     let value = |c: [f64; 3], z: Complex64| (z * c[2] + c[1]) * z + c[0];
-    let scale =
-        |c: [f64; 3], z: Complex64| c[2].abs() * z.norm_sqr() + c[1].abs() * z.norm() + c[0].abs();
+    let scale = |c: [f64; 3], z: Complex64| {
+        c[2].abs() * z.norm_sqr() + c[1].abs() * crate::math::norm(z) + c[0].abs()
+    };
     let mut best = (f64::INFINITY, Complex64::new(f64::NAN, f64::NAN));
     for (j, c) in quadratics.iter().enumerate() {
         let other = quadratics[1 - j];
         for z in roots_of(*c) {
-            let misfit = value(other, z).norm() / scale(other, z).max(f64::MIN_POSITIVE);
+            let misfit =
+                crate::math::norm(value(other, z)) / scale(other, z).max(f64::MIN_POSITIVE);
             if misfit < best.0 {
                 best = (misfit, z);
             }
@@ -326,7 +328,7 @@ fn common_root(canonical: &Canonical, f: Vector2<f64>, speed: f64) -> Complex64 
     }
     // A real common root of a real pair: drop the round-off's imaginary part.
     let z = best.1;
-    if z.im.abs() <= 1e-8 * z.norm() {
+    if z.im.abs() <= 1e-8 * crate::math::norm(z) {
         Complex64::new(z.re, 0.0)
     } else {
         z
@@ -436,7 +438,7 @@ impl LinearSystem {
                     .sqrt();
                 let projection = u[0] * f[0] + u[1] * f[1];
                 let measure = if ell_norm > 0.0 && b_norm > 0.0 {
-                    (projection.norm() / (ell_norm * b_norm)).min(1.0)
+                    (crate::math::norm(projection) / (ell_norm * b_norm)).min(1.0)
                 } else {
                     0.0
                 };

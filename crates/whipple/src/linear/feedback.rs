@@ -392,8 +392,8 @@ impl ClosedLoop {
             }
         });
         let norm = x.norm();
-        if pivot.norm() > 0.0 && norm > 0.0 {
-            x *= pivot.conj() / (pivot.norm() * norm);
+        if crate::math::norm(pivot) > 0.0 && norm > 0.0 {
+            x *= pivot.conj() / (crate::math::norm(pivot) * norm);
         }
         Ok(x)
     }
@@ -595,7 +595,7 @@ impl Quartics for Piecewise {
 /// beyond.
 fn matched(previous: &[Complex64], values: Vec<Complex64>) -> Vec<Complex64> {
     let n = values.len();
-    let cost = |i: usize, j: usize| (previous[i] - values[j]).norm();
+    let cost = |i: usize, j: usize| crate::math::norm(previous[i] - values[j]);
     let mut assignment: Vec<usize> = (0..n).collect();
     if n <= 8 {
         // Heap's algorithm over the permutations (8! = 40 320 at most).

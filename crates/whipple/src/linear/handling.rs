@@ -286,7 +286,7 @@ impl HandlingQuality {
                         rule: format!("frequency {} must be a finite number, got {omega}", k + 1),
                     });
                 }
-                Ok(self.eval(Complex64::new(0.0, omega)).norm())
+                Ok(crate::math::norm(self.eval(Complex64::new(0.0, omega))))
             })
             .collect()
     }
@@ -379,7 +379,7 @@ impl HandlingQuality {
             certified,
         };
         for omega in candidates {
-            let m = self.eval(Complex64::new(0.0, omega)).norm();
+            let m = crate::math::norm(self.eval(Complex64::new(0.0, omega)));
             if !m.is_finite() {
                 return Err(Error::InvalidArgument {
                     what: "frequencies",
@@ -407,7 +407,7 @@ fn balance(p: &Poly) -> f64 {
     let last = p.iter().rposition(|(c, _)| *c != 0.0);
     match (first, last) {
         (Some(i), Some(j)) if j > i => {
-            let ratio = (p[i].0 / p[j].0).abs().ln() / (j - i) as f64;
+            let ratio = crate::math::ln((p[i].0 / p[j].0).abs()) / (j - i) as f64;
             let exponent = (ratio / std::f64::consts::LN_2)
                 .round()
                 .clamp(-500.0, 500.0);

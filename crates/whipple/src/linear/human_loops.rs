@@ -169,7 +169,7 @@ impl LoopTransferFunction {
     pub fn magnitude(&self, frequencies: &[f64]) -> Vec<f64> {
         frequencies
             .iter()
-            .map(|w| self.eval(Complex64::new(0.0, *w)).norm())
+            .map(|w| crate::math::norm(self.eval(Complex64::new(0.0, *w))))
             .collect()
     }
 }
@@ -473,7 +473,7 @@ fn damping_ray_gains(p0: &[f64], p1: &[f64], zeta: f64) -> Result<Vec<(f64, f64)
     for (k, x) in a.iter().enumerate() {
         for (l, y) in b.iter().enumerate() {
             v[k + l] += (x * y.conj()).im;
-            s[k + l] += x.norm() * y.norm();
+            s[k + l] += crate::math::norm(x) * crate::math::norm(y);
         }
     }
     // Im(P₀ conj P₁) vanishes at ω = 0 (both real there): divide by ω.
@@ -615,7 +615,7 @@ pub fn hess_gains(
             &below.values(),
             Complex64::new(0.0, w),
         ) * g[i];
-        let m = at.norm();
+        let m = crate::math::norm(at);
         if !(m.is_finite() && m > 0.0) {
             return Err(Error::GainRuleUnmet {
                 gain: HumanGains::NAMES[i].into(),

@@ -63,7 +63,8 @@ fn the_outermost_closed_loop_is_the_ridden_bicycles_transfer_function() {
                 let expected = state_space_at(ridden.a(), &b, &crow, s);
                 let got = outer.closed.eval(s);
                 assert!(
-                    (got - expected).norm() <= 1e-9 * expected.norm().max(1e-12),
+                    crate::math::norm(got - expected)
+                        <= 1e-9 * crate::math::norm(expected).max(1e-12),
                     "{task} {v} m/s at {s}: {got} vs {expected}"
                 );
             }
@@ -88,7 +89,7 @@ fn each_closed_loop_is_its_open_loop_closed_and_the_steer_loop_is_the_bicycles()
             let lo = l.open.eval(s);
             let t = l.closed.eval(s);
             assert!(
-                (t - lo / (lo + 1.0)).norm() <= 1e-10 * t.norm().max(1e-12),
+                crate::math::norm(t - lo / (lo + 1.0)) <= 1e-10 * crate::math::norm(t).max(1e-12),
                 "{}: T = {t}, L/(1+L) = {}",
                 l.rider_loop,
                 lo / (lo + 1.0)
@@ -109,7 +110,7 @@ fn each_closed_loop_is_its_open_loop_closed_and_the_steer_loop_is_the_bicycles()
         let expected = g.eval(s) * 900.0 * GAINS_5[0] / q;
         let got = loops[0].open.eval(s);
         assert!(
-            (got - expected).norm() <= 1e-10 * expected.norm(),
+            crate::math::norm(got - expected) <= 1e-10 * crate::math::norm(expected),
             "{got} vs {expected}"
         );
     }
@@ -118,7 +119,10 @@ fn each_closed_loop_is_its_open_loop_closed_and_the_steer_loop_is_the_bicycles()
     assert_eq!(heading.len(), 4);
     for (h, l) in heading.iter().zip(&loops) {
         let s = c(0.0, 1.3);
-        assert!((h.open.eval(s) - l.open.eval(s)).norm() <= 1e-10 * l.open.eval(s).norm());
+        assert!(
+            crate::math::norm(h.open.eval(s) - l.open.eval(s))
+                <= 1e-10 * crate::math::norm(l.open.eval(s))
+        );
     }
 }
 
@@ -134,7 +138,7 @@ fn every_crossover_is_found_and_is_one() {
             }
             // No crossing missed: on a dense grid |L| − 1 changes sign only across a crossover.
             let grid: Vec<f64> = (0..4000)
-                .map(|k| 10f64.powf(-2.0 + k as f64 * 1e-3))
+                .map(|k| crate::math::powf(10f64, -2.0 + k as f64 * 1e-3))
                 .collect();
             let m = l.open.magnitude(&grid);
             for k in 1..grid.len() {
@@ -200,7 +204,7 @@ fn hess_gains_meet_their_rules_and_match_humancontrols_table_at_5_mps() {
         let best = z
             .iter()
             .filter(|r| r.im > 1e-6)
-            .map(|r| (-r.re / r.norm() - zeta).abs())
+            .map(|r| (-r.re / crate::math::norm(r) - zeta).abs())
             .fold(f64::INFINITY, f64::min);
         assert!(
             best < 1e-9,

@@ -688,7 +688,7 @@ mod tests {
         let (x, y): (Vec<f64>, Vec<f64>) = amplitudes
             .iter()
             .zip(differences)
-            .map(|(a, d)| (a.ln(), d.ln()))
+            .map(|(a, d)| (crate::math::ln(*a), crate::math::ln(*d)))
             .unzip();
         let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
         let sxy: f64 = x.iter().zip(&y).map(|(a, b)| (a - mx) * (b - my)).sum();

@@ -286,7 +286,7 @@ impl Problem<'_> {
         self.bounds
             .iter()
             .zip(z)
-            .map(|(b, z)| b.low + (b.high - b.low) * 0.5 * (1.0 + z.sin()))
+            .map(|(b, z)| b.low + (b.high - b.low) * 0.5 * (1.0 + crate::math::sin(*z)))
             .collect()
     }
 
@@ -300,7 +300,7 @@ impl Problem<'_> {
                 } else {
                     0.5
                 };
-                (2.0 * u - 1.0).asin()
+                crate::math::asin(2.0 * u - 1.0)
             })
             .collect()
     }

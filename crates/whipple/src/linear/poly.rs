@@ -176,7 +176,7 @@ pub(crate) fn ratio(n: &[f64], d: &[f64], s: Complex64) -> Complex64 {
     if n.is_empty() {
         return Complex64::new(0.0, 0.0);
     }
-    if s.norm() <= 1.0 || d.is_empty() {
+    if crate::math::norm(s) <= 1.0 || d.is_empty() {
         return eval(n, s) / eval(d, s);
     }
     let w = s.inv();

@@ -481,14 +481,15 @@ pub(crate) fn place(
     // Closed under conjugation: each pole matched with a distinct conjugate.
     let mut used = vec![false; n];
     for (i, p) in poles.iter().enumerate() {
-        let tol = 1e-12 * p.norm().max(1.0);
+        let tol = 1e-12 * crate::math::norm(p).max(1.0);
         if p.im.abs() <= tol {
             continue;
         }
         if used[i] {
             continue;
         }
-        let partner = (0..n).find(|&j| j != i && !used[j] && (poles[j] - p.conj()).norm() <= tol);
+        let partner =
+            (0..n).find(|&j| j != i && !used[j] && crate::math::norm(poles[j] - p.conj()) <= tol);
         let Some(j) = partner else {
             return Err(bad(
                 "poles",
@@ -548,13 +549,13 @@ pub(crate) fn place(
     let placed = matrix_eigenvalues(&(a - b * &k))?;
     let mut taken = vec![false; n];
     for p in poles {
-        let best = (0..n)
-            .filter(|&j| !taken[j])
-            .min_by(|&i, &j| (placed[i] - p).norm().total_cmp(&(placed[j] - p).norm()));
+        let best = (0..n).filter(|&j| !taken[j]).min_by(|&i, &j| {
+            crate::math::norm(placed[i] - p).total_cmp(&crate::math::norm(placed[j] - p))
+        });
         let Some(j) = best else { break };
         taken[j] = true;
-        let d = (placed[j] - p).norm();
-        if d.is_nan() || d > 1e-6 * p.norm().max(1.0) {
+        let d = crate::math::norm(placed[j] - p);
+        if d.is_nan() || d > 1e-6 * crate::math::norm(p).max(1.0) {
             return Err(Error::AccuracyLost {
                 quantity: "the placed poles".into(),
                 reason: format!(

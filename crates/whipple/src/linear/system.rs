@@ -511,7 +511,7 @@ impl Geometry {
 
     /// ψ̇ = (v δ + c δ̇) cos λ / w on [φ, δ, φ̇, δ̇].
     fn yaw_rate_row(&self, speed: f64) -> [f64; 4] {
-        let k = self.lambda.cos() / self.w;
+        let k = crate::math::cos(self.lambda) / self.w;
         let mut row = [0.0; 4];
         row[STEER] = speed * k;
         row[STEER_RATE] = self.c * k;
@@ -523,7 +523,9 @@ impl Geometry {
         match *input {
             Input::LeanTorque => [1.0, 0.0],
             Input::SteerTorque => [0.0, 1.0],
-            Input::LateralForce { x, z } => [-z, x * self.c * self.lambda.cos() / self.w],
+            Input::LateralForce { x, z } => {
+                [-z, x * self.c * crate::math::cos(self.lambda) / self.w]
+            }
         }
     }
 }
@@ -619,7 +621,10 @@ impl LinearSystem {
                     c[(i, j)] += x;
                 }
             };
-            let (cos_l, sin_l) = (geometry.lambda.cos(), geometry.lambda.sin());
+            let (cos_l, sin_l) = (
+                crate::math::cos(geometry.lambda),
+                crate::math::sin(geometry.lambda),
+            );
             let point = |set: &mut dyn FnMut(StateVariable, f64), x: f64, z: f64| {
                 set(StateVariable::RearContactY, 1.0);
                 set(StateVariable::Yaw, x);

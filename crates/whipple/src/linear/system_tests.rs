@@ -2,7 +2,8 @@
 //! forces against the exact linearization of the non-linear multibody model (dual numbers):
 //! an independent derivation of every row the module documentation derives by hand.
 
-use nalgebra::{RealField, Vector3};
+use crate::math::Real;
+use nalgebra::Vector3;
 use num_dual::{Dual64, HyperDual64};
 
 use super::*;
@@ -10,7 +11,7 @@ use crate::nonlinear::{FRONT_FRAME, InitialConditions, Inputs, Model, REAR_FRAME
 
 /// The non-linear state at [φ, δ, φ̇, δ̇, ψ, x_P, y_P] and forward speed v: consistent with
 /// every constraint, wheel angles zero.
-fn nonlinear_state<T: RealField + Copy>(model: &Model, x: [T; 7], speed: f64) -> Result<State<T>> {
+fn nonlinear_state<T: Real>(model: &Model, x: [T; 7], speed: f64) -> Result<State<T>> {
     let upright = model.pitch_for(0.0, 0.0, 0.0)?;
     let pitch = model.ground_pitch(x[0], x[1], upright)?;
     model

@@ -167,7 +167,10 @@ impl TransferFunction {
         }
         let mut z = vec![Complex64::new(0.0, 0.0); n - 1];
         approximate(&self.numerator, &mut z);
-        let scale = z.iter().fold(0.0f64, |m, r| m.max(r.norm())).max(1e-300);
+        let scale = z
+            .iter()
+            .fold(0.0f64, |m, r| m.max(crate::math::norm(r)))
+            .max(1e-300);
         pair_conjugates(
             &mut z,
             |r| r.im.abs() <= 8.0 * f64::EPSILON * scale,
@@ -210,7 +213,7 @@ impl TransferFunction {
         if self.numerator.is_empty() {
             return Complex64::new(0.0, 0.0);
         }
-        if s.norm() <= 1.0 {
+        if crate::math::norm(s) <= 1.0 {
             let (n, d) = (eval(&self.numerator, s), eval(&self.characteristic, s));
             return n / (d * s.powi(self.integrators as i32));
         }
@@ -279,11 +282,14 @@ pub struct FrequencyResponse {
 
 impl FrequencyResponse {
     fn new(frequencies: Vec<f64>, response: Vec<Complex64>) -> Self {
-        let magnitude: Vec<f64> = response.iter().map(|g| g.norm()).collect();
-        let magnitude_db = magnitude.iter().map(|m| 20.0 * m.log10()).collect();
+        let magnitude: Vec<f64> = response.iter().map(crate::math::norm).collect();
+        let magnitude_db = magnitude
+            .iter()
+            .map(|m| 20.0 * crate::math::log10(*m))
+            .collect();
         let mut phase: Vec<f64> = Vec::with_capacity(response.len());
         for g in &response {
-            let mut p = g.arg();
+            let mut p = crate::math::arg(g);
             if let Some(&last) = phase.last() {
                 p -= std::f64::consts::TAU * ((p - last) / std::f64::consts::TAU).round();
             }

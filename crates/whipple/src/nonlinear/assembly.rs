@@ -3,7 +3,8 @@
 //! triangle; shared by the forward dynamics (masses and inertias) and the velocity projection
 //! (unit weights).
 
-use nalgebra::{Matrix3, RealField, SMatrix, SVector, Vector3};
+use crate::math::Real;
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use super::topology::{
     FRONT_FRAME, FRONT_FRAME_COLUMNS, FRONT_FRAME_ROLLING, FRONT_WHEEL_COLUMNS,
@@ -13,7 +14,7 @@ use super::topology::{
 
 /// One body's share of the reduced mass matrix TᵀMT and forces Tᵀ(f − Mc), over N tree
 /// speeds (9, or 6 for the rolling tree).
-pub(crate) struct Reduced<'a, T: RealField + Copy, const N: usize> {
+pub(crate) struct Reduced<'a, T: Real, const N: usize> {
     /// TᵀMT being assembled (upper triangle).
     pub mass: &'a mut SMatrix<T, N, N>,
     /// Tᵀ(f − Mc) being assembled.
@@ -28,7 +29,7 @@ pub(crate) struct Reduced<'a, T: RealField + Copy, const N: usize> {
     pub generalized: SVector<T, 6>,
 }
 
-impl<T: RealField + Copy, const N: usize> Reduced<'_, T, N> {
+impl<T: Real, const N: usize> Reduced<'_, T, N> {
     /// Adds body k's share over the tree speeds that can move it.
     #[inline]
     pub(crate) fn add_body(&mut self, k: usize) {
@@ -84,7 +85,7 @@ impl<T: RealField + Copy, const N: usize> Reduced<'_, T, N> {
 
 /// Copies the upper triangle of a square matrix into its lower triangle.
 #[inline]
-pub(crate) fn symmetrize<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) {
+pub(crate) fn symmetrize<T: Real, const N: usize>(a: &mut SMatrix<T, N, N>) {
     for j in 0..N {
         for i in 0..j {
             a[(j, i)] = a[(i, j)];

@@ -72,7 +72,7 @@ impl Bodies {
             frame(p.m_h, p.i_hxx, p.i_hyy, p.i_hzz, p.i_hxz, p.x_h, p.z_h),
             wheel(p.m_f, p.i_fxx, p.i_fyy, p.w, p.r_f),
         ];
-        let (sin_l, cos_l) = p.lambda.sin_cos();
+        let (sin_l, cos_l) = crate::math::sin_cos(p.lambda);
         let steer_axis = Vector3::new(sin_l, 0.0, cos_l);
         // The steer axis meets the ground at (w + c, 0, 0); take its point nearest the front hub.
         let ground_point = Vector3::new(p.w + p.c, 0.0, 0.0);

@@ -4,7 +4,8 @@
 //! hub places every body with the joints and the rear contact holding exactly; the rear frame's
 //! pitch that also puts the front wheel on the ground comes from Newton iteration.
 
-use nalgebra::{Matrix3, RealField, SVector, Vector3};
+use crate::math::Real;
+use nalgebra::{Matrix3, SVector, Vector3};
 use num_dual::Dual64;
 
 use super::Model;
@@ -18,7 +19,7 @@ use super::topology::{
 use crate::error::{Error, Result};
 
 /// Poses of the two frames and the two hubs (world axes).
-struct FramePoses<T: RealField + Copy> {
+struct FramePoses<T: Real> {
     x_b: Vector3<T>,
     rh: Matrix3<T>,
     x_h: Vector3<T>,
@@ -45,12 +46,7 @@ impl Model {
     /// Rotation matrices and origins of the rear and front frames, and the rear and front hub
     /// positions, for a configuration given by the rear frame's yaw, lean and pitch, the steer
     /// angle and the rear contact point; joints and rear contact hold exactly.
-    fn frames<T: RealField + Copy>(
-        &self,
-        angles: [T; 3],
-        steer: T,
-        rear_contact: [T; 2],
-    ) -> FramePoses<T> {
+    fn frames<T: Real>(&self, angles: [T; 3], steer: T, rear_contact: [T; 2]) -> FramePoses<T> {
         let [rear_hub, steer_joint, front_hub] = [
             &self.joints[REAR_HUB],
             &self.joints[STEER_JOINT],
@@ -81,7 +77,7 @@ impl Model {
 
     /// Height (z, down) of the front wheel's lowest rim point in the configuration of
     /// [`Model::configuration`]; zero when the front wheel touches the ground.
-    pub(crate) fn front_height<T: RealField + Copy>(
+    pub(crate) fn front_height<T: Real>(
         &self,
         angles: [T; 3],
         steer: T,
@@ -97,7 +93,7 @@ impl Model {
     /// rear contact exactly, from the rear frame's yaw, lean and pitch, the steer angle, the
     /// wheels' rotations relative to their frames and the rear contact point. (The front
     /// contact height is satisfied only at the right pitch: see [`Model::initial_state`].)
-    pub fn configuration<T: RealField + Copy>(
+    pub fn configuration<T: Real>(
         &self,
         angles: [T; 3],
         steer: T,
@@ -142,12 +138,7 @@ impl Model {
     /// θ₀, then one more Newton step θ₀ − h(θ₀)/h'(θ₀) is taken in the scalar type, which gives
     /// dual numbers the exact derivative ∂θ/∂(φ, δ) = −(∂h/∂θ)⁻¹ ∂h/∂(φ, δ) (implicit function
     /// theorem) and moves the value by at most the last step's round-off.
-    pub(crate) fn ground_pitch<T: RealField + Copy>(
-        &self,
-        lean: T,
-        steer: T,
-        guess: f64,
-    ) -> Result<T> {
+    pub(crate) fn ground_pitch<T: Real>(&self, lean: T, steer: T, guess: f64) -> Result<T> {
         let re = |x: T| nalgebra::try_convert::<T, f64>(x).unwrap_or(f64::NAN);
         let (lean0, steer0) = (re(lean), re(steer));
         let pitch0 = self.pitch_for(lean0, steer0, guess)?;

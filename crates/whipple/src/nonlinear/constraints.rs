@@ -6,7 +6,8 @@
 //! They serve the checks (residuals of a state, the dense reference solve) and the study's
 //! least-norm position projection.
 
-use nalgebra::{RealField, SMatrix, SVector};
+use crate::math::Real;
+use nalgebra::{SMatrix, SVector};
 
 use super::Model;
 use super::contact::{LATERAL, LONGITUDINAL, NORMAL};
@@ -57,7 +58,7 @@ pub(crate) fn contact_destinations(contact: usize) -> [(usize, usize); 3] {
 impl Model {
     /// The 17 holonomic residuals: rear hub, steer and front hub joints (5 each: gap x, y, z,
     /// two axis misalignments), then rear and front contact heights.
-    pub fn holonomic_residual<T: RealField + Copy>(
+    pub fn holonomic_residual<T: Real>(
         &self,
         q: &SVector<T, COORDINATES>,
     ) -> SVector<T, HOLONOMIC_ROWS> {
@@ -65,7 +66,7 @@ impl Model {
     }
 
     /// [`Model::holonomic_residual`] from the poses.
-    pub(crate) fn holonomic_residual_at<T: RealField + Copy>(
+    pub(crate) fn holonomic_residual_at<T: Real>(
         &self,
         poses: &Poses<T>,
     ) -> SVector<T, HOLONOMIC_ROWS> {
@@ -95,7 +96,7 @@ impl Model {
     /// Row order: rear hub joint (5), steer joint (5), front hub joint (5), rear normal, front
     /// normal, rear longitudinal (spin lock for a skate), rear lateral, front longitudinal,
     /// front lateral.
-    pub fn velocity_rows<T: RealField + Copy>(
+    pub fn velocity_rows<T: Real>(
         &self,
         state: &State<T>,
     ) -> (SMatrix<T, VELOCITY_ROWS, SPEEDS>, SVector<T, VELOCITY_ROWS>) {
@@ -137,7 +138,7 @@ impl Model {
     }
 
     /// [`Model::velocity_rows`] with the poses of `state.q` already known.
-    pub(crate) fn velocity_rows_at<T: RealField + Copy>(
+    pub(crate) fn velocity_rows_at<T: Real>(
         &self,
         poses: &Poses<T>,
         state: &State<T>,

@@ -14,7 +14,8 @@
 //! relative to its frame", `(ω_W − ω_frame) · a = 0`, which fixes the (meaningless, inertia-free)
 //! spin of a wheel that has none; the longitudinal contact force of a skate is zero.
 
-use nalgebra::{RealField, SMatrix, SVector, Vector3};
+use crate::math::Real;
+use nalgebra::{SMatrix, SVector, Vector3};
 
 use super::poses::Poses;
 
@@ -38,7 +39,7 @@ pub(crate) struct KnifeEdge {
 
 /// Ground directions at a contact and the offset from hub to contact point, world axes.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ContactFrame<T: RealField + Copy> {
+pub(crate) struct ContactFrame<T: Real> {
     /// f: longitudinal (rolling) direction, horizontal.
     pub longitudinal: Vector3<T>,
     /// n: lateral direction, horizontal, to the right of f.
@@ -49,7 +50,7 @@ pub(crate) struct ContactFrame<T: RealField + Copy> {
 
 /// Velocity rows `[longitudinal (or spin lock), lateral, normal]` of one contact.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ContactRows<T: RealField + Copy> {
+pub(crate) struct ContactRows<T: Real> {
     /// Coefficients of the wheel's speeds (v world, ω body).
     pub wheel: SMatrix<T, 3, 6>,
     /// Coefficients of the frame's speeds (non-zero only in a skate's spin-lock row).
@@ -62,7 +63,7 @@ pub(crate) struct ContactRows<T: RealField + Copy> {
 
 /// Directions, offset and rates at one contact, world axes.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ContactKinematics<T: RealField + Copy> {
+pub(crate) struct ContactKinematics<T: Real> {
     /// a: the wheel's axle, and ȧ.
     pub axle: Vector3<T>,
     pub axle_dot: Vector3<T>,
@@ -88,7 +89,7 @@ impl KnifeEdge {
     }
 
     /// Ground directions and hub → contact offset for the wheel's current axle.
-    pub(crate) fn contact_frame<T: RealField + Copy>(&self, poses: &Poses<T>) -> ContactFrame<T> {
+    pub(crate) fn contact_frame<T: Real>(&self, poses: &Poses<T>) -> ContactFrame<T> {
         let a = poses.rot[self.wheel].column(1).into_owned();
         let (f, _) = longitudinal(&a);
         let lateral = Vector3::new(-f.y, f.x, T::zero());
@@ -101,19 +102,19 @@ impl KnifeEdge {
     }
 
     /// The contact point (lowest point of the rim), world axes \[m\].
-    pub(crate) fn point<T: RealField + Copy>(&self, poses: &Poses<T>) -> Vector3<T> {
+    pub(crate) fn point<T: Real>(&self, poses: &Poses<T>) -> Vector3<T> {
         poses.pos[self.wheel] + self.contact_frame(poses).offset
     }
 
     /// Holonomic residual: height of the lowest rim point above the ground, as z (down) \[m\].
-    pub(crate) fn height<T: RealField + Copy>(&self, poses: &Poses<T>) -> T {
+    pub(crate) fn height<T: Real>(&self, poses: &Poses<T>) -> T {
         let a = poses.rot[self.wheel].column(1).into_owned();
         poses.pos[self.wheel].z + (a.x * a.x + a.y * a.y).sqrt() * nalgebra::convert(self.radius)
     }
 
     /// The contact's directions, offset and their rates from the wheel's velocity (world) and
     /// angular velocity (body axes).
-    pub(crate) fn kinematics<T: RealField + Copy>(
+    pub(crate) fn kinematics<T: Real>(
         &self,
         poses: &Poses<T>,
         v_wheel: &Vector3<T>,
@@ -149,7 +150,7 @@ impl KnifeEdge {
 
     /// Velocity rows and γ from the wheel's velocity (world) and angular velocity (body axes)
     /// and its frame's angular velocity (body axes).
-    pub(crate) fn rows<T: RealField + Copy>(
+    pub(crate) fn rows<T: Real>(
         &self,
         poses: &Poses<T>,
         v_wheel: &Vector3<T>,
@@ -207,7 +208,7 @@ impl KnifeEdge {
 /// f = (a × e_z)/|a × e_z| and 1/|a × e_z| for a unit axle a that is not vertical (one
 /// division).
 #[inline]
-fn longitudinal<T: RealField + Copy>(a: &Vector3<T>) -> (Vector3<T>, T) {
+fn longitudinal<T: Real>(a: &Vector3<T>) -> (Vector3<T>, T) {
     let inverse = T::one() / (a.x * a.x + a.y * a.y).sqrt();
     (
         Vector3::new(a.y * inverse, -a.x * inverse, T::zero()),

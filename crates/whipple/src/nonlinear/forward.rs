@@ -25,7 +25,8 @@
 //! [`Model::forward_reference`] (in [`super::reference`]) solves the full 45 × 45 system with
 //! every row (no tree), as a check of the structured path.
 
-use nalgebra::{Matrix3, RealField, SMatrix, SVector, Vector3};
+use crate::math::Real;
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use super::Model;
 use super::assembly::{Reduced, symmetrize};
@@ -44,13 +45,13 @@ use crate::error::{Error, Result};
 pub(crate) type Applied<T> = [(Vector3<T>, Vector3<T>); BODIES];
 
 #[inline]
-fn c<T: RealField + Copy>(x: f64) -> T {
+fn c<T: Real>(x: f64) -> T {
     nalgebra::convert(x)
 }
 
 /// Rider inputs: torques [N m], benchmark signs.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Inputs<T: RealField + Copy> {
+pub struct Inputs<T: Real> {
     /// T_φ: lean torque, acting on the rear frame about the horizontal line of its heading
     /// (its generalized force is exactly the lean torque of the benchmark).
     pub lean_torque: T,
@@ -59,7 +60,7 @@ pub struct Inputs<T: RealField + Copy> {
     pub steer_torque: T,
 }
 
-impl<T: RealField + Copy> Default for Inputs<T> {
+impl<T: Real> Default for Inputs<T> {
     fn default() -> Self {
         Inputs {
             lean_torque: T::zero(),
@@ -83,7 +84,7 @@ pub struct ContactForce<T> {
 /// The result of [`Model::forward`]: the rates of the state ẋ = [q̇; u̇] and the ground forces
 /// that come with them.
 #[derive(Debug, Clone, Copy)]
-pub struct StateRates<T: RealField + Copy> {
+pub struct StateRates<T: Real> {
     /// q̇: coordinate rates.
     pub q_dot: SVector<T, COORDINATES>,
     /// u̇: accelerations (world translational, body angular).
@@ -92,7 +93,7 @@ pub struct StateRates<T: RealField + Copy> {
     pub contact: [ContactForce<T>; 2],
 }
 
-impl<T: RealField + Copy> StateRates<T> {
+impl<T: Real> StateRates<T> {
     /// The first-order derivative `[q̇; u̇]`.
     pub fn to_vector(self) -> SVector<T, STATE_LEN> {
         let mut y = SVector::<T, STATE_LEN>::zeros();
@@ -119,11 +120,7 @@ impl Model {
     /// assert!((d.contact[0].normal + d.contact[1].normal - 94.0 * 9.81).abs() < 1e-9);
     /// # Ok::<(), whipple::Error>(())
     /// ```
-    pub fn forward<T: RealField + Copy>(
-        &self,
-        state: &State<T>,
-        inputs: &Inputs<T>,
-    ) -> Result<StateRates<T>> {
+    pub fn forward<T: Real>(&self, state: &State<T>, inputs: &Inputs<T>) -> Result<StateRates<T>> {
         let angles = Angles::new(&state.q);
         let poses = Poses::from_angles(&state.q, &angles);
         let (tree, _) = self.tree(&poses, &state.u);
@@ -141,7 +138,7 @@ impl Model {
     }
 
     /// Stage 3: applied forces per body (world force, body-axes torque).
-    pub(crate) fn applied<T: RealField + Copy>(
+    pub(crate) fn applied<T: Real>(
         &self,
         angles: &Angles<T>,
         poses: &Poses<T>,
@@ -168,7 +165,7 @@ impl Model {
 
     /// Stages 4–5 with all six contact rows in the nine tree speeds (any bicycle, skates
     /// included).
-    fn solve_general<T: RealField + Copy>(
+    fn solve_general<T: Real>(
         &self,
         poses: &Poses<T>,
         tree: &Tree<T>,
@@ -186,7 +183,7 @@ impl Model {
     /// ([`Model::roll_on_rear_wheel`]), leaving the front contact's three rows in six tree
     /// speeds; the rear contact force follows from the balance of linear momentum of the whole
     /// bicycle (the joint forces are internal).
-    fn solve_rolling<T: RealField + Copy>(
+    fn solve_rolling<T: Real>(
         &self,
         poses: &Poses<T>,
         tree: &Tree<T>,
@@ -215,7 +212,7 @@ impl Model {
 
     /// Every contact's three rows in the tree speeds of `jac` (contact i in rows 3i..3i+3) and
     /// their right-hand side `γ − D c`.
-    pub(crate) fn contact_rows<T: RealField + Copy, const N: usize>(
+    pub(crate) fn contact_rows<T: Real, const N: usize>(
         &self,
         poses: &Poses<T>,
         tree: &Tree<T>,
@@ -234,7 +231,7 @@ impl Model {
 
     /// Contact i's three rows in the tree speeds of `jac`, their right-hand side `γ − D c`,
     /// and the contact's directions.
-    pub(crate) fn contact_rows_in<T: RealField + Copy, const N: usize>(
+    pub(crate) fn contact_rows_in<T: Real, const N: usize>(
         &self,
         i: usize,
         poses: &Poses<T>,
@@ -261,11 +258,7 @@ impl Model {
 
     /// Contact i's force from its three multipliers `ν = −μ` (the multipliers act along
     /// `[f, n, e_z]`, e_z down; a skate's first row is its spin lock, not a force).
-    pub(crate) fn contact_force<T: RealField + Copy>(
-        &self,
-        i: usize,
-        nu: &SVector<T, 3>,
-    ) -> ContactForce<T> {
+    pub(crate) fn contact_force<T: Real>(&self, i: usize, nu: &SVector<T, 3>) -> ContactForce<T> {
         ContactForce {
             normal: nu[NORMAL],
             longitudinal: if self.contacts[i].is_skate() {
@@ -280,7 +273,7 @@ impl Model {
     /// Stage 5: the reduced mass matrix TᵀMT and forces Tᵀ(f − M c) over N tree speeds, the
     /// saddle-point solve `[TᵀMT Gᵀ; G 0][ẇ; ν] = [Tᵀ(f − Mc); γ̃]` with M contact rows, and
     /// `u̇ = J ẇ + c`.
-    fn solve_saddle<T: RealField + Copy, const N: usize, const M: usize>(
+    fn solve_saddle<T: Real, const N: usize, const M: usize>(
         &self,
         jac: &[SMatrix<T, 6, N>; BODIES],
         bias: &[SVector<T, 6>; BODIES],
@@ -336,7 +329,7 @@ impl Model {
 /// q̇ from u, given the sines and cosines of q's angles: velocities as they are, angle rates
 /// from body angular velocities.
 #[inline]
-pub(crate) fn coordinate_rates<T: RealField + Copy>(
+pub(crate) fn coordinate_rates<T: Real>(
     angles: &Angles<T>,
     u: &SVector<T, SPEEDS>,
 ) -> SVector<T, COORDINATES> {

@@ -3,7 +3,8 @@
 //! dependent speeds from the velocity constraints given the forward speed, lean rate and
 //! steer rate.
 
-use nalgebra::{RealField, SMatrix, SVector, Vector3};
+use crate::math::Real;
+use nalgebra::{SMatrix, SVector, Vector3};
 
 use super::Model;
 use super::poses::Poses;
@@ -86,7 +87,7 @@ impl InitialConditions {
 /// the forward speed (the rear hub velocity ν along `heading`, in rear frame axes), the lean
 /// rate of the yaw–lean–pitch angles (cos θ ω_x + sin θ ω_z, θ the rear frame's pitch) and the
 /// steer rate: nine equations solved by LU in the scalar type. None when they are singular.
-pub(crate) fn solve_tree_speeds<T: RealField + Copy>(
+pub(crate) fn solve_tree_speeds<T: Real>(
     g: &SMatrix<T, 6, TREE>,
     heading: &Vector3<T>,
     pitch: T,
@@ -98,7 +99,7 @@ pub(crate) fn solve_tree_speeds<T: RealField + Copy>(
     a.fixed_view_mut::<1, 3>(6, 0)
         .copy_from(&heading.transpose());
     b[6] = speed;
-    let (sp, cp) = pitch.sin_cos();
+    let (sp, cp) = crate::math::sin_cos(pitch);
     a[(7, FRAME_RATE)] = cp;
     a[(7, FRAME_RATE + 2)] = sp;
     b[7] = lean_rate;
@@ -154,7 +155,7 @@ impl Model {
     /// tree speeds from the six contact rows with the forward speed (the rear hub's velocity
     /// along the heading), lean rate and steer rate. None when the velocity constraints are
     /// singular there.
-    pub(crate) fn consistent_state<T: RealField + Copy>(
+    pub(crate) fn consistent_state<T: Real>(
         &self,
         [yaw, lean, steer]: [T; 3],
         rear_contact: [T; 2],
@@ -171,8 +172,8 @@ impl Model {
         let (tree, _) = self.tree(&poses, &SVector::zeros());
         let jac = tree.jacobians();
         let (g, _) = self.contact_rows(&poses, &tree, &jac, &tree.bias);
-        let heading =
-            poses.rot[REAR_FRAME].transpose() * Vector3::new(yaw.cos(), yaw.sin(), T::zero());
+        let heading = poses.rot[REAR_FRAME].transpose()
+            * Vector3::new(crate::math::cos(yaw), crate::math::sin(yaw), T::zero());
         let w = solve_tree_speeds(&g, &heading, pitch, speed_and_rates)?;
         Some(State {
             q,

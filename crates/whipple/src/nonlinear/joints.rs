@@ -11,7 +11,8 @@
 //! `v_A − R_A [p_A]× ω_A − v_C + R_C [p_C]× ω_C = 0` and `(ω_A − ω_C)_world · (b_i × a_C) = 0`.
 //! Acceleration rows `D u̇ = γ` with `γ = −Ḋ u`.
 
-use nalgebra::{Matrix3, RealField, SMatrix, SVector, Vector3};
+use crate::math::Real;
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use super::poses::Poses;
 use super::rotation::skew;
@@ -35,7 +36,7 @@ pub(crate) struct Revolute {
 
 /// Rows of one joint: coefficients of the parent's and the child's six speeds, and γ.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct JointRows<T: RealField + Copy> {
+pub(crate) struct JointRows<T: Real> {
     /// Coefficients of the parent's speeds (v world, ω body).
     pub parent: SMatrix<T, 5, 6>,
     /// Coefficients of the child's speeds.
@@ -46,7 +47,7 @@ pub(crate) struct JointRows<T: RealField + Copy> {
 
 impl Revolute {
     /// The five holonomic residuals: point coincidence (3) \[m\], axis alignment (2) [-].
-    pub(crate) fn residual<T: RealField + Copy>(&self, poses: &Poses<T>) -> SVector<T, 5> {
+    pub(crate) fn residual<T: Real>(&self, poses: &Poses<T>) -> SVector<T, 5> {
         let (ra, rc) = (&poses.rot[self.parent], &poses.rot[self.child]);
         let pa: Vector3<T> = self.point_in_parent.cast();
         let pc: Vector3<T> = self.point_in_child.cast();
@@ -58,7 +59,7 @@ impl Revolute {
     }
 
     /// Velocity rows and γ, given the angular velocities (body axes) of parent and child.
-    pub(crate) fn rows<T: RealField + Copy>(
+    pub(crate) fn rows<T: Real>(
         &self,
         poses: &Poses<T>,
         omega_parent: &Vector3<T>,

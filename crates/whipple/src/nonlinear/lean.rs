@@ -20,7 +20,8 @@
 //! gives the accelerations. The hinge torque T_r − k φ_r − c φ̇_r acts on G about e_x and its
 //! reaction on B; the rear contact force comes from the momentum balance of all five bodies.
 
-use nalgebra::{Complex, Matrix3, RealField, SMatrix, SVector, Vector3, Vector4};
+use crate::math::Real;
+use nalgebra::{Complex, Matrix3, SMatrix, SVector, Vector3, Vector4};
 use num_dual::Dual64;
 
 use super::Model;
@@ -46,7 +47,7 @@ const LEAN_TREE: usize = ROLLING_TREE + 1;
 const HINGE_RATE: usize = ROLLING_TREE;
 
 #[inline]
-fn c<T: RealField + Copy>(x: f64) -> T {
+fn c<T: Real>(x: f64) -> T {
     nalgebra::convert(x)
 }
 
@@ -82,7 +83,7 @@ pub struct LeanModel {
 
 /// A state of the leaning rider: the four bodies' [`State`] and the hinge.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LeanState<T: RealField + Copy> {
+pub struct LeanState<T: Real> {
     /// The four bodies.
     pub bicycle: State<T>,
     /// φ_r: the upper body's lean relative to the rear frame, right positive \[rad\].
@@ -93,7 +94,7 @@ pub struct LeanState<T: RealField + Copy> {
 
 /// The result of [`LeanModel::forward`].
 #[derive(Debug, Clone, Copy)]
-pub struct LeanRates<T: RealField + Copy> {
+pub struct LeanRates<T: Real> {
     /// The four bodies' rates and the ground forces (the whole bicycle's, rider included).
     pub bicycle: StateRates<T>,
     /// φ̈_r: the hinge's angular acceleration [rad/s²].
@@ -143,7 +144,7 @@ pub struct LeanSimulation {
     pub final_state: LeanState<f64>,
 }
 
-impl<T: RealField + Copy> LeanState<T> {
+impl<T: Real> LeanState<T> {
     /// The first-order vector [q; u; φ_r; φ̇_r].
     pub fn to_vector(&self) -> SVector<T, LEAN_STATE_LEN> {
         let mut y = SVector::<T, LEAN_STATE_LEN>::zeros();
@@ -173,7 +174,7 @@ struct LeanField<'a> {
 }
 
 impl VectorField<6> for LeanField<'_> {
-    fn eval<T: RealField + Copy>(&self, x: &SVector<T, 6>) -> Result<SVector<T, 6>> {
+    fn eval<T: Real>(&self, x: &SVector<T, 6>) -> Result<SVector<T, 6>> {
         self.model
             .lean_field(x, self.speed, &Inputs::default(), T::zero())
     }
@@ -346,7 +347,7 @@ impl LeanModel {
 
     /// G's rotation (G axes → world), centre (world), angular velocity (G axes) and centre's
     /// velocity (world) in a state.
-    fn upper_body<T: RealField + Copy>(
+    fn upper_body<T: Real>(
         &self,
         state: &LeanState<T>,
     ) -> (Matrix3<T>, Vector3<T>, Vector3<T>, Vector3<T>) {
@@ -389,7 +390,7 @@ impl LeanModel {
 
     /// Total mechanical energy: the four bodies', G's kinetic and potential energy and the
     /// hinge spring's ½ k φ_r² \[J\].
-    pub fn energy<T: RealField + Copy>(&self, state: &LeanState<T>) -> T {
+    pub fn energy<T: Real>(&self, state: &LeanState<T>) -> T {
         let (_, x, w, v) = self.upper_body(state);
         let half: T = c(0.5);
         let m: T = c(self.mass);
@@ -404,7 +405,7 @@ impl LeanModel {
     /// ground forces, with the rider's lean and steer torques `inputs` and the torque
     /// `hinge_torque` of the rider's upper body about the hinge (on G, its reaction on B),
     /// generic over the scalar. Allocation-free.
-    pub fn forward<T: RealField + Copy>(
+    pub fn forward<T: Real>(
         &self,
         state: &LeanState<T>,
         inputs: &Inputs<T>,
@@ -603,7 +604,7 @@ impl LeanModel {
             let fastest = self.eigenvalues(speed).ok().and_then(|l| {
                 l.into_iter()
                     .filter(|z| z.re.is_finite() && z.im.is_finite())
-                    .max_by(|a, b| a.norm().total_cmp(&b.norm()))
+                    .max_by(|a, b| crate::math::norm(a).total_cmp(&crate::math::norm(b)))
             });
             check_rk4_mode(fastest, speed, dt)?;
         }
@@ -640,11 +641,7 @@ impl LeanModel {
     /// The consistent state with x = [φ, δ, φ_r, φ̇, δ̇, φ̇_r] at forward speed `speed`: the
     /// four bodies' [`Model::reduced_state`] of [φ, δ, φ̇, δ̇] (the hinge touches no
     /// constraint) and the hinge's angle and rate.
-    pub fn reduced_state<T: RealField + Copy>(
-        &self,
-        x: &SVector<T, 6>,
-        speed: T,
-    ) -> Result<LeanState<T>> {
+    pub fn reduced_state<T: Real>(&self, x: &SVector<T, 6>, speed: T) -> Result<LeanState<T>> {
         let bicycle = self
             .model
             .reduced_state(&Vector4::new(x[0], x[1], x[3], x[4]), speed)?;
@@ -657,7 +654,7 @@ impl LeanModel {
 
     /// ẋ of x = [φ, δ, φ_r, φ̇, δ̇, φ̇_r] at the reduced state of [`LeanModel::reduced_state`],
     /// forced by `inputs` and the hinge torque.
-    pub fn lean_field<T: RealField + Copy>(
+    pub fn lean_field<T: Real>(
         &self,
         x: &SVector<T, 6>,
         speed: f64,

@@ -1,7 +1,8 @@
 //! Stage 1 of the forward dynamics: where every body is. The sines and cosines of the twelve
 //! Euler angles, once per evaluation, and from them each body's rotation matrix and origin.
 
-use nalgebra::{Matrix3, RealField, SVector, Vector3};
+use crate::math::Real;
+use nalgebra::{Matrix3, SVector, Vector3};
 
 use super::rotation::{self, SinCos};
 use super::state::COORDINATES;
@@ -9,14 +10,14 @@ use super::topology::BODIES;
 
 /// Poses of the four bodies.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Poses<T: RealField + Copy> {
+pub(crate) struct Poses<T: Real> {
     /// Rotation matrices, body → world.
     pub rot: [Matrix3<T>; BODIES],
     /// Positions of the body origins, world axes \[m\].
     pub pos: [Vector3<T>; BODIES],
 }
 
-impl<T: RealField + Copy> Poses<T> {
+impl<T: Real> Poses<T> {
     /// Stage 1: poses from the coordinates.
     pub(crate) fn new(q: &SVector<T, COORDINATES>) -> Self {
         Self::from_angles(q, &Angles::new(q))
@@ -40,7 +41,7 @@ impl<T: RealField + Copy> Poses<T> {
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Angles<T>(pub [[SinCos<T>; 3]; BODIES]);
 
-impl<T: RealField + Copy> Angles<T> {
+impl<T: Real> Angles<T> {
     /// The sines and cosines of q's angles.
     #[inline]
     pub(crate) fn new(q: &SVector<T, COORDINATES>) -> Self {

@@ -1,7 +1,8 @@
 //! What a state says, read off in the quantities a rider, a plot or a drawing uses: lean,
 //! steer, rates, forward speed, contact points, wheel angles, energy, and each body's pose.
 
-use nalgebra::{RealField, SVector, Vector3};
+use crate::math::Real;
+use nalgebra::{SVector, Vector3};
 use num_dual::Dual64;
 
 use super::Model;
@@ -13,7 +14,7 @@ use super::topology::{BODIES, FRONT_FRAME, REAR_FRAME, REAR_WHEEL};
 
 impl Model {
     /// Total mechanical energy, kinetic plus gravitational potential (zero at ground level) \[J\].
-    pub fn energy<T: RealField + Copy>(&self, state: &State<T>) -> T {
+    pub fn energy<T: Real>(&self, state: &State<T>) -> T {
         let g: T = nalgebra::convert(self.parameters.g);
         let half: T = nalgebra::convert(0.5);
         let mut e = T::zero();
@@ -30,26 +31,26 @@ impl Model {
 
     /// δ: steer angle, the front frame's rotation relative to the rear frame about the steer
     /// axis, right positive \[rad\].
-    pub fn steer<T: RealField + Copy>(&self, q: &SVector<T, COORDINATES>) -> T {
+    pub fn steer<T: Real>(&self, q: &SVector<T, COORDINATES>) -> T {
         self.steer_at(&Poses::new(q))
     }
 
     /// [`Model::steer`] from the poses.
-    pub(crate) fn steer_at<T: RealField + Copy>(&self, poses: &Poses<T>) -> T {
+    pub(crate) fn steer_at<T: Real>(&self, poses: &Poses<T>) -> T {
         let relative = poses.rot[REAR_FRAME].transpose() * poses.rot[FRONT_FRAME];
         let s: Vector3<T> = self.bodies.geometry.steer_axis.cast();
         let ey = Vector3::<T>::y();
         let e = relative * ey;
-        e.dot(&s.cross(&ey)).atan2(e.dot(&ey))
+        crate::math::atan2(e.dot(&s.cross(&ey)), e.dot(&ey))
     }
 
     /// δ̇: steer rate [rad/s].
-    pub fn steer_rate<T: RealField + Copy>(&self, state: &State<T>) -> T {
+    pub fn steer_rate<T: Real>(&self, state: &State<T>) -> T {
         self.steer_rate_at(&Poses::new(&state.q), state)
     }
 
     /// [`Model::steer_rate`] from the poses of `state.q`.
-    fn steer_rate_at<T: RealField + Copy>(&self, poses: &Poses<T>, state: &State<T>) -> T {
+    fn steer_rate_at<T: Real>(&self, poses: &Poses<T>, state: &State<T>) -> T {
         let a_hb = poses.rot[FRONT_FRAME].transpose() * poses.rot[REAR_FRAME];
         let s: Vector3<T> = self.bodies.geometry.steer_axis.cast();
         s.dot(&(state.angular_velocity(FRONT_FRAME) - a_hb * state.angular_velocity(REAR_FRAME)))
@@ -57,7 +58,7 @@ impl Model {
 
     /// Spin rates of the rear and front wheels relative to their frames, about the axle
     /// (negative when rolling forward) [rad/s].
-    pub fn wheel_rates<T: RealField + Copy>(&self, state: &State<T>) -> [T; 2] {
+    pub fn wheel_rates<T: Real>(&self, state: &State<T>) -> [T; 2] {
         let poses = Poses::new(&state.q);
         self.contacts.map(|c| {
             let a = poses.rot[c.wheel].transpose() * poses.rot[c.frame];
@@ -66,17 +67,14 @@ impl Model {
     }
 
     /// v: forward speed, the rear hub's velocity along the rear frame's heading [m/s].
-    pub fn speed<T: RealField + Copy>(&self, state: &State<T>) -> T {
-        let (s, c) = state.yaw().sin_cos();
+    pub fn speed<T: Real>(&self, state: &State<T>) -> T {
+        let (s, c) = crate::math::sin_cos(state.yaw());
         let v = state.velocity(REAR_WHEEL);
         v.x * c + v.y * s
     }
 
     /// Rear and front contact points (lowest rim points), world axes \[m\].
-    pub fn contact_points<T: RealField + Copy>(
-        &self,
-        q: &SVector<T, COORDINATES>,
-    ) -> [Vector3<T>; 2] {
+    pub fn contact_points<T: Real>(&self, q: &SVector<T, COORDINATES>) -> [Vector3<T>; 2] {
         let poses = Poses::new(q);
         self.contacts.map(|c| c.point(&poses))
     }
@@ -86,7 +84,7 @@ impl Model {
     /// reference pose of the body, Rᵀ (p − centre)). Any scalar, so dual numbers carry its
     /// exact derivatives.
     #[cfg(test)]
-    pub(crate) fn body_point<T: RealField + Copy>(
+    pub(crate) fn body_point<T: Real>(
         q: &SVector<T, COORDINATES>,
         body: usize,
         local: &Vector3<f64>,
@@ -125,7 +123,7 @@ impl Model {
     /// axle (negative when rolling forward, never wrapped) \[rad\]. With the hub joints holding,
     /// a wheel and its frame share yaw and lean, so this is the difference of their third
     /// angles.
-    pub fn wheel_angles<T: RealField + Copy>(&self, q: &SVector<T, COORDINATES>) -> [T; 2] {
+    pub fn wheel_angles<T: Real>(&self, q: &SVector<T, COORDINATES>) -> [T; 2] {
         self.contacts
             .map(|c| q[6 * c.wheel + BODY_PITCH] - q[6 * c.frame + BODY_PITCH])
     }

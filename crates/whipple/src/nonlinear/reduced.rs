@@ -15,7 +15,8 @@
 //! vanish for every v at x = 0), and the speed's own rate is even in x, so it decouples at first
 //! order.
 
-use nalgebra::{Matrix3, RealField, SVector, Vector3, Vector4};
+use crate::math::Real;
+use nalgebra::{Matrix3, SVector, Vector3, Vector4};
 
 use super::Model;
 use super::forward::{Inputs, StateRates};
@@ -27,7 +28,7 @@ use crate::analysis::linearize::VectorField;
 use crate::error::{Error, Result};
 
 #[inline]
-fn c<T: RealField + Copy>(x: f64) -> T {
+fn c<T: Real>(x: f64) -> T {
     nalgebra::convert(x)
 }
 
@@ -40,7 +41,7 @@ impl Model {
     /// The rear frame's pitch is `Model::ground_pitch`'s from upright's (for dual numbers with
     /// the exact derivative ∂θ/∂x = −(∂h/∂θ)⁻¹ ∂h/∂x of the implicit function theorem); every
     /// other coordinate and speed is `Model::consistent_state`'s.
-    pub fn reduced_state<T: RealField + Copy>(&self, x: &Vector4<T>, speed: T) -> Result<State<T>> {
+    pub fn reduced_state<T: Real>(&self, x: &Vector4<T>, speed: T) -> Result<State<T>> {
         let [lean, steer, lean_rate, steer_rate] = [x[0], x[1], x[2], x[3]];
         let upright = self.pitch_for(0.0, 0.0, 0.0)?;
         let pitch = self.ground_pitch(lean, steer, upright)?;
@@ -73,11 +74,7 @@ impl Model {
     /// assert!(f[2] > 0.0); // leaning right, it falls further right
     /// # Ok::<(), whipple::Error>(())
     /// ```
-    pub fn lean_steer_field<T: RealField + Copy>(
-        &self,
-        x: &Vector4<T>,
-        speed: f64,
-    ) -> Result<Vector4<T>> {
+    pub fn lean_steer_field<T: Real>(&self, x: &Vector4<T>, speed: f64) -> Result<Vector4<T>> {
         let state = self.reduced_state(x, c(speed))?;
         let d = self.forward(&state, &Inputs::default())?;
         let [lean_acceleration, steer_acceleration] = self.lean_steer_accelerations(&state, &d);
@@ -91,7 +88,7 @@ impl Model {
 
     /// φ̈ and δ̈ of the rear frame's lean and of the steer angle, from the model's accelerations
     /// at `state` (see [`Model::lean_steer_field`] for the formulas).
-    pub(crate) fn lean_steer_accelerations<T: RealField + Copy>(
+    pub(crate) fn lean_steer_accelerations<T: Real>(
         &self,
         state: &State<T>,
         d: &StateRates<T>,
@@ -99,7 +96,7 @@ impl Model {
         let b = 6 * REAR_FRAME;
         let pitch = state.q[b + BODY_PITCH];
         let pitch_rate = d.q_dot[b + BODY_PITCH];
-        let (sp, cp) = pitch.sin_cos();
+        let (sp, cp) = crate::math::sin_cos(pitch);
         let w_b = state.angular_velocity(REAR_FRAME);
         let w_h = state.angular_velocity(FRONT_FRAME);
         let dw_b = d.u_dot.fixed_rows::<3>(b + 3).into_owned();
@@ -124,7 +121,7 @@ pub(crate) struct LeanSteerField<'a> {
 }
 
 impl VectorField<4> for LeanSteerField<'_> {
-    fn eval<T: RealField + Copy>(&self, x: &SVector<T, 4>) -> Result<SVector<T, 4>> {
+    fn eval<T: Real>(&self, x: &SVector<T, 4>) -> Result<SVector<T, 4>> {
         self.model.lean_steer_field(x, self.speed)
     }
 }
@@ -148,10 +145,7 @@ pub(crate) struct FullStateField<'a> {
 }
 
 impl VectorField<STATE_LEN> for FullStateField<'_> {
-    fn eval<T: RealField + Copy>(
-        &self,
-        y: &SVector<T, STATE_LEN>,
-    ) -> Result<SVector<T, STATE_LEN>> {
+    fn eval<T: Real>(&self, y: &SVector<T, STATE_LEN>) -> Result<SVector<T, STATE_LEN>> {
         let state = state_from_spin_free(y);
         let d = self.model.forward(&state, &Inputs::default())?;
         Ok(spin_free_derivative(&state, &d))
@@ -162,13 +156,13 @@ impl VectorField<STATE_LEN> for FullStateField<'_> {
 const WHEELS: [usize; 2] = [REAR_WHEEL, FRONT_WHEEL];
 
 /// R_y(θ) of wheel k: from its body axes to its spin-free axes.
-fn unspin<T: RealField + Copy>(q: &SVector<T, COORDINATES>, k: usize) -> Matrix3<T> {
+fn unspin<T: Real>(q: &SVector<T, COORDINATES>, k: usize) -> Matrix3<T> {
     rotation::matrix(T::zero(), T::zero(), q[6 * k + BODY_PITCH])
 }
 
 /// y = [q; ũ] of a state: the wheels' angular velocities turned from body axes into
 /// spin-free axes, ω̃ = R_y(θ) ω.
-pub(crate) fn spin_free_vector<T: RealField + Copy>(state: &State<T>) -> SVector<T, STATE_LEN> {
+pub(crate) fn spin_free_vector<T: Real>(state: &State<T>) -> SVector<T, STATE_LEN> {
     let mut y = state.to_vector();
     for k in WHEELS {
         let w = unspin(&state.q, k) * state.angular_velocity(k);
@@ -178,7 +172,7 @@ pub(crate) fn spin_free_vector<T: RealField + Copy>(state: &State<T>) -> SVector
 }
 
 /// The state of y = [q; ũ] (the inverse of [`spin_free_vector`]).
-pub(crate) fn state_from_spin_free<T: RealField + Copy>(y: &SVector<T, STATE_LEN>) -> State<T> {
+pub(crate) fn state_from_spin_free<T: Real>(y: &SVector<T, STATE_LEN>) -> State<T> {
     let mut state = State::from_vector(y);
     for k in WHEELS {
         let w = unspin(&state.q, k).transpose() * state.angular_velocity(k);
@@ -189,7 +183,7 @@ pub(crate) fn state_from_spin_free<T: RealField + Copy>(y: &SVector<T, STATE_LEN
 
 /// ẏ = [q̇; d/dt ũ] from the model's derivatives: for a wheel,
 /// d/dt (R_y(θ) ω) = R_y(θ) ω̇ + θ̇ e_y × ω̃.
-pub(crate) fn spin_free_derivative<T: RealField + Copy>(
+pub(crate) fn spin_free_derivative<T: Real>(
     state: &State<T>,
     d: &StateRates<T>,
 ) -> SVector<T, STATE_LEN> {

@@ -10,11 +10,12 @@
 //! With z down, positive yaw turns right, positive lean leans right (benchmark convention),
 //! positive pitch lifts the nose, and a wheel rolling forward turns with a negative rate.
 
-use nalgebra::{Matrix3, RealField, Vector3};
+use crate::math::Real;
+use nalgebra::{Matrix3, Vector3};
 
 /// `R = R_z(yaw) R_x(lean) R_y(pitch)`: body → world.
 #[inline]
-pub fn matrix<T: RealField + Copy>(yaw: T, lean: T, pitch: T) -> Matrix3<T> {
+pub fn matrix<T: Real>(yaw: T, lean: T, pitch: T) -> Matrix3<T> {
     matrix_from_sin_cos(SinCos::new(yaw), SinCos::new(lean), SinCos::new(pitch))
 }
 
@@ -25,17 +26,17 @@ pub(crate) struct SinCos<T> {
     pub cos: T,
 }
 
-impl<T: RealField + Copy> SinCos<T> {
+impl<T: Real> SinCos<T> {
     #[inline]
     pub(crate) fn new(angle: T) -> Self {
-        let (sin, cos) = angle.sin_cos();
+        let (sin, cos) = crate::math::sin_cos(angle);
         SinCos { sin, cos }
     }
 }
 
 /// [`matrix`] from the sines and cosines of yaw, lean and pitch.
 #[inline]
-pub(crate) fn matrix_from_sin_cos<T: RealField + Copy>(
+pub(crate) fn matrix_from_sin_cos<T: Real>(
     yaw: SinCos<T>,
     lean: SinCos<T>,
     pitch: SinCos<T>,
@@ -58,9 +59,9 @@ pub(crate) fn matrix_from_sin_cos<T: RealField + Copy>(
 
 /// The matrix W with ω (body axes) = W · [yaw rate, lean rate, pitch rate].
 #[inline]
-pub fn rates_to_body<T: RealField + Copy>(lean: T, pitch: T) -> Matrix3<T> {
-    let (sl, cl) = lean.sin_cos();
-    let (sp, cp) = pitch.sin_cos();
+pub fn rates_to_body<T: Real>(lean: T, pitch: T) -> Matrix3<T> {
+    let (sl, cl) = crate::math::sin_cos(lean);
+    let (sp, cp) = crate::math::sin_cos(pitch);
     let zero = T::zero();
     let one = T::one();
     Matrix3::new(-sp * cl, cp, zero, sl, zero, one, cp * cl, sp, zero)
@@ -69,13 +70,13 @@ pub fn rates_to_body<T: RealField + Copy>(lean: T, pitch: T) -> Matrix3<T> {
 /// [yaw rate, lean rate, pitch rate] from the body-axes angular velocity ω: the inverse of
 /// [`rates_to_body`], singular at lean = ±90°.
 #[inline]
-pub fn body_to_rates<T: RealField + Copy>(lean: T, pitch: T, omega: &Vector3<T>) -> Vector3<T> {
+pub fn body_to_rates<T: Real>(lean: T, pitch: T, omega: &Vector3<T>) -> Vector3<T> {
     body_to_rates_from_sin_cos(SinCos::new(lean), SinCos::new(pitch), omega)
 }
 
 /// [`body_to_rates`] from the sines and cosines of lean and pitch.
 #[inline]
-pub(crate) fn body_to_rates_from_sin_cos<T: RealField + Copy>(
+pub(crate) fn body_to_rates_from_sin_cos<T: Real>(
     lean: SinCos<T>,
     pitch: SinCos<T>,
     omega: &Vector3<T>,
@@ -89,24 +90,24 @@ pub(crate) fn body_to_rates_from_sin_cos<T: RealField + Copy>(
 }
 
 /// (yaw, lean, pitch) of a rotation matrix, the inverse of [`matrix`] for |lean| < 90°.
-pub fn angles<T: RealField + Copy>(r: &Matrix3<T>) -> Vector3<T> {
+pub fn angles<T: Real>(r: &Matrix3<T>) -> Vector3<T> {
     let one = T::one();
-    let lean = r[(2, 1)].clamp(-one, one).asin();
-    let yaw = (-r[(0, 1)]).atan2(r[(1, 1)]);
-    let pitch = (-r[(2, 0)]).atan2(r[(2, 2)]);
+    let lean = crate::math::asin(r[(2, 1)].clamp(-one, one));
+    let yaw = crate::math::atan2(-r[(0, 1)], r[(1, 1)]);
+    let pitch = crate::math::atan2(-r[(2, 0)], r[(2, 2)]);
     Vector3::new(yaw, lean, pitch)
 }
 
 /// Rotation by `angle` about the unit vector `axis` (Rodrigues).
-pub fn axis_angle<T: RealField + Copy>(axis: &Vector3<T>, angle: T) -> Matrix3<T> {
-    let (s, c) = angle.sin_cos();
+pub fn axis_angle<T: Real>(axis: &Vector3<T>, angle: T) -> Matrix3<T> {
+    let (s, c) = crate::math::sin_cos(angle);
     let k = skew(axis);
     Matrix3::identity() + k * s + k * k * (T::one() - c)
 }
 
 /// The cross-product matrix: `skew(a) b = a × b`.
 #[inline]
-pub fn skew<T: RealField + Copy>(a: &Vector3<T>) -> Matrix3<T> {
+pub fn skew<T: Real>(a: &Vector3<T>) -> Matrix3<T> {
     let zero = T::zero();
     Matrix3::new(zero, -a.z, a.y, a.z, zero, -a.x, -a.y, a.x, zero)
 }

@@ -10,7 +10,8 @@
 //! same solution, and the augmented matrix is positive definite whenever the saddle-point
 //! matrix is regular.
 
-use nalgebra::{RealField, SMatrix, SVector};
+use crate::math::Real;
+use nalgebra::{SMatrix, SVector};
 
 /// In-place factorization `A = UᵀDU` (U unit upper triangular in the strict upper triangle,
 /// D diagonal), without square roots: the pivots are a chain of dependent operations, and a
@@ -18,7 +19,7 @@ use nalgebra::{RealField, SMatrix, SVector};
 /// them instead of dividing); None when A is not (numerically) positive definite. Every loop
 /// bound is a constant of N, so the compiler unrolls the small factorizations completely.
 #[inline(always)]
-fn factor<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) -> Option<[T; N]> {
+fn factor<T: Real, const N: usize>(a: &mut SMatrix<T, N, N>) -> Option<[T; N]> {
     let mut inverse = [T::zero(); N];
     for j in 0..N {
         // w_i = d_i u_ij, then u_ij = w_i / d_i.
@@ -47,7 +48,7 @@ fn factor<T: RealField + Copy, const N: usize>(a: &mut SMatrix<T, N, N>) -> Opti
 
 /// Solves Uᵀ y = b in place (U unit upper triangular from [`factor`]).
 #[inline(always)]
-fn forward_substitute<T: RealField + Copy, const N: usize>(u: &SMatrix<T, N, N>, b: &mut [T; N]) {
+fn forward_substitute<T: Real, const N: usize>(u: &SMatrix<T, N, N>, b: &mut [T; N]) {
     for i in 0..N {
         let mut s = b[i];
         for k in 0..i {
@@ -59,7 +60,7 @@ fn forward_substitute<T: RealField + Copy, const N: usize>(u: &SMatrix<T, N, N>,
 
 /// Solves U x = b in place.
 #[inline(always)]
-fn back_substitute<T: RealField + Copy, const N: usize>(u: &SMatrix<T, N, N>, b: &mut [T; N]) {
+fn back_substitute<T: Real, const N: usize>(u: &SMatrix<T, N, N>, b: &mut [T; N]) {
     for i in (0..N).rev() {
         let mut s = b[i];
         for k in i + 1..N {
@@ -71,7 +72,7 @@ fn back_substitute<T: RealField + Copy, const N: usize>(u: &SMatrix<T, N, N>, b:
 
 /// Multiplies b entry by entry by the reciprocals of D (the diagonal solve).
 #[inline(always)]
-fn scale<T: RealField + Copy, const N: usize>(b: &mut [T; N], d_inverse: &[T; N]) {
+fn scale<T: Real, const N: usize>(b: &mut [T; N], d_inverse: &[T; N]) {
     for (entry, &inverse) in b.iter_mut().zip(d_inverse) {
         *entry *= inverse;
     }
@@ -79,7 +80,7 @@ fn scale<T: RealField + Copy, const N: usize>(b: &mut [T; N], d_inverse: &[T; N]
 
 /// Solves `[A Gᵀ; G 0][x; y] = [f; γ]`; `rho` > 0 augments A by ρ GᵀG first (see the module
 /// documentation). None when a factorization fails (the system is singular).
-pub(crate) fn solve<T: RealField + Copy, const N: usize, const M: usize>(
+pub(crate) fn solve<T: Real, const N: usize, const M: usize>(
     a: &SMatrix<T, N, N>,
     g: &SMatrix<T, M, N>,
     f: &SVector<T, N>,

@@ -201,7 +201,7 @@ pub fn fastest_mode(model: &Model, speed: f64) -> Option<Complex64> {
         .ok()?
         .into_iter()
         .filter(|l| l.re.is_finite() && l.im.is_finite())
-        .max_by(|a, b| a.norm().total_cmp(&b.norm()))
+        .max_by(|a, b| crate::math::norm(a).total_cmp(&crate::math::norm(b)))
 }
 
 /// The a-priori check of RK4's fixed step `dt` for a run at `speed`: the upright linearized
@@ -231,7 +231,7 @@ pub(crate) fn check_rk4_mode(lambda: Option<Complex64>, speed: f64, dt: f64) -> 
     let Some(lambda) = lambda else {
         return Ok(());
     };
-    let size = lambda.norm();
+    let size = crate::math::norm(lambda);
     if size * dt <= RK4_STABLE_RADIUS {
         return Ok(());
     }
@@ -585,7 +585,7 @@ fn digits4(x: f64) -> String {
     let size = x.abs();
     if (1e-3..1e6).contains(&size) {
         // 4 significant digits: 1 to 6 decimals in this range.
-        let decimals = (3.0 - size.log10().floor()).clamp(0.0, 6.0) as usize;
+        let decimals = (3.0 - crate::math::log10(size).floor()).clamp(0.0, 6.0) as usize;
         format!("{x:.decimals$}")
     } else {
         format!("{x:.3e}")

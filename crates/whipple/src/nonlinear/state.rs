@@ -10,7 +10,8 @@
 //!
 //! With these speeds the mass matrix is constant and block-diagonal, diag(m I₃, I_body) per body.
 
-use nalgebra::{Matrix3, RealField, SVector, Vector3};
+use crate::math::Real;
+use nalgebra::{Matrix3, SVector, Vector3};
 
 /// Number of coordinates (3 position + 3 angles per body).
 pub(crate) const COORDINATES: usize = 24;
@@ -28,14 +29,14 @@ pub(crate) const BODY_PITCH: usize = 5;
 
 /// Coordinates and speeds of the four bodies.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct State<T: RealField + Copy> {
+pub struct State<T: Real> {
     /// q: positions and yaw–lean–pitch angles, six per body.
     pub q: SVector<T, COORDINATES>,
     /// u: world-axes velocities and body-axes angular velocities, six per body.
     pub u: SVector<T, SPEEDS>,
 }
 
-impl<T: RealField + Copy> State<T> {
+impl<T: Real> State<T> {
     /// The state from the first-order vector `[q; u]`.
     pub fn from_vector(y: &SVector<T, STATE_LEN>) -> Self {
         State {

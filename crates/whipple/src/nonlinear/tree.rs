@@ -9,7 +9,8 @@
 //! ([`Model::roll_on_rear_wheel`]), which gives the map in the six speeds `w' = [ω_B, δ̇, σ_R,
 //! σ_F]` as a new [`RollingTree`] (the tree itself is left as it was).
 
-use nalgebra::{Matrix3, RealField, SMatrix, SVector, Vector3};
+use crate::math::Real;
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use super::Model;
 use super::poses::Poses;
@@ -27,7 +28,7 @@ use super::topology::{
 /// every body's translation rows (and zero in its rotation rows), and the columns of the six
 /// other tree speeds `[ω_B, δ̇, σ_R, σ_F]`.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Tree<T: RealField + Copy> {
+pub(crate) struct Tree<T: Real> {
     /// R_B: the ν columns of every body's translation rows.
     pub hub: Matrix3<T>,
     /// The columns of `[ω_B, δ̇, σ_R, σ_F]`.
@@ -40,7 +41,7 @@ pub(crate) struct Tree<T: RealField + Copy> {
     pub omega: [Vector3<T>; BODIES],
 }
 
-impl<T: RealField + Copy> Tree<T> {
+impl<T: Real> Tree<T> {
     /// Body k's whole J (6 × 9) over `w = [ν, ω_B, δ̇, σ_R, σ_F]`.
     pub(crate) fn jac(&self, k: usize) -> SMatrix<T, 6, TREE> {
         let mut j = SMatrix::<T, 6, TREE>::zeros();
@@ -61,7 +62,7 @@ impl<T: RealField + Copy> Tree<T> {
 /// solved for ν: `u_i = J'_i w'`, `u̇_i = J'_i ẇ' + c'_i`, satisfying the joint rows and the
 /// rear contact rows.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct RollingTree<T: RealField + Copy> {
+pub(crate) struct RollingTree<T: Real> {
     /// J'_i.
     pub jac: [SMatrix<T, 6, ROLLING_TREE>; BODIES],
     /// c'_i.
@@ -72,7 +73,7 @@ pub(crate) struct RollingTree<T: RealField + Copy> {
 
 impl Model {
     /// Stage 2: the tree map at the poses, with tree speeds read from u.
-    pub(crate) fn tree<T: RealField + Copy>(
+    pub(crate) fn tree<T: Real>(
         &self,
         poses: &Poses<T>,
         u: &SVector<T, SPEEDS>,
@@ -217,7 +218,7 @@ impl Model {
     /// `E R_B ν̇ + G' ẇ' = γ̃`, so `R_B ν̇ = Eᵀ(γ̃ − G' ẇ')`: every body's translation rows gain
     /// `−EᵀG' = [ρ]× R_W J'_R` (the hub velocity ρ × Ω of rolling about the contact) and its bias
     /// `Eᵀγ̃`.
-    pub(crate) fn roll_on_rear_wheel<T: RealField + Copy>(
+    pub(crate) fn roll_on_rear_wheel<T: Real>(
         &self,
         poses: &Poses<T>,
         tree: &Tree<T>,
@@ -255,7 +256,7 @@ impl Model {
 }
 
 /// u = [J_k w] of every body.
-pub(crate) fn speeds_of<T: RealField + Copy, const N: usize>(
+pub(crate) fn speeds_of<T: Real, const N: usize>(
     jac: &[SMatrix<T, 6, N>; BODIES],
     w: &SVector<T, N>,
 ) -> SVector<T, SPEEDS> {

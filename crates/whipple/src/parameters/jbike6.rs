@@ -10,7 +10,7 @@
 //! numbers too: exact derivatives of anything computed from a JBike6-form bicycle with respect
 //! to its own parameters.
 
-use nalgebra::RealField;
+use crate::math::Real;
 use serde::{Deserialize, Serialize};
 
 use super::benchmark::{BenchmarkParameters, principal_moments, zero_mass_inertia};
@@ -724,7 +724,7 @@ pub(crate) struct PlaneBody<T> {
     pub(crate) i_xz: T,
 }
 
-impl<T: RealField + Copy> PlaneBody<T> {
+impl<T: Real> PlaneBody<T> {
     /// A JBike6 body: centre (x forward, y up) and principal moments [I11, I22, Izz], the first
     /// two in the plane with the principal axis of I11 turned by `alpha` from x towards y.
     fn jbike6(m: T, x: T, y: T, inertia: [T; 3], alpha: T) -> Self {
@@ -736,7 +736,7 @@ impl<T: RealField + Copy> PlaneBody<T> {
     /// JBike6's bodies and Moore 2019's principal parameterization alike.
     pub(crate) fn principal(m: T, x: T, z: T, inertia: [T; 3], alpha: T) -> Self {
         let [i11, i22, izz] = inertia;
-        let (s, c) = alpha.sin_cos();
+        let (s, c) = crate::math::sin_cos(alpha);
         // R(alpha) diag(I11, I22) R(alpha)^T with R = [[c, -s], [s, c]], in axes x forward,
         // y up; the benchmark's z is −y, so its xz product is minus that xy product.
         PlaneBody {
@@ -761,7 +761,7 @@ impl<T: RealField + Copy> PlaneBody<T> {
         let radius = (diff * diff + self.i_xz * self.i_xz).sqrt();
         // atan2 gives (−π, π]; halved, (−π/2, π/2].
         let alpha = if radius > T::zero() {
-            (-(two * self.i_xz)).atan2(two * diff) * half
+            crate::math::atan2(-(two * self.i_xz), two * diff) * half
         } else {
             T::zero()
         };
@@ -802,12 +802,12 @@ impl<T: RealField + Copy> PlaneBody<T> {
     }
 }
 
-impl<T: RealField + Copy> Jbike6Parameters<T> {
+impl<T: Real> Jbike6Parameters<T> {
     /// Where a front body's centre of mass is, (x forward from the rear contact, y up) \[m\]:
     /// `ucm` perpendicular to the steer axis (forward and up) and `vcm` along it (up) from the
     /// point where the axis meets the ground, w + c ahead of the rear contact.
     pub fn front_body_centre(&self, b: &Jbike6FrontBody<T>) -> [T; 2] {
-        let (s, c) = (T::frac_pi_2() - self.head_angle).sin_cos();
+        let (s, c) = crate::math::sin_cos(T::frac_pi_2() - self.head_angle);
         let front_point = self.wheelbase + self.trail;
         [front_point + b.ucm * c - b.vcm * s, b.ucm * s + b.vcm * c]
     }
@@ -873,7 +873,7 @@ impl<T: RealField + Copy> Jbike6Parameters<T> {
         let (front_moments, front_alpha) = front.principal_axes();
         // The inverse of `front_body_centre`: the centre relative to the steer axis' ground
         // point, turned by λ.
-        let (s, c) = b.lambda.sin_cos();
+        let (s, c) = crate::math::sin_cos(b.lambda);
         let (x, y) = (b.x_h - b.w - b.c, -b.z_h);
         Jbike6Parameters {
             wheelbase: b.w,
@@ -948,7 +948,7 @@ impl<T: RealField + Copy> Jbike6Parameters<T> {
     }
 }
 
-fn rear_body<T: RealField + Copy>(b: &Jbike6RearBody<T>) -> PlaneBody<T> {
+fn rear_body<T: Real>(b: &Jbike6RearBody<T>) -> PlaneBody<T> {
     PlaneBody::jbike6(b.m, b.xcm, b.ycm, b.inertia, b.alpha)
 }
 

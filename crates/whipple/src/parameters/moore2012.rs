@@ -16,7 +16,7 @@
 //! tilt from the rear-to-front wheel centre vector, which the turn by λ maps from (w, r_R − r_F)
 //! to (d1 + d3, d2).
 
-use nalgebra::RealField;
+use crate::math::Real;
 
 use super::BenchmarkParameters;
 use crate::error::{Error, Result, short_number};
@@ -92,13 +92,13 @@ pub const MOORE2012_KEYS: [&str; 26] = [
     "ic31", "ic33", "id11", "id22", "ie11", "ie22", "ie31", "ie33", "if11", "if22", "g",
 ];
 
-fn to_f64<T: RealField + Copy>(x: T) -> f64 {
+fn to_f64<T: Real>(x: T) -> f64 {
     x.to_subset().unwrap_or(f64::NAN)
 }
 
 /// An in-plane tensor [xx, zz, xz] in axes turned by the angle whose sine and cosine are `s`,
 /// `c` (R = [[c, −s], [s, c]] in the x-z plane, R I Rᵀ), as [11, 33, 31].
-fn turn<T: RealField + Copy>(xx: T, zz: T, xz: T, s: T, c: T) -> [T; 3] {
+fn turn<T: Real>(xx: T, zz: T, xz: T, s: T, c: T) -> [T; 3] {
     let two: T = nalgebra::convert(2.0);
     [
         c * c * xx - two * c * s * xz + s * s * zz,
@@ -107,7 +107,7 @@ fn turn<T: RealField + Copy>(xx: T, zz: T, xz: T, s: T, c: T) -> [T; 3] {
     ]
 }
 
-impl<T: RealField + Copy> Moore2012Parameters<T> {
+impl<T: Real> Moore2012Parameters<T> {
     /// The values in the order of [`MOORE2012_KEYS`].
     pub fn to_array(&self) -> [T; 26] {
         [
@@ -189,7 +189,7 @@ impl<T: RealField + Copy> Moore2012Parameters<T> {
     /// assert!((m.d1 - 0.9534570696121849).abs() < 1e-15); // dtk's docstring value
     /// ```
     pub fn from_benchmark(b: &BenchmarkParameters<T>) -> Self {
-        let (s, c) = b.lambda.sin_cos();
+        let (s, c) = crate::math::sin_cos(b.lambda);
         let d1 = c * (b.c + b.w - b.r_r * s / c);
         let d3 = -c * (b.c - b.r_f * s / c);
         let d2 = (b.r_r + d1 * s - b.r_f + d3 * s) / c;
@@ -258,8 +258,8 @@ impl<T: RealField + Copy> Moore2012Parameters<T> {
             });
         }
         let w = w2.sqrt();
-        let lambda = self.d2.atan2(along) - rise.atan2(w);
-        let (s, c) = lambda.sin_cos();
+        let lambda = crate::math::atan2(self.d2, along) - crate::math::atan2(rise, w);
+        let (s, c) = crate::math::sin_cos(lambda);
         let upright = c > zero;
         if !upright {
             return Err(Error::InvalidBicycle {
@@ -377,7 +377,7 @@ mod tests {
         let mut values = b.to_array().map(Dual64::from_re);
         values[0] = Dual64::new(b.w, 1.0);
         let m = Moore2012Parameters::from_benchmark(&BenchmarkParameters::from_array(values));
-        assert!((m.d1.eps - b.lambda.cos()).abs() < 1e-15);
+        assert!((m.d1.eps - crate::math::cos(b.lambda)).abs() < 1e-15);
         let back = m.to_benchmark().unwrap();
         assert!((back.w.eps - 1.0).abs() < 1e-12 && back.c.eps.abs() < 1e-12);
         assert!((back.w.re - b.w).abs() < 1e-15);

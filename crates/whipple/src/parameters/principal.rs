@@ -4,7 +4,7 @@
 //! principal axes, the axes turned by an angle; the rear frame D and a rigid rider P are apart,
 //! where the benchmark has their combination B.
 
-use nalgebra::RealField;
+use crate::math::Real;
 
 use super::BenchmarkParameters;
 use super::jbike6::PlaneBody;
@@ -85,15 +85,15 @@ pub const PRINCIPAL_KEYS: [&str; 35] = [
 ];
 
 /// `x > 0`, false for NaN.
-fn positive<T: RealField + Copy>(x: T) -> bool {
+fn positive<T: Real>(x: T) -> bool {
     x > T::zero()
 }
 
-fn to_f64<T: RealField + Copy>(x: T) -> f64 {
+fn to_f64<T: Real>(x: T) -> f64 {
     x.to_subset().unwrap_or(f64::NAN)
 }
 
-impl<T: RealField + Copy> PrincipalBody<T> {
+impl<T: Real> PrincipalBody<T> {
     fn to_array(self) -> [T; 7] {
         [
             self.m, self.x, self.z, self.k_aa, self.k_bb, self.k_yy, self.alpha,
@@ -165,7 +165,7 @@ impl<T: RealField + Copy> PrincipalBody<T> {
     }
 }
 
-impl<T: RealField + Copy> PrincipalParameters<T> {
+impl<T: Real> PrincipalParameters<T> {
     /// The values in the order of [`PRINCIPAL_KEYS`].
     pub fn to_array(&self) -> [T; 35] {
         let mut out = [T::zero(); 35];

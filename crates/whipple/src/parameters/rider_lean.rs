@@ -21,7 +21,7 @@
 //! at zero lean; `ig31` the tensor's entry, as `IBxz`), `k9` and `c9`. The other keys are
 //! Moore 2012's four bodies ([`Moore2012Parameters`]) with C the rear frame B.
 
-use nalgebra::RealField;
+use crate::math::Real;
 
 use super::benchmark::upper_body_inertia;
 use super::jbike6::PlaneBody;
@@ -60,7 +60,7 @@ pub(crate) const UPPER_BODY_KEYS: [&str; 10] = [
     "mG", "xG", "zG", "IGxx", "IGyy", "IGzz", "IGxz", "zHinge", "kLean", "cLean",
 ];
 
-impl<T: RealField + Copy> UpperBody<T> {
+impl<T: Real> UpperBody<T> {
     /// The values in the order of the fields (keys `mG`, `xG`, `zG`, `IGxx`, `IGyy`, `IGzz`,
     /// `IGxz`, `zHinge`, `kLean`, `cLean`).
     pub fn to_array(&self) -> [T; 10] {
@@ -129,7 +129,7 @@ pub struct RiderLeanParameters<T = f64> {
     pub upper_body: UpperBody<T>,
 }
 
-impl<T: RealField + Copy> RiderLeanParameters<T> {
+impl<T: Real> RiderLeanParameters<T> {
     /// The rigid rider: the hinge locked, G combined into B by the parallel-axis theorem (the
     /// crate's one combination), a benchmark bicycle (no check; see
     /// [`BenchmarkParameters::check`]).
@@ -378,7 +378,7 @@ fn rider_lean_index(key: &str) -> Option<usize> {
     MOORE_RIDER_LEAN2012_KEYS.iter().position(|k| *k == key)
 }
 
-impl<T: RealField + Copy> MooreRiderLean2012Parameters<T> {
+impl<T: Real> MooreRiderLean2012Parameters<T> {
     /// The values of [`RIDER_KEYS`], in its order.
     fn rider_array(&self) -> [T; 10] {
         [

@@ -17,7 +17,7 @@
 //! weighs most (cos²λ, about 0.9 for a road bicycle's tilt), so the one such a measurement
 //! determines best.
 
-use nalgebra::RealField;
+use crate::math::Real;
 
 use super::BenchmarkParameters;
 use crate::error::{Error, Result, short_number};
@@ -27,7 +27,7 @@ use crate::linear::Intermediates;
 /// `IHzz`: `IAlamlam`, Meijaard 2007's I_Aλλ.
 pub(crate) const STEER_INERTIA_KEY: &str = "IAlamlam";
 
-impl<T: RealField + Copy> BenchmarkParameters<T> {
+impl<T: Real> BenchmarkParameters<T> {
     /// The front assembly's (front frame H and front wheel F) moment of inertia about the
     /// steer axis, I_Aλλ \[kg m²\] (Meijaard 2007, Appendix A): with d_H and d_F the distances
     /// of H's mass centre and of the front wheel's centre from the steer axis, I_Aλλ = I_Hxx
@@ -81,7 +81,7 @@ impl BenchmarkParameters {
         if i_a < 0.0 {
             return Err(invalid("must not be negative".into()));
         }
-        let c = self.lambda.cos();
+        let c = crate::math::cos(self.lambda);
         if !(c > 0.0 && self.lambda.is_finite()) {
             return Err(Error::InvalidParameter {
                 field: "lam".into(),
@@ -120,8 +120,8 @@ impl BenchmarkParameters {
                 short_number(least),
                 short_number(
                     without
-                        - self.i_hxx * self.lambda.sin().powi(2)
-                        - 2.0 * self.i_hxz * self.lambda.sin() * c
+                        - self.i_hxx * crate::math::sin(self.lambda).powi(2)
+                        - 2.0 * self.i_hxz * crate::math::sin(self.lambda) * c
                 ),
                 short_number(least_hzz)
             )));
@@ -139,7 +139,7 @@ mod tests {
     /// An independent I_Aλλ: the sum over H and F about the steer axis, each body's own moment
     /// about the parallel axis through its centre plus its mass times the squared distance.
     fn by_parts(b: &BenchmarkParameters) -> f64 {
-        let (s, c) = b.lambda.sin_cos();
+        let (s, c) = crate::math::sin_cos(b.lambda);
         let distance = |x: f64, z: f64| (x - b.w - b.c) * c - z * s;
         let (d_f, d_h) = (distance(b.w, -b.r_f), distance(b.x_h, b.z_h));
         b.i_fxx
@@ -200,7 +200,7 @@ mod tests {
             .to_string()
         );
         // The wheel alone: IFxx + mF dF^2 with dF = rF sin λ − c cos λ; less than the least.
-        let (s, c) = b.lambda.sin_cos();
+        let (s, c) = crate::math::sin_cos(b.lambda);
         let d_f = b.r_f * s - b.c * c;
         let wheel = b.i_fxx + b.m_f * d_f * d_f;
         let message = b

@@ -26,7 +26,8 @@ mod on_bicycle;
 mod read;
 mod solids;
 
-use nalgebra::{Matrix3, RealField, Vector3};
+use crate::math::Real;
+use nalgebra::{Matrix3, Vector3};
 
 pub use on_bicycle::{
     MAX_ITERATIONS, RIDER_GEOMETRY_KEYS, RiderBody, RiderGeometry, SEATED_ANGLES, SeatedRider,
@@ -143,7 +144,7 @@ pub struct YeadonConfiguration<T> {
     pub lines: [usize; 21],
 }
 
-impl<T: RealField + Copy> YeadonConfiguration<T> {
+impl<T: Real> YeadonConfiguration<T> {
     /// Every angle zero: standing, arms down.
     pub fn zero() -> Self {
         YeadonConfiguration {
@@ -178,7 +179,7 @@ impl<T: RealField + Copy> YeadonConfiguration<T> {
     }
 }
 
-fn to_f64<T: RealField + Copy>(x: T) -> f64 {
+fn to_f64<T: Real>(x: T) -> f64 {
     x.to_subset().unwrap_or(f64::NAN)
 }
 
@@ -215,15 +216,15 @@ pub struct YeadonBody<T> {
 }
 
 /// The inertia of a point mass `m` at `d` from the point it is taken about (parallel axes).
-pub(crate) fn parallel_axis<T: RealField + Copy>(m: T, d: &Vector3<T>) -> Matrix3<T> {
+pub(crate) fn parallel_axis<T: Real>(m: T, d: &Vector3<T>) -> Matrix3<T> {
     (Matrix3::identity() * d.dot(d) - d * d.transpose()) * m
 }
 
 /// Body-fixed x, then y, then z rotation: `Rx(a) Ry(b) Rz(c)`.
-fn euler_123<T: RealField + Copy>(a: T, b: T, c: T) -> Matrix3<T> {
-    let (sa, ca) = a.sin_cos();
-    let (sb, cb) = b.sin_cos();
-    let (sc, cc) = c.sin_cos();
+fn euler_123<T: Real>(a: T, b: T, c: T) -> Matrix3<T> {
+    let (sa, ca) = crate::math::sin_cos(a);
+    let (sb, cb) = crate::math::sin_cos(b);
+    let (sc, cc) = crate::math::sin_cos(c);
     let (o, l) = (T::zero(), T::one());
     let rx = Matrix3::new(l, o, o, o, ca, -sa, o, sa, ca);
     let ry = Matrix3::new(cb, o, sb, o, l, o, -sb, o, cb);
@@ -237,7 +238,7 @@ struct Reader<'a, T> {
     values: [T; 95],
 }
 
-impl<T: RealField + Copy> Reader<'_, T> {
+impl<T: Real> Reader<'_, T> {
     fn index(name: &str) -> usize {
         MEASUREMENT_NAMES
             .iter()
@@ -299,7 +300,7 @@ type Limb<T> = (Vec<Placed<T>>, Vec<Placed<T>>);
 
 /// A segment's mass, mass centre on its z axis, inertia about it (own frame) and length, its
 /// solids stacked from its joint along +z (`up`) or −z.
-fn stack<T: RealField + Copy>(solids: &[Placed<T>], up: bool) -> (T, T, Matrix3<T>, T) {
+fn stack<T: Real>(solids: &[Placed<T>], up: bool) -> (T, T, Matrix3<T>, T) {
     let mut mass = T::zero();
     let mut moment = T::zero();
     let mut start = T::zero();
@@ -335,7 +336,7 @@ fn stack<T: RealField + Copy>(solids: &[Placed<T>], up: bool) -> (T, T, Matrix3<
 /// mass, mass centre and inertia. Fails naming the measurement (and its file line) where a
 /// level is not a stadium, a solid would have negative volume or a value is not positive, and
 /// naming the angle where it is out of range.
-pub fn yeadon_body<T: RealField + Copy>(
+pub fn yeadon_body<T: Real>(
     measurements: &YeadonMeasurements<T>,
     configuration: &YeadonConfiguration<T>,
 ) -> Result<YeadonBody<T>> {
@@ -385,7 +386,7 @@ pub fn yeadon_body<T: RealField + Copy>(
 
 /// The measurements with left and right limbs averaged (as `yeadon` does by default): left arm
 /// 21..39 with right arm 39..57, left leg 57..76 with right leg 76..95.
-pub(crate) fn averaged<T: RealField + Copy>(measurements: &YeadonMeasurements<T>) -> [T; 95] {
+pub(crate) fn averaged<T: Real>(measurements: &YeadonMeasurements<T>) -> [T; 95] {
     let mut values = measurements.values;
     for (left, right) in (21..39).zip(39..57).chain((57..76).zip(76..95)) {
         let mean = (values[left] + values[right]) * c(0.5);
@@ -399,7 +400,7 @@ pub(crate) fn averaged<T: RealField + Copy>(measurements: &YeadonMeasurements<T>
 /// densities unscaled: the places, not the masses, are what this is for): the iterates of
 /// the seated rider's joint-angle solve ([`on_bicycle`]). The measurements must have passed
 /// [`yeadon_body`] once.
-pub(crate) fn placed<T: RealField + Copy>(
+pub(crate) fn placed<T: Real>(
     measurements: &YeadonMeasurements<T>,
     configuration: &YeadonConfiguration<T>,
 ) -> Result<YeadonBody<T>> {
@@ -410,7 +411,7 @@ pub(crate) fn placed<T: RealField + Copy>(
     build(&reader, configuration, T::one())
 }
 
-fn build<T: RealField + Copy>(
+fn build<T: Real>(
     r: &Reader<'_, T>,
     cfg: &YeadonConfiguration<T>,
     scale: T,

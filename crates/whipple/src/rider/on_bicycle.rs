@@ -42,7 +42,8 @@
 //! there; and it computes the body with `yeadon` 2.0.1, whose three errors ([`super`]) move
 //! the rider's mass centre and inertia — the differences are given in the guide.
 
-use nalgebra::{Matrix3, RealField, SMatrix, SVector, Vector3};
+use crate::math::Real;
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 use num_dual::Dual64;
 
 use super::solids::c;
@@ -206,7 +207,7 @@ fn invalid(fields: &str, rule: String) -> Error {
 /// Step 1: the bottom bracket's (x, z) in the benchmark's axes: `hbb` above the ground, `lcs`
 /// from the rear hub (`rR` above the ground), ahead of it. Fails naming `lcs`, `hbb` and `rR`
 /// where the chain stay is shorter than the hub's height above the bottom bracket.
-pub fn bottom_bracket<T: RealField + Copy>(g: &RiderGeometry<T>, r_r: T) -> Result<[T; 2]> {
+pub fn bottom_bracket<T: Real>(g: &RiderGeometry<T>, r_r: T) -> Result<[T; 2]> {
     let rise = r_r - g.hbb;
     let run2 = g.lcs * g.lcs - rise * rise;
     let run2_f64 = to_f64(run2);
@@ -227,9 +228,9 @@ pub fn bottom_bracket<T: RealField + Copy>(g: &RiderGeometry<T>, r_r: T) -> Resu
 
 /// Step 2: the seat, the origin of Yeadon's body (x, z): `lst + lsp` up the seat tube from the
 /// bottom bracket, the tube rising backwards at `lamst` from the ground.
-pub fn seat<T: RealField + Copy>(g: &RiderGeometry<T>, bottom_bracket: [T; 2]) -> [T; 2] {
+pub fn seat<T: Real>(g: &RiderGeometry<T>, bottom_bracket: [T; 2]) -> [T; 2] {
     let length = g.lsp + g.lst;
-    let (s, cos) = g.lamst.sin_cos();
+    let (s, cos) = crate::math::sin_cos(g.lamst);
     [
         bottom_bracket[0] - length * cos,
         bottom_bracket[1] - length * s,
@@ -240,12 +241,7 @@ pub fn seat<T: RealField + Copy>(g: &RiderGeometry<T>, bottom_bracket: [T; 2]) -
 /// rear hub (0, −rR) and `√(LhbF² − whb²/4)` from the front hub (w, −rF), the upper of the two.
 /// Fails naming the keys where a grip is nearer a hub than half the handlebar's width or the
 /// two distances do not meet.
-pub fn handlebar_grips<T: RealField + Copy>(
-    g: &RiderGeometry<T>,
-    w: T,
-    r_r: T,
-    r_f: T,
-) -> Result<[T; 2]> {
+pub fn handlebar_grips<T: Real>(g: &RiderGeometry<T>, w: T, r_r: T, r_f: T) -> Result<[T; 2]> {
     let half = g.whb * c(0.5);
     let in_plane = |l: T, key: &str| -> Result<T> {
         let s = l * l - half * half;
@@ -290,7 +286,7 @@ pub fn handlebar_grips<T: RealField + Copy>(
 
 /// Yeadon's axes (x left, y back, z up) to the benchmark's (x forward, y right, z down):
 /// `v_benchmark = R v_yeadon`; R is its own inverse.
-fn yeadon_to_benchmark<T: RealField + Copy>() -> Matrix3<T> {
+fn yeadon_to_benchmark<T: Real>() -> Matrix3<T> {
     let (o, l) = (T::zero(), T::one());
     Matrix3::new(o, -l, o, -l, o, o, o, o, -l)
 }
@@ -303,7 +299,7 @@ struct Targets<T> {
     hand: Vector3<T>,
 }
 
-fn targets<T: RealField + Copy>(
+fn targets<T: Real>(
     g: &RiderGeometry<T>,
     seat: [T; 2],
     bottom_bracket: [T; 2],
@@ -335,10 +331,7 @@ fn measurement<T: Copy>(values: &[T; 95], name: &str) -> T {
 }
 
 /// The configuration with the left side's solved angles and the right side's mirror images.
-fn configure<T: RealField + Copy>(
-    base: &YeadonConfiguration<f64>,
-    q: &[T; 6],
-) -> YeadonConfiguration<T> {
+fn configure<T: Real>(base: &YeadonConfiguration<f64>, q: &[T; 6]) -> YeadonConfiguration<T> {
     let mut angles = base.angles.map(c::<T>);
     for (i, name) in SEATED_ANGLES.iter().enumerate() {
         angles[angle_index(name)] = q[i];
@@ -353,7 +346,7 @@ fn configure<T: RealField + Copy>(
 
 /// The six conditions at the angles `q`: the foot's (y, z) less the bottom bracket's, the
 /// hand's (x, y, z) less the grip's (m), and the vertical component of the upper arm's x axis.
-fn residual<T: RealField + Copy>(
+fn residual<T: Real>(
     q: &[T; 6],
     base: &YeadonConfiguration<f64>,
     measurements: &YeadonMeasurements<T>,
@@ -407,7 +400,7 @@ fn jacobian(
     }
 }
 
-fn lift<T: RealField + Copy>(m: &YeadonMeasurements<f64>) -> YeadonMeasurements<T> {
+fn lift<T: Real>(m: &YeadonMeasurements<f64>) -> YeadonMeasurements<T> {
     YeadonMeasurements {
         values: m.values.map(c::<T>),
         total_mass: m.total_mass.map(c::<T>),
@@ -596,7 +589,7 @@ pub fn solve_seated(
 /// Step 5: the solved configuration on the scalar of the bicycle: one Newton step from the
 /// f64 root `solve` with its f64 Jacobian, the residual evaluated on `T` (for `T = f64` a last
 /// refinement; for dual numbers the root's exact derivative by the implicit function theorem).
-pub fn seated_configuration<T: RealField + Copy>(
+pub fn seated_configuration<T: Real>(
     solve: &SeatedSolve,
     measurements: &YeadonMeasurements<f64>,
     base: &YeadonConfiguration<f64>,
@@ -618,10 +611,7 @@ pub fn seated_configuration<T: RealField + Copy>(
 
 /// Step 6: the body's mass, mass centre and inertia (Yeadon's axes, origin at the seat) in the
 /// benchmark's axes, the seat at `seat` (x, z).
-pub fn rider_in_benchmark_frame<T: RealField + Copy>(
-    body: &YeadonBody<T>,
-    seat: [T; 2],
-) -> RiderBody<T> {
+pub fn rider_in_benchmark_frame<T: Real>(body: &YeadonBody<T>, seat: [T; 2]) -> RiderBody<T> {
     let r = yeadon_to_benchmark::<T>();
     RiderBody {
         mass: body.mass,
@@ -634,7 +624,7 @@ pub fn rider_in_benchmark_frame<T: RealField + Copy>(
 /// their mean, the inertias moved to it by the parallel-axis theorem; everything else as it
 /// was. The rider's y offset and its products Ixy, Iyz (zero for a rider seated symmetrically)
 /// are not part of the benchmark's plane-symmetric rear frame.
-pub fn combine_with_rear_frame<T: RealField + Copy>(
+pub fn combine_with_rear_frame<T: Real>(
     bicycle: &BenchmarkParameters<T>,
     rider: &RiderBody<T>,
 ) -> BenchmarkParameters<T> {
@@ -674,7 +664,7 @@ pub fn combine_with_rear_frame<T: RealField + Copy>(
 /// Steps 1–3 and 5–6 on the scalar of the bicycle, after [`solve_seated`] found the angles:
 /// the rider seated, everything it took.
 #[allow(clippy::too_many_arguments)]
-pub fn seated_rider<T: RealField + Copy>(
+pub fn seated_rider<T: Real>(
     solve: &SeatedSolve,
     measurements: &YeadonMeasurements<f64>,
     base: &YeadonConfiguration<f64>,

@@ -5,11 +5,11 @@
 //! in the solid's own frame: `z` from its first stadium to its second, `x` along the stadium's
 //! long (medio-lateral) direction.
 
-use nalgebra::RealField;
+use crate::math::Real;
 
 use crate::error::Error;
 
-pub(super) fn c<T: RealField + Copy>(x: f64) -> T {
+pub(super) fn c<T: Real>(x: f64) -> T {
     nalgebra::convert(x)
 }
 
@@ -20,7 +20,7 @@ pub(super) struct Stadium<T> {
     pub(super) thickness: T,
 }
 
-impl<T: RealField + Copy> Stadium<T> {
+impl<T: Real> Stadium<T> {
     /// A circle of perimeter `p`.
     pub(super) fn circle(p: T) -> Self {
         Stadium {
@@ -66,23 +66,23 @@ pub(super) struct SolidInertia<T> {
     pub(super) moments: [T; 3],
 }
 
-fn f1<T: RealField + Copy>(a: T, b: T) -> T {
+fn f1<T: Real>(a: T, b: T) -> T {
     T::one() + (a + b) / c(2.0) + a * b / c(3.0)
 }
-fn f2<T: RealField + Copy>(a: T, b: T) -> T {
+fn f2<T: Real>(a: T, b: T) -> T {
     c::<T>(0.5) + (a + b) / c(3.0) + a * b / c(4.0)
 }
-fn f3<T: RealField + Copy>(a: T, b: T) -> T {
+fn f3<T: Real>(a: T, b: T) -> T {
     c::<T>(1.0 / 3.0) + (a + b) / c(4.0) + a * b / c(5.0)
 }
-fn f4<T: RealField + Copy>(a: T, b: T) -> T {
+fn f4<T: Real>(a: T, b: T) -> T {
     T::one()
         + (a + c::<T>(3.0) * b) / c(2.0)
         + (a * b + b * b)
         + (c::<T>(3.0) * a * b * b + b * b * b) / c(4.0)
         + a * b * b * b / c(5.0)
 }
-fn f5<T: RealField + Copy>(a: T, b: T) -> T {
+fn f5<T: Real>(a: T, b: T) -> T {
     T::one()
         + (a + b)
         + (a * a + c::<T>(4.0) * a * b + b * b) / c(3.0)
@@ -97,7 +97,7 @@ fn f5<T: RealField + Copy>(a: T, b: T) -> T {
 /// where both are circles, `b` is irrelevant. The moment about `x` integrates `y²` over the
 /// stadium, `4 r³ t / 3 + π r⁴ / 4` per unit height (the package `yeadon` 2.0.1 has `r t³`
 /// there, which breaks the perpendicular-axis theorem).
-pub(super) fn stadium_solid<T: RealField + Copy>(
+pub(super) fn stadium_solid<T: Real>(
     density: T,
     s0: Stadium<T>,
     s1: Stadium<T>,
@@ -136,7 +136,7 @@ pub(super) fn stadium_solid<T: RealField + Copy>(
 }
 
 /// The semi-ellipsoid of the head: circular base of perimeter `p` at z = 0, height `h`.
-pub(super) fn semi_ellipsoid<T: RealField + Copy>(density: T, p: T, h: T) -> SolidInertia<T> {
+pub(super) fn semi_ellipsoid<T: Real>(density: T, p: T, h: T) -> SolidInertia<T> {
     let r = p / T::two_pi();
     let pi = T::pi();
     let r2 = r * r;

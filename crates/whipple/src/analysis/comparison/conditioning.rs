@@ -47,9 +47,7 @@ pub(crate) fn eigenvalue_condition<const N: usize>(
     let nearest = |values: &[Complex64]| {
         (0..values.len())
             .min_by(|&i, &j| {
-                (values[i] - near)
-                    .norm()
-                    .total_cmp(&(values[j] - near).norm())
+                crate::math::norm(values[i] - near).total_cmp(&crate::math::norm(values[j] - near))
             })
             .unwrap_or(0)
     };
@@ -60,7 +58,10 @@ pub(crate) fn eigenvalue_condition<const N: usize>(
     // A left eigenvector y of A for λ is the conjugate of a right eigenvector of Aᵀ for λ.
     let y_bar = left.column(l);
     let overlap: Complex64 = y_bar.iter().zip(x.iter()).map(|(p, q)| p * q).sum();
-    Ok((values[k], x.norm() * y_bar.norm() / overlap.norm()))
+    Ok((
+        values[k],
+        x.norm() * y_bar.norm() / crate::math::norm(overlap),
+    ))
 }
 
 /// The cluster of zero eigenvalues of a full-state Jacobian: its Jordan structure and how far
@@ -103,12 +104,12 @@ pub fn zero_cluster(a: &FullJacobian, lean_steer: &[Complex64; 4]) -> Result<Zer
     // The cluster: the dim ker A⁵ eigenvalues smallest in modulus (the algebraic multiplicity
     // of zero), less any picked as lean and steer (the capsize eigenvalue near v_c).
     let mut values = general_eigenvalues(a)?;
-    values.sort_by(|p, q| p.norm().total_cmp(&q.norm()));
+    values.sort_by(|p, q| crate::math::norm(p).total_cmp(&crate::math::norm(q)));
     let radius = values
         .iter()
         .take(kernel_dims[4])
         .filter(|z| !lean_steer.contains(z))
-        .map(|z| z.norm())
+        .map(crate::math::norm)
         .fold(0.0, f64::max);
     Ok(ZeroCluster {
         kernel_dims,
@@ -228,7 +229,7 @@ pub fn capsize_spike(bike: &BenchmarkParameters, capsize_speed: f64) -> Result<V
         let capsize = linear
             .iter()
             .filter(|l| l.im == 0.0)
-            .min_by(|a, b| a.norm().total_cmp(&b.norm()))
+            .min_by(|a, b| crate::math::norm(*a).total_cmp(&crate::math::norm(*b)))
             .copied()
             .unwrap_or_default();
         let exact = full_state_jacobian(&model, v)?;

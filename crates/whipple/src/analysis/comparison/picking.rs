@@ -56,9 +56,8 @@ pub(crate) fn assign(targets: &[Complex64; 4], candidates: &[Complex64]) -> Resu
     let nearest: [Vec<usize>; 4] = std::array::from_fn(|t| {
         let mut idx: Vec<usize> = (0..candidates.len()).collect();
         idx.sort_by(|&a, &b| {
-            (candidates[a] - targets[t])
-                .norm()
-                .total_cmp(&(candidates[b] - targets[t]).norm())
+            crate::math::norm(candidates[a] - targets[t])
+                .total_cmp(&crate::math::norm(candidates[b] - targets[t]))
         });
         idx.truncate(4);
         idx
@@ -73,7 +72,7 @@ pub(crate) fn assign(targets: &[Complex64; 4], candidates: &[Complex64]) -> Resu
                         continue;
                     }
                     let cost: f64 = (0..4)
-                        .map(|i| (candidates[pick[i]] - targets[i]).norm())
+                        .map(|i| crate::math::norm(candidates[pick[i]] - targets[i]))
                         .sum();
                     if cost < best.1 {
                         best = (pick, cost);
@@ -100,6 +99,6 @@ pub fn pick(targets: &[Complex64; 4], candidates: &[Complex64]) -> Result<[Compl
 pub fn max_abs_diff(a: &[Complex64; 4], b: &[Complex64; 4]) -> f64 {
     a.iter()
         .zip(b)
-        .map(|(x, y)| (x - y).norm())
+        .map(|(x, y)| crate::math::norm(x - y))
         .fold(0.0, f64::max)
 }

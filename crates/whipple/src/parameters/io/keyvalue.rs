@@ -608,7 +608,7 @@ fn check_extra(
         return Ok(());
     }
     if key == "d1" || key == "d3" {
-        let (s, c) = bike.lambda.sin_cos();
+        let (s, c) = crate::math::sin_cos(bike.lambda);
         let implied = if key == "d1" {
             c * (bike.c + bike.w - bike.r_r * s / c)
         } else {

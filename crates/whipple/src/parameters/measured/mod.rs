@@ -38,9 +38,10 @@ pub mod steps;
 #[cfg(test)]
 mod tests;
 
+use crate::math::Real;
 use std::collections::BTreeMap;
 
-use nalgebra::{DMatrix, RealField};
+use nalgebra::DMatrix;
 use num_dual::Dual64;
 
 use super::benchmark::{BENCHMARK_TABLE, BenchmarkParameters};
@@ -501,9 +502,7 @@ impl Measurements<Measured> {
 /// The benchmark parameters computed from [`Measurements`] (the pipeline of the module's
 /// documentation), on any scalar. Fails, naming the measurement, where the hangings do not
 /// determine a mass centre or an inertia.
-pub fn benchmark_from_measurements<T: RealField + Copy>(
-    m: &Measurements<T>,
-) -> Result<BenchmarkParameters<T>> {
+pub fn benchmark_from_measurements<T: Real>(m: &Measurements<T>) -> Result<BenchmarkParameters<T>> {
     pipeline(m).map(|(benchmark, _)| benchmark)
 }
 
@@ -540,7 +539,7 @@ const PART_KEYS: [&str; 17] = [
 
 /// The pipeline itself: the benchmark parameters and every number derived on the way, in the
 /// order computed ([`report::Record`]), so the report and the parameters are one computation.
-fn pipeline<T: RealField + Copy>(
+fn pipeline<T: Real>(
     m: &Measurements<T>,
 ) -> Result<(BenchmarkParameters<T>, Vec<report::Record<T>>)> {
     use report::Record;
@@ -1080,7 +1079,7 @@ fn pipeline<T: RealField + Copy>(
 }
 
 /// A hung frame's result as a body in the plane, for [`PlaneBody::combine`].
-fn body<T: RealField + Copy>(p: &PartResult<T>) -> PlaneBody<T> {
+fn body<T: Real>(p: &PartResult<T>) -> PlaneBody<T> {
     let [i_xx, i_xz, i_zz] = p.planar;
     PlaneBody {
         m: p.mass,
@@ -1140,7 +1139,7 @@ const REAR_FRAME_KEYS: [&str; 7] = ["mB", "xB", "zB", "IBxx", "IByy", "IBzz", "I
 
 /// The rider's steps after the bicycle's: seated by the f64 `solve`, lifted to `T`, added to
 /// the rear frame; the records of the frame alone renamed, the rider's appended.
-fn seated<T: RealField + Copy>(
+fn seated<T: Real>(
     solve: &SeatedSolve,
     rider: &YeadonMeasurements<f64>,
     configuration: &YeadonConfiguration<f64>,

@@ -277,8 +277,12 @@ fn linear_parameters(
     let mut right = Vector3::zeros();
     for (t, y) in time.iter().zip(signal) {
         let t = t - t0;
-        let e = (-decay_rate * t).exp();
-        let row = Vector3::new(1.0, e * (frequency * t).sin(), e * (frequency * t).cos());
+        let e = crate::math::exp(-decay_rate * t);
+        let row = Vector3::new(
+            1.0,
+            e * crate::math::sin(frequency * t),
+            e * crate::math::cos(frequency * t),
+        );
         normal += row * row.transpose();
         right += row * *y;
     }
@@ -421,7 +425,7 @@ pub fn fit_period(time: &[f64], signal: &[f64]) -> Result<PeriodFit> {
     let variance = current / (n - 5) as f64;
     let covariance = inverse * variance;
     let (sigma, omega) = (p[index::DECAY_RATE], p[index::DAMPED_FREQUENCY]);
-    let natural = sigma.hypot(omega);
+    let natural = crate::math::hypot(sigma, omega);
     let tau = std::f64::consts::TAU;
     let period = tau / omega;
     let period_sigma = tau / (omega * omega) * covariance[(4, 4)].max(0.0).sqrt();
@@ -437,7 +441,7 @@ pub fn fit_period(time: &[f64], signal: &[f64]) -> Result<PeriodFit> {
         damping_ratio: sigma / natural,
         damping_ratio_sigma: zeta_variance.max(0.0).sqrt(),
         natural_frequency: natural,
-        amplitude: p[index::SINE].hypot(p[index::COSINE]),
+        amplitude: crate::math::hypot(p[index::SINE], p[index::COSINE]),
         parameters: p,
         covariance: std::array::from_fn(|i| std::array::from_fn(|j| covariance[(i, j)])),
         start: time[0],

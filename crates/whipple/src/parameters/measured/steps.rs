@@ -8,31 +8,32 @@
 //! the steps and their conventions are those of BicycleParameters' `calculate_from_measured`,
 //! whose results the tests compare with.
 
-use nalgebra::{Matrix3, RealField, Vector3};
+use crate::math::Real;
+use nalgebra::{Matrix3, Vector3};
 
 use crate::error::{Error, Result};
 
-fn c<T: RealField + Copy>(x: f64) -> T {
+fn c<T: Real>(x: f64) -> T {
     nalgebra::convert(x)
 }
 
 /// A wheel's radius from the distance it rolled on the ground in a whole number of turns:
 /// r = d / (2π n).
-pub fn wheel_radius<T: RealField + Copy>(distance: T, rotations: T) -> T {
+pub fn wheel_radius<T: Real>(distance: T, rotations: T) -> T {
     distance / (T::two_pi() * rotations)
 }
 
 /// The steer axis tilt λ (from the vertical) from the head tube's angle γ with the ground, in
 /// degrees as it is measured: λ = π/2 − γ.
-pub fn steer_axis_tilt<T: RealField + Copy>(head_angle_deg: T) -> T {
+pub fn steer_axis_tilt<T: Real>(head_angle_deg: T) -> T {
     (c::<T>(90.0) - head_angle_deg) * T::pi() / c(180.0)
 }
 
 /// The trail c from the front wheel's radius, the steer axis tilt and the fork offset f (the
 /// perpendicular distance from the front hub to the steer axis):
 /// c = (r_F sin λ − f) / cos λ.
-pub fn trail<T: RealField + Copy>(r_f: T, lambda: T, fork_offset: T) -> T {
-    (r_f * lambda.sin() - fork_offset) / lambda.cos()
+pub fn trail<T: Real>(r_f: T, lambda: T, fork_offset: T) -> T {
+    (r_f * crate::math::sin(lambda) - fork_offset) / crate::math::cos(lambda)
 }
 
 /// A line z = slope·x + intercept in the benchmark frame (x forward, z down, origin at the rear
@@ -66,7 +67,7 @@ pub enum HungFrame {
 /// angle β = λ − α with the z axis, so its slope is −tan β and its intercept follows from the
 /// reference point: z₀ = −a / cos β + z_ref − x_ref·(−tan β)
 /// (Moore 2012 §2.4; Kooijman 2006).
-pub fn hanging_line<T: RealField + Copy>(
+pub fn hanging_line<T: Real>(
     frame: HungFrame,
     alpha_deg: T,
     a: T,
@@ -87,7 +88,7 @@ pub fn hanging_line<T: RealField + Copy>(
 /// is z = −tan β · x + z₀ with z₀ = −a / cos β + z_ref + x_ref tan β, β = λ − α. A handlebar
 /// hung apart from its fork takes the handlebar's reference point
 /// ([`handlebar_reference_offset`]).
-pub fn hanging_line_through<T: RealField + Copy>(
+pub fn hanging_line_through<T: Real>(
     alpha_deg: T,
     a: T,
     lambda: T,
@@ -96,8 +97,8 @@ pub fn hanging_line_through<T: RealField + Copy>(
 ) -> HangingLine<T> {
     let beta = lambda - alpha_deg * T::pi() / c(180.0);
     HangingLine {
-        slope: -beta.tan(),
-        intercept: -a / beta.cos() + z_ref + x_ref * beta.tan(),
+        slope: -crate::math::tan(beta),
+        intercept: -a / crate::math::cos(beta) + z_ref + x_ref * crate::math::tan(beta),
         beta,
     }
 }
@@ -115,14 +116,7 @@ pub fn hanging_line_through<T: RealField + Copy>(
 /// are d + (d2 + d3)/2 apart). c is NaN when the hubs are closer than |a − b|: the
 /// measurements then describe no steer axis (the reader refuses them first).
 #[allow(clippy::too_many_arguments)]
-pub fn steer_axis_offsets<T: RealField + Copy>(
-    h: [T; 5],
-    d1: T,
-    d2: T,
-    d3: T,
-    d4: T,
-    d: T,
-) -> (T, T, T) {
+pub fn steer_axis_offsets<T: Real>(h: [T; 5], d1: T, d2: T, d3: T, d4: T, d: T) -> (T, T, T) {
     let half: T = c(0.5);
     let a = h[0] + h[1] - h[2] + half * d1 - half * d2;
     let b = h[3] - half * d3 - h[4] + half * d4;
@@ -143,7 +137,7 @@ const MAX_TILT_STEPS: usize = 64;
 /// too: its derivative is the implicit one, −F_x / F_λ. Fails, naming `field`, when a + b is
 /// not positive or the iteration does not settle in (−π/2, π/2).
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
-pub fn steer_axis_tilt_from_offsets<T: RealField + Copy>(
+pub fn steer_axis_tilt_from_offsets<T: Real>(
     r_f: T,
     r_r: T,
     a: T,
@@ -164,12 +158,12 @@ pub fn steer_axis_tilt_from_offsets<T: RealField + Copy>(
         ));
     }
     let step = |lam: T| {
-        let (s, co) = lam.sin_cos();
+        let (s, co) = crate::math::sin_cos(lam);
         let value = s - (r_f - r_r + span * co) / ab;
         let slope = co + span * s / ab;
         value / slope
     };
-    let mut lam = (span / ab).atan();
+    let mut lam = crate::math::atan(span / ab);
     let mut settled = 0;
     for _ in 0..MAX_TILT_STEPS {
         let delta = step(lam);
@@ -192,8 +186,8 @@ pub fn steer_axis_tilt_from_offsets<T: RealField + Copy>(
 
 /// The wheelbase from the offsets and the steer axis tilt: the hubs' horizontal distance,
 /// w = (a + b) cos λ + c sin λ (Moore 2012 §2.3).
-pub fn wheelbase_from_offsets<T: RealField + Copy>(a: T, b: T, span: T, lambda: T) -> T {
-    (a + b) * lambda.cos() + span * lambda.sin()
+pub fn wheelbase_from_offsets<T: Real>(a: T, b: T, span: T, lambda: T) -> T {
+    (a + b) * crate::math::cos(lambda) + span * crate::math::sin(lambda)
 }
 
 /// Where a handlebar measured apart from its fork has its reference point (the centre of a
@@ -203,7 +197,7 @@ pub fn wheelbase_from_offsets<T: RealField + Copy>(a: T, b: T, span: T, lambda: 
 /// the outer distance l between axle and circle (Moore 2012 §2.4): l1 = h7 − h6 + d5/2 − d6/2,
 /// l0 = l − d5/2 − d6/2 (the centres' distance), l2 = √(l0² − l1²). l2 is NaN when |l1| > l0
 /// (the reader refuses such measurements first).
-pub fn handlebar_reference<T: RealField + Copy>(h6: T, h7: T, d5: T, d6: T, l: T) -> (T, T) {
+pub fn handlebar_reference<T: Real>(h6: T, h7: T, d5: T, d6: T, l: T) -> (T, T) {
     let half: T = c(0.5);
     let l1 = h7 - h6 + half * d5 - half * d6;
     let l0 = l - half * d5 - half * d6;
@@ -214,20 +208,20 @@ pub fn handlebar_reference<T: RealField + Copy>(h6: T, h7: T, d5: T, d6: T, l: T
 /// directions, (−u1, −u2) (x forward, z down), from its (l1, l2) across and along the steer
 /// axis tilted by λ: u1 = l2 sin λ − l1 cos λ (backwards), u2 = l2 cos λ + l1 sin λ
 /// (upwards). The point is at (w − u1, −r_F − u2).
-pub fn handlebar_reference_offset<T: RealField + Copy>(lambda: T, l1: T, l2: T) -> (T, T) {
-    let (s, co) = lambda.sin_cos();
+pub fn handlebar_reference_offset<T: Real>(lambda: T, l1: T, l2: T) -> (T, T) {
+    let (s, co) = crate::math::sin_cos(lambda);
     (l2 * s - l1 * co, l2 * co + l1 * s)
 }
 
 /// A flywheel's own quantity from a measurement of the front wheel with the flywheel inside
 /// (BicycleParameters' part D, the gyro bicycle): the combined value less the wheel's,
 /// for its mass and for its moments (compound pendulum about y, torsional about a diameter).
-pub fn flywheel_part<T: RealField + Copy>(wheel_with_flywheel: T, wheel: T) -> T {
+pub fn flywheel_part<T: Real>(wheel_with_flywheel: T, wheel: T) -> T {
     wheel_with_flywheel - wheel
 }
 
 /// The point where two lines meet, `None` for parallel lines (slopes equal to a relative 1e-9).
-pub fn intersection<T: RealField + Copy>(a: &HangingLine<T>, b: &HangingLine<T>) -> Option<(T, T)> {
+pub fn intersection<T: Real>(a: &HangingLine<T>, b: &HangingLine<T>) -> Option<(T, T)> {
     let ds = b.slope - a.slope;
     let scale = c::<T>(1.0) + a.slope.abs() + b.slope.abs();
     if ds.abs() <= scale * c(1e-9) {
@@ -241,7 +235,7 @@ pub fn intersection<T: RealField + Copy>(a: &HangingLine<T>, b: &HangingLine<T>)
 /// as BicycleParameters estimates it (`com.center_of_mass`; three lines give three points
 /// whose spread shows the measurement error). Fails, naming `field`, when fewer than two lines
 /// are given or two of them are parallel.
-pub fn mass_centre<T: RealField + Copy>(lines: &[HangingLine<T>], field: &str) -> Result<(T, T)> {
+pub fn mass_centre<T: Real>(lines: &[HangingLine<T>], field: &str) -> Result<(T, T)> {
     if lines.len() < 2 {
         return Err(Error::InvalidParameter {
             field: field.into(),
@@ -270,28 +264,28 @@ pub fn mass_centre<T: RealField + Copy>(lines: &[HangingLine<T>], field: &str) -
 /// The moment of inertia about its mass centre of a body swung as a compound pendulum about
 /// an axis at distance l from the mass centre, from its period T:
 /// I = m g l (T / 2π)² − m l² (Moore 2012 §2.5).
-pub fn compound_pendulum_inertia<T: RealField + Copy>(mass: T, g: T, length: T, period: T) -> T {
+pub fn compound_pendulum_inertia<T: Real>(mass: T, g: T, length: T, period: T) -> T {
     let t = period / T::two_pi();
     t * t * mass * g * length - mass * length * length
 }
 
 /// The moment of inertia of a solid cylindrical rod about a transverse axis through its
 /// centre: I = m (3 r² + l²) / 12 with r = d/2.
-pub fn rod_transverse_inertia<T: RealField + Copy>(mass: T, length: T, diameter: T) -> T {
+pub fn rod_transverse_inertia<T: Real>(mass: T, length: T, diameter: T) -> T {
     let r = diameter / c(2.0);
     mass / c(12.0) * (c::<T>(3.0) * r * r + length * length)
 }
 
 /// The torsion constant of a torsional pendulum from a body of known inertia I and its
 /// period T: k = 4π² I / T².
-pub fn torsion_constant<T: RealField + Copy>(inertia: T, period: T) -> T {
+pub fn torsion_constant<T: Real>(inertia: T, period: T) -> T {
     let w = T::two_pi() / period;
     inertia * w * w
 }
 
 /// The moment of inertia of a body on a torsional pendulum of constant k from its period T:
 /// I = k T² / 4π² (the inverse of [`torsion_constant`]).
-pub fn torsional_pendulum_inertia<T: RealField + Copy>(k: T, period: T) -> T {
+pub fn torsional_pendulum_inertia<T: Real>(k: T, period: T) -> T {
     let t = period / T::two_pi();
     k * t * t
 }
@@ -300,11 +294,7 @@ pub fn torsional_pendulum_inertia<T: RealField + Copy>(k: T, period: T) -> T {
 /// in the xz plane at angles β_i: J = I_xx cos²β − 2 I_xz sin β cos β + I_zz sin²β, solved by
 /// least squares (exactly for three axes). Fails, naming `field`, when the axes do not
 /// determine the three components.
-pub fn planar_inertia<T: RealField + Copy>(
-    moments: &[T],
-    betas: &[T],
-    field: &str,
-) -> Result<[T; 3]> {
+pub fn planar_inertia<T: Real>(moments: &[T], betas: &[T], field: &str) -> Result<[T; 3]> {
     let bad = |rule: &str| Error::InvalidParameter {
         field: field.into(),
         value: moments.len() as f64,
@@ -318,7 +308,7 @@ pub fn planar_inertia<T: RealField + Copy>(
     let mut normal = Matrix3::<T>::zeros();
     let mut rhs = Vector3::<T>::zeros();
     for (j, beta) in moments.iter().zip(betas) {
-        let (s, co) = beta.sin_cos();
+        let (s, co) = crate::math::sin_cos(*beta);
         let row = Vector3::new(co * co, -c::<T>(2.0) * s * co, s * s);
         normal += row * row.transpose();
         rhs += row * *j;
@@ -339,7 +329,7 @@ pub fn planar_inertia<T: RealField + Copy>(
 
 /// The distance from a point to a wheel's centre in the xz plane: the length of the compound
 /// pendulum when a frame swings about that wheel's axle.
-pub fn pendulum_length<T: RealField + Copy>(x: T, z: T, axle_x: T, axle_z: T) -> T {
+pub fn pendulum_length<T: Real>(x: T, z: T, axle_x: T, axle_z: T) -> T {
     let (dx, dz) = (x - axle_x, z - axle_z);
     (dx * dx + dz * dz).sqrt()
 }
@@ -350,19 +340,19 @@ pub fn pendulum_length<T: RealField + Copy>(x: T, z: T, axle_x: T, axle_z: T) ->
 /// (Moore 2012 §2.7: the frames' principal axes). Inverse: I_xx = I₁ cos²θ + I₂ sin²θ,
 /// I_zz = I₁ sin²θ + I₂ cos²θ, I_xz = (I₂ − I₁) sin θ cos θ (z down, so a rotation about y
 /// takes x towards −z).
-pub fn principal_planar<T: RealField + Copy>(i_xx: T, i_xz: T, i_zz: T) -> (T, T, T) {
+pub fn principal_planar<T: Real>(i_xx: T, i_xz: T, i_zz: T) -> (T, T, T) {
     let half: T = c(0.5);
     let mean = (i_xx + i_zz) * half;
     let d = (i_xx - i_zz) * half;
     let radius = (d * d + i_xz * i_xz).sqrt();
-    let theta = (-i_xz).atan2(d) * half;
+    let theta = crate::math::atan2(-i_xz, d) * half;
     (mean + radius, mean - radius, theta)
 }
 
 /// The root mean square distance of a point (x, z) from hanging lines: how well the lines of
 /// a hung frame agree on its mass centre (zero for two lines, which always meet in one point;
 /// the measurement error shows with three or more).
-pub fn line_residual<T: RealField + Copy>(lines: &[HangingLine<T>], x: T, z: T) -> T {
+pub fn line_residual<T: Real>(lines: &[HangingLine<T>], x: T, z: T) -> T {
     if lines.is_empty() {
         return T::zero();
     }

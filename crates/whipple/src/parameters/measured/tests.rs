@@ -28,12 +28,14 @@ fn measured_exactly(p: &BenchmarkParameters) -> Measurements<Measured> {
             .iter()
             .map(|alpha| {
                 let beta = p.lambda - alpha * PI / 180.0;
-                let intercept = z + beta.tan() * x;
+                let intercept = z + crate::math::tan(beta) * x;
                 let a = match frame {
-                    HungFrame::Rear => -beta.cos() * (intercept + p.r_r),
-                    HungFrame::Front => -beta.cos() * (intercept + p.r_f - p.w * beta.tan()),
+                    HungFrame::Rear => -crate::math::cos(beta) * (intercept + p.r_r),
+                    HungFrame::Front => {
+                        -crate::math::cos(beta) * (intercept + p.r_f - p.w * crate::math::tan(beta))
+                    }
                 };
-                let (s, c) = beta.sin_cos();
+                let (s, c) = crate::math::sin_cos(beta);
                 let j = i[0] * c * c - 2.0 * i[1] * s * c + i[2] * s * s;
                 Hanging {
                     alpha: exact(*alpha),
@@ -52,7 +54,7 @@ fn measured_exactly(p: &BenchmarkParameters) -> Measurements<Measured> {
         geometry: Geometry::Direct {
             w: exact(p.w),
             gamma: exact(90.0 - p.lambda * 180.0 / PI),
-            f: exact(p.r_f * p.lambda.sin() - p.c * p.lambda.cos()),
+            f: exact(p.r_f * crate::math::sin(p.lambda) - p.c * crate::math::cos(p.lambda)),
         },
         m_r: exact(p.m_r),
         m_f: exact(p.m_f),
@@ -122,7 +124,11 @@ fn pendulum_steps_invert() {
     let r: f64 = steps::wheel_radius(2.0 * PI * 13.0 * 0.34, 13.0);
     assert!((r - 0.34).abs() < 1e-15);
     let lambda: f64 = 0.3;
-    let c: f64 = steps::trail(0.35, lambda, 0.35 * lambda.sin() - 0.08 * lambda.cos());
+    let c: f64 = steps::trail(
+        0.35,
+        lambda,
+        0.35 * crate::math::sin(lambda) - 0.08 * crate::math::cos(lambda),
+    );
     assert!((c - 0.08).abs() < 1e-15);
     let tilt: f64 = steps::steer_axis_tilt(90.0 - 0.3 * 180.0 / PI);
     assert!((tilt - 0.3).abs() < 1e-15);
@@ -286,7 +292,7 @@ fn principal_axes_rebuild_the_tensor() -> Result<()> {
         (2.0, 0.3, 2.0),
     ] {
         let (i1, i2, theta) = steps::principal_planar(ixx, ixz, izz);
-        let (s, c) = theta.sin_cos();
+        let (s, c) = crate::math::sin_cos(theta);
         assert!(i1 >= i2);
         assert!((i1 * c * c + i2 * s * s - ixx).abs() < 1e-14);
         assert!((i1 * s * s + i2 * c * c - izz).abs() < 1e-14);
@@ -380,7 +386,7 @@ fn with(text: &str, key: &str, value: Option<&str>) -> String {
 #[test]
 fn offsets_give_the_geometry_back() -> Result<()> {
     let p = BenchmarkParameters::meijaard2007();
-    let (s, co) = p.lambda.sin_cos();
+    let (s, co) = crate::math::sin_cos(p.lambda);
     let a = (p.w + p.c) * co - p.r_r * s;
     let b = p.r_f * s - p.c * co;
     let span = p.w * s + (p.r_r - p.r_f) * co;
@@ -409,7 +415,7 @@ fn offsets_give_the_geometry_back() -> Result<()> {
         .map(|l| format!("{l}\n"))
         .collect();
     let direct = MeasuredParameters::new(&read_measurements(BROWSER)?.measurements)?.benchmark;
-    let (s, co) = direct.lambda.sin_cos();
+    let (s, co) = crate::math::sin_cos(direct.lambda);
     let a = (direct.w + direct.c) * co - direct.r_r * s;
     let b = direct.r_f * s - direct.c * co;
     let span = direct.w * s + (direct.r_r - direct.r_f) * co;
@@ -457,8 +463,8 @@ fn tilt_from_offsets_has_the_implicit_derivative() -> Result<()> {
         panic!("Balanceassistv1 measures its geometry as perpendicular distances")
     };
     let hubs = o.d.value + 0.5 * (o.d2.value + o.d3.value);
-    let f_lambda = lambda.cos() + span * lambda.sin() / (a + b);
-    let f_span = -lambda.cos() / (a + b);
+    let f_lambda = crate::math::cos(lambda) + span * crate::math::sin(lambda) / (a + b);
+    let f_span = -crate::math::cos(lambda) / (a + b);
     let want = -f_span * (hubs / span) / f_lambda;
     let row = BENCHMARK_TABLE.iter().position(|p| p.key == "lam").unwrap();
     let col = result.inputs.iter().position(|k| k == "d").unwrap();
@@ -492,9 +498,10 @@ fn split_fork_round_trips() -> Result<()> {
             .iter()
             .map(|alpha| {
                 let beta = p.lambda - alpha * PI / 180.0;
-                let z0 = z + beta.tan() * x;
-                let a = beta.cos() * (reference.1 + reference.0 * beta.tan() - z0);
-                let (s, c) = beta.sin_cos();
+                let z0 = z + crate::math::tan(beta) * x;
+                let a = crate::math::cos(beta)
+                    * (reference.1 + reference.0 * crate::math::tan(beta) - z0);
+                let (s, c) = crate::math::sin_cos(beta);
                 let j = i[0] * c * c - 2.0 * i[1] * s * c + i[2] * s * s;
                 Hanging {
                     alpha: exact(*alpha),
