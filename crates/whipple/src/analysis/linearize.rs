@@ -7,19 +7,20 @@
 //! for `T = f64` (differences) and `T = Dual64` (exact derivatives).
 //!
 //! ```
-//! use nalgebra::{RealField, SVector, Vector2};
+//! use nalgebra::{SVector, Vector2};
 //! use whipple::advanced::linearize::{central_differences, jacobian, FdSettings, VectorField};
+//! use whipple::math::{self, Real};
 //!
 //! /// The pendulum θ̈ = −sin θ in first-order form.
 //! struct Pendulum;
 //! impl VectorField<2> for Pendulum {
 //!     fn eval<T: Real>(&self, x: &SVector<T, 2>) -> whipple::Result<SVector<T, 2>> {
-//!         Ok(Vector2::new(x[1], -x[0].sin()))
+//!         Ok(Vector2::new(x[1], -math::sin(x[0])))
 //!     }
 //! }
 //! let x0 = Vector2::new(0.5, 0.0);
 //! let exact = jacobian(&Pendulum, &x0)?;
-//! assert_eq!(exact[(1, 0)], -(0.5f64).cos());
+//! assert_eq!(exact[(1, 0)], -math::cos(0.5f64));
 //! let fd = central_differences(|x| Pendulum.eval(x), &x0, &FdSettings::default())?;
 //! assert!((fd.jacobian - exact).amax() < 1e-9);
 //! # Ok::<(), whipple::Error>(())
