@@ -2080,7 +2080,7 @@ function compareJson(a, b, path = "", tally = { numbers: 0, differing: 0, worst:
   return tally;
 }
 
-if (site) await section("the site's numbers are whipple serve's: bit for bit, or to ten digits where the platforms' sin, cos and FMA part", async () => {
+if (site) await section("the site's numbers are whipple serve's: bit for bit, or to ten digits where the native linear algebra's FMA parts", async () => {
   await open("?bike=preset:benchmark");
   const bike = await page.evaluate(async () => (await fetch("/api/presets/benchmark")).json());
   const browser = await page.evaluate(async () => (await fetch("/api/presets/browser")).json());
