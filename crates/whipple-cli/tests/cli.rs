@@ -1,8 +1,6 @@
 //! The real binary, run as a user runs it.
 
-mod common;
-
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{scratch, stderr_of_failure, stdout, whipple};
 use whipple_reference::meijaard2007 as published;
 
 #[test]

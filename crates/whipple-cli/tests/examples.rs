@@ -2,12 +2,12 @@
 //! into a folder, each byte for byte the copy kept with the library's tests, with the sources
 //! and licences beside them.
 
-mod common;
+use crate::common;
 
 use std::fs;
 use std::path::Path;
 
-use common::{stderr_of_failure, whipple};
+use crate::common::{stderr_of_failure, whipple};
 
 fn root() -> &'static Path {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))

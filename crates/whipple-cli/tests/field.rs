@@ -1,9 +1,7 @@
 //! The field's files through the real binary: uncertainty printed, warnings on stderr and in
 //! JSON, --strict, sensitivities, conversions.
 
-mod common;
-
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{scratch, stderr_of_failure, stdout, whipple};
 
 fn data(path: &str) -> String {
     format!(

@@ -3,9 +3,7 @@
 //! non-zero exit status, samples kept); and files written whole through a temporary file and a
 //! rename.
 
-mod common;
-
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{scratch, stderr_of_failure, stdout, whipple};
 use whipple::{Canonical, presets};
 
 /// The default `eig` table: a header naming the modes in the documented column order, one row

@@ -10,7 +10,7 @@
 //! The README's ```text blocks that begin with `$ whipple ` show exactly what the command
 //! prints today (`WHIPPLE_UPDATE_README=1` writes them again).
 
-mod common;
+use crate::common;
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -349,7 +349,7 @@ fn the_readme_shows_what_its_commands_print() {
                 text[start..end],
                 shown,
                 "README.md shows an old output of `whipple {}`: \
-                 WHIPPLE_UPDATE_README=1 cargo test -p whipple-cli --test guide writes it again",
+                 WHIPPLE_UPDATE_README=1 cargo test -p whipple-cli --test suite -- guide:: writes it again",
                 words.join(" ")
             );
         }
@@ -376,7 +376,7 @@ fn the_readme_shows_what_its_commands_print() {
             assert!(
                 fs::read(&kept).ok().as_deref() == Some(&drawn[..]),
                 "docs/readme/{name} is not what `whipple {}` draws today: \
-                 WHIPPLE_UPDATE_README=1 cargo test -p whipple-cli --test guide writes it again",
+                 WHIPPLE_UPDATE_README=1 cargo test -p whipple-cli --test suite -- guide:: writes it again",
                 words.join(" ")
             );
         }

@@ -1,9 +1,7 @@
 //! `whipple control hess` through the real binary: HumanControl's benchmark bicycle and gains at
 //! one speed and against speed, the gains by Hess 2012's rules, and bad input.
 
-mod common;
-
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{scratch, stderr_of_failure, stdout, whipple};
 use whipple::advanced::control::{
     CrossoverRules, HumanController, HumanLoop, Neuromuscular, Task, hess_gains,
 };

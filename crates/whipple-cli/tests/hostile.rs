@@ -2,14 +2,12 @@
 //! the middle of a write, endless input files, closed pipes, decimal commas, absurd speeds and
 //! ranges. Each test names the behaviour it guards and the input that broke it.
 
-mod common;
-
 use std::fs;
 use std::path::Path;
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-use common::{
+use crate::common::{
     read_first_line_then_close, scratch, spawn_quiet, stderr_of_failure, stdout, whipple,
 };
 

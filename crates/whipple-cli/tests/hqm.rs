@@ -1,9 +1,7 @@
 //! `whipple control hqm` through the real binary: HumanControl's benchmark bicycle and gains,
 //! one speed and a speed sweep, the figures, and bad input.
 
-mod common;
-
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{scratch, stderr_of_failure, stdout, whipple};
 use whipple::advanced::control::{HandlingQuality, Neuromuscular};
 use whipple::advanced::io::{Format, parse, read_gains};
 

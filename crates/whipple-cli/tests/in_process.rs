@@ -2,12 +2,10 @@
 //! run it): each run reads with its own global options (`--strict`, `--bike-format`), never
 //! with another run's.
 
-mod common;
-
 use std::sync::{Arc, Barrier};
 use std::thread;
 
-use common::scratch;
+use crate::common::scratch;
 
 fn data(path: &str) -> String {
     format!(

@@ -1,12 +1,10 @@
 //! `whipple control lane-change`: the real binary against the library's lane changes, its
 //! files, and its refusals naming the option or field.
 
-mod common;
-
 use std::fs;
 use std::path::PathBuf;
 
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{scratch, stderr_of_failure, stdout, whipple};
 use whipple::BenchmarkParameters;
 use whipple::advanced::control::{
     HumanController, HumanGains, LaneChange, LaneKind, Neuromuscular, Task, lane_change_linear,

@@ -1,9 +1,7 @@
 //! `whipple measure` through the real binary: BicycleParameters' raw bench measurements to a
 //! parameter file with σ and a report of every step (issue 30, items 1 and 5).
 
-mod common;
-
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{scratch, stderr_of_failure, stdout, whipple};
 use whipple::advanced::io::{Format, parse};
 use whipple::advanced::measured::{MeasuredParameters, read_measurements};
 

@@ -1,9 +1,9 @@
 //! Messages that name the option as the user wrote it: negative numbers reach our
 //! checks (not clap's "unexpected argument '-1'"), and numbers in messages are short.
 
-mod common;
+use crate::common;
 
-use common::{stderr_of_failure, stdout, whipple};
+use crate::common::{stderr_of_failure, stdout, whipple};
 
 const SIMULATE: [&str; 6] = [
     "simulate",

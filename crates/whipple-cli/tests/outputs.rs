@@ -2,11 +2,9 @@
 //! written through symbolic links and directly into devices, never replacing something that is
 //! not a regular file. The real binary, run as a user runs it.
 
-mod common;
-
 use std::fs;
 
-use common::{read_one_line_then_close, scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{read_one_line_then_close, scratch, stderr_of_failure, stdout, whipple};
 
 const EIG: [&str; 5] = ["eig", "--bike", "benchmark", "--speeds", "0:10:0.5"];
 

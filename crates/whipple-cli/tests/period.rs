@@ -1,9 +1,7 @@
 //! `whipple period` through the real binary: BicycleParameters' sample record, a CSV record,
 //! the figure, and bad input.
 
-mod common;
-
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{scratch, stderr_of_failure, stdout, whipple};
 
 const SAMPLE: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),

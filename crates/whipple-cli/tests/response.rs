@@ -1,11 +1,9 @@
 //! `whipple response bode`: the real binary against the library's transfer functions and
 //! frequency responses, its files, and its refusals naming the option.
 
-mod common;
-
 use std::fs;
 
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{scratch, stderr_of_failure, stdout, whipple};
 use whipple::BenchmarkParameters;
 use whipple::advanced::linear::{Input, LinearSystem, Output, StateVariable, SystemRequest};
 

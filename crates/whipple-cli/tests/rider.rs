@@ -2,9 +2,7 @@
 //! riders (the core's values are checked against `yeadon` in `crates/whipple/tests/yeadon.rs`;
 //! here, that the command prints them, in both formats, and words bad input with its line).
 
-mod common;
-
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{scratch, stderr_of_failure, stdout, whipple};
 
 fn data(name: &str) -> String {
     format!(

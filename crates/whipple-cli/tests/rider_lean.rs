@@ -1,11 +1,9 @@
 //! `whipple rider` (the leaning rider) and `whipple control optimal-handling` through the real
 //! binary: the numbers against the library's, the files written, and bad input.
 
-mod common;
-
 use std::sync::atomic::AtomicBool;
 
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{scratch, stderr_of_failure, stdout, whipple};
 use whipple::advanced::control::{HandlingBound, OptimalHandlingSettings, optimal_handling};
 use whipple::advanced::design::Parameter;
 use whipple::advanced::nonlinear::LeanModel;

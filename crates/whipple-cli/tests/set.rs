@@ -1,9 +1,9 @@
 //! `--set NAME=VALUE`: a design changed on the command line is the design written in a file
 //! with that value, for every command that reads a `--bike`; a bad change is refused naming it.
 
-mod common;
+use crate::common;
 
-use common::{stderr_of_failure, stdout, whipple};
+use crate::common::{stderr_of_failure, stdout, whipple};
 
 fn speeds_json(args: &[&str]) -> serde_json::Value {
     let mut all = vec!["speeds", "--format", "json"];

@@ -1,8 +1,8 @@
 //! The bicycle as a system from the command line, the real binary: `whipple control`.
 
-mod common;
+use crate::common;
 
-use common::{stderr_of_failure, stdout, whipple};
+use crate::common::{stderr_of_failure, stdout, whipple};
 
 /// The "list the uncontrollable speeds": the benchmark's two speeds where steer torque
 /// loses a mode, as the library certifies them, in the table and in JSON with the enclosures.

@@ -1,8 +1,6 @@
 //! `whipple turn` and `whipple turns`, the real binary.
 
-mod common;
-
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{scratch, stderr_of_failure, stdout, whipple};
 
 /// The example: the held turn at 5 m/s and 11.5° of lean, its torque and stability.
 #[test]

@@ -1,9 +1,7 @@
 //! The units people use (issue 33): `_mm` and `_deg` keys in TOML and JSON files, written back
 //! in the unit read; km/h after any speed argument; errors naming what was typed.
 
-mod common;
-
-use common::{scratch, stderr_of_failure, stdout, whipple};
+use crate::common::{scratch, stderr_of_failure, stdout, whipple};
 
 /// The benchmark bicycle with a designer's keys: mm, degrees, σ in mm.
 const DESIGNER: &str = r#"name = "designer"

@@ -1,8 +1,6 @@
 //! `whipple validate`, the real binary: the CSV header and values, JSON, the report directory.
 
-mod common;
-
-use common::{scratch, stdout, whipple};
+use crate::common::{scratch, stdout, whipple};
 
 const LIN: &str = "v,lin_re1,lin_im1,lin_re2,lin_im2,lin_re3,lin_im3,lin_re4,lin_im4";
 

@@ -72,22 +72,10 @@ pub fn exp(x: f64) -> f64 {
     libm::exp(x)
 }
 
-/// eˣ − 1.
-#[inline]
-pub fn exp_m1(x: f64) -> f64 {
-    libm::expm1(x)
-}
-
 /// ln x.
 #[inline]
 pub fn ln(x: f64) -> f64 {
     libm::log(x)
-}
-
-/// ln(1 + x).
-#[inline]
-pub fn ln_1p(x: f64) -> f64 {
-    libm::log1p(x)
 }
 
 /// log₁₀ x.
@@ -118,12 +106,6 @@ pub fn cbrt(x: f64) -> f64 {
 #[inline]
 pub fn log2(x: f64) -> f64 {
     libm::log2(x)
-}
-
-/// 2ˣ.
-#[inline]
-pub fn exp2(x: f64) -> f64 {
-    libm::exp2(x)
 }
 
 /// arsinh x.
