@@ -989,8 +989,15 @@ await section("units typed in the page's fields: mm and degrees in the editor, k
   await page.fill("#v-stop", "36 km/h");
   await page.fill("#v-step", "0.036 km/h");
   await page.press("#v-step", "Enter");
-  const meta = await waitForText("critical-meta", (t) => /^linear model, 0 – 10 m\/s$/.test(t), 15_000);
-  check(/^4\.2924/.test(await text("weave-speed")), `v up to "36 km/h" in steps of "0.036 km/h": "${meta}", v_w ${await text("weave-speed")}`);
+  const meta = await waitForText("critical-meta", (t) => /^linear model, 0 – 10 m\/s \(0 – 36 km\/h\)$/.test(t), 15_000);
+  check(/^4\.2924\d* \(15\.45 km\/h\)$/.test(await text("weave-speed")), `v up to "36 km/h" in steps of "0.036 km/h": "${meta}", v_w ${await text("weave-speed")}`);
+  // Typed in km/h, the critical speeds are given in km/h too, after their m/s.
+  check(/^4\.292 – 6\.024 \(15\.45 – 21\.69 km\/h\)$/.test(await text("stable-ranges")), `the self-stable range in km/h too: "${await text("stable-ranges")}"`);
+  await page.fill("#v-stop", "10");
+  await page.fill("#v-step", "0.01");
+  await page.press("#v-step", "Enter");
+  await waitForText("critical-meta", (t) => /^linear model, 0 – 10 m\/s$/.test(t), 15_000);
+  check(/^4\.2924\d*$/.test(await text("weave-speed")), `typed in m/s again, m/s alone: v_w ${await text("weave-speed")}`);
   // The design map's speed and band in km/h (both back ends: read from the page, not the wire).
   await open("?bike=preset:benchmark&tab=map");
   await waitForText("map-meta", (t) => /designs \(/.test(t), 20_000);

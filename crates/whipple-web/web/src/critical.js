@@ -30,8 +30,16 @@ function pm(sigma) {
   return Number.isFinite(sigma) && sigma > 0 ? ` ± ${num(sigma, 2)}` : "";
 }
 
-function speed(v, eigen, mode, range, c, sigma) {
-  if (v !== null && v !== undefined) return `${fixed(v, 4)}${pm(sigma)}`;
+/** km/h in a m/s: the page's one conversion back (editor.js reads "20 km/h" as 20 / 3.6 m/s). */
+const KMH_PER_MPS = 3.6;
+
+/** " (15.45 km/h)" after a speed in m/s where the speeds were typed in km/h ("" otherwise). */
+function alsoKmh(kmh, v, sigma) {
+  return kmh && Number.isFinite(v) ? ` (${fixed(v * KMH_PER_MPS, 2)}${pm(sigma * KMH_PER_MPS)} km/h)` : "";
+}
+
+function speed(v, eigen, mode, range, c, sigma, kmh = false) {
+  if (v !== null && v !== undefined) return `${fixed(v, 4)}${pm(sigma)}${alsoKmh(kmh, v, sigma)}`;
   // Where the certificate could not decide, "none" would contradict it.
   const open = undecided(c);
   if (open) return `undecided in ${open}`;
@@ -49,16 +57,18 @@ function notCertified(reason) {
   return Number.isFinite(a) && Number.isFinite(b) ? `not certified: in [${num(a, 8)}, ${num(b, 8)}]` : "not certified (round-off)";
 }
 
-function ranges(c) {
+function ranges(c, kmh = false) {
   if (!c) return "–";
   const open = undecided(c);
   if (c.stable_speed_ranges.length === 0) return open ? `undecided in ${open}; nowhere else` : "nowhere";
-  return c.stable_speed_ranges
-    .map(([a, b], k) => {
-      const [sa, sb] = c.stable_speed_ranges_sigma?.[k] ?? [];
-      return `${fixed(a, 3)}${pm(sa)} – ${fixed(b, 3)}${pm(sb)}${b >= c.range[1] ? "+" : ""}`;
-    })
-    .join(", ");
+  const list = (scale, digits, withSigma) =>
+    c.stable_speed_ranges
+      .map(([a, b], k) => {
+        const [sa, sb] = withSigma ? c.stable_speed_ranges_sigma?.[k] ?? [] : [];
+        return `${fixed(a * scale, digits)}${pm(sa)} – ${fixed(b * scale, digits)}${pm(sb)}${b >= c.range[1] ? "+" : ""}`;
+      })
+      .join(", ");
+  return list(1, 3, true) + (kmh ? ` (${list(KMH_PER_MPS, 2, false)} km/h)` : "");
 }
 
 const weaveText = (c, e) => speed(c?.weave_speed, e, "weave", c?.range, c, c?.weave_speed_sigma);
@@ -70,15 +80,20 @@ export function criticalSummary(eigen) {
   return { weave: weaveText(c, eigen), capsize: capsizeText(c, eigen), stable: ranges(c) };
 }
 
-/** Fills `container` with the table for `designs` ([{label, eigen}], the first edited). */
-export function drawCritical(container, designs, { stale = false, reason = null } = {}) {
+/**
+ * Fills `container` with the table for `designs` ([{label, eigen}], the first edited). `kmh`:
+ * the speeds were typed in km/h, so each speed is also given in km/h after its m/s.
+ */
+export function drawCritical(container, designs, { stale = false, reason = null, kmh = false } = {}) {
+  const weave = (c, e) => speed(c?.weave_speed, e, "weave", c?.range, c, c?.weave_speed_sigma, kmh);
+  const capsize = (c, e) => speed(c?.capsize_speed, e, "capsize", c?.range, c, c?.capsize_speed_sigma, kmh);
   const rows = [
-    ["weave", "v_w", weaveText, "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
-    ["capsize", "v_c", capsizeText, "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
+    ["weave", "v_w", weave, "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
+    ["capsize", "v_c", capsize, "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
     // Where round-off cannot certify v_d the library says where it lies: never "none".
-    ["double root", "v_d", (c) => (c?.double_root_unavailable ? notCertified(c.double_root_unavailable) : speed(c?.double_root_speed, null, null, c?.range, c, c?.double_root_speed_sigma)), "double-root-speed", "two real eigenvalues meet and become the weave pair", "#9ca3af"],
+    ["double root", "v_d", (c) => (c?.double_root_unavailable ? notCertified(c.double_root_unavailable) : speed(c?.double_root_speed, null, null, c?.range, c, c?.double_root_speed_sigma, kmh)), "double-root-speed", "two real eigenvalues meet and become the weave pair", "#9ca3af"],
     ["ω at v_w", "rad/s", (c) => (c?.weave_frequency == null ? "–" : fixed(c.weave_frequency, 3)), "weave-frequency", "the weave's angular frequency |Im λ| at v_w", null],
-    ["self-stable", "", (c) => ranges(c), "stable-ranges", "all eigenvalues have negative real parts", "#86efac"],
+    ["self-stable", "", (c) => ranges(c, kmh), "stable-ranges", "all eigenvalues have negative real parts", "#86efac"],
   ];
   const table = html("table", { class: `critical-table${stale ? " stale" : ""}`, "data-columns": String(designs.length) });
   const head = html("tr", {}, html("th", { class: "unit", scope: "col", text: "m/s" }));
@@ -100,7 +115,8 @@ export function drawCritical(container, designs, { stale = false, reason = null 
   const range = designs[0].eigen?.critical?.range;
   const meta = document.getElementById("critical-meta");
   // The header says what the fields say: veiled results are named as the last ones computed.
-  if (meta) meta.textContent = range ? `linear model, ${num(range[0])} – ${num(range[1])} m/s${stale ? ` (${reason ?? "not recomputed"}; last computed)` : ""}` : "";
+  const typed = range && kmh ? ` (${num(range[0] * KMH_PER_MPS)} – ${num(range[1] * KMH_PER_MPS)} km/h)` : "";
+  if (meta) meta.textContent = range ? `linear model, ${num(range[0])} – ${num(range[1])} m/s${typed}${stale ? ` (${reason ?? "not recomputed"}; last computed)` : ""}` : "";
   const open = designs[0].eigen?.critical?.stable_speed_ranges.some(([, b]) => b >= range[1]);
   const note = html("p", { class: "note", text: range ? (open ? "“+”: still stable at the end of the plotted speeds." : "") : "Give a speed range to find the critical speeds." });
   container.replaceChildren(html("div", { class: "table-scroll" }, table), note);

@@ -384,6 +384,11 @@ function speedGrid() {
   return { start: read("v-start"), stop: read("v-stop"), step: read("v-step") };
 }
 
+/** Whether the speed range was typed in km/h: the critical speeds are then given in km/h too. */
+function speedsTypedInKmh() {
+  return ["v-start", "v-stop", "v-step"].some((id) => /km\/h$/.test($(id).value.trim()));
+}
+
 function yLimit() {
   const y = parseNumber($("y-limit").value);
   return y && y > 0 ? y : 10;
@@ -601,7 +606,7 @@ function drawAll() {
   const stale = staleReason();
   if (state.view === "eigen") plot.update(designs, { ylim: yLimit(), stale });
   if (state.view === "locus") locus.update(designs, { ylim: yLimit(), stale });
-  drawCritical($("critical"), designs, { stale: Boolean(stale), reason: stale });
+  drawCritical($("critical"), designs, { stale: Boolean(stale), reason: stale, kmh: speedsTypedInKmh() });
   drawSummaryBar(designs[0], stale);
 }
 
