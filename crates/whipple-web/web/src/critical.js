@@ -71,8 +71,8 @@ function ranges(c, kmh = false) {
   return list(1, 3, true) + (kmh ? ` (${list(KMH_PER_MPS, 2, false)} km/h)` : "");
 }
 
-const weaveText = (c, e) => speed(c?.weave_speed, e, "weave", c?.range, c, c?.weave_speed_sigma);
-const capsizeText = (c, e) => speed(c?.capsize_speed, e, "capsize", c?.range, c, c?.capsize_speed_sigma);
+const weaveText = (c, e, kmh = false) => speed(c?.weave_speed, e, "weave", c?.range, c, c?.weave_speed_sigma, kmh);
+const capsizeText = (c, e, kmh = false) => speed(c?.capsize_speed, e, "capsize", c?.range, c, c?.capsize_speed_sigma, kmh);
 
 /** What the table shows of one design ({eigen}) for v_w, v_c and the self-stable ranges. */
 export function criticalSummary(eigen) {
@@ -85,11 +85,9 @@ export function criticalSummary(eigen) {
  * the speeds were typed in km/h, so each speed is also given in km/h after its m/s.
  */
 export function drawCritical(container, designs, { stale = false, reason = null, kmh = false } = {}) {
-  const weave = (c, e) => speed(c?.weave_speed, e, "weave", c?.range, c, c?.weave_speed_sigma, kmh);
-  const capsize = (c, e) => speed(c?.capsize_speed, e, "capsize", c?.range, c, c?.capsize_speed_sigma, kmh);
   const rows = [
-    ["weave", "v_w", weave, "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
-    ["capsize", "v_c", capsize, "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
+    ["weave", "v_w", (c, e) => weaveText(c, e, kmh), "weave-speed", "the weave becomes stable above this speed", "#2563eb"],
+    ["capsize", "v_c", (c, e) => capsizeText(c, e, kmh), "capsize-speed", "the capsize mode becomes unstable above this speed", "#dc2626"],
     // Where round-off cannot certify v_d the library says where it lies: never "none".
     ["double root", "v_d", (c) => (c?.double_root_unavailable ? notCertified(c.double_root_unavailable) : speed(c?.double_root_speed, null, null, c?.range, c, c?.double_root_speed_sigma, kmh)), "double-root-speed", "two real eigenvalues meet and become the weave pair", "#9ca3af"],
     ["ω at v_w", "rad/s", (c) => (c?.weave_frequency == null ? "–" : fixed(c.weave_frequency, 3)), "weave-frequency", "the weave's angular frequency |Im λ| at v_w", null],
