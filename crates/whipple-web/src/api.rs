@@ -211,7 +211,7 @@ thread_local! {
 
 /// [`answer`], with `progress(done, total)` called as long work advances (a map's or a
 /// study's designs, after every chunk of them), on this thread: the static site's worker
-/// passes it on to the page. The server has no such hook; its page shows the time taken.
+/// passes it on to the page (the server's answers told line by line do the same, `server.rs`).
 pub fn answer_with_progress(
     method: &str,
     path: &str,
@@ -220,7 +220,13 @@ pub fn answer_with_progress(
     stop: Arc<AtomicBool>,
     progress: ProgressHook,
 ) -> Answer {
-    /// Takes the hook away again however the answer ends.
+    with_progress(progress, || answer(method, path, body, limits, stop))
+}
+
+/// Runs `work` with `progress` told how far it is on this thread, the hook taken away again
+/// however the work ends.
+pub(crate) fn with_progress<R>(progress: ProgressHook, work: impl FnOnce() -> R) -> R {
+    /// Takes the hook away again however the work ends.
     struct Hooked;
     impl Drop for Hooked {
         fn drop(&mut self) {
@@ -229,7 +235,7 @@ pub fn answer_with_progress(
     }
     PROGRESS.with(|hook| *hook.borrow_mut() = Some(progress));
     let _hooked = Hooked;
-    answer(method, path, body, limits, stop)
+    work()
 }
 
 /// Tells the hook of [`answer_with_progress`], if this thread has one, how far the work is.

@@ -194,6 +194,40 @@ impl ApiError {
     }
 }
 
+/// The last line of an answer told line by line (`server.rs`): the status the answer would
+/// have had, the error, and the seconds to wait before asking again where the server is busy.
+#[cfg(feature = "server")]
+#[derive(Serialize)]
+struct Line<'a> {
+    status: u16,
+    error: &'a ErrorBody,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    retry_after: Option<u64>,
+}
+
+#[cfg(feature = "server")]
+impl ApiError {
+    /// The error as the last line of an answer told line by line: `{"status": 422, "error":
+    /// {...}}` and a newline.
+    pub(crate) fn line(&self) -> Vec<u8> {
+        let line = Line {
+            status: self.status.as_u16(),
+            error: &self.body,
+            retry_after: self.retry_after,
+        };
+        let mut bytes = serde_json::to_vec(&line).unwrap_or_else(|_| {
+            format!(
+                "{{\"status\":{},\"error\":{{\"kind\":\"{}\",\"message\":\"the error could not be written\"}}}}",
+                self.status.as_u16(),
+                self.body.kind
+            )
+            .into_bytes()
+        });
+        bytes.push(b'\n');
+        bytes
+    }
+}
+
 #[cfg(feature = "server")]
 impl axum::response::IntoResponse for ApiError {
     fn into_response(self) -> axum::response::Response {

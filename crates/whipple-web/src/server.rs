@@ -10,7 +10,7 @@ use axum::Router;
 use axum::body::Bytes;
 use axum::extract::rejection::{BytesRejection, PathRejection};
 use axum::extract::{DefaultBodyLimit, Path, Request, State};
-use axum::http::{HeaderValue, StatusCode, header};
+use axum::http::{HeaderMap, HeaderValue, StatusCode, header};
 use axum::middleware::{self, Next};
 use axum::response::{IntoResponse, Response};
 use axum::routing::{get, post};
@@ -76,20 +76,22 @@ pub fn app_bound_to(limits: Limits, bound: IpAddr) -> Router {
                 route.path,
                 get(move || async move { json_response(answer("")) }),
             ),
-            Handler::Post(prepare) => {
-                router.route(
-                    route.path,
-                    post(
-                        move |State(state): State<AppState>,
-                              body: Result<Bytes, BytesRejection>| async move {
-                            match body_bytes(body).and_then(|bytes| prepare(&state.limits, bytes)) {
-                                Ok(job) => run(&state, job).await,
-                                Err(error) => error.into_response(),
+            Handler::Post(prepare) => router.route(
+                route.path,
+                post(
+                    move |State(state): State<AppState>,
+                          headers: HeaderMap,
+                          body: Result<Bytes, BytesRejection>| async move {
+                        match body_bytes(body).and_then(|bytes| prepare(&state.limits, bytes)) {
+                            Ok(job) if wants_lines(&headers) => {
+                                run_in_lines(state, job, gzip_accepted(&headers))
                             }
-                        },
-                    ),
-                )
-            }
+                            Ok(job) => run(&state, job).await,
+                            Err(error) => error.into_response(),
+                        }
+                    },
+                ),
+            ),
         };
     }
     router
@@ -124,6 +126,155 @@ async fn run(state: &AppState, job: Job) -> Response {
         work,
     } = job;
     json_response(compute(state, budget, advice, work).await)
+}
+
+/// The media type of an answer told line by line, asked for with `Accept`.
+const NDJSON: &str = "application/x-ndjson";
+
+/// Time between two progress lines at most (the designs done are told in chunks, often).
+const PROGRESS_EVERY: std::time::Duration = std::time::Duration::from_millis(200);
+
+/// Whether the request asks for its answer line by line (`Accept: application/x-ndjson`).
+fn wants_lines(headers: &HeaderMap) -> bool {
+    headers.get_all(header::ACCEPT).iter().any(|value| {
+        value.to_str().is_ok_and(|text| {
+            text.split(',').any(|range| {
+                range
+                    .split(';')
+                    .next()
+                    .is_some_and(|media| media.trim().eq_ignore_ascii_case(NDJSON))
+            })
+        })
+    })
+}
+
+fn gzip_accepted(headers: &HeaderMap) -> bool {
+    crate::assets::accepts_gzip(
+        headers
+            .get(header::ACCEPT_ENCODING)
+            .and_then(|v| v.to_str().ok()),
+    )
+}
+
+/// A job's answer told line by line (NDJSON, status 200 once the request is read and checked):
+/// `{"progress": [done, total]}` as long work advances (a map's or a study's designs, at most
+/// every [`PROGRESS_EVERY`]), then one last line, `{"status": 200, "answer": ...}` with the
+/// bytes [`run`] would have answered, or `{"status": ..., "error": {...}}`. The work runs in a
+/// computing slot under the same limits; a client that goes away stops it (the lines' stream
+/// is dropped, and with it the work's stop flag is set). gzip-compressed, flushed line by line,
+/// where the client accepts gzip.
+fn run_in_lines(state: AppState, job: Job, gzip: bool) -> Response {
+    let Job {
+        budget,
+        advice,
+        work,
+    } = job;
+    let (tell, told) = tokio::sync::watch::channel(None::<(u64, u64)>);
+    let work = move |stop: Arc<AtomicBool>| {
+        let hook: crate::api::ProgressHook = std::rc::Rc::new(move |done, total| {
+            tell.send_replace(Some((done, total)));
+        });
+        crate::api::with_progress(hook, || work(stop))
+    };
+    let answer = Box::pin(async move { compute(&state, budget, advice, work).await });
+    let encoder =
+        gzip.then(|| flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast()));
+    let next = tokio::time::Instant::now();
+    let lines = futures_util::stream::unfold(
+        Some((answer, told, next, encoder)),
+        |under_way| async move {
+            let (mut answer, mut told, mut next, mut encoder) = under_way?;
+            loop {
+                // A change of the progress (the first told at once, the next ones at most
+                // every PROGRESS_EVERY), or the answer, whichever comes first; once the work
+                // has ended (its hook dropped), the answer.
+                let result = tokio::select! {
+                    result = &mut answer => Some(Some(result)),
+                    changed = told.changed() => changed.err().map(|_| None),
+                };
+                let result = match result {
+                    Some(Some(result)) => Some(result),
+                    Some(None) => Some((&mut answer).await),
+                    None => tokio::select! {
+                        result = &mut answer => Some(result),
+                        () = tokio::time::sleep_until(next) => None,
+                    },
+                };
+                if let Some(result) = result {
+                    let line = match result {
+                        Ok(bytes) => answer_line(&bytes),
+                        Err(error) => error.line(),
+                    };
+                    return Some((last_chunk(line, encoder).await, None));
+                }
+                let Some((done, total)) = *told.borrow_and_update() else {
+                    continue;
+                };
+                next = tokio::time::Instant::now() + PROGRESS_EVERY;
+                let line = format!("{{\"progress\":[{done},{total}]}}\n");
+                let chunk = match encoder.as_mut() {
+                    Some(encoder) => flushed(encoder, line.as_bytes()),
+                    None => Ok(Bytes::from(line)),
+                };
+                let failed = chunk.is_err();
+                return Some((chunk, (!failed).then_some((answer, told, next, encoder))));
+            }
+        },
+    );
+    let mut response = Response::new(axum::body::Body::from_stream(lines));
+    let headers = response.headers_mut();
+    headers.insert(header::CONTENT_TYPE, HeaderValue::from_static(NDJSON));
+    headers.insert(header::CACHE_CONTROL, HeaderValue::from_static("no-store"));
+    headers.insert(
+        header::VARY,
+        HeaderValue::from_static("accept, accept-encoding"),
+    );
+    if gzip {
+        headers.insert(header::CONTENT_ENCODING, HeaderValue::from_static("gzip"));
+    }
+    response
+}
+
+/// `{"status":200,"answer":` the answer's JSON `}` and a newline.
+fn answer_line(answer: &[u8]) -> Vec<u8> {
+    let mut line = Vec::with_capacity(answer.len() + 28);
+    line.extend_from_slice(b"{\"status\":200,\"answer\":");
+    line.extend_from_slice(answer);
+    line.extend_from_slice(b"}\n");
+    line
+}
+
+/// `line` through the encoder, flushed: the bytes that tell it whole so far.
+fn flushed(encoder: &mut flate2::write::GzEncoder<Vec<u8>>, line: &[u8]) -> std::io::Result<Bytes> {
+    use std::io::Write;
+    encoder.write_all(line)?;
+    encoder.flush()?;
+    Ok(Bytes::from(std::mem::take(encoder.get_mut())))
+}
+
+/// The last line, through the encoder and its end (a long answer compressed on the blocking
+/// pool, as [`compress_json`] does).
+async fn last_chunk(
+    line: Vec<u8>,
+    encoder: Option<flate2::write::GzEncoder<Vec<u8>>>,
+) -> std::io::Result<Bytes> {
+    let Some(mut encoder) = encoder else {
+        return Ok(Bytes::from(line));
+    };
+    let length = line.len();
+    let end = move || -> std::io::Result<Vec<u8>> {
+        use std::io::Write;
+        encoder.write_all(&line)?;
+        encoder.finish()
+    };
+    let bytes = if length < COMPRESS_ASIDE_FROM_BYTES {
+        end()?
+    } else {
+        tokio::task::spawn_blocking(end)
+            .await
+            .map_err(|e| std::io::Error::other(e.to_string()))??
+    };
+    Ok(Bytes::from(bytes))
 }
 
 /// JSON answers past this many bytes are sent gzip-compressed to a client that accepts it.
@@ -431,6 +582,73 @@ mod tests {
         .await;
         assert!(matches!(permit, Ok(Ok(_))), "the slot did not come back");
         assert!(saw_stop.load(Ordering::Relaxed));
+    }
+
+    /// An answer told line by line whose client goes away after the first progress line:
+    /// the work is told to stop and its slot comes back, long before the work's 30 s.
+    #[tokio::test]
+    async fn work_told_line_by_line_stops_when_the_client_goes() -> Result<(), String> {
+        use http_body_util::BodyExt;
+        let state = AppState {
+            limits: Limits::default(),
+            bound: IpAddr::V4(Ipv4Addr::LOCALHOST),
+            heavy: Arc::new(Semaphore::new(1)),
+            heavy_waiting: Arc::new(AtomicUsize::new(0)),
+            interactive: Arc::new(Semaphore::new(1)),
+        };
+        let saw_stop = Arc::new(AtomicBool::new(false));
+        let seen = saw_stop.clone();
+        let job = Job {
+            budget: Budget::Heavy,
+            advice: "wait less",
+            work: Box::new(move |stop| {
+                let until = std::time::Instant::now() + std::time::Duration::from_secs(30);
+                let mut done = 0;
+                while std::time::Instant::now() < until {
+                    if stop.load(Ordering::Relaxed) {
+                        seen.store(true, Ordering::Relaxed);
+                        return Ok(Vec::new());
+                    }
+                    done += 1;
+                    crate::api::report_progress(done, 1_000_000);
+                    std::thread::sleep(std::time::Duration::from_millis(1));
+                }
+                Ok(b"{}".to_vec())
+            }),
+        };
+        let mut body = run_in_lines(state.clone(), job, false).into_body();
+        let first = tokio::time::timeout(std::time::Duration::from_secs(10), body.frame())
+            .await
+            .map_err(|_| "no first line within 10 s")?
+            .ok_or("no first line")?
+            .map_err(|e| e.to_string())?
+            .into_data()
+            .map_err(|_| "not data")?;
+        assert!(first.starts_with(b"{\"progress\":["), "{first:?}");
+        drop(body);
+        let permit = tokio::time::timeout(
+            std::time::Duration::from_secs(10),
+            state.heavy.clone().acquire_owned(),
+        )
+        .await;
+        assert!(matches!(permit, Ok(Ok(_))), "the slot did not come back");
+        assert!(saw_stop.load(Ordering::Relaxed));
+        Ok(())
+    }
+
+    /// `Accept` asks for the lines as a media range among others, in any case.
+    #[test]
+    fn lines_are_asked_for_with_accept() {
+        let asked = |value: &'static str| {
+            let mut headers = HeaderMap::new();
+            headers.insert(header::ACCEPT, HeaderValue::from_static(value));
+            wants_lines(&headers)
+        };
+        assert!(asked("application/x-ndjson"));
+        assert!(asked("application/json;q=0.5, Application/X-NDJSON; q=1"));
+        assert!(!asked("application/json"));
+        assert!(!asked("*/*"));
+        assert!(!wants_lines(&HeaderMap::new()));
     }
 
     /// The page calls only endpoints the OpenAPI document describes.

@@ -1990,3 +1990,121 @@ async fn answered_without_a_server_as_through_the_router() -> TestResult {
     }
     Ok(())
 }
+
+/// A request's answer told line by line: the lines of an `Accept: application/x-ndjson`
+/// request to `path`, inflated where `gzip`, with the response's status and content type.
+async fn lines(
+    app: &Router,
+    path: &str,
+    body: &str,
+    gzip: bool,
+) -> Result<(StatusCode, String, Vec<Value>), Box<dyn std::error::Error>> {
+    use std::io::Read;
+    let mut request = Request::builder()
+        .method(Method::POST)
+        .uri(path)
+        .header(header::CONTENT_TYPE, "application/json")
+        .header(
+            header::ACCEPT,
+            "application/x-ndjson, application/json;q=0.5",
+        );
+    if gzip {
+        request = request.header(header::ACCEPT_ENCODING, "gzip");
+    }
+    let response = app
+        .clone()
+        .oneshot(request.body(Body::from(body.to_string()))?)
+        .await?;
+    let status = response.status();
+    let content_type = response.headers()[header::CONTENT_TYPE]
+        .to_str()?
+        .to_string();
+    let zipped = response.headers().get(header::CONTENT_ENCODING).is_some();
+    assert_eq!(zipped, gzip && status == StatusCode::OK);
+    let bytes = response.into_body().collect().await?.to_bytes();
+    let mut text = String::new();
+    if zipped {
+        flate2::read::GzDecoder::new(&bytes[..]).read_to_string(&mut text)?;
+    } else {
+        text = String::from_utf8(bytes.to_vec())?;
+    }
+    if !content_type.starts_with("application/x-ndjson") {
+        return Ok((status, content_type, vec![serde_json::from_str(&text)?]));
+    }
+    assert!(text.ends_with('\n'), "every line ends with a newline");
+    let values = text
+        .lines()
+        .map(serde_json::from_str)
+        .collect::<Result<Vec<Value>, _>>()?;
+    Ok((status, content_type, values))
+}
+
+/// Asked line by line, a map of three chunks of designs tells how far it is (the designs done,
+/// growing, of the whole), then answers exactly what it answers in one piece; with gzip too.
+#[tokio::test]
+async fn a_map_told_line_by_line_tells_its_progress_then_the_same_answer() -> TestResult {
+    let app = app(Limits::default());
+    let request =
+        json!({"bike": preset_json("benchmark")?, "x": "trail=0:0.2:257", "y": "w=0.9:1.2:256"});
+    let (status, plain) = post(&app, "/api/map", &request).await?;
+    assert_eq!(status, StatusCode::OK);
+    let total = 257 * 256;
+    for gzip in [false, true] {
+        let (status, content_type, told) =
+            lines(&app, "/api/map", &request.to_string(), gzip).await?;
+        assert_eq!(
+            (status, content_type.as_str()),
+            (StatusCode::OK, "application/x-ndjson")
+        );
+        let (last, progress) = told.split_last().ok_or("no line")?;
+        assert_eq!(last["status"], 200);
+        assert_eq!(last["answer"], plain, "the same answer as in one piece");
+        assert!(
+            !progress.is_empty(),
+            "the first chunk's designs are told before the answer"
+        );
+        let mut before = 0;
+        for line in progress {
+            let done = line["progress"][0].as_u64().ok_or("done")?;
+            assert_eq!(line["progress"][1], total);
+            assert!(done > before && done <= total, "{line} after {before}");
+            assert!(
+                done == total || done % (1 << 15) == 0,
+                "chunks of 32768 designs: {line}"
+            );
+            before = done;
+        }
+    }
+    Ok(())
+}
+
+/// Asked line by line, a request refused before any work is a plain JSON error; work that ends
+/// in an error says so in the last line, with the status it would have had.
+#[tokio::test]
+async fn an_error_told_line_by_line() -> TestResult {
+    let app = app(Limits::default());
+    let bad = json!({"bike": preset_json("benchmark")?, "x": "trail=0:0.2:0", "y": "w=0.9:1.2:3"});
+    let (status, content_type, told) = lines(&app, "/api/map", &bad.to_string(), false).await?;
+    assert_eq!(status, StatusCode::UNPROCESSABLE_ENTITY);
+    assert_eq!(content_type, "application/json");
+    assert_eq!(told[0]["error"]["field"], "x");
+    let slow = app_with_timeout();
+    let (status, _, told) = lines(&slow, "/api/eigen", &heavy()?.to_string(), true).await?;
+    assert_eq!(status, StatusCode::OK);
+    let last = told.last().ok_or("no line")?;
+    assert_eq!(last["status"], 503);
+    assert_eq!(last["error"]["kind"], "timeout");
+    assert!(
+        last["error"]["message"]
+            .as_str()
+            .is_some_and(|m| m.contains("fewer speeds"))
+    );
+    Ok(())
+}
+
+fn app_with_timeout() -> Router {
+    app(Limits {
+        compute_timeout: Duration::from_micros(1),
+        ..Limits::default()
+    })
+}

@@ -15,7 +15,8 @@ export class ApiError extends Error {
 
 /** One request, counted as work under way until its answer has been handled ([during]).
  * `options`: {signal} to cancel it (an ApiError of kind "cancelled" then), {onProgress(done,
- * total)} told how far long work is (the static site's maps; a server tells nothing). */
+ * total)} told how far long work is (a map's or a study's designs: the static site's worker tells
+ * them, a server in the lines of its answer). */
 function call(method, path, body, options = {}) {
   return during(() => request(method, path, body, options));
 }
@@ -37,11 +38,15 @@ async function request(method, path, body, options) {
     }
     return data;
   }
+  // Long work asked with a progress hook is answered line by line: its progress, then the answer.
+  const lines = options.onProgress !== undefined && method === "POST";
+  const headers = body === undefined ? {} : { "content-type": "application/json" };
+  if (lines) headers.accept = `${NDJSON}, application/json;q=0.5`;
   let response;
   try {
     response = await fetch(path, {
       method,
-      headers: body === undefined ? {} : { "content-type": "application/json" },
+      headers,
       body: body === undefined ? undefined : JSON.stringify(body),
       // The server stops the work once nobody waits for its answer.
       signal: options.signal,
@@ -50,12 +55,57 @@ async function request(method, path, body, options) {
     if (options.signal?.aborted) throw cancelled();
     throw new ApiError(0, { kind: "network", message: `the server cannot be reached (${e.message}); is \`whipple serve\` still running?` });
   }
+  if (lines && response.ok && response.headers.get("content-type")?.startsWith(NDJSON)) {
+    return readLines(response, options);
+  }
   const data = await response.json().catch(() => null);
   if (options.signal?.aborted) throw cancelled();
   if (!response.ok) {
     throw new ApiError(response.status, data?.error ?? { kind: "http", message: `HTTP ${response.status}` });
   }
   return data;
+}
+
+const NDJSON = "application/x-ndjson";
+
+const cutOff = (why) => new ApiError(0, { kind: "network", message: `the server's answer was cut off (${why}); is \`whipple serve\` still running?` });
+
+/** An answer told line by line: `{"progress": [done, total]}` lines told to `onProgress`, then
+ * `{"status", "answer"}` or `{"status", "error"}`. A line (the answer's is megabytes) is joined
+ * from its pieces once, not searched again as each piece arrives. */
+async function readLines(response, options) {
+  const reader = response.body.getReader();
+  const decoder = new TextDecoder();
+  let pieces = [];
+  let last = null;
+  const take = (line) => {
+    const data = JSON.parse(line);
+    if (Array.isArray(data.progress)) options.onProgress(...data.progress);
+    else last = data;
+  };
+  try {
+    for (;;) {
+      const { done, value } = await reader.read();
+      if (done) break;
+      const parts = decoder.decode(value, { stream: true }).split("\n");
+      for (const [k, part] of parts.entries()) {
+        if (k === parts.length - 1) {
+          if (part) pieces.push(part);
+        } else {
+          pieces.push(part);
+          take(pieces.join(""));
+          pieces = [];
+        }
+      }
+    }
+  } catch (e) {
+    if (options.signal?.aborted) throw cancelled();
+    throw cutOff(e.message);
+  }
+  if (options.signal?.aborted) throw cancelled();
+  if (!last || pieces.length > 0) throw cutOff("its last line is missing");
+  if (last.status !== 200) throw new ApiError(last.status, last.error ?? { kind: "http", message: `HTTP ${last.status}` });
+  return last.answer;
 }
 
 export const api = {

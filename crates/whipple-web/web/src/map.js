@@ -183,7 +183,7 @@ export class MapPanel {
     $("map-cancel").hidden = false;
     for (const id of ["map-x", "map-y", "map-speed", "map-band"]) $(id).classList.remove("invalid");
     const started = performance.now();
-    // How far it is: the designs done (the static site tells them), else the time taken.
+    // How far it is: the designs done as the back end tells them, and the time taken.
     const shown = (done, total) => {
       if (mine !== this.sequence) return;
       const seconds = num((performance.now() - started) / 1000, 1);
