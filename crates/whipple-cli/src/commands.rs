@@ -15,8 +15,9 @@ use whipple::presets::PRESETS;
 use whipple::{Bicycle, Canonical};
 
 use crate::bike::{LoadedBike, RunContext, load};
-use crate::output::{self, Sink, Target, number, parse_triple, print_stdout};
+use crate::output::{self, Sink, Target, number, print_stdout};
 use crate::{FileFormat, TableFormat, TextFormat};
+use whipple_front::units::SpeedUnit;
 
 /// Prints `text` to standard output or writes it whole to `out` (checked before the work).
 pub fn emit(text: &str, out: Option<&Target>) -> Result<()> {
@@ -221,6 +222,9 @@ pub(crate) struct EigenRows {
     format: TableFormat,
     modes: [whipple::advanced::modes::Mode; 4],
     rows: u64,
+    /// The unit the speeds were typed in: km/h gives the table's speeds in km/h and adds a
+    /// `v_kmh` column to the CSV and JSON (whose `v` stays in m/s).
+    unit: SpeedUnit,
 }
 
 impl EigenRows {
@@ -229,7 +233,18 @@ impl EigenRows {
             format,
             modes,
             rows: 0,
+            unit: SpeedUnit::MetresPerSecond,
         }
+    }
+
+    /// The rows for speeds typed in `unit`.
+    pub(crate) fn typed_in(mut self, unit: SpeedUnit) -> Self {
+        self.unit = unit;
+        self
+    }
+
+    fn kmh(&self) -> bool {
+        self.unit == SpeedUnit::KilometresPerHour
     }
 
     /// The head: `what` names the eigenvalues in the table's title ("eigenvalues",
@@ -241,6 +256,9 @@ impl EigenRows {
         fields: &serde_json::Map<String, serde_json::Value>,
     ) -> Result<String> {
         Ok(match self.format {
+            TableFormat::Csv if self.kmh() => {
+                format!("{},v_kmh\n", whipple_report::EIGEN_CSV_HEADER.trim_end())
+            }
             TableFormat::Csv => whipple_report::EIGEN_CSV_HEADER.to_string(),
             TableFormat::Json => {
                 let mut head = format!("{{\n  \"bike\": {},", serde_json::to_string(label)?);
@@ -260,7 +278,8 @@ impl EigenRows {
                 head
             }
             TableFormat::Table => format!(
-                "{label}: {what} [1/s] against forward speed v [m/s]\n{}",
+                "{label}: {what} [1/s] against forward speed v [{}]\n{}",
+                self.unit.symbol(),
                 whipple_report::eigen_table_header(&self.modes)
             ),
         })
@@ -279,18 +298,29 @@ impl EigenRows {
             bail!("the eigenvalue {l} at v = {v} m/s is not a finite number");
         }
         let row = match self.format {
+            TableFormat::Csv if self.kmh() => format!(
+                "{},{}\n",
+                whipple_report::eigen_csv_row(v, values).trim_end(),
+                output::kmh_number(v)?
+            ),
             TableFormat::Csv => whipple_report::eigen_csv_row(v, values),
-            TableFormat::Table => whipple_report::eigen_table_row(v, values),
+            TableFormat::Table => whipple_report::eigen_table_row(self.unit.from_si(v), values),
             TableFormat::Json => {
                 let eigs: Vec<_> = values
                     .iter()
                     .zip(self.modes)
                     .map(|(l, mode)| json!({"re": l.re, "im": l.im, "mode": mode.name()}))
                     .collect();
+                let row = if self.kmh() {
+                    let kmh: f64 = output::kmh_number(v)?.parse()?;
+                    json!({"v": v, "v_kmh": kmh, "eigenvalues": eigs})
+                } else {
+                    json!({"v": v, "eigenvalues": eigs})
+                };
                 format!(
                     "{}\n    {}",
                     if self.rows == 0 { "" } else { "," },
-                    serde_json::to_string(&json!({"v": v, "eigenvalues": eigs}))?
+                    serde_json::to_string(&row)?
                 )
             }
         };
@@ -332,7 +362,7 @@ pub fn eig(
 ) -> Result<()> {
     let (out, plot) = output::table_and_plot(out, plot)?;
     let bike = load(cx, arg)?;
-    let (start, stop, step) = parse_triple(speeds, "--speeds")?;
+    let ((start, stop, step), unit) = output::parse_triple_in(speeds, "--speeds")?;
     let grid = sweep::SpeedGrid::new(start, stop, step).context("--speeds")?;
     if grid.len() > MAX_EIG_SPEEDS {
         bail!(
@@ -366,7 +396,7 @@ pub fn eig(
         eigenvalues: Vec::new(),
         modes,
     };
-    let mut rows = EigenRows::new(format, modes);
+    let mut rows = EigenRows::new(format, modes).typed_in(unit);
     sink.text(&rows.head(&bike.label, "eigenvalues", &serde_json::Map::new())?)?;
     let mut i = 0u64;
     plan.rows(|v, values| -> Result<()> {
@@ -401,6 +431,7 @@ pub fn eig(
             &shown,
             &critical,
             bands.as_deref(),
+            unit,
             target.path(),
         )?;
         plot_sink.bytes(&bytes)?;
@@ -409,7 +440,13 @@ pub fn eig(
     output::commit(finished)
 }
 
-pub fn modes(cx: &RunContext, arg: &str, speed: f64, format: TextFormat) -> Result<()> {
+pub fn modes(
+    cx: &RunContext,
+    arg: &str,
+    typed: crate::TypedSpeed,
+    format: TextFormat,
+) -> Result<()> {
+    let speed = typed.si;
     let bike = load(cx, arg)?;
     if !speed.is_finite() {
         bail!("--speed must be a finite number, got {speed:?}");
@@ -446,11 +483,11 @@ pub fn modes(cx: &RunContext, arg: &str, speed: f64, format: TextFormat) -> Resu
         }
         TextFormat::Table => {
             let mut t = format!(
-                "{} at v = {} m/s: eigenvalues and mode shapes\n\
+                "{} at v = {}: eigenvalues and mode shapes\n\
                  (eigenvector x = [lean, steer, lean rate, steer rate], unit length; steer/lean is the\n\
                  steer amplitude per unit lean amplitude and its phase)\n",
                 bike.label,
-                number(speed)?
+                output::speed_words(speed, typed.unit)?
             );
             for (pair, label) in &pairs {
                 let l = pair.value;
@@ -576,7 +613,7 @@ fn eigen_sigma_bands(bike: &LoadedBike, s: &whipple::EigenSweep) -> Result<Vec<[
 pub fn sensitivity(
     cx: &RunContext,
     arg: &str,
-    speed: Option<f64>,
+    typed: Option<crate::TypedSpeed>,
     range: &str,
     format: TableFormat,
     out: Option<&Path>,
@@ -584,7 +621,13 @@ pub fn sensitivity(
 ) -> Result<()> {
     let (out, plot) = output::table_and_plot(out, plot)?;
     let bike = load(cx, arg)?;
-    let (lo, hi) = crate::speeds::parse_range(range, "--range")?;
+    let speed = typed.map(|t| t.si);
+    let ((lo, hi), range_unit) = crate::speeds::parse_range_in(range, "--range")?;
+    // Typed in km/h (the range, or else the speed), the base speeds are given in km/h too.
+    let unit = match typed {
+        Some(t) if range_unit == SpeedUnit::MetresPerSecond => t.unit,
+        _ => range_unit,
+    };
     if lo >= hi {
         bail!("--range: LO ({lo}) must be less than HI ({hi})");
     }
@@ -660,10 +703,18 @@ pub fn sensitivity(
                     whipple::advanced::table::Form::Jbike6 => "JBike6",
                 }
             );
-            let show = |x: Option<f64>| x.map_or("none".to_string(), |v| format!("{v:.6}"));
+            // Six decimals of m/s; typed in km/h, five of km/h beside.
+            let show = |x: Option<f64>| {
+                x.map_or("none".to_string(), |v| match unit {
+                    SpeedUnit::MetresPerSecond => format!("{v:.6} m/s"),
+                    SpeedUnit::KilometresPerHour => {
+                        format!("{v:.6} m/s ({:.5} km/h)", unit.from_si(v))
+                    }
+                })
+            };
             writeln!(
                 t,
-                "  base: v_w = {} m/s, v_c = {} m/s, stable width = {} m/s",
+                "  base: v_w = {}, v_c = {}, stable width = {}",
                 show(c.weave_speed),
                 show(c.capsize_speed),
                 show(s.stable_range.map(|(a, b)| b - a))
@@ -687,13 +738,18 @@ pub fn sensitivity(
                 "dwidth/dp",
                 "e(width)"
             )?;
-            if let Some(v) = speed {
-                write!(
-                    t,
-                    " {:>12} {:>12}",
-                    format!("dRe_w/dp@{v}"),
-                    format!("dRe_c/dp@{v}")
-                )?;
+            // The speed as typed: `@5`, `@18km/h`; the columns as wide as their heads.
+            let mut width = 12;
+            if let Some(typed) = typed {
+                let at = match typed.unit {
+                    SpeedUnit::MetresPerSecond => number(typed.si)?,
+                    SpeedUnit::KilometresPerHour => {
+                        format!("{}km/h", output::kmh_number(typed.si)?)
+                    }
+                };
+                let (w, c) = (format!("dRe_w/dp@{at}"), format!("dRe_c/dp@{at}"));
+                width = width.max(w.chars().count());
+                write!(t, " {w:>width$} {c:>width$}")?;
             }
             writeln!(t)?;
             for p in &s.parameters {
@@ -711,7 +767,12 @@ pub fn sensitivity(
                     e(p.stable_width_elasticity)
                 )?;
                 if speed.is_some() {
-                    write!(t, " {:>12} {:>12}", g(p.weave_real), g(p.capsize_real))?;
+                    write!(
+                        t,
+                        " {:>width$} {:>width$}",
+                        g(p.weave_real),
+                        g(p.capsize_real)
+                    )?;
                 }
                 writeln!(t)?;
             }

@@ -76,7 +76,7 @@ enum ControlCommand {
         /// several, in the order of K's rows (default: steer_torque).
         #[arg(long = "input", allow_hyphen_values = true)]
         inputs: Vec<String>,
-        /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s), both ends included (default: 0:10:0.1, or the
+        /// Speeds START:STOP:STEP in m/s (or km/h after them; results in m/s, and in km/h too if typed so), both ends included (default: 0:10:0.1, or the
         /// schedule's first to last speed in 100 steps).
         #[arg(long, allow_hyphen_values = true)]
         speeds: Option<String>,
@@ -89,7 +89,7 @@ enum ControlCommand {
         /// Also draw the closed-loop eigenvalues against speed to this .svg or .png file.
         #[arg(long)]
         plot: Option<std::path::PathBuf>,
-        /// The speeds LO:HI in m/s (or km/h after them; results print in m/s) for the critical speeds; HI may be `inf` (default: every
+        /// The speeds LO:HI in m/s (or km/h after them; results in m/s, and in km/h too if typed so) for the critical speeds; HI may be `inf` (default: every
         /// speed v >= 0, or the schedule's speeds).
         #[arg(long, allow_hyphen_values = true)]
         range: Option<String>,
@@ -103,7 +103,7 @@ enum ControlCommand {
         /// Forward speed in m/s, or km/h after it: 18km/h (or --speeds for a schedule; results print in m/s).
         #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true, conflicts_with = "speeds")]
         speed: Option<f64>,
-        /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s) for a gain schedule, both ends included.
+        /// Speeds START:STOP:STEP in m/s (or km/h after them; results in m/s, and in km/h too if typed so) for a gain schedule, both ends included.
         #[arg(long, allow_hyphen_values = true)]
         speeds: Option<String>,
         /// The state weight Q (4 × 4, symmetric positive semi-definite): "diag:1,1,1,1" or

@@ -15,7 +15,8 @@ use whipple_report::{MapData, StudyData, design_map, design_study};
 
 use crate::bike::{RunContext, load};
 use crate::output;
-use crate::speeds::parse_range;
+use crate::speeds::{parse_range, parse_range_in};
+use whipple_front::units::SpeedUnit;
 
 /// Output formats of a design study.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -91,13 +92,18 @@ impl Quantity {
         }
     }
 
-    /// The legend's two lines for the outline (the band's ends short enough for the legend:
-    /// a band typed in km/h is 4.4444–6.3889 m/s, not sixteen digits each).
-    fn outline(self, band: Option<(f64, f64)>) -> [String; 2] {
+    /// The legend's two lines for the outline, the band in the unit it was typed in (its ends
+    /// short enough for the legend: 16–23 km/h, not 4.444444444444445–6.388888888888889 m/s).
+    fn outline(self, band: Option<(f64, f64)>, unit: SpeedUnit) -> [String; 2] {
         match (self, band) {
             (Quantity::StableOver, Some((a, b))) => [
                 "self-stable over".to_string(),
-                format!("{}–{} m/s (inside)", legend_speed(a), legend_speed(b)),
+                format!(
+                    "{}–{} {} (inside)",
+                    legend_speed(unit.from_si(a)),
+                    legend_speed(unit.from_si(b)),
+                    unit.symbol()
+                ),
             ],
             _ => [
                 "self-stable range".to_string(),
@@ -136,7 +142,7 @@ pub struct StudyArgs {
     /// Also compute the double-root speed v_d (about twice the time).
     #[arg(long)]
     pub double_root: bool,
-    /// A band of speeds A:B [m/s, or km/h after them; results print in m/s] inside the range: is each design self-stable at every speed
+    /// A band of speeds A:B [m/s, or km/h after them; results in m/s, and in km/h too if typed so] inside the range: is each design self-stable at every speed
     /// of it, and by what margin (the columns stable_over, band_margin_below and
     /// band_margin_above; --quantity stable-over maps it).
     #[arg(long, allow_hyphen_values = true)]
@@ -387,9 +393,12 @@ pub fn run(cx: &RunContext, args: &DesignArgs<'_>) -> Result<()> {
     if args.quantity == Quantity::MaxReal && args.speed.is_none() && !speed_axis {
         bail!("--quantity max-real needs --speed V (or an axis named speed)");
     }
-    let band = match args.band {
-        Some(text) => Some(parse_range(text, "--band")?),
-        None => None,
+    let (band, band_unit) = match args.band {
+        Some(text) => {
+            let (band, unit) = parse_range_in(text, "--band")?;
+            (Some(band), unit)
+        }
+        None => (None, SpeedUnit::MetresPerSecond),
     };
     if args.quantity == Quantity::StableOver && band.is_none() {
         bail!("--quantity stable-over needs --band A:B (for example --band 4:8)");
@@ -559,7 +568,7 @@ pub fn run(cx: &RunContext, args: &DesignArgs<'_>) -> Result<()> {
                 y: (y.axis.start, y.axis.stop, y.axis.count),
                 values,
                 stable,
-                outline: args.quantity.outline(band),
+                outline: args.quantity.outline(band, band_unit),
                 diverging: args.quantity == Quantity::MaxReal,
                 quantity: args.quantity.label().to_string(),
                 base: bx.zip(by),
@@ -852,10 +861,12 @@ pub fn merge(
             y: (y.1, y.2, y.3),
             values,
             stable,
+            // The shards' header keeps the band in m/s.
             outline: quantity.outline(
                 d["band"]
                     .as_array()
                     .and_then(|b| Some((b.first()?.as_f64()?, b.get(1)?.as_f64()?))),
+                SpeedUnit::MetresPerSecond,
             ),
             diverging: quantity == Quantity::MaxReal,
             quantity: quantity.label().to_string(),

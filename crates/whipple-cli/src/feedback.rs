@@ -17,9 +17,10 @@ use whipple::advanced::linear::{Input, LinearSystem, Output, StateVariable, Syst
 use crate::bike::{RunContext, load};
 use crate::commands::{EigenRows, MAX_EIG_SPEEDS, MAX_PLOT_SPEEDS, emit};
 use crate::control::complex;
-use crate::output::{self, Sink, Target, number, parse_triple};
-use crate::speeds::{parse_range, worded_table};
+use crate::output::{self, Sink, Target, number, parse_triple_in};
+use crate::speeds::{parse_range_in, worded_table};
 use crate::{TableFormat, TextFormat};
+use whipple_front::units::SpeedUnit;
 
 /// The states K reads, in the order of its columns.
 const STATES: &str = "φ, δ, φ̇, δ̇";
@@ -292,9 +293,12 @@ pub(crate) fn feedback(cx: &RunContext, args: &FeedbackArgs) -> Result<()> {
     })?;
     let (first, last) = closed.gains().speed_range();
     let scheduled = first.is_finite();
+    // The unit the speeds were typed in (--speeds, else --range): km/h gives them in km/h too.
+    let mut unit = SpeedUnit::MetresPerSecond;
     let grid = match args.speeds {
         Some(text) => {
-            let (start, stop, step) = parse_triple(text, "--speeds")?;
+            let ((start, stop, step), typed) = parse_triple_in(text, "--speeds")?;
+            unit = typed;
             let grid =
                 whipple::advanced::sweep::SpeedGrid::new(start, stop, step).context("--speeds")?;
             if grid.len() > MAX_EIG_SPEEDS {
@@ -311,7 +315,13 @@ pub(crate) fn feedback(cx: &RunContext, args: &FeedbackArgs) -> Result<()> {
         None => (0..=100).map(|i| f64::from(i) / 10.0).collect(),
     };
     let (lo, hi) = match args.range {
-        Some(text) => parse_range(text, "--range")?,
+        Some(text) => {
+            let (range, typed) = parse_range_in(text, "--range")?;
+            if args.speeds.is_none() {
+                unit = typed;
+            }
+            range
+        }
         None if scheduled => (first, last),
         None => (0.0, f64::INFINITY),
     };
@@ -329,7 +339,7 @@ pub(crate) fn feedback(cx: &RunContext, args: &FeedbackArgs) -> Result<()> {
         (None, None) => Sink::stdout(),
     };
     let plot_sink = plot.as_ref().map(Target::open).transpose()?;
-    let mut rows = EigenRows::new(args.format, sweep.modes);
+    let mut rows = EigenRows::new(args.format, sweep.modes).typed_in(unit);
     let mut fields = serde_json::Map::new();
     fields.insert("inputs".into(), json!(input_names(&inputs)));
     fields.insert(
@@ -353,7 +363,10 @@ pub(crate) fn feedback(cx: &RunContext, args: &FeedbackArgs) -> Result<()> {
     tail_fields.insert("critical_speeds".into(), serde_json::to_value(&critical)?);
     let mut tail = rows.tail(&bike.warnings_json(), &tail_fields)?;
     if args.format == TableFormat::Table {
-        tail = format!("\n{}", worded_table(&label, &critical, None, "stable")?);
+        tail = format!(
+            "\n{}",
+            worded_table(&label, &critical, None, "stable", unit)?
+        );
     }
     sink.text(&tail)?;
     let mut finished = vec![sink.finish()?];
@@ -370,6 +383,7 @@ pub(crate) fn feedback(cx: &RunContext, args: &FeedbackArgs) -> Result<()> {
             &shown,
             &critical,
             None,
+            unit,
             target.path(),
         )?;
         plot_sink.bytes(&bytes)?;
@@ -490,7 +504,7 @@ pub(crate) fn lqr(
             }
         }
         (None, Some(text)) => {
-            let (start, stop, step) = parse_triple(text, "--speeds")?;
+            let ((start, stop, step), unit) = parse_triple_in(text, "--speeds")?;
             let grid = whipple::speed_grid(start, stop, step).context("--speeds")?;
             let schedule = lqr_schedule(&bike.benchmark, &request, &grid, &q, &r)
                 .map_err(|e| named(e, &LQR_OPTIONS))?;
@@ -498,7 +512,7 @@ pub(crate) fn lqr(
                 .map_err(|e| named(e, &LQR_OPTIONS))?;
             let (first, last) = closed.gains().speed_range();
             let critical = closed.critical_speeds(first, last)?;
-            lqr_schedule_text(&bike, &names, &grid, &schedule, &critical, format)?
+            lqr_schedule_text(&bike, &names, &grid, &schedule, &critical, format, unit)?
         }
         _ => bail!("give --speed V (one speed) or --speeds START:STOP:STEP (a schedule)"),
     };
@@ -512,6 +526,7 @@ fn lqr_schedule_text(
     schedule: &whipple::advanced::control::LqrSchedule,
     critical: &CriticalSpeeds,
     format: TextFormat,
+    unit: SpeedUnit,
 ) -> Result<String> {
     Ok(match format {
         TextFormat::Json => {
@@ -537,9 +552,10 @@ fn lqr_schedule_text(
         TextFormat::Table => {
             let mut t = format!(
                 "{}: LQR gain schedule, inputs {}, K's columns {STATES} (u = r − K x)\n  \
-                 v [m/s]   K (row by row)   residual   slowest closed-loop pole [1/s]\n",
+                 v [{}]   K (row by row)   residual   slowest closed-loop pole [1/s]\n",
                 bike.label,
-                names.join(", ")
+                names.join(", "),
+                unit.symbol()
             );
             for (v, s) in grid.iter().zip(&schedule.solutions) {
                 let k = s
@@ -557,12 +573,11 @@ fn lqr_schedule_text(
                     .map(complex)
                     .transpose()?
                     .unwrap_or_default();
-                writeln!(
-                    t,
-                    "  {:<9} [{k}]   {:.1e}   {slowest}",
-                    number(*v)?,
-                    s.residual
-                )?;
+                let v = match unit {
+                    SpeedUnit::MetresPerSecond => number(*v)?,
+                    SpeedUnit::KilometresPerHour => output::kmh_number(*v)?,
+                };
+                writeln!(t, "  {v:<9} [{k}]   {:.1e}   {slowest}", s.residual)?;
             }
             t.push('\n');
             t.push_str(&worded_table(
@@ -570,6 +585,7 @@ fn lqr_schedule_text(
                 critical,
                 None,
                 "stable",
+                unit,
             )?);
             t
         }

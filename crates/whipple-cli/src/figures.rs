@@ -23,6 +23,7 @@ pub fn eigen_plot_bytes(
     sweep: &EigenSweep,
     critical: &CriticalSpeeds,
     sigma_bands: Option<&[[(f64, f64); 4]]>,
+    speed_unit: whipple_front::units::SpeedUnit,
     path: &Path,
 ) -> Result<Vec<u8>> {
     let options = EigenPlotOptions {
@@ -42,6 +43,7 @@ pub fn eigen_plot_bytes(
             "stable"
         }
         .to_string(),
+        speed_unit,
         ..EigenPlotOptions::default()
     };
     let figure = whipple_report::eigen_plot(sweep, critical, &options)?;

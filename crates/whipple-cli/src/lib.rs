@@ -36,7 +36,10 @@ use clap::{Parser, Subcommand, ValueEnum};
 /// The units rule, under every command's help.
 const UNITS_HELP: &str = "Units: a speed is in m/s, or in km/h with km/h after the value \
 (--speed 18km/h, --range 15:25km/h, --speeds 10:30:0.5km/h, --speeds 3,5,7km/h, \
---x speed=10:30:21km/h); results print in m/s (a design axis prints its values as typed). A parameter's name takes _mm after a length and \
+--x speed=10:30:21km/h); results print in m/s. Typed in km/h, speeds, eig, modes, sensitivity, \
+response, control's closed loops, turns and a map's --band give the speeds in km/h too: beside each \
+speed, on eig's speed axis (its table and plot; its CSV and JSON add a v_kmh column, v stays m/s); \
+a design axis prints its values as typed. A parameter's name takes _mm after a length and \
 _deg after an angle, in design axes (--x trail_mm=40:120:81) and in TOML and JSON files \
 (c_mm = 80, lam_deg = 18).";
 
@@ -74,10 +77,28 @@ struct Cli {
 
 /// A speed option as typed (`4.6`, `18km/h`), in m/s: whipple-front's one reading of speeds.
 fn speed_arg(text: &str) -> Result<f64, String> {
-    whipple_front::units::speed(text).map_err(|e| match e {
+    Ok(typed_speed_arg(text)?.si)
+}
+
+/// A speed as typed: in m/s, and the unit it was typed in (a command that echoes it answers in
+/// that unit too).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TypedSpeed {
+    /// The speed [m/s].
+    pub si: f64,
+    /// The unit it was typed in.
+    pub unit: whipple_front::units::SpeedUnit,
+}
+
+/// [`speed_arg`], with the unit the speed was typed in.
+fn typed_speed_arg(text: &str) -> Result<TypedSpeed, String> {
+    let rule = |e: whipple::Error| match e {
         whipple::Error::InvalidArgument { rule, .. } => rule,
         other => other.to_string(),
-    })
+    };
+    let (_, unit) = whipple_front::units::split_speed(text).map_err(rule)?;
+    let si = whipple_front::units::speed(text).map_err(rule)?;
+    Ok(TypedSpeed { si, unit })
 }
 
 fn parse_format(name: &str) -> Result<whipple::advanced::io::Format, String> {
@@ -187,7 +208,7 @@ enum Command {
     Eig {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s), both ends included.
+        /// Speeds START:STOP:STEP in m/s (or km/h after them; results in m/s, and in km/h too if typed so), both ends included.
         #[arg(long, default_value = "0:10:0.1", allow_hyphen_values = true)]
         speeds: String,
         /// Output format.
@@ -214,9 +235,9 @@ enum Command {
     Modes {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
-        #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
-        speed: f64,
+        /// Forward speed in m/s (or km/h after it: 18km/h; results in m/s, and in km/h too if typed so).
+        #[arg(value_parser = crate::typed_speed_arg, long, allow_hyphen_values = true)]
+        speed: TypedSpeed,
         /// Output format.
         #[arg(long, value_enum, default_value = "table")]
         format: TextFormat,
@@ -225,7 +246,7 @@ enum Command {
     Speeds {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Speed range LO:HI in m/s (or km/h after them; results print in m/s); HI may be `inf` (default: every speed v >= 0).
+        /// Speed range LO:HI in m/s (or km/h after them; results in m/s, and in km/h too if typed so); HI may be `inf` (default: every speed v >= 0).
         #[arg(long, allow_hyphen_values = true)]
         range: Option<String>,
         /// Output format.
@@ -284,10 +305,10 @@ enum Command {
     Sensitivity {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Also the derivatives of the weave's and capsize's real parts at this speed [m/s, or km/h after it: 18km/h; results print in m/s].
-        #[arg(value_parser = crate::speed_arg, long)]
-        speed: Option<f64>,
-        /// Speed range LO:HI searched for the critical speeds, in m/s (or km/h after them; results print in m/s).
+        /// Also the derivatives of the weave's and capsize's real parts at this speed [m/s, or km/h after it: 18km/h; results in m/s, and in km/h too if typed so].
+        #[arg(value_parser = crate::typed_speed_arg, long)]
+        speed: Option<TypedSpeed>,
+        /// Speed range LO:HI searched for the critical speeds, in m/s (or km/h after them; results in m/s, and in km/h too if typed so).
         #[arg(long, default_value = "0:20", allow_hyphen_values = true)]
         range: String,
         /// Output format.

@@ -31,6 +31,7 @@ use std::fs::{self, File, OpenOptions};
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
+use whipple_front::units::SpeedUnit;
 
 use anyhow::{Context, Result, anyhow, bail};
 
@@ -792,6 +793,11 @@ pub fn number(x: f64) -> Result<String> {
 /// Parses speeds `START:STOP:STEP` into three finite numbers of m/s: `km/h` after them
 /// (`10:30:0.5km/h`) gives them in km/h (whipple-front's [`split_speed`](whipple_front::units::split_speed)).
 pub fn parse_triple(text: &str, option: &str) -> Result<(f64, f64, f64)> {
+    Ok(parse_triple_in(text, option)?.0)
+}
+
+/// [`parse_triple`], with the unit the speeds were typed in.
+pub fn parse_triple_in(text: &str, option: &str) -> Result<((f64, f64, f64), SpeedUnit)> {
     let (numbers, unit) = whipple_front::units::split_speed(text)
         .map_err(|e| anyhow!("{option}: {}", crate::speeds::rule_of(e)))?;
     let parts: Vec<&str> = numbers.split(':').collect();
@@ -799,10 +805,45 @@ pub fn parse_triple(text: &str, option: &str) -> Result<(f64, f64, f64)> {
         bail!("{option} expects START:STOP:STEP (km/h after them for km/h), got `{text}`");
     }
     Ok((
-        unit.to_si(parse_finite(parts[0], option)?),
-        unit.to_si(parse_finite(parts[1], option)?),
-        unit.to_si(parse_finite(parts[2], option)?),
+        (
+            unit.to_si(parse_finite(parts[0], option)?),
+            unit.to_si(parse_finite(parts[1], option)?),
+            unit.to_si(parse_finite(parts[2], option)?),
+        ),
+        unit,
     ))
+}
+
+/// A speed in km/h as the outputs print it beside m/s: to twelve significant digits, so that
+/// a speed typed in km/h reads back as typed (10 km/h is 2.7777777777777777 m/s, whose product
+/// with 3.6 is not 10 in floating point).
+pub fn kmh_number(v: f64) -> Result<String> {
+    let kmh = SpeedUnit::KilometresPerHour.from_si(v);
+    let rounded: f64 = format!("{kmh:.11e}").parse().unwrap_or(kmh);
+    number(rounded)
+}
+
+/// A speed as the text outputs print it: `5 m/s`, or `5 m/s (18 km/h)` where the speeds were
+/// typed in km/h.
+pub fn speed_words(v: f64, unit: SpeedUnit) -> Result<String> {
+    Ok(format!("{} m/s{}", number(v)?, kmh_beside(v, unit)?))
+}
+
+/// A speed as a figure's legend names it, in the unit it was typed in: `3 m/s`, `10 km/h`.
+pub fn speed_label(v: f64, unit: SpeedUnit) -> Result<String> {
+    Ok(match unit {
+        SpeedUnit::MetresPerSecond => format!("{} m/s", number(v)?),
+        SpeedUnit::KilometresPerHour => format!("{} km/h", kmh_number(v)?),
+    })
+}
+
+/// What follows a speed printed in m/s where the speeds were typed in km/h: ` (15.4525771308
+/// km/h)`; nothing for m/s.
+pub fn kmh_beside(v: f64, unit: SpeedUnit) -> Result<String> {
+    Ok(match unit {
+        SpeedUnit::MetresPerSecond => String::new(),
+        SpeedUnit::KilometresPerHour => format!(" ({} km/h)", kmh_number(v)?),
+    })
 }
 
 fn parse_finite(text: &str, option: &str) -> Result<f64> {

@@ -4,6 +4,7 @@
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use whipple_front::units::SpeedUnit;
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::Subcommand;
@@ -28,7 +29,7 @@ pub enum ResponseCommand {
     Bode {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Forward speeds in m/s (or km/h after them; results print in m/s), separated by commas.
+        /// Forward speeds in m/s (or km/h after them; results in m/s, and in km/h too if typed so), separated by commas.
         #[arg(long, default_value = "3,5,7", allow_hyphen_values = true)]
         speeds: String,
         /// An input, repeatable: lean_torque, steer_torque, lateral_force:X,Z (the point of
@@ -199,8 +200,9 @@ struct Bode<'a> {
     gains: Option<&'a str>,
 }
 
-/// Speeds as typed, `3,5,7` (m/s) or `10,18,25km/h`, each finite.
-fn parse_speeds(text: &str) -> Result<Vec<f64>> {
+/// Speeds as typed, `3,5,7` (m/s) or `10,18,25km/h`, each finite; in m/s, with the unit
+/// they were typed in.
+fn parse_speeds(text: &str) -> Result<(Vec<f64>, SpeedUnit)> {
     let (numbers, unit) = whipple_front::units::split_speed(text)
         .map_err(|e| anyhow!("--speeds: {}", crate::speeds::rule_of(e)))?;
     let speeds = numbers
@@ -225,7 +227,7 @@ fn parse_speeds(text: &str) -> Result<Vec<f64>> {
             speeds.len()
         );
     }
-    Ok(speeds)
+    Ok((speeds, unit))
 }
 
 /// `x + yi` with the numbers as results print.
@@ -269,7 +271,7 @@ fn bode(cx: &RunContext, args: &Bode<'_>) -> Result<()> {
         output::distinct(a, b)?;
     }
     let bike = load(cx, args.bike)?;
-    let speeds = parse_speeds(args.speeds)?;
+    let (speeds, speed_unit) = parse_speeds(args.speeds)?;
     let inputs: Vec<&str> = args.inputs.iter().map(String::as_str).collect();
     let outputs: Vec<&str> = args.outputs.iter().map(String::as_str).collect();
     let req = request(&inputs, &outputs).map_err(|e| {
@@ -366,7 +368,11 @@ fn bode(cx: &RunContext, args: &Bode<'_>) -> Result<()> {
                 let unit = format!("{}/({})", output.unit(), input.unit());
                 match args.format {
                     TextFormat::Table => {
-                        write!(summary, "\nv = {} m/s, {input} → {output}\n", number(*v)?)?;
+                        write!(
+                            summary,
+                            "\nv = {}, {input} → {output}\n",
+                            output::speed_words(*v, speed_unit)?
+                        )?;
                         let list = |values: &[Complex64], mark: bool| -> Result<String> {
                             if values.is_empty() {
                                 return Ok("none".into());
@@ -477,7 +483,7 @@ fn bode(cx: &RunContext, args: &Bode<'_>) -> Result<()> {
             .map(|(v, _, rows)| {
                 let f = &rows[0][0].1;
                 Ok(whipple_report::BodeCurve {
-                    name: format!("{} m/s", number(*v)?),
+                    name: output::speed_label(*v, speed_unit)?,
                     frequencies: grid.clone(),
                     magnitude_db: f.magnitude_db.clone(),
                     phase_deg: f.phase.iter().map(|p| p.to_degrees()).collect(),

@@ -16,7 +16,7 @@ use crate::TextFormat;
 use crate::bike::{LoadedBike, RunContext, load};
 use crate::commands::emit;
 use crate::output::{number, table_and_plot};
-use crate::speeds::parse_range;
+use whipple_front::units::SpeedUnit;
 
 /// Arguments of `whipple turn`.
 #[derive(Args, Debug)]
@@ -48,7 +48,7 @@ pub struct TurnArgs {
 pub struct TurnsArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     pub bike: String,
-    /// Speeds traced, LO:HI in m/s (or km/h after them; results print in m/s) (default 0:20).
+    /// Speeds traced, LO:HI in m/s (or km/h after them; results in m/s, and in km/h too if typed so) (default 0:20).
     #[arg(long, allow_hyphen_values = true)]
     pub range: Option<String>,
     /// Output format of the summary.
@@ -295,9 +295,9 @@ pub fn turns(cx: &RunContext, args: &TurnsArgs) -> Result<()> {
     let (out, plot) = table_and_plot(args.out.as_deref(), args.plot.as_deref())?;
     let bike = load(cx, &args.bike)?;
     let model = model_of(&bike)?;
-    let (lo, hi) = match &args.range {
-        Some(text) => parse_range(text, "--range")?,
-        None => (0.0, 20.0),
+    let ((lo, hi), unit) = match &args.range {
+        Some(text) => crate::speeds::parse_range_in(text, "--range")?,
+        None => ((0.0, 20.0), SpeedUnit::MetresPerSecond),
     };
     if !(lo >= 0.0 && hi.is_finite()) {
         bail!("--range: the speeds must lie in 0..HI with a finite HI, got {lo}:{hi}");
@@ -331,7 +331,7 @@ pub fn turns(cx: &RunContext, args: &TurnsArgs) -> Result<()> {
                 }))?
             )
         }
-        TextFormat::Table => summary(&bike.label, &families, lo, hi)?,
+        TextFormat::Table => summary(&bike.label, &families, (lo, hi), unit)?,
     };
     if let Some(target) = &plot {
         let data = figure_data(&model, &bike.label, &families, lo, hi)?;
@@ -344,14 +344,18 @@ pub fn turns(cx: &RunContext, args: &TurnsArgs) -> Result<()> {
     emit(&text, out.as_ref())
 }
 
-fn summary(label: &str, families: &[Family], lo: f64, hi: f64) -> Result<String> {
+fn summary(
+    label: &str,
+    families: &[Family],
+    (lo, hi): (f64, f64),
+    unit: SpeedUnit,
+) -> Result<String> {
     let mut t = String::new();
     writeln!(
         t,
-        "{label}: hands-free steady turns, {} family(ies) leaning right (left leans are their mirror images), speeds {}..{} m/s",
+        "{label}: hands-free steady turns, {} family(ies) leaning right (left leans are their mirror images), speeds {}",
         families.len(),
-        number(lo)?,
-        number(hi)?
+        crate::speeds::range_words(lo, hi, unit)?
     )?;
     writeln!(
         t,

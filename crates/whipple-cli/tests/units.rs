@@ -139,7 +139,8 @@ fn file_keys_in_a_unit_that_does_not_fit_or_twice_are_refused() {
     assert!(err.contains("rR"), "{err}");
 }
 
-/// km/h after any speed argument: the same run as its value in m/s.
+/// km/h after any speed argument: the same run as its value in m/s (the JSON and CSV, which
+/// stay in m/s; `eig`'s CSV adds its `v_kmh` column last).
 #[test]
 fn speeds_take_km_per_h_after_the_value() {
     let same = |kmh: &[&str], si: &[&str]| {
@@ -147,33 +148,89 @@ fn speeds_take_km_per_h_after_the_value() {
     };
     let (a, b) = (ms(15.0), ms(25.0));
     same(
-        &["speeds", "--bike", "benchmark", "--range", "15:25km/h"],
+        &[
+            "speeds",
+            "--bike",
+            "benchmark",
+            "--range",
+            "15:25km/h",
+            "--format",
+            "json",
+        ],
         &[
             "speeds",
             "--bike",
             "benchmark",
             "--range",
             &format!("{a}:{b}"),
+            "--format",
+            "json",
         ],
     );
     same(
-        &["speeds", "--bike", "benchmark", "--range", "15:km/h"],
-        &["speeds", "--bike", "benchmark", "--range", &format!("{a}:")],
-    );
-    let (start, stop, step) = (ms(10.0), ms(30.0), ms(5.0));
-    same(
-        &["eig", "--bike", "benchmark", "--speeds", "10:30:5km/h"],
         &[
-            "eig",
+            "speeds",
             "--bike",
             "benchmark",
-            "--speeds",
-            &format!("{start}:{stop}:{step}"),
+            "--range",
+            "15:km/h",
+            "--format",
+            "json",
+        ],
+        &[
+            "speeds",
+            "--bike",
+            "benchmark",
+            "--range",
+            &format!("{a}:"),
+            "--format",
+            "json",
         ],
     );
+    let (start, stop, step) = (ms(10.0), ms(30.0), ms(5.0));
+    let kmh_csv = stdout(&whipple(&[
+        "eig",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "10:30:5km/h",
+        "--format",
+        "csv",
+    ]));
+    let si_csv = stdout(&whipple(&[
+        "eig",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        &format!("{start}:{stop}:{step}"),
+        "--format",
+        "csv",
+    ]));
+    let without_last = |text: &str| -> Vec<String> {
+        text.lines()
+            .map(|l| l.rsplit_once(',').map_or(l, |(head, _)| head).to_string())
+            .collect()
+    };
+    assert_eq!(without_last(&kmh_csv), si_csv.lines().collect::<Vec<_>>());
     same(
-        &["modes", "--bike", "benchmark", "--speed", "18km/h"],
-        &["modes", "--bike", "benchmark", "--speed", &ms(18.0)],
+        &[
+            "modes",
+            "--bike",
+            "benchmark",
+            "--speed",
+            "18km/h",
+            "--format",
+            "json",
+        ],
+        &[
+            "modes",
+            "--bike",
+            "benchmark",
+            "--speed",
+            &ms(18.0),
+            "--format",
+            "json",
+        ],
     );
     same(
         &["modes", "--bike", "benchmark", "--speed", "4.6m/s"],
@@ -198,6 +255,158 @@ fn speeds_take_km_per_h_after_the_value() {
             "--range",
             &format!("0:{}", ms(36.0)),
         ],
+    );
+}
+
+/// Speeds typed in km/h are answered in km/h too: after each m/s of `speeds` (± σ in both),
+/// `sensitivity`'s base and the headings of `modes` and `response`; `eig`'s table, CSV, JSON
+/// and plot against km/h; a map's band named in km/h; typed in m/s, m/s alone.
+#[test]
+fn speeds_typed_in_km_per_h_are_answered_in_km_per_h_too() {
+    let out = |args: &[&str]| stdout(&whipple(args));
+    let speeds = out(&["speeds", "--bike", "benchmark", "--range", "10:30km/h"]);
+    for expected in [
+        "critical speeds for 2.7777777777777777..8.333333333333334 m/s (10..30 km/h)",
+        "weave speed v_w        4.292382536341103 m/s (15.4525771308 km/h)",
+        "capsize speed v_c      6.024262015388365 m/s (21.6873432554 km/h)",
+        "4.292382536341103 .. 6.024262015388365 m/s (15.4525771308 .. 21.6873432554 km/h)",
+    ] {
+        assert!(speeds.contains(expected), "{expected} in\n{speeds}");
+    }
+    let plain = out(&["speeds", "--bike", "benchmark", "--range", "0:10"]);
+    assert!(!plain.contains("km/h"), "{plain}");
+    // With σ (c ± 1 mm): the km/h rounded to its own σ, which is 3.6 times the m/s one.
+    let file = designer_file("units-kmh-sigma", DESIGNER);
+    let sigma = out(&["speeds", "--bike", &file, "--range", "0:40km/h"]);
+    let line = sigma
+        .lines()
+        .find(|l| l.contains("weave speed"))
+        .unwrap_or_default();
+    let numbers: Vec<f64> = line
+        .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .filter_map(|t| t.parse().ok())
+        .collect();
+    // v_w ± σ m/s (v_w ± σ km/h): the second pair 3.6 times the first, to their roundings.
+    assert!(line.contains(" m/s (") && line.contains(" km/h)"), "{line}");
+    assert!(
+        (numbers[2] - 3.6 * numbers[0]).abs() < 0.01
+            && (numbers[3] - 3.6 * numbers[1]).abs() < 0.01,
+        "{line}: {numbers:?}"
+    );
+    let eig = out(&["eig", "--bike", "benchmark", "--speeds", "10:30:10km/h"]);
+    assert!(
+        eig.starts_with("benchmark: eigenvalues [1/s] against forward speed v [km/h]"),
+        "{eig}"
+    );
+    let first: Vec<&str> = eig
+        .lines()
+        .nth(2)
+        .unwrap_or_default()
+        .split_whitespace()
+        .collect();
+    assert_eq!(first.first(), Some(&"10.0000"), "{eig}");
+    let csv = out(&[
+        "eig",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "10:30:10km/h",
+        "--format",
+        "csv",
+    ]);
+    let lines: Vec<&str> = csv.lines().collect();
+    assert!(lines[0].ends_with(",im4,v_kmh"), "{csv}");
+    assert!(
+        lines[1].starts_with("2.7777777777777777,") && lines[1].ends_with(",10"),
+        "{csv}"
+    );
+    assert!(lines[3].ends_with(",30"), "{csv}");
+    let json: serde_json::Value = serde_json::from_str(&out(&[
+        "eig",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "10:30:10km/h",
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    assert_eq!(json["rows"][1]["v_kmh"], 20.0);
+    assert_eq!(json["rows"][1]["v"], 20.0 / 3.6);
+    let dir = scratch("units-kmh-plots");
+    let plot = dir.join("eig.svg");
+    whipple(&[
+        "eig",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "0:40:0.5km/h",
+        "--plot",
+        plot.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&plot).unwrap();
+    for expected in [
+        "forward speed v [km/h]",
+        "v_w = 15.453 km/h",
+        "15.453 – 21.687 km/h",
+    ] {
+        assert!(svg.contains(expected), "{expected} in the eigenvalue plot");
+    }
+    let modes = out(&["modes", "--bike", "benchmark", "--speed", "20km/h"]);
+    assert!(
+        modes.starts_with("benchmark at v = 5.555555555555555 m/s (20 km/h):"),
+        "{modes}"
+    );
+    let base = out(&[
+        "sensitivity",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "18km/h",
+        "--range",
+        "0:72km/h",
+    ]);
+    assert!(
+        base.contains("v_w = 4.292383 m/s (15.45258 km/h)"),
+        "{base}"
+    );
+    assert!(base.contains("dRe_w/dp@18km/h"), "{base}");
+    let bode = out(&[
+        "response",
+        "bode",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "10,20km/h",
+        "--input",
+        "steer_torque",
+        "--output",
+        "lean",
+    ]);
+    assert!(
+        bode.contains("v = 2.7777777777777777 m/s (10 km/h), steer_torque → lean"),
+        "{bode}"
+    );
+    let map = dir.join("map.svg");
+    whipple(&[
+        "map",
+        "--bike",
+        "benchmark",
+        "--x",
+        "trail=0.06:0.12:3",
+        "--y",
+        "head_angle_deg=70:76:3",
+        "--band",
+        "16:23km/h",
+        "--quantity",
+        "stable-over",
+        "--plot",
+        map.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&map).unwrap();
+    assert!(
+        svg.contains("16–23 km/h (inside)"),
+        "the band in km/h in the map's legend"
     );
 }
 

@@ -11,7 +11,8 @@
 //!   ([`whipple::advanced::table`], `ParameterInfo::is_angle`, `is_length`);
 //! - **a speed carries its unit after the value**: `18km/h`, `15:25km/h`, `10:30:0.5km/h`,
 //!   `3,5,7km/h` (the suffix once, after the whole value, for every number of it); without it
-//!   m/s ([`split_speed`], [`speed`]). Results print in m/s.
+//!   m/s ([`split_speed`], [`speed`]). Results print in m/s; a front end answers speeds typed
+//!   in km/h in km/h too ([`SpeedUnit::from_si`]).
 //!
 //! This module converts and spells; the units themselves are the table's.
 

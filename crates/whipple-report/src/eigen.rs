@@ -7,6 +7,7 @@ use plotters::element::DashedPathElement;
 use plotters::prelude::*;
 use whipple::advanced::modes::Mode;
 use whipple::{CriticalSpeeds, EigenSweep};
+use whipple_front::units::SpeedUnit;
 
 use crate::clip::Rect;
 use crate::draw::{
@@ -38,6 +39,9 @@ pub struct EigenPlotOptions {
     /// What the shaded speed ranges are called in the legend (default "self-stable"; a closed
     /// loop's are "stable").
     pub stable_label: String,
+    /// The unit of the speed axis, its critical-speed labels and its legend's ranges (default
+    /// m/s; km/h for speeds typed in km/h). `x_range` stays in m/s.
+    pub speed_unit: SpeedUnit,
 }
 
 impl Default for EigenPlotOptions {
@@ -50,6 +54,7 @@ impl Default for EigenPlotOptions {
             size: (1000, 620),
             sigma_bands: None,
             stable_label: "self-stable".to_string(),
+            speed_unit: SpeedUnit::MetresPerSecond,
         }
     }
 }
@@ -177,20 +182,41 @@ pub fn eigen_comparison_plot(
     )
 }
 
-fn build(bikes: Vec<BikeData>, options: &EigenPlotOptions) -> Result<Figure> {
+fn build(mut bikes: Vec<BikeData>, options: &EigenPlotOptions) -> Result<Figure> {
     check_range("eigenvalue axis range", options.y_range)?;
     if let Some(r) = options.x_range {
         check_range("speed axis range", r)?;
     }
+    // Drawn in the speed unit asked for: every speed converted once, here.
+    let unit = options.speed_unit;
+    let size = options.size;
+    let mut options = options.clone();
+    options.x_range = options
+        .x_range
+        .map(|(a, b)| (unit.from_si(a), unit.from_si(b)));
+    for b in &mut bikes {
+        for v in &mut b.sweep.speeds {
+            *v = unit.from_si(*v);
+        }
+        let c = &mut b.critical;
+        c.range = (unit.from_si(c.range.0), unit.from_si(c.range.1));
+        for speed in [
+            &mut c.double_root_speed,
+            &mut c.weave_speed,
+            &mut c.capsize_speed,
+        ] {
+            *speed = speed.map(|v| unit.from_si(v));
+        }
+        for (lo, hi) in &mut c.stable_speed_ranges {
+            (*lo, *hi) = (unit.from_si(*lo), unit.from_si(*hi));
+        }
+    }
     Figure {
         width: 100,
         height: 100,
-        content: Content::Eigen(Box::new(EigenFigure {
-            bikes,
-            options: options.clone(),
-        })),
+        content: Content::Eigen(Box::new(EigenFigure { bikes, options })),
     }
-    .with_size(options.size.0, options.size.1)
+    .with_size(size.0, size.1)
 }
 
 impl EigenFigure {
@@ -240,7 +266,10 @@ impl EigenFigure {
         }
         let mut chart = builder.build_cartesian_2d(x0..x1, y0..y1).or_draw(FIGURE)?;
         house_mesh(&mut chart, 14.0)
-            .x_desc("forward speed v [m/s]")
+            .x_desc(format!(
+                "forward speed v [{}]",
+                self.options.speed_unit.symbol()
+            ))
             .y_desc("eigenvalue λ [1/s]")
             .x_label_formatter(&tick)
             .y_label_formatter(&tick)
@@ -291,7 +320,11 @@ impl EigenFigure {
                     DARK.mix(0.75).stroke_width(1),
                 ))
                 .or_draw(FIGURE)?;
-                let mut label = format!("{symbol} = {} m/s", fixed(v, 3));
+                let mut label = format!(
+                    "{symbol} = {} {}",
+                    fixed(v, 3),
+                    self.options.speed_unit.symbol()
+                );
                 if let (Some(name), true) = (&b.name, self.bikes.len() > 1) {
                     label.push_str(&format!(" ({name})"));
                 }
@@ -444,10 +477,11 @@ impl EigenFigure {
                 ));
             }
             for &(lo, hi) in ranges {
+                let unit = self.options.speed_unit.symbol();
                 let words = if hi.is_finite() {
-                    format!("{} – {} m/s", fixed(lo, 3), fixed(hi, 3))
+                    format!("{} – {} {unit}", fixed(lo, 3), fixed(hi, 3))
                 } else {
-                    format!("above {} m/s", fixed(lo, 3))
+                    format!("above {} {unit}", fixed(lo, 3))
                 };
                 entries.push((Swatch::Note, words));
             }

@@ -993,10 +993,14 @@ await section("units typed in the page's fields: mm and degrees in the editor, k
   check(/^4\.2924\d* \(15\.45 km\/h\)$/.test(await text("weave-speed")), `v up to "36 km/h" in steps of "0.036 km/h": "${meta}", v_w ${await text("weave-speed")}`);
   // Typed in km/h, the critical speeds are given in km/h too, after their m/s.
   check(/^4\.292 – 6\.024 \(15\.45 – 21\.69 km\/h\)$/.test(await text("stable-ranges")), `the self-stable range in km/h too: "${await text("stable-ranges")}"`);
+  // The unit beside the fields follows them: km/h (the start, 0, is 0 in either), then both.
+  check((await text("v-unit")) === "km/h", `the speed fields' unit, typed in km/h: "${await text("v-unit")}"`);
   await page.fill("#v-stop", "10");
+  check((await text("v-unit")) === "m/s or km/h, as typed", `one field in m/s, one in km/h: "${await text("v-unit")}"`);
   await page.fill("#v-step", "0.01");
   await page.press("#v-step", "Enter");
   await waitForText("critical-meta", (t) => /^linear model, 0 – 10 m\/s$/.test(t), 15_000);
+  check((await text("v-unit")) === "m/s", `typed in m/s again: "${await text("v-unit")}"`);
   check(/^4\.2924\d*$/.test(await text("weave-speed")), `typed in m/s again, m/s alone: v_w ${await text("weave-speed")}`);
   // The design map's speed and band in km/h (both back ends: read from the page, not the wire).
   await open("?bike=preset:benchmark&tab=map");

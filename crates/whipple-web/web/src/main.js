@@ -389,6 +389,14 @@ function speedsTypedInKmh() {
   return ["v-start", "v-stop", "v-step"].some((id) => /km\/h$/.test($(id).value.trim()));
 }
 
+/** The unit beside the speed fields, as typed: m/s; km/h when every field but a zero is typed
+ * in km/h; both when they are mixed (each field is read in its own unit). */
+function showSpeedUnit() {
+  const typed = ["v-start", "v-stop", "v-step"].map((id) => $(id).value.trim()).filter((t) => t !== "" && parseNumber(t, "speed") !== 0);
+  const kmh = typed.filter((t) => /km\/h$/.test(t)).length;
+  $("v-unit").textContent = kmh === 0 ? "m/s" : kmh === typed.length ? "km/h" : "m/s or km/h, as typed";
+}
+
 function yLimit() {
   const y = parseNumber($("y-limit").value);
   return y && y > 0 ? y : 10;
@@ -757,6 +765,7 @@ async function applyUrl() {
         $("v-start").value = a;
         $("v-stop").value = b;
         $("v-step").value = c;
+        showSpeedUnit();
       }
     }
     if (s.ylim) $("y-limit").value = s.ylim;
@@ -818,6 +827,7 @@ $("compare-select").addEventListener("change", (e) => {
   recomputeCompare();
 });
 for (const id of ["v-start", "v-stop", "v-step"]) {
+  $(id).addEventListener("input", showSpeedUnit);
   $(id).addEventListener("change", () => {
     schedule();
     recomputeCompare();
