@@ -7,6 +7,7 @@
 //! speeds, a schedule, with the speeds it stabilizes).
 
 use std::fmt::Write as _;
+use whipple_front::units::SpeedUnit;
 
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
@@ -19,7 +20,7 @@ use whipple::advanced::roots::RealRoot;
 
 use crate::bike::{RunContext, load};
 use crate::commands::emit;
-use crate::output::{number, parse_triple};
+use crate::output::number;
 use crate::{TableFormat, TextFormat};
 
 /// The most speeds the controllability table holds.
@@ -44,7 +45,7 @@ enum ControlCommand {
         /// frame in metres, z down); repeat for several (default: steer_torque and lean_torque).
         #[arg(long = "input", allow_hyphen_values = true)]
         inputs: Vec<String>,
-        /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s) for the table, both ends included.
+        /// Speeds START:STOP:STEP in m/s (or km/h after them) for the table, both ends included.
         #[arg(long, default_value = "0:10:0.5", allow_hyphen_values = true)]
         speeds: String,
         /// Output format.
@@ -76,7 +77,7 @@ enum ControlCommand {
         /// several, in the order of K's rows (default: steer_torque).
         #[arg(long = "input", allow_hyphen_values = true)]
         inputs: Vec<String>,
-        /// Speeds START:STOP:STEP in m/s (or km/h after them; results in m/s, and in km/h too if typed so), both ends included (default: 0:10:0.1, or the
+        /// Speeds START:STOP:STEP in m/s (or km/h after them), both ends included (default: 0:10:0.1, or the
         /// schedule's first to last speed in 100 steps).
         #[arg(long, allow_hyphen_values = true)]
         speeds: Option<String>,
@@ -89,7 +90,7 @@ enum ControlCommand {
         /// Also draw the closed-loop eigenvalues against speed to this .svg or .png file.
         #[arg(long)]
         plot: Option<std::path::PathBuf>,
-        /// The speeds LO:HI in m/s (or km/h after them; results in m/s, and in km/h too if typed so) for the critical speeds; HI may be `inf` (default: every
+        /// The speeds LO:HI in m/s (or km/h after them) for the critical speeds; HI may be `inf` (default: every
         /// speed v >= 0, or the schedule's speeds).
         #[arg(long, allow_hyphen_values = true)]
         range: Option<String>,
@@ -100,10 +101,10 @@ enum ControlCommand {
     Lqr {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Forward speed in m/s, or km/h after it: 18km/h (or --speeds for a schedule; results print in m/s).
-        #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true, conflicts_with = "speeds")]
-        speed: Option<f64>,
-        /// Speeds START:STOP:STEP in m/s (or km/h after them; results in m/s, and in km/h too if typed so) for a gain schedule, both ends included.
+        /// Forward speed in m/s, or km/h after it: 18km/h (or --speeds for a schedule).
+        #[arg(value_parser = crate::typed_speed_arg, long, allow_hyphen_values = true, conflicts_with = "speeds")]
+        speed: Option<crate::TypedSpeed>,
+        /// Speeds START:STOP:STEP in m/s (or km/h after them) for a gain schedule, both ends included.
         #[arg(long, allow_hyphen_values = true)]
         speeds: Option<String>,
         /// The state weight Q (4 × 4, symmetric positive semi-definite): "diag:1,1,1,1" or
@@ -140,9 +141,9 @@ enum ControlCommand {
     Place {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
-        #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
-        speed: f64,
+        /// Forward speed in m/s (or km/h after it: 18km/h).
+        #[arg(value_parser = crate::typed_speed_arg, long, allow_hyphen_values = true)]
+        speed: crate::TypedSpeed,
         /// The input: lean_torque, steer_torque or lateral_force:X,Z.
         #[arg(long, default_value = "steer_torque", allow_hyphen_values = true)]
         input: String,
@@ -261,7 +262,7 @@ fn controllability(
         .map(|name| whipple_front::system::parse_input(name))
         .collect::<whipple::Result<_>>()
         .context("--input")?;
-    let (start, stop, step) = parse_triple(speeds, "--speeds")?;
+    let ((start, stop, step), unit) = crate::output::parse_triple_in(speeds, "--speeds")?;
     let grid = whipple::speed_grid(start, stop, step).context("--speeds")?;
     if grid.len() > MAX_CONTROL_SPEEDS {
         anyhow::bail!(
@@ -408,7 +409,8 @@ fn controllability(
                     t,
                     "  at each speed (numerical): the Kalman matrix's rank and condition, and each \
                      mode's λ [1/s] and modal\n  controllability |ℓᵀb|/(‖ℓ‖‖b‖) (0: not reached, 1: \
-                     best)\n  v [m/s]   rank   condition   modes"
+                     best)\n  v [{}]   rank   condition   modes",
+                    unit.symbol()
                 )?;
                 for r in rows {
                     let condition = if r.condition.is_finite() {
@@ -439,7 +441,10 @@ fn controllability(
                     writeln!(
                         t,
                         "  {:<9} {}/{}    {:<11} {}",
-                        number(r.speed)?,
+                        match unit {
+                            SpeedUnit::MetresPerSecond => number(r.speed)?,
+                            SpeedUnit::KilometresPerHour => crate::output::kmh_number(r.speed)?,
+                        },
                         r.rank,
                         r.states,
                         condition,

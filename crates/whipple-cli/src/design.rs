@@ -133,16 +133,16 @@ impl Quantity {
 /// The options `map` and `study` share.
 #[derive(clap::Args, Debug)]
 pub struct StudyArgs {
-    /// The speed [m/s, or km/h after it: 18km/h; results print in m/s] at which max_real (largest real part) is read.
-    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
-    pub speed: Option<f64>,
-    /// Speed range LO:HI [m/s, or km/h after them; results print in m/s] for the critical speeds (default: every speed v >= 0).
+    /// The speed [m/s, or km/h after it: 18km/h] at which max_real (largest real part) is read.
+    #[arg(value_parser = crate::typed_speed_arg, long, allow_hyphen_values = true)]
+    pub speed: Option<crate::TypedSpeed>,
+    /// Speed range LO:HI [m/s, or km/h after them] for the critical speeds (default: every speed v >= 0).
     #[arg(long, allow_hyphen_values = true)]
     pub range: Option<String>,
     /// Also compute the double-root speed v_d (about twice the time).
     #[arg(long)]
     pub double_root: bool,
-    /// A band of speeds A:B [m/s, or km/h after them; results in m/s, and in km/h too if typed so] inside the range: is each design self-stable at every speed
+    /// A band of speeds A:B [m/s, or km/h after them] inside the range: is each design self-stable at every speed
     /// of it, and by what margin (the columns stable_over, band_margin_below and
     /// band_margin_above; --quantity stable-over maps it).
     #[arg(long, allow_hyphen_values = true)]
@@ -173,7 +173,7 @@ impl StudyArgs {
             x,
             y,
             quantity,
-            speed: self.speed,
+            speed: self.speed.map(|t| t.si),
             range: self.range.as_deref(),
             double_root: self.double_root,
             band: self.band.as_deref(),

@@ -442,7 +442,7 @@ const LQR_OPTIONS: [(&str, &str); 5] = [
 pub(crate) fn lqr(
     cx: &RunContext,
     arg: &str,
-    speed: Option<f64>,
+    typed: Option<crate::TypedSpeed>,
     speeds: Option<&str>,
     q: &str,
     r: &str,
@@ -455,6 +455,7 @@ pub(crate) fn lqr(
     let request = request(inputs);
     let q = parse_matrix(q, "--q")?;
     let r = parse_matrix(r, "--r")?;
+    let speed = typed.map(|t| t.si);
     let text = match (speed, speeds) {
         (Some(v), None) => {
             if !v.is_finite() {
@@ -480,9 +481,12 @@ pub(crate) fn lqr(
                 }
                 TextFormat::Table => {
                     let mut t = format!(
-                        "{}: LQR at v = {} m/s, inputs {}, states {STATES}\n",
+                        "{}: LQR at v = {}, inputs {}, states {STATES}\n",
                         bike.label,
-                        number(v)?,
+                        output::speed_words(
+                            v,
+                            typed.map_or(SpeedUnit::MetresPerSecond, |t| t.unit)
+                        )?,
                         names.join(", ")
                     );
                     writeln!(t, "  K (u = r − K x) =")?;
@@ -596,11 +600,12 @@ fn lqr_schedule_text(
 pub(crate) fn place(
     cx: &RunContext,
     arg: &str,
-    speed: f64,
+    typed: crate::TypedSpeed,
     input: &str,
     poles: &str,
     format: TextFormat,
 ) -> Result<()> {
+    let speed = typed.si;
     let bike = load(cx, arg)?;
     if !speed.is_finite() {
         bail!("--speed: {speed} is not a finite speed");
@@ -638,9 +643,9 @@ pub(crate) fn place(
         }
         TextFormat::Table => {
             let mut t = format!(
-                "{}: pole placement at v = {} m/s, input {}, states {STATES}\n",
+                "{}: pole placement at v = {}, input {}, states {STATES}\n",
                 bike.label,
-                number(speed)?,
+                output::speed_words(speed, typed.unit)?,
                 names.join(", ")
             );
             writeln!(t, "  poles asked for [1/s]: {}", eigenvalues_text(&poles)?)?;

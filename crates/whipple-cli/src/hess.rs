@@ -6,6 +6,7 @@
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
+use whipple_front::units::SpeedUnit;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -38,15 +39,15 @@ pub struct HessArgs {
     /// at 2, 1, 0.5 rad/s).
     #[arg(long)]
     rules: bool,
-    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
-    #[arg(value_parser = crate::speed_arg,
+    /// Forward speed in m/s (or km/h after it: 18km/h).
+    #[arg(value_parser = crate::typed_speed_arg,
         long,
         allow_hyphen_values = true,
         conflicts_with = "speeds",
         required_unless_present = "speeds"
     )]
-    speed: Option<f64>,
-    /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s), both ends included; prints the eigenvalues against
+    speed: Option<crate::TypedSpeed>,
+    /// Speeds START:STOP:STEP in m/s (or km/h after them), both ends included; prints the eigenvalues against
     /// speed.
     #[arg(long, allow_hyphen_values = true)]
     speeds: Option<String>,
@@ -65,9 +66,10 @@ pub struct HessArgs {
     format: TextFormat,
 }
 
-/// `START:STOP:STEP` in m/s, both ends included, as every `--speeds` of the CLI.
-fn parse_speeds(text: &str) -> Result<Vec<f64>> {
-    let (start, stop, step) = crate::output::parse_triple(text, "--speeds")?;
+/// `START:STOP:STEP` in m/s, both ends included, as every `--speeds` of the CLI; with the unit
+/// they were typed in.
+fn parse_speeds(text: &str) -> Result<(Vec<f64>, SpeedUnit)> {
+    let ((start, stop, step), unit) = crate::output::parse_triple_in(text, "--speeds")?;
     let grid = whipple::speed_grid(start, stop, step).context("--speeds")?;
     if grid.len() > MAX_HESS_SPEEDS {
         bail!(
@@ -75,7 +77,7 @@ fn parse_speeds(text: &str) -> Result<Vec<f64>> {
             grid.len()
         );
     }
-    Ok(grid)
+    Ok((grid, unit))
 }
 
 fn gains_words(source: &str, extrapolated: bool, speed: f64, table: Option<&GainTable>) -> String {
@@ -113,7 +115,7 @@ pub fn hess(cx: &RunContext, args: &HessArgs) -> Result<()> {
         None => GainSchedule::Rules(rules),
     };
     if let Some(text) = &args.speeds {
-        let speeds = parse_speeds(text)?;
+        let (speeds, unit) = parse_speeds(text)?;
         let rows = human_eigen_sweep(&bike.benchmark, task, &schedule, &nm, &speeds)
             .context("the ridden bicycle's eigenvalues against speed")?;
         let outside = rows.iter().filter(|r| r.extrapolated).count();
@@ -155,13 +157,18 @@ pub fn hess(cx: &RunContext, args: &HessArgs) -> Result<()> {
                 )?;
                 writeln!(
                     t,
-                    "v [m/s]   stable  kDelta      kPhiDot     kPhi        kPsi        kY          eigenvalues [1/s]"
+                    "v [{}]{}stable  kDelta      kPhiDot     kPhi        kPsi        kY          eigenvalues [1/s]",
+                    unit.symbol(),
+                    " ".repeat(6 - unit.symbol().len())
                 )?;
                 for r in &rows {
                     let k = r.gains.to_array();
                     let mut line = format!(
                         "{:<9} {:<7}",
-                        number(r.speed)?,
+                        match unit {
+                            SpeedUnit::MetresPerSecond => number(r.speed)?,
+                            SpeedUnit::KilometresPerHour => crate::output::kmh_number(r.speed)?,
+                        },
                         if r.eigenvalues.iter().all(|z| z.re < 0.0) {
                             "yes"
                         } else {
@@ -194,9 +201,10 @@ pub fn hess(cx: &RunContext, args: &HessArgs) -> Result<()> {
         };
         return emit(&text, None);
     }
-    let Some(speed) = args.speed else {
+    let Some(typed) = args.speed else {
         bail!("give --speed V or --speeds START:STOP:STEP");
     };
+    let speed = typed.si;
     let (gains, extrapolated) = match &table {
         Some(t) => {
             let at = t.at(speed).context("--speed")?;
@@ -265,9 +273,9 @@ pub fn hess(cx: &RunContext, args: &HessArgs) -> Result<()> {
             let mut t = String::new();
             writeln!(
                 t,
-                "{} at {} m/s ridden by Hess's controller, {task} task (neuromuscular ω = {} rad/s, ζ = {})",
+                "{} at {} ridden by Hess's controller, {task} task (neuromuscular ω = {} rad/s, ζ = {})",
                 bike.label,
-                number(speed)?,
+                crate::output::speed_words(speed, typed.unit)?,
                 number(nm.frequency)?,
                 number(nm.damping)?
             )?;

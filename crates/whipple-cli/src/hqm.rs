@@ -6,6 +6,7 @@
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
+use whipple_front::units::SpeedUnit;
 
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -19,7 +20,7 @@ use whipple_report::{Dash, Marker, Series, XyPlotOptions, line_plot};
 use crate::TextFormat;
 use crate::bike::{RunContext, load};
 use crate::commands::emit;
-use crate::output::{number, parse_triple};
+use crate::output::number;
 
 /// The most speeds `hqm --speeds` evaluates.
 pub const MAX_HQM_SPEEDS: usize = 100_000;
@@ -37,10 +38,10 @@ pub struct HqmArgs {
     /// said so.
     #[arg(long)]
     gains: PathBuf,
-    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
-    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true, conflicts_with = "speeds")]
-    speed: Option<f64>,
-    /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s), both ends included: the peak against speed.
+    /// Forward speed in m/s (or km/h after it: 18km/h).
+    #[arg(value_parser = crate::typed_speed_arg, long, allow_hyphen_values = true, conflicts_with = "speeds")]
+    speed: Option<crate::TypedSpeed>,
+    /// Speeds START:STOP:STEP in m/s (or km/h after them), both ends included: the peak against speed.
     #[arg(long, allow_hyphen_values = true)]
     speeds: Option<String>,
     /// One parameter of the bicycle varied at --speed, the gains held at that speed's:
@@ -90,7 +91,10 @@ pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let (text, figure) = match (args.speed, args.speeds.as_deref()) {
+    let unit = args
+        .speed
+        .map_or(SpeedUnit::MetresPerSecond, |typed| typed.unit);
+    let (text, figure) = match (args.speed.map(|typed| typed.si), args.speeds.as_deref()) {
         (Some(v), None) if args.vary.is_some() => {
             let spec = args.vary.as_deref().unwrap_or_default();
             let axis =
@@ -118,10 +122,10 @@ pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
             let words = vec![lookup_word(&table, v, lookup.extrapolated); rows.len()];
             let x_name = format!("{} [{}]", axis.name, axis.unit());
             let title = format!(
-                "{}: peak HQM against {} at {} m/s ({gains_name})",
+                "{}: peak HQM against {} at {} ({gains_name})",
                 bike.label,
                 axis.name,
-                number(v)?
+                crate::output::speed_words(v, unit)?
             );
             sweep(
                 &bike.label,
@@ -134,9 +138,9 @@ pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
                 args,
             )?
         }
-        (Some(v), None) => one_speed(&bike, &table, &gains_name, v, &neuromuscular, args)?,
+        (Some(v), None) => one_speed(&bike, &table, &gains_name, (v, unit), &neuromuscular, args)?,
         (None, Some(speeds)) => {
-            let (start, stop, step) = parse_triple(speeds, "--speeds")?;
+            let ((start, stop, step), unit) = crate::output::parse_triple_in(speeds, "--speeds")?;
             let grid = whipple::speed_grid(start, stop, step).context("--speeds")?;
             if grid.len() > MAX_HQM_SPEEDS {
                 bail!(
@@ -153,7 +157,16 @@ pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
                      their gains are extrapolated"
                 );
             }
-            let xs: Vec<f64> = rows.iter().map(|r| r.speed).collect();
+            // The speeds as typed: in km/h where they were (the JSON's `speed` stays m/s).
+            let xs: Vec<f64> = rows
+                .iter()
+                .map(|r| match unit {
+                    SpeedUnit::MetresPerSecond => Ok(r.speed),
+                    SpeedUnit::KilometresPerHour => {
+                        Ok(crate::output::kmh_number(r.speed)?.parse()?)
+                    }
+                })
+                .collect::<Result<_>>()?;
             let words: Vec<&str> = rows
                 .iter()
                 .map(|r| lookup_word(&table, r.speed, r.extrapolated))
@@ -162,7 +175,7 @@ pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
             sweep(
                 &bike.label,
                 &gains_name,
-                "speed [m/s]",
+                &format!("speed [{}]", unit.symbol()),
                 &title,
                 &xs,
                 &rows,
@@ -187,7 +200,7 @@ fn one_speed(
     bike: &crate::bike::LoadedBike,
     table: &GainTable,
     gains_name: &str,
-    v: f64,
+    (v, unit): (f64, SpeedUnit),
     neuromuscular: &Neuromuscular,
     args: &HqmArgs,
 ) -> Result<Output> {
@@ -239,7 +252,7 @@ fn one_speed(
         TextFormat::Table => {
             let mut t = String::new();
             writeln!(t, "bicycle: {}", bike.label)?;
-            writeln!(t, "speed: {} m/s", number(v)?)?;
+            writeln!(t, "speed: {}", crate::output::speed_words(v, unit)?)?;
             writeln!(
                 t,
                 "gains ({gains_name}, {how}): kDelta = {}, kPhiDot = {}, kPhi = {}",
@@ -282,9 +295,9 @@ fn one_speed(
             let curve: Vec<(f64, f64)> = grid.into_iter().zip(magnitude).collect();
             let options = XyPlotOptions {
                 title: Some(format!(
-                    "{} at {} m/s: peak HQM {:.3} at {:.3} rad/s",
+                    "{} at {}: peak HQM {:.3} at {:.3} rad/s",
                     bike.label,
-                    number(v)?,
+                    crate::output::speed_label(v, unit)?,
                     peak.magnitude,
                     peak.frequency
                 )),

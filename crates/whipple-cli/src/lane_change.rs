@@ -41,9 +41,9 @@ pub struct LaneChangeArgs {
     /// kY), interpolated linearly at the speed.
     #[arg(long)]
     gains: PathBuf,
-    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
-    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
-    speed: f64,
+    /// Forward speed in m/s (or km/h after it: 18km/h).
+    #[arg(value_parser = crate::typed_speed_arg, long, allow_hyphen_values = true)]
+    speed: crate::TypedSpeed,
     /// Single or double lane change (HumanControl's: 2 m over at 35 m, slope 0.2, back within
     /// 60 m; 250 m in 500 intervals; preview 2.75 s; path filter 2.4 rad/s).
     #[arg(long, value_enum, default_value = "double")]
@@ -87,11 +87,10 @@ pub fn run(cx: &RunContext, args: &LaneChangeArgs) -> Result<()> {
     let Some(out) = out else {
         bail!("--out is required");
     };
-    if !(args.speed.is_finite() && args.speed > 0.0) {
-        bail!(
-            "--speed must be a positive finite number of m/s, got {}",
-            args.speed
-        );
+    let typed = args.speed;
+    let speed = typed.si;
+    if !(speed.is_finite() && speed > 0.0) {
+        bail!("--speed must be a positive finite number of m/s, got {speed}");
     }
     if !(args.rtol.is_finite() && args.rtol > 0.0 && args.rtol < 1e-2) {
         bail!("--rtol must be between 0 and 0.01, got {}", args.rtol);
@@ -103,12 +102,12 @@ pub fn run(cx: &RunContext, args: &LaneChangeArgs) -> Result<()> {
     };
     let bike = load(cx, bike_arg)?;
     let table = crate::bike::read_gains_file(&args.gains)?;
-    let lookup = table.at(args.speed).map_err(core)?;
+    let lookup = table.at(speed).map_err(core)?;
     if lookup.extrapolated {
         eprintln!(
             "warning: {} m/s is outside the gains file's speeds ({} to {} m/s): the gains are \
              extrapolated, as HumanControl warns",
-            number(args.speed)?,
+            number(speed)?,
             number(table.speeds()[0])?,
             number(table.speeds()[table.speeds().len() - 1])?
         );
@@ -136,7 +135,7 @@ pub fn run(cx: &RunContext, args: &LaneChangeArgs) -> Result<()> {
     let linear = match args.model {
         LaneModel::Nonlinear => None,
         _ => Some(
-            lane_change_linear(&bike.benchmark, args.speed, &controller, &lane)
+            lane_change_linear(&bike.benchmark, speed, &controller, &lane)
                 .map_err(core)
                 .context("the linear lane change")?,
         ),
@@ -144,7 +143,7 @@ pub fn run(cx: &RunContext, args: &LaneChangeArgs) -> Result<()> {
     let nonlinear = match args.model {
         LaneModel::Linear => None,
         _ => Some(
-            lane_change_nonlinear(&bike.benchmark, args.speed, &controller, &lane, args.rtol)
+            lane_change_nonlinear(&bike.benchmark, speed, &controller, &lane, args.rtol)
                 .map_err(core)
                 .context("the non-linear lane change")?,
         ),
@@ -154,10 +153,10 @@ pub fn run(cx: &RunContext, args: &LaneChangeArgs) -> Result<()> {
         .filter_map(|(name, run)| run.as_ref().map(|r| (name, r)))
         .collect();
     let title = format!(
-        "{}: {} lane change at {} m/s",
+        "{}: {} lane change at {}",
         bike.label,
         kind.name(),
-        number(args.speed)?
+        output::speed_label(speed, typed.unit)?
     );
     let mut finished = Vec::new();
     let mut sink = out.open()?;
@@ -165,7 +164,7 @@ pub fn run(cx: &RunContext, args: &LaneChangeArgs) -> Result<()> {
     finished.push(sink.finish()?);
     if let Some(target) = plot {
         let path = target.path().to_path_buf();
-        let bytes = figure(&runs, args.speed, &title)?
+        let bytes = figure(&runs, speed, &title)?
             .render_for_path(&path)
             .with_context(|| format!("drawing {}", path.display()))?;
         let mut sink = target.open()?;

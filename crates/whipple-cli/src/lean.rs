@@ -23,7 +23,7 @@ use whipple_report::{Series, XyPlotOptions, line_plot};
 use crate::TextFormat;
 use crate::bike::RunContext;
 use crate::bike::read_capped;
-use crate::output::{self, number, parse_triple};
+use crate::output::{self, number};
 use crate::time_response::short;
 
 /// The most speeds `whipple rider --speeds` takes.
@@ -48,10 +48,10 @@ pub struct RiderArgs {
     /// The hinge's passive damping in N m s/rad (Moore's c9), replacing the file's.
     #[arg(long, allow_hyphen_values = true)]
     hinge_damping: Option<f64>,
-    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s): the modes at this speed (and the speed of --simulate).
-    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true, conflicts_with = "speeds")]
-    speed: Option<f64>,
-    /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s): the modes against speed.
+    /// Forward speed in m/s (or km/h after it: 18km/h): the modes at this speed (and the speed of --simulate).
+    #[arg(value_parser = crate::typed_speed_arg, long, allow_hyphen_values = true, conflicts_with = "speeds")]
+    speed: Option<crate::TypedSpeed>,
+    /// Speeds START:STOP:STEP in m/s (or km/h after them): the modes against speed.
     #[arg(long, allow_hyphen_values = true)]
     speeds: Option<String>,
     /// Simulate the non-linear bicycle for this many seconds from upright running at --speed.
@@ -153,11 +153,12 @@ pub fn run(cx: &RunContext, args: &RiderArgs) -> Result<()> {
     let rigid = Canonical::new(&p.rigid())
         .map_err(core)
         .context("the rigid rider (the hinge locked)")?;
-    let speeds = match (args.speed, args.speeds.as_deref()) {
-        (Some(v), None) if v.is_finite() => vec![v],
+    // With the unit the speeds were typed in: each speed's heading gives km/h too where it was.
+    let (speeds, unit) = match (args.speed, args.speeds.as_deref()) {
+        (Some(typed), None) if typed.si.is_finite() => (vec![typed.si], typed.unit),
         (Some(_), None) => bail!("--speed must be a finite number of m/s"),
         (None, Some(text)) => {
-            let (a, b, step) = parse_triple(text, "--speeds")?;
+            let ((a, b, step), unit) = output::parse_triple_in(text, "--speeds")?;
             let grid = whipple::speed_grid(a, b, step).context("--speeds")?;
             if grid.len() > MAX_RIDER_SPEEDS {
                 bail!(
@@ -165,7 +166,7 @@ pub fn run(cx: &RunContext, args: &RiderArgs) -> Result<()> {
                     grid.len()
                 );
             }
-            grid
+            (grid, unit)
         }
         _ => bail!("give --speed V or --speeds START:STOP:STEP"),
     };
@@ -221,8 +222,8 @@ pub fn run(cx: &RunContext, args: &RiderArgs) -> Result<()> {
                 };
                 writeln!(
                     t,
-                    "v = {} m/s\n  leaning rider ({}): {}\n  rigid rider   ({}): {}",
-                    number(*v)?,
+                    "v = {}\n  leaning rider ({}): {}\n  rigid rider   ({}): {}",
+                    output::speed_words(*v, unit)?,
                     if lean.iter().all(|z| z.re < 0.0) {
                         "stable"
                     } else {

@@ -31,22 +31,31 @@ mod validate;
 
 use std::ffi::OsString;
 
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand, ValueEnum};
 
 /// The units rule, under every command's help.
 const UNITS_HELP: &str = "Units: a speed is in m/s, or in km/h with km/h after the value \
 (--speed 18km/h, --range 15:25km/h, --speeds 10:30:0.5km/h, --speeds 3,5,7km/h, \
---x speed=10:30:21km/h); results print in m/s. Typed in km/h, speeds, eig, modes, sensitivity, \
-response, control's closed loops, turns and a map's --band give the speeds in km/h too: beside each \
-speed, on eig's speed axis (its table and plot; its CSV and JSON add a v_kmh column, v stays m/s); \
-a design axis prints its values as typed. A parameter's name takes _mm after a length and \
+--x speed=10:30:21km/h). Results print in m/s; speeds typed in km/h are answered in km/h too: \
+a speed or range echoed in a heading or title, each critical speed and stable range after its \
+m/s, the speed column of a table against speed (eig, control's tables, hess, hqm) and eig's plot \
+axis in km/h. Quantities computed along the way (a simulation's speed, a map's or study's \
+critical speeds) and CSV and JSON files stay in m/s (eig's CSV and JSON add a v_kmh column); a \
+design axis prints its values as typed. A parameter's name takes _mm after a length and \
 _deg after an angle, in design axes (--x trail_mm=40:120:81) and in TOML and JSON files \
 (c_mm = 80, lam_deg = 18).";
+
+/// `command` and every subcommand of it, at any depth, with the units rule under its help.
+fn with_units_help(command: clap::Command) -> clap::Command {
+    command
+        .after_help(UNITS_HELP)
+        .mut_subcommands(with_units_help)
+}
 
 /// Dynamics of the Whipple bicycle: benchmark parameters, linearized stability, eigenvalues,
 /// critical speeds and drawings (the successor of JBike6).
 #[derive(Parser)]
-#[command(name = "whipple", version, about, long_about = None, after_help = UNITS_HELP)]
+#[command(name = "whipple", version, about, long_about = None)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -75,11 +84,6 @@ struct Cli {
     set: Vec<String>,
 }
 
-/// A speed option as typed (`4.6`, `18km/h`), in m/s: whipple-front's one reading of speeds.
-fn speed_arg(text: &str) -> Result<f64, String> {
-    Ok(typed_speed_arg(text)?.si)
-}
-
 /// A speed as typed: in m/s, and the unit it was typed in (a command that echoes it answers in
 /// that unit too).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -90,7 +94,8 @@ pub struct TypedSpeed {
     pub unit: whipple_front::units::SpeedUnit,
 }
 
-/// [`speed_arg`], with the unit the speed was typed in.
+/// A speed option as typed (`4.6`, `18km/h`), in m/s with its unit: whipple-front's one
+/// reading of speeds.
 fn typed_speed_arg(text: &str) -> Result<TypedSpeed, String> {
     let rule = |e: whipple::Error| match e {
         whipple::Error::InvalidArgument { rule, .. } => rule,
@@ -208,7 +213,7 @@ enum Command {
     Eig {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Speeds START:STOP:STEP in m/s (or km/h after them; results in m/s, and in km/h too if typed so), both ends included.
+        /// Speeds START:STOP:STEP in m/s (or km/h after them), both ends included.
         #[arg(long, default_value = "0:10:0.1", allow_hyphen_values = true)]
         speeds: String,
         /// Output format.
@@ -235,7 +240,7 @@ enum Command {
     Modes {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Forward speed in m/s (or km/h after it: 18km/h; results in m/s, and in km/h too if typed so).
+        /// Forward speed in m/s (or km/h after it: 18km/h).
         #[arg(value_parser = crate::typed_speed_arg, long, allow_hyphen_values = true)]
         speed: TypedSpeed,
         /// Output format.
@@ -246,7 +251,7 @@ enum Command {
     Speeds {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Speed range LO:HI in m/s (or km/h after them; results in m/s, and in km/h too if typed so); HI may be `inf` (default: every speed v >= 0).
+        /// Speed range LO:HI in m/s (or km/h after them); HI may be `inf` (default: every speed v >= 0).
         #[arg(long, allow_hyphen_values = true)]
         range: Option<String>,
         /// Output format.
@@ -305,10 +310,10 @@ enum Command {
     Sensitivity {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Also the derivatives of the weave's and capsize's real parts at this speed [m/s, or km/h after it: 18km/h; results in m/s, and in km/h too if typed so].
+        /// Also the derivatives of the weave's and capsize's real parts at this speed [m/s, or km/h after it: 18km/h].
         #[arg(value_parser = crate::typed_speed_arg, long)]
         speed: Option<TypedSpeed>,
-        /// Speed range LO:HI searched for the critical speeds, in m/s (or km/h after them; results in m/s, and in km/h too if typed so).
+        /// Speed range LO:HI searched for the critical speeds, in m/s (or km/h after them).
         #[arg(long, default_value = "0:20", allow_hyphen_values = true)]
         range: String,
         /// Output format.
@@ -355,7 +360,7 @@ enum Command {
     Validate {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Speeds START:STOP:STEP in m/s (or km/h after them; results print in m/s), both ends included.
+        /// Speeds START:STOP:STEP in m/s (or km/h after them), both ends included.
         #[arg(long, default_value = "0:10:0.01", allow_hyphen_values = true)]
         speeds: String,
         /// Linearization: the study's finite differences, exact derivatives, or both.
@@ -407,7 +412,10 @@ where
     I: IntoIterator<Item = T>,
     T: Into<OsString> + Clone,
 {
-    let cli = match Cli::try_parse_from(args) {
+    let parsed = with_units_help(Cli::command())
+        .try_get_matches_from(args)
+        .and_then(|matches| Cli::from_arg_matches(&matches));
+    let cli = match parsed {
         Ok(cli) => cli,
         Err(error) => {
             // Help and version go to standard output, usage errors to standard error.

@@ -27,9 +27,9 @@ use crate::time_response::short;
 pub struct OptimalArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     bike: String,
-    /// The design speed in m/s (or km/h after it: 18km/h; results print in m/s).
-    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
-    speed: f64,
+    /// The design speed in m/s (or km/h after it: 18km/h).
+    #[arg(value_parser = crate::typed_speed_arg, long, allow_hyphen_values = true)]
+    speed: crate::TypedSpeed,
     /// A varied parameter and its bounds, NAME=LOW:HIGH, named as `whipple design` names its
     /// axes (`trail=0:0.2`, `head_angle_deg=60:85`, `w=0.8:1.4`, `rF=0.2:0.5`); repeat for
     /// more.
@@ -106,7 +106,7 @@ pub fn run(cx: &RunContext, args: &OptimalArgs) -> Result<()> {
         },
         starts: args.starts,
         max_iterations: args.iterations,
-        ..OptimalHandlingSettings::at(args.speed)
+        ..OptimalHandlingSettings::at(args.speed.si)
     };
     let started = Instant::now();
     let result = optimal_handling(&bike.bicycle, &bounds, &settings, crate::interrupt::flag())
@@ -114,9 +114,9 @@ pub fn run(cx: &RunContext, args: &OptimalArgs) -> Result<()> {
     let seconds = started.elapsed().as_secs_f64();
     if !result.best.stable {
         bail!(
-            "no start found a bicycle whose roll and lateral loops are stable at {} m/s within \
+            "no start found a bicycle whose roll and lateral loops are stable at {} within \
              these bounds: there is no handling quality to optimize (the bicycle itself: {})",
-            short(args.speed)?,
+            at_speed(args.speed)?,
             peak_words(&result.base)?
         );
     }
@@ -128,7 +128,7 @@ pub fn run(cx: &RunContext, args: &OptimalArgs) -> Result<()> {
         TextFormat::Json => {
             let doc = json!({
                 "bike": bike.label,
-                "speed": args.speed,
+                "speed": args.speed.si,
                 "parameters": specs.iter().map(|s| json!({
                     "name": s.name, "unit": s.unit(),
                     "low": s.from_si(s.bound.low), "high": s.from_si(s.bound.high),
@@ -153,10 +153,10 @@ pub fn run(cx: &RunContext, args: &OptimalArgs) -> Result<()> {
             let mut t = String::new();
             writeln!(
                 t,
-                "{}: optimal handling at {} m/s (peak HQM, the gains by Hess 2012's rules for \
+                "{}: optimal handling at {} (peak HQM, the gains by Hess 2012's rules for \
                  each candidate)",
                 bike.label,
-                short(args.speed)?
+                at_speed(args.speed)?
             )?;
             writeln!(
                 t,
@@ -222,4 +222,9 @@ pub fn run(cx: &RunContext, args: &OptimalArgs) -> Result<()> {
         }
     };
     emit(&text, out.as_ref())
+}
+
+/// The design speed as the outputs print it: `5 m/s`, `5 m/s (18 km/h)` where typed in km/h.
+fn at_speed(speed: crate::TypedSpeed) -> Result<String> {
+    crate::output::speed_words(speed.si, speed.unit)
 }

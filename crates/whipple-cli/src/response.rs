@@ -29,7 +29,7 @@ pub enum ResponseCommand {
     Bode {
         #[arg(long, help = whipple_front::formats::bike_help())]
         bike: String,
-        /// Forward speeds in m/s (or km/h after them; results in m/s, and in km/h too if typed so), separated by commas.
+        /// Forward speeds in m/s (or km/h after them), separated by commas.
         #[arg(long, default_value = "3,5,7", allow_hyphen_values = true)]
         speeds: String,
         /// An input, repeatable: lean_torque, steer_torque, lateral_force:X,Z (the point of

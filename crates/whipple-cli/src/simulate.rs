@@ -34,9 +34,9 @@ pub enum IntegratorChoice {
 pub struct SimulateArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     pub bike: String,
-    /// Forward speed v in m/s (or km/h after it: 18km/h; results print in m/s).
-    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
-    pub speed: f64,
+    /// Forward speed v in m/s (or km/h after it: 18km/h).
+    #[arg(value_parser = crate::typed_speed_arg, long, allow_hyphen_values = true)]
+    pub speed: crate::TypedSpeed,
     /// Initial lean in degrees (right positive), below 90 in size.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub lean: f64,
@@ -100,7 +100,7 @@ pub struct SimulateArgs {
 /// The library's request from the command line's options (degrees as typed).
 fn request(args: &SimulateArgs) -> SimulationRequest {
     SimulationRequest {
-        speed: args.speed,
+        speed: args.speed.si,
         lean_deg: args.lean,
         steer_deg: args.steer,
         lean_rate: args.lean_rate,
@@ -214,7 +214,7 @@ fn write_json(
     let head = json!({
         "bike": bike.label,
         "initial": {
-            "speed": args.speed,
+            "speed": args.speed.si,
             "lean": args.lean.to_radians(),
             "steer": args.steer.to_radians(),
             "lean_rate": args.lean_rate,
@@ -356,8 +356,12 @@ fn plot(bike: &LoadedBike, args: &SimulateArgs, run: &Simulation, path: &Path) -
     };
     let series = whipple_report::SimulationSeries {
         title: format!(
-            "{}: v = {} m/s, lean {} deg, steer {steer}, lean rate {} rad/s, steer rate {} rad/s",
-            bike.label, args.speed, args.lean, args.lean_rate, args.steer_rate
+            "{}: v = {}, lean {} deg, steer {steer}, lean rate {} rad/s, steer rate {} rad/s",
+            bike.label,
+            output::speed_label(args.speed.si, args.speed.unit)?,
+            args.lean,
+            args.lean_rate,
+            args.steer_rate
         ),
         t: samples.iter().map(|s| s.t).collect(),
         lean: samples.iter().map(|s| s.lean).collect(),
@@ -386,7 +390,7 @@ pub fn run(cx: &RunContext, args: &SimulateArgs) -> Result<()> {
     let turn = if args.from_turn {
         let turn = held_turn(
             &model,
-            args.speed,
+            args.speed.si,
             Held::Lean(args.lean.to_radians()),
             &TurnSettings::default(),
         )

@@ -21,9 +21,9 @@ use crate::output::{self, Target, number};
 pub struct TimeArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     bike: String,
-    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
-    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
-    speed: f64,
+    /// Forward speed in m/s (or km/h after it: 18km/h).
+    #[arg(value_parser = crate::typed_speed_arg, long, allow_hyphen_values = true)]
+    speed: crate::TypedSpeed,
     /// An output, repeatable (default: lean, steer, yaw and rear_contact_y); the names of
     /// `whipple response bode --help`.
     #[arg(long = "output", allow_hyphen_values = true)]
@@ -123,8 +123,11 @@ fn targets(
 /// Runs `step`, `impulse` or `initial`.
 pub fn linear(cx: &RunContext, args: &TimeArgs, kind: &Kind) -> Result<()> {
     let (out, figure) = targets(args.out.as_deref(), args.figure.as_deref())?;
-    if !args.speed.is_finite() {
-        bail!("--speed must be a finite number of m/s, got {}", args.speed);
+    if !args.speed.si.is_finite() {
+        bail!(
+            "--speed must be a finite number of m/s, got {}",
+            args.speed.si
+        );
     }
     let times = sample_times(args.duration, args.samples)?;
     let bike = load(cx, &args.bike)?;
@@ -140,7 +143,7 @@ pub fn linear(cx: &RunContext, args: &TimeArgs, kind: &Kind) -> Result<()> {
     let inputs: Vec<&str> = input_name.into_iter().collect();
     let plane = ["yaw", "rear_contact_x", "rear_contact_y"];
     let req = request_with_states(&inputs, &outputs, &plane).map_err(named)?;
-    let system = LinearSystem::new(&bike.benchmark, args.speed, &req).map_err(named)?;
+    let system = LinearSystem::new(&bike.benchmark, args.speed.si, &req).map_err(named)?;
     let n = system.states().len();
     let (response, what) = match kind {
         Kind::Step { amplitude, .. } => {
@@ -191,9 +194,9 @@ pub fn linear(cx: &RunContext, args: &TimeArgs, kind: &Kind) -> Result<()> {
         }
     };
     let title = format!(
-        "{} at {} m/s, linear model: {what}",
+        "{} at {}, linear model: {what}",
         bike.label,
-        number(args.speed)?
+        crate::output::speed_words(args.speed.si, args.speed.unit)?
     );
     let summary = summary(&title, &response)?;
     let mut finished = Vec::new();
@@ -381,9 +384,9 @@ fn series(
 pub struct ManoeuvreArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     bike: String,
-    /// Forward speed in m/s (or km/h after it: 18km/h; results print in m/s).
-    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
-    speed: f64,
+    /// Forward speed in m/s (or km/h after it: 18km/h).
+    #[arg(value_parser = crate::typed_speed_arg, long, allow_hyphen_values = true)]
+    speed: crate::TypedSpeed,
     /// Steer torque [N m] against time: step:T:A, pulse:T:D:A, linear:T1=U1,T2=U2,… or
     /// constant:T1=U1,… (for example pulse:0:0.5:1, 1 N m for half a second).
     #[arg(long, allow_hyphen_values = true)]
@@ -420,8 +423,11 @@ const MAX_MANOEUVRE_SAMPLES: usize = 20_000;
 /// Runs `whipple response manoeuvre`.
 pub fn manoeuvre(cx: &RunContext, args: &ManoeuvreArgs) -> Result<()> {
     let (out, figure) = targets(args.out.as_deref(), args.figure.as_deref())?;
-    if !args.speed.is_finite() {
-        bail!("--speed must be a finite number of m/s, got {}", args.speed);
+    if !args.speed.si.is_finite() {
+        bail!(
+            "--speed must be a finite number of m/s, got {}",
+            args.speed.si
+        );
     }
     for (option, value) in [("--lean", args.lean), ("--steer", args.steer)] {
         if !value.is_finite() {
@@ -458,7 +464,7 @@ pub fn manoeuvre(cx: &RunContext, args: &ManoeuvreArgs) -> Result<()> {
     }
     let bike = load(cx, &args.bike)?;
     let manoeuvre = Manoeuvre {
-        speed: args.speed,
+        speed: args.speed.si,
         lean: whipple_front::units::radians(args.lean),
         steer: whipple_front::units::radians(args.steer),
         inputs,
@@ -481,9 +487,9 @@ pub fn manoeuvre(cx: &RunContext, args: &ManoeuvreArgs) -> Result<()> {
         ));
     }
     let title = format!(
-        "{} at {} m/s: {}",
+        "{} at {}: {}",
         bike.label,
-        number(args.speed)?,
+        crate::output::speed_words(args.speed.si, args.speed.unit)?,
         what.join(", ")
     );
     let text = manoeuvre_summary(&title, &both)?;

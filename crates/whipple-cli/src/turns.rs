@@ -23,9 +23,9 @@ use whipple_front::units::SpeedUnit;
 pub struct TurnArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     pub bike: String,
-    /// Speed of the rear contact in m/s (or km/h after it: 18km/h; results print in m/s).
-    #[arg(value_parser = crate::speed_arg, long, allow_hyphen_values = true)]
-    pub speed: f64,
+    /// Speed of the rear contact in m/s (or km/h after it: 18km/h).
+    #[arg(value_parser = crate::typed_speed_arg, long, allow_hyphen_values = true)]
+    pub speed: crate::TypedSpeed,
     /// Lean in degrees (right positive): the held turn at this lean.
     #[arg(long, allow_hyphen_values = true, group = "given")]
     pub lean: Option<f64>,
@@ -48,7 +48,7 @@ pub struct TurnArgs {
 pub struct TurnsArgs {
     #[arg(long, help = whipple_front::formats::bike_help())]
     pub bike: String,
-    /// Speeds traced, LO:HI in m/s (or km/h after them; results in m/s, and in km/h too if typed so) (default 0:20).
+    /// Speeds traced, LO:HI in m/s (or km/h after them) (default 0:20).
     #[arg(long, allow_hyphen_values = true)]
     pub range: Option<String>,
     /// Output format of the summary.
@@ -214,13 +214,13 @@ pub fn turn(cx: &RunContext, args: &TurnArgs) -> Result<()> {
     };
     let turns: Vec<SteadyTurn> = match given {
         Some(g) => vec![
-            held_turn(&model, args.speed, g, &settings)
+            held_turn(&model, args.speed.si, g, &settings)
                 .with_context(|| format!("steady turn of {}", bike.label))?,
         ],
         None => {
             let families = hands_free_families(&model, &FamilySettings::default())
                 .with_context(|| format!("hands-free turns of {}", bike.label))?;
-            let mut found = hands_free_turns_at_speed(&model, args.speed, &families, &settings)?;
+            let mut found = hands_free_turns_at_speed(&model, args.speed.si, &families, &settings)?;
             // Both leans: the families are traced to the right, their mirror images lean left.
             let mirrored: Vec<SteadyTurn> = found
                 .iter()
@@ -257,10 +257,10 @@ pub fn turn(cx: &RunContext, args: &TurnArgs) -> Result<()> {
             if args.hands_free {
                 writeln!(
                     t,
-                    "{}: {} hands-free steady turn(s) at {} m/s (on the families traced by `whipple turns`; a family the grid scan misses is missed here too)",
+                    "{}: {} hands-free steady turn(s) at {} (on the families traced by `whipple turns`; a family the grid scan misses is missed here too)",
                     bike.label,
                     with_stab.len(),
-                    number(args.speed)?
+                    crate::output::speed_words(args.speed.si, args.speed.unit)?
                 )?;
             } else {
                 writeln!(t, "{}: held steady turn", bike.label)?;

@@ -387,6 +387,93 @@ fn speeds_typed_in_km_per_h_are_answered_in_km_per_h_too() {
         bode.contains("v = 2.7777777777777777 m/s (10 km/h), steer_torque → lean"),
         "{bode}"
     );
+    // The other commands: the speed echoed in their headings, tables against speed in km/h.
+    let lqr = out(&[
+        "control",
+        "lqr",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "18km/h",
+        "--q",
+        "diag:1,1,1,1",
+        "--r",
+        "1",
+    ]);
+    assert!(
+        lqr.starts_with("benchmark: LQR at v = 5 m/s (18 km/h),"),
+        "{lqr}"
+    );
+    let hess = out(&[
+        "control",
+        "hess",
+        "--bike",
+        "benchmark",
+        "--rules",
+        "--speed",
+        "18km/h",
+    ]);
+    assert!(
+        hess.starts_with("benchmark at 5 m/s (18 km/h) ridden by Hess's controller"),
+        "{hess}"
+    );
+    let table = out(&[
+        "control",
+        "hess",
+        "--bike",
+        "benchmark",
+        "--rules",
+        "--speeds",
+        "10:20:10km/h",
+    ]);
+    let rows: Vec<&str> = table.lines().skip(1).take(3).collect();
+    assert!(
+        rows[0].starts_with("v [km/h]  stable")
+            && rows[1].starts_with("10 ")
+            && rows[2].starts_with("20 "),
+        "{table}"
+    );
+    let reach = out(&[
+        "control",
+        "controllability",
+        "--bike",
+        "benchmark",
+        "--speeds",
+        "10:20:10km/h",
+    ]);
+    assert!(
+        reach.contains("  v [km/h]   rank") && reach.contains("\n  20        4/4"),
+        "{reach}"
+    );
+    let step = out(&[
+        "response",
+        "step",
+        "--bike",
+        "benchmark",
+        "--speed",
+        "18km/h",
+        "--input",
+        "steer_torque",
+    ]);
+    assert!(
+        step.starts_with("benchmark at 5 m/s (18 km/h), linear model:"),
+        "{step}"
+    );
+    let same = out(&[
+        "control",
+        "hess",
+        "--bike",
+        "benchmark",
+        "--rules",
+        "--speeds",
+        "3:4:1",
+    ]);
+    assert!(
+        same.lines()
+            .nth(1)
+            .is_some_and(|l| l.starts_with("v [m/s]   stable")),
+        "{same}"
+    );
     let map = dir.join("map.svg");
     whipple(&[
         "map",
