@@ -97,12 +97,10 @@ pub struct TypedSpeed {
 /// A speed option as typed (`4.6`, `18km/h`), in m/s with its unit: whipple-front's one
 /// reading of speeds.
 fn typed_speed_arg(text: &str) -> Result<TypedSpeed, String> {
-    let rule = |e: whipple::Error| match e {
+    let (si, unit) = whipple_front::units::typed_speed(text).map_err(|e| match e {
         whipple::Error::InvalidArgument { rule, .. } => rule,
         other => other.to_string(),
-    };
-    let (_, unit) = whipple_front::units::split_speed(text).map_err(rule)?;
-    let si = whipple_front::units::speed(text).map_err(rule)?;
+    })?;
     Ok(TypedSpeed { si, unit })
 }
 

@@ -216,9 +216,21 @@ pub fn split_speed(text: &str) -> whipple::Result<(&str, SpeedUnit)> {
 /// # Ok::<(), whipple::Error>(())
 /// ```
 pub fn speed(text: &str) -> whipple::Result<f64> {
+    Ok(typed_speed(text)?.0)
+}
+
+/// [`speed`], with the unit it was typed in (a front end answers in that unit too).
+///
+/// ```
+/// use whipple_front::units::{typed_speed, SpeedUnit};
+/// assert_eq!(typed_speed("18km/h")?, (5.0, SpeedUnit::KilometresPerHour));
+/// assert_eq!(typed_speed("4.6")?, (4.6, SpeedUnit::MetresPerSecond));
+/// # Ok::<(), whipple::Error>(())
+/// ```
+pub fn typed_speed(text: &str) -> whipple::Result<(f64, SpeedUnit)> {
     let (number, unit) = split_speed(text)?;
     let x = finite(number, text)?;
-    Ok(unit.to_si(x))
+    Ok((unit.to_si(x), unit))
 }
 
 /// A number of a speed argument, finite: the error names the whole argument as written.

@@ -519,16 +519,10 @@ mod tests {
     /// tick (about a millisecond): 200 µs of work against a 1 µs limit is a timeout every time.
     #[tokio::test]
     async fn work_past_the_limit_is_a_timeout_whatever_the_timer_tick() {
-        let state = AppState {
-            limits: Limits {
-                compute_timeout: std::time::Duration::from_micros(1),
-                ..Limits::default()
-            },
-            bound: IpAddr::V4(Ipv4Addr::LOCALHOST),
-            heavy: Arc::new(Semaphore::new(1)),
-            heavy_waiting: Arc::new(AtomicUsize::new(0)),
-            interactive: Arc::new(Semaphore::new(1)),
-        };
+        let state = one_slot(Limits {
+            compute_timeout: std::time::Duration::from_micros(1),
+            ..Limits::default()
+        });
         for _ in 0..20 {
             let result = compute(&state, Budget::Interactive, "wait less", |_| {
                 let until = std::time::Instant::now() + std::time::Duration::from_micros(200);
@@ -551,13 +545,7 @@ mod tests {
             compute_timeout: std::time::Duration::from_millis(20),
             ..Limits::default()
         };
-        let state = AppState {
-            limits,
-            bound: IpAddr::V4(Ipv4Addr::LOCALHOST),
-            heavy: Arc::new(Semaphore::new(1)),
-            heavy_waiting: Arc::new(AtomicUsize::new(0)),
-            interactive: Arc::new(Semaphore::new(1)),
-        };
+        let state = one_slot(limits);
         let saw_stop = Arc::new(AtomicBool::new(false));
         let seen = saw_stop.clone();
         let result = compute(&state, Budget::Heavy, "wait less", move |stop| {
@@ -584,18 +572,23 @@ mod tests {
         assert!(saw_stop.load(Ordering::Relaxed));
     }
 
+    /// A server's state with one computing slot of each budget.
+    fn one_slot(limits: Limits) -> AppState {
+        AppState {
+            limits,
+            bound: IpAddr::V4(Ipv4Addr::LOCALHOST),
+            heavy: Arc::new(Semaphore::new(1)),
+            heavy_waiting: Arc::new(AtomicUsize::new(0)),
+            interactive: Arc::new(Semaphore::new(1)),
+        }
+    }
+
     /// An answer told line by line whose client goes away after the first progress line:
     /// the work is told to stop and its slot comes back, long before the work's 30 s.
     #[tokio::test]
     async fn work_told_line_by_line_stops_when_the_client_goes() -> Result<(), String> {
         use http_body_util::BodyExt;
-        let state = AppState {
-            limits: Limits::default(),
-            bound: IpAddr::V4(Ipv4Addr::LOCALHOST),
-            heavy: Arc::new(Semaphore::new(1)),
-            heavy_waiting: Arc::new(AtomicUsize::new(0)),
-            interactive: Arc::new(Semaphore::new(1)),
-        };
+        let state = one_slot(Limits::default());
         let saw_stop = Arc::new(AtomicBool::new(false));
         let seen = saw_stop.clone();
         let job = Job {
