@@ -312,7 +312,7 @@ impl EigenRows {
                     .map(|(l, mode)| json!({"re": l.re, "im": l.im, "mode": mode.name()}))
                     .collect();
                 let row = if self.kmh() {
-                    let kmh: f64 = output::kmh_number(v)?.parse()?;
+                    let kmh = output::as_typed(v, self.unit);
                     json!({"v": v, "v_kmh": kmh, "eigenvalues": eigs})
                 } else {
                     json!({"v": v, "eigenvalues": eigs})
@@ -744,7 +744,7 @@ pub fn sensitivity(
                 let at = match typed.unit {
                     SpeedUnit::MetresPerSecond => number(typed.si)?,
                     SpeedUnit::KilometresPerHour => {
-                        format!("{}km/h", output::kmh_number(typed.si)?)
+                        format!("{}km/h", output::speed_number(typed.si, typed.unit)?)
                     }
                 };
                 let (w, c) = (format!("dRe_w/dp@{at}"), format!("dRe_c/dp@{at}"));

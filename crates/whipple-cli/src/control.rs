@@ -7,7 +7,6 @@
 //! speeds, a schedule, with the speeds it stabilizes).
 
 use std::fmt::Write as _;
-use whipple_front::units::SpeedUnit;
 
 use anyhow::{Context, Result};
 use clap::{Args, Subcommand};
@@ -441,10 +440,7 @@ fn controllability(
                     writeln!(
                         t,
                         "  {:<9} {}/{}    {:<11} {}",
-                        match unit {
-                            SpeedUnit::MetresPerSecond => number(r.speed)?,
-                            SpeedUnit::KilometresPerHour => crate::output::kmh_number(r.speed)?,
-                        },
+                        crate::output::speed_number(r.speed, unit)?,
                         r.rank,
                         r.states,
                         condition,

@@ -577,10 +577,7 @@ fn lqr_schedule_text(
                     .map(complex)
                     .transpose()?
                     .unwrap_or_default();
-                let v = match unit {
-                    SpeedUnit::MetresPerSecond => number(*v)?,
-                    SpeedUnit::KilometresPerHour => output::kmh_number(*v)?,
-                };
+                let v = crate::output::speed_number(*v, unit)?;
                 writeln!(t, "  {v:<9} [{k}]   {:.1e}   {slowest}", s.residual)?;
             }
             t.push('\n');

@@ -165,10 +165,7 @@ pub fn hess(cx: &RunContext, args: &HessArgs) -> Result<()> {
                     let k = r.gains.to_array();
                     let mut line = format!(
                         "{:<9} {:<7}",
-                        match unit {
-                            SpeedUnit::MetresPerSecond => number(r.speed)?,
-                            SpeedUnit::KilometresPerHour => crate::output::kmh_number(r.speed)?,
-                        },
+                        crate::output::speed_number(r.speed, unit)?,
                         if r.eigenvalues.iter().all(|z| z.re < 0.0) {
                             "yes"
                         } else {

@@ -160,13 +160,8 @@ pub fn run(cx: &RunContext, args: &HqmArgs) -> Result<()> {
             // The speeds as typed: in km/h where they were (the JSON's `speed` stays m/s).
             let xs: Vec<f64> = rows
                 .iter()
-                .map(|r| match unit {
-                    SpeedUnit::MetresPerSecond => Ok(r.speed),
-                    SpeedUnit::KilometresPerHour => {
-                        Ok(crate::output::kmh_number(r.speed)?.parse()?)
-                    }
-                })
-                .collect::<Result<_>>()?;
+                .map(|r| crate::output::as_typed(r.speed, unit))
+                .collect();
             let words: Vec<&str> = rows
                 .iter()
                 .map(|r| lookup_word(&table, r.speed, r.extrapolated))

@@ -818,9 +818,24 @@ pub fn parse_triple_in(text: &str, option: &str) -> Result<((f64, f64, f64), Spe
 /// a speed typed in km/h reads back as typed (10 km/h is 2.7777777777777777 m/s, whose product
 /// with 3.6 is not 10 in floating point).
 pub fn kmh_number(v: f64) -> Result<String> {
-    let kmh = SpeedUnit::KilometresPerHour.from_si(v);
-    let rounded: f64 = format!("{kmh:.11e}").parse().unwrap_or(kmh);
-    number(rounded)
+    number(as_typed(v, SpeedUnit::KilometresPerHour))
+}
+
+/// A speed [m/s] in the unit it was typed in: itself, or in km/h to twelve significant digits
+/// ([`kmh_number`]).
+pub fn as_typed(v: f64, unit: SpeedUnit) -> f64 {
+    match unit {
+        SpeedUnit::MetresPerSecond => v,
+        SpeedUnit::KilometresPerHour => {
+            let kmh = unit.from_si(v);
+            format!("{kmh:.11e}").parse().unwrap_or(kmh)
+        }
+    }
+}
+
+/// A speed [m/s] printed in the unit it was typed in, without the unit: `5`, `18`.
+pub fn speed_number(v: f64, unit: SpeedUnit) -> Result<String> {
+    number(as_typed(v, unit))
 }
 
 /// A speed as the text outputs print it: `5 m/s`, or `5 m/s (18 km/h)` where the speeds were
@@ -831,10 +846,7 @@ pub fn speed_words(v: f64, unit: SpeedUnit) -> Result<String> {
 
 /// A speed as a figure's legend names it, in the unit it was typed in: `3 m/s`, `10 km/h`.
 pub fn speed_label(v: f64, unit: SpeedUnit) -> Result<String> {
-    Ok(match unit {
-        SpeedUnit::MetresPerSecond => format!("{} m/s", number(v)?),
-        SpeedUnit::KilometresPerHour => format!("{} km/h", kmh_number(v)?),
-    })
+    Ok(format!("{} {}", speed_number(v, unit)?, unit.symbol()))
 }
 
 /// What follows a speed printed in m/s where the speeds were typed in km/h: ` (15.4525771308
